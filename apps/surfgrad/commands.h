@@ -1,0 +1,23 @@
+// Subcommands of build/bin/surfgrad. Each module registers its own
+// subcommands; a subcommand's callback stores its exit status in `status`.
+// Errors are reported by throwing sg::cli::CliError (or any std::exception):
+// main prints "surfgrad: error: <message>" and exits 1.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace sg::cli {
+
+struct CliError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+void addEvalCommand(CLI::App& app, int& status);
+void addSelftestCommand(CLI::App& app, int& status);
+
+} // namespace sg::cli

@@ -1,0 +1,56 @@
+// Input/output policy shared by every module that touches files (features,
+// mesh, the renderer and the CLI): one error type for untrusted input and
+// atomic output.
+//
+// Policy (see docs/architecture.md, "Errors"):
+//  - assert() for caller bugs;
+//  - sg::io::InputError for bad untrusted input: the message names the file,
+//    the element (line, key, face index, ...) and the reason;
+//  - never a crash, a hang or a silent NaN;
+//  - outputs are written to a temporary file in the destination directory
+//    and renamed over the destination only when complete; an output path
+//    that names one of the inputs is refused.
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <initializer_list>
+#include <stdexcept>
+#include <string>
+
+namespace sg::io {
+
+class InputError : public std::runtime_error {
+public:
+    // what() == "<file>: <element>: <reason>" (element omitted when empty).
+    InputError(std::string file, std::string element, std::string reason);
+    const std::string& file() const { return file_; }
+    const std::string& element() const { return element_; }
+    const std::string& reason() const { return reason_; }
+
+private:
+    std::string file_, element_, reason_;
+};
+
+// Writes `path` atomically: `write(tmpPath)` must write the complete file to
+// tmpPath (same directory as path, so the rename is atomic); it is renamed
+// over path when `write` returns, and removed if `write` throws (the
+// exception propagates). Throws InputError if path is a directory or its
+// directory does not exist.
+void writeAtomically(const std::filesystem::path& path,
+                     const std::function<void(const std::filesystem::path& tmpPath)>& write);
+
+// Same, for a complete in-memory byte string.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes);
+
+// Throws InputError when `output` refers to the same file as any input
+// (inputs are never overwritten).
+void checkNotInput(const std::filesystem::path& output,
+                   std::initializer_list<std::filesystem::path> inputs);
+
+// Reads a whole file. Throws InputError when it is missing, unreadable, not
+// a regular file, or larger than maxBytes.
+std::string readFile(const std::filesystem::path& path, std::size_t maxBytes = std::size_t(1) << 30);
+
+} // namespace sg::io

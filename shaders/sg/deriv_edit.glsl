@@ -1,0 +1,75 @@
+// Height-field-correct normal-map editing in derivative space: Loviscach,
+// "Care and Feeding of Normal Vectors" (GDC 2008), "Feeding" slides.
+// The central idea: apply each image operation to the (conceptual) height
+// field h and compute the result from the normal map. With derivatives
+// d = (dh/du, dh/dv) (sgTspaceNormalToDeriv) every operation is linear
+// algebra on d, and the result feeds the surface-gradient framework
+// (sgSurfgradFromTBN, sgSurfgradScaleDependent, ...) unchanged.
+// All derivatives here share one (u, v) parametrization; heights h are in
+// the same units as the derivatives' numerators.
+#ifndef SG_DERIV_EDIT_GLSL
+#define SG_DERIV_EDIT_GLSL
+
+#include "sg/compat.glsl"
+
+// Largest number of layers sgDerivBlend accepts.
+#define SG_DERIV_MAX_LAYERS 8
+
+// "Scaling (2)": the derivative of alpha * h. alpha = -1 inverts the bumps
+// exactly; alpha = 2 doubles the slopes, and since the resolved normal is
+// normalize(-d.x, -d.y, 1) its z stays positive: it never turns inward (the
+// naive normal lerp does both wrong).
+SG_FN vec2 sgDerivScale(vec2 d, float alpha) { return alpha * d; }
+
+// "Adding and Blending (1)": the derivative of alpha * h1 + beta * h2.
+SG_FN vec2 sgDerivAdd(vec2 d1, float alpha, vec2 d2, float beta) { return alpha * d1 + beta * d2; }
+
+// k layers: sum_i w[i] * d[i] for i < count (count clamped to
+// [0, SG_DERIV_MAX_LAYERS]). Weights summing to 1 give a blend, any weights
+// an additive mix.
+SG_FN vec2 sgDerivBlend(vec2 d[SG_DERIV_MAX_LAYERS], float w[SG_DERIV_MAX_LAYERS], int count) {
+    vec2 sum = vec2(0.0f);
+    int n = clamp(count, 0, SG_DERIV_MAX_LAYERS);
+    for (int i = 0; i < n; ++i) sum += w[i] * d[i];
+    return sum;
+}
+
+// "Modulation": the product h1 * h2 by the product rule,
+// d(h1 h2) = d1 * h2 + h1 * d2. Needs both heights (e.g. a 4th channel).
+SG_FN vec2 sgDerivModulate(vec2 d1, float h1, vec2 d2, float h2) { return d1 * h2 + h1 * d2; }
+
+// "Curves (2)-(3)": the derivative of f(h) is f'(h) * d (chain rule).
+SG_FN vec2 sgDerivCurve(vec2 d, float fPrimeAtH) { return fPrimeAtH * d; }
+
+// "Curves (5)": f'(h) = 1 / (1 + P (h - H)^2): boosts slopes of elevations
+// near H; P >= 0 controls the width of the affected range.
+SG_FN float sgCurveBoostSlope(float h, float boostP, float centreH) {
+    float x = h - centreH;
+    return 1.0f / (1.0f + max(boostP, 0.0f) * x * x);
+}
+
+// The curve itself, f(h) = atan(sqrt(P) (h - H)) / sqrt(P) (f(H) = 0), so a
+// curved height can be chained into sgDerivModulate. P = 0 is the identity
+// h - H.
+SG_FN float sgCurveBoostValue(float h, float boostP, float centreH) {
+    float p = max(boostP, 0.0f);
+    float x = h - centreH;
+    if (p < SG_FLT_EPSILON) return x;
+    float r = sqrt(p);
+    return atan(r * x) / r;
+}
+
+// "Deformation (2)-(3)": h(s(u, v), t(u, v)) has the derivative
+// J^T * d(s, t), where d is the map's derivative sampled at the warped
+// coordinate and J = d(s, t)/d(u, v) is the warp's Jacobian as a column-major
+// mat2: column 0 = (ds/du, dt/du), column 1 = (ds/dv, dt/dv).
+SG_FN vec2 sgDerivDeform(vec2 dAtWarped, mat2 warpJacobian) {
+    return vec2(dot(dAtWarped, warpJacobian[0]), dot(dAtWarped, warpJacobian[1]));
+}
+
+// "Deformation (4)": the Jacobian of the warp s = u, t = v + A sin(B u).
+SG_FN mat2 sgSineWarpJacobian(float u, float amplitudeA, float frequencyB) {
+    return mat2(1.0f, amplitudeA * frequencyB * cos(frequencyB * u), 0.0f, 1.0f);
+}
+
+#endif

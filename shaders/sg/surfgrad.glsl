@@ -1,0 +1,240 @@
+// Surface-gradient bump mapping: Mikkelsen, "Surface Gradient Based Bump
+// Mapping Framework" (2019), listings 1-15. The framework: every bump
+// influence becomes a surface gradient (a vector in the tangent plane), the
+// gradients are scaled and summed (eq. 2-3, linearity), and one resolve
+// (eq. 1) turns the sum into the perturbed normal.
+//
+// Conventions (written once, used by every caller):
+//  - All 3D vectors are in the frame's common space (SgFrame, frame.glsl).
+//  - A "derivative" is dH/d(s,t) of a height H over a texture coordinate set
+//    (s right, t up: the derivative is w.r.t. the POSITIVE t axis; see
+//    sgTspaceNormalToDeriv for the green-channel convention).
+//  - Texture-space vectors dSTdx/dSTdy are dFdxFine/dFdyFine of the texture
+//    coordinate (normalized [0,1] units per pixel).
+//  - Degenerate inputs (zero vectors, zero-area UV Jacobians, edge-on views)
+//    give finite results; which value comes back is stated per function.
+#ifndef SG_SURFGRAD_GLSL
+#define SG_SURFGRAD_GLSL
+
+#include "sg/frame.glsl"
+
+// Listing 1 / eq. 1: the perturbed unit normal normalize(n - s * surfGrad),
+// s = resolveSign. Always unit length: if the difference vanishes (a
+// "gradient" equal to the normal, not a tangent vector) nrmBase is returned.
+SG_FN vec3 sgResolve(SgFrame f, vec3 surfGrad) {
+    return sgSafeNormalize(f.nrmBase - f.resolveSign * surfGrad, f.nrmBase);
+}
+
+// Listings 2 and 3: bump scale on a surface gradient or on a derivative
+// (equivalent by linearity; scale -1 inverts the bumps).
+SG_FN vec3 sgBumpScale(float scale, vec3 surfGrad) { return scale * surfGrad; }
+SG_FN vec2 sgBumpScale(float scale, vec2 deriv) { return scale * deriv; }
+
+// Listing 4 / eq. 5: the xy channels m of a tangent-space normal in [-1,1]
+// to the derivative d = -m.xy / m.z with m.z = sqrt(1 - |m.xy|^2).
+// m.z^2 is clamped below by max(m.x^2, m.y^2) / 128^2, so |d| <= 128 per
+// component (steepest slope 89.55 degrees) and m on or outside the unit
+// circle stays finite.
+// flipV: false when texture (0,0) is the lower-left corner and green points
+// up (OpenGL / glTF "Y+" convention for a lower-left origin), or (0,0) is
+// upper-left and green points down; true for the other pairings ("DirectX"
+// green with a lower-left origin). The result is always w.r.t. +t.
+SG_FN vec2 sgTspaceNormalToDeriv(vec2 m, bool flipV) {
+    float fS = 1.0f / (128.0f * 128.0f);
+    vec2 mSq = m * m;
+    float mzSq = 1.0f - mSq.x - mSq.y;
+    float maxCompXySq = fS * max(mSq.x, mSq.y);
+    // max(..., FLT_MIN) only matters for m == 0, where both terms are 0.
+    float zInv = inversesqrt(max(max(mzSq, maxCompXySq), SG_FLT_MIN));
+    float s = flipV ? -1.0f : 1.0f;
+    return -zInv * vec2(m.x, s * m.y);
+}
+
+// Decoder paired with sgTspaceNormalToDeriv: the unit tangent-space normal
+// normalize(-d.x, -d.y, 1) of a derivative (same flipV convention).
+SG_FN vec3 sgDerivToTspaceNormal(vec2 d, bool flipV) {
+    float s = flipV ? -1.0f : 1.0f;
+    return sgSafeNormalize(vec3(-d.x, -s * d.y, 1.0f), vec3(0.0f, 0.0f, 1.0f));
+}
+
+// Listing 5 / eq. 6: TBN-style surface gradient d.x * t + d.y * b. With the
+// mikktspace basis of sgMikktsBasis (section 2.2) the resolve reproduces the
+// classic TBN normal exactly; with sgGenBasisTB it is the procedural frame.
+SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT + deriv.y * vB; }
+
+// Listing 6: orthonormal tangent/bitangent for any texture coordinate set,
+// generated per pixel from the screen derivatives of the coordinate.
+// Works for clockwise and counter-clockwise UV layouts (mirrored UVs).
+// Degenerate UV Jacobian (det == 0): the tangent is left unnormalized (as in
+// the paper), which can be the zero vector; then both outputs are finite and
+// the layer contributes nothing.
+SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_OUT(vec3) vB) {
+    float det = dot(dSTdx, vec2(dSTdy.y, -dSTdy.x));
+    float signDet = det < 0.0f ? -1.0f : 1.0f;
+    // invCO is (dXds, dYds) up to the positive factor 1/|det|.
+    vec2 invCO = signDet * vec2(dSTdy.y, -dSTdx.y);
+    vec3 t = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
+    if (abs(det) > 0.0f) t = sgSafeNormalize(t, vec3(0.0f));
+    vT = t;
+    vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
+}
+
+// Listing 7: surface gradient from a known perturbed normal v (object- or
+// world-space normal map), so it blends with every other layer. v need not
+// be unit length; v and nrmBase must be in the same space. A v at or below
+// the horizon (dot(n, v) -> 0) is treated as FLT_EPSILON above it: the
+// gradient is large but finite and resolves to a normal close to v's
+// tangential direction.
+SG_FN vec3 sgSurfgradFromPerturbedNormal(SgFrame f, vec3 v) {
+    vec3 n = f.nrmBase;
+    // Scale v to O(1) first so huge inputs do not overflow; the gradient is
+    // invariant to a positive scale of v.
+    float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
+    vec3 vs = m >= SG_FLT_MIN && m <= SG_FLT_MAX ? v / m : n;
+    float nDotV = dot(n, vs);
+    float s = 1.0f / max(SG_FLT_EPSILON, abs(nDotV));
+    return s * (nDotV * n - vs);
+}
+
+// Listing 8, case isDerivScreenSpace: the surface gradient of a height whose
+// screen-space derivatives (dH/dx, dH/dy) are known (eq. 3 of Mikkelsen
+// 2010). Uses dPdx, dPdy and nrmBase of the frame (dPdx/dPdy of the surface
+// BEFORE displacement).
+// Unlike the paper's absolute FLT_EPSILON clamp on det, dPdx and dPdy are
+// first scaled by their largest component k, which makes the result exact
+// for any world scale; the clamp is then relative (FLT_EPSILON of k^2).
+// Zero dPdx and dPdy (degenerate pixel) give the zero vector.
+SG_FN vec3 sgSurfgradFromScreenDeriv(SgFrame f, vec2 dHdxy) {
+    float k = max(max(max(abs(f.dPdx.x), abs(f.dPdx.y)), abs(f.dPdx.z)),
+                  max(max(abs(f.dPdy.x), abs(f.dPdy.y)), abs(f.dPdy.z)));
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return vec3(0.0f);
+    vec3 px = f.dPdx / k;
+    vec3 py = f.dPdy / k;
+    vec3 vR1 = cross(py, f.nrmBase);
+    vec3 vR2 = cross(f.nrmBase, px);
+    float det = dot(px, vR1);
+    float s = sgSignedRcp(det) / k;
+    return s * (dHdxy.x * vR1 + dHdxy.y * vR2);
+}
+
+// Listing 8: scale-dependent bump mapping (displacement-style: the bump
+// strength follows the map's tiling rate and the surface's metric).
+//   deriv    - dH/du, dH/dv in height units per TEXEL (u, v unnormalized:
+//              one unit is one texel of a map of size texDim);
+//   dSTdx/dy - screen derivatives of the normalized texture coordinate.
+// The height is in the same length units as the position.
+SG_FN vec3 sgSurfgradScaleDependent(SgFrame f, vec2 deriv, vec2 dSTdx, vec2 dSTdy, vec2 texDim) {
+    vec2 dHdST = texDim * deriv;
+    float dHdx = dHdST.x * dSTdx.x + dHdST.y * dSTdx.y;
+    float dHdy = dHdST.x * dSTdy.x + dHdST.y * dSTdy.y;
+    return sgSurfgradFromScreenDeriv(f, vec2(dHdx, dHdy));
+}
+
+// Listing 9: the 3-tap forward-difference screen-space derivative of a
+// height sampled at st (hll), st + dSTdx (hlr) and st + dSTdy (hul); better
+// than dFdx(height) on a 2x2 quad. Feed to sgSurfgradFromScreenDeriv.
+SG_FN vec2 sgHeightDeriv3Tap(float hll, float hlr, float hul) { return vec2(hlr - hll, hul - hll); }
+
+// Listing 10: projects a unit direction dir (same space as the frame) into
+// texture space for parallax mapping / POM, using the true metric of the
+// texture mapping (no orthonormal-TBN assumption).
+//   bumpScale - displacement p' = p + bumpScale * H(st) * nrmBase;
+//   skipProj  - true for basic parallax (Welsh 2004, section 4.3); false
+//               extends the offset so its normal component is one unit.
+// Returns the texture-space offset (normalized st units) along which to
+// search. Edge-on directions (dot(n, dir) -> 0) are clamped (FLT_EPSILON);
+// zero dPdx and dPdy give (0, 0).
+SG_FN vec2 sgProjectVecToTextureSpace(SgFrame f, vec3 dir, vec2 dSTdx, vec2 dSTdy, float bumpScale,
+                                bool skipProj) {
+    // Same scale-invariant form as sgSurfgradFromScreenDeriv: dPdx/dPdy are
+    // divided by their largest component k before the 2x2 inverse.
+    float k = max(max(max(abs(f.dPdx.x), abs(f.dPdx.y)), abs(f.dPdx.z)),
+                  max(max(abs(f.dPdy.x), abs(f.dPdy.y)), abs(f.dPdy.z)));
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return vec2(0.0f);
+    vec3 px = f.dPdx / k;
+    vec3 py = f.dPdy / k;
+    vec3 vR1 = cross(py, f.nrmBase);
+    vec3 vR2 = cross(f.nrmBase, px);
+    float det = dot(px, vR1);
+    float s = sgSignedRcp(det) / k;
+    vec2 dirScr = s * vec2(dot(vR1, dir), dot(vR2, dir));
+    vec2 dirTex = dSTdx * dirScr.x + dSTdy * dirScr.y;
+    float dirTexZ = dot(f.nrmBase, dir);
+    float sz = skipProj ? 1.0f : sgSignedRcp(dirTexZ);
+    return bumpScale * sz * dirTex;
+}
+
+// Listing 11: a texture-space offset corrOffs (normalized st units, from
+// parallax/POM starting at the coordinate whose screen derivatives are
+// dSTdx/dSTdy) mapped to the offset in the tangent plane of the surface.
+SG_FN vec3 sgTexSpaceOffsToSurface(SgFrame f, vec2 dSTdx, vec2 dSTdy, vec2 corrOffs) {
+    float det = dSTdx.x * dSTdy.y - dSTdx.y * dSTdy.x;
+    float s = sgSignedRcp(det);
+    float vx = s * (dSTdy.y * corrOffs.x - dSTdy.x * corrOffs.y);
+    float vy = s * (-dSTdx.y * corrOffs.x + dSTdx.x * corrOffs.y);
+    return vx * f.sigmaX + vy * f.sigmaY;
+}
+
+// Listing 12 / eq. 2 of Mikkelsen 2010: the surface gradient of a volume
+// bump function with gradient grad (noise, triplanar, decals): its
+// projection onto the tangent plane along nrmBase.
+SG_FN vec3 sgSurfgradFromVolumeGradient(SgFrame f, vec3 grad) {
+    return grad - dot(f.nrmBase, grad) * f.nrmBase;
+}
+
+// Listing 14: triplanar blend weights from a normal (Geiss 2007):
+// w_i = max(|n_i| - 0.2, 0)^k, normalized to sum 1. The base is divided by
+// its largest component before pow (same weights after the normalization),
+// so large k cannot underflow every weight to 0. k > 0. A normal with no
+// component above 0.2 (not unit length) gets equal weights.
+SG_FN vec3 sgTriplanarWeights(vec3 nrm, float k) {
+    vec3 b = max(abs(nrm) - vec3(0.2f), vec3(0.0f));
+    float bMax = max(max(b.x, b.y), b.z);
+    if (!(bMax >= SG_FLT_MIN)) return vec3(1.0f / 3.0f);
+    vec3 w = pow(b / bMax, vec3(max(k, SG_FLT_EPSILON)));
+    return w / (w.x + w.y + w.z);
+}
+
+// Listing 13 (eq. 7): the volume gradient of a triplanar projection. The
+// derivatives come from maps sampled with (z, y), (x, z) and (x, y) for the
+// x, y and z planes (left-handed frame, lower-left texture origin).
+//   rightHanded     - the maps were sampled with (-z, y) and (x, -z):
+//                     negates the z component of the gradient (section 2.8);
+//   upperLeftOrigin - each map was sampled at (s, 1 - t): negates the second
+//                     component of each derivative.
+SG_FN vec3 sgTriplanarVolumeGradient(vec3 weights, vec2 derivX, vec2 derivY, vec2 derivZ,
+                               bool rightHanded, bool upperLeftOrigin) {
+    float v = upperLeftOrigin ? -1.0f : 1.0f;
+    vec3 grad = vec3(weights.z * derivZ.x + weights.y * derivY.x,
+                     v * (weights.z * derivZ.y + weights.x * derivX.y),
+                     weights.x * derivX.x + v * weights.y * derivY.y);
+    if (rightHanded) grad.z = -grad.z;
+    return grad;
+}
+
+// Listing 13: triplanar surface gradient (weights from sgTriplanarWeights).
+SG_FN vec3 sgSurfgradFromTriplanar(SgFrame f, vec3 weights, vec2 derivX, vec2 derivY, vec2 derivZ,
+                             bool rightHanded, bool upperLeftOrigin) {
+    return sgSurfgradFromVolumeGradient(f, sgTriplanarVolumeGradient(weights, derivX, derivY,
+                                                                     derivZ, rightHanded,
+                                                                     upperLeftOrigin));
+}
+
+// Section 2.9: volume gradient of a decal projector whose map is sampled
+// with the projector-local (x, y): deriv.x * axisX + deriv.y * axisY.
+// axisX/axisY are the projector's orthonormal axes in the frame's space;
+// upperLeftOrigin negates deriv.y (map sampled at (s, 1 - t)). Gradients of
+// many decals can be summed (each scaled by its fade) and projected once with
+// sgSurfgradFromVolumeGradient (linearity of the volume gradient).
+SG_FN vec3 sgDecalVolumeGradient(vec2 deriv, vec3 axisX, vec3 axisY, bool upperLeftOrigin) {
+    float v = upperLeftOrigin ? -1.0f : 1.0f;
+    return deriv.x * axisX + (v * deriv.y) * axisY;
+}
+
+// Listing 15: surface gradient of one decal projector.
+SG_FN vec3 sgSurfgradFromDecal(SgFrame f, vec2 deriv, vec3 axisX, vec3 axisY, bool upperLeftOrigin) {
+    return sgSurfgradFromVolumeGradient(f, sgDecalVolumeGradient(deriv, axisX, axisY,
+                                                                 upperLeftOrigin));
+}
+
+#endif
