@@ -1,0 +1,121 @@
+// Subdivision of a control cage with OpenSubdiv: uniform refinement to level
+// N (Far::TopologyRefiner + PrimvarRefiner, UV sets as face-varying
+// channels), optional limit evaluation at the refined vertices (positions,
+// normals, UVs and their first derivatives, Far::LimitStencilTable on an
+// adaptively refined copy), and per-frame updates of an animated cage
+// through stencil tables built once.
+//
+// Math: Catmull & Clark 1978, Loop 1987, semi-sharp creases DeRose, Kass &
+// Truong 1998, as implemented by OpenSubdiv 3.5 Sdc/Vtr/Far; limit
+// evaluation by feature-adaptive patches (Niessner et al. 2012) with
+// Gregory-basis end caps.
+//
+// Every (u,v) handed to OpenSubdiv's patch evaluation is finite and clamped
+// to [0,1] first: PatchTable::EvaluateBasis spins forever outside the
+// domain (../shared/STACK.md).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/render_mesh.h"
+
+namespace sg::mesh {
+
+inline constexpr int kMaxSubdivisionLevel = 8;
+
+struct SubdivisionSettings {
+    int level = 2;            // uniform refinement level, 0..kMaxSubdivisionLevel
+    SubdivOptions options;    // scheme and rules (start from cage.options, apply flags)
+    // Evaluate the limit surface at the refined vertices: refined() and
+    // renderMesh() then hold limit positions, limit normals and limit UVs,
+    // and limitFrame() the derivatives (see LimitFrame in render_mesh.h).
+    bool limit = false;
+    bool buildRenderMesh = true; // false: refined() only (benchmarks, OBJ/PLY output)
+    // Build the stencil tables update() needs (costs about as much as one
+    // more refinement; only worth it for animated cages).
+    bool animate = false;
+    // Refused (InputError) before refining when the level-N face count
+    // would exceed this.
+    size_t maxRefinedFaces = size_t(1) << 24;
+};
+
+// Seconds spent in each stage of the last build() (steady clock).
+struct SubdivisionTimings {
+    double convertIn = 0;   // PolygonMesh -> Far::TopologyDescriptor arrays
+    double topology = 0;    // TopologyRefiner creation + RefineUniform
+    double interpolate = 0; // PrimvarRefiner: positions, UVs, morph deltas
+    double convertOut = 0;  // level-N topology -> refined() polygons
+    double limit = 0;       // limit stencils + evaluation (limit only)
+    double render = 0;      // triangulation, vertex split, normals
+    double stencils = 0;    // stencil tables for update() (animate only)
+};
+
+class Subdivider {
+public:
+    Subdivider();
+    // Same as build(cage, settings, file).
+    Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file = {});
+    ~Subdivider();
+    Subdivider(Subdivider&&) noexcept;
+    Subdivider& operator=(Subdivider&&) noexcept;
+
+    // Refines `cage` (which must have passed validate()). Reuses this
+    // object's buffers from the previous build (call it again instead of
+    // constructing a new Subdivider to avoid page faults on big levels).
+    // Throws InputError (file, element, reason) when OpenSubdiv cannot take
+    // the cage: Loop with a non-triangle face, a level outside
+    // 0..kMaxSubdivisionLevel, a refined size above maxRefinedFaces. Holes:
+    // hole faces and their descendants are left out of every output.
+    void build(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file = {});
+
+    const SubdivisionSettings& settings() const;
+
+    // Level-N polygons (quads for Catmark/bilinear, triangles for Loop; holes
+    // removed), positions (refined points, or limit points with limit), UV
+    // sets (face-varying, refined or limit), per-vertex normals
+    // (normalIndices == faceVertices), crease/corner tags of level N (the
+    // sharpness left after N levels), options of the cage, morph targets'
+    // refined position deltas.
+    const PolygonMesh& refined() const;
+
+    // Triangulated refined mesh (each quad split along its 0-2 diagonal),
+    // vertices split at UV seams and at infinitely sharp creases, normals:
+    // limit normals with limit, else area-weighted face normals per smooth
+    // sector. morphTargets hold refined position deltas. Empty when
+    // settings.buildRenderMesh is false.
+    const RenderMesh& renderMesh() const;
+    // Render vertex -> vertex of refined() (several render vertices share
+    // one refined vertex across seams).
+    const std::vector<uint32_t>& renderToRefinedVertex() const;
+
+    // Limit derivatives aligned with renderMesh() (empty unless limit).
+    const LimitFrame& limitFrame() const;
+
+    // Animated cage (settings.animate): recomputes out.positions and
+    // out.normals (and frame->dPdu/dPdv with limit) for new cage positions
+    // (cage.vertexCount() entries, object space) by applying stencil tables;
+    // nothing else is touched and nothing is allocated once `out` has been
+    // filled once. `out` must have renderMesh()'s vertex count (start from a
+    // copy of renderMesh()). Positions must be finite (asserted).
+    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame = nullptr) const;
+
+    const SubdivisionTimings& timings() const;
+    size_t cageVertexCount() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// Area-weighted vertex normals of a triangle mesh, accumulated over all
+// render vertices that share `smoothGroup[v]` (pass an empty span to treat
+// every render vertex on its own). A vertex whose accumulated normal
+// vanishes gets the normal of its first non-degenerate triangle, else +z.
+void computeVertexNormals(RenderMesh& mesh, std::span<const uint32_t> smoothGroup = {});
+
+} // namespace sg::mesh
