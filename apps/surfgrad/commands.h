@@ -20,4 +20,11 @@ struct CliError : std::runtime_error {
 void addEvalCommand(CLI::App& app, int& status);
 void addSelftestCommand(CLI::App& app, int& status);
 
+// `surfgrad mesh ...` (cmd_mesh.cpp): adds the `mesh` group with info,
+// subdivide and morph, and returns the group so other files can attach more
+// `mesh` subcommands: in main.cpp,
+//   CLI::App* mesh = addMeshCommands(app, status);
+//   addMeshTangentsCommand(*mesh, status);   // cmd_mesh_tangents.cpp
+CLI::App* addMeshCommands(CLI::App& app, int& status);
+
 } // namespace sg::cli
