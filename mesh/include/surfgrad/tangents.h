@@ -1,0 +1,189 @@
+// Tangent frames for normal/bump mapping, one of three sources per UV set
+// (issue 5, "Tangent frames"):
+//
+//  - TangentMethod::MikkTSpace: per-vertex tangents bit-compatible with
+//    Morten S. Mikkelsen's MikkTSpace (Mikkelsen 2008, "Simulation of
+//    Wrinkled Surfaces Revisited", section 4.2 and the published
+//    mikktspace.c algorithm, default 180-degree angular threshold). Our own
+//    implementation, written twice: a step-by-step reference (the oracle,
+//    slow and simple) and a fast one; both produce the same bits.
+//  - TangentMethod::Limit: the exact tangent frame of a subdivision limit
+//    surface for one UV set: dP/ds, dP/dt from the limit derivatives
+//    dP/du, dP/dv and the Jacobian d(s,t)/d(u,v) of the face-varying limit
+//    UVs at the same parametric point (chain rule, see limitTangent()).
+//  - TangentMethod::Pixel: nothing is stored; the fragment shader builds the
+//    frame from screen-space derivatives of position and UV (Mikkelsen 2019
+//    "Surface Gradient Based Bump Mapping Framework", section 2.3, and
+//    shaders/sg/frame.glsl). Generating tangents for it is a no-op.
+//
+// Conventions (shared with surfgrad/render_mesh.h):
+//  - object space, right-handed; UVs with (0,0) at the LOWER-left of the
+//    image (t up, OpenGL);
+//  - a tangent is vec4(xyz, w): xyz a unit vector along +s (dP/ds direction
+//    projected into the tangent plane), w = +1 or -1 the handedness, with
+//    bitangent = w * cross(normal, xyz). w = +1 where the UV chart is
+//    orientation preserving (ds x dt has the same sense as the normal), -1
+//    where it is mirrored.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "surfgrad/render_mesh.h"
+
+namespace sg::mesh {
+
+enum class TangentMethod {
+    MikkTSpace, // vertex tangents, MikkTSpace-compatible
+    Limit,      // exact tangent frame of the subdivision limit surface
+    Pixel,      // none stored: built per pixel by the shader
+};
+
+// "mikktspace", "limit", "pixel".
+std::string_view tangentMethodName(TangentMethod method);
+// Inverse of tangentMethodName(); nullopt for any other string.
+std::optional<TangentMethod> parseTangentMethod(std::string_view name);
+
+// ---------------------------------------------------------------------------
+// MikkTSpace
+// ---------------------------------------------------------------------------
+
+// An indexed polygon mesh as MikkTSpace sees it: faces of 3 or 4 corners,
+// each corner an index into per-vertex position, normal and UV arrays.
+// Only the VALUES of a corner matter: corners are welded by exact equality
+// of (position, normal, uv), so how the caller split its vertices makes no
+// difference (as in the reference).
+//
+// Preconditions (checked: std::invalid_argument otherwise): every value
+// finite; every index < positions.size(); normals.size() == uvs.size() ==
+// positions.size(); faceSizes either empty (all faces are triangles and
+// cornerVertices.size() is a multiple of 3) or summing to
+// cornerVertices.size(); fewer than 2^30 triangles. Normals should be unit
+// length (the reference assumes it; they are not renormalized).
+struct MikkTSpaceInput {
+    std::span<const glm::vec3> positions;   // per vertex, object space
+    std::span<const glm::vec3> normals;     // per vertex, unit, object space
+    std::span<const glm::vec2> uvs;         // per vertex, the UV set (s, t)
+    std::span<const uint32_t> cornerVertices; // per face corner: vertex index
+    // Per face: number of corners. Faces with other than 3 or 4 corners are
+    // ignored, as by the reference: their corners get vec4(0) (triangulate
+    // first). Quads are split along the shorter UV diagonal (the shorter
+    // position diagonal on a tie, 0-2 on a second tie) and the tangents of
+    // the two corners on the diagonal averaged, as in the reference.
+    std::span<const uint32_t> faceSizes;
+};
+
+// Everything MikkTSpace computes for one face corner (its setTSpace
+// callback). `tangent` is what glTF's TANGENT.xyz stores; `sign` its w.
+struct MikkTSpaceFrame {
+    glm::vec3 tangent{1.0f, 0.0f, 0.0f};   // unit, along +s, in the tangent plane
+    float magS = 1.0f;                     // |dP/ds| (object units per UV unit)
+    glm::vec3 bitangent{0.0f, 1.0f, 0.0f}; // unit, along +t (NOT cross(n, tangent))
+    float magT = 1.0f;                     // |dP/dt|
+    float sign = -1.0f;                    // +1 orientation preserving, -1 mirrored
+};
+
+// What the reference leaves in a corner it cannot give a frame to (a corner
+// of a degenerate triangle that shares no welded vertex with a good one,
+// or of a triangle whose UV area is zero and that no group reached):
+// tangent (1,0,0), bitangent (0,1,0), magnitudes 1, sign -1. We keep it for
+// compatibility; it is finite but need not be orthogonal to the normal.
+inline constexpr MikkTSpaceFrame kMikkTSpaceDefaultFrame{};
+
+// The fast implementation: output identical (bit for bit) to
+// mikktspaceReferenceFrames(). Keeps its scratch buffers between calls, so
+// reuse one generator for many meshes or frames. Not thread-safe (one
+// generator per thread).
+class MikkTSpaceGenerator {
+public:
+    MikkTSpaceGenerator();
+    ~MikkTSpaceGenerator();
+    MikkTSpaceGenerator(const MikkTSpaceGenerator&) = delete;
+    MikkTSpaceGenerator& operator=(const MikkTSpaceGenerator&) = delete;
+
+    // Fills cornerTangents (resized to cornerVertices.size()) with
+    // vec4(frame.tangent, frame.sign) per face corner and, when `frames` is
+    // not null, the complete frames. Throws std::invalid_argument when a
+    // precondition of MikkTSpaceInput fails (nothing is written then).
+    void generate(const MikkTSpaceInput& input, std::vector<glm::vec4>& cornerTangents,
+                  std::vector<MikkTSpaceFrame>* frames = nullptr);
+
+private:
+    struct Scratch;
+    Scratch* scratch_;
+};
+
+// The oracle: a plain, step-by-step implementation of the published
+// algorithm (see docs/tangents.md for the steps). Slow (std::map welding,
+// per-group allocations) but simple; used by the tests and the benchmark to
+// check the fast path. Same preconditions and errors.
+std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& input);
+
+// Convenience: MikkTSpace tangents for `uvSet` of a RenderMesh (which must
+// have normals), stored into mesh.tangents (replacing any), with
+// mesh.tangentUvSet = uvSet. A vertex whose corners received different
+// tangents (mirrored-UV seams, a vertex shared by faces whose frames MikkTSpace
+// keeps apart, degenerate triangles) is split: the extra copies duplicate
+// every per-vertex attribute (normals, all UV sets, morph-target deltas)
+// and the index buffer is rewritten; vertices no triangle uses get the
+// default frame. Throws std::invalid_argument when the mesh has no normals,
+// uvSet is out of range or a MikkTSpaceInput precondition fails.
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet);
+
+// Stores per-corner tangents (one per entry of mesh.indices) into
+// mesh.tangents, splitting vertices whose corners disagree (bitwise) as
+// described above. Corners that agree share one vertex. Returns the number
+// of vertices added.
+size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec4> cornerTangents);
+
+// ---------------------------------------------------------------------------
+// Limit-surface tangents
+// ---------------------------------------------------------------------------
+
+// How limitTangent() resolved one point.
+enum class LimitTangentCase : uint8_t {
+    Regular,           // |det d(s,t)/d(u,v)| above the threshold: exact dP/ds
+    DegenerateUv,      // UV Jacobian (near) singular: fallback along dP/du
+    DegenerateSurface, // dP/du x dP/dv (near) zero: no tangent plane known
+};
+
+// The tangent frame of a parametric surface P(u,v) carrying UVs (s,t)(u,v),
+// at one point, from first derivatives (object space; UV units):
+//
+//   [dP/du dP/dv] = [dP/ds dP/dt] J,   J = [[ds/du ds/dv], [dt/du dt/dv]]
+//   => dP/ds = ( dt/dv dP/du - dt/du dP/dv) / det J
+//      dP/dt = (-ds/dv dP/du + ds/du dP/dv) / det J
+//
+// and N = normalize(dP/du x dP/dv). Returns vec4(T, w) with T the unit
+// vector along dP/ds made orthogonal to N (Gram-Schmidt; dP/ds is already
+// tangent to the surface, the projection only removes rounding) and
+// w = sign(det J) (+1 when the UV chart preserves the orientation of the
+// (u,v) chart whose normal is N, -1 when mirrored), so that
+// w * cross(N, T) points to the +t side, as MikkTSpace.
+//
+// Degenerate cases (never NaN, always unit xyz and w = +-1):
+//  - |det J| <= 1e-12 * (|ds/du|+|ds/dv|+|dt/du|+|dt/dv|)^2 (zero-area or
+//    collapsed UVs): T = dP/du made orthogonal to N (dP/dv if dP/du is
+//    zero), w = +1; case DegenerateUv.
+//  - |dP/du x dP/dv| <= 1e-12 * |dP/du| |dP/dv| or both zero (a degenerate
+//    limit point): N is unknown; T = normalize(dP/ds) if it is non-zero,
+//    else normalize(dP/du), else (1,0,0); w as above; case
+//    DegenerateSurface.
+glm::vec4 limitTangent(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::vec2& dSTdu,
+                       const glm::vec2& dSTdv, LimitTangentCase* resolved = nullptr);
+
+// limitTangent() over arrays of equal length (one entry per limit point);
+// `out` must have the same length. Returns the number of points that were
+// not LimitTangentCase::Regular.
+size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3> dPdv,
+                     std::span<const glm::vec2> dSTdu, std::span<const glm::vec2> dSTdv,
+                     std::span<glm::vec4> out);
+
+} // namespace sg::mesh

@@ -1,0 +1,233 @@
+// Floating-point kernels shared by the two MikkTSpace implementations
+// (mikktspace_reference.cpp, the oracle, and mikktspace.cpp, the fast one).
+//
+// Bit compatibility with MikkTSpace is a property of the exact sequence of
+// float operations, so every formula here spells out the reference's
+// evaluation order (left-to-right sums, s*v scalings, 1/len then multiply,
+// acos in double). These files are compiled with -ffp-contract=off so no
+// multiply-add is fused (mesh/CMakeLists.txt). Everything else (welding,
+// adjacency, grouping) is structure, written separately in each file.
+//
+// Equation numbers refer to Mikkelsen, "Simulation of Wrinkled Surfaces
+// Revisited", 2008, section 4.2 (per-face first order derivatives).
+#pragma once
+
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "surfgrad/tangents.h"
+
+namespace sg::mesh::mikk {
+
+struct Vec3 {
+    float x, y, z;
+};
+
+inline bool exactlyEqual(const Vec3& a, const Vec3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+inline Vec3 add(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3 scale(float s, const Vec3& v) { return {s * v.x, s * v.y, s * v.z}; }
+inline float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline float lengthSquared(const Vec3& v) { return v.x * v.x + v.y * v.y + v.z * v.z; }
+inline float length(const Vec3& v) { return std::sqrt(lengthSquared(v)); }
+
+// The reference's zero test: |x| > FLT_MIN (denormals count as zero).
+inline bool notZero(float x) { return std::fabs(x) > FLT_MIN; }
+inline bool notZero(const Vec3& v) { return notZero(v.x) || notZero(v.y) || notZero(v.z); }
+
+// 1/len first, then a scaling (not three divisions), as the reference.
+inline Vec3 normalize(const Vec3& v) { return scale(1.0f / length(v), v); }
+
+// v minus its component along n, normalized unless it vanished.
+inline Vec3 projectToPlane(const Vec3& v, const Vec3& n) {
+    Vec3 r = sub(v, scale(dot(n, v), n));
+    if (notZero(r)) r = normalize(r);
+    return r;
+}
+
+inline Vec3 toVec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+inline glm::vec3 toGlm(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+// Per-triangle first-order derivatives, eq. 18/19 (InitTriInfo):
+//   vOs = t31y*d1 - t21y*d2,  vOt = -t31x*d1 + t21x*d2
+// (dP/ds and dP/dt times twice the signed UV area), the orientation bit
+// (signed UV area > 0), and when the UV area is not zero: vOs, vOt
+// normalized and flipped for mirrored UVs (so they point along +s, +t),
+// magnitudes |dP/ds|, |dP/dt|; the triangle is "good" (may seed and
+// average into groups) when both magnitudes are non-zero.
+struct FaceDerivatives {
+    Vec3 vOs{0.0f, 0.0f, 0.0f};
+    Vec3 vOt{0.0f, 0.0f, 0.0f};
+    float magS = 0.0f;
+    float magT = 0.0f;
+    bool orientPreserving = false;
+    bool groupWithAny = true; // "bad" triangle: takes the orientation of the first group meeting it
+};
+
+inline FaceDerivatives faceDerivatives(const Vec3& p1, const Vec3& p2, const Vec3& p3,
+                                       const glm::vec2& t1, const glm::vec2& t2,
+                                       const glm::vec2& t3) {
+    FaceDerivatives d;
+    const float t21x = t2.x - t1.x;
+    const float t21y = t2.y - t1.y;
+    const float t31x = t3.x - t1.x;
+    const float t31y = t3.y - t1.y;
+    const Vec3 d1 = sub(p2, p1);
+    const Vec3 d2 = sub(p3, p1);
+    const float signedAreaSTx2 = t21x * t31y - t21y * t31x;
+    const Vec3 vOs = sub(scale(t31y, d1), scale(t21y, d2));  // eq. 18
+    const Vec3 vOt = add(scale(-t31x, d1), scale(t21x, d2)); // eq. 19
+    d.orientPreserving = signedAreaSTx2 > 0.0f;
+    if (notZero(signedAreaSTx2)) {
+        const float absArea = std::fabs(signedAreaSTx2);
+        const float lenOs = length(vOs);
+        const float lenOt = length(vOt);
+        const float flip = d.orientPreserving ? 1.0f : -1.0f;
+        if (notZero(lenOs)) d.vOs = scale(flip / lenOs, vOs);
+        if (notZero(lenOt)) d.vOt = scale(flip / lenOt, vOt);
+        d.magS = lenOs / absArea;
+        d.magT = lenOt / absArea;
+        if (notZero(d.magS) && notZero(d.magT)) d.groupWithAny = false;
+    }
+    return d;
+}
+
+// Twice the unsigned UV area of a triangle (CalcTexArea), used to pick the
+// orientation of a quad whose two triangles disagree.
+inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::vec2& t3) {
+    const float t21x = t2.x - t1.x;
+    const float t21y = t2.y - t1.y;
+    const float t31x = t3.x - t1.x;
+    const float t31y = t3.y - t1.y;
+    const float a = t21x * t31y - t21y * t31x;
+    return a < 0.0f ? -a : a;
+}
+
+// The angle of a triangle at corner p1 (between p1->p0 and p1->p2), both
+// edges projected into the plane of the vertex normal n: the weight of the
+// triangle's derivatives in the vertex average. acos is taken in double and
+// rounded to float, as the reference's (float)acos(fCos).
+inline float cornerAngle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& n) {
+    const Vec3 v1 = projectToPlane(sub(p0, p1), n);
+    const Vec3 v2 = projectToPlane(sub(p2, p1), n);
+    float c = dot(v1, v2);
+    c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
+    return static_cast<float>(std::acos(static_cast<double>(c)));
+}
+
+// Angle-weighted sum of the projected derivatives of one subgroup
+// (EvalTspace); accumulate() in the subgroup's ascending triangle order,
+// then finish().
+struct FrameAccumulator {
+    Vec3 vOs{0.0f, 0.0f, 0.0f};
+    Vec3 vOt{0.0f, 0.0f, 0.0f};
+    float magS = 0.0f;
+    float magT = 0.0f;
+    float angleSum = 0.0f;
+
+    void accumulate(float angle, const Vec3& projOs, const Vec3& projOt, float triMagS,
+                    float triMagT) {
+        vOs = add(vOs, scale(angle, projOs));
+        vOt = add(vOt, scale(angle, projOt));
+        magS += angle * triMagS;
+        magT += angle * triMagT;
+        angleSum += angle;
+    }
+    void finish() {
+        if (notZero(vOs)) vOs = normalize(vOs);
+        if (notZero(vOt)) vOt = normalize(vOt);
+        if (angleSum > 0.0f) {
+            magS /= angleSum;
+            magT /= angleSum;
+        }
+    }
+};
+
+// A corner's frame while it is being built (STSpace). `count` is how many
+// triangles wrote it: the two triangles of a quad share two corners.
+struct CornerSpace {
+    Vec3 vOs{1.0f, 0.0f, 0.0f};
+    float magS = 1.0f;
+    Vec3 vOt{0.0f, 1.0f, 0.0f};
+    float magT = 1.0f;
+    int count = 0;
+    bool orient = false;
+};
+
+// Averages the frame already in a quad corner with the second triangle's
+// (AvgTSpace). Identical inputs are kept as they are: averaging them would
+// change the last bit and split the vertex later.
+inline CornerSpace averageSpaces(const CornerSpace& a, const CornerSpace& b) {
+    CornerSpace r;
+    if (a.magS == b.magS && a.magT == b.magT && exactlyEqual(a.vOs, b.vOs) &&
+        exactlyEqual(a.vOt, b.vOt)) {
+        r.magS = a.magS;
+        r.magT = a.magT;
+        r.vOs = a.vOs;
+        r.vOt = a.vOt;
+    } else {
+        r.magS = 0.5f * (a.magS + b.magS);
+        r.magT = 0.5f * (a.magT + b.magT);
+        r.vOs = add(a.vOs, b.vOs);
+        r.vOt = add(a.vOt, b.vOt);
+        if (notZero(r.vOs)) r.vOs = normalize(r.vOs);
+        if (notZero(r.vOt)) r.vOt = normalize(r.vOt);
+    }
+    return r;
+}
+
+// Writes one subgroup frame into a corner: the first write stores it, the
+// second (quads) averages. The orientation is the group's.
+inline void writeCornerSpace(CornerSpace& out, const FrameAccumulator& frame, bool orient) {
+    CornerSpace s;
+    s.vOs = frame.vOs;
+    s.magS = frame.magS;
+    s.vOt = frame.vOt;
+    s.magT = frame.magT;
+    if (out.count == 1) {
+        out = averageSpaces(out, s);
+        out.count = 2;
+    } else {
+        out = s;
+        out.count = 1;
+    }
+    out.orient = orient;
+}
+
+inline MikkTSpaceFrame toFrame(const CornerSpace& s) {
+    MikkTSpaceFrame f;
+    f.tangent = toGlm(s.vOs);
+    f.magS = s.magS;
+    f.bitangent = toGlm(s.vOt);
+    f.magT = s.magT;
+    f.sign = s.orient ? 1.0f : -1.0f;
+    return f;
+}
+
+// cos(180 degrees) as the reference computes its default angular threshold
+// (float pi, cos in double, rounded to float): exactly -1.0f. Two frames of a
+// group are kept together unless one of the cosines is <= -1.
+inline float defaultThresholdCos() {
+    return static_cast<float>(std::cos(static_cast<double>((180.0f * 3.14159265358979f) / 180.0f)));
+}
+
+// Checks MikkTSpaceInput's preconditions; returns the number of triangles
+// (quads count 2) and throws std::invalid_argument on violations.
+size_t validateInput(const MikkTSpaceInput& input);
+
+// Bit-level key of a float for hashing/ordering where -0 and +0 must be the
+// same (the reference welds with ==).
+inline uint32_t weldBits(float v) {
+    const float w = v + 0.0f; // -0 + +0 = +0; other values unchanged
+    uint32_t b;
+    std::memcpy(&b, &w, sizeof b);
+    return b;
+}
+
+} // namespace sg::mesh::mikk

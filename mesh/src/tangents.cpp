@@ -1,0 +1,199 @@
+// Tangent frames on RenderMesh: method names, MikkTSpace applied to a
+// RenderMesh (vertex splitting where corners disagree), and the exact
+// tangent frame of a parametric (limit) surface carrying UVs, by the chain
+// rule through the UV Jacobian (see surfgrad/tangents.h for the contracts;
+// docs/tangents.md for the derivation).
+#include "surfgrad/tangents.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+namespace sg::mesh {
+
+std::string_view tangentMethodName(TangentMethod method) {
+    switch (method) {
+    case TangentMethod::MikkTSpace: return "mikktspace";
+    case TangentMethod::Limit: return "limit";
+    case TangentMethod::Pixel: return "pixel";
+    }
+    return "unknown";
+}
+
+std::optional<TangentMethod> parseTangentMethod(std::string_view name) {
+    for (TangentMethod m : {TangentMethod::MikkTSpace, TangentMethod::Limit, TangentMethod::Pixel})
+        if (tangentMethodName(m) == name) return m;
+    return std::nullopt;
+}
+
+namespace {
+
+constexpr uint32_t kNoVariant = std::numeric_limits<uint32_t>::max();
+
+bool sameBits(const glm::vec4& a, const glm::vec4& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+template <typename T>
+void duplicateEntry(std::vector<T>& values, uint32_t from) {
+    if (!values.empty()) values.push_back(values[from]);
+}
+
+} // namespace
+
+size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec4> cornerTangents) {
+    if (cornerTangents.size() != mesh.indices.size())
+        throw std::invalid_argument("applyCornerTangents: " + std::to_string(cornerTangents.size()) +
+                                    " corner tangents for " + std::to_string(mesh.indices.size()) +
+                                    " corners");
+    const size_t vertexCount = mesh.vertexCount();
+    for (const uint32_t v : mesh.indices)
+        if (v >= vertexCount)
+            throw std::invalid_argument("applyCornerTangents: index " + std::to_string(v) +
+                                        " out of range (" + std::to_string(vertexCount) + " vertices)");
+    // Each vertex keeps a chain of the distinct tangents its corners got;
+    // the first stays in the vertex, each further one becomes a copy.
+    struct Variant {
+        glm::vec4 tangent;
+        uint32_t vertex;
+        uint32_t next;
+    };
+    std::vector<uint32_t> head(vertexCount, kNoVariant);
+    std::vector<Variant> variants;
+    variants.reserve(vertexCount);
+    const glm::vec4 unused(kMikkTSpaceDefaultFrame.tangent, kMikkTSpaceDefaultFrame.sign);
+    mesh.tangents.assign(vertexCount, unused);
+    size_t added = 0;
+    for (size_t c = 0; c < mesh.indices.size(); ++c) {
+        const uint32_t v = mesh.indices[c];
+        const glm::vec4& t = cornerTangents[c];
+        uint32_t* link = &head[v];
+        while (*link != kNoVariant && !sameBits(variants[*link].tangent, t)) link = &variants[*link].next;
+        if (*link != kNoVariant) {
+            mesh.indices[c] = variants[*link].vertex;
+            continue;
+        }
+        uint32_t target = v;
+        if (head[v] != kNoVariant) { // v already holds another tangent: copy it
+            target = uint32_t(mesh.positions.size());
+            mesh.positions.push_back(mesh.positions[v]);
+            duplicateEntry(mesh.normals, v);
+            for (auto& set : mesh.uvSets) duplicateEntry(set, v);
+            for (auto& morph : mesh.morphTargets) {
+                duplicateEntry(morph.positionDeltas, v);
+                duplicateEntry(morph.normalDeltas, v);
+                duplicateEntry(morph.tangentDeltas, v);
+            }
+            mesh.tangents.push_back(t);
+            ++added;
+        } else {
+            mesh.tangents[v] = t;
+        }
+        *link = uint32_t(variants.size());
+        variants.push_back({t, target, kNoVariant});
+        mesh.indices[c] = target;
+    }
+    mesh.tangentUvSet = uvSet;
+    return added;
+}
+
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
+    if (mesh.normals.size() != mesh.positions.size())
+        throw std::invalid_argument("MikkTSpace needs vertex normals (mesh '" + mesh.name + "' has " +
+                                    std::to_string(mesh.normals.size()) + " for " +
+                                    std::to_string(mesh.positions.size()) + " vertices)");
+    if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
+        throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
+                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) + ")");
+    MikkTSpaceInput input;
+    input.positions = mesh.positions;
+    input.normals = mesh.normals;
+    input.uvs = mesh.uvSets[size_t(uvSet)];
+    input.cornerVertices = mesh.indices;
+    std::vector<glm::vec4> cornerTangents;
+    MikkTSpaceGenerator generator;
+    generator.generate(input, cornerTangents);
+    applyCornerTangents(mesh, uvSet, cornerTangents);
+}
+
+// ---------------------------------------------------------------------------
+// Limit-surface tangents
+// ---------------------------------------------------------------------------
+
+namespace {
+
+// Relative thresholds of the degenerate cases (documented in tangents.h):
+// far below float rounding of any usable chart (1e-7 relative), far above
+// the rounding noise of a truly singular one computed in double.
+constexpr double kSingularRel = 1e-12;
+
+glm::dvec3 unitOrZero(const glm::dvec3& v) {
+    const double len = glm::length(v);
+    return len > 0.0 && std::isfinite(len) ? v / len : glm::dvec3(0.0);
+}
+
+// v minus its component along unit n, normalized; zero if nothing is left.
+glm::dvec3 tangentPart(const glm::dvec3& v, const glm::dvec3& n) {
+    const glm::dvec3 t = v - glm::dot(v, n) * n;
+    // What is left must be more than rounding of v's own length.
+    if (glm::length(t) <= 1e-9 * glm::length(v)) return glm::dvec3(0.0);
+    return unitOrZero(t);
+}
+
+} // namespace
+
+glm::vec4 limitTangent(const glm::vec3& dPduF, const glm::vec3& dPdvF, const glm::vec2& dSTdu,
+                       const glm::vec2& dSTdv, LimitTangentCase* resolved) {
+    const glm::dvec3 dPdu(dPduF), dPdv(dPdvF);
+    // J = [[ds/du ds/dv], [dt/du dt/dv]].
+    const double a = dSTdu.x, b = dSTdv.x, c = dSTdu.y, d = dSTdv.y;
+    const double det = a * d - b * c;
+    const double jScale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
+    const bool uvRegular = std::isfinite(det) && jScale > 0.0 &&
+                           std::fabs(det) > kSingularRel * jScale * jScale;
+    const glm::dvec3 cross = glm::cross(dPdu, dPdv);
+    const double crossLen = glm::length(cross);
+    const bool surfaceRegular = std::isfinite(crossLen) && crossLen > 0.0 &&
+                                crossLen > kSingularRel * glm::length(dPdu) * glm::length(dPdv);
+    const double w = uvRegular ? (det > 0.0 ? 1.0 : -1.0) : 1.0;
+    const glm::dvec3 dPds = uvRegular ? (d * dPdu - c * dPdv) / det : glm::dvec3(0.0);
+
+    glm::dvec3 t(0.0);
+    LimitTangentCase kase;
+    if (surfaceRegular) {
+        const glm::dvec3 n = cross / crossLen;
+        if (uvRegular) t = tangentPart(dPds, n);
+        kase = uvRegular && t != glm::dvec3(0.0) ? LimitTangentCase::Regular
+                                                 : LimitTangentCase::DegenerateUv;
+        if (t == glm::dvec3(0.0)) t = tangentPart(dPdu, n);
+        if (t == glm::dvec3(0.0)) t = tangentPart(dPdv, n);
+    } else {
+        kase = LimitTangentCase::DegenerateSurface;
+        t = unitOrZero(dPds);
+        if (t == glm::dvec3(0.0)) t = unitOrZero(dPdu);
+        if (t == glm::dvec3(0.0)) t = unitOrZero(dPdv);
+    }
+    if (t == glm::dvec3(0.0)) t = glm::dvec3(1.0, 0.0, 0.0);
+    if (resolved) *resolved = kase;
+    const glm::vec3 tf = glm::normalize(glm::vec3(t)); // renormalize after rounding to float
+    return glm::vec4(tf, float(w));
+}
+
+size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3> dPdv,
+                     std::span<const glm::vec2> dSTdu, std::span<const glm::vec2> dSTdv,
+                     std::span<glm::vec4> out) {
+    const size_t n = dPdu.size();
+    if (dPdv.size() != n || dSTdu.size() != n || dSTdv.size() != n || out.size() != n)
+        throw std::invalid_argument("limitTangents: arrays of different lengths");
+    size_t irregular = 0;
+    for (size_t i = 0; i < n; ++i) {
+        LimitTangentCase k;
+        out[i] = limitTangent(dPdu[i], dPdv[i], dSTdu[i], dSTdv[i], &k);
+        irregular += k != LimitTangentCase::Regular;
+    }
+    return irregular;
+}
+
+} // namespace sg::mesh
