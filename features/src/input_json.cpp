@@ -144,6 +144,19 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
         throw io::InputError(source, lineColumn(text, offset),
                              "JSON syntax error: " +
                                  (sep == std::string::npos ? what : what.substr(sep + 2)));
+    } catch (const json::exception& e) {
+        // out_of_range.406: a number literal overflows a double (e.g. 1e400).
+        // Locate the literal nlohmann quotes so the message names its line.
+        std::string what = e.what();
+        const auto close = what.find("] ");
+        std::string element;
+        const auto q0 = what.find('\''), q1 = what.rfind('\'');
+        if (q0 != std::string::npos && q1 > q0 + 1) {
+            const auto at = text.find(std::string_view(what).substr(q0 + 1, q1 - q0 - 1));
+            if (at != std::string_view::npos) element = lineColumn(text, at);
+        }
+        throw io::InputError(source, element, "JSON number error: " +
+                                                  (close == std::string::npos ? what : what.substr(close + 2)));
     }
 
     Reader rd(source);
