@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     int status = 0;
     sg::cli::addEvalCommand(app, status);
     sg::cli::addSelftestCommand(app, status);
+    sg::cli::addRenderCommands(app, status);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

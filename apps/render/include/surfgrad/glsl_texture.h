@@ -1,0 +1,73 @@
+// The C++ side of GLSL texture sampling for the shared shader subset:
+// sampler2D, textureGrad, textureLod, texelFetch and textureSize, so shared
+// layer functions (shaders/sg/render/*.glsl) that sample textures compile as
+// C++ and run in the CPU reference renderer (the GLSL side is the driver's).
+//
+// Semantics follow the OpenGL 4.5 core specification, section 8.14
+// (texture minification), with GL_LINEAR_MIPMAP_LINEAR minification,
+// GL_LINEAR magnification, no anisotropy, and GL_REPEAT or GL_CLAMP_TO_EDGE
+// wrapping:
+//   rho    = max(|d(st)/dx * size|, |d(st)/dy * size|)   (Euclidean, eq. 8.7/8.8)
+//   lambda = log2(rho), clamped to [0, levels - 1]
+//   lambda <= 0: bilinear on level 0; else linear blend of the bilinear
+//   samples of levels floor(lambda) and floor(lambda) + 1.
+// Texel centres are at (i + 0.5) / size. The GPU renderer uploads the very
+// same mip levels (TextureImage), so both sides filter identical texels; what
+// can still differ is the driver's LOD arithmetic (llvmpipe: see
+// docs/scene.md, "CPU reference") and float rounding.
+//
+// A default-constructed sampler2D (no image) samples (0, 0, 0, 1), like an
+// incomplete texture in GL, and has size (1, 1).
+#pragma once
+
+#include <vector>
+
+#include "surfgrad/glsl_cpp.h"
+
+namespace sg::render {
+
+enum class Wrap { Repeat, Clamp };
+
+// One mip level: RGBA float texels, row 0 at the BOTTOM of the image (t = 0),
+// i.e. OpenGL's texel order.
+struct TextureLevel {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec4> texels; // width * height, row-major from the bottom row
+};
+
+// A texture as both renderers see it: the full mip chain down to 1x1.
+struct TextureImage {
+    std::vector<TextureLevel> levels;
+    Wrap wrap = Wrap::Repeat;
+
+    int width() const { return levels.empty() ? 0 : levels[0].width; }
+    int height() const { return levels.empty() ? 0 : levels[0].height; }
+};
+
+// Builds the mip chain of a level-0 image (width, height >= 1; texels has
+// width * height entries, bottom row first). Level sizes follow GL
+// (max(1, floor(size / 2)) per level); each texel of a smaller level is the
+// box average of the up to 2x2 texels it covers (the last row/column of an
+// odd level is folded into its neighbour's average).
+TextureImage makeTexture(int width, int height, std::vector<glm::vec4> texels, Wrap wrap);
+
+} // namespace sg::render
+
+namespace sg::glsl {
+
+struct sampler2D {
+    const sg::render::TextureImage* image = nullptr;
+};
+
+// Filtered lookup at normalized st with explicit screen derivatives of st.
+vec4 textureGrad(sampler2D s, vec2 st, vec2 dSTdx, vec2 dSTdy);
+// Filtered lookup at an explicit level of detail.
+vec4 textureLod(sampler2D s, vec2 st, float lod);
+// Unfiltered texel (out-of-range coordinates return (0, 0, 0, 0), as the GL
+// leaves them undefined).
+vec4 texelFetch(sampler2D s, ivec2 texel, int lod);
+// Size of a level ((1, 1) without an image).
+ivec2 textureSize(sampler2D s, int lod);
+
+} // namespace sg::glsl

@@ -1,0 +1,393 @@
+// Scene assets: meshes (procedural here, files through the mesh module),
+// textures (files through OpenImageIO, or procedural), per-frame morphing,
+// and the camera views. Effects on demand: only textures of enabled layers
+// are loaded, each once (by TextureSource::key()).
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_internal.h"
+#include "surfgrad/io.h"
+#include "surfgrad/render.h"
+#include "surfgrad/render_shaders.h"
+
+namespace sg::render {
+
+namespace fs = std::filesystem;
+
+namespace detail {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// Makes every triangle counter-clockwise around the average of its vertex
+// normals (the generators below then need not track winding by hand).
+void orientTriangles(sg::mesh::RenderMesh& m) {
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
+        glm::vec3 n = glm::cross(m.positions[b] - m.positions[a], m.positions[c] - m.positions[a]);
+        glm::vec3 vn = m.normals[a] + m.normals[b] + m.normals[c];
+        if (glm::dot(n, vn) < 0.0f) std::swap(m.indices[t + 1], m.indices[t + 2]);
+    }
+}
+
+// A (nu+1) x (nv+1) vertex grid over (u, v) in [0,1]^2 from a callback
+// giving position, normal and uv; two triangles per cell.
+template <class F>
+void addGrid(sg::mesh::RenderMesh& m, int nu, int nv, F&& f) {
+    uint32_t base = uint32_t(m.positions.size());
+    for (int j = 0; j <= nv; ++j)
+        for (int i = 0; i <= nu; ++i) {
+            glm::vec3 p, n;
+            glm::vec2 uv;
+            f(float(i) / float(nu), float(j) / float(nv), p, n, uv);
+            m.positions.push_back(p);
+            m.normals.push_back(n);
+            m.uvSets[0].push_back(uv);
+        }
+    for (int j = 0; j < nv; ++j)
+        for (int i = 0; i < nu; ++i) {
+            uint32_t a = base + uint32_t(j * (nu + 1) + i), b = a + 1, c = a + uint32_t(nu + 1), d = c + 1;
+            for (uint32_t x : {a, b, d, a, d, c}) m.indices.push_back(x);
+        }
+}
+
+// Height of the procedural terrain over (x, z) in units of its edge:
+// fBm (the shared noise, CPU build) with its analytic gradient.
+glm::vec3 terrainHeight(float x, float z, float relief) {
+    glm::vec4 n = sg::glsl::sgNoiseOctaves(SG_NOISE_FBM, glm::vec3(x * 3.0f, 0.37f, z * 3.0f), 6, 2.0f, 0.5f, 0.0f);
+    // n = (value, d/dx, d/dy, d/dz) w.r.t. the scaled argument.
+    return glm::vec3(relief * n.x, relief * 3.0f * n.y, relief * 3.0f * n.w);
+}
+
+} // namespace
+
+sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p) {
+    sg::mesh::RenderMesh m;
+    m.name = p.type;
+    m.uvSets.resize(1);
+    const int seg = p.segments;
+    if (p.type == "sphere") {
+        float r = p.size;
+        addGrid(m, seg, std::max(2, seg / 2), [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+            float phi = 2.0f * kPi * u, theta = kPi * v; // theta from the south pole
+            n = glm::vec3(std::sin(theta) * std::cos(phi), -std::cos(theta), -std::sin(theta) * std::sin(phi));
+            pos = r * n;
+            uv = glm::vec2(u, v);
+        });
+        // Pole rows are degenerate (zero-area triangles): drop them.
+        std::vector<uint32_t> keep;
+        for (size_t t = 0; t < m.indices.size(); t += 3) {
+            glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]],
+                      c = m.positions[m.indices[t + 2]];
+            if (glm::length(glm::cross(b - a, c - a)) > 1e-12f * r * r) {
+                keep.insert(keep.end(), {m.indices[t], m.indices[t + 1], m.indices[t + 2]});
+            }
+        }
+        m.indices = std::move(keep);
+    } else if (p.type == "plane") {
+        float s = p.size;
+        addGrid(m, seg, seg, [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+            pos = glm::vec3((u - 0.5f) * s, 0.0f, (0.5f - v) * s);
+            n = glm::vec3(0, 1, 0);
+            uv = glm::vec2(u, v);
+        });
+    } else if (p.type == "terrain") {
+        float s = p.size;
+        addGrid(m, seg, seg, [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+            float x = u - 0.5f, z = 0.5f - v;
+            glm::vec3 h = terrainHeight(x, z, p.terrainHeight / s);
+            pos = glm::vec3(x * s, h.x * s, z * s);
+            n = glm::normalize(glm::vec3(-h.y, 1.0f, -h.z));
+            uv = glm::vec2(u, v);
+        });
+    } else if (p.type == "torus") {
+        float R = p.size, r = p.minorRadius;
+        addGrid(m, seg, std::max(3, seg / 2), [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+            float a = 2.0f * kPi * u, b = 2.0f * kPi * v;
+            glm::vec3 ring(std::cos(a), 0.0f, -std::sin(a));
+            n = std::cos(b) * ring + glm::vec3(0.0f, std::sin(b), 0.0f);
+            pos = R * ring + r * n;
+            uv = glm::vec2(u, v);
+        });
+    } else { // cube
+        float h = 0.5f * p.size;
+        int n = std::max(1, seg / 8);
+        for (int face = 0; face < 6; ++face) {
+            int axis = face / 2;
+            float sgn = face % 2 ? -1.0f : 1.0f;
+            glm::vec3 nrm(0.0f);
+            nrm[axis] = sgn;
+            // (tu, tv) span the face so that tu x tv = nrm.
+            glm::vec3 tu(0.0f), tv(0.0f);
+            tu[(axis + 1) % 3] = 1.0f;
+            tv[(axis + 2) % 3] = 1.0f;
+            if (glm::dot(glm::cross(tu, tv), nrm) < 0.0f) tu = -tu;
+            addGrid(m, n, n, [&](float u, float v, glm::vec3& pos, glm::vec3& nn, glm::vec2& uv) {
+                pos = h * (nrm + (2.0f * u - 1.0f) * tu + (2.0f * v - 1.0f) * tv);
+                nn = nrm;
+                uv = glm::vec2(u, v);
+            });
+        }
+    }
+    orientTriangles(m);
+    for (int k = 1; k < p.uvSets; ++k) {
+        m.uvSets.push_back(m.uvSets[0]);
+        for (auto& uv : m.uvSets.back()) uv *= 4.0f;
+    }
+    return m;
+}
+
+void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(1e30f);
+    hi = glm::vec3(-1e30f);
+    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
+        const glm::mat4& M = scene.meshes[i].transform;
+        for (const auto& p : assets.meshes[i].mesh.positions) {
+            glm::vec3 w = glm::vec3(M * glm::vec4(p, 1.0f));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    }
+    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
+}
+
+} // namespace detail
+
+// ---------------------------------------------------------------------------
+// Textures
+
+std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const std::string& sceneName) {
+    if (!src.procedural.empty()) return std::make_shared<TextureImage>(detail::makeProceduralTexture(src));
+    const std::string name = src.file.string();
+    std::error_code ec;
+    if (!fs::is_regular_file(src.file, ec)) {
+        throw io::InputError(sceneName, src.fieldPath, "texture file " + name + " does not exist");
+    }
+    auto in = OIIO::ImageInput::open(name);
+    if (!in) {
+        throw io::InputError(name, "", "cannot read image (" + OIIO::geterror() + ") [" + src.fieldPath + "]");
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    constexpr int kMaxTexSize = 16384;
+    if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTexSize || spec.height > kMaxTexSize ||
+        spec.nchannels < 1 || spec.nchannels > 64) {
+        throw io::InputError(name, "", "unsupported image size " + std::to_string(spec.width) + "x" +
+                                           std::to_string(spec.height) + " with " +
+                                           std::to_string(spec.nchannels) + " channels (at most " +
+                                           std::to_string(kMaxTexSize) + " per side)");
+    }
+    const int w = spec.width, h = spec.height, nc = spec.nchannels;
+    std::vector<float> raw(size_t(w) * size_t(h) * size_t(nc));
+    // Raw channel values (no colour conversion): bump maps are data.
+    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
+        throw io::InputError(name, "", "cannot decode image: " + in->geterror());
+    }
+    in->close();
+    std::vector<glm::vec4> texels(size_t(w) * size_t(h));
+    for (int y = 0; y < h; ++y) {
+        const float* row = &raw[size_t(h - 1 - y) * size_t(w) * size_t(nc)]; // bottom row first
+        for (int x = 0; x < w; ++x) {
+            const float* p = row + size_t(x) * size_t(nc);
+            glm::vec4 t(0.0f, 0.0f, 0.0f, 1.0f);
+            if (nc == 1) {
+                t = glm::vec4(p[0], p[0], p[0], 1.0f);
+            } else {
+                for (int c = 0; c < std::min(nc, 4); ++c) t[c] = p[c];
+            }
+            for (int c = 0; c < 4; ++c) {
+                if (!std::isfinite(t[c])) {
+                    throw io::InputError(name, "pixel (" + std::to_string(x) + ", " + std::to_string(h - 1 - y) + ")",
+                                         "non-finite texel value");
+                }
+            }
+            texels[size_t(y) * size_t(w) + size_t(x)] = t;
+        }
+    }
+    return std::make_shared<TextureImage>(makeTexture(w, h, std::move(texels), src.wrap));
+}
+
+namespace {
+
+void collectTextures(const Layer& L, std::vector<const TextureSource*>& out) {
+    if (!L.enabled) return; // effects on demand: nothing for disabled layers
+    for (const auto& m : L.maps) out.push_back(&m);
+    for (const auto& md : L.modifiers)
+        if (md.kind == ModifierKind::Modulate && md.mask) out.push_back(&*md.mask);
+    for (const auto& c : L.children) collectTextures(c, out);
+}
+
+MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi) {
+    MeshAsset a;
+    if (mi.procedural) {
+        a.mesh = detail::makeProceduralMesh(*mi.procedural);
+    } else {
+        throw io::InputError(scene.sourceName, mi.fieldPath + ".file",
+                             "mesh files need the mesh module (surfgrad_mesh), which this build lacks");
+    }
+    for (size_t k = 0; k < mi.tangents.size(); ++k) {
+        if (mi.tangents[k] != TangentSource::Pixel) {
+            if (k >= a.mesh.uvSets.size()) {
+                throw io::InputError(scene.sourceName, mi.fieldPath + ".tangents[" + std::to_string(k) + "]",
+                                     "the mesh has no UV set " + std::to_string(k));
+            }
+            throw io::InputError(scene.sourceName, mi.fieldPath + ".tangents[" + std::to_string(k) + "]",
+                                 "vertex tangents need the mesh module's tangent generators, which this "
+                                 "build lacks");
+        }
+    }
+    if (!mi.morphWeights.empty() && mi.morphWeights.size() != a.mesh.morphTargets.size()) {
+        throw io::InputError(scene.sourceName, mi.fieldPath + ".morph.weights",
+                             "the mesh has " + std::to_string(a.mesh.morphTargets.size()) +
+                                 " morph targets, but " + std::to_string(mi.morphWeights.size()) +
+                                 " weights are given");
+    }
+    if (!mi.morphKeys.empty() && mi.morphKeys[0].weights.size() != a.mesh.morphTargets.size()) {
+        throw io::InputError(scene.sourceName, mi.fieldPath + ".morph.animation.keys",
+                             "the mesh has " + std::to_string(a.mesh.morphTargets.size()) +
+                                 " morph targets; every key needs that many weights");
+    }
+    a.vertexTangents.resize(a.mesh.uvSets.size());
+    a.basePositions = a.mesh.positions;
+    a.baseNormals = a.mesh.normals;
+    return a;
+}
+
+} // namespace
+
+SceneAssets loadAssets(const Scene& scene) {
+    SceneAssets assets;
+    for (const auto& mi : scene.meshes) {
+        assets.meshes.push_back(loadMeshAsset(scene, mi));
+        const auto& m = assets.meshes.back().mesh;
+        assets.log.push_back("mesh " + (mi.name.empty() ? mi.fieldPath : mi.name) + ": " +
+                             std::to_string(m.vertexCount()) + " vertices, " + std::to_string(m.triangleCount()) +
+                             " triangles, " + std::to_string(m.uvSets.size()) + " UV sets");
+    }
+    // Textures of materials that some mesh uses and layers that are enabled.
+    std::set<int> usedMaterials;
+    for (const auto& mi : scene.meshes) usedMaterials.insert(mi.material);
+    std::vector<const TextureSource*> sources;
+    for (int mIdx : usedMaterials)
+        for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectTextures(L, sources);
+    for (const TextureSource* src : sources) {
+        std::string key = src->key();
+        if (assets.textures.count(key)) continue;
+        assets.textures[key] = loadTexture(*src, scene.sourceName);
+        const auto& t = assets.textures[key];
+        assets.log.push_back("texture " + key + ": " + std::to_string(t->width()) + "x" +
+                             std::to_string(t->height()) + ", " + std::to_string(t->levels.size()) + " levels");
+    }
+    applyFrame(scene, assets, 0.0f);
+    return assets;
+}
+
+namespace {
+
+std::vector<float> weightsAt(const MeshInstance& mi, const sg::mesh::RenderMesh& m, float t) {
+    if (!mi.morphKeys.empty()) {
+        const auto& k = mi.morphKeys;
+        float t0 = k.front().time, t1 = k.back().time;
+        if (mi.morphLoop && t1 > t0) t = t0 + std::fmod(std::max(t - t0, 0.0f), t1 - t0);
+        if (t <= t0) return k.front().weights;
+        if (t >= t1) return k.back().weights;
+        size_t i = 1;
+        while (i < k.size() && k[i].time < t) ++i;
+        float a = (t - k[i - 1].time) / (k[i].time - k[i - 1].time);
+        std::vector<float> w(k[i].weights.size());
+        for (size_t j = 0; j < w.size(); ++j) w[j] = (1.0f - a) * k[i - 1].weights[j] + a * k[i].weights[j];
+        return w;
+    }
+    if (!mi.morphWeights.empty()) return mi.morphWeights;
+    return m.morphWeights;
+}
+
+} // namespace
+
+void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
+    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
+        MeshAsset& a = assets.meshes[i];
+        if (a.mesh.morphTargets.empty()) continue;
+        std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
+        a.mesh.positions = a.basePositions;
+        a.mesh.normals = a.baseNormals;
+        for (size_t t = 0; t < a.mesh.morphTargets.size() && t < w.size(); ++t) {
+            const auto& mt = a.mesh.morphTargets[t];
+            for (size_t v = 0; v < mt.positionDeltas.size(); ++v) a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
+            for (size_t v = 0; v < mt.normalDeltas.size() && v < a.mesh.normals.size(); ++v) {
+                a.mesh.normals[v] += w[t] * mt.normalDeltas[v];
+            }
+        }
+        // glTF's rule: blended normals are renormalized.
+        for (auto& n : a.mesh.normals) {
+            float l = glm::length(n);
+            if (l > 1e-20f && std::isfinite(l)) n /= l;
+        }
+    }
+}
+
+Scene sceneForModel(const fs::path& model) {
+    throw io::InputError(model.string(), "", "model files need the mesh module (surfgrad_mesh), which this build lacks");
+}
+
+// ---------------------------------------------------------------------------
+// Views
+
+namespace {
+
+View finishView(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float fovDeg, float nearP, float farP, int w,
+                int h, Aov aov) {
+    View v;
+    v.width = w;
+    v.height = h;
+    v.aov = aov;
+    v.cameraPos = eye;
+    v.view = glm::lookAt(eye, target, up);
+    v.proj = glm::perspective(glm::radians(fovDeg), float(w) / float(h), nearP, farP);
+    // Camera-relative: the view's rotation only (listing 16's relative
+    // world position keeps the translation out of every derivative).
+    v.viewProjRel = v.proj * glm::mat4(glm::mat3(v.view));
+    return v;
+}
+
+} // namespace
+
+View makeView(const Scene& scene, const SceneAssets& assets, int width, int height, Aov aov) {
+    int w = width > 0 ? width : scene.output.width;
+    int h = height > 0 ? height : scene.output.height;
+    glm::vec3 lo, hi;
+    detail::sceneBounds(scene, assets, lo, hi);
+    glm::vec3 center = 0.5f * (lo + hi);
+    float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    const Camera& c = scene.camera;
+    glm::vec3 eye = c.position, target = c.target;
+    float halfFov = glm::radians(c.fovDeg) * 0.5f;
+    if (c.automatic) {
+        float az = glm::radians(c.azimuthDeg), el = glm::radians(c.elevationDeg);
+        glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+        // Fit the bounding sphere in the narrower of the two fields of view.
+        float halfFovX = std::atan(std::tan(halfFov) * float(w) / float(h));
+        float dist = radius / std::sin(std::min(halfFov, halfFovX)) * c.distanceScale;
+        target = center;
+        eye = center + dir * dist;
+    }
+    float dist = glm::length(eye - center);
+    float nearP = c.nearPlane > 0 ? c.nearPlane : std::max(dist - 2.0f * radius, std::max(dist, radius) * 1e-3f);
+    float farP = c.farPlane > 0 ? c.farPlane : dist + 3.0f * radius;
+    return finishView(eye, target, c.up, c.fovDeg, nearP, farP, w, h, aov);
+}
+
+View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg, float fovDeg,
+                   float nearPlane, float farPlane, int width, int height, Aov aov) {
+    float az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
+    glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
+    return finishView(target + distance * dir, target, glm::vec3(0, 1, 0), fovDeg, nearPlane, farPlane, width,
+                      height, aov);
+}
+
+} // namespace sg::render

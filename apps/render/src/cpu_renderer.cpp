@@ -1,0 +1,263 @@
+// The CPU reference renderer (see renderCpu in surfgrad/render.h).
+//
+// Rasterisation follows the OpenGL pipeline the GPU runs: vertices to clip
+// space with the same matrices, clipping against the near plane (z >= -w)
+// in homogeneous coordinates (Sutherland-Hodgman), the viewport transform,
+// coverage at pixel centres (x + 0.5, y + 0.5) with a top-left tie rule,
+// depth interpolated linearly in screen space and tested with GL_LESS,
+// back faces culled for single-sided materials.
+//
+// Shading inputs are interpolated perspective-correctly and differentiated
+// ANALYTICALLY: with screen-space barycentrics b_i (affine in x, y) and
+// clip w_i, the perspective-correct weights are lambda_i = (b_i / w_i) /
+// sum_j (b_j / w_j), a quotient of affine functions, whose exact derivative
+// is (q_i' D - q_i D') / D^2. Every attribute (position, UVs, ...) and its
+// d/dx, d/dy follow linearly. The GPU's dFdxFine is the difference of the
+// same interpolant between the two pixels of a 2x2 quad, so the two agree to
+// second order in the pixel size (the image tests state by how much).
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "render_internal.h"
+#include "surfgrad/render.h"
+
+namespace sg::render {
+
+namespace {
+
+struct ClipVert {
+    glm::vec4 clip;
+    glm::vec3 bary; // weights of the original triangle's three vertices
+};
+
+// A screen-space triangle after clipping.
+struct ScreenTri {
+    int mesh = 0;
+    uint32_t prim = 0;     // original triangle index (gl_PrimitiveID)
+    uint32_t vtx[3] = {};  // original triangle's vertex indices
+    glm::dvec2 win[3];     // window coordinates
+    double invW[3] = {};   // 1 / clip w
+    glm::vec3 bary[3];     // clipped vertex -> original barycentrics
+    double area = 0.0;     // signed area (twice), window space
+    bool front = true;
+};
+
+// Clips a polygon against z + w >= 0 (the near plane).
+std::vector<ClipVert> clipNear(const std::vector<ClipVert>& in) {
+    std::vector<ClipVert> out;
+    for (size_t i = 0; i < in.size(); ++i) {
+        const ClipVert& a = in[i];
+        const ClipVert& b = in[(i + 1) % in.size()];
+        float da = a.clip.z + a.clip.w, db = b.clip.z + b.clip.w;
+        if (da >= 0.0f) out.push_back(a);
+        if ((da >= 0.0f) != (db >= 0.0f)) {
+            float t = da / (da - db);
+            out.push_back(ClipVert{a.clip + t * (b.clip - a.clip), a.bary + t * (b.bary - a.bary)});
+        }
+    }
+    return out;
+}
+
+// Top-left rule for an edge a -> b of a counter-clockwise (area > 0)
+// triangle in y-up window coordinates: pixels exactly on a "top" edge
+// (horizontal, interior below: running right to left) or a "left" edge
+// (running downwards) are inside.
+bool topLeft(glm::dvec2 a, glm::dvec2 b) {
+    glm::dvec2 e = b - a;
+    return (e.y == 0.0 && e.x < 0.0) || e.y < 0.0;
+}
+
+} // namespace
+
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view) {
+    const int W = view.width, H = view.height;
+    Image img;
+    img.width = W;
+    img.height = H;
+    glm::vec4 bg = view.aov == Aov::Color ? glm::vec4(scene.output.background, 1.0f) : glm::vec4(0.0f);
+    img.pixels.assign(size_t(W) * size_t(H), bg);
+    std::vector<float> depth(size_t(W) * size_t(H), 1.0f);
+    std::vector<int32_t> visible(size_t(W) * size_t(H), -1);
+    std::vector<ScreenTri> tris;
+
+    // World-space vertex data per mesh, exactly as the vertex program
+    // computes it.
+    struct MeshData {
+        std::vector<glm::vec3> rel, world, obj, normal;
+        std::vector<glm::vec4> tangent[kMaxUvSets];
+        const sg::mesh::RenderMesh* mesh = nullptr;
+    };
+    std::vector<MeshData> md(scene.meshes.size());
+
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        const MeshInstance& inst = scene.meshes[mi];
+        const MeshAsset& a = assets.meshes[mi];
+        const auto& m = a.mesh;
+        MeshData& d = md[mi];
+        d.mesh = &m;
+        const glm::mat4& M = inst.transform;
+        glm::mat3 nm = detail::normalMatrix(M);
+        float detSign = glm::determinant(glm::mat3(M)) < 0.0f ? -1.0f : 1.0f;
+        size_t nv = m.vertexCount();
+        d.rel.resize(nv);
+        d.world.resize(nv);
+        d.obj = m.positions;
+        d.normal.resize(nv);
+        std::vector<glm::vec4> clip(nv);
+        for (size_t v = 0; v < nv; ++v) {
+            glm::vec4 wp = M * glm::vec4(m.positions[v], 1.0f);
+            d.world[v] = glm::vec3(wp);
+            d.rel[v] = glm::vec3(wp) - view.cameraPos;
+            d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
+            clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
+        }
+        for (int k = 0; k < kMaxUvSets && size_t(k) < a.vertexTangents.size(); ++k) {
+            const auto& t = a.vertexTangents[size_t(k)];
+            d.tangent[k].resize(t.size());
+            for (size_t v = 0; v < t.size(); ++v) {
+                d.tangent[k][v] = glm::vec4(glm::mat3(M) * glm::vec3(t[v]), t[v].w * detSign);
+            }
+        }
+        const bool cull = scene.materials[size_t(inst.material)].doubleSided == DoubleSided::Off;
+        for (size_t t = 0; t < m.triangleCount(); ++t) {
+            uint32_t idx[3] = {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]};
+            std::vector<ClipVert> poly = {{clip[idx[0]], {1, 0, 0}}, {clip[idx[1]], {0, 1, 0}}, {clip[idx[2]], {0, 0, 1}}};
+            poly = clipNear(poly);
+            for (size_t f = 1; f + 1 < poly.size(); ++f) {
+                const ClipVert* cv[3] = {&poly[0], &poly[f], &poly[f + 1]};
+                ScreenTri st;
+                st.mesh = int(mi);
+                st.prim = uint32_t(t);
+                std::copy(idx, idx + 3, st.vtx);
+                bool ok = true;
+                double zw[3];
+                for (int i = 0; i < 3; ++i) {
+                    glm::dvec4 c(cv[i]->clip);
+                    if (!(c.w > 0.0)) ok = false;
+                    st.invW[i] = 1.0 / c.w;
+                    st.win[i] = glm::dvec2((c.x * st.invW[i] * 0.5 + 0.5) * W, (c.y * st.invW[i] * 0.5 + 0.5) * H);
+                    zw[i] = c.z * st.invW[i] * 0.5 + 0.5;
+                    st.bary[i] = cv[i]->bary;
+                }
+                if (!ok) continue;
+                const auto& p = st.win;
+                st.area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+                if (st.area == 0.0 || !std::isfinite(st.area)) continue;
+                st.front = (st.area > 0.0) == (detSign > 0.0f);
+                if (cull && !st.front) continue;
+                // Orient counter-clockwise for the coverage test.
+                double s = st.area > 0.0 ? 1.0 : -1.0;
+                int32_t triIndex = int32_t(tris.size());
+                int x0 = std::max(0, int(std::floor(std::min({p[0].x, p[1].x, p[2].x}))));
+                int x1 = std::min(W - 1, int(std::ceil(std::max({p[0].x, p[1].x, p[2].x}))));
+                int y0 = std::max(0, int(std::floor(std::min({p[0].y, p[1].y, p[2].y}))));
+                int y1 = std::min(H - 1, int(std::ceil(std::max({p[0].y, p[1].y, p[2].y}))));
+                bool any = false;
+                // Edge e_i is opposite vertex i: (i+1) -> (i+2).
+                for (int y = y0; y <= y1; ++y) {
+                    for (int x = x0; x <= x1; ++x) {
+                        glm::dvec2 c(x + 0.5, y + 0.5);
+                        double b[3];
+                        bool inside = true;
+                        for (int i = 0; i < 3 && inside; ++i) {
+                            glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
+                            double e = s * ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x));
+                            b[i] = e;
+                            glm::dvec2 from = s > 0 ? a0 : a1, to = s > 0 ? a1 : a0;
+                            inside = e > 0.0 || (e == 0.0 && topLeft(from, to));
+                        }
+                        if (!inside) continue;
+                        double sum = b[0] + b[1] + b[2];
+                        double z = (b[0] * zw[0] + b[1] * zw[1] + b[2] * zw[2]) / sum;
+                        if (!(z <= 1.0) || !(z >= 0.0)) continue; // outside the depth range (far plane)
+                        size_t pix = size_t(y) * size_t(W) + size_t(x);
+                        if (!(float(z) < depth[pix])) continue;
+                        depth[pix] = float(z);
+                        visible[pix] = triIndex;
+                        any = true;
+                    }
+                }
+                if (any) tris.push_back(st);
+            }
+        }
+    }
+
+    // Plans, uniforms and samplers per mesh (the GPU's per-draw state).
+    std::vector<MaterialPlan> plans;
+    std::vector<detail::DrawUniforms> uniforms;
+    std::vector<std::vector<sg::glsl::sampler2D>> samplers;
+    float primBase = 0.0f;
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        plans.push_back(planMaterial(scene, assets, int(mi), scene.meshes[mi].material));
+        uniforms.push_back(detail::drawUniforms(scene, plans.back(), view, int(mi), primBase));
+        samplers.push_back(detail::planSamplers(plans.back(), assets));
+        primBase += float(assets.meshes[mi].mesh.triangleCount());
+    }
+
+    tbb::parallel_for(0, H, [&](int y) {
+        for (int x = 0; x < W; ++x) {
+            size_t pix = size_t(y) * size_t(W) + size_t(x);
+            int32_t ti = visible[pix];
+            if (ti < 0) continue;
+            const ScreenTri& st = tris[size_t(ti)];
+            const MeshData& d = md[size_t(st.mesh)];
+            const auto& p = st.win;
+            // Screen barycentrics (affine) and their constant derivatives.
+            double b[3], bx[3], by[3];
+            glm::dvec2 c(x + 0.5, y + 0.5);
+            for (int i = 0; i < 3; ++i) {
+                glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
+                b[i] = ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x)) / st.area;
+                bx[i] = -(a1.y - a0.y) / st.area;
+                by[i] = (a1.x - a0.x) / st.area;
+            }
+            // Perspective-correct weights and their exact derivatives.
+            double q[3], qx[3], qy[3], D = 0, Dx = 0, Dy = 0;
+            for (int i = 0; i < 3; ++i) {
+                q[i] = b[i] * st.invW[i];
+                qx[i] = bx[i] * st.invW[i];
+                qy[i] = by[i] * st.invW[i];
+                D += q[i];
+                Dx += qx[i];
+                Dy += qy[i];
+            }
+            glm::dvec3 mu(0.0), mux(0.0), muy(0.0);
+            for (int i = 0; i < 3; ++i) {
+                double l = q[i] / D;
+                double lx = (qx[i] * D - q[i] * Dx) / (D * D);
+                double ly = (qy[i] * D - q[i] * Dy) / (D * D);
+                glm::dvec3 B(st.bary[i]);
+                mu += l * B;
+                mux += lx * B;
+                muy += ly * B;
+            }
+            auto interp = [&](const auto& arr, glm::dvec3 w) {
+                using T = std::decay_t<decltype(arr[0])>;
+                return T(float(w.x) * arr[st.vtx[0]] + float(w.y) * arr[st.vtx[1]] + float(w.z) * arr[st.vtx[2]]);
+            };
+            detail::PixelInputs in;
+            in.relPos = interp(d.rel, mu);
+            in.dPdx = interp(d.rel, mux);
+            in.dPdy = interp(d.rel, muy);
+            in.worldPos = interp(d.world, mu);
+            in.objPos = interp(d.obj, mu);
+            in.normal = interp(d.normal, mu);
+            for (size_t k = 0; k < d.mesh->uvSets.size() && k < size_t(kMaxUvSets); ++k) {
+                in.uv[k] = interp(d.mesh->uvSets[k], mu);
+                in.dUVdx[k] = interp(d.mesh->uvSets[k], mux);
+                in.dUVdy[k] = interp(d.mesh->uvSets[k], muy);
+                if (!d.tangent[k].empty()) in.tangent[k] = interp(d.tangent[k], mu);
+            }
+            in.frontFacing = st.front;
+            in.primId = float(st.prim);
+            img.pixels[pix] = detail::shadePixelCpu(plans[size_t(st.mesh)], uniforms[size_t(st.mesh)],
+                                                    samplers[size_t(st.mesh)], in);
+        }
+    });
+    return img;
+}
+
+} // namespace sg::render

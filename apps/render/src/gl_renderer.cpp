@@ -1,0 +1,269 @@
+// The OpenGL 4.5 core renderer: one draw per mesh instance with the
+// program assembled for its material (plan.cpp), cached by effect
+// signature; meshes and textures uploaded once; an RGBA32F + 32-bit float
+// depth framebuffer; GPU time from GL_TIME_ELAPSED queries. Works on any
+// current 4.5 core context (EGL surfaceless for the CLI and tests, GLFW for
+// the viewer).
+#include <epoxy/gl.h>
+
+#include <algorithm>
+#include <cstring>
+#include <unordered_map>
+
+#include "render_internal.h"
+#include "surfgrad/gl.h"
+#include "surfgrad/render.h"
+
+namespace sg::render {
+
+namespace {
+
+struct GpuMesh {
+    GLuint vao = 0;
+    GLuint vbo[10] = {};
+    GLuint ebo = 0;
+    GLsizei indexCount = 0;
+    size_t vertexCount = 0;
+};
+
+struct GpuProgram {
+    sg::gl::Program program;
+    std::unordered_map<std::string, GLint> locations;
+    GLint loc(const char* name) {
+        auto it = locations.find(name);
+        if (it != locations.end()) return it->second;
+        GLint l = glGetUniformLocation(program.id(), name);
+        locations.emplace(name, l);
+        return l;
+    }
+};
+
+void deleteMesh(GpuMesh& m) {
+    if (m.vao) glDeleteVertexArrays(1, &m.vao);
+    glDeleteBuffers(10, m.vbo);
+    if (m.ebo) glDeleteBuffers(1, &m.ebo);
+    m = GpuMesh{};
+}
+
+template <class T>
+void uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>& data, int comps) {
+    if (data.empty()) {
+        glDisableVertexArrayAttrib(vao, location);
+        return;
+    }
+    if (!vbo) glCreateBuffers(1, &vbo);
+    glNamedBufferData(vbo, GLsizeiptr(data.size() * sizeof(T)), data.data(), GL_DYNAMIC_DRAW);
+    glVertexArrayVertexBuffer(vao, location, vbo, 0, GLsizei(sizeof(T)));
+    glVertexArrayAttribFormat(vao, location, comps, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, location, location);
+    glEnableVertexArrayAttrib(vao, location);
+}
+
+} // namespace
+
+struct GlRenderer::Impl {
+    std::unordered_map<std::string, GpuProgram> programs;
+    const SceneAssets* meshesFor = nullptr;
+    std::vector<GpuMesh> meshes;
+    bool meshesDirty = true;
+    std::unordered_map<const TextureImage*, GLuint> textures;
+    GLuint fbo = 0, colorTex = 0, depthRb = 0;
+    int fbW = 0, fbH = 0;
+    GLuint query = 0;
+
+    ~Impl() {
+        for (auto& m : meshes) deleteMesh(m);
+        for (auto& [img, t] : textures) glDeleteTextures(1, &t);
+        if (fbo) glDeleteFramebuffers(1, &fbo);
+        if (colorTex) glDeleteTextures(1, &colorTex);
+        if (depthRb) glDeleteRenderbuffers(1, &depthRb);
+        if (query) glDeleteQueries(1, &query);
+    }
+
+    void ensureFramebuffer(int w, int h) {
+        if (fbo && w == fbW && h == fbH) return;
+        if (fbo) glDeleteFramebuffers(1, &fbo);
+        if (colorTex) glDeleteTextures(1, &colorTex);
+        if (depthRb) glDeleteRenderbuffers(1, &depthRb);
+        glCreateTextures(GL_TEXTURE_2D, 1, &colorTex);
+        glTextureStorage2D(colorTex, 1, GL_RGBA32F, w, h);
+        glTextureParameteri(colorTex, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(colorTex, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        glCreateRenderbuffers(1, &depthRb);
+        glNamedRenderbufferStorage(depthRb, GL_DEPTH_COMPONENT32F, w, h);
+        glCreateFramebuffers(1, &fbo);
+        glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colorTex, 0);
+        glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthRb);
+        if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+            throw sg::gl::GlError("renderer: RGBA32F + DEPTH32F framebuffer incomplete");
+        }
+        fbW = w;
+        fbH = h;
+    }
+
+    void uploadMeshes(const SceneAssets& assets) {
+        if (meshesFor != &assets || meshes.size() != assets.meshes.size()) {
+            for (auto& m : meshes) deleteMesh(m);
+            meshes.assign(assets.meshes.size(), GpuMesh{});
+            meshesFor = &assets;
+            meshesDirty = true;
+        }
+        if (!meshesDirty) return;
+        for (size_t i = 0; i < assets.meshes.size(); ++i) {
+            const MeshAsset& a = assets.meshes[i];
+            GpuMesh& g = meshes[i];
+            bool fresh = !g.vao;
+            if (fresh) glCreateVertexArrays(1, &g.vao);
+            uploadAttrib(g.vao, g.vbo[0], 0, a.mesh.positions, 3);
+            uploadAttrib(g.vao, g.vbo[1], 1, a.mesh.normals, 3);
+            if (fresh || g.vertexCount != a.mesh.vertexCount()) {
+                for (int k = 0; k < kMaxUvSets; ++k) {
+                    static const std::vector<glm::vec2> none2;
+                    static const std::vector<glm::vec4> none4;
+                    size_t kk = size_t(k);
+                    uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k), kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
+                    uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k),
+                                 kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
+                }
+                if (!g.ebo) glCreateBuffers(1, &g.ebo);
+                glNamedBufferData(g.ebo, GLsizeiptr(a.mesh.indices.size() * sizeof(uint32_t)), a.mesh.indices.data(),
+                                  GL_STATIC_DRAW);
+                glVertexArrayElementBuffer(g.vao, g.ebo);
+                g.indexCount = GLsizei(a.mesh.indices.size());
+                g.vertexCount = a.mesh.vertexCount();
+            }
+        }
+        meshesDirty = false;
+        sg::gl::checkError("mesh upload");
+    }
+
+    GLuint texture(const TextureImage* img) {
+        auto it = textures.find(img);
+        if (it != textures.end()) return it->second;
+        GLuint t = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &t);
+        glTextureStorage2D(t, GLsizei(img->levels.size()), GL_RGBA32F, img->width(), img->height());
+        // The exact mip chain the CPU reference filters (no glGenerateMipmap).
+        for (size_t l = 0; l < img->levels.size(); ++l) {
+            const auto& L = img->levels[l];
+            glTextureSubImage2D(t, GLint(l), 0, 0, L.width, L.height, GL_RGBA, GL_FLOAT, L.texels.data());
+        }
+        glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        GLint wrap = img->wrap == Wrap::Clamp ? GL_CLAMP_TO_EDGE : GL_REPEAT;
+        glTextureParameteri(t, GL_TEXTURE_WRAP_S, wrap);
+        glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
+        glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, GLint(img->levels.size()) - 1);
+        textures.emplace(img, t);
+        sg::gl::checkError("texture upload");
+        return t;
+    }
+
+    GpuProgram& program(const MaterialPlan& plan, RenderStats& stats) {
+        auto it = programs.find(plan.signature);
+        if (it != programs.end()) return it->second;
+        ProgramSource src = assembleProgram(plan);
+        std::vector<std::pair<sg::gl::Stage, sg::shaders::Assembled>> stages;
+        stages.push_back({sg::gl::Stage::Vertex, sg::shaders::Assembled{src.vertex, src.vertexFiles}});
+        stages.push_back({sg::gl::Stage::Fragment, sg::shaders::Assembled{src.fragment, src.fragmentFiles}});
+        GpuProgram gp;
+        gp.program = sg::gl::Program(stages);
+        ++stats.programsCompiled;
+        return programs.emplace(plan.signature, std::move(gp)).first->second;
+    }
+};
+
+GlRenderer::GlRenderer() : impl_(std::make_unique<Impl>()) {}
+GlRenderer::~GlRenderer() = default;
+
+void GlRenderer::invalidateMeshes() { impl_->meshesDirty = true; }
+size_t GlRenderer::cachedPrograms() const { return impl_->programs.size(); }
+
+unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& assets, const View& view) {
+    Impl& I = *impl_;
+    stats_ = RenderStats{};
+    I.ensureFramebuffer(view.width, view.height);
+    I.uploadMeshes(assets);
+    glBindFramebuffer(GL_FRAMEBUFFER, I.fbo);
+    glViewport(0, 0, view.width, view.height);
+    glm::vec3 bg = view.aov == Aov::Color ? scene.output.background : glm::vec3(0.0f);
+    glClearColor(bg.x, bg.y, bg.z, view.aov == Aov::Color ? 1.0f : 0.0f);
+    glClearDepth(1.0);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (!I.query) glCreateQueries(GL_TIME_ELAPSED, 1, &I.query);
+    glBeginQuery(GL_TIME_ELAPSED, I.query);
+    float primBase = 0.0f;
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        const MeshInstance& mi = scene.meshes[i];
+        MaterialPlan plan = uber_ ? planUberMaterial(scene, assets, int(i), mi.material)
+                                  : planMaterial(scene, assets, int(i), mi.material);
+        GpuProgram& gp = I.program(plan, stats_);
+        detail::DrawUniforms u = detail::drawUniforms(scene, plan, view, int(i), primBase);
+        GLuint id = gp.program.id();
+        glUseProgram(id);
+        glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
+        glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
+        glUniform1f(gp.loc("uDetSign"), u.detSign);
+        glUniform3fv(gp.loc("uCamPos"), 1, &view.cameraPos[0]);
+        glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
+        glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
+        glUniform1i(gp.loc("uAov"), u.aov);
+        glUniform1f(gp.loc("uPrimBase"), u.primBase);
+        glUniform3fv(gp.loc("uBaseColor"), 1, &u.baseColor[0]);
+        glUniform1f(gp.loc("uRoughness"), u.roughness);
+        glUniform3fv(gp.loc("uAmbient"), 1, &u.ambient[0]);
+        glUniformMatrix3fv(gp.loc("uModel3"), 1, GL_FALSE, &u.model3[0][0]);
+        glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
+        glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
+        glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
+        if (plan.uber) glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()), u.uberFlags.data());
+        for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
+            auto it = assets.textures.find(plan.textureKeys[s]);
+            GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;
+            glBindTextureUnit(GLuint(s), t);
+            std::string name = "uTex" + std::to_string(s);
+            glUniform1i(gp.loc(name.c_str()), GLint(s));
+        }
+        const Material& mat = scene.materials[size_t(mi.material)];
+        if (mat.doubleSided == DoubleSided::Off) {
+            glEnable(GL_CULL_FACE);
+            glCullFace(GL_BACK);
+        } else {
+            glDisable(GL_CULL_FACE);
+        }
+        glFrontFace(u.detSign < 0.0f ? GL_CW : GL_CCW); // mirroring transforms flip the winding
+        glBindVertexArray(I.meshes[i].vao);
+        glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
+        ++stats_.drawCalls;
+        primBase += float(assets.meshes[i].mesh.triangleCount());
+    }
+    glEndQuery(GL_TIME_ELAPSED);
+    GLuint64 ns = 0;
+    glGetQueryObjectui64v(I.query, GL_QUERY_RESULT, &ns);
+    stats_.gpuMs = double(ns) * 1e-6;
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    sg::gl::checkError("render");
+    return I.colorTex;
+}
+
+Image GlRenderer::render(const Scene& scene, const SceneAssets& assets, const View& view) {
+    renderToTexture(scene, assets, view);
+    Image img;
+    img.width = view.width;
+    img.height = view.height;
+    img.pixels.resize(size_t(view.width) * size_t(view.height));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->fbo);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, view.width, view.height, GL_RGBA, GL_FLOAT, img.pixels.data());
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    sg::gl::checkError("readback");
+    return img;
+}
+
+} // namespace sg::render

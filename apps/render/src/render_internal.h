@@ -1,0 +1,66 @@
+// Internal interfaces of surfgrad_render shared between its source files
+// (not installed; the public API is surfgrad/render.h).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "surfgrad/glsl_texture.h"
+#include "surfgrad/render.h"
+
+namespace sg::render::detail {
+
+// Procedural meshes (assets.cpp): UV set 0 spans the surface once, further
+// sets are set 0 scaled by 4 (a tiling detail set), normals analytic.
+sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p);
+
+// Procedural textures (procedural_textures.cpp): a tileable height field on
+// [0,1]^2 converted to the requested output (see TextureSource).
+TextureImage makeProceduralTexture(const TextureSource& src);
+
+glm::mat3 normalMatrix(const glm::mat4& model);
+
+// World-space bounds of every mesh instance.
+void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
+
+// Per-draw values that are uniforms on the GPU (both renderers fill them
+// with drawUniforms()).
+struct DrawUniforms {
+    int bfaceMode = 0; // SG_BFACE_*
+    int aov = 0;       // SG_AOV_*
+    float primBase = 0.0f;
+    glm::vec3 baseColor{0.7f};
+    float roughness = 0.5f;
+    glm::vec3 ambient{0.0f};
+    glm::mat4 model{1.0f};
+    glm::mat3 model3{1.0f}, modelInv3{1.0f}, normalMat{1.0f};
+    float detSign = 1.0f;
+    std::vector<glm::vec4> lights;  // packLightRecords
+    std::vector<glm::vec4> records; // packLayerRecords
+    std::vector<float> uberFlags;   // uber plans: 1 enabled, 0 disabled
+};
+DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const View& view, int meshIndex,
+                          float primBase);
+
+// What the fragment program reads at one pixel, computed by the CPU
+// rasteriser: interpolated varyings (same names as sg/render/surface_fs.glsl)
+// and their screen derivatives.
+struct PixelInputs {
+    glm::vec3 relPos{0.0f}, worldPos{0.0f}, objPos{0.0f}, normal{0.0f};
+    std::array<glm::vec2, kMaxUvSets> uv{}, dUVdx{}, dUVdy{};
+    std::array<glm::vec4, kMaxUvSets> tangent{};
+    glm::vec3 dPdx{0.0f}, dPdy{0.0f}; // of relPos
+    bool frontFacing = true;
+    float primId = 0.0f; // gl_PrimitiveID
+};
+
+// Runs the plan's shading on the CPU with the same shared functions, in the
+// same order, as the GLSL main() that fragmentBody(plan) generates.
+glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
+                        const std::vector<sg::glsl::sampler2D>& samplers, const PixelInputs& in);
+
+// Samplers of a plan's texture slots.
+std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets);
+
+} // namespace sg::render::detail

@@ -1,0 +1,767 @@
+// Scene JSON: parsing and validation (schema in docs/scene.md). Every value
+// is checked where it is read, and an error names the field path from the
+// document root, e.g. "materials[0].layers[2].strength: expected a number
+// >= 0". Unknown fields are errors too (a typo must not be silently
+// ignored).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <set>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_internal.h"
+#include "surfgrad/io.h"
+#include "surfgrad/render.h"
+
+#ifndef SURFGRAD_DEFAULT_DATA_DIR
+#define SURFGRAD_DEFAULT_DATA_DIR ""
+#endif
+
+namespace sg::render {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+const char* layerKindName(LayerKind k) {
+    switch (k) {
+    case LayerKind::UvNormal: return "uv_normal";
+    case LayerKind::ObjectNormal: return "object_normal";
+    case LayerKind::Height: return "height";
+    case LayerKind::DerivMap: return "deriv_map";
+    case LayerKind::Triplanar: return "triplanar";
+    case LayerKind::Decal: return "decal";
+    case LayerKind::Noise: return "noise";
+    case LayerKind::PostResolve: return "post_resolve";
+    }
+    return "?";
+}
+
+const char* aovName(Aov a) {
+    switch (a) {
+    case Aov::Color: return "color";
+    case Aov::Normal: return "normal";
+    case Aov::SurfGrad: return "surfgrad";
+    case Aov::Tangent: return "tangent";
+    case Aov::Bitangent: return "bitangent";
+    case Aov::BaseNormal: return "basenormal";
+    case Aov::Uv: return "uv";
+    case Aov::PrimId: return "primid";
+    }
+    return "?";
+}
+
+std::optional<Aov> parseAov(const std::string& name) {
+    for (int i = 0; i <= int(Aov::PrimId); ++i) {
+        if (name == aovName(Aov(i))) return Aov(i);
+    }
+    return std::nullopt;
+}
+
+fs::path dataDirectory() {
+    if (const char* env = std::getenv("SURFGRAD_DATA_DIR"); env && *env) return fs::path(env);
+    return fs::path(SURFGRAD_DEFAULT_DATA_DIR);
+}
+
+std::string TextureSource::key() const {
+    if (!procedural.empty()) {
+        return "proc:" + procedural + ":" + output + ":" + std::to_string(size) + ":" +
+               std::to_string(bumpHeight) + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");
+    }
+    return "file:" + file.lexically_normal().string() + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");
+}
+
+namespace {
+
+// A JSON value with its field path, reading typed, range-checked fields.
+class Node {
+public:
+    Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
+
+    const json& value() const { return j_; }
+    const std::string& path() const { return path_; }
+
+    [[noreturn]] void fail(const std::string& reason) const {
+        throw io::InputError(file_, path_.empty() ? "(root)" : path_, reason);
+    }
+    [[noreturn]] void failField(const std::string& key, const std::string& reason) const {
+        throw io::InputError(file_, sub(key), reason);
+    }
+    std::string sub(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+    void requireObject() const {
+        if (!j_.is_object()) fail("expected an object");
+    }
+    // Every key must be in `allowed`.
+    void allowOnly(std::initializer_list<const char*> allowed) const {
+        requireObject();
+        for (auto it = j_.begin(); it != j_.end(); ++it) {
+            bool ok = false;
+            for (const char* a : allowed) ok = ok || it.key() == a;
+            if (!ok) {
+                std::string list;
+                for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+                failField(it.key(), "unknown field (expected one of: " + list + ")");
+            }
+        }
+    }
+    bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
+    Node child(const char* key) const { return Node(j_.at(key), sub(key), file_); }
+    Node item(size_t i) const { return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", file_); }
+
+    double number(const char* key, double def, double lo, double hi, bool loOpen = false) const {
+        if (!has(key)) return def;
+        const json& v = j_.at(key);
+        std::string range = rangeText(lo, hi, loOpen);
+        if (!v.is_number()) failField(key, "expected a number" + range);
+        double x = v.get<double>();
+        if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
+            failField(key, "expected a number" + range);
+        }
+        return x;
+    }
+    float num(const char* key, double def, double lo, double hi, bool loOpen = false) const {
+        return float(number(key, def, lo, hi, loOpen));
+    }
+    int integer(const char* key, int def, int lo, int hi) const {
+        if (!has(key)) return def;
+        const json& v = j_.at(key);
+        std::string range = " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+        if (!v.is_number_integer() && !(v.is_number() && std::floor(v.get<double>()) == v.get<double>())) {
+            failField(key, "expected an integer" + range);
+        }
+        double x = v.get<double>();
+        if (!(x >= lo && x <= hi)) failField(key, "expected an integer" + range);
+        return int(x);
+    }
+    bool boolean(const char* key, bool def) const {
+        if (!has(key)) return def;
+        if (!j_.at(key).is_boolean()) failField(key, "expected true or false");
+        return j_.at(key).get<bool>();
+    }
+    std::string string(const char* key, const std::string& def) const {
+        if (!has(key)) return def;
+        if (!j_.at(key).is_string()) failField(key, "expected a string");
+        return j_.at(key).get<std::string>();
+    }
+    // One of `choices`; returns its index.
+    int choice(const char* key, int def, std::initializer_list<const char*> choices) const {
+        if (!has(key)) return def;
+        const json& v = j_.at(key);
+        std::string list;
+        for (const char* c : choices) list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
+        if (!v.is_string()) failField(key, "expected one of " + list);
+        int i = 0;
+        for (const char* c : choices) {
+            if (v.get<std::string>() == c) return i;
+            ++i;
+        }
+        failField(key, "expected one of " + list + ", got \"" + v.get<std::string>() + "\"");
+    }
+    glm::vec3 vec3(const char* key, glm::vec3 def, double lo = -1e9, double hi = 1e9) const {
+        if (!has(key)) return def;
+        const json& v = j_.at(key);
+        std::string what = "expected an array of 3 numbers" + rangeText(lo, hi, false);
+        if (!v.is_array() || v.size() != 3) failField(key, what);
+        glm::vec3 r;
+        for (int i = 0; i < 3; ++i) {
+            if (!v[size_t(i)].is_number()) failField(key, what);
+            double x = v[size_t(i)].get<double>();
+            if (!std::isfinite(x) || x < lo || x > hi) failField(key, what);
+            r[i] = float(x);
+        }
+        return r;
+    }
+    std::vector<float> floats(const char* key, double lo, double hi, size_t maxCount) const {
+        std::vector<float> out;
+        if (!has(key)) return out;
+        const json& v = j_.at(key);
+        std::string what = "expected an array of numbers" + rangeText(lo, hi, false);
+        if (!v.is_array() || v.size() > maxCount) {
+            failField(key, what + " (at most " + std::to_string(maxCount) + ")");
+        }
+        for (const auto& x : v) {
+            if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < lo ||
+                x.get<double>() > hi) {
+                failField(key, what);
+            }
+            out.push_back(x.get<float>());
+        }
+        return out;
+    }
+    void requireArray(const char* key, size_t maxCount) const {
+        if (!j_.at(key).is_array()) failField(key, "expected an array");
+        if (j_.at(key).size() > maxCount) {
+            failField(key, "too many entries (at most " + std::to_string(maxCount) + ")");
+        }
+    }
+
+private:
+    static std::string fmt(double x) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", x);
+        return buf;
+    }
+    static std::string rangeText(double lo, double hi, bool loOpen) {
+        bool hasLo = lo > -1e8, hasHi = hi < 1e8;
+        if (hasLo && hasHi) return std::string(" in ") + (loOpen ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]";
+        if (hasLo) return std::string(loOpen ? " > " : " >= ") + fmt(lo);
+        if (hasHi) return " <= " + fmt(hi);
+        return "";
+    }
+
+    const json& j_;
+    std::string path_;
+    const std::string& file_;
+};
+
+constexpr double kBig = 1e9;  // "no bound" for Node ranges
+constexpr double kHuge = 1e6; // largest sensible coordinate/size
+
+struct Parser {
+    std::string file;
+    fs::path baseDir;
+
+    fs::path resolvePath(const Node& n, const std::string& p) const {
+        if (p.empty()) n.fail("expected a file path");
+        if (p.rfind("data:", 0) == 0) return dataDirectory() / p.substr(5);
+        fs::path fp(p);
+        return fp.is_absolute() ? fp : baseDir / fp;
+    }
+
+    TextureSource texture(const Node& n, Wrap defaultWrap) const {
+        TextureSource t;
+        t.fieldPath = n.path();
+        t.wrap = defaultWrap;
+        if (n.value().is_string()) {
+            t.file = resolvePath(n, n.value().get<std::string>());
+            return t;
+        }
+        if (!n.value().is_object()) n.fail("expected a file path or a texture object");
+        n.allowOnly({"file", "procedural", "output", "size", "bump_height", "wrap"});
+        if (n.has("file") == n.has("procedural")) n.fail("expected exactly one of \"file\" or \"procedural\"");
+        if (n.has("file")) {
+            t.file = resolvePath(n.child("file"), n.string("file", ""));
+            if (n.has("output") || n.has("size") || n.has("bump_height")) {
+                n.fail("\"output\", \"size\" and \"bump_height\" apply to procedural textures only");
+            }
+        } else {
+            static const char* kinds[] = {"bricks", "tiles", "bumps", "weave", "scratches"};
+            int k = n.choice("procedural", 0, {"bricks", "tiles", "bumps", "weave", "scratches"});
+            t.procedural = kinds[k];
+            static const char* outs[] = {"normal", "height", "derivative"};
+            t.output = outs[n.choice("output", 0, {"normal", "height", "derivative"})];
+            t.size = n.integer("size", 256, 4, 4096);
+            t.bumpHeight = n.num("bump_height", 0.04, 0.0, 10.0);
+        }
+        t.wrap = n.choice("wrap", defaultWrap == Wrap::Clamp ? 1 : 0, {"repeat", "clamp"}) == 1
+                     ? Wrap::Clamp
+                     : Wrap::Repeat;
+        return t;
+    }
+
+    static int channelIndex(const Node& n, const char* key, int def) {
+        return n.choice(key, def, {"r", "g", "b", "a"});
+    }
+
+    void heightChannel(const Node& n, Layer& L) const {
+        if (!n.has("height")) return;
+        Node h = n.child("height");
+        h.allowOnly({"channel", "scale"});
+        L.heightChannel = channelIndex(h, "channel", 3);
+        L.heightScale = h.num("scale", 1.0, -kHuge, kHuge);
+    }
+
+    void modifiers(const Node& n, Layer& L) const {
+        if (!n.has("modifiers")) return;
+        n.requireArray("modifiers", size_t(kMaxModifiers));
+        Node arr = n.child("modifiers");
+        for (size_t i = 0; i < arr.value().size(); ++i) {
+            Node m = arr.item(i);
+            m.requireObject();
+            Modifier mod;
+            int kind = m.choice("type", -1, {"scale", "curve", "modulate", "deform"});
+            if (kind < 0) m.fail("missing \"type\" (scale, curve, modulate or deform)");
+            mod.kind = ModifierKind(kind + 1);
+            switch (mod.kind) {
+            case ModifierKind::Scale:
+                m.allowOnly({"type", "alpha"});
+                mod.a = m.num("alpha", 1.0, -kHuge, kHuge);
+                break;
+            case ModifierKind::Curve:
+                m.allowOnly({"type", "boost", "center"});
+                mod.a = m.num("boost", 1.0, 0.0, kHuge);
+                mod.b = m.num("center", 0.0, -kHuge, kHuge);
+                break;
+            case ModifierKind::Modulate:
+                m.allowOnly({"type", "mask", "channel", "gain"});
+                if (!m.has("mask")) m.fail("missing \"mask\" (the texture to modulate by)");
+                mod.mask = texture(m.child("mask"), Wrap::Repeat);
+                mod.channel = channelIndex(m, "channel", 0);
+                mod.a = m.num("gain", 1.0, -kHuge, kHuge);
+                break;
+            case ModifierKind::Deform:
+                m.allowOnly({"type", "amplitude", "frequency"});
+                if (i != 0) m.fail("a deform modifier warps the lookup and must come first");
+                mod.a = m.num("amplitude", 0.02, -kHuge, kHuge);
+                mod.b = m.num("frequency", 20.0, -kHuge, kHuge);
+                break;
+            }
+            L.modifiers.push_back(std::move(mod));
+        }
+    }
+
+    static NormalEncoding encoding(const Node& n, bool allowTwoChannel) {
+        int e = n.choice("encoding", 0, {"rgb", "rg", "ag", "float"});
+        if (!allowTwoChannel && (e == 1 || e == 2)) {
+            n.failField("encoding", "this layer needs all three components: expected \"rgb\" or \"float\"");
+        }
+        return NormalEncoding(e);
+    }
+
+    Layer layer(const Node& n, bool nested) const {
+        n.requireObject();
+        Layer L;
+        L.fieldPath = n.path();
+        if (!n.has("type")) {
+            n.fail("missing \"type\" (uv_normal, object_normal, height, deriv_map, triplanar, "
+                   "decal, noise or post_resolve)");
+        }
+        int kind = n.choice("type", 0,
+                            {"uv_normal", "object_normal", "height", "deriv_map", "triplanar",
+                             "decal", "noise", "post_resolve"});
+        L.kind = LayerKind(kind);
+        L.enabled = n.boolean("enabled", true);
+        auto requireMap = [&](const char* key, Wrap wrap) {
+            if (!n.has(key)) n.fail(std::string("missing \"") + key + "\"");
+            L.maps.push_back(texture(n.child(key), wrap));
+        };
+        switch (L.kind) {
+        case LayerKind::UvNormal:
+            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "green", "strength", "height",
+                         "modifiers"});
+            requireMap("map", Wrap::Repeat);
+            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            L.encoding = encoding(n, true);
+            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            heightChannel(n, L);
+            modifiers(n, L);
+            break;
+        case LayerKind::ObjectNormal:
+            n.allowOnly({"type", "enabled", "map", "uv_set", "space", "encoding", "strength"});
+            requireMap("map", Wrap::Repeat);
+            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            L.space = n.choice("space", 0, {"object", "world"}) == 0 ? Space::Object : Space::World;
+            L.encoding = encoding(n, false);
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            break;
+        case LayerKind::Height:
+            n.allowOnly({"type", "enabled", "map", "uv_set", "channel", "scale"});
+            requireMap("map", Wrap::Repeat);
+            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            L.channel = channelIndex(n, "channel", 0);
+            L.heightWorld = n.num("scale", 0.05, -kHuge, kHuge);
+            break;
+        case LayerKind::DerivMap:
+            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "range", "space", "green",
+                         "strength", "height", "modifiers"});
+            requireMap("map", Wrap::Repeat);
+            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            L.derivSigned = n.choice("encoding", 0, {"float", "unorm"}) == 0;
+            L.derivRange = n.num("range", 1.0, 0.0, kHuge, true);
+            L.derivTexelSpace = n.choice("space", 0, {"tbn", "texel"}) == 1;
+            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            heightChannel(n, L);
+            modifiers(n, L);
+            break;
+        case LayerKind::Triplanar: {
+            n.allowOnly({"type", "enabled", "map", "maps", "scale", "sharpness", "handedness", "space",
+                         "encoding", "green", "strength"});
+            if (n.has("map") == n.has("maps")) {
+                n.fail("expected exactly one of \"map\" (one map for all planes) or \"maps\" "
+                       "([x, y, z] plane maps)");
+            }
+            if (n.has("map")) {
+                L.maps.push_back(texture(n.child("map"), Wrap::Repeat));
+            } else {
+                Node ms = n.child("maps");
+                if (!ms.value().is_array() || ms.value().size() != 3) {
+                    ms.fail("expected an array of 3 maps (x, y and z planes)");
+                }
+                for (size_t i = 0; i < 3; ++i) L.maps.push_back(texture(ms.item(i), Wrap::Repeat));
+            }
+            L.triScale = n.num("scale", 1.0, 0.0, kHuge, true);
+            L.triSharpness = n.num("sharpness", 4.0, 0.0, 64.0, true);
+            L.triRightHanded = n.choice("handedness", 0, {"right", "left"}) == 0;
+            L.space = n.choice("space", 1, {"object", "world"}) == 0 ? Space::Object : Space::World;
+            L.encoding = encoding(n, true);
+            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            break;
+        }
+        case LayerKind::Decal: {
+            n.allowOnly({"type", "enabled", "map", "position", "direction", "up", "size", "fade",
+                         "angle_fade_deg", "encoding", "green", "strength"});
+            requireMap("map", Wrap::Clamp);
+            L.decalPosition = n.vec3("position", glm::vec3(0.0f), -kHuge, kHuge);
+            glm::vec3 dir = n.vec3("direction", glm::vec3(0, 0, -1), -kHuge, kHuge);
+            glm::vec3 up = n.vec3("up", glm::vec3(0, 1, 0), -kHuge, kHuge);
+            if (glm::length(dir) < 1e-6f) n.failField("direction", "expected a non-zero vector");
+            glm::vec3 z = -glm::normalize(dir);
+            glm::vec3 x = glm::cross(up, z);
+            if (glm::length(x) < 1e-6f * std::max(glm::length(up), 1e-30f) || glm::length(up) < 1e-6f) {
+                n.failField("up", "expected a non-zero vector not parallel to \"direction\"");
+            }
+            x = glm::normalize(x);
+            L.decalAxisX = x;
+            L.decalAxisY = glm::cross(z, x);
+            L.decalAxisZ = z;
+            glm::vec3 size = n.vec3("size", glm::vec3(1.0f), 0.0, kHuge);
+            if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
+                n.failField("size", "expected an array of 3 numbers > 0 (width, height, depth)");
+            }
+            L.decalHalfSize = 0.5f * size;
+            L.decalFade = n.num("fade", 0.25, 0.0, 1.0);
+            std::vector<float> ang = n.floats("angle_fade_deg", 0.0, 180.0, 2);
+            if (n.has("angle_fade_deg")) {
+                if (ang.size() != 2 || !(ang[0] <= ang[1])) {
+                    n.failField("angle_fade_deg", "expected [start, end] in degrees with start <= end");
+                }
+                L.decalCosStart = std::cos(glm::radians(ang[0]));
+                L.decalCosEnd = std::cos(glm::radians(ang[1]));
+            }
+            L.encoding = encoding(n, true);
+            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            break;
+        }
+        case LayerKind::Noise:
+            n.allowOnly({"type", "enabled", "noise", "amplitude", "frequency", "octaves", "lacunarity",
+                         "gain", "exponent", "offset", "space", "antialias"});
+            L.noiseType = NoiseType(n.choice("noise", 1, {"perlin", "turbulence", "fbm"}));
+            L.noiseAmplitude = n.num("amplitude", 0.02, -kHuge, kHuge);
+            L.noiseFrequency = n.num("frequency", 4.0, 0.0, kHuge, true);
+            L.noiseOctaves = n.integer("octaves", 5, 1, 12);
+            L.noiseLacunarity = n.num("lacunarity", 2.0, 1.0, 8.0);
+            L.noiseGain = n.num("gain", 0.5, 0.0, 1.0);
+            L.noiseExponent = n.num("exponent", 1.0, 1.0, 16.0);
+            L.noiseOffset = n.vec3("offset", glm::vec3(0.0f), -kHuge, kHuge);
+            L.space = n.choice("space", 0, {"object", "world"}) == 0 ? Space::Object : Space::World;
+            L.noiseAntialias = n.boolean("antialias", true);
+            break;
+        case LayerKind::PostResolve: {
+            n.allowOnly({"type", "enabled", "layers"});
+            if (nested) n.fail("post_resolve groups cannot be nested (list them one after another)");
+            if (!n.has("layers")) n.fail("missing \"layers\"");
+            n.requireArray("layers", size_t(kMaxLayers));
+            Node arr = n.child("layers");
+            for (size_t i = 0; i < arr.value().size(); ++i) L.children.push_back(layer(arr.item(i), true));
+            break;
+        }
+        }
+        return L;
+    }
+
+    Material material(const Node& n) const {
+        n.allowOnly({"name", "base_color", "roughness", "double_sided", "layers"});
+        Material m;
+        m.fieldPath = n.path();
+        m.name = n.string("name", "");
+        m.baseColor = n.vec3("base_color", m.baseColor, 0.0, 1.0);
+        m.roughness = n.num("roughness", m.roughness, 0.0, 1.0);
+        m.doubleSided = DoubleSided(n.choice("double_sided", 0, {"off", "none", "mirror", "flip"}));
+        if (n.has("layers")) {
+            n.requireArray("layers", size_t(kMaxLayers));
+            Node arr = n.child("layers");
+            size_t total = 0;
+            bool sawGroup = false;
+            for (size_t i = 0; i < arr.value().size(); ++i) {
+                m.layers.push_back(layer(arr.item(i), false));
+                total += 1 + m.layers.back().children.size();
+                bool isGroup = m.layers.back().kind == LayerKind::PostResolve;
+                if (sawGroup && !isGroup) {
+                    arr.item(i).fail("a layer after a post_resolve group belongs inside a group or "
+                                     "before the first one (groups resolve in order)");
+                }
+                sawGroup = sawGroup || isGroup;
+            }
+            if (total > size_t(kMaxLayers)) {
+                n.failField("layers", "too many layers in total (at most " + std::to_string(kMaxLayers) + ")");
+            }
+        }
+        return m;
+    }
+
+    glm::mat4 transform(const Node& n) const {
+        n.allowOnly({"translate", "rotate_deg", "scale", "matrix"});
+        if (n.has("matrix")) {
+            if (n.has("translate") || n.has("rotate_deg") || n.has("scale")) {
+                n.fail("\"matrix\" excludes translate/rotate_deg/scale");
+            }
+            std::vector<float> m = n.floats("matrix", -kHuge, kHuge, 16);
+            if (m.size() != 16) n.failField("matrix", "expected 16 numbers (column-major)");
+            glm::mat4 r;
+            for (int c = 0; c < 4; ++c)
+                for (int k = 0; k < 4; ++k) r[c][k] = m[size_t(c * 4 + k)];
+            if (std::abs(glm::determinant(glm::mat3(r))) < 1e-12f) n.failField("matrix", "is singular");
+            return r;
+        }
+        glm::vec3 t = n.vec3("translate", glm::vec3(0.0f), -kHuge, kHuge);
+        glm::vec3 rot = n.vec3("rotate_deg", glm::vec3(0.0f), -1e4, 1e4);
+        glm::vec3 s(1.0f);
+        if (n.has("scale")) {
+            if (n.value().at("scale").is_number()) {
+                s = glm::vec3(n.num("scale", 1.0, 0.0, kHuge, true));
+            } else {
+                s = n.vec3("scale", s, -kHuge, kHuge);
+                if (std::abs(s.x * s.y * s.z) < 1e-12f) n.failField("scale", "expected non-zero scales");
+            }
+        }
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), t);
+        m = glm::rotate(m, glm::radians(rot.z), glm::vec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(rot.y), glm::vec3(0, 1, 0));
+        m = glm::rotate(m, glm::radians(rot.x), glm::vec3(1, 0, 0));
+        return glm::scale(m, s);
+    }
+
+    MeshInstance mesh(const Node& n, const std::vector<Material>& materials) const {
+        n.allowOnly({"name", "file", "procedural", "subdivision", "tangents", "morph", "transform",
+                     "material"});
+        MeshInstance m;
+        m.fieldPath = n.path();
+        m.name = n.string("name", "");
+        if (n.has("file") == n.has("procedural")) n.fail("expected exactly one of \"file\" or \"procedural\"");
+        if (n.has("file")) {
+            m.file = resolvePath(n.child("file"), n.string("file", ""));
+        } else {
+            Node p = n.child("procedural");
+            p.allowOnly({"type", "size", "minor_radius", "segments", "relief", "uv_sets"});
+            Procedural pr;
+            static const char* types[] = {"sphere", "plane", "torus", "cube", "terrain"};
+            if (!p.has("type")) p.fail("missing \"type\" (sphere, plane, torus, cube or terrain)");
+            pr.type = types[p.choice("type", 0, {"sphere", "plane", "torus", "cube", "terrain"})];
+            pr.size = p.num("size", 1.0, 0.0, kHuge, true);
+            pr.minorRadius = p.num("minor_radius", 0.35, 0.0, kHuge, true);
+            pr.segments = p.integer("segments", pr.type == "terrain" ? 256 : 64, 2, 2048);
+            pr.terrainHeight = p.num("relief", 0.25, -kHuge, kHuge);
+            pr.uvSets = p.integer("uv_sets", 2, 1, kMaxUvSets);
+            m.procedural = pr;
+        }
+        if (n.has("subdivision")) {
+            Node s = n.child("subdivision");
+            s.allowOnly({"scheme", "level", "limit"});
+            static const char* schemes[] = {"catmark", "loop", "bilinear"};
+            m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
+            m.subdivLevel = s.integer("level", 2, 0, 6);
+            m.subdivLimit = s.boolean("limit", false);
+            if (m.procedural) n.failField("subdivision", "applies to mesh files only (procedural meshes take \"segments\")");
+        }
+        if (n.has("tangents")) {
+            const json& t = n.value().at("tangents");
+            auto parseOne = [&](const json& v, const std::string& path) {
+                if (!v.is_string()) throw io::InputError(file, path, "expected \"pixel\", \"mikktspace\" or \"limit\"");
+                std::string s = v.get<std::string>();
+                if (s == "pixel") return TangentSource::Pixel;
+                if (s == "mikktspace") return TangentSource::MikkTSpace;
+                if (s == "limit") return TangentSource::Limit;
+                throw io::InputError(file, path, "expected \"pixel\", \"mikktspace\" or \"limit\", got \"" + s + "\"");
+            };
+            if (t.is_string()) {
+                m.tangents.assign(1, parseOne(t, n.sub("tangents")));
+            } else if (t.is_array() && t.size() <= size_t(kMaxUvSets)) {
+                for (size_t i = 0; i < t.size(); ++i) {
+                    m.tangents.push_back(parseOne(t[i], n.sub("tangents") + "[" + std::to_string(i) + "]"));
+                }
+            } else {
+                n.failField("tangents", "expected a tangent source or an array of them, one per UV set (at most 4)");
+            }
+            int vertexSets = 0;
+            for (auto s : m.tangents) vertexSets += s != TangentSource::Pixel;
+            if (vertexSets > 1) {
+                n.failField("tangents", "at most one UV set can use vertex tangents (meshes carry one tangent set)");
+            }
+            for (auto s : m.tangents) {
+                if (s == TangentSource::Limit && !m.subdivLimit) {
+                    n.failField("tangents", "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+                }
+            }
+        }
+        if (n.has("morph")) {
+            Node mo = n.child("morph");
+            mo.allowOnly({"weights", "animation"});
+            m.morphWeights = mo.floats("weights", -kHuge, kHuge, 64);
+            if (mo.has("animation")) {
+                Node an = mo.child("animation");
+                an.allowOnly({"keys", "loop"});
+                m.morphLoop = an.boolean("loop", true);
+                if (!an.has("keys")) an.fail("missing \"keys\"");
+                an.requireArray("keys", 4096);
+                Node keys = an.child("keys");
+                if (keys.value().empty()) keys.fail("expected at least one key");
+                for (size_t i = 0; i < keys.value().size(); ++i) {
+                    Node k = keys.item(i);
+                    k.allowOnly({"time", "weights"});
+                    MorphKey key;
+                    key.time = k.num("time", 0.0, 0.0, kHuge);
+                    key.weights = k.floats("weights", -kHuge, kHuge, 64);
+                    if (!m.morphKeys.empty() && !(key.time > m.morphKeys.back().time)) {
+                        k.failField("time", "key times must increase");
+                    }
+                    if (!m.morphKeys.empty() && key.weights.size() != m.morphKeys[0].weights.size()) {
+                        k.failField("weights", "every key needs the same number of weights");
+                    }
+                    m.morphKeys.push_back(std::move(key));
+                }
+            }
+        }
+        if (n.has("transform")) m.transform = transform(n.child("transform"));
+        if (n.has("material")) {
+            const json& mv = n.value().at("material");
+            if (mv.is_number_integer()) {
+                long long i = mv.get<long long>();
+                if (i < 0 || i >= (long long)materials.size()) {
+                    n.failField("material", "no material with index " + std::to_string(i) + " (there are " +
+                                                std::to_string(materials.size()) + ")");
+                }
+                m.material = int(i);
+            } else if (mv.is_string()) {
+                auto it = std::find_if(materials.begin(), materials.end(),
+                                       [&](const Material& x) { return x.name == mv.get<std::string>(); });
+                if (it == materials.end()) {
+                    n.failField("material", "no material named \"" + mv.get<std::string>() + "\"");
+                }
+                m.material = int(it - materials.begin());
+            } else {
+                n.failField("material", "expected a material index or name");
+            }
+        }
+        return m;
+    }
+
+    Light light(const Node& n) const {
+        n.requireObject();
+        Light l;
+        if (!n.has("type")) n.fail("missing \"type\" (directional or point)");
+        l.point = n.choice("type", 0, {"directional", "point"}) == 1;
+        if (l.point) {
+            n.allowOnly({"type", "position", "color", "intensity"});
+            l.position = n.vec3("position", glm::vec3(0, 3, 3), -kHuge, kHuge);
+        } else {
+            n.allowOnly({"type", "direction", "color", "intensity"});
+            l.direction = n.vec3("direction", l.direction, -kHuge, kHuge);
+            if (glm::length(l.direction) < 1e-6f) n.failField("direction", "expected a non-zero vector");
+            l.direction = glm::normalize(l.direction);
+        }
+        l.color = n.vec3("color", glm::vec3(1.0f), 0.0, kHuge);
+        l.intensity = n.num("intensity", 3.0, 0.0, kHuge);
+        return l;
+    }
+
+    Camera camera(const Node& n) const {
+        n.allowOnly({"position", "target", "up", "fov_deg", "near", "far", "azimuth_deg", "elevation_deg",
+                     "distance_scale"});
+        Camera c;
+        c.automatic = !n.has("position");
+        if (c.automatic && n.has("target")) n.failField("target", "needs \"position\" as well");
+        if (!c.automatic && (n.has("azimuth_deg") || n.has("elevation_deg") || n.has("distance_scale"))) {
+            n.fail("azimuth_deg/elevation_deg/distance_scale apply to the automatic camera (no \"position\")");
+        }
+        c.position = n.vec3("position", c.position, -kHuge, kHuge);
+        c.target = n.vec3("target", c.target, -kHuge, kHuge);
+        c.up = n.vec3("up", c.up, -kHuge, kHuge);
+        if (!c.automatic) {
+            glm::vec3 fwd = c.target - c.position;
+            if (glm::length(fwd) < 1e-9f) n.failField("target", "must differ from \"position\"");
+            if (glm::length(glm::cross(fwd, c.up)) < 1e-9f * glm::length(fwd) || glm::length(c.up) < 1e-9f) {
+                n.failField("up", "expected a non-zero vector not parallel to the view direction");
+            }
+        }
+        c.fovDeg = n.num("fov_deg", c.fovDeg, 1.0, 170.0);
+        c.nearPlane = n.num("near", 0.0, 0.0, kHuge);
+        c.farPlane = n.num("far", 0.0, 0.0, kHuge);
+        if (c.nearPlane > 0 && c.farPlane > 0 && !(c.farPlane > c.nearPlane)) {
+            n.failField("far", "expected a number > near");
+        }
+        c.azimuthDeg = n.num("azimuth_deg", c.azimuthDeg, -1e4, 1e4);
+        c.elevationDeg = n.num("elevation_deg", c.elevationDeg, -89.0, 89.0);
+        c.distanceScale = n.num("distance_scale", c.distanceScale, 0.0, 1000.0, true);
+        return c;
+    }
+
+    Scene scene(const json& root) const {
+        Node n(root, "", file);
+        n.allowOnly({"meshes", "materials", "lights", "camera", "output", "frames", "ambient"});
+        Scene s;
+        s.sourceName = file;
+        s.baseDir = baseDir;
+        if (n.has("materials")) {
+            n.requireArray("materials", 256);
+            Node arr = n.child("materials");
+            for (size_t i = 0; i < arr.value().size(); ++i) s.materials.push_back(material(arr.item(i)));
+        }
+        if (s.materials.empty()) {
+            Material def;
+            def.name = "default";
+            def.fieldPath = "materials";
+            s.materials.push_back(def);
+        }
+        if (!n.has("meshes")) n.fail("missing \"meshes\"");
+        n.requireArray("meshes", 1024);
+        Node meshes = n.child("meshes");
+        if (meshes.value().empty()) meshes.fail("expected at least one mesh");
+        for (size_t i = 0; i < meshes.value().size(); ++i) s.meshes.push_back(mesh(meshes.item(i), s.materials));
+        if (n.has("lights")) {
+            n.requireArray("lights", size_t(kMaxLights));
+            Node arr = n.child("lights");
+            for (size_t i = 0; i < arr.value().size(); ++i) s.lights.push_back(light(arr.item(i)));
+        } else {
+            s.lights.push_back(Light{});
+        }
+        if (n.has("camera")) s.camera = camera(n.child("camera"));
+        if (n.has("output")) {
+            Node o = n.child("output");
+            o.allowOnly({"width", "height", "exposure", "background"});
+            s.output.width = o.integer("width", s.output.width, 1, kMaxImageSize);
+            s.output.height = o.integer("height", s.output.height, 1, kMaxImageSize);
+            s.output.exposure = o.num("exposure", 1.0, 0.0, kHuge, true);
+            s.output.background = o.vec3("background", s.output.background, 0.0, kHuge);
+        }
+        if (n.has("frames")) {
+            Node f = n.child("frames");
+            f.allowOnly({"count", "fps"});
+            s.frameCount = f.integer("count", 1, 1, 100000);
+            s.fps = f.num("fps", 24.0, 0.0, 1000.0, true);
+        }
+        s.ambient = n.vec3("ambient", s.ambient, 0.0, kHuge);
+        return s;
+    }
+};
+
+} // namespace
+
+Scene parseScene(const std::string& jsonText, const std::string& sourceName, const fs::path& baseDir) {
+    json root;
+    try {
+        root = json::parse(jsonText);
+    } catch (const json::parse_error& e) {
+        // nlohmann's message carries "at line L, column C".
+        std::string what = e.what();
+        auto p = what.find("parse error");
+        throw io::InputError(sourceName, "", "invalid JSON: " + (p == std::string::npos ? what : what.substr(p)));
+    }
+    Parser p{sourceName, baseDir};
+    return p.scene(root);
+}
+
+Scene loadScene(const fs::path& file) {
+    std::string text = io::readFile(file, size_t(64) << 20);
+    fs::path base = file.parent_path();
+    if (base.empty()) base = ".";
+    return parseScene(text, file.string(), base);
+}
+
+} // namespace sg::render

@@ -1,0 +1,126 @@
+// CPU emulation of GLSL texture sampling (see surfgrad/glsl_texture.h):
+// OpenGL 4.5 core section 8.14 (level of detail, eq. 8.7-8.9), 8.14.2
+// (GL_LINEAR_MIPMAP_LINEAR) and 8.14.1 (bilinear filtering, wrap modes).
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "surfgrad/glsl_texture.h"
+
+namespace sg::render {
+
+TextureImage makeTexture(int width, int height, std::vector<glm::vec4> texels, Wrap wrap) {
+    assert(width >= 1 && height >= 1 && texels.size() == size_t(width) * size_t(height));
+    TextureImage img;
+    img.wrap = wrap;
+    img.levels.push_back(TextureLevel{width, height, std::move(texels)});
+    while (img.levels.back().width > 1 || img.levels.back().height > 1) {
+        const TextureLevel& src = img.levels.back();
+        TextureLevel dst;
+        dst.width = std::max(1, src.width / 2);
+        dst.height = std::max(1, src.height / 2);
+        dst.texels.resize(size_t(dst.width) * size_t(dst.height));
+        for (int y = 0; y < dst.height; ++y) {
+            // Source rows this texel averages: 2y, 2y+1, and for an odd source
+            // height the leftover last row joins the last destination row.
+            int y0 = std::min(2 * y, src.height - 1);
+            int y1 = (y == dst.height - 1) ? src.height - 1 : std::min(2 * y + 1, src.height - 1);
+            for (int x = 0; x < dst.width; ++x) {
+                int x0 = std::min(2 * x, src.width - 1);
+                int x1 = (x == dst.width - 1) ? src.width - 1 : std::min(2 * x + 1, src.width - 1);
+                glm::vec4 sum(0.0f);
+                int n = 0;
+                for (int yy = y0; yy <= y1; ++yy)
+                    for (int xx = x0; xx <= x1; ++xx) {
+                        sum += src.texels[size_t(yy) * size_t(src.width) + size_t(xx)];
+                        ++n;
+                    }
+                dst.texels[size_t(y) * size_t(dst.width) + size_t(x)] = sum / float(n);
+            }
+        }
+        img.levels.push_back(std::move(dst));
+    }
+    return img;
+}
+
+} // namespace sg::render
+
+namespace sg::glsl {
+
+namespace {
+
+int wrapIndex(int i, int size, sg::render::Wrap wrap) {
+    if (wrap == sg::render::Wrap::Clamp) return std::clamp(i, 0, size - 1);
+    int m = i % size;
+    return m < 0 ? m + size : m;
+}
+
+vec4 fetch(const sg::render::TextureLevel& L, int x, int y, sg::render::Wrap wrap) {
+    int xi = wrapIndex(x, L.width, wrap);
+    int yi = wrapIndex(y, L.height, wrap);
+    return L.texels[size_t(yi) * size_t(L.width) + size_t(xi)];
+}
+
+// Bilinear filtering on one level (eq. 8.11 - 8.13): texel centres at
+// (i + 0.5) / size. Non-finite coordinates sample texel 0 (the GL leaves
+// them undefined; this keeps the emulation finite).
+vec4 bilinear(const sg::render::TextureLevel& L, vec2 st, sg::render::Wrap wrap) {
+    float u = st.x * float(L.width) - 0.5f;
+    float v = st.y * float(L.height) - 0.5f;
+    if (!std::isfinite(u) || !std::isfinite(v) || std::abs(u) > 1e8f || std::abs(v) > 1e8f) {
+        return L.texels[0];
+    }
+    float fu = std::floor(u), fv = std::floor(v);
+    int i0 = int(fu), j0 = int(fv);
+    float a = u - fu, b = v - fv;
+    vec4 t00 = fetch(L, i0, j0, wrap), t10 = fetch(L, i0 + 1, j0, wrap);
+    vec4 t01 = fetch(L, i0, j0 + 1, wrap), t11 = fetch(L, i0 + 1, j0 + 1, wrap);
+    return (1.0f - a) * (1.0f - b) * t00 + a * (1.0f - b) * t10 + (1.0f - a) * b * t01 + a * b * t11;
+}
+
+vec4 sampleLod(const sg::render::TextureImage& img, vec2 st, float lambda) {
+    int q = int(img.levels.size()) - 1;
+    if (!(lambda > 0.0f)) return bilinear(img.levels[0], st, img.wrap); // magnification (c = 0)
+    lambda = std::min(lambda, float(q));
+    int d1 = int(std::floor(lambda));
+    int d2 = std::min(d1 + 1, q);
+    float frac = lambda - float(d1);
+    vec4 a = bilinear(img.levels[size_t(d1)], st, img.wrap);
+    if (d2 == d1 || frac == 0.0f) return a;
+    vec4 b = bilinear(img.levels[size_t(d2)], st, img.wrap);
+    return (1.0f - frac) * a + frac * b;
+}
+
+} // namespace
+
+vec4 textureGrad(sampler2D s, vec2 st, vec2 dSTdx, vec2 dSTdy) {
+    if (!s.image || s.image->levels.empty()) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    const auto& L0 = s.image->levels[0];
+    vec2 size(float(L0.width), float(L0.height));
+    // Scale factor rho (eq. 8.7 with the Euclidean lengths of eq. 8.8).
+    float rx = length(dSTdx * size);
+    float ry = length(dSTdy * size);
+    float rho = std::max(rx, ry);
+    float lambda = rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : (rho > 0.0f ? 1e9f : -1e9f);
+    return sampleLod(*s.image, st, lambda);
+}
+
+vec4 textureLod(sampler2D s, vec2 st, float lod) {
+    if (!s.image || s.image->levels.empty()) return vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    return sampleLod(*s.image, st, std::isfinite(lod) ? lod : 0.0f);
+}
+
+vec4 texelFetch(sampler2D s, ivec2 texel, int lod) {
+    if (!s.image || lod < 0 || lod >= int(s.image->levels.size())) return vec4(0.0f);
+    const auto& L = s.image->levels[size_t(lod)];
+    if (texel.x < 0 || texel.y < 0 || texel.x >= L.width || texel.y >= L.height) return vec4(0.0f);
+    return L.texels[size_t(texel.y) * size_t(L.width) + size_t(texel.x)];
+}
+
+ivec2 textureSize(sampler2D s, int lod) {
+    if (!s.image || lod < 0 || lod >= int(s.image->levels.size())) return ivec2(1, 1);
+    const auto& L = s.image->levels[size_t(lod)];
+    return ivec2(L.width, L.height);
+}
+
+} // namespace sg::glsl

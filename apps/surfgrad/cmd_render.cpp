@@ -1,0 +1,230 @@
+// `surfgrad render`, `surfgrad shader` and `surfgrad view`: the renderer's
+// subcommands (apps/render, surfgrad/render.h).
+//
+//   render [SCENE.json | MODEL.gltf | MODEL.glb | MODEL.obj] [-o OUT.png|.exr]
+//          [--size WxH] [--aov NAME] [--frame F] [--tbn pixel|mikktspace|limit]
+//          [--cpu] [--all-frames]
+//     Without a scene: the built-in default scene to out/default.png.
+//   shader SCENE.json [--mesh I]   prints the assembled GLSL of every
+//                                  distinct program (or of mesh I).
+//   view [SCENE.json | MODEL]      the interactive viewer (GLFW + Dear ImGui).
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <set>
+
+#include "commands.h"
+#include "surfgrad/gl.h"
+#include "surfgrad/io.h"
+#include "surfgrad/render.h"
+#if SURFGRAD_HAVE_VIEWER
+#include "surfgrad/viewer.h"
+#endif
+
+namespace sg::cli {
+
+namespace fs = std::filesystem;
+using namespace sg::render;
+
+namespace {
+
+std::string lowerExt(const fs::path& p) {
+    std::string e = p.extension().string();
+    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+
+Scene sceneFromArg(const std::string& arg) {
+    if (arg.empty()) return defaultScene();
+    std::string ext = lowerExt(arg);
+    if (ext == ".json") return loadScene(arg);
+    if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply" || ext == ".off") {
+        return sceneForModel(arg);
+    }
+    throw CliError(arg + ": expected a scene (.json) or a model (.gltf, .glb, .obj, .ply, .off)");
+}
+
+void parseSize(const std::string& s, int& w, int& h) {
+    unsigned a = 0, b = 0;
+    char x = 0, extra = 0;
+    if (std::sscanf(s.c_str(), "%u%c%u%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a < 1 ||
+        b < 1 || a > unsigned(kMaxImageSize) || b > unsigned(kMaxImageSize)) {
+        throw CliError("--size: expected WxH with 1 <= W, H <= " + std::to_string(kMaxImageSize) + ", got \"" + s +
+                       "\"");
+    }
+    w = int(a);
+    h = int(b);
+}
+
+void overrideTangents(Scene& scene, const std::string& tbn) {
+    if (tbn.empty()) return;
+    TangentSource src = tbn == "pixel" ? TangentSource::Pixel
+                        : tbn == "mikktspace" ? TangentSource::MikkTSpace
+                                              : TangentSource::Limit;
+    for (auto& m : scene.meshes) {
+        // The UV set the first normal-mapped layer reads gets vertex
+        // tangents (meshes carry one tangent set); pixel resets them all.
+        int uvSet = 0;
+        for (const auto& L : scene.materials[size_t(m.material)].layers) {
+            if (L.kind == LayerKind::UvNormal) {
+                uvSet = L.uvSet;
+                break;
+            }
+        }
+        m.tangents.assign(size_t(uvSet) + 1, TangentSource::Pixel);
+        m.tangents[size_t(uvSet)] = src;
+        if (src == TangentSource::Limit && !m.subdivLimit) {
+            if (!m.file.empty()) {
+                m.subdivLimit = true;
+                if (m.subdivScheme.empty()) m.subdivScheme = "catmark";
+            } else {
+                throw CliError("--tbn limit: mesh " + m.fieldPath + " is procedural (limit frames need a subdivision mesh file)");
+            }
+        }
+    }
+}
+
+} // namespace
+
+void addRenderCommands(CLI::App& app, int& status) {
+    // ---- render
+    auto* render = app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
+    struct RenderOpts {
+        std::string scene, out, size, aov = "color", tbn;
+        double frame = 0.0;
+        bool cpu = false, allFrames = false, verbose = false;
+    };
+    auto ro = std::make_shared<RenderOpts>();
+    render->add_option("scene", ro->scene, "Scene JSON, or a model file (glTF/OBJ) to frame automatically");
+    render->add_option("-o,--output", ro->out, "Output image (.png tone-mapped, .exr linear); default out/<name>.png");
+    render->add_option("--size", ro->size, "Image size WxH (default: the scene's output size)");
+    render->add_option("--aov", ro->aov, "Output variable: color, normal, surfgrad, tangent, bitangent, basenormal, uv, primid");
+    render->add_option("--frame", ro->frame, "Frame number (time = frame / fps)")->check(CLI::Range(0.0, 1e7));
+    render->add_option("--tbn", ro->tbn, "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit")
+        ->check(CLI::IsMember({"pixel", "mikktspace", "limit"}));
+    render->add_flag("--cpu", ro->cpu, "Use the CPU reference renderer instead of OpenGL");
+    render->add_flag("--all-frames", ro->allFrames, "Render every frame of the scene to OUT_NNNN.ext");
+    render->add_flag("-v,--verbose", ro->verbose, "Print what was loaded and compiled");
+    render->callback([ro, &status] {
+        auto aov = parseAov(ro->aov);
+        if (!aov) throw CliError("--aov: unknown output \"" + ro->aov + "\"");
+        Scene scene = sceneFromArg(ro->scene);
+        overrideTangents(scene, ro->tbn);
+        fs::path out = ro->out;
+        if (out.empty()) {
+            std::string stem = ro->scene.empty() ? "default" : fs::path(ro->scene).stem().string();
+            if (stem == "scene" && !ro->scene.empty()) {
+                stem = fs::absolute(ro->scene).parent_path().filename().string();
+            }
+            fs::create_directories("out");
+            out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro->aov) + ".png");
+        }
+        std::vector<fs::path> inputs;
+        if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
+        int w = 0, h = 0;
+        if (!ro->size.empty()) parseSize(ro->size, w, h);
+        auto t0 = std::chrono::steady_clock::now();
+        SceneAssets assets = loadAssets(scene);
+        if (ro->verbose) {
+            for (const auto& l : assets.log) std::printf("%s\n", l.c_str());
+        }
+        std::unique_ptr<sg::gl::HeadlessContext> ctx;
+        std::unique_ptr<GlRenderer> gl;
+        if (!ro->cpu) {
+            ctx = std::make_unique<sg::gl::HeadlessContext>();
+            gl = std::make_unique<GlRenderer>();
+        }
+        int first = int(ro->frame), count = 1;
+        if (ro->allFrames) {
+            first = 0;
+            count = scene.frameCount;
+        }
+        for (int f = 0; f < count; ++f) {
+            float frame = ro->allFrames ? float(first + f) : float(ro->frame);
+            applyFrame(scene, assets, frame / scene.fps);
+            if (gl) gl->invalidateMeshes();
+            View view = makeView(scene, assets, w, h, *aov);
+            Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view);
+            fs::path target = out;
+            if (ro->allFrames) {
+                char suffix[16];
+                std::snprintf(suffix, sizeof suffix, "_%04d", first + f);
+                target = out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+            }
+            writeImage(target, img, *aov, scene.output.exposure);
+            double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::printf("wrote %s (%dx%d, %s, %s%s, %.2f s)\n", target.string().c_str(), img.width, img.height,
+                        aovName(*aov), gl ? "OpenGL" : "CPU reference",
+                        gl ? (", " + std::to_string(gl->stats().programsCompiled) + " programs compiled, GPU " +
+                              std::to_string(gl->stats().gpuMs).substr(0, 6) + " ms")
+                                 .c_str()
+                           : "",
+                        secs);
+        }
+        status = 0;
+    });
+
+    // ---- shader
+    auto* shader = app.add_subcommand("shader", "Print the assembled GLSL programs of a scene");
+    struct ShaderOpts {
+        std::string scene;
+        int mesh = -1;
+        bool vertex = false, body = false;
+    };
+    auto so = std::make_shared<ShaderOpts>();
+    shader->add_option("scene", so->scene, "Scene JSON (default: the built-in scene)");
+    shader->add_option("--mesh", so->mesh, "Only the program of mesh I");
+    shader->add_flag("--vertex", so->vertex, "Print the vertex programs too");
+    shader->add_flag("--body", so->body, "Print the generated body before #include expansion");
+    shader->callback([so, &status] {
+        Scene scene = sceneFromArg(so->scene);
+        SceneAssets assets = loadAssets(scene);
+        std::set<std::string> seen;
+        for (size_t i = 0; i < scene.meshes.size(); ++i) {
+            if (so->mesh >= 0 && size_t(so->mesh) != i) continue;
+            MaterialPlan plan = planMaterial(scene, assets, int(i), scene.meshes[i].material);
+            if (!seen.insert(plan.signature).second) continue;
+            ProgramSource src = assembleProgram(plan);
+            std::printf("// ==== %s (material %s): fragment program\n", scene.meshes[i].fieldPath.c_str(),
+                        scene.materials[size_t(plan.materialIndex)].name.c_str());
+            std::fputs(so->body ? fragmentBody(plan).c_str() : src.fragment.c_str(), stdout);
+            if (so->vertex) {
+                std::printf("// ==== %s: vertex program\n", scene.meshes[i].fieldPath.c_str());
+                std::fputs(src.vertex.c_str(), stdout);
+            }
+        }
+        if (so->mesh >= 0 && size_t(so->mesh) >= scene.meshes.size()) {
+            throw CliError("--mesh " + std::to_string(so->mesh) + ": the scene has " +
+                           std::to_string(scene.meshes.size()) + " meshes");
+        }
+        status = 0;
+    });
+
+    // ---- view
+    auto* view = app.add_subcommand("view", "Interactive viewer (GLFW window + Dear ImGui)");
+    struct ViewOpts {
+        std::string scene, screenshot;
+        int frames = 0;
+    };
+    auto vo = std::make_shared<ViewOpts>();
+    view->add_option("scene", vo->scene, "Scene JSON or model file (default: the built-in scene)");
+    view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")->check(CLI::Range(0, 1000000));
+    view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
+    view->callback([vo, &status] {
+#if SURFGRAD_HAVE_VIEWER
+        ViewerOptions opt;
+        opt.sceneArg = vo->scene;
+        opt.maxFrames = vo->frames;
+        opt.screenshot = vo->screenshot;
+        status = runViewer(sceneFromArg(vo->scene), opt);
+#else
+        (void)vo;
+        (void)status;
+        throw CliError("view: this build has no viewer (configure with -DSURFGRAD_BUILD_VIEWER=ON)");
+#endif
+    });
+}
+
+} // namespace sg::cli

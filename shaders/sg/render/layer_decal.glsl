@@ -1,0 +1,78 @@
+// Bump layer: decal projector, a volume bump map. Mikkelsen 2019, section
+// 2.9, listing 15: the map is parallel-projected along the projector's -z
+// axis, so its volume gradient is deriv.x * axisX + deriv.y * axisY; the
+// projector's fall-off is applied as a bump scale (the paper's closing
+// remark of section 2.9). The derivative is w.r.t. unit lengths along the
+// axes (TBN style, as in listing 15): the bumps do not depend on the size.
+#ifndef SG_RENDER_LAYER_DECAL_GLSL
+#define SG_RENDER_LAYER_DECAL_GLSL
+
+#include "sg/render/common.glsl"
+
+// Records (all in frame space: world, relative to the camera):
+//   r0 = (origin - camera, strength)
+//   r1 = (unit axis x, half size x)     r2 = (unit axis y, half size y)
+//   r3 = (unit axis z, half depth)      r4 = (depth fade width in [0,1],
+//        cos of the angle where the angle fade starts, cos where it ends,
+//        encoding)                      r5 = (flipV, 0, 0, 0)
+// The box |x| <= 1, |y| <= 1, |z| <= 1 (local, size-normalized) receives the
+// decal; it fades over the last `fadeWidth` of the depth, and with the angle
+// between the base normal and +z from cosStart (full) to cosEnd (none).
+struct SgDecalParams {
+    vec3 origin;
+    float strength;
+    vec3 axisX;
+    vec3 axisY;
+    vec3 axisZ;
+    vec3 halfSize;
+    float fadeWidth;
+    float cosStart;
+    float cosEnd;
+    int encoding;
+    bool flipV;
+};
+
+SG_FN SgDecalParams sgUnpackDecal(vec4 r0, vec4 r1, vec4 r2, vec4 r3, vec4 r4, vec4 r5) {
+    SgDecalParams p;
+    p.origin = sgRecVec3(r0);
+    p.strength = r0.w;
+    p.axisX = sgRecVec3(r1);
+    p.axisY = sgRecVec3(r2);
+    p.axisZ = sgRecVec3(r3);
+    p.halfSize = vec3(r1.w, r2.w, r3.w);
+    p.fadeWidth = r4.x;
+    p.cosStart = r4.y;
+    p.cosEnd = r4.z;
+    p.encoding = sgRecInt(r4.w);
+    p.flipV = sgRecBool(r5.x);
+    return p;
+}
+
+// Fall-off of the projector at local position l (size-normalized) for a
+// surface with base normal n: 0 outside the box, 1 in its core.
+SG_FN float sgDecalFade(SgDecalParams p, vec3 l, vec3 n) {
+    if (abs(l.x) > 1.0f || abs(l.y) > 1.0f || abs(l.z) > 1.0f) return 0.0f;
+    float depthFade = 1.0f - smoothstep(1.0f - max(p.fadeWidth, 0.0f), 1.0f, abs(l.z));
+    float c = dot(n, p.axisZ);
+    float range = p.cosStart - p.cosEnd;
+    float angleFade = range > SG_FLT_EPSILON ? clamp((c - p.cosEnd) / range, 0.0f, 1.0f)
+                                             : (c >= p.cosStart ? 1.0f : 0.0f);
+    return depthFade * angleFade;
+}
+
+// relPos: the pixel's position relative to the camera (frame space).
+SG_FN vec3 sgLayerDecal(SgFrame f, vec3 relPos, SgDecalParams p, sampler2D tex) {
+    vec3 r = relPos - p.origin;
+    vec3 inv = vec3(1.0f) / max(p.halfSize, vec3(SG_FLT_EPSILON));
+    vec3 l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
+    float fade = sgDecalFade(p, l, f.nrmBase);
+    if (!(fade > 0.0f)) return vec3(0.0f);
+    vec2 st = 0.5f * vec2(l.x, l.y) + vec2(0.5f);
+    // Chain rule: st changes by 0.5 / halfSize per unit along each axis.
+    vec2 dSTdx = 0.5f * vec2(dot(f.dPdx, p.axisX) * inv.x, dot(f.dPdx, p.axisY) * inv.y);
+    vec2 dSTdy = 0.5f * vec2(dot(f.dPdy, p.axisX) * inv.x, dot(f.dPdy, p.axisY) * inv.y);
+    vec2 d = sgSampleTspaceDeriv(tex, st, dSTdx, dSTdy, p.encoding, p.flipV);
+    return sgBumpScale(fade * p.strength, sgSurfgradFromDecal(f, d, p.axisX, p.axisY, false));
+}
+
+#endif
