@@ -11,7 +11,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
-    static const char* const kTexts[4] = {"AOg", "g", "A O\nAg", "\xE4\xB8\xAD" "A"};
+    static const char* const kTexts[4] = {"AOg", "g", "A O\nAg", "\xE4\xB8\xAD\x41"}; // last: U+4E2D then A
     sg::features::FontOptions opt;
     opt.faceIndex = (data[0] >> 2) & 1;
     try {
