@@ -60,6 +60,7 @@ private:
     const RenderMesh* base_;
     const LimitFrame* baseFrame_;
     std::vector<uint32_t> smoothGroup_;
+    mutable std::vector<glm::vec3> scratchU_, scratchV_; // derivatives when no outFrame is given
 };
 
 } // namespace sg::mesh

@@ -1,0 +1,263 @@
+// OFF, PLY and STL input through OpenMesh's readers (surfgrad/mesh_io.h).
+//
+// OpenMesh's readers talk to a BaseImporter. Its usual importer builds a
+// PolyMesh and, when a face would make an edge or vertex non-manifold,
+// prints "complex edge" and DROPS the face. Here the readers feed a
+// recording importer instead, which keeps every vertex and face exactly as
+// written; validate() then names the faces OpenMesh would have dropped.
+//
+// OpenMesh's readers trust the counts in the file header (a PLY declaring
+// 4e9 vertices loops 4e9 times), so the header counts are checked against
+// the file size here first.
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/IO/importer/BaseImporter.hh>
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include "mesh_internal.h"
+#include "surfgrad/mesh_io.h"
+
+namespace sg::mesh {
+
+using io::InputError;
+namespace OM = OpenMesh;
+
+namespace {
+
+class RecordingImporter final : public OM::IO::BaseImporter {
+public:
+    RecordingImporter(const std::string& file, const InputLimits& limits) : file_(file), limits_(limits) {}
+
+    OM::VertexHandle add_vertex(const OM::Vec3f& p) override {
+        if (positions.size() >= limits_.maxVertices) {
+            overflow = "more than " + std::to_string(limits_.maxVertices) + " vertices (limit)";
+            return OM::VertexHandle();
+        }
+        positions.push_back(glm::vec3(p[0], p[1], p[2]));
+        return OM::VertexHandle(int(positions.size() - 1));
+    }
+    OM::VertexHandle add_vertex() override { return add_vertex(OM::Vec3f(0, 0, 0)); }
+    OM::HalfedgeHandle add_edge(OM::VertexHandle, OM::VertexHandle) override { return OM::HalfedgeHandle(); }
+    OM::FaceHandle add_face(const VHandles& vs) override {
+        if (faceSizes.size() >= limits_.maxFaces || faceVertices.size() + vs.size() > limits_.maxCorners) {
+            overflow = "more faces or corners than the limits allow";
+            return OM::FaceHandle();
+        }
+        for (const OM::VertexHandle& v : vs) {
+            // Negative handles (the reader's "invalid") become an out-of-range
+            // index that validation reports.
+            faceVertices.push_back(v.idx() < 0 ? UINT32_MAX : uint32_t(v.idx()));
+        }
+        faceSizes.push_back(uint32_t(vs.size()));
+        return OM::FaceHandle(int(faceSizes.size() - 1));
+    }
+    OM::FaceHandle add_face(OM::HalfedgeHandle) override { return OM::FaceHandle(); }
+    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec2f>&) override { ++ignoredFaceTexcoords; }
+    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec3f>&) override { ++ignoredFaceTexcoords; }
+    void set_face_texindex(OM::FaceHandle, int) override {}
+    void set_point(OM::VertexHandle v, const OM::Vec3f& p) override {
+        if (valid(v)) positions[size_t(v.idx())] = glm::vec3(p[0], p[1], p[2]);
+    }
+    void set_halfedge(OM::VertexHandle, OM::HalfedgeHandle) override {}
+    void set_normal(OM::VertexHandle v, const OM::Vec3f& n) override {
+        if (!valid(v)) return;
+        if (normals.size() < positions.size()) normals.resize(positions.size(), glm::vec3(0.0f));
+        normals[size_t(v.idx())] = glm::vec3(n[0], n[1], n[2]);
+        hasNormal.resize(positions.size(), 0);
+        hasNormal[size_t(v.idx())] = 1;
+    }
+    void set_normal(OM::VertexHandle v, const OM::Vec3d& n) override { set_normal(v, OM::Vec3f(n)); }
+    void set_color(OM::VertexHandle, const OM::Vec3uc&) override {}
+    void set_color(OM::VertexHandle, const OM::Vec4uc&) override {}
+    void set_color(OM::VertexHandle, const OM::Vec3f&) override {}
+    void set_color(OM::VertexHandle, const OM::Vec4f&) override {}
+    void set_texcoord(OM::VertexHandle v, const OM::Vec2f& t) override {
+        if (!valid(v)) return;
+        if (uvs.size() < positions.size()) uvs.resize(positions.size(), glm::vec2(0.0f));
+        uvs[size_t(v.idx())] = glm::vec2(t[0], t[1]);
+        hasUv.resize(positions.size(), 0);
+        hasUv[size_t(v.idx())] = 1;
+    }
+    void set_status(OM::VertexHandle, const OM::Attributes::StatusInfo&) override {}
+    void set_next(OM::HalfedgeHandle, OM::HalfedgeHandle) override {}
+    void set_face(OM::HalfedgeHandle, OM::FaceHandle) override {}
+    void request_face_texcoords2D() override {}
+    void set_texcoord(OM::HalfedgeHandle, const OM::Vec2f&) override { ++ignoredFaceTexcoords; }
+    void set_texcoord(OM::VertexHandle v, const OM::Vec3f& t) override { set_texcoord(v, OM::Vec2f(t[0], t[1])); }
+    void set_texcoord(OM::HalfedgeHandle, const OM::Vec3f&) override { ++ignoredFaceTexcoords; }
+    void set_status(OM::HalfedgeHandle, const OM::Attributes::StatusInfo&) override {}
+    void set_color(OM::EdgeHandle, const OM::Vec3uc&) override {}
+    void set_color(OM::EdgeHandle, const OM::Vec4uc&) override {}
+    void set_color(OM::EdgeHandle, const OM::Vec3f&) override {}
+    void set_color(OM::EdgeHandle, const OM::Vec4f&) override {}
+    void set_status(OM::EdgeHandle, const OM::Attributes::StatusInfo&) override {}
+    void set_normal(OM::FaceHandle, const OM::Vec3f&) override {}
+    void set_normal(OM::FaceHandle, const OM::Vec3d&) override {}
+    void set_color(OM::FaceHandle, const OM::Vec3uc&) override {}
+    void set_color(OM::FaceHandle, const OM::Vec4uc&) override {}
+    void set_color(OM::FaceHandle, const OM::Vec3f&) override {}
+    void set_color(OM::FaceHandle, const OM::Vec4f&) override {}
+    void set_status(OM::FaceHandle, const OM::Attributes::StatusInfo&) override {}
+    void add_texture_information(int, std::string) override {}
+    size_t n_vertices() const override { return positions.size(); }
+    size_t n_faces() const override { return faceSizes.size(); }
+    size_t n_edges() const override { return 0; }
+
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint8_t> hasNormal, hasUv;
+    std::vector<uint32_t> faceSizes, faceVertices;
+    size_t ignoredFaceTexcoords = 0;
+    std::string overflow;
+
+private:
+    bool valid(OM::VertexHandle v) const { return v.idx() >= 0 && size_t(v.idx()) < positions.size(); }
+    const std::string& file_;
+    const InputLimits& limits_;
+};
+
+// Header counts against the file size: every vertex and face takes at
+// least a few bytes (3 coordinates of >= 2 characters in ASCII, 4 bytes in
+// binary; a face at least 4 numbers), so a count beyond that is a lie.
+void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize) {
+    std::ifstream in(path, std::ios::binary);
+    std::string file = path.string();
+    auto tooMany = [&](const std::string& what, uint64_t n) {
+        throw InputError(file, "header", "declares " + std::to_string(n) + " " + what + " but the file has only " +
+                                             std::to_string(fileSize) + " bytes");
+    };
+    if (ext == ".stl") {
+        char header[84];
+        in.read(header, 84);
+        if (in.gcount() < 84) return; // short: ASCII or broken, OpenMesh decides
+        if (std::string_view(header, 5) == "solid") return; // ASCII (binary files may start so too; size check below)
+        uint32_t n = 0;
+        std::memcpy(&n, header + 80, 4);
+        if (84 + 50 * uint64_t(n) > fileSize) tooMany("triangles", n);
+        return;
+    }
+    std::string line;
+    if (ext == ".off") {
+        // [ST][C][N][4][n]OFF [BINARY], then (after comments) nV nF nE.
+        std::string magic;
+        if (!(in >> magic) || magic.find("OFF") == std::string::npos) {
+            throw InputError(file, "header", "not an OFF file (no OFF keyword)");
+        }
+        std::string tok;
+        uint64_t counts[2] = {0, 0};
+        int k = 0;
+        while (k < 2 && in >> tok) {
+            if (tok == "BINARY") continue;
+            if (tok[0] == '#') {
+                std::getline(in, line);
+                continue;
+            }
+            try {
+                size_t used = 0;
+                long long v = std::stoll(tok, &used);
+                if (used != tok.size() || v < 0) throw InputError(file, "header", "bad count '" + tok.substr(0, 32) + "'");
+                counts[k++] = uint64_t(v);
+            } catch (const std::logic_error&) {
+                throw InputError(file, "header", "bad count '" + tok.substr(0, 32) + "'");
+            }
+        }
+        if (k < 2) throw InputError(file, "header", "missing vertex/face counts");
+        if (counts[0] > fileSize / 6) tooMany("vertices", counts[0]);
+        if (counts[1] > fileSize / 8) tooMany("faces", counts[1]);
+        return;
+    }
+    if (ext == ".ply") {
+        if (!std::getline(in, line) || line.rfind("ply", 0) != 0) throw InputError(file, "header", "not a PLY file (no 'ply' magic)");
+        std::string element;
+        uint64_t count = 0, props = 0;
+        auto check = [&]() {
+            if (!element.empty() && count > fileSize / std::max<uint64_t>(props, 1)) tooMany(element + " elements", count);
+        };
+        size_t lines = 0;
+        while (std::getline(in, line) && ++lines < 10000) {
+            std::istringstream ls(line);
+            std::string kw;
+            ls >> kw;
+            if (kw == "element") {
+                check();
+                long long n = -1;
+                ls >> element >> n;
+                if (n < 0) throw InputError(file, "header", "bad element line '" + line.substr(0, 64) + "'");
+                count = uint64_t(n);
+                props = 0;
+            } else if (kw == "property") {
+                ++props;
+            } else if (kw == "end_header") {
+                check();
+                return;
+            }
+        }
+        throw InputError(file, "header", "no end_header");
+    }
+}
+
+} // namespace
+
+namespace detail {
+
+PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimits& limits, LoadReport* report) {
+    const std::string file = path.string();
+    std::error_code ec;
+    uint64_t size = std::filesystem::file_size(path, ec);
+    if (ec) throw InputError(file, "", "cannot read: " + ec.message());
+    if (size > limits.maxFileBytes) {
+        throw InputError(file, "", "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.maxFileBytes));
+    }
+    std::string ext = meshFormat(path);
+    checkHeaderCounts(path, ext, size);
+
+    RecordingImporter importer(file, limits);
+    OM::IO::Options opt = OM::IO::Options::VertexTexCoord | OM::IO::Options::VertexNormal;
+    // OpenMesh reports problems on its own error stream; ours are InputErrors.
+    bool errWasEnabled = ::omerr().is_enabled(), logWasEnabled = ::omlog().is_enabled();
+    ::omerr().disable();
+    ::omlog().disable();
+    bool ok = OM::IO::IOManager().read(file, importer, opt);
+    if (errWasEnabled) ::omerr().enable();
+    if (logWasEnabled) ::omlog().enable();
+    if (!importer.overflow.empty()) throw InputError(file, "", importer.overflow);
+    if (!ok) throw InputError(file, "", "OpenMesh's " + ext.substr(1) + " reader could not parse the file");
+
+    PolygonMesh mesh;
+    mesh.name = path.stem().string();
+    mesh.positions = std::move(importer.positions);
+    mesh.faceSizes = std::move(importer.faceSizes);
+    mesh.faceVertices = std::move(importer.faceVertices);
+    const size_t nV = mesh.positions.size();
+    if (!importer.uvs.empty()) {
+        importer.hasUv.resize(nV, 0);
+        size_t missing = size_t(std::count(importer.hasUv.begin(), importer.hasUv.end(), uint8_t(0)));
+        FaceVaryingChannel ch;
+        ch.name = "texcoord";
+        ch.values = std::move(importer.uvs);
+        ch.values.resize(nV, glm::vec2(0.0f));
+        ch.indices = mesh.faceVertices; // per-vertex UVs: one value per vertex
+        mesh.uvSets.push_back(std::move(ch));
+        if (missing && report) report->notes.push_back(std::to_string(missing) + " vertices without texture coordinates got (0,0)");
+    }
+    if (!importer.normals.empty()) {
+        importer.hasNormal.resize(nV, 0);
+        if (std::count(importer.hasNormal.begin(), importer.hasNormal.end(), uint8_t(0)) == 0) {
+            mesh.normals = std::move(importer.normals);
+            mesh.normalIndices = mesh.faceVertices;
+        } else if (report) {
+            report->notes.push_back("normals on some vertices only: ignored (recomputed)");
+        }
+    }
+    if (importer.ignoredFaceTexcoords && report) {
+        report->notes.push_back("ignored per-face texture coordinates (OpenMesh passes them only to a PolyMesh)");
+    }
+    return mesh;
+}
+
+} // namespace detail
+
+} // namespace sg::mesh

@@ -1,0 +1,1031 @@
+// Subdivision with OpenSubdiv 3.5 (surfgrad/subdivision.h).
+//
+// build():
+//  1. PolygonMesh -> Far::TopologyDescriptor (arrays are used in place;
+//     creases, corners, holes and one face-varying channel per UV set);
+//  2. uniform TopologyRefiner to level N; positions (and morph deltas)
+//     through PrimvarRefiner::Interpolate, UVs through
+//     InterpolateFaceVarying, ping-pong buffers kept between builds;
+//  3. level-N faces (holes dropped) -> refined() polygons;
+//  4. limit (optional): a second, adaptively refined TopologyRefiner
+//     (isolation >= N, so every level-N vertex is a patch corner and patch
+//     corners are exact limit points, Gregory-basis end caps included), a
+//     PatchTable with face-varying patches, and for every render vertex its
+//     home location (ptex face, u, v) found by following the uniform
+//     refinement's parent/child relations (see locateCorners). Each location
+//     is evaluated once into per-sample basis weights (PatchTable::
+//     EvaluateBasis / EvaluateBasisFaceVarying), so positions, normals and
+//     derivatives come from one weight table that update() reuses;
+//  5. render mesh: vertices split at UV seams and at infinitely sharp
+//     edges (convert.cpp), quads split along 0-2.
+//
+// update(): the refined points are linear in the cage, so both the uniform
+// refinement and the adaptive points are applied as "factored stencils":
+// one sparse matrix per refinement level recorded from PrimvarRefiner (a few
+// weights per point: ~3x fewer than Far's flattened StencilTable at level 4
+// on spot, and no 50 ms StencilTableFactory build), applied level by level
+// with plain loops (Osd's CpuEvaluator takes a slow path for stride-3 data,
+// ../shared/STACK.md).
+#include "surfgrad/subdivision.h"
+
+#include <opensubdiv/far/error.h>
+#include <opensubdiv/far/patchMap.h>
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/ptexIndices.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <cassert>
+#include <cstring>
+#include <mutex>
+#include <unordered_map>
+
+#include "mesh_internal.h"
+#include "surfgrad/mesh_io.h"
+
+namespace sg::mesh {
+
+using io::InputError;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+
+namespace {
+
+// ---- OpenSubdiv plumbing -----------------------------------------------------
+
+thread_local std::string tFarError;
+
+void farError(Far::ErrorType, const char* message) {
+    if (tFarError.size() < 400) tFarError += (tFarError.empty() ? "" : "; ") + std::string(message);
+}
+void farWarning(const char*) {} // warnings are about topology we validated already
+
+void installFarCallbacks() {
+    static std::once_flag once;
+    std::call_once(once, [] {
+        Far::SetErrorCallback(&farError);
+        Far::SetWarningCallback(&farWarning);
+    });
+}
+
+// PrimvarRefiner element views over glm arrays.
+template <class V>
+struct Ref {
+    V* v;
+    void Clear() { *v = V(0.0f); }
+    template <class S>
+    void AddWithWeight(const S& src, float w) { *v += w * *src.v; }
+};
+template <class V>
+struct View {
+    V* base;
+    Ref<V> operator[](int i) const { return {base + i}; }
+};
+
+// Records PrimvarRefiner's weights: each child's Clear() starts a row, the
+// AddWithWeight calls that follow fill it.
+struct Token {
+    uint32_t index;
+};
+struct TokenView {
+    uint32_t base;
+    Token operator[](int i) const { return {base + uint32_t(i)}; }
+};
+struct RecordedRows {
+    uint32_t dstBase = 0;            // global index of the child level's first point
+    std::vector<uint32_t> rowOf;     // per recorded row: its child index
+    std::vector<uint32_t> rowStart;  // per recorded row: first entry
+    std::vector<uint32_t> src;       // global point indices
+    std::vector<float> weight;
+};
+struct RecorderRef {
+    RecordedRows* rows;
+    uint32_t child;
+    void Clear() {
+        rows->rowOf.push_back(child);
+        rows->rowStart.push_back(uint32_t(rows->src.size()));
+    }
+    void AddWithWeight(const Token& t, float w) {
+        rows->src.push_back(t.index);
+        rows->weight.push_back(w);
+    }
+    // PrimvarRefiner reuses child points it computed before (face points in
+    // edge and vertex points): a reference into the child level itself.
+    void AddWithWeight(const RecorderRef& c, float w) {
+        rows->src.push_back(rows->dstBase + c.child);
+        rows->weight.push_back(w);
+    }
+};
+struct RecorderView {
+    RecordedRows* rows;
+    RecorderRef operator[](int i) const { return {rows, uint32_t(i)}; }
+};
+
+Sdc::SchemeType sdcScheme(Scheme s) {
+    switch (s) {
+    case Scheme::Loop: return Sdc::SCHEME_LOOP;
+    case Scheme::Bilinear: return Sdc::SCHEME_BILINEAR;
+    default: return Sdc::SCHEME_CATMARK;
+    }
+}
+
+Sdc::Options sdcOptions(const SubdivOptions& o) {
+    Sdc::Options opt;
+    static constexpr Sdc::Options::VtxBoundaryInterpolation kVtx[3] = {
+        Sdc::Options::VTX_BOUNDARY_NONE, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER};
+    static constexpr Sdc::Options::FVarLinearInterpolation kFVar[6] = {
+        Sdc::Options::FVAR_LINEAR_NONE,          Sdc::Options::FVAR_LINEAR_CORNERS_ONLY, Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1,
+        Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2, Sdc::Options::FVAR_LINEAR_BOUNDARIES,   Sdc::Options::FVAR_LINEAR_ALL};
+    opt.SetVtxBoundaryInterpolation(kVtx[int(o.boundary)]);
+    opt.SetFVarLinearInterpolation(kFVar[int(o.fvar)]);
+    opt.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN : Sdc::Options::CREASE_UNIFORM);
+    opt.SetTriangleSubdivision(o.triangles == TriangleRule::Smooth ? Sdc::Options::TRI_SUB_SMOOTH : Sdc::Options::TRI_SUB_CATMARK);
+    return opt;
+}
+
+// Descriptor arrays for one cage (the descriptor points into them).
+struct Descriptor {
+    std::vector<int> creasePairs, corners, holes;
+    std::vector<float> creaseWeights, cornerWeights;
+    std::vector<Far::TopologyDescriptor::FVarChannel> channels;
+    Far::TopologyDescriptor desc;
+
+    void build(const PolygonMesh& cage) {
+        creasePairs.clear();
+        creaseWeights.clear();
+        for (const EdgeCrease& c : cage.creases) {
+            creasePairs.push_back(int(c.v0));
+            creasePairs.push_back(int(c.v1));
+            creaseWeights.push_back(c.sharpness);
+        }
+        corners.clear();
+        cornerWeights.clear();
+        for (const VertexCorner& c : cage.corners) {
+            corners.push_back(int(c.vertex));
+            cornerWeights.push_back(c.sharpness);
+        }
+        holes.assign(cage.holes.begin(), cage.holes.end());
+        channels.resize(cage.uvSets.size());
+        for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+            channels[s].numValues = int(cage.uvSets[s].values.size());
+            // uint32_t and int may alias (same type, other signedness).
+            channels[s].valueIndices = reinterpret_cast<const Far::Index*>(cage.uvSets[s].indices.data());
+        }
+        desc = Far::TopologyDescriptor();
+        desc.numVertices = int(cage.positions.size());
+        desc.numFaces = int(cage.faceSizes.size());
+        desc.numVertsPerFace = reinterpret_cast<const int*>(cage.faceSizes.data());
+        desc.vertIndicesPerFace = reinterpret_cast<const Far::Index*>(cage.faceVertices.data());
+        desc.numCreases = int(creaseWeights.size());
+        desc.creaseVertexIndexPairs = creasePairs.data();
+        desc.creaseWeights = creaseWeights.data();
+        desc.numCorners = int(corners.size());
+        desc.cornerVertexIndices = corners.data();
+        desc.cornerWeights = cornerWeights.data();
+        desc.numHoles = int(holes.size());
+        desc.holeIndices = holes.data();
+        desc.numFVarChannels = int(channels.size());
+        desc.fvarChannels = channels.empty() ? nullptr : channels.data();
+        desc.isLeftHanded = false;
+    }
+};
+
+std::unique_ptr<Far::TopologyRefiner> createRefiner(const Descriptor& d, const SubdivOptions& o, const std::string& file) {
+    installFarCallbacks();
+    tFarError.clear();
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d.desc, Factory::Options(sdcScheme(o.scheme), sdcOptions(o))));
+    if (!r) throw InputError(file, "topology", "OpenSubdiv rejected the mesh: " + (tFarError.empty() ? std::string("no reason given") : tFarError));
+    return r;
+}
+
+// ---- Factored stencils -------------------------------------------------------
+
+// One sparse matrix per refinement step; all points of all levels (and the
+// local points of a patch table) live in one array, level after level.
+// Rows are kept in the order PrimvarRefiner computed them (face points
+// before the edge and vertex points that reuse them), each with its
+// destination.
+struct StencilBlock {
+    uint32_t dstBase = 0, count = 0;
+    std::vector<uint32_t> dst;     // per row: destination offset from dstBase (empty: row i -> i)
+    std::vector<uint32_t> offsets; // count + 1
+    std::vector<uint32_t> src;     // global point indices
+    std::vector<float> weight;
+};
+
+struct FactoredStencils {
+    uint32_t numControl = 0, numPoints = 0;
+    std::vector<StencilBlock> blocks;
+
+    // Records refinement step `level` (1-based) of `refiner` as a block
+    // reading the previous level at srcBase and writing at dstBase.
+    void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase) {
+        RecordedRows rows;
+        rows.dstBase = dstBase;
+        const int nChild = refiner.GetLevel(level).GetNumVertices();
+        rows.rowOf.reserve(size_t(nChild));
+        rows.rowStart.reserve(size_t(nChild));
+        Far::PrimvarRefiner primvar(refiner);
+        TokenView src{srcBase};
+        RecorderView dst{&rows};
+        primvar.Interpolate(level, src, dst);
+        StencilBlock b;
+        b.dstBase = dstBase;
+        b.count = uint32_t(rows.rowOf.size());
+        b.dst = std::move(rows.rowOf);
+        b.offsets = std::move(rows.rowStart);
+        b.offsets.push_back(uint32_t(rows.src.size()));
+        b.src = std::move(rows.src);
+        b.weight = std::move(rows.weight);
+        blocks.push_back(std::move(b));
+    }
+
+    // A Far::StencilTable whose control indices are global point indices.
+    void appendTable(const Far::StencilTable& table, uint32_t dstBase) {
+        StencilBlock b;
+        b.dstBase = dstBase;
+        b.count = uint32_t(table.GetNumStencils());
+        const auto& sizes = table.GetSizes();
+        const auto& idx = table.GetControlIndices();
+        const auto& w = table.GetWeights();
+        b.offsets.resize(size_t(b.count) + 1);
+        uint32_t at = 0;
+        for (uint32_t s = 0; s < b.count; ++s) {
+            b.offsets[s] = at;
+            at += uint32_t(sizes[s]);
+        }
+        b.offsets[b.count] = at;
+        b.src.assign(idx.begin(), idx.begin() + at);
+        b.weight.assign(w.begin(), w.begin() + at);
+        blocks.push_back(std::move(b));
+    }
+
+    size_t weightCount() const {
+        size_t n = 0;
+        for (const StencilBlock& b : blocks) n += b.src.size();
+        return n;
+    }
+
+    // points[0, numControl) must hold the control values.
+    template <class V>
+    void apply(V* points) const {
+        for (const StencilBlock& b : blocks) {
+            const uint32_t* off = b.offsets.data();
+            const uint32_t* src = b.src.data();
+            const float* w = b.weight.data();
+            V* dst = points + b.dstBase;
+            const uint32_t* row = b.dst.empty() ? nullptr : b.dst.data();
+            for (uint32_t i = 0; i < b.count; ++i) {
+                V acc(0.0f);
+                for (uint32_t k = off[i]; k < off[i + 1]; ++k) acc += w[k] * points[src[k]];
+                dst[row ? row[i] : i] = acc;
+            }
+        }
+    }
+};
+
+// ---- Limit samples -----------------------------------------------------------
+
+// Basis weights of one evaluation per sample: point indices and weights for
+// the value and both first derivatives.
+struct SampleTable {
+    std::vector<uint32_t> offsets; // samples + 1
+    std::vector<uint32_t> point;
+    std::vector<float> wP, wDu, wDv;
+
+    void clear() {
+        offsets.assign(1, 0);
+        point.clear();
+        wP.clear();
+        wDu.clear();
+        wDv.clear();
+    }
+    void add(const Far::ConstIndexArray& cvs, const float* p, const float* du, const float* dv, uint32_t pointBase) {
+        for (int k = 0; k < cvs.size(); ++k) {
+            point.push_back(pointBase + uint32_t(cvs[k]));
+            wP.push_back(p[k]);
+            wDu.push_back(du[k]);
+            wDv.push_back(dv[k]);
+        }
+        offsets.push_back(uint32_t(point.size()));
+    }
+    template <class V>
+    void evaluate(const V* points, V* value, V* du, V* dv) const {
+        const size_t n = offsets.size() - 1;
+        for (size_t s = 0; s < n; ++s) {
+            V a(0.0f), b(0.0f), c(0.0f);
+            for (uint32_t k = offsets[s]; k < offsets[s + 1]; ++k) {
+                const V& x = points[point[k]];
+                a += wP[k] * x;
+                b += wDu[k] * x;
+                c += wDv[k] * x;
+            }
+            if (value) value[s] = a;
+            du[s] = b;
+            dv[s] = c;
+        }
+    }
+};
+
+// The patch-table hang (../shared/STACK.md): PatchTable::EvaluateBasis
+// spins forever for parameters outside [0,1]. Every evaluation goes through
+// here.
+inline float clampParam(float x) {
+    assert(std::isfinite(x));
+    return std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f;
+}
+
+glm::vec3 safeNormal(const glm::vec3& du, const glm::vec3& dv, const glm::vec3& fallback) {
+    glm::vec3 n = glm::cross(du, dv);
+    float len = glm::length(n);
+    if (len > 0.0f && std::isfinite(len)) return n / len;
+    len = glm::length(fallback);
+    return len > 0.0f && std::isfinite(len) ? fallback / len : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+} // namespace
+
+// ---- Impl ----------------------------------------------------------------------
+
+struct Subdivider::Impl {
+    SubdivisionSettings settings;
+    std::string file;
+    size_t cageVertices = 0;
+    PolygonMesh refined;
+    RenderMesh render;
+    LimitFrame frame;
+    detail::RenderSplit split;
+    std::vector<uint32_t> renderToRefined;
+    std::vector<uint32_t> smoothGroup; // per render vertex (non-limit normals)
+    SubdivisionTimings timings;
+
+    // Reused between builds.
+    Descriptor descriptor;
+    std::vector<glm::vec3> bufA, bufB;
+    std::vector<glm::vec2> uvA, uvB;
+
+    // Level-N vertex -> refined() vertex (UINT32_MAX: unused, e.g. in holes),
+    // and render vertex -> level-N vertex (for update()).
+    std::vector<uint32_t> levelToRefined, renderToLevel;
+    bool cageHasHoles = false;
+
+    // Animation / limit.
+    FactoredStencils uniformStencils; // settings.animate && !limit
+    FactoredStencils limitStencils;   // limit: cage -> adaptive points + local points
+    SampleTable samples;              // limit: per render vertex
+    mutable std::vector<glm::vec3> points; // update() scratch
+
+    void build(const PolygonMesh& cage);
+    void refineUniform(const PolygonMesh& cage, Far::TopologyRefiner& refiner);
+    void collectCreases(const Far::TopologyRefiner& refiner);
+    std::vector<uint32_t> sectors(const Far::TopologyRefiner& refiner, const std::vector<uint32_t>& offsets) const;
+    void locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex, std::vector<glm::vec2>& cornerUV) const;
+    void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace);
+    void buildRender(const Far::TopologyRefiner& refiner);
+};
+
+namespace {
+
+// Refined face count of level N, for the size check before refining.
+long double refinedFaceEstimate(const PolygonMesh& cage, Scheme scheme, int level) {
+    long double total = 0, grow = std::pow(4.0L, level);
+    for (uint32_t k : cage.faceSizes) {
+        if (level == 0) total += 1;
+        else if (scheme == Scheme::Loop || k == 4) total += grow;
+        else total += (long double)k * grow / 4; // N-gon: N quads after one level
+    }
+    return total;
+}
+
+} // namespace
+
+void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefiner& refiner) {
+    const int N = settings.level;
+    const size_t nSets = cage.uvSets.size();
+    detail::Stopwatch sw;
+    // Positions: ping-pong through levels 1..N-1, level N straight into refined.positions.
+    const Far::TopologyLevel& last = refiner.GetLevel(N);
+    std::vector<glm::vec3> levelN(size_t(last.GetNumVertices()));
+    auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
+        Far::PrimvarRefiner primvar(refiner);
+        if (N == 0) {
+            out = control;
+            return;
+        }
+        const glm::vec3* src = control.data();
+        for (int l = 1; l <= N; ++l) {
+            std::vector<glm::vec3>& dstBuf = l == N ? out : (l % 2 ? bufA : bufB);
+            dstBuf.resize(size_t(refiner.GetLevel(l).GetNumVertices()));
+            View<const glm::vec3> s{src};
+            View<glm::vec3> d{dstBuf.data()};
+            primvar.Interpolate(l, s, d);
+            src = dstBuf.data();
+        }
+    };
+    interpolateVec3(cage.positions, levelN);
+    std::vector<std::vector<glm::vec3>> deltasN(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) interpolateVec3(cage.morphTargets[t].positionDeltas, deltasN[t]);
+    std::vector<std::vector<glm::vec2>> uvN(nSets);
+    for (size_t s = 0; s < nSets; ++s) {
+        if (N == 0) {
+            uvN[s] = cage.uvSets[s].values;
+            continue;
+        }
+        Far::PrimvarRefiner primvar(refiner);
+        const glm::vec2* src = cage.uvSets[s].values.data();
+        for (int l = 1; l <= N; ++l) {
+            std::vector<glm::vec2>& dstBuf = l == N ? uvN[s] : (l % 2 ? uvA : uvB);
+            dstBuf.resize(size_t(refiner.GetLevel(l).GetNumFVarValues(int(s))));
+            View<const glm::vec2> sv{src};
+            View<glm::vec2> dv{dstBuf.data()};
+            primvar.InterpolateFaceVarying(l, sv, dv, int(s));
+            src = dstBuf.data();
+        }
+    }
+    timings.interpolate = sw.lap();
+
+    // Level-N polygons without holes; vertices compacted to those used.
+    const int nF = last.GetNumFaces();
+    refined.faceSizes.clear();
+    refined.faceVertices.clear();
+    refined.faceSizes.reserve(size_t(nF));
+    refined.faceVertices.reserve(size_t(nF) * (settings.options.scheme == Scheme::Loop ? 3 : 4));
+    refined.uvSets.resize(nSets);
+    for (size_t s = 0; s < nSets; ++s) {
+        refined.uvSets[s].name = cage.uvSets[s].name;
+        refined.uvSets[s].indices.clear();
+        refined.uvSets[s].values = std::move(uvN[s]);
+    }
+    const bool anyHole = !cage.holes.empty();
+    levelToRefined.assign(size_t(last.GetNumVertices()), anyHole ? UINT32_MAX : 0);
+    uint32_t used = 0;
+    if (!anyHole) {
+        for (uint32_t v = 0; v < levelToRefined.size(); ++v) levelToRefined[v] = v;
+        used = uint32_t(levelToRefined.size());
+    }
+    for (int f = 0; f < nF; ++f) {
+        if (anyHole && last.IsFaceHole(f)) continue;
+        Far::ConstIndexArray fv = last.GetFaceVertices(f);
+        refined.faceSizes.push_back(uint32_t(fv.size()));
+        for (int k = 0; k < fv.size(); ++k) {
+            uint32_t& m = levelToRefined[size_t(fv[k])];
+            if (m == UINT32_MAX) m = used++;
+            refined.faceVertices.push_back(m);
+        }
+        for (size_t s = 0; s < nSets; ++s) {
+            Far::ConstIndexArray fvv = last.GetFaceFVarValues(f, int(s));
+            for (int k = 0; k < fvv.size(); ++k) refined.uvSets[s].indices.push_back(uint32_t(fvv[k]));
+        }
+    }
+    auto compact = [&](std::vector<glm::vec3>& values) {
+        if (!anyHole) return;
+        std::vector<glm::vec3> out(used);
+        for (size_t v = 0; v < levelToRefined.size(); ++v) {
+            if (levelToRefined[v] != UINT32_MAX) out[levelToRefined[v]] = values[v];
+        }
+        values.swap(out);
+    };
+    compact(levelN);
+    refined.positions.swap(levelN);
+    refined.morphTargets.resize(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+        compact(deltasN[t]);
+        refined.morphTargets[t].name = cage.morphTargets[t].name;
+        refined.morphTargets[t].positionDeltas.swap(deltasN[t]);
+    }
+    refined.morphWeights = cage.morphWeights;
+    timings.convertOut = sw.lap();
+}
+
+void Subdivider::Impl::collectCreases(const Far::TopologyRefiner& refiner) {
+    // The sharpness left after N levels, on interior edges (boundary edges
+    // carry the boundary rule, not a tag) and on vertices that are tagged
+    // corners (a boundary corner under EdgeAndCorner is the rule again).
+    const Far::TopologyLevel& last = refiner.GetLevel(settings.level);
+    refined.creases.clear();
+    refined.corners.clear();
+    for (int e = 0; e < last.GetNumEdges(); ++e) {
+        float s = last.GetEdgeSharpness(e);
+        if (s <= 0.0f || last.IsEdgeBoundary(e)) continue;
+        Far::ConstIndexArray ev = last.GetEdgeVertices(e);
+        uint32_t a = levelToRefined[size_t(ev[0])], b = levelToRefined[size_t(ev[1])];
+        if (a == UINT32_MAX || b == UINT32_MAX) continue;
+        refined.creases.push_back({a, b, s});
+    }
+    const bool ruleCorners = settings.options.boundary == BoundaryInterpolation::EdgeAndCorner;
+    for (int v = 0; v < last.GetNumVertices(); ++v) {
+        float s = last.GetVertexSharpness(v);
+        if (s <= 0.0f || (ruleCorners && last.IsVertexBoundary(v))) continue;
+        uint32_t m = levelToRefined[size_t(v)];
+        if (m != UINT32_MAX) refined.corners.push_back({m, s});
+    }
+}
+
+std::vector<uint32_t> Subdivider::Impl::sectors(const Far::TopologyRefiner& refiner, const std::vector<uint32_t>& offsets) const {
+    // Union-find over corners across interior edges that are not infinitely
+    // sharp: each root is one smooth sector around a vertex.
+    const Far::TopologyLevel& last = refiner.GetLevel(settings.level);
+    std::vector<uint64_t> sharp;
+    for (int e = 0; e < last.GetNumEdges(); ++e) {
+        if (last.IsEdgeBoundary(e) || last.GetEdgeSharpness(e) < kInfiniteSharpness) continue;
+        Far::ConstIndexArray ev = last.GetEdgeVertices(e);
+        uint32_t a = levelToRefined[size_t(ev[0])], b = levelToRefined[size_t(ev[1])];
+        if (a != UINT32_MAX && b != UINT32_MAX) sharp.push_back(detail::edgeKey(a, b));
+    }
+    std::vector<uint32_t> sector(refined.faceVertices.size());
+    if (sharp.empty()) {
+        for (size_t c = 0; c < sector.size(); ++c) sector[c] = refined.faceVertices[c];
+        return sector; // one sector per vertex
+    }
+    std::sort(sharp.begin(), sharp.end());
+    std::vector<detail::FaceEdge> edges = detail::sortedFaceEdges(refined, offsets);
+    detail::UnionFind uf(refined.faceVertices.size());
+    for (size_t i = 0; i + 1 < edges.size(); ++i) {
+        const detail::FaceEdge &a = edges[i], &b = edges[i + 1];
+        if (a.key != b.key || (i + 2 < edges.size() && edges[i + 2].key == a.key)) continue; // manifold pairs only
+        if (a.forward == b.forward || std::binary_search(sharp.begin(), sharp.end(), a.key)) continue;
+        uf.unite(a.corner, b.next);
+        uf.unite(a.next, b.corner);
+    }
+    for (uint32_t c = 0; c < sector.size(); ++c) sector[c] = uf.find(c);
+    return sector;
+}
+
+void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex,
+                                     std::vector<glm::vec2>& cornerUV) const {
+    // Home location of every level-N face corner: ptex face and (u,v).
+    // Level 0: a quad (or a Loop triangle) is one ptex face with corners at
+    // (0,0),(1,0),(1,1),(0,1) ((0,0),(1,0),(0,1)); any other polygon has one
+    // ptex sub-face per corner: sub-face j has (0,0) at corner j, (1,0) at
+    // the midpoint of the edge to corner j+1, (1,1) at the centre and (0,1)
+    // at the midpoint of the edge from corner j-1 (OpenSubdiv's quad
+    // sub-face parameterization; the tests check it against PrimvarRefiner::
+    // Limit). Each further level places child vertices at the parameter of
+    // their parent vertex, the midpoint of their parent edge or the centre of
+    // their parent face.
+    const bool loop = settings.options.scheme == Scheme::Loop;
+    const Far::TopologyLevel& base = refiner.GetLevel(0);
+    Far::PtexIndices ptex(refiner);
+    const int N = settings.level;
+    // Per face of the current level: ptex face and corner params (flat).
+    std::vector<uint32_t> facePtex, faceFirst;
+    std::vector<glm::vec2> uv;
+    std::vector<uint32_t> nextPtex, nextFirst;
+    std::vector<glm::vec2> nextUV;
+    const glm::vec2 kQuad[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    const glm::vec2 kTri[3] = {{0, 0}, {1, 0}, {0, 1}};
+    // Level 0 (N-gons keep their corners' sub-face ids in cornerSub).
+    std::vector<uint32_t> cornerSub; // level 0 only: ptex face per corner
+    for (int f = 0; f < base.GetNumFaces(); ++f) {
+        int k = base.GetFaceVertices(f).size();
+        faceFirst.push_back(uint32_t(uv.size()));
+        facePtex.push_back(uint32_t(ptex.GetFaceId(f)));
+        bool regular = loop ? k == 3 : k == 4;
+        for (int j = 0; j < k; ++j) {
+            uv.push_back(regular ? (loop ? kTri[j] : kQuad[j]) : glm::vec2(0.0f));
+            cornerSub.push_back(uint32_t(ptex.GetFaceId(f) + (regular ? 0 : j)));
+        }
+    }
+    for (int l = 0; l < N; ++l) {
+        const Far::TopologyLevel& P = refiner.GetLevel(l);
+        const Far::TopologyLevel& C = refiner.GetLevel(l + 1);
+        nextPtex.assign(size_t(C.GetNumFaces()), 0);
+        nextFirst.assign(size_t(C.GetNumFaces()), 0);
+        nextUV.assign(size_t(C.GetNumFaces()) * (loop ? 3 : 4), glm::vec2(0.0f));
+        for (int f = 0; f < P.GetNumFaces(); ++f) {
+            Far::ConstIndexArray fv = P.GetFaceVertices(f), fe = P.GetFaceEdges(f), children = P.GetFaceChildFaces(f);
+            const int k = fv.size();
+            const bool nonQuad = l == 0 && !loop && k != 4;
+            const uint32_t first = faceFirst[size_t(f)];
+            glm::vec2 centre(0.0f);
+            for (int j = 0; j < k; ++j) centre += uv[first + uint32_t(j)];
+            centre /= float(k);
+            const int faceChild = loop ? -1 : P.GetFaceChildVertex(f);
+            for (int ci = 0; ci < children.size(); ++ci) {
+                const int c = children[ci];
+                Far::ConstIndexArray cv = C.GetFaceVertices(c);
+                // Which corner of the parent does this child touch (N-gon sub-face)?
+                int sub = 0;
+                if (nonQuad) {
+                    for (int j = 0; j < k; ++j) {
+                        for (int m = 0; m < cv.size(); ++m) {
+                            if (cv[m] == P.GetVertexChildVertex(fv[j])) sub = j;
+                        }
+                    }
+                }
+                nextPtex[size_t(c)] = nonQuad ? cornerSub[first + uint32_t(sub)] : facePtex[size_t(f)];
+                nextFirst[size_t(c)] = uint32_t(c) * (loop ? 3u : 4u);
+                for (int m = 0; m < cv.size(); ++m) {
+                    const int v = cv[m];
+                    glm::vec2 p(0.0f);
+                    if (v == faceChild) {
+                        p = nonQuad ? glm::vec2(1.0f, 1.0f) : centre;
+                    } else {
+                        for (int j = 0; j < k; ++j) {
+                            const int jn = (j + 1) % k;
+                            if (v == P.GetVertexChildVertex(fv[j])) {
+                                p = nonQuad ? glm::vec2(0.0f) : uv[first + uint32_t(j)];
+                                break;
+                            }
+                            if (v == P.GetEdgeChildVertex(fe[j])) {
+                                // Edge j joins corners j and j+1.
+                                // Sub-face `sub` touches edge sub (to its (1,0)) and edge sub-1 (to its (0,1)).
+                                if (nonQuad) p = j == sub ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
+                                else p = 0.5f * (uv[first + uint32_t(j)] + uv[first + uint32_t(jn)]);
+                                break;
+                            }
+                        }
+                    }
+                    nextUV[nextFirst[size_t(c)] + uint32_t(m)] = p;
+                }
+            }
+        }
+        facePtex.swap(nextPtex);
+        faceFirst.swap(nextFirst);
+        uv.swap(nextUV);
+    }
+    // Flatten onto refined() corners (non-hole faces in order).
+    const Far::TopologyLevel& last = refiner.GetLevel(N);
+    cornerPtex.clear();
+    cornerUV.clear();
+    cornerPtex.reserve(refined.faceVertices.size());
+    cornerUV.reserve(refined.faceVertices.size());
+    const bool anyHole = cageHasHoles;
+    uint32_t level0Corner = 0;
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        const int k = last.GetFaceVertices(f).size();
+        if (!(anyHole && last.IsFaceHole(f))) {
+            for (int m = 0; m < k; ++m) {
+                cornerPtex.push_back(N == 0 ? cornerSub[level0Corner + uint32_t(m)] : facePtex[size_t(f)]);
+                cornerUV.push_back(uv[faceFirst[size_t(f)] + uint32_t(m)]);
+            }
+        }
+        level0Corner += uint32_t(k);
+    }
+}
+
+void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace) {
+    detail::Stopwatch sw;
+    const int N = settings.level;
+    // Isolation: at least N (every level-N vertex on a patch corner, where
+    // patches interpolate the limit exactly) and at least the largest finite
+    // crease/corner sharpness (semi-sharp features are exact only when
+    // isolated that deep); OpenSubdiv caps it at 10.
+    float maxSharp = 0.0f;
+    for (const EdgeCrease& c : cage.creases) {
+        if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
+    }
+    for (const VertexCorner& c : cage.corners) {
+        if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
+    }
+    const int isolation = std::clamp(std::max({N, 2, int(std::ceil(maxSharp))}), 2, 10);
+    std::unique_ptr<Far::TopologyRefiner> adaptive = createRefiner(descriptor, settings.options, file);
+    Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
+    popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    popt.useInfSharpPatch = true;
+    popt.generateFVarTables = !cage.uvSets.empty();
+    popt.generateFVarLegacyLinearPatches = false; // smooth UV patches where the rules say smooth
+    popt.generateLegacySharpCornerPatches = false;
+    popt.generateVaryingTables = false;
+    adaptive->RefineAdaptive(popt.GetRefineAdaptiveOptions());
+    std::unique_ptr<Far::PatchTable> patches(Far::PatchTableFactory::Create(*adaptive, popt));
+    if (!patches) throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
+    Far::PatchMap patchMap(*patches);
+
+    // Cage -> every adaptive point, then the patch table's local points.
+    limitStencils = FactoredStencils();
+    limitStencils.numControl = uint32_t(cage.positions.size());
+    std::vector<uint32_t> levelBase(size_t(adaptive->GetNumLevels()) + 1, 0);
+    for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
+        levelBase[size_t(l) + 1] = levelBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumVertices());
+    }
+    for (int l = 1; l < adaptive->GetNumLevels(); ++l) limitStencils.recordLevel(*adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
+    const uint32_t refinedTotal = levelBase.back();
+    uint32_t localCount = 0;
+    if (const Far::StencilTable* local = patches->GetLocalPointStencilTable()) {
+        limitStencils.appendTable(*local, refinedTotal);
+        localCount = uint32_t(local->GetNumStencils());
+    }
+    limitStencils.numPoints = refinedTotal + localCount;
+
+    // Home location of each corner; faces with a corner off every patch
+    // (boundary faces under BoundaryInterpolation::None) leave the limit mesh.
+    std::vector<uint32_t> cornerPtex;
+    std::vector<glm::vec2> cornerUV;
+    locateCorners(uniform, cornerPtex, cornerUV);
+    std::vector<uint32_t> offsets = faceOffsets(refined);
+    dropFace.assign(refined.faceSizes.size(), 0);
+    std::vector<const Far::PatchMap::Handle*> cornerHandle(cornerPtex.size(), nullptr);
+    for (size_t f = 0; f < refined.faceSizes.size(); ++f) {
+        for (uint32_t c = offsets[f]; c < offsets[f + 1]; ++c) {
+            cornerUV[c] = glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y));
+            cornerHandle[c] = patchMap.FindPatch(int(cornerPtex[c]), cornerUV[c].x, cornerUV[c].y);
+            if (!cornerHandle[c]) dropFace[f] = 1;
+        }
+    }
+    // Faces without limit surface become holes of refined(), so the render
+    // split skips them.
+    refined.holes.clear();
+    for (uint32_t f = 0; f < dropFace.size(); ++f) {
+        if (dropFace[f]) refined.holes.push_back(f);
+    }
+    timings.limit += sw.lap();
+    // Render vertices over the surviving faces (the split needs dropFace).
+    buildRender(uniform);
+    timings.render = sw.lap();
+    const size_t nR = split.renderFirstCorner.size();
+    // Vertex samples.
+    samples.clear();
+    float wP[20], wDu[20], wDv[20];
+    frame = LimitFrame();
+    frame.ptexFace.resize(nR);
+    frame.ptexUV.resize(nR);
+    for (size_t r = 0; r < nR; ++r) {
+        uint32_t c = split.renderFirstCorner[r];
+        const Far::PatchMap::Handle* h = cornerHandle[c];
+        float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
+        patches->EvaluateBasis(*h, u, v, wP, wDu, wDv);
+        samples.add(patches->GetPatchVertices(*h), wP, wDu, wDv, 0);
+        frame.ptexFace[r] = cornerPtex[c];
+        frame.ptexUV[r] = glm::vec2(u, v);
+    }
+    // Positions and derivatives of the cage and of every morph target.
+    points.resize(limitStencils.numPoints);
+    auto evalVec3 = [&](const std::vector<glm::vec3>& control, glm::vec3* value, std::vector<glm::vec3>& du, std::vector<glm::vec3>& dv) {
+        std::copy(control.begin(), control.end(), points.begin());
+        limitStencils.apply(points.data());
+        du.resize(nR);
+        dv.resize(nR);
+        samples.evaluate(points.data(), value, du.data(), dv.data());
+    };
+    evalVec3(cage.positions, render.positions.data(), frame.dPdu, frame.dPdv);
+    render.normals.resize(nR);
+    for (size_t r = 0; r < nR; ++r) {
+        // Fallback for a degenerate limit point: the refined face normal.
+        render.normals[r] = safeNormal(frame.dPdu[r], frame.dPdv[r], render.normals[r]);
+    }
+    frame.morphDPdu.resize(cage.morphTargets.size());
+    frame.morphDPdv.resize(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+        evalVec3(cage.morphTargets[t].positionDeltas, render.morphTargets[t].positionDeltas.data(), frame.morphDPdu[t], frame.morphDPdv[t]);
+    }
+    // UV sets: static, so interpolated once through all adaptive levels
+    // (concatenated, as the patch table indexes them) plus local points.
+    frame.dUVdu.assign(cage.uvSets.size(), {});
+    frame.dUVdv.assign(cage.uvSets.size(), {});
+    for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+        const int ch = int(s);
+        std::vector<uint32_t> fvBase(size_t(adaptive->GetNumLevels()) + 1, 0);
+        for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
+            fvBase[size_t(l) + 1] = fvBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumFVarValues(ch));
+        }
+        const Far::StencilTable* local = patches->GetLocalPointFaceVaryingStencilTable(ch);
+        std::vector<glm::vec2> values(fvBase.back() + (local ? size_t(local->GetNumStencils()) : 0));
+        std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
+        Far::PrimvarRefiner primvar(*adaptive);
+        for (int l = 1; l < adaptive->GetNumLevels(); ++l) {
+            View<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
+            View<glm::vec2> dst{values.data() + fvBase[size_t(l)]};
+            primvar.InterpolateFaceVarying(l, src, dst, ch);
+        }
+        if (local) {
+            FactoredStencils lp;
+            lp.appendTable(*local, fvBase.back());
+            lp.apply(values.data());
+        }
+        std::vector<glm::vec2>& outUV = render.uvSets[s];
+        frame.dUVdu[s].resize(nR);
+        frame.dUVdv[s].resize(nR);
+        for (size_t r = 0; r < nR; ++r) {
+            uint32_t c = split.renderFirstCorner[r];
+            const Far::PatchMap::Handle* h = cornerHandle[c];
+            float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
+            patches->EvaluateBasisFaceVarying(*h, u, v, wP, wDu, wDv, nullptr, nullptr, nullptr, ch);
+            Far::ConstIndexArray cvs = patches->GetPatchFVarValues(*h, ch);
+            glm::vec2 p(0.0f), du(0.0f), dv(0.0f);
+            for (int k = 0; k < cvs.size(); ++k) {
+                const glm::vec2& x = values[size_t(cvs[k])];
+                p += wP[k] * x;
+                du += wDu[k] * x;
+                dv += wDv[k] * x;
+            }
+            outUV[r] = p;
+            frame.dUVdu[s][r] = du;
+            frame.dUVdv[s][r] = dv;
+        }
+    }
+    // refined() gets the limit positions and UVs too (per refined vertex /
+    // per UV value: from the render vertex that is home to it).
+    for (size_t r = 0; r < nR; ++r) {
+        uint32_t c = split.renderFirstCorner[r];
+        refined.positions[refined.faceVertices[c]] = render.positions[r];
+        refined.normals[refined.faceVertices[c]] = render.normals[r];
+        for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+            refined.morphTargets[t].positionDeltas[refined.faceVertices[c]] = render.morphTargets[t].positionDeltas[r];
+        }
+        for (size_t s = 0; s < cage.uvSets.size(); ++s) refined.uvSets[s].values[refined.uvSets[s].indices[c]] = render.uvSets[s][r];
+    }
+    timings.limit += sw.lap();
+}
+
+void Subdivider::Impl::buildRender(const Far::TopologyRefiner& refiner) {
+    std::vector<uint32_t> offsets = faceOffsets(refined);
+    std::vector<uint32_t> sector;
+    const bool needSectors = !refined.creases.empty();
+    if (needSectors) sector = sectors(refiner, offsets);
+    detail::splitRenderVertices(refined, offsets, needSectors ? sector.data() : nullptr, split);
+    const size_t nR = split.renderSourceVertex.size();
+    renderToRefined = split.renderSourceVertex;
+    render.name = refined.name;
+    render.positions.resize(nR);
+    for (size_t r = 0; r < nR; ++r) render.positions[r] = refined.positions[renderToRefined[r]];
+    render.uvSets.resize(refined.uvSets.size());
+    for (size_t s = 0; s < refined.uvSets.size(); ++s) {
+        render.uvSets[s].resize(nR);
+        for (size_t r = 0; r < nR; ++r) render.uvSets[s][r] = refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
+    }
+    render.indices = split.indices;
+    render.tangents.clear();
+    render.tangentUvSet = -1;
+    // Smooth groups: render vertices of one (vertex, sector).
+    smoothGroup.resize(nR);
+    {
+        std::unordered_map<uint64_t, uint32_t> firstOfKey;
+        firstOfKey.reserve(nR);
+        for (uint32_t r = 0; r < nR; ++r) {
+            uint64_t key = (uint64_t(renderToRefined[r]) << 32) | (needSectors ? sector[split.renderFirstCorner[r]] : 0u);
+            smoothGroup[r] = firstOfKey.emplace(key, r).first->second;
+        }
+    }
+    computeVertexNormals(render, smoothGroup);
+    render.morphTargets.resize(refined.morphTargets.size());
+    for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
+        render.morphTargets[t].name = refined.morphTargets[t].name;
+        render.morphTargets[t].normalDeltas.clear();
+        render.morphTargets[t].tangentDeltas.clear();
+        render.morphTargets[t].positionDeltas.resize(nR);
+        for (size_t r = 0; r < nR; ++r) render.morphTargets[t].positionDeltas[r] = refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+    }
+    render.morphWeights = refined.morphWeights;
+    if (!render.morphTargets.empty() && render.morphWeights.empty()) render.morphWeights.assign(render.morphTargets.size(), 0.0f);
+    std::vector<uint32_t> refinedToLevel(refined.positions.size(), 0);
+    for (uint32_t v = 0; v < levelToRefined.size(); ++v) {
+        if (levelToRefined[v] != UINT32_MAX) refinedToLevel[levelToRefined[v]] = v;
+    }
+    renderToLevel.resize(nR);
+    for (size_t r = 0; r < nR; ++r) renderToLevel[r] = refinedToLevel[renderToRefined[r]];
+    // refined() normals: per vertex, from the first render vertex using it.
+    refined.normals.assign(refined.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    for (size_t r = nR; r-- > 0;) refined.normals[renderToRefined[r]] = render.normals[r];
+    refined.normalIndices = refined.faceVertices;
+}
+
+void Subdivider::Impl::build(const PolygonMesh& cage) {
+    timings = SubdivisionTimings();
+    const SubdivOptions& o = settings.options;
+    const int N = settings.level;
+    if (N < 0 || N > kMaxSubdivisionLevel) {
+        throw InputError(file, "level", std::to_string(N) + " is outside 0.." + std::to_string(kMaxSubdivisionLevel));
+    }
+    if (cage.faceSizes.empty()) throw InputError(file, "", "empty mesh: no faces");
+    if (o.scheme == Scheme::Loop) {
+        for (size_t f = 0; f < cage.faceSizes.size(); ++f) {
+            if (cage.faceSizes[f] != 3) {
+                throw InputError(file, "face " + std::to_string(f),
+                                 "has " + std::to_string(cage.faceSizes[f]) + " corners; the Loop scheme takes triangles only (use catmark or bilinear)");
+            }
+        }
+    }
+    long double estimate = refinedFaceEstimate(cage, o.scheme, N);
+    if (estimate > (long double)settings.maxRefinedFaces) {
+        throw InputError(file, "level " + std::to_string(N),
+                         "would make about " + std::to_string((unsigned long long)estimate) + " faces; the limit is " +
+                             std::to_string(settings.maxRefinedFaces));
+    }
+    cageVertices = cage.positions.size();
+    detail::Stopwatch sw;
+    descriptor.build(cage);
+    timings.convertIn = sw.lap();
+    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(descriptor, o, file);
+    Far::TopologyRefiner::UniformOptions uo(N);
+    // Edges of the last level are needed only for crease tags and sharp sectors.
+    uo.fullTopologyInLastLevel = !cage.creases.empty() || !cage.corners.empty();
+    refiner->RefineUniform(uo);
+    timings.topology = sw.lap();
+
+    refined.name = cage.name;
+    refined.options = o;
+    refined.explicitTags = cage.explicitTags;
+    refined.holes.clear();
+    refined.normals.clear();
+    refined.normalIndices.clear();
+    cageHasHoles = !cage.holes.empty();
+    refineUniform(cage, *refiner);
+    sw.lap();
+    if (uo.fullTopologyInLastLevel) collectCreases(*refiner);
+    else {
+        refined.creases.clear();
+        refined.corners.clear();
+    }
+    timings.convertOut += sw.lap();
+
+    render = RenderMesh();
+    frame = LimitFrame();
+    split = detail::RenderSplit();
+    renderToRefined.clear();
+    if (settings.limit) {
+        std::vector<uint8_t> drop;
+        // evaluateLimit builds the render mesh over faces that have patches.
+        evaluateLimit(cage, *refiner, drop);
+        // Faces without patches (only boundary faces under
+        // BoundaryInterpolation::None, which OpenSubdiv leaves out of the limit
+        // surface) are now refined().holes.
+        if (!settings.buildRenderMesh) {
+            render = RenderMesh();
+            frame = LimitFrame();
+        }
+    } else if (settings.buildRenderMesh) {
+        sw.lap();
+        buildRender(*refiner);
+        timings.render = sw.lap();
+    }
+    if (settings.animate && !settings.limit) {
+        sw.lap();
+        uniformStencils = FactoredStencils();
+        uniformStencils.numControl = uint32_t(cage.positions.size());
+        uint32_t base = 0;
+        for (int l = 1; l <= N; ++l) {
+            uint32_t next = base + uint32_t(refiner->GetLevel(l - 1).GetNumVertices());
+            uniformStencils.recordLevel(*refiner, l, base, next);
+            base = next;
+        }
+        uniformStencils.numPoints = base + uint32_t(refiner->GetLevel(N).GetNumVertices());
+        timings.stencils = sw.lap();
+    }
+}
+
+// ---- Public ----------------------------------------------------------------------
+
+Subdivider::Subdivider() : impl_(std::make_unique<Impl>()) {}
+Subdivider::Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file) : Subdivider() {
+    build(cage, settings, file);
+}
+Subdivider::~Subdivider() = default;
+Subdivider::Subdivider(Subdivider&&) noexcept = default;
+Subdivider& Subdivider::operator=(Subdivider&&) noexcept = default;
+
+void Subdivider::build(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file) {
+    impl_->settings = settings;
+    impl_->file = file.empty() ? (cage.name.empty() ? std::string("(mesh)") : cage.name) : file;
+    impl_->build(cage);
+}
+
+const SubdivisionSettings& Subdivider::settings() const { return impl_->settings; }
+const PolygonMesh& Subdivider::refined() const { return impl_->refined; }
+const RenderMesh& Subdivider::renderMesh() const { return impl_->render; }
+const std::vector<uint32_t>& Subdivider::renderToRefinedVertex() const { return impl_->renderToRefined; }
+const LimitFrame& Subdivider::limitFrame() const { return impl_->frame; }
+const SubdivisionTimings& Subdivider::timings() const { return impl_->timings; }
+size_t Subdivider::cageVertexCount() const { return impl_->cageVertices; }
+
+void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame) const {
+    const Impl& m = *impl_;
+    assert(m.settings.animate && "build with SubdivisionSettings::animate");
+    assert(cagePositions.size() == m.cageVertices);
+    assert(out.positions.size() == m.render.positions.size());
+    const size_t nR = out.positions.size();
+    if (m.settings.limit) {
+        m.points.resize(m.limitStencils.numPoints);
+        std::copy(cagePositions.begin(), cagePositions.end(), m.points.begin());
+        m.limitStencils.apply(m.points.data());
+        glm::vec3 *du, *dv;
+        std::vector<glm::vec3> tmpU, tmpV;
+        if (frame) {
+            frame->dPdu.resize(nR);
+            frame->dPdv.resize(nR);
+            du = frame->dPdu.data();
+            dv = frame->dPdv.data();
+        } else {
+            tmpU.resize(nR);
+            tmpV.resize(nR);
+            du = tmpU.data();
+            dv = tmpV.data();
+        }
+        m.samples.evaluate(m.points.data(), out.positions.data(), du, dv);
+        out.normals.resize(nR);
+        for (size_t r = 0; r < nR; ++r) out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+        return;
+    }
+    m.points.resize(m.uniformStencils.numPoints);
+    std::copy(cagePositions.begin(), cagePositions.end(), m.points.begin());
+    m.uniformStencils.apply(m.points.data());
+    const glm::vec3* levelN = m.points.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
+    for (size_t r = 0; r < nR; ++r) out.positions[r] = levelN[m.renderToLevel[r]];
+    computeVertexNormals(out, m.smoothGroup);
+}
+
+} // namespace sg::mesh
