@@ -171,6 +171,10 @@ std::vector<Entry> makeEntries() {
          {f("hll", 1, 0, "H(st)"), f("hlr", 1, 1, "H(st + dstdx)"),
           f("hul", 1, 2, "H(st + dstdy)")},
          {f("dhdxy", 2, 0, "(dH/dx, dH/dy)")}},
+        {"bounded-scale", SG_K_BOUNDED_SCALE,
+         "v * |f.x f.y f.z f.w| kept within SG_BIG along v (overflow-free scaling, compat.glsl)",
+         {f("v", 3, 0, "vector"), f("f", 4, 3, "four factors (absolute values are used)")},
+         {f("v", 3, 0, "scaled vector, components within 1e18")}},
     };
 }
 } // namespace

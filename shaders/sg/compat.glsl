@@ -31,6 +31,16 @@
 // makes CPU and GPU take the same branch.
 #define SG_FLT_MIN 1.175494351e-38f
 #define SG_FLT_MAX 3.402823466e+38f
+// Magnitude domain of the shared functions. Inputs are expected to have
+// components within +-SG_BIG (1e18: far beyond any position, derivative or
+// texture size a renderer produces, and small enough that a product of two
+// such values, e.g. a dot product, stays finite in binary32). Functions that
+// divide (listings 7, 8, 10, 11, 17, the mikktspace rescale) keep their
+// outputs within SG_BIG per component by shrinking the result along its own
+// direction (sgBoundedScale3): the resolve depends only on the direction of
+// such a huge gradient, so nothing a renderer sees changes. For inputs in
+// the domain every shared function returns finite values.
+#define SG_BIG 1.0e18f
 
 // Normalize that survives huge and tiny inputs: dividing by the largest
 // absolute component first keeps dot(s, s) in [1, 3], so it neither
@@ -48,6 +58,66 @@ SG_FN vec2 sgSafeNormalize2(vec2 v, vec2 fallback) {
     if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return fallback;
     vec2 s = v / m;
     return s * inversesqrt(dot(s, s));
+}
+
+// Largest absolute component.
+SG_FN float sgMaxAbs2(vec2 v) { return max(abs(v.x), abs(v.y)); }
+SG_FN float sgMaxAbs3(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs(v.z)); }
+SG_FN float sgMaxAbs4(vec4 v) { return max(max(abs(v.x), abs(v.y)), max(abs(v.z), abs(v.w))); }
+
+// v divided by its largest absolute component (so that component is +-1), or
+// the zero vector when v has none of at least SG_FLT_MIN (or is not finite).
+// Products of such vectors (cross, dot) can neither overflow nor underflow,
+// and their signs are those of the unscaled products.
+SG_FN vec3 sgScaleToUnitMax3(vec3 v) {
+    float m = sgMaxAbs3(v);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec3(0.0f);
+    return v / m;
+}
+
+// v / k for a common scale k >= max(|v|) of several vectors, with a vector
+// whose largest component is below SG_FLT_MIN treated as zero (a GPU flushes
+// such denormals; the CPU would carry them into products): both builds then
+// see the same zero vector.
+SG_FN vec3 sgDivScale3(vec3 v, float k) { return sgMaxAbs3(v) >= SG_FLT_MIN ? v / k : vec3(0.0f); }
+SG_FN vec2 sgDivScale2(vec2 v, float k) { return sgMaxAbs2(v) >= SG_FLT_MIN ? v / k : vec2(0.0f); }
+
+// The product vMax * f.x * f.y * f.z * f.w of non-negative factors, clamped to
+// SG_BIG, computed on exponents and mantissas (frexp/ldexp) so that no
+// intermediate product overflows or underflows whatever the order of
+// magnitude of the factors (e.g. 1e18 * 1e18 * 1e-30). A factor below
+// SG_FLT_MIN (zero, or a denormal that a GPU would flush) gives 0, a result
+// below 2^-120 gives 0. Continuous at the SG_BIG clamp.
+SG_FN float sgBoundedGain(float vMax, vec4 f) {
+    float lo = min(min(vMax, f.x), min(min(f.y, f.z), f.w));
+    float hi = max(max(vMax, f.x), max(max(f.y, f.z), f.w));
+    if (!(lo >= SG_FLT_MIN)) return 0.0f;
+    if (!(hi <= SG_FLT_MAX)) return SG_BIG;
+    int ev;
+    float mv = frexp(vMax, ev);
+    ivec4 e;
+    vec4 m = frexp(f, e);
+    int expSum = ev + e.x + e.y + e.z + e.w;
+    // Each mantissa is in [0.5, 1): the product is in [1/32, 1).
+    float mant = mv * ((m.x * m.y) * (m.z * m.w));
+    if (expSum > 64) return SG_BIG; // >= 2^59 > SG_BIG: same as the clamp below
+    if (expSum < -120) return 0.0f;
+    return min(ldexp(mant, expSum), SG_BIG);
+}
+
+// v * f.x * f.y * f.z * f.w (non-negative factors; pass 1.0f for unused
+// ones) with every component of the result within SG_BIG: the direction of v
+// is kept and its length shrunk if needed. Zero when v has no component of
+// at least SG_FLT_MIN.
+SG_FN vec3 sgBoundedScale3(vec3 v, vec4 f) {
+    float m = sgMaxAbs3(v);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec3(0.0f);
+    return (v / m) * sgBoundedGain(m, f);
+}
+SG_FN vec2 sgBoundedScale2(vec2 v, vec4 f) {
+    float m = sgMaxAbs2(v);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec2(0.0f);
+    return (v / m) * sgBoundedGain(m, f);
 }
 
 // 1/x with the sign of x kept and |x| clamped below by FLT_EPSILON: the

@@ -43,9 +43,11 @@ SG_FN vec2 sgDerivCurve(vec2 d, float fPrimeAtH) { return fPrimeAtH * d; }
 
 // "Curves (5)": f'(h) = 1 / (1 + P (h - H)^2): boosts slopes of elevations
 // near H; P >= 0 controls the width of the affected range.
+// Written as 1 / (1 + q^2), q = sqrt(P) |h - H| clamped to SG_BIG, so the
+// square cannot overflow (beyond the clamp the slope is below 1e-36).
 SG_FN float sgCurveBoostSlope(float h, float boostP, float centreH) {
-    float x = h - centreH;
-    return 1.0f / (1.0f + max(boostP, 0.0f) * x * x);
+    float q = min(sqrt(max(boostP, 0.0f)) * abs(h - centreH), SG_BIG);
+    return 1.0f / (1.0f + q * q);
 }
 
 // The curve itself, f(h) = atan(sqrt(P) (h - H)) / sqrt(P) (f(H) = 0), so a
@@ -67,9 +69,14 @@ SG_FN vec2 sgDerivDeform(vec2 dAtWarped, mat2 warpJacobian) {
     return vec2(dot(dAtWarped, warpJacobian[0]), dot(dAtWarped, warpJacobian[1]));
 }
 
-// "Deformation (4)": the Jacobian of the warp s = u, t = v + A sin(B u).
+// "Deformation (4)": the Jacobian of the warp s = u, t = v + A sin(B u):
+// dt/du = A B cos(B u). The slope A B is clamped to +-SG_BIG (so the
+// deformed derivative stays finite) and cos to [-1, 1] (GPU cos of a huge
+// phase has no accuracy guarantee; any value in [-1, 1] is as good).
 SG_FN mat2 sgSineWarpJacobian(float u, float amplitudeA, float frequencyB) {
-    return mat2(1.0f, amplitudeA * frequencyB * cos(frequencyB * u), 0.0f, 1.0f);
+    float slope = clamp(amplitudeA * frequencyB, -SG_BIG, SG_BIG);
+    float c = clamp(cos(frequencyB * u), -1.0f, 1.0f);
+    return mat2(1.0f, slope * c, 0.0f, 1.0f);
 }
 
 #endif

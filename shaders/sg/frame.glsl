@@ -37,26 +37,32 @@ struct SgFrame {
 };
 
 // Unit normal of the surface from its screen derivatives (cross(dPdx, dPdy)),
-// or (0,0,1) when they are parallel or zero. Used as the fallback when the
-// interpolated vertex normal is degenerate; its orientation follows the
-// screen winding, not the mesh.
+// or (0,0,1) when they are zero or parallel up to rounding. Used as the
+// fallback when the interpolated vertex normal is degenerate; its
+// orientation follows the screen winding, not the mesh.
 SG_FN vec3 sgGeometricNormal(vec3 dPdx, vec3 dPdy) {
     // Scale each derivative first so the cross product cannot overflow or
-    // underflow (only the direction is used).
-    float mx = max(max(abs(dPdx.x), abs(dPdx.y)), abs(dPdx.z));
-    float my = max(max(abs(dPdy.x), abs(dPdy.y)), abs(dPdy.z));
-    vec3 ax = mx >= SG_FLT_MIN ? dPdx / mx : vec3(0.0f);
-    vec3 ay = my >= SG_FLT_MIN ? dPdy / my : vec3(0.0f);
-    return sgSafeNormalize(cross(ax, ay), vec3(0.0f, 0.0f, 1.0f));
+    // underflow (only the direction is used). The cross product of the
+    // unit-max vectors has components of rounding size (a few FLT_EPSILON)
+    // when they are parallel: its direction would be noise, so below
+    // 8 FLT_EPSILON the fixed fallback is used instead.
+    vec3 c = cross(sgScaleToUnitMax3(dPdx), sgScaleToUnitMax3(dPdy));
+    if (!(sgMaxAbs3(c) >= 8.0f * SG_FLT_EPSILON)) return vec3(0.0f, 0.0f, 1.0f);
+    return sgSafeNormalize(c, vec3(0.0f, 0.0f, 1.0f));
 }
 
 // Recomputes the tangent-plane projections and the orientation sign of a
 // frame whose nrmBase, dPdx and dPdy are set (listing 16, last three lines).
+// The sign is decided on the derivatives scaled to unit largest component
+// (same sign, no overflow or denormal products); a derivative with no
+// component of at least SG_FLT_MIN counts as zero, giving flipSign = +1.
 SG_FN SgFrame sgFrameUpdateSigmas(SgFrame f) {
     SgFrame r = f;
     r.sigmaX = f.dPdx - dot(f.dPdx, f.nrmBase) * f.nrmBase;
     r.sigmaY = f.dPdy - dot(f.dPdy, f.nrmBase) * f.nrmBase;
-    r.flipSign = dot(f.dPdy, cross(f.nrmBase, f.dPdx)) < 0.0f ? -1.0f : 1.0f;
+    vec3 ax = sgScaleToUnitMax3(f.dPdx);
+    vec3 ay = sgScaleToUnitMax3(f.dPdy);
+    r.flipSign = dot(ay, cross(f.nrmBase, ax)) < 0.0f ? -1.0f : 1.0f;
     return r;
 }
 
@@ -86,7 +92,7 @@ SG_FN SgFrame sgPrologue(vec3 vtxNormal, vec3 dPdx, vec3 dPdy, bool isFrontFacin
 // listing 16 (0 for a zero normal, which makes the mikktspace basis vanish
 // instead of exploding).
 SG_FN float sgRenormFactor(vec3 vtxNormal) {
-    float m = max(max(abs(vtxNormal.x), abs(vtxNormal.y)), abs(vtxNormal.z));
+    float m = sgMaxAbs3(vtxNormal);
     if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return 0.0f;
     vec3 s = vtxNormal / m;
     return inversesqrt(dot(s, s)) / m;
@@ -100,6 +106,8 @@ SG_FN float sgRenormFactor(vec3 vtxNormal) {
 // positive scale that the resolve cancels.
 //   vtxNormal  - interpolated vertex normal (unnormalized, as interpolated);
 //   vtxTangent - interpolated vertex tangent xyz (unnormalized) and sign w.
+// A zero (or denormal) vertex normal gives tang = bino = 0 (no bump). tang is
+// |t| / |n| long, kept within SG_BIG (sgBoundedScale3) for a vanishing |n|.
 SG_FN void sgMikktsBasis(vec3 vtxNormal, vec4 vtxTangent, SG_OUT(vec3) tang, SG_OUT(vec3) bino) {
     float renorm = sgRenormFactor(vtxNormal);
     float signW = vtxTangent.w > 0.0f ? 1.0f : -1.0f;
@@ -108,6 +116,9 @@ SG_FN void sgMikktsBasis(vec3 vtxNormal, vec4 vtxTangent, SG_OUT(vec3) tang, SG_
     // keeps the product in range for any |n|.
     vec3 nUnit = vtxNormal * renorm;
     tang = renorm * t;
+    // Only a vanishing |n| (or a huge t) can leave the SG_BIG domain; the
+    // common case costs one comparison.
+    if (!(sgMaxAbs3(tang) <= SG_BIG)) tang = sgBoundedScale3(t, vec4(renorm, 1.0f, 1.0f, 1.0f));
     bino = signW * cross(nUnit, t);
 }
 
@@ -127,35 +138,73 @@ SG_FN SgFrame sgReprologue(SgFrame f, vec3 resolvedNormal, vec3 dPdx, vec3 dPdy)
 
 // Analytic screen-space derivatives of the position (listing 17), for when
 // dFdx/dFdy are unavailable or meaningless (compute shaders, POM, the CPU
-// reference renderer): intersects the pixel's neighbouring view rays with
-// the tangent plane (pos, norm).
+// reference renderer): the derivative of the intersection of the pixel's
+// view ray with the tangent plane (pos, norm).
 //   invViewProjScr - maps screen (x in [0,w], y in [0,h], depth in [0,1], 1)
-//                    to the space of pos and norm (column-major mat4);
+//                    to the space of pos and norm (column-major mat4), i.e.
+//                    inverse(viewport * projection * view); perspective or
+//                    orthographic, finite or infinite far plane;
 //   x0, y0         - the fragment's window coordinate (pixel centre at .5).
-// When the plane is seen edge-on the depth coefficient is clamped away from
-// zero (FLT_EPSILON, as in the paper), so the result stays finite.
+// Results are in pos units per pixel. If the matrix is on normalized screen
+// space [-1,1]^2 instead, scale dPdx by 2/width and dPdy by 2/height (and
+// negate dPdy for a flipped y axis).
+//
+// Same quantity as the paper's listing, different evaluation order: the
+// listing intersects in screen space, where depth is compressed (screen z
+// -> 1 for distant points), and in binary32 it lost every digit for a
+// camera with far/near = 1e6 (relative error 1e4 measured by the parity
+// suite against binary64). Here the ray is written in world space as
+// P = A + t D, with A the pixel's near-plane point (screen depth 0, well
+// conditioned) and D = c2.xyz a.w - a.xyz c2.w its direction (a = the
+// homogeneous near point, c2 = the matrix's depth column; D is the
+// homogeneous difference of the far and near points, linear in a, so its
+// screen derivatives are constant and D stays finite for an infinite far
+// plane). With W = dA/dx + t dD/dx (the ray point at fixed t), the
+// plane constraint gives dP/dx = W - D (n.W) / (n.D) (and the same for y).
+//
+// Robustness: the matrix is scaled to unit largest entry (homogeneous, so
+// the result does not change) and D to unit largest component; a plane seen
+// edge-on (n.D -> 0) has n.D clamped to FLT_EPSILON relative to |D| as the
+// paper clamps its depth coefficient; all outputs are kept within SG_BIG. A
+// zero normal, a zero matrix or a near point at infinity gives zeros.
 SG_FN void sgScreenDerivOfPos(SG_OUT(vec3) dPdx, SG_OUT(vec3) dPdy, vec3 pos, vec3 norm,
-                        mat4 invViewProjScr, float x0, float y0) {
-    vec4 plane = vec4(norm.x, norm.y, norm.z, -dot(pos, norm));
-    mat4 mT = transpose(invViewProjScr);
-    vec4 planeScr = mT * plane;
-    float sgn = planeScr.z < 0.0f ? -1.0f : 1.0f;
-    float nz = sgn * max(SG_FLT_EPSILON, abs(planeScr.z));
-    float ac = -planeScr.x / nz;
-    float bc = -planeScr.y / nz;
-    float dc = -planeScr.w / nz;
-    // Columns of transpose(M) are the rows of M: the intersection point
-    // (x, y, z(x, y), 1) maps to x*v0 + y*v1 + v2 in homogeneous coordinates.
-    vec4 c2 = mT[2];
-    vec4 v0 = mT[0] + ac * c2;
-    vec4 v1 = mT[1] + bc * c2;
-    vec4 v2 = mT[3] + dc * c2;
-    vec4 ipw = v0 * x0 + v1 * y0 + v2;
-    // Quotient rule on (ipw.xyz / ipw.w).
-    float denom = max(SG_FLT_EPSILON, ipw.w * ipw.w);
-    vec3 ipwXyz = vec3(ipw.x, ipw.y, ipw.z);
-    dPdx = (vec3(v0.x, v0.y, v0.z) * ipw.w - ipwXyz * v0.w) / denom;
-    dPdy = (vec3(v1.x, v1.y, v1.z) * ipw.w - ipwXyz * v1.w) / denom;
+                              mat4 invViewProjScr, float x0, float y0) {
+    dPdx = vec3(0.0f);
+    dPdy = vec3(0.0f);
+    vec3 n = sgSafeNormalize(norm, vec3(0.0f));
+    float mMax = max(max(sgMaxAbs4(invViewProjScr[0]), sgMaxAbs4(invViewProjScr[1])),
+                     max(sgMaxAbs4(invViewProjScr[2]), sgMaxAbs4(invViewProjScr[3])));
+    if (!(mMax >= SG_FLT_MIN) || !(mMax <= SG_FLT_MAX) || sgMaxAbs3(n) == 0.0f) return;
+    mat4 m = invViewProjScr * (1.0f / mMax);
+    vec4 c0 = m[0];
+    vec4 c1 = m[1];
+    vec4 c2 = m[2];
+    // Homogeneous near-plane point of the pixel and its position.
+    vec4 a = c0 * x0 + c1 * y0 + m[3];
+    if (!(abs(a.w) >= SG_FLT_MIN)) return;
+    float signW = a.w < 0.0f ? -1.0f : 1.0f;
+    vec4 rcpW = vec4(1.0f / abs(a.w), 1.0f, 1.0f, 1.0f);
+    vec3 nearPos = signW * sgBoundedScale3(vec3(a.x, a.y, a.z), rcpW);
+    // d(nearPos)/dx = (c0.xyz - nearPos c0.w) / a.w, likewise for y.
+    vec3 nearDx = signW * sgBoundedScale3(vec3(c0.x, c0.y, c0.z) - nearPos * c0.w, rcpW);
+    vec3 nearDy = signW * sgBoundedScale3(vec3(c1.x, c1.y, c1.z) - nearPos * c1.w, rcpW);
+    // Ray direction and its (constant) screen derivatives.
+    vec3 c2xyz = vec3(c2.x, c2.y, c2.z);
+    vec3 rayDir = c2xyz * a.w - vec3(a.x, a.y, a.z) * c2.w;
+    vec3 rayDirDx = c2xyz * c0.w - vec3(c0.x, c0.y, c0.z) * c2.w;
+    vec3 rayDirDy = c2xyz * c1.w - vec3(c1.x, c1.y, c1.z) * c2.w;
+    float dMax = sgMaxAbs3(rayDir);
+    if (!(dMax >= SG_FLT_MIN)) return;
+    rayDir = rayDir / dMax;
+    rayDirDx = rayDirDx / dMax;
+    rayDirDy = rayDirDy / dMax;
+    float rcpNDotD = sgSignedRcp(dot(n, rayDir));
+    // Ray parameter of the intersection with the plane through pos.
+    float t = dot(n, pos - nearPos) * rcpNDotD;
+    vec3 wX = nearDx + t * rayDirDx;
+    vec3 wY = nearDy + t * rayDirDy;
+    dPdx = sgBoundedScale3(wX - rayDir * (dot(n, wX) * rcpNDotD), vec4(1.0f));
+    dPdy = sgBoundedScale3(wY - rayDir * (dot(n, wY) * rcpNDotD), vec4(1.0f));
 }
 
 #endif

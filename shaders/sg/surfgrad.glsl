@@ -63,18 +63,36 @@ SG_FN vec3 sgDerivToTspaceNormal(vec2 d, bool flipV) {
 SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT + deriv.y * vB; }
 
 // Listing 6: orthonormal tangent/bitangent for any texture coordinate set,
-// generated per pixel from the screen derivatives of the coordinate.
-// Works for clockwise and counter-clockwise UV layouts (mirrored UVs).
-// Degenerate UV Jacobian (det == 0): the tangent is left unnormalized (as in
-// the paper), which can be the zero vector; then both outputs are finite and
-// the layer contributes nothing.
+// generated per pixel from the screen derivatives of the coordinate
+// (dSTdx/dSTdy = dFdxFine/dFdyFine of the coordinate) and the frame's
+// sigmas. Works for clockwise and counter-clockwise UV layouts (mirrored
+// UVs): the bitangent follows +t in both.
+// The UV Jacobian is scaled to unit largest entry first (the determinant's
+// sign and the tangent's direction do not change), so the result is the
+// same for any texture or world scale. Degenerate UV Jacobian (the scaled
+// determinant below FLT_EPSILON: the two derivatives are parallel up to
+// rounding, and the paper's sign_det would be noise) or a pixel whose
+// sigmas vanish: vT = vB = 0, the layer contributes nothing. Otherwise both
+// are unit length and tangent (sigmas that vanish only up to rounding give
+// an arbitrary but valid frame).
 SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_OUT(vec3) vB) {
-    float det = dot(dSTdx, vec2(dSTdy.y, -dSTdy.x));
+    vT = vec3(0.0f);
+    vB = vec3(0.0f);
+    float k = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return;
+    vec2 sx = sgDivScale2(dSTdx, k);
+    vec2 sy = sgDivScale2(dSTdy, k);
+    float det = sx.x * sy.y - sx.y * sy.x;
+    if (!(abs(det) >= SG_FLT_EPSILON)) return;
     float signDet = det < 0.0f ? -1.0f : 1.0f;
     // invCO is (dXds, dYds) up to the positive factor 1/|det|.
-    vec2 invCO = signDet * vec2(dSTdy.y, -dSTdx.y);
-    vec3 t = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
-    if (abs(det) > 0.0f) t = sgSafeNormalize(t, vec3(0.0f));
+    vec2 invCO = signDet * vec2(sy.y, -sx.y);
+    vec3 tRaw = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
+    // The sigmas are tangent only up to rounding; removing the normal
+    // component again keeps t tangent (and so vB unit) even when the sigmas
+    // are pure rounding residue (dPdx, dPdy along the normal).
+    vec3 t = sgSafeNormalize(tRaw - dot(tRaw, f.nrmBase) * f.nrmBase, vec3(0.0f));
+    if (sgMaxAbs3(t) == 0.0f) return;
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
 }
@@ -96,25 +114,33 @@ SG_FN vec3 sgSurfgradFromPerturbedNormal(SgFrame f, vec3 v) {
     return s * (nDotV * n - vs);
 }
 
-// Listing 8, case isDerivScreenSpace: the surface gradient of a height whose
-// screen-space derivatives (dH/dx, dH/dy) are known (eq. 3 of Mikkelsen
-// 2010). Uses dPdx, dPdy and nrmBase of the frame (dPdx/dPdy of the surface
-// BEFORE displacement).
-// Unlike the paper's absolute FLT_EPSILON clamp on det, dPdx and dPdy are
-// first scaled by their largest component k, which makes the result exact
-// for any world scale; the clamp is then relative (FLT_EPSILON of k^2).
-// Zero dPdx and dPdy (degenerate pixel) give the zero vector.
-SG_FN vec3 sgSurfgradFromScreenDeriv(SgFrame f, vec2 dHdxy) {
-    float k = max(max(max(abs(f.dPdx.x), abs(f.dPdx.y)), abs(f.dPdx.z)),
-                  max(max(abs(f.dPdy.x), abs(f.dPdy.y)), abs(f.dPdy.z)));
+// Listing 8 core: the surface gradient of a height whose screen-space
+// derivatives are dHdxyDir * (gainA * gainB) (gains >= 0), eq. 3 of
+// Mikkelsen 2010. The split lets sgSurfgradScaleDependent pass derivatives
+// whose product would overflow binary32. dPdx and dPdy are scaled by their
+// largest component k (exact for any world scale; the paper's FLT_EPSILON
+// clamp on det becomes relative to k^2) and the result is kept within SG_BIG
+// (sgBoundedScale3). Zero dPdx and dPdy give the zero vector.
+SG_FN vec3 sgSurfgradFromScreenDerivScaled(SgFrame f, vec2 dHdxyDir, float gainA, float gainB) {
+    float k = max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
     if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return vec3(0.0f);
-    vec3 px = f.dPdx / k;
-    vec3 py = f.dPdy / k;
+    vec3 px = sgDivScale3(f.dPdx, k);
+    vec3 py = sgDivScale3(f.dPdy, k);
     vec3 vR1 = cross(py, f.nrmBase);
     vec3 vR2 = cross(f.nrmBase, px);
     float det = dot(px, vR1);
-    float s = sgSignedRcp(det) / k;
-    return s * (dHdxy.x * vR1 + dHdxy.y * vR2);
+    float rcpDet = sgSignedRcp(det);
+    vec3 w = (det < 0.0f ? -1.0f : 1.0f) * (dHdxyDir.x * vR1 + dHdxyDir.y * vR2);
+    return sgBoundedScale3(w, vec4(abs(rcpDet), 1.0f / k, gainA, gainB));
+}
+
+// Listing 8, case isDerivScreenSpace: the surface gradient of a height whose
+// screen-space derivatives (dH/dx, dH/dy) are known (eq. 3 of Mikkelsen
+// 2010), e.g. from listing 9. Uses dPdx, dPdy and nrmBase of the frame
+// (dPdx/dPdy of the surface BEFORE displacement). Degenerate cases as in
+// sgSurfgradFromScreenDerivScaled.
+SG_FN vec3 sgSurfgradFromScreenDeriv(SgFrame f, vec2 dHdxy) {
+    return sgSurfgradFromScreenDerivScaled(f, dHdxy, 1.0f, 1.0f);
 }
 
 // Listing 8: scale-dependent bump mapping (displacement-style: the bump
@@ -122,12 +148,20 @@ SG_FN vec3 sgSurfgradFromScreenDeriv(SgFrame f, vec2 dHdxy) {
 //   deriv    - dH/du, dH/dv in height units per TEXEL (u, v unnormalized:
 //              one unit is one texel of a map of size texDim);
 //   dSTdx/dy - screen derivatives of the normalized texture coordinate.
-// The height is in the same length units as the position.
+// The height is in the same length units as the position. The chain rule
+// dH/dx = (texDim * deriv) . dSTdx is evaluated on unit-scaled factors and
+// the scales are passed as gains, so no product overflows.
 SG_FN vec3 sgSurfgradScaleDependent(SgFrame f, vec2 deriv, vec2 dSTdx, vec2 dSTdy, vec2 texDim) {
     vec2 dHdST = texDim * deriv;
-    float dHdx = dHdST.x * dSTdx.x + dHdST.y * dSTdx.y;
-    float dHdy = dHdST.x * dSTdy.x + dHdST.y * dSTdy.y;
-    return sgSurfgradFromScreenDeriv(f, vec2(dHdx, dHdy));
+    float dm = sgMaxAbs2(dHdST);
+    float sm = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
+    if (!(dm >= SG_FLT_MIN) || !(sm >= SG_FLT_MIN) || !(dm <= SG_FLT_MAX) || !(sm <= SG_FLT_MAX)) {
+        return vec3(0.0f);
+    }
+    vec2 d = dHdST / dm;
+    vec2 sx = sgDivScale2(dSTdx, sm);
+    vec2 sy = sgDivScale2(dSTdy, sm);
+    return sgSurfgradFromScreenDerivScaled(f, vec2(dot(d, sx), dot(d, sy)), dm, sm);
 }
 
 // Listing 9: the 3-tap forward-difference screen-space derivative of a
@@ -143,36 +177,64 @@ SG_FN vec2 sgHeightDeriv3Tap(float hll, float hlr, float hul) { return vec2(hlr 
 //               extends the offset so its normal component is one unit.
 // Returns the texture-space offset (normalized st units) along which to
 // search. Edge-on directions (dot(n, dir) -> 0) are clamped (FLT_EPSILON);
-// zero dPdx and dPdy give (0, 0).
+// dPdx/dPdy and dSTdx/dSTdy are scaled to unit largest component as in
+// listing 8 and the result is kept within SG_BIG; zero dPdx and dPdy give
+// (0, 0).
 SG_FN vec2 sgProjectVecToTextureSpace(SgFrame f, vec3 dir, vec2 dSTdx, vec2 dSTdy, float bumpScale,
-                                bool skipProj) {
-    // Same scale-invariant form as sgSurfgradFromScreenDeriv: dPdx/dPdy are
-    // divided by their largest component k before the 2x2 inverse.
-    float k = max(max(max(abs(f.dPdx.x), abs(f.dPdx.y)), abs(f.dPdx.z)),
-                  max(max(abs(f.dPdy.x), abs(f.dPdy.y)), abs(f.dPdy.z)));
-    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return vec2(0.0f);
-    vec3 px = f.dPdx / k;
-    vec3 py = f.dPdy / k;
+                                      bool skipProj) {
+    float k = max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
+    float sm = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
+    float dm = sgMaxAbs3(dir);
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(sm >= SG_FLT_MIN) || !(sm <= SG_FLT_MAX) ||
+        !(dm >= SG_FLT_MIN) || !(dm <= SG_FLT_MAX)) {
+        return vec2(0.0f);
+    }
+    vec3 px = sgDivScale3(f.dPdx, k);
+    vec3 py = sgDivScale3(f.dPdy, k);
+    // dir scaled to unit largest component: the horizon clamp on dot(n, dir)
+    // is then relative to |dir| (identical for the unit dir of the contract).
+    vec3 d = dir / dm;
     vec3 vR1 = cross(py, f.nrmBase);
     vec3 vR2 = cross(f.nrmBase, px);
     float det = dot(px, vR1);
-    float s = sgSignedRcp(det) / k;
-    vec2 dirScr = s * vec2(dot(vR1, dir), dot(vR2, dir));
-    vec2 dirTex = dSTdx * dirScr.x + dSTdy * dirScr.y;
-    float dirTexZ = dot(f.nrmBase, dir);
-    float sz = skipProj ? 1.0f : sgSignedRcp(dirTexZ);
-    return bumpScale * sz * dirTex;
+    // Screen-space direction up to the factor 1 / (det k).
+    vec2 dirScr = vec2(dot(vR1, d), dot(vR2, d));
+    vec2 dirTex = sgDivScale2(dSTdx, sm) * dirScr.x + sgDivScale2(dSTdy, sm) * dirScr.y;
+    // skipProj: linear in |dir|; otherwise divided by dot(n, dir), so |dir|
+    // cancels.
+    float sz = skipProj ? dm : sgSignedRcp(dot(f.nrmBase, d));
+    float rcpDet = sgSignedRcp(det);
+    float sgn = (rcpDet < 0.0f ? -1.0f : 1.0f) * (sz < 0.0f ? -1.0f : 1.0f) *
+                (bumpScale < 0.0f ? -1.0f : 1.0f);
+    return sgBoundedScale2(sgn * dirTex, vec4(abs(rcpDet), abs(sz) / k, sm, abs(bumpScale)));
 }
 
 // Listing 11: a texture-space offset corrOffs (normalized st units, from
 // parallax/POM starting at the coordinate whose screen derivatives are
 // dSTdx/dSTdy) mapped to the offset in the tangent plane of the surface.
+// The 2x2 UV Jacobian is scaled to unit largest entry before its inverse
+// (the paper's absolute FLT_EPSILON clamp on det would wrongly clamp
+// ordinary fine texture mappings, e.g. dST ~ 1e-4 per pixel, det ~ 1e-8);
+// near-singular Jacobians are clamped relative to their scale, and the
+// result is kept within SG_BIG.
 SG_FN vec3 sgTexSpaceOffsToSurface(SgFrame f, vec2 dSTdx, vec2 dSTdy, vec2 corrOffs) {
-    float det = dSTdx.x * dSTdy.y - dSTdx.y * dSTdy.x;
-    float s = sgSignedRcp(det);
-    float vx = s * (dSTdy.y * corrOffs.x - dSTdy.x * corrOffs.y);
-    float vy = s * (-dSTdx.y * corrOffs.x + dSTdx.x * corrOffs.y);
-    return vx * f.sigmaX + vy * f.sigmaY;
+    float k = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
+    float om = sgMaxAbs2(corrOffs);
+    float sm = max(sgMaxAbs3(f.sigmaX), sgMaxAbs3(f.sigmaY));
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(om >= SG_FLT_MIN) || !(sm >= SG_FLT_MIN) ||
+        !(sm <= SG_FLT_MAX)) {
+        return vec3(0.0f);
+    }
+    vec2 sx = sgDivScale2(dSTdx, k);
+    vec2 sy = sgDivScale2(dSTdy, k);
+    vec2 o = corrOffs / om;
+    float det = sx.x * sy.y - sx.y * sy.x;
+    float rcpDet = sgSignedRcp(det);
+    // Screen-space offset up to the factor om / (det k).
+    float vx = sy.y * o.x - sy.x * o.y;
+    float vy = -sx.y * o.x + sx.x * o.y;
+    vec3 w = (vx * sgDivScale3(f.sigmaX, sm) + vy * sgDivScale3(f.sigmaY, sm)) * (rcpDet < 0.0f ? -1.0f : 1.0f);
+    return sgBoundedScale3(w, vec4(abs(rcpDet), 1.0f / k, om, sm));
 }
 
 // Listing 12 / eq. 2 of Mikkelsen 2010: the surface gradient of a volume

@@ -47,6 +47,12 @@ const Entry* findEntry(std::string_view name); // nullptr if unknown
 // in: inStride() floats; out: outStride() floats.
 void evalCpu(const Entry& e, const float* in, float* out);
 
+// Evaluates one record with the same formulas in binary64 (a generated
+// double-precision copy of the shader source). For measuring conditioning
+// and rounding error, not an independent oracle.
+// in: inStride() doubles; out: outStride() doubles.
+void evalDouble(const Entry& e, const double* in, double* out);
+
 // Body of the compute program for entry e (assemble with
 // sg::shaders::assemble(body, name, defines) using evalGpuDefines(e)).
 std::string evalGpuBody();

@@ -70,7 +70,8 @@ SG_FN SgFrame sgEvalFrameN(vec3 n) { return sgEvalFrame(n, vec3(0.0f), vec3(0.0f
 #define SG_K_DERIV_SINE_WARP 24
 #define SG_K_DECAL_VOLUME 25
 #define SG_K_HEIGHT_3TAP 26
-#define SG_K_COUNT 27
+#define SG_K_BOUNDED_SCALE 27
+#define SG_K_COUNT 28
 
 SG_FN void sgEvalFrameOut(SG_INOUT(SgEvalOut) y, SgFrame f) {
     sgOut3(y, 0, f.nrmBase);
@@ -179,6 +180,8 @@ SG_FN SgEvalOut sgEvalKernel(int kernel, SgEvalIn x) {
         sgOut2(y, 0, sgDerivDeform(sgIn2(x, 0), sgSineWarpJacobian(x.v[2], x.v[3], x.v[4])));
     } else if (kernel == SG_K_DECAL_VOLUME) {
         sgOut3(y, 0, sgDecalVolumeGradient(sgIn2(x, 0), sgIn3(x, 2), sgIn3(x, 5), sgInBool(x, 8)));
+    } else if (kernel == SG_K_BOUNDED_SCALE) {
+        sgOut3(y, 0, sgBoundedScale3(sgIn3(x, 0), abs(sgIn4(x, 3))));
     } else if (kernel == SG_K_HEIGHT_3TAP) {
         sgOut2(y, 0, sgHeightDeriv3Tap(x.v[0], x.v[1], x.v[2]));
     }
