@@ -25,6 +25,10 @@
 #include <limits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "mikktspace_common.h"
 
 namespace sg::mesh {
@@ -83,8 +87,6 @@ namespace {
 using mikk::Vec3;
 
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-constexpr int32_t kNoNeighbor = -1;
-constexpr int32_t kUnresolved = -2;
 
 // Triangle flags.
 constexpr uint8_t kOrient = 1;        // orientation preserving
@@ -95,15 +97,112 @@ constexpr uint8_t kGroupedAll = 8 | 16 | 32;
 
 // An entry of the vertex -> incident corners table.
 struct Incidence {
-    uint32_t tri;  // good triangle index
-    uint32_t prev; // welded id of the previous corner of that triangle
-    uint32_t next; // welded id of the next corner
+    uint32_t triCorner; // good triangle index << 2 | corner (0..2) at the vertex
+    uint32_t prev;      // welded id of the previous corner of that triangle
+    uint32_t next;      // welded id of the next corner
 };
 
-struct GroupRec {
-    uint32_t vertex;
-    uint32_t begin, count; // into groupMembers
-    bool orient;
+// Per-entry terms of a vertex's incidence list, structure of arrays: the
+// derivatives projected into the plane of the vertex normal, and the
+// corner angle (first the clamped cosine, then the angle).
+struct Terms {
+    float *osx, *osy, *osz, *otx, *oty, *otz, *angle;
+
+    static Terms over(float* base, size_t capacity) {
+        return {base,
+                base + capacity,
+                base + 2 * capacity,
+                base + 3 * capacity,
+                base + 4 * capacity,
+                base + 5 * capacity,
+                base + 6 * capacity};
+    }
+    Terms offset(size_t j) const {
+        return {osx + j, osy + j, osz + j, otx + j, oty + j, otz + j, angle + j};
+    }
+    Vec3 os(size_t e) const { return {osx[e], osy[e], osz[e]}; }
+    Vec3 ot(size_t e) const { return {otx[e], oty[e], otz[e]}; }
+};
+
+// Four entries' inputs, gathered lane by lane, and the terms computed from
+// them: mikk::projectToPlane and the cosine of mikk::cornerAngle with the
+// same operations in the same order on each lane (SSE2 when available: its
+// add/mul/div/sqrt are the same IEEE operations as the scalar ones).
+struct TermBatch {
+    // Rows: vOs xyz, vOt xyz, normal xyz, vertex position xyz, previous
+    // corner xyz, next corner xyz.
+    alignas(16) float in[18][4];
+
+    void set(size_t lane, const Vec3& os, const Vec3& ot, const Vec3& n, const Vec3& p,
+             const Vec3& prev, const Vec3& next) {
+        const Vec3* v[6] = {&os, &ot, &n, &p, &prev, &next};
+        for (int r = 0; r < 6; ++r) {
+            in[3 * r][lane] = v[r]->x;
+            in[3 * r + 1][lane] = v[r]->y;
+            in[3 * r + 2][lane] = v[r]->z;
+        }
+    }
+    void copyLane(size_t to, size_t from) {
+        for (auto& row : in) row[to] = row[from];
+    }
+
+#if defined(__SSE2__)
+    struct V {
+        __m128 x, y, z;
+    };
+    static __m128 dot4(const V& a, const V& b) {
+        return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a.x, b.x), _mm_mul_ps(a.y, b.y)), _mm_mul_ps(a.z, b.z));
+    }
+    static V project4(const V& v, const V& n) {
+        const __m128 d = dot4(n, v);
+        const V r{_mm_sub_ps(v.x, _mm_mul_ps(d, n.x)), _mm_sub_ps(v.y, _mm_mul_ps(d, n.y)),
+                  _mm_sub_ps(v.z, _mm_mul_ps(d, n.z))};
+        const __m128 absMask = _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF));
+        const __m128 tiny = _mm_set1_ps(FLT_MIN);
+        const __m128 nonZero = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(_mm_and_ps(r.x, absMask), tiny),
+                                                   _mm_cmpgt_ps(_mm_and_ps(r.y, absMask), tiny)),
+                                         _mm_cmpgt_ps(_mm_and_ps(r.z, absMask), tiny));
+        // Lanes that stay unnormalized may divide by zero here; their
+        // result is discarded by the select.
+        const __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), _mm_sqrt_ps(dot4(r, r)));
+        auto select = [&](__m128 normalized, __m128 raw) {
+            return _mm_or_ps(_mm_and_ps(nonZero, normalized), _mm_andnot_ps(nonZero, raw));
+        };
+        return {select(_mm_mul_ps(inv, r.x), r.x), select(_mm_mul_ps(inv, r.y), r.y),
+                select(_mm_mul_ps(inv, r.z), r.z)};
+    }
+    V row(int r) const { return {_mm_load_ps(in[r]), _mm_load_ps(in[r + 1]), _mm_load_ps(in[r + 2])}; }
+
+    void compute(const Terms& out, size_t j) const {
+        const V n = row(6), p = row(9), prev = row(12), next = row(15);
+        const V os = project4(row(0), n), ot = project4(row(3), n);
+        const V e1 = project4({_mm_sub_ps(prev.x, p.x), _mm_sub_ps(prev.y, p.y), _mm_sub_ps(prev.z, p.z)}, n);
+        const V e2 = project4({_mm_sub_ps(next.x, p.x), _mm_sub_ps(next.y, p.y), _mm_sub_ps(next.z, p.z)}, n);
+        const __m128 c = _mm_min_ps(_mm_max_ps(dot4(e1, e2), _mm_set1_ps(-1.0f)), _mm_set1_ps(1.0f));
+        _mm_storeu_ps(out.osx + j, os.x);
+        _mm_storeu_ps(out.osy + j, os.y);
+        _mm_storeu_ps(out.osz + j, os.z);
+        _mm_storeu_ps(out.otx + j, ot.x);
+        _mm_storeu_ps(out.oty + j, ot.y);
+        _mm_storeu_ps(out.otz + j, ot.z);
+        _mm_storeu_ps(out.angle + j, c);
+    }
+#else
+    void compute(const Terms& out, size_t j) const {
+        for (size_t lane = 0; lane < 4; ++lane) {
+            auto v = [&](int r) { return Vec3{in[r][lane], in[r + 1][lane], in[r + 2][lane]}; };
+            const Vec3 n = v(6), p = v(9);
+            const Vec3 os = mikk::projectToPlane(v(0), n), ot = mikk::projectToPlane(v(3), n);
+            const Vec3 e1 = mikk::projectToPlane(mikk::sub(v(12), p), n);
+            const Vec3 e2 = mikk::projectToPlane(mikk::sub(v(15), p), n);
+            float c = mikk::dot(e1, e2);
+            c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
+            out.osx[j + lane] = os.x, out.osy[j + lane] = os.y, out.osz[j + lane] = os.z;
+            out.otx[j + lane] = ot.x, out.oty[j + lane] = ot.y, out.otz[j + lane] = ot.z;
+            out.angle[j + lane] = c;
+        }
+    }
+#endif
 };
 
 struct WeldedVertex {
@@ -128,7 +227,9 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<uint8_t> triVertInFace;
     // Welding.
     std::vector<uint32_t> vertexClass; // input vertex -> welded id
-    std::vector<uint32_t> hashTable;   // welded ids, kNone = empty
+    std::vector<uint32_t> firstUse;    // input vertices in order of first use
+    std::vector<uint64_t> hashes;      // of firstUse's values
+    std::vector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
     std::vector<WeldedVertex> welded;
     std::vector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
     // Degenerate handling and the good-first order.
@@ -141,19 +242,19 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<Vec3> vOs, vOt;
     std::vector<float> magS, magT;
     std::vector<uint8_t> flags;
-    std::vector<int32_t> neighbor;
     // Vertex -> incident corners.
     std::vector<uint32_t> incidenceStart;
     std::vector<Incidence> incidence;
-    std::vector<uint32_t> edgeGroup; // scratch for non-manifold edges
-    // Groups.
-    std::vector<GroupRec> groups;
-    std::vector<uint32_t> groupMembers;
-    std::vector<uint32_t> stack;
-    // Per group member (reused).
-    std::vector<Vec3> memberOs, memberOt;
-    std::vector<float> memberAngle;
-    std::vector<uint32_t> subgroup;
+    // Terms of a chunk of vertices' entries (Terms layout).
+    std::vector<float> terms;
+    std::vector<int32_t> outNbr, inNbr, component;
+    std::vector<uint64_t> halfEdges;
+    std::vector<uint8_t> paired;
+    std::vector<uint32_t> members;      // also the flood stack (clean vertices)
+    std::vector<uint32_t> stack, groupMembers; // deferred vertices
+    // Vertices touching group-with-any triangles.
+    std::vector<uint32_t> deferred;
+    std::vector<uint8_t> isDeferred;
     // Output stage.
     std::vector<mikk::CornerSpace> spaces; // quads or full frames requested
     std::vector<uint32_t> firstGoodCorner;
@@ -240,49 +341,76 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     // vertices. Welded ids in order of first use; their values are those of
     // the first corner using them (as the oracle's representative).
     {
+        // Pass 1: input vertices in order of first use.
         const size_t vertexCount = in.positions.size();
+        constexpr uint32_t kSeen = kNone - 1;
         s.vertexClass.assign(vertexCount, kNone);
-        size_t tableSize = 64;
-        while (tableSize < 2 * std::min(vertexCount, triCount * 3)) tableSize *= 2;
-        s.hashTable.assign(tableSize, kNone);
-        s.welded.clear();
-        s.triWelded.resize(triCount * 3);
-        const size_t mask = tableSize - 1;
+        s.firstUse.clear();
         for (size_t c = 0; c < triCount * 3; ++c) {
             const uint32_t v = triVertex[c];
-            uint32_t id = s.vertexClass[v];
-            if (id == kNone) {
-                const glm::vec3 p = in.positions[v], n = in.normals[v];
-                const glm::vec2 uv = in.uvs[v];
-                uint64_t h = 0x243F6A8885A308D3ull;
-                h = mix(h, mikk::weldBits(p.x));
-                h = mix(h, mikk::weldBits(p.y));
-                h = mix(h, mikk::weldBits(p.z));
-                h = mix(h, mikk::weldBits(n.x));
-                h = mix(h, mikk::weldBits(n.y));
-                h = mix(h, mikk::weldBits(n.z));
-                h = mix(h, mikk::weldBits(uv.x));
-                h = mix(h, mikk::weldBits(uv.y));
-                for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
-                    const uint32_t cand = s.hashTable[slot];
-                    if (cand == kNone) {
-                        id = uint32_t(s.welded.size());
-                        s.welded.push_back({mikk::toVec3(p), mikk::toVec3(n), uv});
-                        s.hashTable[slot] = id;
-                        break;
-                    }
-                    const WeldedVertex& w = s.welded[cand];
-                    if (w.position.x == p.x && w.position.y == p.y && w.position.z == p.z &&
-                        w.normal.x == n.x && w.normal.y == n.y && w.normal.z == n.z &&
-                        w.uv.x == uv.x && w.uv.y == uv.y) {
-                        id = cand;
-                        break;
-                    }
-                }
-                s.vertexClass[v] = id;
+            if (s.vertexClass[v] == kNone) {
+                s.vertexClass[v] = kSeen;
+                s.firstUse.push_back(v);
             }
-            s.triWelded[c] = id;
         }
+        // Pass 2: hash them, then look each up in an open-addressing table
+        // (slot = welded id and 32 hash bits, so a probe rarely reads the
+        // candidate's values), prefetching the slot a few vertices ahead.
+        const size_t used = s.firstUse.size();
+        s.hashes.resize(used);
+        for (size_t i = 0; i < used; ++i) {
+            const uint32_t v = s.firstUse[i];
+            const glm::vec3 p = in.positions[v], n = in.normals[v];
+            const glm::vec2 uv = in.uvs[v];
+            uint64_t h = 0x243F6A8885A308D3ull;
+            h = mix(h, mikk::weldBits(p.x));
+            h = mix(h, mikk::weldBits(p.y));
+            h = mix(h, mikk::weldBits(p.z));
+            h = mix(h, mikk::weldBits(n.x));
+            h = mix(h, mikk::weldBits(n.y));
+            h = mix(h, mikk::weldBits(n.z));
+            h = mix(h, mikk::weldBits(uv.x));
+            h = mix(h, mikk::weldBits(uv.y));
+            s.hashes[i] = h;
+        }
+        size_t tableSize = 64;
+        while (tableSize < 2 * used) tableSize *= 2;
+        const size_t mask = tableSize - 1;
+        constexpr uint64_t kEmpty = ~uint64_t(0);
+        s.hashTable.assign(tableSize, kEmpty);
+        s.welded.clear();
+        s.welded.reserve(used);
+        constexpr size_t kAhead = 16;
+        for (size_t i = 0; i < used; ++i) {
+            if (i + kAhead < used) __builtin_prefetch(&s.hashTable[s.hashes[i + kAhead] & mask]);
+            const uint32_t v = s.firstUse[i];
+            const uint64_t h = s.hashes[i];
+            const uint64_t tag = h & 0xFFFFFFFF00000000ull;
+            const glm::vec3 p = in.positions[v], n = in.normals[v];
+            const glm::vec2 uv = in.uvs[v];
+            uint32_t id;
+            for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
+                const uint64_t entry = s.hashTable[slot];
+                if (entry == kEmpty) {
+                    id = uint32_t(s.welded.size());
+                    s.welded.push_back({mikk::toVec3(p), mikk::toVec3(n), uv});
+                    s.hashTable[slot] = tag | id;
+                    break;
+                }
+                if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
+                const WeldedVertex& w = s.welded[uint32_t(entry)];
+                if (w.position.x == p.x && w.position.y == p.y && w.position.z == p.z &&
+                    w.normal.x == n.x && w.normal.y == n.y && w.normal.z == n.z &&
+                    w.uv.x == uv.x && w.uv.y == uv.y) {
+                    id = uint32_t(entry);
+                    break;
+                }
+            }
+            s.vertexClass[v] = id;
+        }
+        // Pass 3: welded id per triangle corner.
+        s.triWelded.resize(triCount * 3);
+        for (size_t c = 0; c < triCount * 3; ++c) s.triWelded[c] = s.vertexClass[triVertex[c]];
     }
     const WeldedVertex* wv = s.welded.data();
 
@@ -389,197 +517,344 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         }
     }
 
-    // --- Step 6: adjacency through the vertex -> incident corners table.
+    // --- Step 6: vertex -> incident corners of good triangles, each list
+    // in ascending triangle order (the order of the reference's sorted edge
+    // list and of its sorted subgroups).
     const size_t weldedCount = s.welded.size();
     s.incidenceStart.assign(weldedCount + 1, 0);
     for (size_t j = 0; j < goodCount * 3; ++j) ++s.incidenceStart[gWelded[j] + 1];
     for (size_t w = 0; w < weldedCount; ++w) s.incidenceStart[w + 1] += s.incidenceStart[w];
     s.incidence.resize(goodCount * 3);
     {
-        // Fill in ascending triangle order (so each list is sorted), using
-        // the next list's start as a moving cursor and restoring it after.
+        // The next list's start serves as the cursor, shifted back after.
         uint32_t* cursor = s.incidenceStart.data();
         for (size_t t = 0; t < goodCount; ++t) {
             const uint32_t* w = gWelded + t * 3;
-            s.incidence[cursor[w[0]]++] = {uint32_t(t), w[2], w[1]};
-            s.incidence[cursor[w[1]]++] = {uint32_t(t), w[0], w[2]};
-            s.incidence[cursor[w[2]]++] = {uint32_t(t), w[1], w[0]};
+            const uint32_t tc = uint32_t(t) << 2;
+            s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
+            s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
+            s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
         }
         for (size_t w = weldedCount; w > 0; --w) s.incidenceStart[w] = s.incidenceStart[w - 1];
         s.incidenceStart[0] = 0;
     }
-    s.neighbor.assign(goodCount * 3, kUnresolved);
-    for (size_t t = 0; t < goodCount; ++t) {
-        for (uint32_t e = 0; e < 3; ++e) {
-            if (s.neighbor[t * 3 + e] != kUnresolved) continue;
-            const uint32_t a = gWelded[t * 3 + e];
-            const uint32_t b = gWelded[t * 3 + (e + 1) % 3];
-            // Triangles on edge {a, b}, ascending: entries of a's list whose
-            // previous or next corner is b. Edge number: a->b is the edge
-            // starting at a's corner; b->a ends at a's corner.
-            const Incidence* list = s.incidence.data() + s.incidenceStart[a];
-            const size_t listSize = s.incidenceStart[a + 1] - s.incidenceStart[a];
-            s.edgeGroup.clear();
-            for (size_t k = 0; k < listSize; ++k)
-                if (list[k].next == b || list[k].prev == b) s.edgeGroup.push_back(uint32_t(k));
-            // Edge slot of entry k (triangle, edge index) and whether it runs a->b.
-            auto slot = [&](uint32_t k, bool& forward) -> size_t {
-                const Incidence& inc = list[k];
-                const uint32_t* w = gWelded + size_t(inc.tri) * 3;
-                const uint32_t ca = w[0] == a ? 0 : (w[1] == a ? 1 : 2);
-                forward = inc.next == b;
-                return size_t(inc.tri) * 3 + (forward ? ca : (ca + 2) % 3);
-            };
-            if (s.edgeGroup.size() == 2) { // manifold edge (or two same-direction faces)
-                bool fx, fy;
-                const size_t sx = slot(s.edgeGroup[0], fx), sy = slot(s.edgeGroup[1], fy);
-                if (fx != fy) {
-                    s.neighbor[sx] = int32_t(list[s.edgeGroup[1]].tri);
-                    s.neighbor[sy] = int32_t(list[s.edgeGroup[0]].tri);
-                } else {
-                    s.neighbor[sx] = s.neighbor[sy] = kNoNeighbor;
-                }
-                continue;
-            }
-            // Boundary edge, or several triangles on one edge: the
-            // reference's greedy pairing in ascending triangle order.
-            for (size_t x = 0; x < s.edgeGroup.size(); ++x) {
-                bool fx;
-                const size_t sx = slot(s.edgeGroup[x], fx);
-                if (s.neighbor[sx] != kUnresolved) continue;
-                s.neighbor[sx] = kNoNeighbor;
-                for (size_t y = x + 1; y < s.edgeGroup.size(); ++y) {
-                    bool fy;
-                    const size_t sy = slot(s.edgeGroup[y], fy);
-                    if (fy != fx && s.neighbor[sy] == kUnresolved) {
-                        s.neighbor[sx] = int32_t(list[s.edgeGroup[y]].tri);
-                        s.neighbor[sy] = int32_t(list[s.edgeGroup[x]].tri);
-                        break;
-                    }
-                }
-            }
-        }
-    }
 
-    // --- Step 7: groups, seeded in triangle order, flooded depth first.
-    s.groups.clear();
-    s.groupMembers.clear();
-    s.groupMembers.reserve(goodCount * 3);
-    for (size_t f = 0; f < goodCount; ++f) {
-        for (uint32_t i = 0; i < 3; ++i) {
-            if ((s.flags[f] & kAny) || (s.flags[f] & (kGrouped0 << i))) continue;
-            GroupRec g{gWelded[f * 3 + i], uint32_t(s.groupMembers.size()), 1,
-                       (s.flags[f] & kOrient) != 0};
-            s.flags[f] |= uint8_t(kGrouped0 << i);
-            s.groupMembers.push_back(uint32_t(f));
-            s.stack.clear();
-            auto pushNeighbors = [&](size_t t, uint32_t c) {
-                const int32_t right = s.neighbor[t * 3 + (c + 2) % 3];
-                const int32_t left = s.neighbor[t * 3 + c];
-                if (right >= 0) s.stack.push_back(uint32_t(right));
-                if (left >= 0) s.stack.push_back(uint32_t(left));
-            };
-            pushNeighbors(f, i);
-            while (!s.stack.empty()) {
-                const uint32_t t = s.stack.back();
-                s.stack.pop_back();
-                const uint32_t* w = gWelded + size_t(t) * 3;
-                const uint32_t c = w[0] == g.vertex ? 0 : (w[1] == g.vertex ? 1 : 2);
-                uint8_t& fl = s.flags[t];
-                if (fl & (kGrouped0 << c)) continue;
-                if ((fl & kAny) && (fl & kGroupedAll) == 0)
-                    fl = uint8_t((fl & ~kOrient) | (g.orient ? kOrient : 0));
-                if (((fl & kOrient) != 0) != g.orient) continue;
-                fl |= uint8_t(kGrouped0 << c);
-                s.groupMembers.push_back(t);
-                ++g.count;
-                pushNeighbors(t, c);
-            }
-            s.groups.push_back(g);
-        }
-    }
-
-    // --- Step 8: one frame per subgroup, written to the members' corners.
-    // Corners are written straight into the outputs unless quads (two
-    // writes to average) or full frames need the complete corner state.
+    // --- Steps 7-8, vertex by vertex. The reference floods groups across
+    // the two edges at a vertex, so everything a vertex needs is in its
+    // incidence list: which corners pair across each edge (step 6 of the
+    // oracle, restricted to the edges at this vertex), its groups (step 7)
+    // and their frames (step 8). Groups only interact through
+    // group-with-any triangles, whose orientation the first group meeting
+    // them sets in the reference's seed order; vertices touching such a
+    // triangle are therefore deferred and done afterwards in that order.
     const bool fullSpaces = hasQuads || frames != nullptr;
     if (fullSpaces) s.spaces.assign(cornerCount, mikk::CornerSpace{});
     glm::vec4* tangentsOut = cornerTangents.data();
+    if (!fullSpaces) // corners no group reaches keep the reference's default
+        for (size_t j = 0; j < goodCount * 3; ++j) tangentsOut[cornerOut(j)] = glm::vec4(1, 0, 0, -1);
     auto writeCorner = [&](uint32_t corner, const mikk::FrameAccumulator& fr, bool orient) {
         if (fullSpaces) mikk::writeCornerSpace(s.spaces[corner], fr, orient);
         else tangentsOut[corner] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
     };
-    // Corners of triangles no group reached keep the reference's default.
-    if (!fullSpaces)
-        for (size_t j = 0; j < goodCount * 3; ++j) tangentsOut[cornerOut(j)] = glm::vec4(1, 0, 0, -1);
     const float thresholdCos = mikk::defaultThresholdCos();
-    for (const GroupRec& g : s.groups) {
-        uint32_t* members = s.groupMembers.data() + g.begin;
-        const size_t k = g.count;
-        if (k <= 16) { // insertion sort: groups are a handful of triangles
-            for (size_t x = 1; x < k; ++x) {
-                const uint32_t v = members[x];
-                size_t y = x;
-                for (; y > 0 && members[y - 1] > v; --y) members[y] = members[y - 1];
-                members[y] = v;
+    const uint8_t* const flags = s.flags.data();
+    const Vec3* const triOs = s.vOs.data();
+    const Vec3* const triOt = s.vOt.data();
+    size_t maxDegree = 0;
+    for (size_t w = 0; w < weldedCount; ++w)
+        maxDegree = std::max<size_t>(maxDegree, s.incidenceStart[w + 1] - s.incidenceStart[w]);
+    // Vertices are processed in chunks of about kChunk entries whose terms
+    // are computed together (4 entries per SIMD step) into these arrays.
+    constexpr size_t kChunk = 1024;
+    const size_t termCapacity = std::max(kChunk, maxDegree) + 4;
+    s.terms.resize(7 * termCapacity);
+    const Terms chunkTerms = Terms::over(s.terms.data(), termCapacity);
+    s.outNbr.resize(maxDegree);
+    s.inNbr.resize(maxDegree);
+    s.component.resize(maxDegree);
+    s.members.resize(maxDegree);
+    int32_t* const outNbr = s.outNbr.data();
+    int32_t* const inNbr = s.inNbr.data();
+
+    // Terms of the entries of vertices [w0, w1) (consecutive in the
+    // incidence array), entry j at index j - incidenceStart[w0].
+    auto computeTerms = [&](uint32_t w0, uint32_t w1, const Terms& out) {
+        TermBatch batch;
+        size_t filled = 0, first = 0;
+        for (uint32_t w = w0; w < w1; ++w) {
+            const Incidence* list = s.incidence.data() + s.incidenceStart[w];
+            const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
+            for (size_t e = 0; e < k; ++e) {
+                const uint32_t t = list[e].triCorner >> 2;
+                batch.set(filled, triOs[t], triOt[t], wv[w].normal, wv[w].position,
+                          wv[list[e].prev].position, wv[list[e].next].position);
+                if (++filled == 4) {
+                    batch.compute(out, first);
+                    first += 4;
+                    filled = 0;
+                }
             }
-        } else {
-            std::sort(members, members + k);
         }
-        const Vec3 n = wv[g.vertex].normal;
-        s.memberOs.resize(k);
-        s.memberOt.resize(k);
-        s.memberAngle.resize(k);
-        for (size_t x = 0; x < k; ++x) {
-            const uint32_t t = members[x];
-            s.memberOs[x] = mikk::projectToPlane(s.vOs[t], n);
-            s.memberOt[x] = mikk::projectToPlane(s.vOt[t], n);
-            if (s.flags[t] & kAny) continue; // contributes no angle
-            const uint32_t* w = gWelded + size_t(t) * 3;
-            const uint32_t c = w[0] == g.vertex ? 0 : (w[1] == g.vertex ? 1 : 2);
-            s.memberAngle[x] = mikk::cornerAngle(wv[w[(c + 2) % 3]].position, wv[w[c]].position,
-                                                 wv[w[(c + 1) % 3]].position, n);
+        if (filled > 0) {
+            for (size_t lane = filled; lane < 4; ++lane) batch.copyLane(lane, 0);
+            batch.compute(out, first); // writes up to 3 entries past the end: capacity has room
+            first += filled;
         }
-        auto together = [&](size_t x, size_t y) {
-            const uint32_t tx = members[x], ty = members[y];
-            return ((s.flags[tx] | s.flags[ty]) & kAny) != 0 || faceOf(tx) == faceOf(ty) ||
-                   (mikk::dot(s.memberOs[x], s.memberOs[y]) > thresholdCos &&
-                    mikk::dot(s.memberOt[x], s.memberOt[y]) > thresholdCos);
-        };
-        bool oneSubgroup = true;
-        for (size_t x = 0; x < k && oneSubgroup; ++x)
-            for (size_t y = x + 1; y < k; ++y)
-                if (!together(x, y)) {
-                    oneSubgroup = false;
+        for (size_t j = 0; j < first; ++j) out.angle[j] = mikk::acosRoundedToFloat(out.angle[j]);
+    };
+
+    // Which entries pair across each edge at the vertex: entry e's edge
+    // vertex->next ("out", the reference's left neighbour) and prev->vertex
+    // ("in", its right neighbour). The half-edges on one edge {vertex, x},
+    // in ascending triangle order: each unpaired one takes the first later
+    // unpaired one running the other way (the reference's pairing of its
+    // sorted edge list). Fast path: every x is some entry's next at most
+    // once and some entry's prev at most once (a manifold fan), then a
+    // pair is simply next == prev.
+    auto pairEdges = [&](const Incidence* list, size_t k) {
+        bool simple = true;
+        for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
+#if defined(__SSE2__)
+        if (k <= 8) {
+            // All nexts and prevs in two registers each; one compare per
+            // register finds every entry whose next/prev equals x.
+            alignas(16) uint32_t nexts[8], prevs[8];
+            for (size_t e = 0; e < 8; ++e) {
+                nexts[e] = e < k ? list[e].next : kNone; // kNone is never a welded id
+                prevs[e] = e < k ? list[e].prev : kNone;
+            }
+            const __m128i n0 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts));
+            const __m128i n1 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts + 4));
+            const __m128i p0 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs));
+            const __m128i p1 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs + 4));
+            auto matches = [](__m128i a, __m128i b, __m128i x) {
+                return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(a, x)))) |
+                       unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(b, x)))) << 4;
+            };
+            for (size_t e = 0; e < k; ++e) {
+                const __m128i x = _mm_set1_epi32(int(nexts[e]));
+                const unsigned sameNext = matches(n0, n1, x), prevIsX = matches(p0, p1, x);
+                if ((sameNext & (sameNext - 1)) != 0 || (prevIsX & (prevIsX - 1)) != 0) {
+                    simple = false; // two half-edges one way on one edge
                     break;
                 }
-        auto cornerOfMember = [&](uint32_t t) {
-            const uint32_t* w = gWelded + size_t(t) * 3;
-            const uint32_t c = w[0] == g.vertex ? 0 : (w[1] == g.vertex ? 1 : 2);
-            return cornerOut(size_t(t) * 3 + c);
+                if (prevIsX != 0) {
+                    const int32_t f = int32_t(__builtin_ctz(prevIsX));
+                    outNbr[e] = f;
+                    inNbr[size_t(f)] = int32_t(e);
+                }
+            }
+        } else
+#endif
+        for (size_t e = 0; e < k; ++e) {
+            const uint32_t x = list[e].next;
+            int32_t found = -1;
+            int dupNext = 0, dupPrev = 0;
+            for (size_t f = 0; f < k; ++f) {
+                dupNext += list[f].next == x;
+                if (list[f].prev == x) {
+                    ++dupPrev;
+                    found = int32_t(f);
+                }
+            }
+            if (dupNext > 1 || dupPrev > 1) {
+                simple = false;
+                break;
+            }
+            if (found >= 0) {
+                outNbr[e] = found;
+                inNbr[size_t(found)] = int32_t(e);
+            }
+        }
+        if (simple) return;
+        // Non-manifold edges at this vertex: the general greedy. Half-edges
+        // sorted by (x, entry); within a run each direction's candidate
+        // pointer only moves forward (linear in the run length).
+        for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
+        s.halfEdges.resize(2 * k);
+        uint64_t* h = s.halfEdges.data();
+        for (size_t e = 0; e < k; ++e) {
+            h[2 * e] = (uint64_t(list[e].next) << 32) | (uint64_t(e) << 1) | 1u; // out
+            h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1); // in
+        }
+        const size_t n = 2 * k;
+        std::sort(h, h + n);
+        for (size_t r = 0; r < n;) {
+            size_t end = r + 1;
+            while (end < n && (h[end] >> 32) == (h[r] >> 32)) ++end;
+            s.paired.assign(end - r, 0);
+            size_t next[2] = {r, r};
+            for (size_t i = r; i < end; ++i) {
+                if (s.paired[i - r]) continue;
+                const unsigned dir = unsigned(h[i] & 1), other = dir ^ 1u;
+                size_t& p = next[other];
+                if (p <= i) p = i + 1;
+                while (p < end && (unsigned(h[p] & 1) != other || s.paired[p - r])) ++p;
+                if (p == end) continue;
+                s.paired[i - r] = s.paired[p - r] = 1;
+                const int32_t a = int32_t((h[i] & 0xFFFFFFFFu) >> 1);
+                const int32_t b = int32_t((h[p] & 0xFFFFFFFFu) >> 1);
+                (dir ? outNbr : inNbr)[size_t(a)] = b;
+                (other ? outNbr : inNbr)[size_t(b)] = a;
+            }
+            r = end;
+        }
+    };
+
+    // Frames of one group (entries `members` of `list`, ascending) into
+    // its corners; `terms` holds the list's terms from index 0.
+    auto emitGroup = [&](const Incidence* list, const Terms& terms, const uint32_t* members,
+                         size_t m, bool orient) {
+        auto together = [&](uint32_t x, uint32_t y) {
+            const uint32_t tx = list[x].triCorner >> 2, ty = list[y].triCorner >> 2;
+            return ((flags[tx] | flags[ty]) & kAny) != 0 || faceOf(tx) == faceOf(ty) ||
+                   (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos &&
+                    mikk::dot(terms.ot(x), terms.ot(y)) > thresholdCos);
         };
+        auto accumulateOver = [&](mikk::FrameAccumulator& fr, uint32_t e) {
+            const uint32_t t = list[e].triCorner >> 2;
+            if (flags[t] & kAny) return; // bad triangles contribute nothing
+            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), s.magS[t], s.magT[t]);
+        };
+        auto cornerOfEntry = [&](uint32_t e) {
+            const uint32_t tc = list[e].triCorner;
+            return cornerOut(size_t(tc >> 2) * 3 + (tc & 3));
+        };
+        // Every pair passes the 180-degree threshold (dot products > -1)
+        // when every member's unit vectors are within ~89 degrees of the
+        // first member's (computed dots >= 0.02): any two are then at most
+        // ~178 degrees apart, dot >= -0.9993, far from -1 for float
+        // rounding (~1e-6). Otherwise test every pair, as the reference.
+        bool oneSubgroup = true;
+        if (m > 1) {
+            const Vec3 rs = terms.os(members[0]), rt = terms.ot(members[0]);
+            for (size_t x = 1; x < m && oneSubgroup; ++x)
+                oneSubgroup = mikk::dot(terms.os(members[x]), rs) >= 0.02f &&
+                              mikk::dot(terms.ot(members[x]), rt) >= 0.02f;
+            if (!oneSubgroup) {
+                oneSubgroup = true;
+                for (size_t x = 0; x < m && oneSubgroup; ++x)
+                    for (size_t y = x + 1; y < m; ++y)
+                        if (!together(members[x], members[y])) {
+                            oneSubgroup = false;
+                            break;
+                        }
+            }
+        }
         if (oneSubgroup) {
             mikk::FrameAccumulator fr;
-            for (size_t x = 0; x < k; ++x) {
-                const uint32_t t = members[x];
-                if (s.flags[t] & kAny) continue;
-                fr.accumulate(s.memberAngle[x], s.memberOs[x], s.memberOt[x], s.magS[t], s.magT[t]);
-            }
+            for (size_t x = 0; x < m; ++x) accumulateOver(fr, members[x]);
             fr.finish();
-            for (size_t x = 0; x < k; ++x) writeCorner(cornerOfMember(members[x]), fr, g.orient);
-            continue;
+            for (size_t x = 0; x < m; ++x) writeCorner(cornerOfEntry(members[x]), fr, orient);
+            return;
         }
-        // Rare: the group splits. Member x's subgroup is every y together
-        // with it, in ascending order (members are sorted).
-        for (size_t x = 0; x < k; ++x) {
+        // Rare: the group splits. Member x's subgroup is every member
+        // together with it (x included: same face), ascending.
+        for (size_t x = 0; x < m; ++x) {
             mikk::FrameAccumulator fr;
-            for (size_t y = 0; y < k; ++y) {
-                const uint32_t t = members[y];
-                if (!together(x, y) || (s.flags[t] & kAny)) continue;
-                fr.accumulate(s.memberAngle[y], s.memberOs[y], s.memberOt[y], s.magS[t], s.magT[t]);
-            }
+            for (size_t y = 0; y < m; ++y)
+                if (together(members[x], members[y])) accumulateOver(fr, members[y]);
             fr.finish();
-            writeCorner(cornerOfMember(members[x]), fr, g.orient);
+            writeCorner(cornerOfEntry(members[x]), fr, orient);
+        }
+    };
+
+    // Step 7 for a vertex without group-with-any triangles: its groups are
+    // the connected components of same-orientation entries (any flood
+    // order gives the same components).
+    s.deferred.clear();
+    int32_t* const comp = s.component.data();
+    uint32_t* const members = s.members.data();
+    for (uint32_t w0 = 0; w0 < weldedCount;) {
+        uint32_t w1 = w0 + 1;
+        while (w1 < weldedCount && s.incidenceStart[w1 + 1] - s.incidenceStart[w0] <= kChunk) ++w1;
+        computeTerms(w0, w1, chunkTerms);
+        for (uint32_t w = w0; w < w1; ++w) {
+            const Incidence* list = s.incidence.data() + s.incidenceStart[w];
+            const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
+            if (k == 0) continue;
+            bool touchesAny = false;
+            for (size_t e = 0; e < k; ++e) touchesAny |= (flags[list[e].triCorner >> 2] & kAny) != 0;
+            if (touchesAny) {
+                s.deferred.push_back(w);
+                continue;
+            }
+            const Terms terms = chunkTerms.offset(s.incidenceStart[w] - s.incidenceStart[w0]);
+            if (k == 1) {
+                members[0] = 0;
+                emitGroup(list, terms, members, 1, (flags[list[0].triCorner >> 2] & kOrient) != 0);
+                continue;
+            }
+            pairEdges(list, k);
+            for (size_t e = 0; e < k; ++e) comp[e] = -1;
+            for (size_t seed = 0; seed < k; ++seed) {
+                if (comp[seed] >= 0) continue;
+                const uint8_t orientBit = flags[list[seed].triCorner >> 2] & kOrient;
+                // Flood (members[] doubles as the stack), then list the
+                // component in ascending entry order.
+                comp[seed] = int32_t(seed);
+                size_t top = 0;
+                members[top++] = uint32_t(seed);
+                while (top > 0) {
+                    const uint32_t e = members[--top];
+                    for (const int32_t nb : {outNbr[e], inNbr[e]}) {
+                        if (nb < 0 || comp[nb] >= 0 ||
+                            (flags[list[nb].triCorner >> 2] & kOrient) != orientBit)
+                            continue;
+                        comp[nb] = int32_t(seed);
+                        members[top++] = uint32_t(nb);
+                    }
+                }
+                size_t m = 0;
+                for (size_t e = seed; e < k; ++e)
+                    if (comp[e] == int32_t(seed)) members[m++] = uint32_t(e);
+                emitGroup(list, terms, members, m, orientBit != 0);
+            }
+        }
+        w0 = w1;
+    }
+
+    // Steps 7-8 for the deferred vertices, in the reference's seed order
+    // (triangle, then corner): flood from each good triangle corner not yet
+    // in a group, left edge first, as the reference's recursion; a
+    // group-with-any triangle met with no corner in any group adopts the
+    // group's orientation.
+    if (!s.deferred.empty()) {
+        s.isDeferred.assign(weldedCount, 0);
+        for (const uint32_t w : s.deferred) s.isDeferred[w] = 1;
+        uint8_t* const fl = s.flags.data();
+        for (size_t f = 0; f < goodCount; ++f) {
+            for (uint32_t i = 0; i < 3; ++i) {
+                const uint32_t w = gWelded[f * 3 + i];
+                if (!s.isDeferred[w] || (fl[f] & kAny) || (fl[f] & (kGrouped0 << i))) continue;
+                const Incidence* list = s.incidence.data() + s.incidenceStart[w];
+                const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
+                computeTerms(w, w + 1, chunkTerms);
+                pairEdges(list, k);
+                uint32_t seed = 0;
+                while ((list[seed].triCorner >> 2) != f) ++seed;
+                const bool orient = (fl[f] & kOrient) != 0;
+                fl[f] |= uint8_t(kGrouped0 << i);
+                s.groupMembers.assign(1, seed);
+                s.stack.clear();
+                if (inNbr[seed] >= 0) s.stack.push_back(uint32_t(inNbr[seed]));   // right
+                if (outNbr[seed] >= 0) s.stack.push_back(uint32_t(outNbr[seed])); // left first
+                while (!s.stack.empty()) {
+                    const uint32_t e = s.stack.back();
+                    s.stack.pop_back();
+                    const uint32_t t = list[e].triCorner >> 2, c = list[e].triCorner & 3;
+                    if (fl[t] & (kGrouped0 << c)) continue;
+                    if ((fl[t] & kAny) && (fl[t] & kGroupedAll) == 0)
+                        fl[t] = uint8_t((fl[t] & ~kOrient) | (orient ? kOrient : 0));
+                    if (((fl[t] & kOrient) != 0) != orient) continue;
+                    fl[t] |= uint8_t(kGrouped0 << c);
+                    s.groupMembers.push_back(e);
+                    if (inNbr[e] >= 0) s.stack.push_back(uint32_t(inNbr[e]));
+                    if (outNbr[e] >= 0) s.stack.push_back(uint32_t(outNbr[e]));
+                }
+                std::sort(s.groupMembers.begin(), s.groupMembers.end());
+                emitGroup(list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient);
+            }
         }
     }
 

@@ -109,16 +109,72 @@ inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::v
     return a < 0.0f ? -a : a;
 }
 
+// (float)acos((double)c) for c in [-1, 1], the reference's rounding of
+// the angle, without calling acos in almost all cases (libm's double acos
+// costs ~25 ns, 3 per triangle). Method: acos in double from
+// asin(sqrt(z))/sqrt(z) = 1 + z Q(z), z in [0, 1/4] (z = c^2 for |c| <= 1/2,
+// z = (1 - |c|)/2 otherwise; acos = pi/2 - asin(c), resp. 2 asin(sqrt z) or
+// pi - 2 asin(sqrt z)), Q a degree-9 Chebyshev interpolant (absolute error
+// of z Q(z) < 2^-45, bench/tangents_acos_check.py prints the fit). The float
+// rounding of that value is final unless it lies within 2^-36 (relative)
+// of a midpoint between two floats, where libm decides (~0.05% of inputs).
+// Since any libm acos is within an ulp of the true value (2^-52), the
+// result equals (float)std::acos(c) for every float c; an exhaustive check
+// over all 2^31 floats in [-1, 1] is in the benchmark
+// (tangents_bench --check-acos) and a sample in the tests.
+inline float acosRoundedToFloat(float c) {
+    constexpr double kPi = 3.141592653589793115997963468544185161590576171875;
+    constexpr double kHalfPi = 1.5707963267948965579989817342720925807952880859375;
+    const double x = c;
+    const double a = std::fabs(x);
+    auto q = [](double z) {
+        double p = 0x1.c93a92d53b4f1p-6;
+        p = p * z + -0x1.815314c864b09p-9;
+        p = p * z + 0x1.00d47e7966d94p-6;
+        p = p * z + 0x1.b02442413f6bap-7;
+        p = p * z + 0x1.1dc2ef640046fp-6;
+        p = p * z + 0x1.6e72146fda29ep-6;
+        p = p * z + 0x1.f1c81c59ea536p-6;
+        p = p * z + 0x1.6db6d8e71341bp-5;
+        p = p * z + 0x1.33333335a9cd6p-4;
+        p = p * z + 0x1.5555555554f05p-3;
+        return p;
+    };
+    double y;
+    if (a <= 0.5) {
+        const double z = x * x;
+        y = kHalfPi - (x + x * z * q(z));
+    } else {
+        const double z = (1.0 - a) * 0.5; // exact for float a in [1/2, 1]
+        const double r = std::sqrt(z);
+        const double asinR = r + r * z * q(z);
+        y = x > 0.0 ? 2.0 * asinR : kPi - 2.0 * asinR;
+    }
+    if (y == 0.0) return 0.0f; // c == 1 exactly
+    const float f = static_cast<float>(y);
+    uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits); // f > 0: neighbours are bits -+ 1
+    float below, above;
+    const uint32_t bitsBelow = bits - 1, bitsAbove = bits + 1;
+    std::memcpy(&below, &bitsBelow, sizeof below);
+    std::memcpy(&above, &bitsAbove, sizeof above);
+    const double margin = y * 0x1p-36;
+    if (y - 0.5 * (double(f) + double(below)) > margin && 0.5 * (double(f) + double(above)) - y > margin)
+        return f;
+    return static_cast<float>(std::acos(x));
+}
+
 // The angle of a triangle at corner p1 (between p1->p0 and p1->p2), both
 // edges projected into the plane of the vertex normal n: the weight of the
-// triangle's derivatives in the vertex average. acos is taken in double and
-// rounded to float, as the reference's (float)acos(fCos).
+// triangle's derivatives in the vertex average. The reference takes acos in
+// double and rounds to float, (float)acos(fCos); acosRoundedToFloat gives
+// the same bits.
 inline float cornerAngle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& n) {
     const Vec3 v1 = projectToPlane(sub(p0, p1), n);
     const Vec3 v2 = projectToPlane(sub(p2, p1), n);
     float c = dot(v1, v2);
     c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
-    return static_cast<float>(std::acos(static_cast<double>(c)));
+    return acosRoundedToFloat(c);
 }
 
 // Angle-weighted sum of the projected derivatives of one subgroup

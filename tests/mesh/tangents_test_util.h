@@ -133,19 +133,19 @@ inline SoupMesh randomSoup(uint32_t seed, const SoupOptions& o) {
     for (int y = 0; y + 1 < ny; ++y)
         for (int x = 0; x + 1 < nx; ++x) {
             uint32_t c[4] = {vid(x, y), vid(x + 1, y), vid(x + 1, y + 1), vid(x, y + 1)};
-            if (u01(rng) < o.seamFraction || u01(rng) < o.mirrorFraction ||
-                u01(rng) < o.zeroUvFraction) {
-                // Own copies, then alter their UVs.
-                const float r = u01(rng);
+            const float pick = u01(rng);
+            if (pick < o.mirrorFraction + o.seamFraction + o.zeroUvFraction) {
+                // Own copies (a UV seam around the cell), then alter their UVs.
                 for (uint32_t& v : c) v = copyVertex(v);
-                if (r < 0.4f) {
-                    for (uint32_t v : c) m.uvs[v].x = q(3.0f - m.uvs[v].x); // mirrored
-                } else if (r < 0.6f) {
+                if (pick < o.mirrorFraction) {
+                    for (uint32_t v : c) m.uvs[v].x = q(3.0f - m.uvs[v].x); // mirrored in s
+                } else if (pick < o.mirrorFraction + o.seamFraction) {
+                    const glm::vec2 shift(q(u01(rng)), 0.25f); // another island
+                    for (uint32_t v : c) m.uvs[v] += shift;
+                } else if (u01(rng) < 0.5f) {
                     for (uint32_t v : c) m.uvs[v] = m.uvs[c[0]]; // zero UV area
-                } else if (r < 0.8f) {
-                    for (uint32_t v : c) m.uvs[v].y = m.uvs[c[0]].y; // collapsed to a line
                 } else {
-                    for (uint32_t v : c) m.uvs[v] += glm::vec2(q(u01(rng)), 0.25f); // seam, shifted
+                    for (uint32_t v : c) m.uvs[v].y = m.uvs[c[0]].y; // collapsed to a line
                 }
             }
             if (u01(rng) < o.degenerateFraction) {

@@ -1,0 +1,207 @@
+// Benchmark: MikkTSpace-compatible vertex tangents (surfgrad/tangents.h) on
+// a >= 1M-triangle mesh, one core. Input: blub (Keenan Crane,
+// ../shared/data/meshes/blub) with area-weighted vertex normals, split
+// 1-to-4 at edge midpoints (positions, normals and UVs interpolated, normals
+// renormalized) until it has >= 900k triangles (3 splits: 909,312).
+//
+// Rows: the fast generator reusing its buffers (the intended use), the fast
+// generator constructed per call (cold buffers: page faults included), the
+// step-by-step oracle (the baseline, same run); every row's output is
+// compared bit for bit with the oracle's. The C reference (mmikk/MikkTSpace)
+// is not built here; its figure from ../shared/STACK.md (0.5 Mtri/s on this
+// kind of machine) is printed as an anchor only.
+//
+//   bench/tangents_bench [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "surfgrad/tangents.h"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Mesh {
+    std::vector<glm::vec3> positions, normals;
+    std::vector<glm::vec2> uvs;
+    std::vector<uint32_t> indices;
+};
+
+// Minimal OBJ reader for the benchmark input (v, vt, f with v/vt corners,
+// triangles): vertices are split per (v, vt) pair. Normals: area-weighted
+// per position, shared across UV seams.
+Mesh readObj(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::runtime_error("cannot open " + path);
+    std::vector<glm::vec3> v;
+    std::vector<glm::vec2> vt;
+    std::vector<std::pair<uint32_t, uint32_t>> corners;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream ls(line);
+        std::string tag;
+        ls >> tag;
+        if (tag == "v") {
+            glm::vec3 p;
+            ls >> p.x >> p.y >> p.z;
+            v.push_back(p);
+        } else if (tag == "vt") {
+            glm::vec2 t;
+            ls >> t.x >> t.y;
+            vt.push_back(t);
+        } else if (tag == "f") {
+            std::string c;
+            int n = 0;
+            while (ls >> c) {
+                unsigned a = 0, b = 0;
+                if (std::sscanf(c.c_str(), "%u/%u", &a, &b) != 2 || a == 0 || b == 0 ||
+                    a > v.size() || b > vt.size())
+                    throw std::runtime_error(path + ": unsupported face corner '" + c + "'");
+                corners.emplace_back(a - 1, b - 1);
+                ++n;
+            }
+            if (n != 3) throw std::runtime_error(path + ": only triangles are supported");
+        }
+    }
+    Mesh m;
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> split;
+    std::vector<uint32_t> positionOf;
+    for (const auto& c : corners) {
+        auto [it, added] = split.emplace(c, uint32_t(m.positions.size()));
+        if (added) {
+            m.positions.push_back(v[c.first]);
+            m.uvs.push_back(vt[c.second]);
+            positionOf.push_back(c.first);
+        }
+        m.indices.push_back(it->second);
+    }
+    std::vector<glm::vec3> acc(v.size(), glm::vec3(0.0f));
+    for (size_t t = 0; t < corners.size(); t += 3) {
+        const glm::vec3 a = v[corners[t].first], b = v[corners[t + 1].first], c = v[corners[t + 2].first];
+        const glm::vec3 n = glm::cross(b - a, c - a); // length = 2 area
+        for (int i = 0; i < 3; ++i) acc[corners[t + size_t(i)].first] += n;
+    }
+    for (uint32_t p : positionOf) m.normals.push_back(glm::normalize(acc[p]));
+    return m;
+}
+
+// 1-to-4 split: one new vertex per (vertex pair) edge, shared by the two
+// triangles on it (UV seams have split vertices, hence separate midpoints).
+Mesh split4(const Mesh& m) {
+    Mesh r = m;
+    r.indices.clear();
+    std::map<std::pair<uint32_t, uint32_t>, uint32_t> mid;
+    auto midpoint = [&](uint32_t a, uint32_t b) {
+        const auto key = std::minmax(a, b);
+        auto [it, added] = mid.emplace(key, uint32_t(r.positions.size()));
+        if (added) {
+            r.positions.push_back(0.5f * (m.positions[a] + m.positions[b]));
+            r.normals.push_back(glm::normalize(m.normals[a] + m.normals[b]));
+            r.uvs.push_back(0.5f * (m.uvs[a] + m.uvs[b]));
+        }
+        return it->second;
+    };
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        const uint32_t a = m.indices[t], b = m.indices[t + 1], c = m.indices[t + 2];
+        const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+        r.indices.insert(r.indices.end(), {a, ab, ca, ab, b, bc, ca, bc, c, ab, bc, ca});
+    }
+    return r;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+}
+
+template <typename F>
+std::vector<double> timeRuns(int runs, F&& f) {
+    std::vector<double> ms;
+    for (int i = 0; i < runs; ++i) {
+        const auto t0 = Clock::now();
+        f();
+        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    return ms;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    std::string obj = std::string(SURFGRAD_DATA_DIR) + "/meshes/blub/blub_triangulated.obj";
+    int runs = 9, oracleRuns = 3, splits = 3;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto next = [&]() -> std::string {
+            if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+            return argv[++i];
+        };
+        if (a == "--runs") runs = std::max(1, std::stoi(next()));
+        else if (a == "--oracle-runs") oracleRuns = std::max(1, std::stoi(next()));
+        else if (a == "--splits") splits = std::max(0, std::stoi(next()));
+        else if (a == "--obj") obj = next();
+        else {
+            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]\n", argv[0]);
+            return 2;
+        }
+    }
+    Mesh m = readObj(obj);
+    for (int s = 0; s < splits; ++s) m = split4(m);
+    const double triangles = double(m.indices.size() / 3);
+    std::printf("input: %s split 1-to-4 x%d: %zu triangles, %zu vertices\n", obj.c_str(), splits,
+                m.indices.size() / 3, m.positions.size());
+
+    sg::mesh::MikkTSpaceInput in;
+    in.positions = m.positions;
+    in.normals = m.normals;
+    in.uvs = m.uvs;
+    in.cornerVertices = m.indices;
+
+    std::vector<sg::mesh::MikkTSpaceFrame> oracle;
+    const std::vector<double> oracleMs =
+        timeRuns(oracleRuns, [&] { oracle = sg::mesh::mikktspaceReferenceFrames(in); });
+    std::vector<glm::vec4> expected(oracle.size());
+    for (size_t c = 0; c < oracle.size(); ++c) expected[c] = glm::vec4(oracle[c].tangent, oracle[c].sign);
+
+    sg::mesh::MikkTSpaceGenerator generator;
+    std::vector<glm::vec4> warm;
+    generator.generate(in, warm); // first call sizes the buffers
+    const std::vector<double> warmMs = timeRuns(runs, [&] { generator.generate(in, warm); });
+    std::vector<glm::vec4> cold;
+    const std::vector<double> coldMs = timeRuns(runs, [&] {
+        sg::mesh::MikkTSpaceGenerator fresh;
+        std::vector<glm::vec4> out;
+        fresh.generate(in, out);
+        cold.swap(out);
+    });
+    auto identical = [&](const std::vector<glm::vec4>& t) {
+        return t.size() == expected.size() &&
+               std::memcmp(t.data(), expected.data(), t.size() * sizeof(glm::vec4)) == 0;
+    };
+
+    const double oracleMed = median(oracleMs);
+    std::printf("\nMikkTSpace tangents, one core, median of N runs (ratio = oracle time / row time)\n");
+    std::printf("%-44s %5s %11s %9s %8s %10s\n", "what", "N", "median ms", "Mtri/s", "ratio",
+                "identical");
+    auto row = [&](const char* what, const std::vector<double>& ms, const char* same) {
+        const double med = median(ms);
+        std::printf("%-44s %5zu %11.1f %9.2f %7.2fx %10s\n", what, ms.size(), med,
+                    triangles / (med * 1e3), oracleMed / med, same);
+    };
+    row("oracle (step-by-step reference, baseline)", oracleMs, "-");
+    row("fast, generator reused (buffers kept)", warmMs, identical(warm) ? "yes" : "NO");
+    row("fast, new generator per call (cold buffers)", coldMs, identical(cold) ? "yes" : "NO");
+    std::printf("%-44s %5s %11s %9.2f %8s %10s\n", "anchor: C reference mmikk/MikkTSpace", "-",
+                "-", 0.5, "-", "(STACK.md)");
+    return identical(warm) && identical(cold) ? 0 : 1;
+}
