@@ -92,9 +92,9 @@ void addRenderCommands(CLI::App& app, int& status) {
     // ---- render
     auto* render = app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
     struct RenderOpts {
-        std::string scene, out, size, aov = "color", tbn;
+        std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact";
         double frame = 0.0;
-        bool cpu = false, allFrames = false, verbose = false;
+        bool cpu = false, allFrames = false, verbose = false, compare = false;
     };
     auto ro = std::make_shared<RenderOpts>();
     render->add_option("scene", ro->scene, "Scene JSON, or a model file (glTF/OBJ) to frame automatically");
@@ -105,8 +105,17 @@ void addRenderCommands(CLI::App& app, int& status) {
     render->add_option("--tbn", ro->tbn, "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit")
         ->check(CLI::IsMember({"pixel", "mikktspace", "limit"}));
     render->add_flag("--cpu", ro->cpu, "Use the CPU reference renderer instead of OpenGL");
+    render->add_option("--cpu-derivatives", ro->cpuDeriv,
+                       "CPU reference screen derivatives: analytic (exact) or quad (emulates dFdxFine)")
+        ->check(CLI::IsMember({"analytic", "quad"}));
+    render->add_option("--cpu-lod", ro->cpuLod,
+                       "CPU reference texture LOD: exact (GL spec log2) or llvmpipe (its fast log2)")
+        ->check(CLI::IsMember({"exact", "llvmpipe"}));
     render->add_flag("--all-frames", ro->allFrames, "Render every frame of the scene to OUT_NNNN.ext");
     render->add_flag("-v,--verbose", ro->verbose, "Print what was loaded and compiled");
+    render->add_flag("--compare-cpu", ro->compare,
+                     "Also render the normal AOV with the CPU reference and print the per-pixel angle "
+                     "differences (pixels covered by the same primitive in both)");
     render->callback([ro, &status] {
         auto aov = parseAov(ro->aov);
         if (!aov) throw CliError("--aov: unknown output \"" + ro->aov + "\"");
@@ -136,6 +145,9 @@ void addRenderCommands(CLI::App& app, int& status) {
             ctx = std::make_unique<sg::gl::HeadlessContext>();
             gl = std::make_unique<GlRenderer>();
         }
+        CpuOptions cpuOpt;
+        cpuOpt.derivatives = ro->cpuDeriv == "quad" ? CpuDerivatives::Quad : CpuDerivatives::Analytic;
+        cpuOpt.textureLod = ro->cpuLod == "llvmpipe" ? sg::glsl::LodRule::FastLog2 : sg::glsl::LodRule::Exact;
         int first = int(ro->frame), count = 1;
         if (ro->allFrames) {
             first = 0;
@@ -146,7 +158,7 @@ void addRenderCommands(CLI::App& app, int& status) {
             applyFrame(scene, assets, frame / scene.fps);
             if (gl) gl->invalidateMeshes();
             View view = makeView(scene, assets, w, h, *aov);
-            Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view);
+            Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
             fs::path target = out;
             if (ro->allFrames) {
                 char suffix[16];
@@ -154,6 +166,19 @@ void addRenderCommands(CLI::App& app, int& status) {
                 target = out.parent_path() / (out.stem().string() + suffix + out.extension().string());
             }
             writeImage(target, img, *aov, scene.output.exposure);
+            if (ro->compare && gl) {
+                View nv = view, pv = view;
+                nv.aov = Aov::Normal;
+                pv.aov = Aov::PrimId;
+                Image gn = gl->render(scene, assets, nv), gp = gl->render(scene, assets, pv);
+                Image cn = renderCpu(scene, assets, nv, cpuOpt), cp = renderCpu(scene, assets, pv, cpuOpt);
+                VectorImageDiff d = compareVectorImages(gn, cn, gp, cp);
+                std::printf("normal AOV, OpenGL vs CPU reference: %zu pixels compared, %zu coverage "
+                            "mismatches, %zu non-finite\n  angle (deg): mean %.4g  p50 %.4g  p90 %.4g  "
+                            "p99 %.4g  p99.9 %.4g  max %.4g at (%d, %d)\n",
+                            d.compared, d.coverageMismatch, d.nonFinite, d.meanDeg, d.p50Deg, d.p90Deg,
+                            d.p99Deg, d.p999Deg, d.maxDeg, d.maxX, d.maxY);
+            }
             double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             std::printf("wrote %s (%dx%d, %s, %s%s, %.2f s)\n", target.string().c_str(), img.width, img.height,
                         aovName(*aov), gl ? "OpenGL" : "CPU reference",

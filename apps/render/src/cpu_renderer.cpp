@@ -72,7 +72,7 @@ bool topLeft(glm::dvec2 a, glm::dvec2 b) {
 
 } // namespace
 
-Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view) {
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view, const CpuOptions& options) {
     const int W = view.width, H = view.height;
     Image img;
     img.width = W;
@@ -193,7 +193,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view)
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         plans.push_back(planMaterial(scene, assets, int(mi), scene.meshes[mi].material));
         uniforms.push_back(detail::drawUniforms(scene, plans.back(), view, int(mi), primBase));
-        samplers.push_back(detail::planSamplers(plans.back(), assets));
+        samplers.push_back(detail::planSamplers(plans.back(), assets, options.textureLod));
         primBase += float(assets.meshes[mi].mesh.triangleCount());
     }
 
@@ -205,34 +205,48 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view)
             const ScreenTri& st = tris[size_t(ti)];
             const MeshData& d = md[size_t(st.mesh)];
             const auto& p = st.win;
-            // Screen barycentrics (affine) and their constant derivatives.
-            double b[3], bx[3], by[3];
-            glm::dvec2 c(x + 0.5, y + 0.5);
-            for (int i = 0; i < 3; ++i) {
-                glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
-                b[i] = ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x)) / st.area;
-                bx[i] = -(a1.y - a0.y) / st.area;
-                by[i] = (a1.x - a0.x) / st.area;
-            }
-            // Perspective-correct weights and their exact derivatives.
-            double q[3], qx[3], qy[3], D = 0, Dx = 0, Dy = 0;
-            for (int i = 0; i < 3; ++i) {
-                q[i] = b[i] * st.invW[i];
-                qx[i] = bx[i] * st.invW[i];
-                qy[i] = by[i] * st.invW[i];
-                D += q[i];
-                Dx += qx[i];
-                Dy += qy[i];
-            }
-            glm::dvec3 mu(0.0), mux(0.0), muy(0.0);
-            for (int i = 0; i < 3; ++i) {
-                double l = q[i] / D;
-                double lx = (qx[i] * D - q[i] * Dx) / (D * D);
-                double ly = (qy[i] * D - q[i] * Dy) / (D * D);
-                glm::dvec3 B(st.bary[i]);
-                mu += l * B;
-                mux += lx * B;
-                muy += ly * B;
+            // Perspective-correct weights of the original triangle's vertices
+            // at window position c: screen barycentrics b_i (affine in c),
+            // q_i = b_i / w_i, lambda_i = q_i / sum q; their exact d/dx, d/dy
+            // by the quotient rule.
+            auto weights = [&](glm::dvec2 c, glm::dvec3* dx, glm::dvec3* dy) {
+                double b[3], bx[3], by[3];
+                for (int i = 0; i < 3; ++i) {
+                    glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
+                    b[i] = ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x)) / st.area;
+                    bx[i] = -(a1.y - a0.y) / st.area;
+                    by[i] = (a1.x - a0.x) / st.area;
+                }
+                double q[3], qx[3], qy[3], D = 0, Dx = 0, Dy = 0;
+                for (int i = 0; i < 3; ++i) {
+                    q[i] = b[i] * st.invW[i];
+                    qx[i] = bx[i] * st.invW[i];
+                    qy[i] = by[i] * st.invW[i];
+                    D += q[i];
+                    Dx += qx[i];
+                    Dy += qy[i];
+                }
+                glm::dvec3 mu(0.0), mux(0.0), muy(0.0);
+                for (int i = 0; i < 3; ++i) {
+                    glm::dvec3 B(st.bary[i]);
+                    mu += (q[i] / D) * B;
+                    mux += ((qx[i] * D - q[i] * Dx) / (D * D)) * B;
+                    muy += ((qy[i] * D - q[i] * Dy) / (D * D)) * B;
+                }
+                if (dx) *dx = mux;
+                if (dy) *dy = muy;
+                return mu;
+            };
+            glm::dvec3 mux, muy;
+            glm::dvec3 mu = weights(glm::dvec2(x + 0.5, y + 0.5), &mux, &muy);
+            if (options.derivatives == CpuDerivatives::Quad) {
+                // dFdxFine/dFdyFine: differences across the pixel's 2x2 quad,
+                // the triangle's interpolants extrapolated to helper pixels.
+                int qx0 = x & ~1, qy0 = y & ~1;
+                mux = weights(glm::dvec2(qx0 + 1.5, y + 0.5), nullptr, nullptr) -
+                      weights(glm::dvec2(qx0 + 0.5, y + 0.5), nullptr, nullptr);
+                muy = weights(glm::dvec2(x + 0.5, qy0 + 1.5), nullptr, nullptr) -
+                      weights(glm::dvec2(x + 0.5, qy0 + 0.5), nullptr, nullptr);
             }
             auto interp = [&](const auto& arr, glm::dvec3 w) {
                 using T = std::decay_t<decltype(arr[0])>;

@@ -381,9 +381,11 @@ DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const Vi
     return u;
 }
 
-std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets) {
+std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,
+                                              sg::glsl::LodRule lodRule) {
     std::vector<sg::glsl::sampler2D> s(plan.textureKeys.size());
     for (size_t i = 0; i < s.size(); ++i) {
+        s[i].lodRule = lodRule;
         auto it = assets.textures.find(plan.textureKeys[i]);
         if (it != assets.textures.end()) s[i].image = it->second.get();
     }

@@ -61,6 +61,7 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
                         const std::vector<sg::glsl::sampler2D>& samplers, const PixelInputs& in);
 
 // Samplers of a plan's texture slots.
-std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets);
+std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,
+                                              sg::glsl::LodRule lodRule = sg::glsl::LodRule::Exact);
 
 } // namespace sg::render::detail

@@ -98,10 +98,20 @@ vec4 textureGrad(sampler2D s, vec2 st, vec2 dSTdx, vec2 dSTdy) {
     const auto& L0 = s.image->levels[0];
     vec2 size(float(L0.width), float(L0.height));
     // Scale factor rho (eq. 8.7 with the Euclidean lengths of eq. 8.8).
-    float rx = length(dSTdx * size);
-    float ry = length(dSTdy * size);
-    float rho = std::max(rx, ry);
-    float lambda = rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : (rho > 0.0f ? 1e9f : -1e9f);
+    vec2 dx = dSTdx * size, dy = dSTdy * size;
+    float rho2 = std::max(dot(dx, dx), dot(dy, dy));
+    float lambda;
+    if (!(rho2 > 0.0f)) {
+        lambda = -1e9f; // zero or NaN footprint: magnification
+    } else if (!std::isfinite(rho2)) {
+        lambda = 1e9f;
+    } else if (s.lodRule == LodRule::FastLog2) {
+        int e = 0;
+        float m = 2.0f * std::frexp(rho2, &e); // rho2 = m * 2^(e-1), m in [1, 2)
+        lambda = 0.5f * (float(e - 1) + m - 1.0f);
+    } else {
+        lambda = 0.5f * std::log2(rho2);
+    }
     return sampleLod(*s.image, st, lambda);
 }
 

@@ -18,6 +18,12 @@
 //
 // A default-constructed sampler2D (no image) samples (0, 0, 0, 1), like an
 // incomplete texture in GL, and has size (1, 1).
+//
+// LodRule::FastLog2 replaces log2 by the piecewise-linear approximation
+// Mesa's llvmpipe uses (gallivm lp_build_fast_log2: for x = 2^e * m with m
+// in [1, 2), log2 x ~ e + m - 1, exact at powers of two, at most 0.086 too
+// low in between), lambda = 0.5 * fastlog2(rho^2). It exists so tests can
+// tell the driver's LOD arithmetic apart from differences in shader code.
 #pragma once
 
 #include <vector>
@@ -56,8 +62,11 @@ TextureImage makeTexture(int width, int height, std::vector<glm::vec4> texels, W
 
 namespace sg::glsl {
 
+enum class LodRule { Exact, FastLog2 };
+
 struct sampler2D {
     const sg::render::TextureImage* image = nullptr;
+    LodRule lodRule = LodRule::Exact;
 };
 
 // Filtered lookup at normalized st with explicit screen derivatives of st.

@@ -357,6 +357,20 @@ struct Image {
 void writeImage(const std::filesystem::path& path, const Image& image, Aov aov, float exposure);
 Image readImage(const std::filesystem::path& path); // RGBA float, bottom row first
 
+// Per-pixel comparison of two images of unit vectors (normal, tangent, ...
+// AOVs), e.g. the GPU and CPU renderers' outputs. Only pixels covered by the
+// same primitive in both images are compared (primA/primB: primid AOVs of
+// the same views); coverage differences (silhouettes, rasterisation ties)
+// are counted, not compared. Angles in degrees.
+struct VectorImageDiff {
+    size_t compared = 0;         // pixels covered by the same primitive in both
+    size_t coverageMismatch = 0; // pixels covered in one image only, or by different primitives
+    size_t nonFinite = 0;        // compared pixels with a NaN/Inf component in either image
+    double meanDeg = 0, p50Deg = 0, p90Deg = 0, p99Deg = 0, p999Deg = 0, maxDeg = 0;
+    int maxX = -1, maxY = -1;    // where the largest angle is
+};
+VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image& primA, const Image& primB);
+
 // ---------------------------------------------------------------------------
 // Renderers
 
@@ -403,6 +417,18 @@ private:
 // ANALYTICALLY (exact derivatives of the perspective-correct interpolants;
 // the GPU uses 2x2-quad differences, dFdxFine) and runs the same shared
 // layer functions in the same order as the assembled GLSL program.
-Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view);
+//   CpuDerivatives::Analytic - the reference: exact derivatives;
+//   CpuDerivatives::Quad     - emulates dFdxFine/dFdyFine (differences
+//                              across the pixel's 2x2 quad), so a comparison
+//                              with the GPU isolates the driver's arithmetic
+//                              (texture LOD, filtering, float rounding).
+enum class CpuDerivatives { Analytic, Quad };
+struct CpuOptions {
+    CpuDerivatives derivatives = CpuDerivatives::Analytic;
+    // Texture LOD: the GL specification's log2 (reference), or llvmpipe's
+    // piecewise-linear approximation (sg::glsl::LodRule::FastLog2).
+    sg::glsl::LodRule textureLod = sg::glsl::LodRule::Exact;
+};
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view, const CpuOptions& options = {});
 
 } // namespace sg::render
