@@ -3,6 +3,8 @@
 // ../shared/data/meshes/blub) with area-weighted vertex normals, split
 // 1-to-4 at edge midpoints (positions, normals and UVs interpolated, normals
 // renormalized) until it has >= 900k triangles (3 splits: 909,312).
+// Loaded with sg::mesh::loadRenderMesh (normals: area-weighted, smooth across
+// UV seams).
 //
 // Rows: the fast generator reusing its buffers (the intended use), the fast
 // generator constructed per call (cold buffers: page faults included), the
@@ -12,19 +14,25 @@
 // kind of machine) is printed as an anchor only.
 //
 //   bench/tangents_bench [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]
+//   bench/tangents_bench --check-acos
+//
+// --check-acos instead verifies, for every one of the 2^31 floats in
+// [-1, 1], that the fast angle rounding MikkTSpace uses
+// (sg::mesh::mikktspaceAngleFromCos) equals (float)std::acos(double(c)),
+// the reference's expression (about 1-2 minutes).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <map>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
 
+#include "surfgrad/mesh_io.h"
 #include "surfgrad/tangents.h"
 
 namespace {
@@ -37,62 +45,10 @@ struct Mesh {
     std::vector<uint32_t> indices;
 };
 
-// Minimal OBJ reader for the benchmark input (v, vt, f with v/vt corners,
-// triangles): vertices are split per (v, vt) pair. Normals: area-weighted
-// per position, shared across UV seams.
-Mesh readObj(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw std::runtime_error("cannot open " + path);
-    std::vector<glm::vec3> v;
-    std::vector<glm::vec2> vt;
-    std::vector<std::pair<uint32_t, uint32_t>> corners;
-    std::string line;
-    while (std::getline(in, line)) {
-        std::istringstream ls(line);
-        std::string tag;
-        ls >> tag;
-        if (tag == "v") {
-            glm::vec3 p;
-            ls >> p.x >> p.y >> p.z;
-            v.push_back(p);
-        } else if (tag == "vt") {
-            glm::vec2 t;
-            ls >> t.x >> t.y;
-            vt.push_back(t);
-        } else if (tag == "f") {
-            std::string c;
-            int n = 0;
-            while (ls >> c) {
-                unsigned a = 0, b = 0;
-                if (std::sscanf(c.c_str(), "%u/%u", &a, &b) != 2 || a == 0 || b == 0 ||
-                    a > v.size() || b > vt.size())
-                    throw std::runtime_error(path + ": unsupported face corner '" + c + "'");
-                corners.emplace_back(a - 1, b - 1);
-                ++n;
-            }
-            if (n != 3) throw std::runtime_error(path + ": only triangles are supported");
-        }
-    }
-    Mesh m;
-    std::map<std::pair<uint32_t, uint32_t>, uint32_t> split;
-    std::vector<uint32_t> positionOf;
-    for (const auto& c : corners) {
-        auto [it, added] = split.emplace(c, uint32_t(m.positions.size()));
-        if (added) {
-            m.positions.push_back(v[c.first]);
-            m.uvs.push_back(vt[c.second]);
-            positionOf.push_back(c.first);
-        }
-        m.indices.push_back(it->second);
-    }
-    std::vector<glm::vec3> acc(v.size(), glm::vec3(0.0f));
-    for (size_t t = 0; t < corners.size(); t += 3) {
-        const glm::vec3 a = v[corners[t].first], b = v[corners[t + 1].first], c = v[corners[t + 2].first];
-        const glm::vec3 n = glm::cross(b - a, c - a); // length = 2 area
-        for (int i = 0; i < 3; ++i) acc[corners[t + size_t(i)].first] += n;
-    }
-    for (uint32_t p : positionOf) m.normals.push_back(glm::normalize(acc[p]));
-    return m;
+Mesh loadMesh(const std::string& path) {
+    const sg::mesh::RenderMesh rm = sg::mesh::loadRenderMesh(path);
+    if (rm.uvSets.empty()) throw std::runtime_error(path + ": no UV set");
+    return {rm.positions, rm.normals, rm.uvSets[0], rm.indices};
 }
 
 // 1-to-4 split: one new vertex per (vertex pair) edge, shared by the two
@@ -137,6 +93,30 @@ std::vector<double> timeRuns(int runs, F&& f) {
 
 } // namespace
 
+// Every float in [-1, 1]: fast angle rounding == (float)acos(double).
+int checkAcos() {
+    uint64_t checked = 0, mismatches = 0;
+    const auto t0 = Clock::now();
+    for (const uint32_t sign : {0u, 0x80000000u}) {
+        for (uint32_t bits = 0; bits <= 0x3F800000u; ++bits) { // 0 .. 1.0f
+            const uint32_t b = bits | sign;
+            float c;
+            std::memcpy(&c, &b, sizeof c);
+            const float fast = sg::mesh::mikktspaceAngleFromCos(c);
+            const float ref = static_cast<float>(std::acos(static_cast<double>(c)));
+            if (std::memcmp(&fast, &ref, sizeof fast) != 0) {
+                if (mismatches < 10) std::printf("mismatch: cos %a: %a != %a\n", double(c), double(fast), double(ref));
+                ++mismatches;
+            }
+            ++checked;
+        }
+    }
+    std::printf("acos check: %llu floats in [-1, 1], %llu mismatches (%.0f s)\n",
+                static_cast<unsigned long long>(checked), static_cast<unsigned long long>(mismatches),
+                std::chrono::duration<double>(Clock::now() - t0).count());
+    return mismatches == 0 ? 0 : 1;
+}
+
 int main(int argc, char** argv) {
     std::string obj = std::string(SURFGRAD_DATA_DIR) + "/meshes/blub/blub_triangulated.obj";
     int runs = 9, oracleRuns = 3, splits = 3;
@@ -150,12 +130,13 @@ int main(int argc, char** argv) {
         else if (a == "--oracle-runs") oracleRuns = std::max(1, std::stoi(next()));
         else if (a == "--splits") splits = std::max(0, std::stoi(next()));
         else if (a == "--obj") obj = next();
+        else if (a == "--check-acos") return checkAcos();
         else {
-            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] | --check-acos\n", argv[0]);
             return 2;
         }
     }
-    Mesh m = readObj(obj);
+    Mesh m = loadMesh(obj);
     for (int s = 0; s < splits; ++s) m = split4(m);
     const double triangles = double(m.indices.size() / 3);
     std::printf("input: %s split 1-to-4 x%d: %zu triangles, %zu vertices\n", obj.c_str(), splits,

@@ -82,6 +82,8 @@ size_t validateInput(const MikkTSpaceInput& in) {
 
 } // namespace mikk
 
+float mikktspaceAngleFromCos(float cosine) { return mikk::acosRoundedToFloat(cosine); }
+
 namespace {
 
 using mikk::Vec3;

@@ -126,6 +126,12 @@ private:
 // check the fast path. Same preconditions and errors.
 std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& input);
 
+// The reference's rounding of a corner angle, (float)acos((double)cosine),
+// for cosine in [-1, 1] (clamp first), bit for bit, mostly without calling
+// libm's acos (see mesh/src/mikktspace_common.h). Exposed for the
+// exhaustive check (bench: tangents_bench --check-acos) and the tests.
+float mikktspaceAngleFromCos(float cosine);
+
 // Convenience: MikkTSpace tangents for `uvSet` of a RenderMesh (which must
 // have normals), stored into mesh.tangents (replacing any), with
 // mesh.tangentUvSet = uvSet. A vertex whose corners received different
