@@ -290,41 +290,50 @@ struct FactoredStencils {
 
 // ---- Limit samples -----------------------------------------------------------
 
-// Basis weights of one evaluation per sample: point indices and weights for
-// the value and both first derivatives.
+// Basis weights per sample: the value at the home location, the two first
+// derivatives a hair inside the home face (see evaluateLimit); each with
+// its own patch points (the two may fall into different patches).
 struct SampleTable {
-    std::vector<uint32_t> offsets; // samples + 1
-    std::vector<uint32_t> point;
+    std::vector<uint32_t> offsetsP, pointP, offsetsD, pointD;
     std::vector<float> wP, wDu, wDv;
 
     void clear() {
-        offsets.assign(1, 0);
-        point.clear();
+        offsetsP.assign(1, 0);
+        offsetsD.assign(1, 0);
+        pointP.clear();
+        pointD.clear();
         wP.clear();
         wDu.clear();
         wDv.clear();
     }
-    void add(const Far::ConstIndexArray& cvs, const float* p, const float* du, const float* dv, uint32_t pointBase) {
+    void addValue(const Far::ConstIndexArray& cvs, const float* p) {
         for (int k = 0; k < cvs.size(); ++k) {
-            point.push_back(pointBase + uint32_t(cvs[k]));
+            pointP.push_back(uint32_t(cvs[k]));
             wP.push_back(p[k]);
+        }
+        offsetsP.push_back(uint32_t(pointP.size()));
+    }
+    void addDerivatives(const Far::ConstIndexArray& cvs, const float* du, const float* dv) {
+        for (int k = 0; k < cvs.size(); ++k) {
+            pointD.push_back(uint32_t(cvs[k]));
             wDu.push_back(du[k]);
             wDv.push_back(dv[k]);
         }
-        offsets.push_back(uint32_t(point.size()));
+        offsetsD.push_back(uint32_t(pointD.size()));
     }
     template <class V>
     void evaluate(const V* points, V* value, V* du, V* dv) const {
-        const size_t n = offsets.size() - 1;
+        const size_t n = offsetsP.size() - 1;
         for (size_t s = 0; s < n; ++s) {
-            V a(0.0f), b(0.0f), c(0.0f);
-            for (uint32_t k = offsets[s]; k < offsets[s + 1]; ++k) {
-                const V& x = points[point[k]];
-                a += wP[k] * x;
+            V a(0.0f);
+            for (uint32_t k = offsetsP[s]; k < offsetsP[s + 1]; ++k) a += wP[k] * points[pointP[k]];
+            value[s] = a;
+            V b(0.0f), c(0.0f);
+            for (uint32_t k = offsetsD[s]; k < offsetsD[s + 1]; ++k) {
+                const V& x = points[pointD[k]];
                 b += wDu[k] * x;
                 c += wDv[k] * x;
             }
-            if (value) value[s] = a;
             du[s] = b;
             dv[s] = c;
         }
@@ -337,6 +346,19 @@ struct SampleTable {
 inline float clampParam(float x) {
     assert(std::isfinite(x));
     return std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f;
+}
+
+// OpenSubdiv 3.5 scales patch derivatives by 2^depth, but a patch of a
+// non-quad base face lives in a ptex sub-face that is already one level
+// down (PatchParam::GetParamFraction uses depth - NonQuadRoot()), so its
+// derivatives come out per half a ptex unit. Rescale to per ptex unit (the
+// finite-difference test in tests/mesh/subdivision_test.cpp checks it).
+void toPtexUnits(const Far::PatchParam& param, int n, float* du, float* dv) {
+    if (!param.NonQuadRoot()) return;
+    for (int k = 0; k < n; ++k) {
+        du[k] *= 0.5f;
+        dv[k] *= 0.5f;
+    }
 }
 
 glm::vec3 safeNormal(const glm::vec3& du, const glm::vec3& dv, const glm::vec3& fallback) {
@@ -360,7 +382,8 @@ struct Subdivider::Impl {
     LimitFrame frame;
     detail::RenderSplit split;
     std::vector<uint32_t> renderToRefined;
-    std::vector<uint32_t> smoothGroup; // per render vertex (non-limit normals)
+    std::vector<uint32_t> smoothGroup; // per render vertex: first copy with the same (vertex, sector)
+    std::vector<uint32_t> positionRep; // per render vertex: first copy of the same refined vertex
     SubdivisionTimings timings;
 
     // Reused between builds.
@@ -386,6 +409,15 @@ struct Subdivider::Impl {
     void locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex, std::vector<glm::vec2>& cornerUV) const;
     void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace);
     void buildRender(const Far::TopologyRefiner& refiner);
+    // Copies of one vertex evaluated from different home faces differ in the
+    // last bits; make them bitwise equal (no cracks): positions per refined
+    // vertex, normals per smooth group.
+    void unifyCopies(glm::vec3* pos, glm::vec3* nrm) const {
+        for (size_t r = 0; r < positionRep.size(); ++r) {
+            pos[r] = pos[positionRep[r]];
+            nrm[r] = nrm[smoothGroup[r]];
+        }
+    }
 };
 
 namespace {
@@ -674,7 +706,12 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     // Isolation: at least N (every level-N vertex on a patch corner, where
     // patches interpolate the limit exactly) and at least the largest finite
     // crease/corner sharpness (semi-sharp features are exact only when
-    // isolated that deep); OpenSubdiv caps it at 10.
+    // isolated that deep); OpenSubdiv caps it at 10. At least 5: Gregory
+    // end caps approximate the tangent plane around extraordinary vertices,
+    // better the deeper they sit, while float patch points lose precision
+    // the deeper they sit. On spot, vs OpenSubdiv's limit masks, the worst
+    // normal is off by 4.5e-3 rad at isolation 3, 1.6e-3 at 4, 9.7e-4 at 5
+    // and 3.4e-3 at 6 (tests/mesh/subdivision_test.cpp).
     float maxSharp = 0.0f;
     for (const EdgeCrease& c : cage.creases) {
         if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
@@ -682,7 +719,7 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     for (const VertexCorner& c : cage.corners) {
         if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
     }
-    const int isolation = std::clamp(std::max({N, 2, int(std::ceil(maxSharp))}), 2, 10);
+    const int isolation = std::clamp(std::max({N, 5, int(std::ceil(maxSharp))}), 5, 10);
     std::unique_ptr<Far::TopologyRefiner> adaptive = createRefiner(descriptor, settings.options, file);
     Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
     popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
@@ -738,7 +775,18 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     buildRender(uniform);
     timings.render = sw.lap();
     const size_t nR = split.renderFirstCorner.size();
-    // Vertex samples.
+    // Derivative locations: the corner moved kInward of the way to its
+    // face's centre. At the corner itself the derivatives of an end-cap
+    // patch can be singular (Gregory weights are 0/0 there; a sharp corner
+    // of a one-face sector came out with a flipped normal), and a corner on
+    // a sharp crease belongs to patches on both sides: a point just inside
+    // the home face picks that face's side. The shift is 2^-12 of the face's
+    // size, so derivatives move by O(2^-12 h |P''|), far below float noise
+    // in the tangent plane.
+    constexpr float kInward = 1.0f / 4096.0f;
+    std::vector<uint32_t> faceOf = detail::cornerFaces(offsets);
+    std::vector<glm::vec2> derivUV(nR);
+    std::vector<const Far::PatchMap::Handle*> derivHandle(nR);
     samples.clear();
     float wP[20], wDu[20], wDv[20];
     frame = LimitFrame();
@@ -746,10 +794,30 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     frame.ptexUV.resize(nR);
     for (size_t r = 0; r < nR; ++r) {
         uint32_t c = split.renderFirstCorner[r];
+        uint32_t f = faceOf[c];
+        glm::vec2 centre(0.0f);
+        bool onePtex = true;
+        for (uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
+            centre += cornerUV[k];
+            onePtex &= cornerPtex[k] == cornerPtex[c];
+        }
+        centre /= float(offsets[f + 1] - offsets[f]);
+        // A level-0 polygon that is not a quad spans one ptex sub-face per
+        // corner; the corner sits at (0,0) of its sub-face, whose centre is (0.5,0.5).
+        if (!onePtex) centre = glm::vec2(0.5f);
+        glm::vec2 d = cornerUV[c] + kInward * (centre - cornerUV[c]);
+        derivUV[r] = glm::vec2(clampParam(d.x), clampParam(d.y));
+        derivHandle[r] = patchMap.FindPatch(int(cornerPtex[c]), derivUV[r].x, derivUV[r].y);
+        if (!derivHandle[r]) derivHandle[r] = cornerHandle[c]; // cannot happen inside a face with patches; stay safe
+
         const Far::PatchMap::Handle* h = cornerHandle[c];
         float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
         patches->EvaluateBasis(*h, u, v, wP, wDu, wDv);
-        samples.add(patches->GetPatchVertices(*h), wP, wDu, wDv, 0);
+        samples.addValue(patches->GetPatchVertices(*h), wP);
+        patches->EvaluateBasis(*derivHandle[r], derivUV[r].x, derivUV[r].y, wP, wDu, wDv);
+        int n = patches->GetPatchVertices(*derivHandle[r]).size();
+        toPtexUnits(patches->GetPatchParam(*derivHandle[r]), n, wDu, wDv);
+        samples.addDerivatives(patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
         frame.ptexFace[r] = cornerPtex[c];
         frame.ptexUV[r] = glm::vec2(u, v);
     }
@@ -768,10 +836,13 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         // Fallback for a degenerate limit point: the refined face normal.
         render.normals[r] = safeNormal(frame.dPdu[r], frame.dPdv[r], render.normals[r]);
     }
+    unifyCopies(render.positions.data(), render.normals.data());
     frame.morphDPdu.resize(cage.morphTargets.size());
     frame.morphDPdv.resize(cage.morphTargets.size());
     for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
         evalVec3(cage.morphTargets[t].positionDeltas, render.morphTargets[t].positionDeltas.data(), frame.morphDPdu[t], frame.morphDPdv[t]);
+        std::vector<glm::vec3>& d = render.morphTargets[t].positionDeltas;
+        for (size_t r = 0; r < nR; ++r) d[r] = d[positionRep[r]];
     }
     // UV sets: static, so interpolated once through all adaptive levels
     // (concatenated, as the patch table indexes them) plus local points.
@@ -802,17 +873,21 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         frame.dUVdv[s].resize(nR);
         for (size_t r = 0; r < nR; ++r) {
             uint32_t c = split.renderFirstCorner[r];
-            const Far::PatchMap::Handle* h = cornerHandle[c];
-            float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
-            patches->EvaluateBasisFaceVarying(*h, u, v, wP, wDu, wDv, nullptr, nullptr, nullptr, ch);
-            Far::ConstIndexArray cvs = patches->GetPatchFVarValues(*h, ch);
-            glm::vec2 p(0.0f), du(0.0f), dv(0.0f);
-            for (int k = 0; k < cvs.size(); ++k) {
-                const glm::vec2& x = values[size_t(cvs[k])];
-                p += wP[k] * x;
-                du += wDu[k] * x;
-                dv += wDv[k] * x;
-            }
+            auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value, glm::vec2& du, glm::vec2& dv) {
+                patches->EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr, nullptr, ch);
+                Far::ConstIndexArray cvs = patches->GetPatchFVarValues(*h, ch);
+                toPtexUnits(patches->GetPatchFVarPatchParam(*h, ch), cvs.size(), wDu, wDv);
+                value = du = dv = glm::vec2(0.0f);
+                for (int k = 0; k < cvs.size(); ++k) {
+                    const glm::vec2& x = values[size_t(cvs[k])];
+                    value += wP[k] * x;
+                    du += wDu[k] * x;
+                    dv += wDv[k] * x;
+                }
+            };
+            glm::vec2 p, du, dv, unused;
+            evalUv(cornerHandle[c], glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y)), p, unused, unused);
+            evalUv(derivHandle[r], derivUV[r], unused, du, dv);
             outUV[r] = p;
             frame.dUVdu[s][r] = du;
             frame.dUVdv[s][r] = dv;
@@ -859,6 +934,15 @@ void Subdivider::Impl::buildRender(const Far::TopologyRefiner& refiner) {
         for (uint32_t r = 0; r < nR; ++r) {
             uint64_t key = (uint64_t(renderToRefined[r]) << 32) | (needSectors ? sector[split.renderFirstCorner[r]] : 0u);
             smoothGroup[r] = firstOfKey.emplace(key, r).first->second;
+        }
+    }
+    positionRep.resize(nR);
+    {
+        std::vector<uint32_t> first(refined.positions.size(), UINT32_MAX);
+        for (uint32_t r = 0; r < nR; ++r) {
+            uint32_t& f = first[renderToRefined[r]];
+            if (f == UINT32_MAX) f = r;
+            positionRep[r] = f;
         }
     }
     computeVertexNormals(render, smoothGroup);
@@ -1018,6 +1102,7 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
         m.samples.evaluate(m.points.data(), out.positions.data(), du, dv);
         out.normals.resize(nR);
         for (size_t r = 0; r < nR; ++r) out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+        m.unifyCopies(out.positions.data(), out.normals.data());
         return;
     }
     m.points.resize(m.uniformStencils.numPoints);
