@@ -1,0 +1,222 @@
+// Feature maps: normal-map features (creases, grooves, seams) that stay sharp
+// at any magnification. Parilov, Rosenberg, Zorin, "Real-time rendering of
+// normal maps with discontinuities" (TR2005-872: straight segments) and
+// Parilov, Zorin, "Real-Time Rendering of Textures with Feature Curves"
+// (TOG 2008: quadratic Bezier curves).
+//
+// A feature-curve network (surfgrad/curves.h) is baked into a small set of
+// maps: the distance to the curves and its (smoothed) gradient sampled at
+// texel corners, and per texel a configuration (up to two discontinuity
+// segments) with a signature (where they cross the texel edges and, for
+// curves, their tangent angles). At render time the shared evaluator
+// (shaders/sg/features/*.glsl, compiled here as C++ too) reconstructs the
+// distance d and its unit gradient at any point, exactly 0 on the curves and
+// never interpolating across one; a profile h(d) turns them into a
+// texture-space derivative (surfgrad composition) or a blended normal
+// (the paper's Eq. 1).
+//
+// CONVENTIONS (used by every function here and in the shaders)
+//  - Texel space: x right, y up, in texels. Texel (i, j) covers
+//    [i, i+1] x [j, j+1]; a map of size N covers [0, N]^2. Grid corner
+//    (i, j), 0 <= i, j <= N, is the point (i, j). A renderer with uv in
+//    [0, 1]^2 (v up) passes texelPos = uv * N.
+//  - Distances and widths are in texels; gradients are texel-space vectors.
+//  - Input curves map to texel space by texel = scale * input + offset
+//    (TexelTransform); font and SVG loaders already give y up.
+//
+// GPU LAYOUT (GpuFeatureMaps, read by shaders/sg/features/fetch.glsl with
+// texelFetch only; no filtering, mip level 0):
+//   corners  RGBA32F  (N+1) x (N+1): (d, grad.x, grad.y, float(config word))
+//   edges    RGBA32UI N x N: edge words of edges S, E, N, W of each texel
+// Row j of each array is texture row j (the first row uploaded, t = 0).
+// Words are described in shaders/sg/features/layout.glsl. 32 bytes per
+// texel on the GPU (plus one row and column of corners).
+//
+// FILE LAYOUT (save/load, OpenEXR through OpenImageIO): one image of
+// (N+1) x (N+1) pixels, pixel (i, j) = grid corner (i, j), scanline 0 = the
+// top row (j = N) so viewers show the map upright. FLOAT channels:
+//   d, gx, gy   distance and gradient at the corner
+//   left        1 when the corner lies left of its nearest curve, else 0
+//   seg         configuration bits 0-11 of texel (i, j) (layout.glsl);
+//               0 in the last row and column
+//   hT, vT      point on the horizontal edge (i, j)-(i+1, j) / vertical
+//               edge (i, j)-(i, j+1): position in [2^-10, 1 - 2^-10] on the
+//               16-bit grid, or -1 when the edge has no point
+//   hA, vA      (quadratic mode only) tangent angle at that point, radians
+//               in [-pi/2, pi/2] on the 16-bit grid (0 without a point)
+// Metadata: surfgrad:featureMapsVersion (int), surfgrad:mode ("linear" or
+// "quadratic"), surfgrad:size (int N), surfgrad:inputToTexelScaleX/Y and
+// surfgrad:inputToTexelOffsetX/Y (double), surfgrad:bandTexels (double),
+// surfgrad:smoothIterations (int), surfgrad:source (string),
+// surfgrad:layout (a one-line description). Loading checks all of it.
+#pragma once
+
+#include <cassert>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "surfgrad/curves.h"
+#include "surfgrad/glsl_cpp.h"
+
+// The shared evaluator, compiled as C++. Samplers over CPU arrays first, so
+// fetch.glsl's texelFetch/textureSize calls resolve to them.
+namespace sg::glsl {
+struct SgFeatCornerSampler {
+    const float* rgba = nullptr; // (width x height) RGBA texels, row-major, row 0 first
+    int width = 0;
+    int height = 0;
+};
+struct SgFeatEdgeSampler {
+    const uint32_t* rgba = nullptr;
+    int width = 0;
+    int height = 0;
+};
+inline vec4 texelFetch(const SgFeatCornerSampler& s, ivec2 p, int /*lod*/) {
+    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    const float* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
+    return vec4(t[0], t[1], t[2], t[3]);
+}
+inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
+    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
+    return uvec4(t[0], t[1], t[2], t[3]);
+}
+inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) { return ivec2(s.width, s.height); }
+#include "sg/features/fetch.glsl"
+#include "sg/features/profile.glsl"
+} // namespace sg::glsl
+
+namespace sg::features {
+
+// Version of the feature-map format and evaluator contract.
+inline constexpr int kFeatureMapsVersion = 1;
+// Largest map size accepted by bake and load (texels per side).
+inline constexpr int kMaxFeatureMapSize = 4096;
+
+enum class BakeMode {
+    Linear,   // straight segments between edge points (TR2005); interactive
+    Quadratic // quadratic Bezier segments with tangent angles (TOG 2008)
+};
+const char* toString(BakeMode m);
+
+// texel = scale * input + offset (componentwise).
+struct TexelTransform {
+    glm::dvec2 scale{1.0, 1.0};
+    glm::dvec2 offset{0.0, 0.0};
+    glm::dvec2 apply(glm::dvec2 p) const { return scale * p + offset; }
+};
+
+struct BakeOptions {
+    int size = 512; // N, texels per side, 1..kMaxFeatureMapSize
+    BakeMode mode = BakeMode::Linear;
+    // fit: the network's control-point bounds are scaled uniformly and
+    // centred into [margin, N - margin]^2 (y stays up). Otherwise
+    // `transform` is used as given (tests pass texel-space networks with the
+    // identity).
+    bool fit = true;
+    double marginTexels = 8.0;
+    TexelTransform transform;
+    // Distances are exact (brute force, double) up to bandTexels and clamped
+    // to it beyond, where the gradient is 0 before smoothing. Profiles must
+    // be narrower than the band (width <= band - 1.5 keeps the bilinear
+    // interpolation of clamped corners out of the profile).
+    double bandTexels = 16.0;
+    // Constrained Laplacian smoothing of the gradient (TOG 2008 sec. 4).
+    int smoothIterations = 10;
+    // Called with a phase name and its completed fraction (0..1) at most
+    // every few milliseconds; may be empty.
+    std::function<void(const char* phase, double fraction)> progress;
+};
+
+// What the bake did (for --json and the tests).
+struct BakeStats {
+    int size = 0;
+    TexelTransform inputToTexel;
+    int texelsWithFeatures = 0;   // texels with a segment or an edge point
+    int texelsWithSegments = 0;
+    int segmentsKept = 0;         // discontinuity segments stored
+    int segmentsDropped = 0;      // removed by the transformation table (rule 2)
+    int edgePointsMerged = 0;     // crossings merged into an existing edge point (rule 1)
+    int curvedSegments = 0;       // stored as quadratic Beziers
+    int straightenedThetaMin = 0; // theta < theta_min (TOG 2008 sec. 5.2)
+    int straightenedFlat = 0;     // deviation from the chord below 1e-3 texels
+    int eq7Failures = 0;          // curved segments failing the Eq. 7 safety test
+    int invalidTexels = 0;        // texels whose signature needed the optimisation
+    int optimizedTexels = 0;      // ... and were made valid by it
+    int fallbackTexels = 0;       // ... and were made valid by straightening instead
+    double seconds = 0.0;
+    double secondsScan = 0.0, secondsOptimize = 0.0, secondsDistance = 0.0, secondsSmooth = 0.0;
+};
+
+struct GpuFeatureMaps;
+
+// The baked maps in their canonical (file) form; see the file layout above.
+// Arrays over grid corners have (N+1)^2 entries, index j * (N+1) + i.
+struct FeatureMaps {
+    int size = 0;
+    BakeMode mode = BakeMode::Linear;
+    TexelTransform inputToTexel;
+    double bandTexels = 16.0;
+    int smoothIterations = 10;
+    std::string source;
+
+    std::vector<float> dist, gradX, gradY;
+    std::vector<uint8_t> left;
+    std::vector<uint16_t> seg;                     // configuration bits 0-11 of texel (i, j)
+    std::vector<float> hPos, hAngle, vPos, vAngle; // edge points (see file layout)
+
+    int gridSize() const { return size + 1; }
+    size_t index(int i, int j) const { return size_t(j) * size_t(size + 1) + size_t(i); }
+    // Full configuration word of texel (i, j) (0 <= i, j < N): segments,
+    // edge flags and corner side bits (layout.glsl).
+    uint32_t configWord(int i, int j) const;
+    // Edge words of texel (i, j): S, E, N, W.
+    void edgeWords(int i, int j, uint32_t out[4]) const;
+    GpuFeatureMaps packGpu() const;
+
+    // Bytes per texel of the GPU layout and of the in-memory canonical form.
+    static constexpr double kGpuBytesPerTexel = 32.0;
+    double canonicalBytesPerTexel() const;
+};
+
+// The two textures of the GPU layout (see above), ready for glTexImage2D.
+struct GpuFeatureMaps {
+    int size = 0;
+    std::vector<float> corners;  // (N+1)^2 * 4
+    std::vector<uint32_t> edges; // N^2 * 4
+    glsl::SgFeatCornerSampler cornerSampler() const { return {corners.data(), size + 1, size + 1}; }
+    glsl::SgFeatEdgeSampler edgeSampler() const { return {edges.data(), size, size}; }
+};
+
+// Exactly what the shader computes at texel-space texelPos (the C++ build of
+// sgFeatSample): distance (texels), unit gradient, side.
+glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos);
+
+// Bakes a network. Throws sg::io::InputError for bad input: non-finite or
+// absurd coordinates, coincident control points (a zero-length segment, a
+// quadratic whose middle point coincides with an end), a quadratic that
+// folds back on itself, a size outside 1..kMaxFeatureMapSize.
+FeatureMaps bake(const CurveNetwork& net, const BakeOptions& options, BakeStats* stats = nullptr);
+
+// OpenEXR storage (atomic write; load validates every channel, value and
+// metadata field and throws sg::io::InputError naming what is wrong).
+void save(const FeatureMaps& maps, const std::filesystem::path& path);
+FeatureMaps load(const std::filesystem::path& path);
+// Same checks on an in-memory file (fuzzing); `name` appears in messages.
+FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name);
+
+// Named profiles: "vgroove", "crease", "ridge", "step", "seam", or
+// "table:h0,h1,...,hk" (2..16 heights in units of depth, at d = w * i / k).
+// depth, w0, w in texels. Throws sg::io::InputError (file "profile") for an
+// unknown name, a bad table, or w <= 0, w0 < 0, non-finite values.
+glsl::SgFeatProfile makeProfile(std::string_view name, float depth, float w0, float w);
+// Names of the built-in profiles, for messages and --help.
+std::vector<std::string> profileNames();
+
+} // namespace sg::features

@@ -1,0 +1,113 @@
+// Internal state of the feature-map bake (features/src/bake*.cpp), in texel
+// space. Parilov, Zorin (TOG 2008) section 4; Parilov, Rosenberg, Zorin
+// (TR2005-872) section 4.1.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "bake_geometry.h"
+#include "surfgrad/feature_maps.h"
+
+namespace sg::features::detail {
+
+// The six segment types of a valid configuration: a segment joins two
+// different edges (TOG 2008 Fig. 5); pairs 0-3 cut a corner (the diagonals
+// of the 8-triangle partition), 4-5 cross the texel through the centre.
+inline constexpr int kPairCount = 6;
+inline constexpr int kPairEdges[kPairCount][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {3, 1}};
+int pairOf(int edgeA, int edgeB); // -1 when edgeA == edgeB
+
+// Transformation table (TOG 2008 sec. 4, Fig. 6 left): for a valid
+// configuration (a set of at most two segment types, as a 6-bit mask) and a
+// new segment type, the resulting valid configuration. Built from one rule:
+// a segment already present merges (its edge points average); with room
+// (fewer than two segments) the new one is added; otherwise the two of the
+// three segments that touch the most edges are kept (ties keep the old
+// ones), so as many edge points as possible stay connected.
+uint8_t transition(uint8_t mask, int pair);
+
+// Quantization of edge signatures to the 16-bit grids of layout.glsl.
+double quantizePos(double t);     // also clamps to [SG_FEAT_EDGE_MARGIN, 1 - margin]
+double quantizeAngle(double theta);
+uint32_t packEdgeWord(double posQ, double angleQ);
+
+// Accumulates the crossings of one texel edge: centre of mass of the
+// positions, and the mean of the tangent angles (doubled-angle vectors, as
+// tangent lines have no orientation). Rule 1 of TOG 2008 sec. 4.
+struct EdgeAcc {
+    double sumPos = 0.0, sumCos = 0.0, sumSin = 0.0;
+    int count = 0;
+};
+
+// The grid being baked.
+struct Grid {
+    int n = 0; // texels per side
+    // Edges over grid corners (index j * (n+1) + i): h = (i,j)-(i+1,j),
+    // v = (i,j)-(i,j+1).
+    std::vector<EdgeAcc> hAcc, vAcc;
+    std::vector<double> hPos, hAng, vPos, vAng; // final, quantized; pos < 0: no point
+    // Per texel (index j * n + i).
+    std::vector<uint8_t> segMask;     // segment types present
+    std::vector<uint8_t> quadMask;    // ... coming from quadratic input (curve candidates)
+    std::vector<uint8_t> straightMask;// ... forced straight (optimisation fallback)
+    // Quadratic mode: for each (texel, segment type) with curve input, the
+    // mean texel-local position of the input curve's point farthest from
+    // the segment's chord (the fidelity target of the optimisation).
+    struct Target {
+        dvec2 sum{0.0};
+        int count = 0;
+    };
+    std::unordered_map<uint64_t, Target> targets;
+    static uint64_t targetKey(size_t texel, int pair) { return uint64_t(texel) * kPairCount + uint64_t(pair); }
+
+    size_t ci(int i, int j) const { return size_t(j) * size_t(n + 1) + size_t(i); }
+    size_t ti(int i, int j) const { return size_t(j) * size_t(n) + size_t(i); }
+    // Edge e (S, E, N, W) of texel (i, j): position (< 0: none) and angle.
+    double& pos(int i, int j, int e);
+    double& ang(int i, int j, int e);
+};
+
+// A texel decoded for validation (mirrors sgFeatDecode in double).
+struct LocalTexel {
+    dvec2 q[4];
+    double t[4];
+    double theta[4];
+    bool pt[4];
+    int nseg = 0;
+    int a[2] = {0, 0}, b[2] = {0, 0};
+    int pair[2] = {0, 0};
+    bool candidate[2] = {false, false}; // quadratic input, not forced straight
+    bool curved[2] = {false, false};    // final (after the straightening rules)
+    Quad seg[2];
+    bool hasTarget[2] = {false, false};
+    dvec2 target[2];
+};
+
+LocalTexel decodeTexel(const Grid& g, int i, int j);
+
+struct ValidationCounters {
+    int thetaMin = 0, flat = 0, eq7 = 0;
+};
+
+// Applies the straightening rules (theta_min of sec. 5.2, flat segments) to
+// t.curved and returns the constraint violation of the texel's signature
+// (0 = valid: every curved segment has its tangent intersection inside the
+// texel, a safe side test (Eq. 7 or the exact test), and the 8-triangle
+// partition is well formed for the runtime schemes of sec. 5.3).
+double validateTexel(LocalTexel& t, ValidationCounters* counters);
+
+// Thin-plate energy (Eq. 3) of segment s of t as implied by its signature.
+double segmentEnergy(const LocalTexel& t, int s);
+
+// Eq. 7 safety test for a curved segment (true = the implicit side test
+// cannot be fooled by the parabola's second branch).
+bool eq7Safe(const Quad& c);
+
+// Runs the signature optimisation of TOG 2008 sec. 4 on every texel whose
+// signature is invalid, straightening what it cannot repair.
+void optimizeSignatures(Grid& g, BakeStats& stats,
+                        const std::function<void(const char*, double)>& progress);
+
+} // namespace sg::features::detail

@@ -1,0 +1,122 @@
+// Feature maps: packing for the GPU, the C++ sampling entry point and the
+// named profiles (see surfgrad/feature_maps.h).
+#include <charconv>
+#include <cmath>
+
+#include "bake_internal.h"
+#include "surfgrad/feature_maps.h"
+#include "surfgrad/io.h"
+
+namespace sg::features {
+
+uint32_t FeatureMaps::configWord(int i, int j) const {
+    assert(i >= 0 && j >= 0 && i < size && j < size);
+    uint32_t w = seg[index(i, j)] & 0x0FFFu;
+    // Edge flags: S, E, N, W.
+    if (hPos[index(i, j)] >= 0.0f) w |= 1u << 12;
+    if (vPos[index(i + 1, j)] >= 0.0f) w |= 1u << 13;
+    if (hPos[index(i, j + 1)] >= 0.0f) w |= 1u << 14;
+    if (vPos[index(i, j)] >= 0.0f) w |= 1u << 15;
+    // Corner side bits: SW, SE, NE, NW.
+    if (left[index(i, j)]) w |= 1u << 16;
+    if (left[index(i + 1, j)]) w |= 1u << 17;
+    if (left[index(i + 1, j + 1)]) w |= 1u << 18;
+    if (left[index(i, j + 1)]) w |= 1u << 19;
+    if (mode == BakeMode::Quadratic) w |= 1u << 20;
+    return w;
+}
+
+void FeatureMaps::edgeWords(int i, int j, uint32_t out[4]) const {
+    auto word = [](float pos, float angle) {
+        return pos >= 0.0f ? detail::packEdgeWord(pos, angle) : 0u;
+    };
+    out[0] = word(hPos[index(i, j)], hAngle[index(i, j)]);
+    out[1] = word(vPos[index(i + 1, j)], vAngle[index(i + 1, j)]);
+    out[2] = word(hPos[index(i, j + 1)], hAngle[index(i, j + 1)]);
+    out[3] = word(vPos[index(i, j)], vAngle[index(i, j)]);
+}
+
+GpuFeatureMaps FeatureMaps::packGpu() const {
+    GpuFeatureMaps g;
+    g.size = size;
+    const int m = size + 1;
+    g.corners.assign(size_t(m) * size_t(m) * 4, 0.0f);
+    g.edges.assign(size_t(size) * size_t(size) * 4, 0u);
+    for (int j = 0; j < m; ++j) {
+        for (int i = 0; i < m; ++i) {
+            size_t k = index(i, j);
+            float* c = &g.corners[k * 4];
+            c[0] = dist[k];
+            c[1] = gradX[k];
+            c[2] = gradY[k];
+            c[3] = (i < size && j < size) ? float(configWord(i, j)) : 0.0f;
+        }
+    }
+    for (int j = 0; j < size; ++j) {
+        for (int i = 0; i < size; ++i) {
+            edgeWords(i, j, &g.edges[(size_t(j) * size_t(size) + size_t(i)) * 4]);
+        }
+    }
+    return g;
+}
+
+double FeatureMaps::canonicalBytesPerTexel() const {
+    // d, gx, gy, seg, hT, vT (+ hA, vA) as float, left as a byte, per corner.
+    double perCorner = (mode == BakeMode::Quadratic ? 8.0 : 6.0) * 4.0 + 1.0;
+    double corners = double(size + 1) * double(size + 1);
+    return perCorner * corners / (double(size) * double(size));
+}
+
+glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos) {
+    return glsl::sgFeatSample(maps.cornerSampler(), maps.edgeSampler(), texelPos);
+}
+
+std::vector<std::string> profileNames() { return {"vgroove", "crease", "ridge", "step", "seam", "table:h0,h1,..."}; }
+
+glsl::SgFeatProfile makeProfile(std::string_view name, float depth, float w0, float w) {
+    glsl::SgFeatProfile p{};
+    p.depth = depth;
+    p.w0 = w0;
+    p.w = w;
+    p.tableCount = 0;
+    for (float& v : p.table) v = 0.0f;
+    if (!std::isfinite(depth) || !std::isfinite(w0) || !std::isfinite(w) || !(w > 0.0f) || w0 < 0.0f) {
+        throw io::InputError("profile", std::string(name), "depth, w0 and w must be finite with w > 0 and w0 >= 0");
+    }
+    static const char* kNames[] = {"vgroove", "crease", "ridge", "step", "seam"};
+    for (int k = 0; k < 5; ++k) {
+        if (name == kNames[k]) {
+            p.kind = k;
+            return p;
+        }
+    }
+    const std::string_view prefix = "table:";
+    if (name.substr(0, prefix.size()) == prefix) {
+        p.kind = SG_FEAT_PROFILE_TABLE;
+        std::string_view rest = name.substr(prefix.size());
+        int count = 0;
+        while (!rest.empty()) {
+            size_t comma = rest.find(',');
+            std::string_view tok = rest.substr(0, comma);
+            float v = 0.0f;
+            auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
+            if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v) || std::fabs(v) > 1e6f) {
+                throw io::InputError("profile", std::string(name), "table value '" + std::string(tok) + "' is not a finite number");
+            }
+            if (count >= SG_FEAT_TABLE_MAX) {
+                throw io::InputError("profile", std::string(name), "more than " + std::to_string(SG_FEAT_TABLE_MAX) + " table values");
+            }
+            p.table[count++] = v;
+            if (comma == std::string_view::npos) break;
+            rest = rest.substr(comma + 1);
+        }
+        if (count < 2) throw io::InputError("profile", std::string(name), "a table needs at least 2 values");
+        p.tableCount = count;
+        return p;
+    }
+    std::string names;
+    for (const auto& s : profileNames()) names += (names.empty() ? "" : ", ") + s;
+    throw io::InputError("profile", std::string(name), "unknown profile (one of: " + names + ")");
+}
+
+} // namespace sg::features

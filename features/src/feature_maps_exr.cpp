@@ -1,0 +1,299 @@
+// OpenEXR storage of baked feature maps (layout: surfgrad/feature_maps.h).
+// Loading treats the file as untrusted: sizes are checked before anything
+// is allocated, every channel and metadata field must be present with the
+// right type, every value must be finite and in range, configurations must
+// be consistent with the edge points, and in quadratic mode every curved
+// segment's signature must pass the same validation the bake applies, so
+// the runtime evaluator only ever sees data it was designed for.
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <memory>
+
+#include "bake_internal.h"
+#include "surfgrad/feature_maps.h"
+#include "surfgrad/io.h"
+
+namespace sg::features {
+
+namespace {
+
+const char* kLayout =
+    "surfgrad feature maps: (N+1)^2 grid corners, scanline 0 = top (j = N); d,gx,gy,left per corner; "
+    "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
+    "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
+
+std::vector<std::string> channelNames(BakeMode mode) {
+    std::vector<std::string> c{"d", "gx", "gy", "left", "seg", "hT", "vT"};
+    if (mode == BakeMode::Quadratic) {
+        c.push_back("hA");
+        c.push_back("vA");
+    }
+    return c;
+}
+
+std::string pixelName(int i, int j) { return "corner (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
+
+FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
+    using io::InputError;
+    if (!in) throw InputError(name, "", "not a readable image: " + OIIO::geterror());
+    if (std::string(in->format_name()) != "openexr") {
+        throw InputError(name, "", std::string("not an OpenEXR file (") + in->format_name() + ")");
+    }
+    const OIIO::ImageSpec& spec = in->spec();
+    auto intAttr = [&](const char* key) {
+        int v = 0;
+        if (!spec.getattribute(key, OIIO::TypeDesc::INT, &v)) {
+            throw InputError(name, std::string("metadata ") + key, "missing or not an integer");
+        }
+        return v;
+    };
+    auto doubleAttr = [&](const char* key) {
+        double v = 0;
+        if (!spec.getattribute(key, OIIO::TypeDesc::DOUBLE, &v) || !std::isfinite(v)) {
+            throw InputError(name, std::string("metadata ") + key, "missing or not a finite double");
+        }
+        return v;
+    };
+    auto stringAttr = [&](const char* key) {
+        const OIIO::ParamValue* p = spec.find_attribute(key, OIIO::TypeDesc::STRING);
+        if (!p) throw InputError(name, std::string("metadata ") + key, "missing or not a string");
+        return std::string(p->get_string());
+    };
+    FeatureMaps m;
+    int version = intAttr("surfgrad:featureMapsVersion");
+    if (version != kFeatureMapsVersion) {
+        throw InputError(name, "metadata surfgrad:featureMapsVersion",
+                         "version " + std::to_string(version) + " (this build reads " +
+                             std::to_string(kFeatureMapsVersion) + ")");
+    }
+    std::string mode = stringAttr("surfgrad:mode");
+    if (mode == "linear") m.mode = BakeMode::Linear;
+    else if (mode == "quadratic") m.mode = BakeMode::Quadratic;
+    else throw InputError(name, "metadata surfgrad:mode", "'" + mode + "' is neither linear nor quadratic");
+    m.size = intAttr("surfgrad:size");
+    if (m.size < 1 || m.size > kMaxFeatureMapSize) {
+        throw InputError(name, "metadata surfgrad:size", "must be 1.." + std::to_string(kMaxFeatureMapSize));
+    }
+    const int g = m.size + 1;
+    if (spec.width != g || spec.height != g || spec.depth != 1 || spec.x != 0 || spec.y != 0) {
+        throw InputError(name, "image", "must be " + std::to_string(g) + " x " + std::to_string(g) +
+                                            " pixels (size + 1) at origin 0 with depth 1");
+    }
+    m.inputToTexel.scale = {doubleAttr("surfgrad:inputToTexelScaleX"), doubleAttr("surfgrad:inputToTexelScaleY")};
+    m.inputToTexel.offset = {doubleAttr("surfgrad:inputToTexelOffsetX"), doubleAttr("surfgrad:inputToTexelOffsetY")};
+    if (m.inputToTexel.scale.x == 0.0 || m.inputToTexel.scale.y == 0.0) {
+        throw InputError(name, "metadata surfgrad:inputToTexelScale", "scale must be non-zero");
+    }
+    m.bandTexels = doubleAttr("surfgrad:bandTexels");
+    if (!(m.bandTexels >= 1.0 && m.bandTexels <= 1024.0)) {
+        throw InputError(name, "metadata surfgrad:bandTexels", "must be 1..1024");
+    }
+    m.smoothIterations = intAttr("surfgrad:smoothIterations");
+    if (m.smoothIterations < 0 || m.smoothIterations > 1000) {
+        throw InputError(name, "metadata surfgrad:smoothIterations", "must be 0..1000");
+    }
+    if (const OIIO::ParamValue* p = spec.find_attribute("surfgrad:source", OIIO::TypeDesc::STRING)) {
+        m.source = std::string(p->get_string());
+    }
+
+    auto names = channelNames(m.mode);
+    if (spec.nchannels != int(names.size())) {
+        throw InputError(name, "channels", "expected " + std::to_string(names.size()) + " channels for " + mode +
+                                               " maps, found " + std::to_string(spec.nchannels));
+    }
+    std::vector<int> slot(names.size(), -1);
+    for (size_t c = 0; c < names.size(); ++c) {
+        for (int k = 0; k < spec.nchannels; ++k) {
+            if (spec.channel_name(k) == names[c]) slot[c] = k;
+        }
+        if (slot[c] < 0) throw InputError(name, "channel " + names[c], "missing");
+        if (spec.channelformat(slot[c]) != OIIO::TypeDesc::FLOAT) {
+            throw InputError(name, "channel " + names[c], "must be 32-bit float");
+        }
+    }
+    const size_t nc = size_t(g) * size_t(g);
+    std::vector<float> px(nc * names.size());
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data())) {
+        throw InputError(name, "pixels", "cannot read: " + in->geterror());
+    }
+    m.dist.resize(nc);
+    m.gradX.resize(nc);
+    m.gradY.resize(nc);
+    m.left.resize(nc);
+    m.seg.resize(nc);
+    m.hPos.resize(nc);
+    m.vPos.resize(nc);
+    m.hAngle.assign(nc, 0.0f);
+    m.vAngle.assign(nc, 0.0f);
+    const double margin = double(SG_FEAT_EDGE_MARGIN);
+    for (int row = 0; row < g; ++row) {
+        int j = g - 1 - row; // scanline 0 = top
+        for (int i = 0; i < g; ++i) {
+            const float* p = &px[(size_t(row) * size_t(g) + size_t(i)) * names.size()];
+            auto ch = [&](size_t c) { return p[slot[c]]; };
+            size_t k = m.index(i, j);
+            auto bad = [&](const std::string& channel, const std::string& why) {
+                return InputError(name, pixelName(i, j) + " channel " + channel, why);
+            };
+            for (size_t c = 0; c < names.size(); ++c) {
+                if (!std::isfinite(ch(c))) throw bad(names[c], "not finite");
+            }
+            float d = ch(0), gx = ch(1), gy = ch(2), left = ch(3), seg = ch(4), hT = ch(5), vT = ch(6);
+            if (d < 0.0f || d > float(m.bandTexels) * 1.0001f) throw bad("d", "outside [0, band]");
+            if (gx * gx + gy * gy > 1.0002f) throw bad("gx", "gradient longer than 1");
+            if (left != 0.0f && left != 1.0f) throw bad("left", "must be 0 or 1");
+            if (seg < 0.0f || seg > 4095.0f || seg != std::floor(seg)) throw bad("seg", "not an integer in 0..4095");
+            m.dist[k] = d;
+            m.gradX[k] = gx;
+            m.gradY[k] = gy;
+            m.left[k] = uint8_t(left);
+            m.seg[k] = uint16_t(seg);
+            if ((i == m.size || j == m.size) && m.seg[k] != 0) throw bad("seg", "set outside the map (last row/column)");
+            auto checkPos = [&](float t, bool exists, const char* chName) {
+                if (t == -1.0f) return;
+                if (!exists) throw bad(chName, "point on an edge outside the map");
+                if (!(double(t) >= margin - 1e-7 && double(t) <= 1.0 - margin + 1e-7)) throw bad(chName, "position outside [2^-10, 1 - 2^-10]");
+                if (std::fabs(double(t) - detail::quantizePos(double(t))) > 1e-6) throw bad(chName, "position not on the 16-bit grid");
+            };
+            checkPos(hT, i < m.size, "hT");
+            checkPos(vT, j < m.size, "vT");
+            m.hPos[k] = hT;
+            m.vPos[k] = vT;
+            if (m.mode == BakeMode::Quadratic) {
+                float hA = ch(7), vA = ch(8);
+                for (auto [a, t, chName] : {std::tuple{hA, hT, "hA"}, std::tuple{vA, vT, "vA"}}) {
+                    if (std::fabs(a) > float(M_PI / 2) + 1e-6f) throw bad(chName, "angle outside [-pi/2, pi/2]");
+                    if (t == -1.0f && a != 0.0f) throw bad(chName, "angle without a point");
+                    if (std::fabs(double(a) - detail::quantizeAngle(double(a))) > 1e-6) throw bad(chName, "angle not on the 16-bit grid");
+                }
+                m.hAngle[k] = hA;
+                m.vAngle[k] = vA;
+            }
+        }
+    }
+    // Configurations: counts, distinct segment types, end points present,
+    // curved only in quadratic mode.
+    detail::Grid grid;
+    grid.n = m.size;
+    grid.hPos.assign(nc, -1.0);
+    grid.vPos.assign(nc, -1.0);
+    grid.hAng.assign(nc, 0.0);
+    grid.vAng.assign(nc, 0.0);
+    for (size_t k = 0; k < nc; ++k) {
+        grid.hPos[k] = m.hPos[k];
+        grid.vPos[k] = m.vPos[k];
+        grid.hAng[k] = m.hAngle[k];
+        grid.vAng[k] = m.vAngle[k];
+    }
+    grid.segMask.assign(size_t(m.size) * size_t(m.size), 0);
+    grid.quadMask.assign(size_t(m.size) * size_t(m.size), 0);
+    grid.straightMask.assign(size_t(m.size) * size_t(m.size), 0);
+    for (int j = 0; j < m.size; ++j) {
+        for (int i = 0; i < m.size; ++i) {
+            uint32_t w = m.seg[m.index(i, j)];
+            auto bad = [&](const std::string& why) { return InputError(name, "texel (" + std::to_string(i) + ", " + std::to_string(j) + ") seg", why); };
+            int count = int(w & 3u);
+            if (count > 2) throw bad("more than two segments");
+            uint32_t used = (count == 0) ? 0x3u : (count == 1 ? 0x7Fu : 0xFFFu);
+            if (w & ~used) throw bad("bits set for absent segments");
+            size_t ti = grid.ti(i, j);
+            for (int s = 0; s < count; ++s) {
+                int a = int((w >> (2 + 5 * s)) & 3u), b = int((w >> (4 + 5 * s)) & 3u);
+                bool curved = ((w >> (6 + 5 * s)) & 1u) != 0;
+                int pair = detail::pairOf(a, b);
+                if (pair < 0) throw bad("segment joins an edge to itself");
+                if (detail::kPairEdges[pair][0] != a) throw bad("segment end points not in canonical order");
+                if (grid.segMask[ti] & (1u << pair)) throw bad("two identical segments");
+                if (grid.pos(i, j, a) < 0.0 || grid.pos(i, j, b) < 0.0) throw bad("segment ends on an edge without a point");
+                if (curved && m.mode != BakeMode::Quadratic) throw bad("curved segment in linear maps");
+                grid.segMask[ti] |= uint8_t(1u << pair);
+                if (curved) grid.quadMask[ti] |= uint8_t(1u << pair);
+            }
+            if (count == 2) {
+                // Segments are stored in increasing type order (as the bake writes them).
+                int a0 = int((w >> 2) & 3u), b0 = int((w >> 4) & 3u), a1 = int((w >> 7) & 3u), b1 = int((w >> 9) & 3u);
+                if (detail::pairOf(a0, b0) > detail::pairOf(a1, b1)) throw bad("segments not in canonical order");
+            }
+            if (grid.quadMask[ti]) {
+                detail::LocalTexel t = detail::decodeTexel(grid, i, j);
+                double viol = detail::validateTexel(t, nullptr);
+                bool same = viol <= 0.0;
+                for (int s = 0; s < t.nseg; ++s) same = same && (t.curved[s] == t.candidate[s]);
+                if (!same) throw bad("curved segment with an invalid signature (TOG 2008 sec. 4-5)");
+            }
+        }
+    }
+    return m;
+}
+
+} // namespace
+
+void save(const FeatureMaps& m, const std::filesystem::path& path) {
+    using io::InputError;
+    const int g = m.size + 1;
+    auto names = channelNames(m.mode);
+    const size_t nch = names.size();
+    std::vector<float> px(size_t(g) * size_t(g) * nch);
+    for (int row = 0; row < g; ++row) {
+        int j = g - 1 - row;
+        for (int i = 0; i < g; ++i) {
+            size_t k = m.index(i, j);
+            float* p = &px[(size_t(row) * size_t(g) + size_t(i)) * nch];
+            p[0] = m.dist[k];
+            p[1] = m.gradX[k];
+            p[2] = m.gradY[k];
+            p[3] = float(m.left[k]);
+            p[4] = float(m.seg[k]);
+            p[5] = m.hPos[k];
+            p[6] = m.vPos[k];
+            if (m.mode == BakeMode::Quadratic) {
+                p[7] = m.hAngle[k];
+                p[8] = m.vAngle[k];
+            }
+        }
+    }
+    io::writeAtomically(path, [&](const std::filesystem::path& tmp) {
+        auto out = OIIO::ImageOutput::create(tmp.string());
+        if (!out) throw InputError(path.string(), "", "cannot create an OpenEXR writer: " + OIIO::geterror());
+        OIIO::ImageSpec spec(g, g, int(nch), OIIO::TypeDesc::FLOAT);
+        spec.channelnames = names;
+        spec.alpha_channel = -1;
+        spec.attribute("compression", "zip");
+        spec.attribute("surfgrad:featureMapsVersion", kFeatureMapsVersion);
+        spec.attribute("surfgrad:mode", toString(m.mode));
+        spec.attribute("surfgrad:size", m.size);
+        auto dbl = [&](const char* key, double v) { spec.attribute(key, OIIO::TypeDesc::DOUBLE, &v); };
+        dbl("surfgrad:inputToTexelScaleX", m.inputToTexel.scale.x);
+        dbl("surfgrad:inputToTexelScaleY", m.inputToTexel.scale.y);
+        dbl("surfgrad:inputToTexelOffsetX", m.inputToTexel.offset.x);
+        dbl("surfgrad:inputToTexelOffsetY", m.inputToTexel.offset.y);
+        dbl("surfgrad:bandTexels", m.bandTexels);
+        spec.attribute("surfgrad:smoothIterations", m.smoothIterations);
+        spec.attribute("surfgrad:source", m.source);
+        spec.attribute("surfgrad:layout", kLayout);
+        if (!out->open(tmp.string(), spec)) throw InputError(path.string(), "", "cannot open for writing: " + out->geterror());
+        if (!out->write_image(OIIO::TypeDesc::FLOAT, px.data())) {
+            throw InputError(path.string(), "", "write failed: " + out->geterror());
+        }
+        if (!out->close()) throw InputError(path.string(), "", "close failed: " + out->geterror());
+    });
+}
+
+FeatureMaps load(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        throw io::InputError(path.string(), "", std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+    }
+    auto in = OIIO::ImageInput::open(path.string());
+    return readFrom(in.get(), path.string());
+}
+
+FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name) {
+    OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
+    auto in = OIIO::ImageInput::open("memory.exr", nullptr, &reader);
+    return readFrom(in.get(), name);
+}
+
+} // namespace sg::features
