@@ -124,21 +124,25 @@ void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
 
 namespace {
 
-// Relative thresholds of the degenerate cases (documented in tangents.h):
-// far below float rounding of any usable chart (1e-7 relative), far above
-// the rounding noise of a truly singular one computed in double.
-constexpr double kSingularRel = 1e-12;
+// A frame point is regular when its parametric derivatives are at least
+// 1e-3 rad (0.06 degrees) from parallel, both on the surface (dP/du, dP/dv)
+// and in UV space (the columns of J). The chain rule divides by those
+// sines: with float inputs (relative error ~1e-7) the result is then good
+// to ~1e-4 rad. Below, the ratio is dominated by rounding (e.g. at smooth
+// boundary corners of a Catmull-Clark surface, where the limit
+// parameterization collapses: sines ~1e-4 there).
+constexpr double kMinSine = 1e-3;
 
 glm::dvec3 unitOrZero(const glm::dvec3& v) {
     const double len = glm::length(v);
     return len > 0.0 && std::isfinite(len) ? v / len : glm::dvec3(0.0);
 }
 
-// v minus its component along unit n, normalized; zero if nothing is left.
+// v minus its component along unit n, normalized; zero if nothing is left
+// beyond the rounding of v itself.
 glm::dvec3 tangentPart(const glm::dvec3& v, const glm::dvec3& n) {
     const glm::dvec3 t = v - glm::dot(v, n) * n;
-    // What is left must be more than rounding of v's own length.
-    if (glm::length(t) <= 1e-9 * glm::length(v)) return glm::dvec3(0.0);
+    if (!(glm::length(t) > 1e-6 * glm::length(v))) return glm::dvec3(0.0);
     return unitOrZero(t);
 }
 
@@ -150,13 +154,14 @@ glm::vec4 limitTangent(const glm::vec3& dPduF, const glm::vec3& dPdvF, const glm
     // J = [[ds/du ds/dv], [dt/du dt/dv]].
     const double a = dSTdu.x, b = dSTdv.x, c = dSTdu.y, d = dSTdv.y;
     const double det = a * d - b * c;
-    const double jScale = std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(d);
-    const bool uvRegular = std::isfinite(det) && jScale > 0.0 &&
-                           std::fabs(det) > kSingularRel * jScale * jScale;
+    const double uvNorms = std::hypot(a, c) * std::hypot(b, d);
+    const bool uvRegular = std::isfinite(det) && uvNorms > 0.0 && std::isfinite(uvNorms) &&
+                           std::fabs(det) > kMinSine * uvNorms;
     const glm::dvec3 cross = glm::cross(dPdu, dPdv);
     const double crossLen = glm::length(cross);
-    const bool surfaceRegular = std::isfinite(crossLen) && crossLen > 0.0 &&
-                                crossLen > kSingularRel * glm::length(dPdu) * glm::length(dPdv);
+    const double pNorms = glm::length(dPdu) * glm::length(dPdv);
+    const bool surfaceRegular = std::isfinite(crossLen) && pNorms > 0.0 && std::isfinite(pNorms) &&
+                                crossLen > kMinSine * pNorms;
     const double w = uvRegular ? (det > 0.0 ? 1.0 : -1.0) : 1.0;
     const glm::dvec3 dPds = uvRegular ? (d * dPdu - c * dPdv) / det : glm::dvec3(0.0);
 
@@ -165,8 +170,7 @@ glm::vec4 limitTangent(const glm::vec3& dPduF, const glm::vec3& dPdvF, const glm
     if (surfaceRegular) {
         const glm::dvec3 n = cross / crossLen;
         if (uvRegular) t = tangentPart(dPds, n);
-        kase = uvRegular && t != glm::dvec3(0.0) ? LimitTangentCase::Regular
-                                                 : LimitTangentCase::DegenerateUv;
+        kase = t != glm::dvec3(0.0) ? LimitTangentCase::Regular : LimitTangentCase::DegenerateUv;
         if (t == glm::dvec3(0.0)) t = tangentPart(dPdu, n);
         if (t == glm::dvec3(0.0)) t = tangentPart(dPdv, n);
     } else {
@@ -194,6 +198,111 @@ size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3>
         irregular += k != LimitTangentCase::Regular;
     }
     return irregular;
+}
+
+size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSet) {
+    const size_t n = mesh.vertexCount();
+    if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
+        throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
+                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) + ")");
+    if (frame.dPdu.size() != n || frame.dPdv.size() != n || frame.dUVdu.size() <= size_t(uvSet) ||
+        frame.dUVdv.size() <= size_t(uvSet) || frame.dUVdu[size_t(uvSet)].size() != n ||
+        frame.dUVdv[size_t(uvSet)].size() != n)
+        throw std::invalid_argument("limit frame does not match mesh '" + mesh.name + "' (" +
+                                    std::to_string(n) + " vertices, " +
+                                    std::to_string(frame.dPdu.size()) + " limit derivatives)");
+    const bool haveNormals = mesh.normals.size() == n;
+    mesh.tangents.resize(n);
+    std::vector<uint8_t> regular(n, 0);
+    size_t irregular = 0;
+    for (size_t v = 0; v < n; ++v) {
+        LimitTangentCase kase;
+        mesh.tangents[v] = limitTangent(frame.dPdu[v], frame.dPdv[v], frame.dUVdu[size_t(uvSet)][v],
+                                        frame.dUVdv[size_t(uvSet)][v], &kase);
+        regular[v] = kase == LimitTangentCase::Regular;
+        irregular += !regular[v];
+    }
+    // Irregular points (collapsed parameterizations, zero-area UVs) take
+    // the handedness of the majority of their regular neighbours and the
+    // normalized sum of those neighbours' tangents with that handedness:
+    // the tangent field is continuous there even though the chain rule is
+    // not usable at the point itself.
+    std::vector<glm::dvec3> sumPos, sumNeg;
+    std::vector<int> votes;
+    if (irregular > 0) {
+        sumPos.assign(n, glm::dvec3(0.0));
+        sumNeg.assign(n, glm::dvec3(0.0));
+        votes.assign(n, 0);
+        for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+            const uint32_t tri[3] = {mesh.indices[i], mesh.indices[i + 1], mesh.indices[i + 2]};
+            for (int a = 0; a < 3; ++a) {
+                const uint32_t v = tri[a];
+                if (v >= n || regular[v]) continue;
+                for (int b = 0; b < 3; ++b) {
+                    const uint32_t u = tri[b];
+                    if (u >= n || !regular[u]) continue;
+                    const glm::dvec3 tu(glm::vec3(mesh.tangents[u]));
+                    if (mesh.tangents[u].w > 0.0f) {
+                        sumPos[v] += tu;
+                        ++votes[v];
+                    } else {
+                        sumNeg[v] += tu;
+                        --votes[v];
+                    }
+                }
+            }
+        }
+        for (size_t v = 0; v < n; ++v) {
+            if (regular[v] || (sumPos[v] == glm::dvec3(0.0) && sumNeg[v] == glm::dvec3(0.0))) continue;
+            const bool positive = votes[v] != 0 ? votes[v] > 0 : mesh.tangents[v].w > 0.0f;
+            const glm::dvec3 sum = positive ? sumPos[v] : sumNeg[v];
+            if (glm::length(sum) > 1e-6)
+                mesh.tangents[v] = glm::vec4(glm::vec3(sum / glm::length(sum)), positive ? 1.0f : -1.0f);
+        }
+    }
+    for (size_t v = 0; v < n; ++v) {
+        glm::dvec3 t(glm::vec3(mesh.tangents[v]));
+        if (haveNormals) {
+            // Orthogonal to the normal the renderer will use; at regular
+            // points this only removes float rounding (that normal is the
+            // normalized dP/du x dP/dv).
+            const glm::dvec3 nrm(mesh.normals[v]);
+            const double nLen = glm::length(nrm);
+            if (nLen > 0.0 && std::isfinite(nLen)) {
+                const glm::dvec3 un = nrm / nLen;
+                glm::dvec3 tt = t - glm::dot(t, un) * un;
+                if (glm::length(tt) < 1e-6) { // tangent along the normal: any orthogonal direction
+                    const glm::dvec3 axis = std::fabs(un.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+                    tt = axis - glm::dot(axis, un) * un;
+                }
+                t = tt / glm::length(tt);
+            }
+        }
+        mesh.tangents[v] = glm::vec4(glm::normalize(glm::vec3(t)), mesh.tangents[v].w);
+    }
+    mesh.tangentUvSet = uvSet;
+    return irregular;
+}
+
+size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet, const LimitFrame* frame) {
+    switch (method) {
+    case TangentMethod::MikkTSpace: {
+        const size_t before = mesh.vertexCount();
+        generateMikkTSpaceTangents(mesh, uvSet);
+        return mesh.vertexCount() - before;
+    }
+    case TangentMethod::Limit:
+        if (!frame || frame->empty())
+            throw std::invalid_argument("limit tangents need the subdivider's limit frame "
+                                        "(subdivide with limit evaluation first)");
+        return generateLimitTangents(mesh, *frame, uvSet);
+    case TangentMethod::Pixel:
+        mesh.tangents.clear();
+        mesh.tangentUvSet = -1;
+        for (auto& morph : mesh.morphTargets) morph.tangentDeltas.clear();
+        return 0;
+    }
+    return 0;
 }
 
 } // namespace sg::mesh

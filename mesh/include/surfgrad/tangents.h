@@ -155,9 +155,9 @@ size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec
 
 // How limitTangent() resolved one point.
 enum class LimitTangentCase : uint8_t {
-    Regular,           // |det d(s,t)/d(u,v)| above the threshold: exact dP/ds
+    Regular,           // both charts well conditioned: exact dP/ds
     DegenerateUv,      // UV Jacobian (near) singular: fallback along dP/du
-    DegenerateSurface, // dP/du x dP/dv (near) zero: no tangent plane known
+    DegenerateSurface, // dP/du, dP/dv (near) parallel: no reliable chain rule
 };
 
 // The tangent frame of a parametric surface P(u,v) carrying UVs (s,t)(u,v),
@@ -174,14 +174,20 @@ enum class LimitTangentCase : uint8_t {
 // (u,v) chart whose normal is N, -1 when mirrored), so that
 // w * cross(N, T) points to the +t side, as MikkTSpace.
 //
-// Degenerate cases (never NaN, always unit xyz and w = +-1):
-//  - |det J| <= 1e-12 * (|ds/du|+|ds/dv|+|dt/du|+|dt/dv|)^2 (zero-area or
-//    collapsed UVs): T = dP/du made orthogonal to N (dP/dv if dP/du is
-//    zero), w = +1; case DegenerateUv.
-//  - |dP/du x dP/dv| <= 1e-12 * |dP/du| |dP/dv| or both zero (a degenerate
-//    limit point): N is unknown; T = normalize(dP/ds) if it is non-zero,
-//    else normalize(dP/du), else (1,0,0); w as above; case
-//    DegenerateSurface.
+// Conditioning: the chain rule divides by the sine of the angle between
+// the two derivatives of each chart. A point is Regular when both sines
+// (|dP/du x dP/dv| / (|dP/du| |dP/dv|) and |det J| / (|J e_u| |J e_v|)) exceed
+// 1e-3; float inputs then give T to ~1e-4 rad. Otherwise (never NaN, always
+// unit xyz and w = +-1):
+//  - DegenerateUv (zero-area or collapsed UVs, surface fine): T = dP/du
+//    made orthogonal to N (dP/dv if dP/du vanishes), w = +1;
+//  - DegenerateSurface (dP/du, dP/dv parallel or zero, e.g. the collapsed
+//    parameterization at a smooth boundary corner of a Catmull-Clark
+//    surface): T = normalize(dP/ds) if the UV chart is regular, else
+//    normalize(dP/du), else normalize(dP/dv), else (1,0,0); w = sign(det J)
+//    if the UV chart is regular, else +1.
+// generateLimitTangents() replaces these per-point fallbacks by the mean of
+// the regular neighbours when there are any.
 glm::vec4 limitTangent(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::vec2& dSTdu,
                        const glm::vec2& dSTdv, LimitTangentCase* resolved = nullptr);
 
@@ -191,5 +197,30 @@ glm::vec4 limitTangent(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::
 size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3> dPdv,
                      std::span<const glm::vec2> dSTdu, std::span<const glm::vec2> dSTdv,
                      std::span<glm::vec4> out);
+
+// Limit tangents of a mesh that sg::mesh::Subdivider built with limit
+// evaluation (positions, normals and UVs on the limit surface; `frame` its
+// limitFrame(), aligned with the vertices): limitTangent() per vertex for
+// `uvSet`; a vertex that is not Regular but has regular neighbours
+// (sharing a triangle) takes the w of their majority and the normalized sum
+// of their tangents with that w; otherwise it keeps limitTangent()'s
+// fallback. Then every tangent
+// is made orthogonal to the stored vertex normal (the limit normal, or the
+// subdivider's fallback where dP/du x dP/dv vanishes; if the tangent is
+// parallel to it, any unit vector orthogonal to it). No vertex is split:
+// each vertex already has one home location and one UV chart.
+// Stores mesh.tangents, mesh.tangentUvSet = uvSet; returns the number of
+// vertices that were not LimitTangentCase::Regular. Throws
+// std::invalid_argument when the frame does not match the mesh or uvSet is
+// out of range.
+size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSet);
+
+// One entry point for the three methods: MikkTSpace
+// (generateMikkTSpaceTangents), Limit (generateLimitTangents; `frame` must
+// be the subdivider's limit frame), Pixel (tangents cleared,
+// tangentUvSet = -1: the shader builds the frame). Returns the number of
+// vertices added (MikkTSpace) or irregular (Limit); 0 for Pixel.
+size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
+                        const LimitFrame* frame = nullptr);
 
 } // namespace sg::mesh
