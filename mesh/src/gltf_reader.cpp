@@ -39,7 +39,10 @@ struct FsContext {
 
 bool fsFileExists(const std::string& path, void* user) {
     auto* ctx = static_cast<FsContext*>(user);
-    if (ctx->baseDir.empty()) return false;
+    if (ctx->baseDir.empty()) {
+        ctx->refused = "external file '" + path.substr(0, 200) + "' refused (in-memory input)";
+        return false;
+    }
     std::error_code ec;
     return std::filesystem::is_regular_file(path, ec);
 }

@@ -332,33 +332,69 @@ std::string plyBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
     return b.header + b.body;
 }
 
-std::string plyBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
-    PlyBuilder b;
-    b.header += "element vertex " + std::to_string(mesh.positions.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
-    b.header += "element face " + std::to_string(mesh.faceSizes.size()) + "\nproperty list uchar int vertex_indices\n";
-    for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
-        b.header += "property list uchar float texcoord" + (s == 0 ? std::string() : std::to_string(s)) + "\n";
+// Per-vertex values of a face-varying channel when every vertex has one
+// value (no seams); empty otherwise.
+template <class V>
+std::vector<V> perVertex(const PolygonMesh& mesh, const std::vector<V>& values, const std::vector<uint32_t>& indices) {
+    std::vector<V> out(mesh.positions.size(), V(0.0f));
+    std::vector<uint32_t> seen(mesh.positions.size(), UINT32_MAX);
+    for (size_t c = 0; c < indices.size(); ++c) {
+        uint32_t v = mesh.faceVertices[c];
+        if (seen[v] == UINT32_MAX) {
+            seen[v] = indices[c];
+            out[v] = values[indices[c]];
+        } else if (seen[v] != indices[c] && values[seen[v]] != values[indices[c]]) {
+            return {};
+        }
     }
-    b.header += "end_header\n";
-    for (const glm::vec3& p : mesh.positions) {
-        for (int i = 0; i < 3; ++i) b.put(p[i]);
+    return out;
+}
+
+// Polygons with per-vertex attributes only: OpenMesh's PLY reader (and
+// most others) do not read per-corner lists, so a UV set with seams cannot
+// be written here (noted; .obj keeps it).
+std::string plyBytes(const std::filesystem::path& path, const PolygonMesh& mesh, std::vector<std::string>& notes) {
+    PlyBuilder b;
+    std::vector<glm::vec3> normals;
+    if (!mesh.normalIndices.empty()) {
+        normals = perVertex(mesh, mesh.normals, mesh.normalIndices);
+        if (normals.empty()) notes.push_back("PLY holds per-vertex normals; these are per corner: dropped");
+    }
+    std::vector<std::vector<glm::vec2>> uvs;
+    for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
+        std::vector<glm::vec2> uv = perVertex(mesh, mesh.uvSets[s].values, mesh.uvSets[s].indices);
+        if (uv.empty()) {
+            notes.push_back("PLY holds per-vertex UVs; UV set " + std::to_string(s) + " has seams: dropped (write .obj to keep it)");
+            break; // later sets would shift names
+        }
+        uvs.push_back(std::move(uv));
+    }
+    b.header += "element vertex " + std::to_string(mesh.positions.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (!normals.empty()) b.header += "property float nx\nproperty float ny\nproperty float nz\n";
+    for (size_t s = 0; s < uvs.size(); ++s) {
+        std::string suffix = s == 0 ? "" : std::to_string(s);
+        b.header += "property float s" + suffix + "\nproperty float t" + suffix + "\n";
+    }
+    b.header += "element face " + std::to_string(mesh.faceSizes.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (size_t v = 0; v < mesh.positions.size(); ++v) {
+        for (int i = 0; i < 3; ++i) b.put(mesh.positions[v][i]);
+        if (!normals.empty()) {
+            for (int i = 0; i < 3; ++i) b.put(normals[v][i]);
+        }
+        for (const auto& uv : uvs) {
+            b.put(uv[v].x);
+            b.put(uv[v].y);
+        }
     }
     size_t c0 = 0;
     for (uint32_t k : mesh.faceSizes) {
-        if (k > 255) throw InputError("(output)", "", "PLY face lists hold at most 255 corners");
+        if (k > 255) {
+            throw InputError(path.string(), "", "a face has " + std::to_string(k) + " corners; PLY lists hold at most 255");
+        }
         b.put(uint8_t(k));
         for (uint32_t j = 0; j < k; ++j) b.put(int32_t(mesh.faceVertices[c0 + j]));
-        for (const FaceVaryingChannel& ch : mesh.uvSets) {
-            b.put(uint8_t(2 * k));
-            for (uint32_t j = 0; j < k; ++j) {
-                const glm::vec2& t = ch.values[ch.indices[c0 + j]];
-                b.put(t.x);
-                b.put(t.y);
-            }
-        }
         c0 += k;
     }
-    if (!mesh.normalIndices.empty()) notes.push_back("PLY polygon output has no face-varying normals: dropped");
     if (!mesh.creases.empty() || !mesh.corners.empty() || !mesh.holes.empty()) {
         notes.push_back("PLY has no crease/corner/hole tags: dropped (write .obj to keep them)");
     }
@@ -392,7 +428,7 @@ std::vector<std::string> writePolygonMesh(const std::filesystem::path& path, con
     std::vector<std::string> notes;
     std::string bytes;
     if (ext == ".obj") bytes = objBytes(mesh, notes);
-    else if (ext == ".ply") bytes = plyBytes(mesh, notes);
+    else if (ext == ".ply") bytes = plyBytes(path, mesh, notes);
     else throw InputError(path.string(), "", "unknown output format '" + ext + "' (expected .gltf, .glb, .obj or .ply)");
     io::writeFileAtomically(path, bytes);
     return notes;

@@ -221,10 +221,11 @@ struct WriteOptions {
 std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, const RenderMesh& mesh,
                                          const WriteOptions& options = {});
 
-// .obj keeps polygons, every UV set's first channel as vt (sets > 0
-// dropped, noted), normals as vn, and every tag as "t" lines (readable by
-// parseObj and OpenSubdiv's regression parser); .ply keeps polygons with
-// per-corner UVs as a face list property "texcoord" (MeshLab convention);
+// .obj keeps polygons, UV set 0 as vt (other sets dropped, noted), normals
+// as vn, and every tag as "t" lines (readable by parseObj and OpenSubdiv's
+// regression parser); .ply (binary) keeps polygons with per-vertex normals
+// and UV sets as s/t, s1/t1, ... when they have no seams (per-corner data is
+// dropped, noted: OpenMesh's PLY reader cannot read face lists of UVs);
 // .gltf/.glb go through toRenderMesh.
 std::vector<std::string> writePolygonMesh(const std::filesystem::path& path, const PolygonMesh& mesh,
                                           const WriteOptions& options = {});

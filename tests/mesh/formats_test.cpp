@@ -1,0 +1,202 @@
+// OFF/PLY/STL through OpenMesh's readers (nothing dropped silently, header
+// counts checked), the writers (round trips), and the OpenMesh view.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "mesh_test_util.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/polymesh.h"
+#include "surfgrad/subdivision.h"
+
+namespace {
+
+using namespace sg::mesh;
+using sg::test::expectInputError;
+using sg::test::TempDir;
+using sg::test::writeText;
+
+const char* kCubeOff = "OFF\n8 6 12\n-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
+                       "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+
+TEST(Formats, OffThroughOpenMesh) {
+    TempDir dir;
+    writeText(dir / "cube.off", kCubeOff);
+    PolygonMesh m = loadPolygonMesh(dir / "cube.off");
+    EXPECT_EQ(m.vertexCount(), 8u);
+    EXPECT_EQ(m.faceCount(), 6u);
+    EXPECT_EQ(m.positions[6], glm::vec3(1, 1, 1));
+    EXPECT_EQ(describe(m).eulerCharacteristic, 2);
+}
+
+TEST(Formats, NonManifoldOffIsNamedNotDropped) {
+    // OpenMesh's own importer would drop the third face on edge (0,1)
+    // ("complex edge"); the recording importer keeps it for validation.
+    TempDir dir;
+    writeText(dir / "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+    expectInputError([&] { loadPolygonMesh(dir / "fin.off"); }, "edge (0, 1)", "shared by 3 faces");
+    LoadOptions o;
+    o.allowNonManifold = true;
+    PolygonMesh m = loadPolygonMesh(dir / "fin.off", o);
+    EXPECT_EQ(m.faceCount(), 3u);
+    // The OpenMesh view refuses it too, by name.
+    PolyMeshProperties props;
+    expectInputError([&] { toPolyMesh(m, props, "fin.off"); }, "face 2", "OpenMesh cannot insert it");
+}
+
+TEST(Formats, PlyWithUvsThroughOpenMesh) {
+    TempDir dir;
+    writeText(dir / "quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                                "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
+    PolygonMesh m = loadPolygonMesh(dir / "quad.ply");
+    ASSERT_EQ(m.faceCount(), 1u);
+    ASSERT_EQ(m.uvSets.size(), 1u);
+    EXPECT_EQ(m.uvSets[0].values[2], glm::vec2(1, 1));
+}
+
+TEST(Formats, LyingHeadersAreRefused) {
+    TempDir dir;
+    writeText(dir / "big.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
+                               "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n");
+    expectInputError([&] { loadPolygonMesh(dir / "big.ply"); }, "header", "declares 4000000000 vertex elements");
+    writeText(dir / "big.off", "OFF\n900000000 1 0\n0 0 0\n");
+    expectInputError([&] { loadPolygonMesh(dir / "big.off"); }, "header", "declares 900000000 vertices");
+    // Binary STL: 80-byte header, triangle count, 50 bytes per triangle.
+    std::string stl(84, '\0');
+    uint32_t n = 1000000;
+    std::memcpy(stl.data() + 80, &n, 4);
+    writeText(dir / "big.stl", stl);
+    expectInputError([&] { loadPolygonMesh(dir / "big.stl"); }, "header", "declares 1000000 triangles");
+}
+
+TEST(Formats, BinaryStlIsWeldedByOpenMesh) {
+    // Two triangles of a square, each with its own copies of the corners.
+    TempDir dir;
+    std::string stl(80, ' ');
+    uint32_t n = 2;
+    stl.append(reinterpret_cast<const char*>(&n), 4);
+    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+        float nrm[3] = {0, 0, 1};
+        stl.append(reinterpret_cast<const char*>(nrm), 12);
+        for (const glm::vec3& p : {a, b, c}) stl.append(reinterpret_cast<const char*>(&p), 12);
+        stl.append(2, '\0');
+    };
+    tri({0, 0, 0}, {1, 0, 0}, {1, 1, 0});
+    tri({0, 0, 0}, {1, 1, 0}, {0, 1, 0});
+    writeText(dir / "sq.stl", stl);
+    PolygonMesh m = loadPolygonMesh(dir / "sq.stl");
+    EXPECT_EQ(m.faceCount(), 2u);
+    EXPECT_EQ(m.vertexCount(), 4u);
+    EXPECT_EQ(describe(m).boundaryLoops, 1u);
+}
+
+TEST(Formats, ObjRoundTripKeepsTagsAndUvs) {
+    TempDir dir;
+    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) + "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\nt hole 1/0/0 2\n"
+                                                               "t facevaryinginterpolateboundary 1/0/0 4\n",
+                             "c.obj");
+    validate(m, "c.obj");
+    auto notes = writePolygonMesh(dir / "out.obj", m);
+    EXPECT_TRUE(notes.empty());
+    PolygonMesh back = loadPolygonMesh(dir / "out.obj");
+    EXPECT_EQ(back.positions, m.positions);
+    EXPECT_EQ(back.faceVertices, m.faceVertices);
+    EXPECT_EQ(back.uvSets[0].values, m.uvSets[0].values);
+    EXPECT_EQ(back.uvSets[0].indices, m.uvSets[0].indices);
+    ASSERT_EQ(back.creases.size(), 1u);
+    EXPECT_EQ(back.creases[0].sharpness, 2.5f);
+    ASSERT_EQ(back.corners.size(), 1u);
+    EXPECT_EQ(back.holes, m.holes);
+    EXPECT_EQ(back.options.fvar, FVarInterpolation::Boundaries);
+    // OpenSubdiv's refinement of both agrees exactly.
+    SubdivisionSettings s;
+    s.level = 2;
+    s.options = m.options;
+    EXPECT_EQ(Subdivider(m, s).refined().positions, Subdivider(back, s).refined().positions);
+}
+
+TEST(Formats, PlyAndGltfWritersRoundTrip) {
+    TempDir dir;
+    PolygonMesh cube = parseObj(sg::test::kCubeObj, "c.obj");
+    validate(cube, "c.obj");
+    SubdivisionSettings s;
+    s.level = 2;
+    s.limit = true;
+    Subdivider sub(cube, s);
+    RenderMesh rm = sub.renderMesh();
+    rm.tangents.assign(rm.vertexCount(), glm::vec4(1, 0, 0, -1));
+    rm.tangentUvSet = 0;
+    for (const char* name : {"out.gltf", "out.glb"}) {
+        writeRenderMesh(dir / name, rm);
+        RenderMesh back = loadRenderMesh(dir / name);
+        ASSERT_EQ(back.vertexCount(), rm.vertexCount()) << name;
+        EXPECT_EQ(back.indices, rm.indices);
+        EXPECT_EQ(back.positions, rm.positions); // float32 in, float32 out
+        ASSERT_EQ(back.uvSets.size(), 1u);
+        for (size_t i = 0; i < rm.vertexCount(); ++i) {
+            // t -> 1 - t -> 1 - (1 - t): exact for t in [0,1] on a 2^-k grid; 1 ulp otherwise.
+            EXPECT_NEAR(back.uvSets[0][i].y, rm.uvSets[0][i].y, 1e-7f);
+            EXPECT_LT(glm::length(back.normals[i] - rm.normals[i]), 1e-6f); // renormalized on load
+        }
+        ASSERT_EQ(back.tangents.size(), rm.vertexCount());
+        EXPECT_EQ(back.tangents[0], glm::vec4(1, 0, 0, -1));
+    }
+    // PLY (render mesh) back through OpenMesh.
+    writeRenderMesh(dir / "out.ply", rm);
+    PolygonMesh ply = loadPolygonMesh(dir / "out.ply", LoadOptions{true, false, {}});
+    EXPECT_EQ(ply.faceCount(), rm.triangleCount());
+    // PLY (polygons) keeps quads.
+    writePolygonMesh(dir / "quads.ply", sub.refined());
+    PolygonMesh quads = loadPolygonMesh(dir / "quads.ply");
+    EXPECT_EQ(quads.faceCount(), sub.refined().faceCount());
+    EXPECT_EQ(quads.positions, sub.refined().positions);
+}
+
+TEST(Formats, WritersRefuseInputsAndUnknownFormats) {
+    TempDir dir;
+    writeText(dir / "in.obj", sg::test::kCubeObj);
+    PolygonMesh m = loadPolygonMesh(dir / "in.obj");
+    WriteOptions o;
+    o.inputs = {dir / "in.obj"};
+    expectInputError([&] { writePolygonMesh(dir / "in.obj", m, o); }, "", "would overwrite the input");
+    expectInputError([&] { writePolygonMesh(dir / "out.fbx", m, o); }, "", "unknown output format '.fbx'");
+    expectInputError([&] { writePolygonMesh(dir / "no_such_dir" / "out.obj", m, o); }, "", "does not exist");
+    // Nothing half-written is left behind.
+    size_t files = 0;
+    for (const auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
+    EXPECT_EQ(files, 1u);
+}
+
+TEST(Formats, PolyMeshViewRoundTrip) {
+    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) + "t crease 2/1/0 0 1 3\nt corner 1/1/0 7 2\nt hole 1/0/0 4\n", "c.obj");
+    validate(m, "c.obj");
+    PolyMeshProperties props;
+    PolyMesh pm = toPolyMesh(m, props, "c.obj");
+    EXPECT_EQ(pm.n_faces(), 6u);
+    EXPECT_EQ(pm.n_edges(), 12u);
+    PolygonMesh back = fromPolyMesh(pm, props);
+    EXPECT_EQ(back.positions, m.positions);
+    EXPECT_EQ(back.faceCount(), 6u);
+    ASSERT_EQ(back.creases.size(), 1u);
+    EXPECT_EQ(back.creases[0].sharpness, 3.0f);
+    ASSERT_EQ(back.corners.size(), 1u);
+    EXPECT_EQ(back.corners[0].vertex, 7u);
+    EXPECT_EQ(back.holes, std::vector<uint32_t>{4});
+    // Same UV per corner (up to the face's starting corner, which OpenMesh may rotate).
+    validate(back, "back");
+    for (size_t f = 0; f < 6; ++f) {
+        for (uint32_t k = 0; k < 4; ++k) {
+            uint32_t v = back.faceVertices[4 * f + k];
+            glm::vec2 uv = back.uvSets[0].values[back.uvSets[0].indices[4 * f + k]];
+            bool found = false;
+            for (uint32_t j = 0; j < 4; ++j) {
+                found |= m.faceVertices[4 * f + j] == v && m.uvSets[0].values[m.uvSets[0].indices[4 * f + j]] == uv;
+            }
+            EXPECT_TRUE(found) << "face " << f << " corner " << k;
+        }
+    }
+}
+
+} // namespace
