@@ -21,8 +21,9 @@
 // Cubic Beziers (SVG C/S, CFF fonts) and elliptical arcs (SVG A, rounded
 // rects, circles, ellipses) are approximated by quadratic Beziers whose
 // Hausdorff distance to the original is at most the tolerance of
-// ApproxOptions (proven bound, see appendCubicAsQuadratics); details and the
-// JSON schema are in docs/features-input.md.
+// ApproxOptions (proven bound, see appendCubicAsQuadratics), with
+// tangent-continuous joints; details and the JSON schema are in
+// docs/features-input.md.
 #pragma once
 
 #include <cstddef>
@@ -98,16 +99,19 @@ double resolveTolerance(const ApproxOptions& opt, double drawingSize, const std:
 // Appends quadratic Beziers approximating the cubic Bezier c0..c3 to `out`,
 // all with the given curve index. The first piece starts at exactly c0 and
 // the last ends at exactly c3; consecutive pieces share endpoints exactly.
-// Construction: the cubic is split into n equal parameter intervals; on each,
-// the quadratic with the piece's endpoints and control point
-// (3 (b1 + b2) - b0 - b3) / 4 differs from the cubic piece b0..b3, at equal
-// parameter, by at most sqrt(3)/36 |b3 - 3 b2 + 3 b1 - b0| (exact maximum of
-// the parametric difference, which bounds the Hausdorff distance). That third
-// difference is constant along a cubic and scales with 1/n^3, so n is the
-// smallest count whose bound is <= tolerance (uniform splitting is optimal
-// for this construction). Zero-length pieces are skipped. Returns the bound
-// reached (<= tolerance). Throws InputError (file = source, element) when
-// more than kMaxSegments pieces would be needed. tolerance > 0.
+// Construction (proofs in curve_approx.cpp): the cubic is split at its
+// inflections, then each piece becomes the quadratic whose control point is
+// the intersection of the piece's end tangents, so joints are tangent
+// continuous (G1); its Hausdorff distance to the piece is bounded
+// rigorously through a reparametrized Bernstein convex hull, and pieces over
+// the tolerance are bisected (adaptive subdivision). Pieces with parallel
+// end tangents (straight runs) or still failing after 20 bisections (near
+// cusps) use the midpoint construction q = (3 (b1 + b2) - b0 - b3) / 4 with
+// its exact bound sqrt(3)/36 |b3 - 3 b2 + 3 b1 - b0| over n equal
+// sub-pieces (these joints are only C0). Zero-length pieces are skipped.
+// Returns the largest bound of the emitted pieces (<= tolerance). Throws
+// InputError (file = source, element) when more than kMaxSegments segments
+// would be needed. tolerance > 0.
 double appendCubicAsQuadratics(glm::dvec2 c0, glm::dvec2 c1, glm::dvec2 c2, glm::dvec2 c3,
                                double tolerance, int curve, std::vector<Segment>& out,
                                const std::string& source = {}, const std::string& element = {});
