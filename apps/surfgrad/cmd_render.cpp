@@ -78,7 +78,7 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
         if (src == TangentSource::Limit && !m.subdivLimit) {
             if (!m.file.empty()) {
                 m.subdivLimit = true;
-                if (m.subdivScheme.empty()) m.subdivScheme = "catmark";
+                m.subdivide = true;
             } else {
                 throw CliError("--tbn limit: mesh " + m.fieldPath + " is procedural (limit frames need a subdivision mesh file)");
             }

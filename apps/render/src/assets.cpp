@@ -6,12 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_internal.h"
 #include "surfgrad/io.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/subdivision.h"
+#include "surfgrad/tangents.h"
 #include "surfgrad/render.h"
 #include "surfgrad/render_shaders.h"
 
@@ -206,6 +210,13 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const 
                                          "non-finite texel value");
                 }
             }
+            if (src.srgb) {
+                // Colour maps are sRGB-encoded; filtering happens on linear values.
+                for (int c = 0; c < 3; ++c) {
+                    float v = std::clamp(t[c], 0.0f, 1.0f);
+                    t[c] = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
+                }
+            }
             texels[size_t(y) * size_t(w) + size_t(x)] = t;
         }
     }
@@ -222,23 +233,76 @@ void collectTextures(const Layer& L, std::vector<const TextureSource*>& out) {
     for (const auto& c : L.children) collectTextures(c, out);
 }
 
-MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi) {
+namespace sm = sg::mesh;
+
+// Files are parsed once per loadAssets (a glTF scene may feed many instances).
+struct FileCache {
+    std::map<std::string, sm::Scene> scenes;
+    const sm::Scene& scene(const fs::path& file) {
+        auto it = scenes.find(file.string());
+        if (it != scenes.end()) return it->second;
+        return scenes.emplace(file.string(), sm::loadScene(file)).first->second;
+    }
+};
+
+std::string elementOf(const MeshInstance& mi, const std::string& sub) { return mi.fieldPath + "." + sub; }
+
+MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& files) {
     MeshAsset a;
+    sm::LimitFrame limit;
     if (mi.procedural) {
         a.mesh = detail::makeProceduralMesh(*mi.procedural);
-    } else {
-        throw io::InputError(scene.sourceName, mi.fieldPath + ".file",
-                             "mesh files need the mesh module (surfgrad_mesh), which this build lacks");
-    }
-    for (size_t k = 0; k < mi.tangents.size(); ++k) {
-        if (mi.tangents[k] != TangentSource::Pixel) {
-            if (k >= a.mesh.uvSets.size()) {
-                throw io::InputError(scene.sourceName, mi.fieldPath + ".tangents[" + std::to_string(k) + "]",
-                                     "the mesh has no UV set " + std::to_string(k));
+    } else if (!mi.subdivide) {
+        if (mi.fileInstance >= 0) {
+            const sm::Scene& fs = files.scene(mi.file);
+            if (size_t(mi.fileInstance) >= fs.instances.size()) {
+                throw io::InputError(scene.sourceName, elementOf(mi, "file"),
+                                     "the file has no mesh instance " + std::to_string(mi.fileInstance));
             }
-            throw io::InputError(scene.sourceName, mi.fieldPath + ".tangents[" + std::to_string(k) + "]",
-                                 "vertex tangents need the mesh module's tangent generators, which this "
-                                 "build lacks");
+            a.mesh = fs.instances[size_t(mi.fileInstance)].mesh;
+        } else {
+            a.mesh = sm::loadRenderMesh(mi.file);
+        }
+    } else {
+        // Effects on demand: refined exactly to the level asked, with limit
+        // evaluation only when asked.
+        sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
+        sm::SubdivisionSettings st;
+        st.level = mi.subdivLevel;
+        st.options = cage.options;
+        if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, st.options.scheme)) {
+            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"), "unknown scheme");
+        }
+        st.limit = mi.subdivLimit;
+        sm::Subdivider sub(cage, st, mi.file.string());
+        a.mesh = sub.renderMesh();
+        if (mi.subdivLimit) limit = sub.limitFrame();
+    }
+    if (a.mesh.normals.size() != a.mesh.positions.size()) sm::computeVertexNormals(a.mesh);
+    a.vertexTangents.resize(a.mesh.uvSets.size());
+    for (size_t k = 0; k < mi.tangents.size(); ++k) {
+        std::string el = elementOf(mi, "tangents[" + std::to_string(k) + "]");
+        if (mi.tangents[k] == TangentSource::Pixel) continue;
+        if (k >= a.mesh.uvSets.size()) {
+            throw io::InputError(scene.sourceName, el, "the mesh has no UV set " + std::to_string(k));
+        }
+        if (mi.tangents[k] == TangentSource::MikkTSpace) {
+            // May split vertices (mirrored UV seams): done before anything
+            // else copies per-vertex arrays.
+            try {
+                sm::generateMikkTSpaceTangents(a.mesh, int(k));
+            } catch (const std::invalid_argument& e) {
+                throw io::InputError(scene.sourceName, el, std::string("MikkTSpace failed: ") + e.what());
+            }
+            a.vertexTangents.assign(a.mesh.uvSets.size(), {});
+            a.vertexTangents[k] = a.mesh.tangents;
+        } else { // limit
+            if (limit.empty()) {
+                throw io::InputError(scene.sourceName, el, "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+            }
+            std::vector<glm::vec4> t(a.mesh.vertexCount());
+            sm::limitTangents(limit.dPdu, limit.dPdv, limit.dUVdu[k], limit.dUVdv[k], t);
+            a.vertexTangents[k] = std::move(t);
         }
     }
     if (!mi.morphWeights.empty() && mi.morphWeights.size() != a.mesh.morphTargets.size()) {
@@ -252,9 +316,9 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi) {
                              "the mesh has " + std::to_string(a.mesh.morphTargets.size()) +
                                  " morph targets; every key needs that many weights");
     }
-    a.vertexTangents.resize(a.mesh.uvSets.size());
     a.basePositions = a.mesh.positions;
     a.baseNormals = a.mesh.normals;
+    a.baseTangents = a.vertexTangents;
     return a;
 }
 
@@ -262,8 +326,9 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi) {
 
 SceneAssets loadAssets(const Scene& scene) {
     SceneAssets assets;
+    FileCache files;
     for (const auto& mi : scene.meshes) {
-        assets.meshes.push_back(loadMeshAsset(scene, mi));
+        assets.meshes.push_back(loadMeshAsset(scene, mi, files));
         const auto& m = assets.meshes.back().mesh;
         assets.log.push_back("mesh " + (mi.name.empty() ? mi.fieldPath : mi.name) + ": " +
                              std::to_string(m.vertexCount()) + " vertices, " + std::to_string(m.triangleCount()) +
@@ -273,8 +338,11 @@ SceneAssets loadAssets(const Scene& scene) {
     std::set<int> usedMaterials;
     for (const auto& mi : scene.meshes) usedMaterials.insert(mi.material);
     std::vector<const TextureSource*> sources;
-    for (int mIdx : usedMaterials)
-        for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectTextures(L, sources);
+    for (int mIdx : usedMaterials) {
+        const Material& mat = scene.materials[size_t(mIdx)];
+        if (mat.baseColorMap) sources.push_back(&*mat.baseColorMap);
+        for (const Layer& L : mat.layers) collectTextures(L, sources);
+    }
     for (const TextureSource* src : sources) {
         std::string key = src->key();
         if (assets.textures.count(key)) continue;
@@ -316,11 +384,20 @@ void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
         std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
         a.mesh.positions = a.basePositions;
         a.mesh.normals = a.baseNormals;
+        a.vertexTangents = a.baseTangents;
         for (size_t t = 0; t < a.mesh.morphTargets.size() && t < w.size(); ++t) {
             const auto& mt = a.mesh.morphTargets[t];
             for (size_t v = 0; v < mt.positionDeltas.size(); ++v) a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
             for (size_t v = 0; v < mt.normalDeltas.size() && v < a.mesh.normals.size(); ++v) {
                 a.mesh.normals[v] += w[t] * mt.normalDeltas[v];
+            }
+            // Vertex tangents follow the glTF rule too (blended deltas);
+            // without deltas they stay those of the base shape: only the
+            // per-pixel frame is exact on a morphed mesh (Mikkelsen 2019, 1).
+            for (auto& vt : a.vertexTangents) {
+                for (size_t v = 0; v < mt.tangentDeltas.size() && v < vt.size(); ++v) {
+                    vt[v] += glm::vec4(w[t] * mt.tangentDeltas[v], 0.0f);
+                }
             }
         }
         // glTF's rule: blended normals are renormalized.
@@ -328,11 +405,83 @@ void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
             float l = glm::length(n);
             if (l > 1e-20f && std::isfinite(l)) n /= l;
         }
+        for (auto& vt : a.vertexTangents) {
+            for (auto& t : vt) {
+                float l = glm::length(glm::vec3(t));
+                if (l > 1e-20f && std::isfinite(l)) t = glm::vec4(glm::vec3(t) / l, t.w);
+            }
+        }
     }
 }
 
 Scene sceneForModel(const fs::path& model) {
-    throw io::InputError(model.string(), "", "model files need the mesh module (surfgrad_mesh), which this build lacks");
+    // A model's own materials: base colour (factor and map) and its normal
+    // map as a uv_normal layer on the map's texture coordinate set with the
+    // glTF normal scale as strength. glTF normal maps are green-up in the
+    // image (+Y up, section 3.9.3); with images and t both flipped on load
+    // that is our "gl" convention. Materials are rendered double-sided in
+    // MIRROR mode (glTF's doubleSided lighting: the normal flips on the back).
+    Scene s;
+    s.sourceName = model.string();
+    s.baseDir = model.parent_path();
+    sm::Scene fs = sm::loadScene(model);
+    for (size_t i = 0; i < fs.materials.size(); ++i) {
+        const sm::Material& gm = fs.materials[i];
+        Material m;
+        m.name = gm.name.empty() ? "material" + std::to_string(i) : gm.name;
+        m.fieldPath = model.filename().string() + " materials[" + std::to_string(i) + "]";
+        m.baseColor = glm::clamp(glm::vec3(gm.baseColorFactor), glm::vec3(0.0f), glm::vec3(1.0f));
+        m.doubleSided = DoubleSided::Mirror;
+        if (!gm.baseColorTexture.empty()) {
+            TextureSource t;
+            t.file = gm.baseColorTexture;
+            t.srgb = true;
+            t.fieldPath = m.fieldPath + ".baseColorTexture";
+            m.baseColorMap = t;
+            m.baseColorUvSet = std::clamp(gm.baseColorTexCoord, 0, kMaxUvSets - 1);
+        }
+        if (!gm.normalTexture.empty()) {
+            Layer L;
+            L.kind = LayerKind::UvNormal;
+            L.fieldPath = m.fieldPath + ".normalTexture";
+            TextureSource t;
+            t.file = gm.normalTexture;
+            t.fieldPath = L.fieldPath;
+            L.maps.push_back(t);
+            L.uvSet = std::clamp(gm.normalTexCoord, 0, kMaxUvSets - 1);
+            L.strength = gm.normalScale;
+            m.layers.push_back(L);
+        }
+        s.materials.push_back(std::move(m));
+    }
+    Material fallback;
+    fallback.name = "default";
+    fallback.fieldPath = "(default material)";
+    fallback.doubleSided = DoubleSided::Mirror;
+    for (size_t i = 0; i < fs.instances.size(); ++i) {
+        const sm::SceneInstance& inst = fs.instances[i];
+        MeshInstance mi;
+        mi.name = inst.mesh.name;
+        mi.fieldPath = model.filename().string() + " instance " + std::to_string(i);
+        mi.file = model;
+        mi.fileInstance = int(i);
+        mi.transform = inst.objectToWorld;
+        if (inst.material >= 0 && size_t(inst.material) < s.materials.size()) {
+            mi.material = inst.material;
+        } else {
+            if (s.materials.empty() || s.materials.back().name != "default") s.materials.push_back(fallback);
+            mi.material = int(s.materials.size()) - 1;
+        }
+        s.meshes.push_back(std::move(mi));
+    }
+    if (s.meshes.empty()) throw io::InputError(model.string(), "", "the file has no triangle meshes");
+    s.lights.push_back(Light{});
+    Light fill;
+    fill.direction = glm::vec3(0.6f, -0.2f, 0.5f);
+    fill.color = glm::vec3(0.6f, 0.7f, 0.9f);
+    fill.intensity = 1.0f;
+    s.lights.push_back(fill);
+    return s;
 }
 
 // ---------------------------------------------------------------------------

@@ -212,6 +212,18 @@ struct Planner {
         }
     }
 
+    void baseColor(const Material& mat) {
+        if (!mat.baseColorMap) return;
+        if (mat.baseColorUvSet >= plan.uvCount) {
+            // A colour map on a missing UV set is skipped rather than fatal:
+            // models often declare maps their meshes cannot use.
+            return;
+        }
+        plan.baseColorTex = slot(&*mat.baseColorMap);
+        plan.baseColorUvSet = mat.baseColorUvSet;
+        plan.uvUsedMask |= 1u << mat.baseColorUvSet;
+    }
+
     void finish() {
         std::ostringstream sig;
         sig << "uv" << plan.uvCount << ":vt" << plan.vertexTangentMask << ":l" << plan.lightCount
@@ -221,6 +233,7 @@ struct Planner {
             for (const auto& pl : plan.groups[g]) sig << sigCode(pl, plan) << ";";
             sig << "]";
         }
+        if (plan.baseColorTex >= 0) sig << "|bc@uv" << plan.baseColorUvSet << ":t" << plan.baseColorTex;
         sig << "|tex" << plan.textureKeys.size();
         plan.signature = sig.str();
     }
@@ -243,6 +256,7 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
     p.plan.groupLayers.push_back(nullptr);
     p.plan.groupUberIndex.push_back(-1);
     p.addGroups(scene.materials[size_t(materialIndex)].layers, uber);
+    p.baseColor(scene.materials[size_t(materialIndex)]);
     if (uber) {
         auto owned = std::make_shared<std::vector<Layer>>(uberStandIns(p.plan.uvCount));
         p.plan.ownedLayers = owned;
@@ -501,6 +515,12 @@ std::string fragmentBody(const MaterialPlan& plan) {
     if (plan.usesObjectVolume) {
         o << "    SgVolumeSpace volObject = sgVolumeSpace(frame, vObjPos, uModel3, uModelInv3);\n";
     }
+    o << "    vec3 baseColor = uBaseColor;\n";
+    if (plan.baseColorTex >= 0) {
+        std::string uv = uvVar(plan.baseColorUvSet);
+        o << "    baseColor *= textureGrad(" << tex(plan.baseColorTex) << ", " << uv << ".st, " << uv << ".dSTdx, " << uv
+          << ".dSTdy).xyz; // base colour map (linear)\n";
+    }
     o << "    vec3 surfGrad = vec3(0.0);\n";
     for (size_t g = 0; g < plan.groups.size(); ++g) {
         std::string indent = "    ";
@@ -537,9 +557,9 @@ std::string fragmentBody(const MaterialPlan& plan) {
             if (plan.uber) o << "    }\n";
         }
     }
-    o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, uBaseColor);\n"
+    o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
-      << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], uBaseColor, uRoughness);\n"
+      << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], baseColor, uRoughness);\n"
       << "    }\n";
     if (hasUv0) {
         o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, uv0.vT, uv0.vB, baseNormal, vUv0,\n";
@@ -639,6 +659,11 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
     G::SgVolumeSpace volWorld{}, volObject{};
     if (plan.usesWorldVolume) volWorld = G::sgVolumeSpace(frame, in.worldPos, glm::mat3(1.0f), glm::mat3(1.0f));
     if (plan.usesObjectVolume) volObject = G::sgVolumeSpace(frame, in.objPos, u.model3, u.modelInv3);
+    glm::vec3 baseColor = u.baseColor;
+    if (plan.baseColorTex >= 0) {
+        const G::SgUvFrame& f = uv[size_t(plan.baseColorUvSet)];
+        baseColor *= glm::vec3(G::textureGrad(smp[size_t(plan.baseColorTex)], f.st, f.dSTdx, f.dSTdy));
+    }
     glm::vec3 surfGrad(0.0f);
     for (const auto& pl : plan.groups[0]) {
         if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, frame, uv, volWorld, volObject, in);
@@ -660,9 +685,9 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
         }
         nrm = G::sgResolve(frame, surfGrad);
     }
-    glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, u.baseColor);
+    glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
     for (int i = 0; i < plan.lightCount; ++i) {
-        color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], u.baseColor,
+        color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], baseColor,
                                  u.roughness);
     }
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);

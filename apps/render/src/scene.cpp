@@ -70,7 +70,8 @@ std::string TextureSource::key() const {
         return "proc:" + procedural + ":" + output + ":" + std::to_string(size) + ":" +
                std::to_string(bumpHeight) + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");
     }
-    return "file:" + file.lexically_normal().string() + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");
+    return "file:" + file.lexically_normal().string() + (wrap == Wrap::Clamp ? ":clamp" : ":repeat") +
+           (srgb ? ":srgb" : "");
 }
 
 namespace {
@@ -467,13 +468,21 @@ struct Parser {
     }
 
     Material material(const Node& n) const {
-        n.allowOnly({"name", "base_color", "roughness", "double_sided", "layers"});
+        n.allowOnly({"name", "base_color", "base_color_map", "roughness", "double_sided", "layers"});
         Material m;
         m.fieldPath = n.path();
         m.name = n.string("name", "");
         m.baseColor = n.vec3("base_color", m.baseColor, 0.0, 1.0);
         m.roughness = n.num("roughness", m.roughness, 0.0, 1.0);
         m.doubleSided = DoubleSided(n.choice("double_sided", 0, {"off", "none", "mirror", "flip"}));
+        if (n.has("base_color_map")) {
+            Node b = n.child("base_color_map");
+            b.allowOnly({"map", "uv_set"});
+            if (!b.has("map")) b.fail("missing \"map\"");
+            m.baseColorMap = texture(b.child("map"), Wrap::Repeat);
+            m.baseColorMap->srgb = true;
+            m.baseColorUvSet = b.integer("uv_set", 0, 0, kMaxUvSets - 1);
+        }
         if (n.has("layers")) {
             n.requireArray("layers", size_t(kMaxLayers));
             Node arr = n.child("layers");
@@ -555,7 +564,8 @@ struct Parser {
             Node s = n.child("subdivision");
             s.allowOnly({"scheme", "level", "limit"});
             static const char* schemes[] = {"catmark", "loop", "bilinear"};
-            m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
+            m.subdivide = true;
+            if (s.has("scheme")) m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
             m.subdivLevel = s.integer("level", 2, 0, 6);
             m.subdivLimit = s.boolean("limit", false);
             if (m.procedural) n.failField("subdivision", "applies to mesh files only (procedural meshes take \"segments\")");

@@ -77,6 +77,7 @@ struct TextureSource {
     int size = 256;              // procedural resolution
     float bumpHeight = 0.04f;    // procedural: height per unit st (slope scale)
     Wrap wrap = Wrap::Repeat;
+    bool srgb = false;           // colour texture: sRGB-decoded to linear on load
     std::string fieldPath;       // for messages, e.g. "materials[0].layers[1].map"
     std::string key() const;     // identity: equal keys share one texture
 };
@@ -138,6 +139,8 @@ struct Material {
     glm::vec3 baseColor{0.7f};
     float roughness = 0.45f;
     DoubleSided doubleSided = DoubleSided::Off;
+    std::optional<TextureSource> baseColorMap; // sRGB colour, multiplies baseColor
+    int baseColorUvSet = 0;
     std::vector<Layer> layers;
 };
 
@@ -158,9 +161,11 @@ struct Procedural {
 struct MeshInstance {
     std::string name;
     std::string fieldPath;
-    std::filesystem::path file;        // OBJ/glTF (via the mesh module), or empty
+    std::filesystem::path file;        // OBJ/PLY/OFF/glTF (via the mesh module), or empty
+    int fileInstance = -1;             // glTF: one instance of the file's scene (-1: all, merged)
     std::optional<Procedural> procedural;
-    std::string subdivScheme;          // "", "catmark", "loop", "bilinear"
+    bool subdivide = false;            // "subdivision" given: refine with OpenSubdiv
+    std::string subdivScheme;          // "" (the file's tags, else catmark), "catmark", "loop", "bilinear"
     int subdivLevel = 0;
     bool subdivLimit = false;
     std::vector<TangentSource> tangents; // per UV set; missing = pixel
@@ -240,6 +245,7 @@ struct MeshAsset {
     // Vertex tangents per UV set (empty = that set uses per-pixel frames).
     std::vector<std::vector<glm::vec4>> vertexTangents;
     std::vector<glm::vec3> basePositions, baseNormals; // before morphing
+    std::vector<std::vector<glm::vec4>> baseTangents;  // before morphing
 };
 
 struct SceneAssets {
@@ -306,7 +312,9 @@ struct MaterialPlan {
     std::vector<const TextureSource*> textureSources; // slot -> source
     int recordCount = 0;
     int uberFlagCount = 0;
-    uint32_t uvUsedMask = 0;        // UV sets read by some layer
+    uint32_t uvUsedMask = 0;        // UV sets read by some layer (or the base colour map)
+    int baseColorTex = -1;          // texture slot of the base colour map (-1: none)
+    int baseColorUvSet = 0;
     bool usesWorldVolume = false, usesObjectVolume = false;
     // Uber plans: the disabled stand-in layers (shared so copies of the
     // plan stay valid). Other layer and texture pointers point into the Scene,
