@@ -1,0 +1,70 @@
+// Helpers of the example tests: run a built program, read its images.
+#pragma once
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+namespace sg::examples_test {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output; // stdout and stderr
+};
+
+// Runs `cmd` through the shell, stderr merged into the captured output.
+inline RunResult run(const std::string& cmd) {
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((cmd + " 2>&1").c_str(), "r"), pclose);
+    if (!pipe) return {-1, "popen failed"};
+    RunResult r;
+    std::array<char, 4096> buf;
+    while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) r.output.append(buf.data(), n);
+    int status = pclose(pipe.release());
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return r;
+}
+
+inline std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// A fresh per-process scratch directory for one test.
+inline fs::path scratchDir(const std::string& name) {
+    fs::path d = fs::temp_directory_path() / ("surfgrad_examples_" + std::to_string(::getpid())) / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+struct Image {
+    int width = 0, height = 0, channels = 0;
+    std::vector<float> pixels; // top row first, `channels` floats per pixel
+    float at(int x, int y, int c) const {
+        return pixels[(size_t(y) * size_t(width) + size_t(x)) * size_t(channels) + size_t(c)];
+    }
+};
+
+// Reads any OpenImageIO format as float (8-bit PNG values become v / 255).
+// Returns an empty image (width 0) when the file cannot be read.
+inline Image readImage(const fs::path& path) {
+    Image img;
+    auto in = OIIO::ImageInput::open(path.string());
+    if (!in) return img;
+    const OIIO::ImageSpec& spec = in->spec();
+    img.width = spec.width;
+    img.height = spec.height;
+    img.channels = spec.nchannels;
+    img.pixels.resize(size_t(img.width) * size_t(img.height) * size_t(img.channels));
+    if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) img.width = 0;
+    in->close();
+    return img;
+}
+
+} // namespace sg::examples_test
