@@ -84,6 +84,63 @@ size_t validateInput(const MikkTSpaceInput& in) {
 
 float mikktspaceAngleFromCos(float cosine) { return mikk::acosRoundedToFloat(cosine); }
 
+// mikk::acosRoundedToFloat two values at a time (SSE2 doubles): the same
+// double operations in the same order per lane, then the same margin test;
+// lanes that fail it (and c == 1, whose neighbour test reads a NaN) call
+// libm's acos.
+void mikktspaceAnglesFromCos(std::span<float> values) {
+    size_t i = 0;
+#if defined(__SSE2__)
+    const __m128d half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0);
+    const __m128d pi = _mm_set1_pd(3.141592653589793115997963468544185161590576171875);
+    const __m128d halfPi = _mm_set1_pd(1.5707963267948965579989817342720925807952880859375);
+    const __m128d signBit = _mm_set1_pd(-0.0), zero = _mm_setzero_pd();
+    const __m128d marginScale = _mm_set1_pd(0x1p-36);
+    auto blend = [](__m128d mask, __m128d a, __m128d b) {
+        return _mm_or_pd(_mm_and_pd(mask, a), _mm_andnot_pd(mask, b));
+    };
+    for (; i + 2 <= values.size(); i += 2) {
+        float* v = values.data() + i;
+        const float c0 = v[0], c1 = v[1];
+        const __m128d x = _mm_cvtps_pd(_mm_setr_ps(c0, c1, 0.0f, 0.0f));
+        const __m128d a = _mm_andnot_pd(signBit, x);
+        const __m128d small = _mm_cmple_pd(a, half);
+        const __m128d zBig = _mm_mul_pd(_mm_sub_pd(one, a), half);
+        const __m128d z = blend(small, _mm_mul_pd(x, x), zBig);
+        __m128d q = _mm_set1_pd(0x1.c93a92d53b4f1p-6);
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(-0x1.815314c864b09p-9));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.00d47e7966d94p-6));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.b02442413f6bap-7));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.1dc2ef640046fp-6));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.6e72146fda29ep-6));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.f1c81c59ea536p-6));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.6db6d8e71341bp-5));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.33333335a9cd6p-4));
+        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.5555555554f05p-3));
+        const __m128d r = blend(small, x, _mm_sqrt_pd(zBig));
+        const __m128d asinR = _mm_add_pd(r, _mm_mul_pd(_mm_mul_pd(r, z), q));
+        const __m128d twoAsin = _mm_mul_pd(two, asinR);
+        const __m128d yBig = blend(_mm_cmpgt_pd(x, zero), twoAsin, _mm_sub_pd(pi, twoAsin));
+        const __m128d y = blend(small, _mm_sub_pd(halfPi, asinR), yBig);
+        const __m128 f = _mm_cvtpd_ps(y);
+        const __m128i bits = _mm_castps_si128(f);
+        const __m128d fd = _mm_cvtps_pd(f);
+        const __m128d below = _mm_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
+        const __m128d above = _mm_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
+        const __m128d margin = _mm_mul_pd(y, marginScale);
+        const __m128d ok =
+            _mm_and_pd(_mm_cmpgt_pd(_mm_sub_pd(y, _mm_mul_pd(half, _mm_add_pd(fd, below))), margin),
+                       _mm_cmpgt_pd(_mm_sub_pd(_mm_mul_pd(half, _mm_add_pd(fd, above)), y), margin));
+        alignas(16) float out[4];
+        _mm_store_ps(out, f);
+        const int okBits = _mm_movemask_pd(ok);
+        v[0] = (okBits & 1) ? out[0] : static_cast<float>(std::acos(static_cast<double>(c0)));
+        v[1] = (okBits & 2) ? out[1] : static_cast<float>(std::acos(static_cast<double>(c1)));
+    }
+#endif
+    for (; i < values.size(); ++i) values[i] = mikk::acosRoundedToFloat(values[i]);
+}
+
 namespace {
 
 using mikk::Vec3;
@@ -102,6 +159,17 @@ struct Incidence {
     uint32_t triCorner; // good triangle index << 2 | corner (0..2) at the vertex
     uint32_t prev;      // welded id of the previous corner of that triangle
     uint32_t next;      // welded id of the next corner
+};
+
+struct WeldedVertex {
+    Vec3 position;
+    Vec3 normal;
+    glm::vec2 uv;
+};
+
+// A good triangle's normalized first-order derivatives (eq. 18/19).
+struct TriDerivatives {
+    Vec3 os, ot;
 };
 
 // Per-entry terms of a vertex's incidence list, structure of arrays: the
@@ -126,32 +194,38 @@ struct Terms {
     Vec3 ot(size_t e) const { return {otx[e], oty[e], otz[e]}; }
 };
 
-// Four entries' inputs, gathered lane by lane, and the terms computed from
-// them: mikk::projectToPlane and the cosine of mikk::cornerAngle with the
-// same operations in the same order on each lane (SSE2 when available: its
-// add/mul/div/sqrt are the same IEEE operations as the scalar ones).
+// Four entries' terms at once: mikk::projectToPlane and the cosine of
+// mikk::cornerAngle with the same operations in the same order on each
+// lane (SSE2 when available: its add/mul/div/sqrt are the same IEEE
+// operations as the scalar ones, so the bits are the same).
 struct TermBatch {
-    // Rows: vOs xyz, vOt xyz, normal xyz, vertex position xyz, previous
-    // corner xyz, next corner xyz.
-    alignas(16) float in[18][4];
+    // Per lane: the triangle's derivatives, the vertex (normal, position)
+    // and the previous and next corners' positions.
+    const TriDerivatives* deriv[4];
+    const WeldedVertex* vertex[4];
+    const WeldedVertex* prev[4];
+    const WeldedVertex* next[4];
 
-    void set(size_t lane, const Vec3& os, const Vec3& ot, const Vec3& n, const Vec3& p,
-             const Vec3& prev, const Vec3& next) {
-        const Vec3* v[6] = {&os, &ot, &n, &p, &prev, &next};
-        for (int r = 0; r < 6; ++r) {
-            in[3 * r][lane] = v[r]->x;
-            in[3 * r + 1][lane] = v[r]->y;
-            in[3 * r + 2][lane] = v[r]->z;
-        }
+    void set(size_t lane, const TriDerivatives* d, const WeldedVertex* w, const WeldedVertex* p,
+             const WeldedVertex* n) {
+        deriv[lane] = d, vertex[lane] = w, prev[lane] = p, next[lane] = n;
     }
     void copyLane(size_t to, size_t from) {
-        for (auto& row : in) row[to] = row[from];
+        set(to, deriv[from], vertex[from], prev[from], next[from]);
     }
 
 #if defined(__SSE2__)
     struct V {
         __m128 x, y, z;
     };
+    // Four 16-byte loads (x, y, z and one float of whatever follows, which
+    // is in bounds: TriDerivatives and WeldedVertex hold more after each
+    // Vec3, and the derivative array has a padding entry), transposed.
+    static V gather(const float* a, const float* b, const float* c, const float* d) {
+        __m128 r0 = _mm_loadu_ps(a), r1 = _mm_loadu_ps(b), r2 = _mm_loadu_ps(c), r3 = _mm_loadu_ps(d);
+        _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+        return {r0, r1, r2};
+    }
     static __m128 dot4(const V& a, const V& b) {
         return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a.x, b.x), _mm_mul_ps(a.y, b.y)), _mm_mul_ps(a.z, b.z));
     }
@@ -173,30 +247,39 @@ struct TermBatch {
         return {select(_mm_mul_ps(inv, r.x), r.x), select(_mm_mul_ps(inv, r.y), r.y),
                 select(_mm_mul_ps(inv, r.z), r.z)};
     }
-    V row(int r) const { return {_mm_load_ps(in[r]), _mm_load_ps(in[r + 1]), _mm_load_ps(in[r + 2])}; }
+    static V sub4(const V& a, const V& b) {
+        return {_mm_sub_ps(a.x, b.x), _mm_sub_ps(a.y, b.y), _mm_sub_ps(a.z, b.z)};
+    }
 
     void compute(const Terms& out, size_t j) const {
-        const V n = row(6), p = row(9), prev = row(12), next = row(15);
-        const V os = project4(row(0), n), ot = project4(row(3), n);
-        const V e1 = project4({_mm_sub_ps(prev.x, p.x), _mm_sub_ps(prev.y, p.y), _mm_sub_ps(prev.z, p.z)}, n);
-        const V e2 = project4({_mm_sub_ps(next.x, p.x), _mm_sub_ps(next.y, p.y), _mm_sub_ps(next.z, p.z)}, n);
+        auto rows = [&](auto field) {
+            return gather(field(0), field(1), field(2), field(3));
+        };
+        const V os = rows([&](int l) { return &deriv[l]->os.x; });
+        const V ot = rows([&](int l) { return &deriv[l]->ot.x; });
+        const V n = rows([&](int l) { return &vertex[l]->normal.x; });
+        const V p = rows([&](int l) { return &vertex[l]->position.x; });
+        const V pp = rows([&](int l) { return &prev[l]->position.x; });
+        const V pn = rows([&](int l) { return &next[l]->position.x; });
+        const V pos = project4(os, n), pot = project4(ot, n);
+        const V e1 = project4(sub4(pp, p), n), e2 = project4(sub4(pn, p), n);
         const __m128 c = _mm_min_ps(_mm_max_ps(dot4(e1, e2), _mm_set1_ps(-1.0f)), _mm_set1_ps(1.0f));
-        _mm_storeu_ps(out.osx + j, os.x);
-        _mm_storeu_ps(out.osy + j, os.y);
-        _mm_storeu_ps(out.osz + j, os.z);
-        _mm_storeu_ps(out.otx + j, ot.x);
-        _mm_storeu_ps(out.oty + j, ot.y);
-        _mm_storeu_ps(out.otz + j, ot.z);
+        _mm_storeu_ps(out.osx + j, pos.x);
+        _mm_storeu_ps(out.osy + j, pos.y);
+        _mm_storeu_ps(out.osz + j, pos.z);
+        _mm_storeu_ps(out.otx + j, pot.x);
+        _mm_storeu_ps(out.oty + j, pot.y);
+        _mm_storeu_ps(out.otz + j, pot.z);
         _mm_storeu_ps(out.angle + j, c);
     }
 #else
     void compute(const Terms& out, size_t j) const {
         for (size_t lane = 0; lane < 4; ++lane) {
-            auto v = [&](int r) { return Vec3{in[r][lane], in[r + 1][lane], in[r + 2][lane]}; };
-            const Vec3 n = v(6), p = v(9);
-            const Vec3 os = mikk::projectToPlane(v(0), n), ot = mikk::projectToPlane(v(3), n);
-            const Vec3 e1 = mikk::projectToPlane(mikk::sub(v(12), p), n);
-            const Vec3 e2 = mikk::projectToPlane(mikk::sub(v(15), p), n);
+            const Vec3 n = vertex[lane]->normal, p = vertex[lane]->position;
+            const Vec3 os = mikk::projectToPlane(deriv[lane]->os, n);
+            const Vec3 ot = mikk::projectToPlane(deriv[lane]->ot, n);
+            const Vec3 e1 = mikk::projectToPlane(mikk::sub(prev[lane]->position, p), n);
+            const Vec3 e2 = mikk::projectToPlane(mikk::sub(next[lane]->position, p), n);
             float c = mikk::dot(e1, e2);
             c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
             out.osx[j + lane] = os.x, out.osy[j + lane] = os.y, out.osz[j + lane] = os.z;
@@ -205,12 +288,6 @@ struct TermBatch {
         }
     }
 #endif
-};
-
-struct WeldedVertex {
-    Vec3 position;
-    Vec3 normal;
-    glm::vec2 uv;
 };
 
 inline uint64_t mix(uint64_t h, uint32_t v) {
@@ -241,7 +318,7 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<uint32_t> goodWelded, goodCorner, goodFace;
     std::vector<uint8_t> goodVertInFace;
     // Per good triangle.
-    std::vector<Vec3> vOs, vOt;
+    std::vector<TriDerivatives> deriv; // + 1 padding entry (16-byte loads)
     std::vector<float> magS, magT;
     std::vector<uint8_t> flags;
     // Vertex -> incident corners.
@@ -274,8 +351,12 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                                std::all_of(in.faceSizes.begin(), in.faceSizes.end(),
                                            [](uint32_t n) { return n == 3; });
     const bool hasQuads = !trianglesOnly;
-    // Corners of faces that are neither triangles nor quads stay zero.
-    cornerTangents.assign(cornerCount, glm::vec4(0.0f));
+    // Corners of faces that are neither triangles nor quads stay zero. With
+    // triangles only every corner is written below (a good corner by its
+    // group or the default frame, a degenerate one by step 9), so the
+    // buffer needs no clearing.
+    if (trianglesOnly && !frames) cornerTangents.resize(cornerCount);
+    else cornerTangents.assign(cornerCount, glm::vec4(0.0f));
     if (frames) frames->assign(cornerCount, MikkTSpaceFrame{{0, 0, 0}, 0, {0, 0, 0}, 0, 0});
     if (triCount == 0) return;
 
@@ -481,8 +562,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     auto faceOf = [&](size_t t) -> uint32_t { return gFace ? gFace[t] : uint32_t(t); };
 
     // --- Step 5: per-triangle derivatives and orientation (eq. 18/19).
-    s.vOs.resize(goodCount);
-    s.vOt.resize(goodCount);
+    s.deriv.resize(goodCount + 1); // the last entry pads 16-byte loads of the one before
     s.magS.resize(goodCount);
     s.magT.resize(goodCount);
     for (size_t t = 0; t < goodCount; ++t) {
@@ -491,8 +571,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         const WeldedVertex& c = wv[gWelded[t * 3 + 2]];
         const mikk::FaceDerivatives d =
             mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
-        s.vOs[t] = d.vOs;
-        s.vOt[t] = d.vOt;
+        s.deriv[t] = {d.vOs, d.vOt};
         s.magS[t] = d.magS;
         s.magT[t] = d.magT;
         s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0));
@@ -560,8 +639,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     };
     const float thresholdCos = mikk::defaultThresholdCos();
     const uint8_t* const flags = s.flags.data();
-    const Vec3* const triOs = s.vOs.data();
-    const Vec3* const triOt = s.vOt.data();
+    const TriDerivatives* const triDeriv = s.deriv.data();
     size_t maxDegree = 0;
     for (size_t w = 0; w < weldedCount; ++w)
         maxDegree = std::max<size_t>(maxDegree, s.incidenceStart[w + 1] - s.incidenceStart[w]);
@@ -587,9 +665,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const Incidence* list = s.incidence.data() + s.incidenceStart[w];
             const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
             for (size_t e = 0; e < k; ++e) {
-                const uint32_t t = list[e].triCorner >> 2;
-                batch.set(filled, triOs[t], triOt[t], wv[w].normal, wv[w].position,
-                          wv[list[e].prev].position, wv[list[e].next].position);
+                batch.set(filled, triDeriv + (list[e].triCorner >> 2), wv + w, wv + list[e].prev,
+                          wv + list[e].next);
                 if (++filled == 4) {
                     batch.compute(out, first);
                     first += 4;
@@ -602,7 +679,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             batch.compute(out, first); // writes up to 3 entries past the end: capacity has room
             first += filled;
         }
-        for (size_t j = 0; j < first; ++j) out.angle[j] = mikk::acosRoundedToFloat(out.angle[j]);
+        mikktspaceAnglesFromCos({out.angle, first});
     };
 
     // Which entries pair across each edge at the vertex: entry e's edge
@@ -788,6 +865,28 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 continue;
             }
             pairEdges(list, k);
+            // Usual case: one orientation, and the pairing links all entries
+            // into one chain (open fan) or cycle (closed fan): one group
+            // with every entry, already in ascending order.
+            const uint8_t orient0 = flags[list[0].triCorner >> 2] & kOrient;
+            bool oneOrientation = true;
+            for (size_t e = 1; e < k; ++e)
+                oneOrientation &= (flags[list[e].triCorner >> 2] & kOrient) == orient0;
+            if (oneOrientation) {
+                int32_t start = 0;
+                for (size_t e = 0; e < k; ++e)
+                    if (inNbr[e] < 0) {
+                        start = int32_t(e);
+                        break;
+                    }
+                size_t reached = 1;
+                for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
+                if (reached == k) {
+                    for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
+                    emitGroup(list, terms, members, k, orient0 != 0);
+                    continue;
+                }
+            }
             for (size_t e = 0; e < k; ++e) comp[e] = -1;
             for (size_t seed = 0; seed < k; ++seed) {
                 if (comp[seed] >= 0) continue;

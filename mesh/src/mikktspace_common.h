@@ -121,7 +121,8 @@ inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::v
 // Since any libm acos is within an ulp of the true value (2^-52), the
 // result equals (float)std::acos(c) for every float c; an exhaustive check
 // over all 2^31 floats in [-1, 1] is in the benchmark
-// (tangents_bench --check-acos) and a sample in the tests.
+// (tangents_bench --check-acos) and a sample in the tests. The fast
+// MikkTSpace path uses the two-lane SIMD copy, mikktspaceAnglesFromCos.
 inline float acosRoundedToFloat(float c) {
     constexpr double kPi = 3.141592653589793115997963468544185161590576171875;
     constexpr double kHalfPi = 1.5707963267948965579989817342720925807952880859375;
@@ -166,15 +167,16 @@ inline float acosRoundedToFloat(float c) {
 
 // The angle of a triangle at corner p1 (between p1->p0 and p1->p2), both
 // edges projected into the plane of the vertex normal n: the weight of the
-// triangle's derivatives in the vertex average. The reference takes acos in
-// double and rounds to float, (float)acos(fCos); acosRoundedToFloat gives
-// the same bits.
+// triangle's derivatives in the vertex average. As the reference: acos in
+// double, rounded to float (the oracle's expression; the fast path computes
+// the same cosine four corners at a time and rounds the angle with
+// mikktspaceAnglesFromCos, which gives the same bits).
 inline float cornerAngle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& n) {
     const Vec3 v1 = projectToPlane(sub(p0, p1), n);
     const Vec3 v2 = projectToPlane(sub(p2, p1), n);
     float c = dot(v1, v2);
     c = c > 1.0f ? 1.0f : (c < -1.0f ? -1.0f : c);
-    return acosRoundedToFloat(c);
+    return static_cast<float>(std::acos(static_cast<double>(c)));
 }
 
 // Angle-weighted sum of the projected derivatives of one subgroup

@@ -545,27 +545,32 @@ TEST(MikkTSpace, RejectsInvalidInput) {
 TEST(MikkTSpace, AngleRoundingEqualsTheReferenceExpression) {
     // The fast path rounds corner angles without libm's acos except near
     // float rounding boundaries; it must equal (float)acos(double(c)) for
-    // every float c in [-1, 1]. Exhaustively checked by
+    // every float c in [-1, 1], in the scalar function and in the two-lane
+    // batch the generator uses. Exhaustively checked by
     // `tangents_bench --check-acos` (2^31 values, 0 mismatches); here every
     // 257th bit pattern (8.3M values, all exponents) plus the ends.
-    size_t checked = 0, mismatches = 0;
-    auto check = [&](float c) {
-        const float fast = sg::mesh::mikktspaceAngleFromCos(c);
-        const float ref = static_cast<float>(std::acos(static_cast<double>(c)));
-        mismatches += !sameBits(&fast, &ref, sizeof fast);
-        ++checked;
-    };
+    std::vector<float> cosines;
     for (const uint32_t sign : {0u, 0x80000000u})
         for (uint32_t bits = 0; bits <= 0x3F800000u; bits += 257) {
             const uint32_t b = bits | sign;
             float c;
             std::memcpy(&c, &b, sizeof c);
-            check(c);
+            cosines.push_back(c);
         }
     for (float c : {1.0f, -1.0f, 0.0f, -0.0f, 0.5f, -0.5f, std::nextafter(0.5f, 1.0f),
-                    std::nextafter(1.0f, 0.0f), std::nextafter(-1.0f, 0.0f), 1e-30f})
-        check(c);
-    EXPECT_EQ(mismatches, 0u) << "of " << checked;
+                    std::nextafter(1.0f, 0.0f), std::nextafter(-1.0f, 0.0f), 1e-30f, 1.0f})
+        cosines.push_back(c); // odd count: the batch's scalar tail runs too
+    std::vector<float> batch = cosines;
+    sg::mesh::mikktspaceAnglesFromCos(batch);
+    size_t scalarMismatches = 0, batchMismatches = 0;
+    for (size_t i = 0; i < cosines.size(); ++i) {
+        const float ref = static_cast<float>(std::acos(static_cast<double>(cosines[i])));
+        const float scalar = sg::mesh::mikktspaceAngleFromCos(cosines[i]);
+        scalarMismatches += !sameBits(&scalar, &ref, sizeof ref);
+        batchMismatches += !sameBits(&batch[i], &ref, sizeof ref);
+    }
+    EXPECT_EQ(scalarMismatches, 0u) << "of " << cosines.size();
+    EXPECT_EQ(batchMismatches, 0u) << "of " << cosines.size();
 }
 
 TEST(TangentMethod, NamesRoundTrip) {

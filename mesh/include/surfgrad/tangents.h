@@ -131,6 +131,9 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
 // libm's acos (see mesh/src/mikktspace_common.h). Exposed for the
 // exhaustive check (bench: tangents_bench --check-acos) and the tests.
 float mikktspaceAngleFromCos(float cosine);
+// The same for many values in place (what the fast generator uses; two at
+// a time with SSE2).
+void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles);
 
 // Convenience: MikkTSpace tangents for `uvSet` of a RenderMesh (which must
 // have normals), stored into mesh.tangents (replacing any), with
