@@ -45,11 +45,16 @@ size_t validateInput(const MikkTSpaceInput& in) {
     for (size_t v = 0; v < vertexCount; ++v) {
         const glm::vec3 p = in.positions[v], n = in.normals[v];
         const glm::vec2 t = in.uvs[v];
-        if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) &&
-              std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) &&
-              std::isfinite(t.x) && std::isfinite(t.y)))
+        // Bounds that keep every intermediate finite or +inf, never NaN
+        // (products of two coordinate differences <= 2^122; normals are
+        // meant to be unit vectors). NaN fails every comparison.
+        constexpr float kMaxCoord = 0x1p60f, kMaxNormal = 16.0f;
+        if (!(std::fabs(p.x) <= kMaxCoord && std::fabs(p.y) <= kMaxCoord && std::fabs(p.z) <= kMaxCoord &&
+              std::fabs(t.x) <= kMaxCoord && std::fabs(t.y) <= kMaxCoord &&
+              std::fabs(n.x) <= kMaxNormal && std::fabs(n.y) <= kMaxNormal && std::fabs(n.z) <= kMaxNormal))
             throw std::invalid_argument("MikkTSpace: vertex " + std::to_string(v) +
-                                        " has a non-finite position, normal or uv");
+                                        " has a non-finite or out-of-range position, normal or uv "
+                                        "(|position|, |uv| <= 2^60, |normal component| <= 16)");
     }
     const size_t cornerCount = in.cornerVertices.size();
     size_t triangles = 0;

@@ -513,6 +513,14 @@ TEST(MikkTSpace, RejectsInvalidInput) {
     }
     {
         Strip bad = s;
+        bad.positions[2].x = 1e30f; // beyond 2^60: products could overflow to NaN
+        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+        bad = s;
+        bad.normals[0] = {0, 0, 1e5f}; // not a unit normal
+        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+    }
+    {
+        Strip bad = s;
         bad.corners = {0, 1, 3};
         EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
     }

@@ -62,11 +62,15 @@ std::optional<TangentMethod> parseTangentMethod(std::string_view name);
 // difference (as in the reference).
 //
 // Preconditions (checked: std::invalid_argument otherwise): every value
-// finite; every index < positions.size(); normals.size() == uvs.size() ==
-// positions.size(); faceSizes either empty (all faces are triangles and
-// cornerVertices.size() is a multiple of 3) or summing to
-// cornerVertices.size(); fewer than 2^30 triangles. Normals should be unit
-// length (the reference assumes it; they are not renormalized).
+// finite, |position and uv coordinates| <= 2^60, |normal components| <= 16
+// (so no intermediate can become NaN); every index < positions.size();
+// normals.size() == uvs.size() == positions.size(); faceSizes either empty
+// (all faces are triangles and cornerVertices.size() is a multiple of 3) or
+// summing to cornerVertices.size(); fewer than 2^30 triangles. Normals
+// should be unit length (the reference assumes it; they are not
+// renormalized). Outputs are never NaN; for absurdly large coordinates
+// (dP/ds beyond 1e19) a tangent can collapse to 0 and magnitudes to +inf,
+// exactly as in the reference.
 struct MikkTSpaceInput {
     std::span<const glm::vec3> positions;   // per vertex, object space
     std::span<const glm::vec3> normals;     // per vertex, unit, object space
