@@ -1,0 +1,139 @@
+// `surfgrad mesh tangents FILE [--method mikktspace|limit] [--uv-set K]
+//  [--level N] [--scheme catmark|loop|bilinear] -o OUT.gltf|.glb [--json]`:
+// writes a glTF whose TANGENT (xyz + handedness w) belongs to UV set K
+// (TEXCOORD_K), computed by one of the tangent-frame methods of issue 5
+// (surfgrad/tangents.h):
+//  - mikktspace: MikkTSpace-compatible vertex tangents of the file's
+//    triangle mesh (or of its level-N uniform refinement with --level);
+//    vertices whose corners get different tangents are split;
+//  - limit: the exact frame of the subdivision limit surface at the
+//    vertices of the level-N refinement (positions, normals and UVs on the
+//    limit surface as well).
+// The third method, pixel, stores nothing (the shader builds the frame),
+// so it has nothing to write here. Errors name the file and reason; the
+// output is written atomically and never over the input.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "commands.h"
+#include "surfgrad/io.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/subdivision.h"
+#include "surfgrad/tangents.h"
+
+namespace sg::cli {
+
+namespace {
+
+struct TangentsOptions {
+    std::string input, output, method = "mikktspace", scheme;
+    int uvSet = 0;
+    int level = 0;
+    bool json = false;
+};
+
+void runTangents(const TangentsOptions& o, int& status) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::optional<mesh::TangentMethod> method = mesh::parseTangentMethod(o.method);
+    if (!method || *method == mesh::TangentMethod::Pixel)
+        throw CliError("--method " + o.method +
+                       ": expected mikktspace or limit (pixel frames are built by the shader; "
+                       "nothing is stored)");
+    const std::string outFormat = mesh::meshFormat(o.output);
+    if (outFormat != ".gltf" && outFormat != ".glb")
+        throw CliError(o.output + ": TANGENT needs a glTF output (.gltf or .glb), not '" + outFormat + "'");
+    if (o.level < 0 || o.level > mesh::kMaxSubdivisionLevel)
+        throw CliError("--level " + std::to_string(o.level) + ": expected 0.." +
+                       std::to_string(mesh::kMaxSubdivisionLevel));
+    io::checkNotInput(o.output, {o.input});
+
+    mesh::RenderMesh result;
+    size_t changed = 0; // vertices split (mikktspace) or irregular (limit)
+    const bool subdivide = *method == mesh::TangentMethod::Limit || o.level > 0;
+    if (subdivide) {
+        const mesh::PolygonMesh cage = mesh::loadPolygonMesh(o.input);
+        mesh::SubdivisionSettings settings;
+        settings.level = o.level;
+        settings.options = cage.options;
+        if (!o.scheme.empty() && !mesh::parseScheme(o.scheme, settings.options.scheme))
+            throw CliError("--scheme " + o.scheme + ": expected catmark, loop or bilinear");
+        settings.limit = *method == mesh::TangentMethod::Limit;
+        mesh::Subdivider subdivider(cage, settings, o.input);
+        result = subdivider.renderMesh();
+        if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
+            throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
+                                 "the mesh has " + std::to_string(result.uvSets.size()) + " UV set(s)");
+        changed = mesh::generateTangents(result, *method, o.uvSet,
+                                         settings.limit ? &subdivider.limitFrame() : nullptr);
+    } else {
+        if (!o.scheme.empty()) throw CliError("--scheme needs --level N > 0 (or --method limit)");
+        result = mesh::loadRenderMesh(o.input);
+        if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
+            throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
+                                 "the mesh has " + std::to_string(result.uvSets.size()) + " UV set(s)");
+        changed = mesh::generateTangents(result, *method, o.uvSet);
+    }
+
+    mesh::WriteOptions write;
+    write.inputs = {o.input};
+    const std::vector<std::string> notes = mesh::writeRenderMesh(o.output, result, write);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    const char* changedKey = *method == mesh::TangentMethod::Limit ? "irregular_vertices" : "split_vertices";
+    if (o.json) {
+        nlohmann::json j;
+        j["method"] = std::string(mesh::tangentMethodName(*method));
+        j["uv_set"] = o.uvSet;
+        j["level"] = o.level;
+        j["vertices"] = result.vertexCount();
+        j["triangles"] = result.triangleCount();
+        j[changedKey] = changed;
+        j["output"] = o.output;
+        j["notes"] = notes;
+        j["seconds"] = seconds;
+        std::cout << j.dump() << "\n";
+    } else {
+        std::printf("%s: %s tangents for TEXCOORD_%d%s: %zu vertices, %zu triangles, %zu %s -> %s (%.3f s)\n",
+                    o.input.c_str(), std::string(mesh::tangentMethodName(*method)).c_str(), o.uvSet,
+                    subdivide ? (" at level " + std::to_string(o.level)).c_str() : "",
+                    result.vertexCount(), result.triangleCount(), changed,
+                    *method == mesh::TangentMethod::Limit ? "irregular vertices (neighbour fallback)"
+                                                          : "vertices split",
+                    o.output.c_str(), seconds);
+        for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
+    }
+    status = 0;
+}
+
+} // namespace
+
+void addMeshTangentsCommand(CLI::App& meshGroup, int& status) {
+    auto opts = std::make_shared<TangentsOptions>();
+    CLI::App* cmd = meshGroup.add_subcommand(
+        "tangents", "Write a glTF with TANGENT (xyz + handedness w) for one UV set");
+    cmd->add_option("file", opts->input, "Input mesh (.obj .off .ply .stl .gltf .glb)")->required();
+    cmd->add_option("--method", opts->method,
+                    "mikktspace (MikkTSpace-compatible vertex tangents) or limit (exact frame "
+                    "of the subdivision limit surface)")
+        ->capture_default_str();
+    cmd->add_option("--uv-set", opts->uvSet, "UV set K (TEXCOORD_K) the tangents belong to")
+        ->capture_default_str();
+    cmd->add_option("--level", opts->level,
+                    "Uniform subdivision level first (limit: the level whose vertices get limit "
+                    "frames; 0 = the cage's own vertices)")
+        ->capture_default_str();
+    cmd->add_option("--scheme", opts->scheme, "catmark, loop or bilinear (default: the file's tag)");
+    cmd->add_option("-o,--output", opts->output, "Output .gltf or .glb")->required();
+    cmd->add_flag("--json", opts->json, "Print a JSON summary");
+    cmd->callback([opts, &status] { runTangents(*opts, status); });
+}
+
+} // namespace sg::cli
