@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
     sg::cli::addSelftestCommand(app, status);
     sg::cli::addRenderCommands(app, status);
     [[maybe_unused]] CLI::App* meshGroup = sg::cli::addMeshCommands(app, status); // more mesh subcommands attach here
+    sg::cli::addFeaturesCommands(app, status);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

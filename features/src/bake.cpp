@@ -584,10 +584,10 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     for (size_t k = 0; k < nc; ++k) {
         maps.hPos[k] = float(g.hPos[k]);
         maps.vPos[k] = float(g.vPos[k]);
-        if (opt.mode == BakeMode::Quadratic) {
-            maps.hAngle[k] = g.hPos[k] >= 0.0 ? float(g.hAng[k]) : 0.0f;
-            maps.vAngle[k] = g.vPos[k] >= 0.0 ? float(g.vAng[k]) : 0.0f;
-        }
+        // Angles in both modes: linear maps use them for the gradient on the
+        // curve (the curve's normal), quadratic maps also for the shape.
+        maps.hAngle[k] = g.hPos[k] >= 0.0 ? float(g.hAng[k]) : 0.0f;
+        maps.vAngle[k] = g.vPos[k] >= 0.0 ? float(g.vAng[k]) : 0.0f;
     }
 
     // Step 5: distances.

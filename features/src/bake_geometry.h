@@ -20,10 +20,10 @@ struct Quad {
     dvec2 p0{0.0}, p1{0.0}, p2{0.0};
     dvec2 a() const { return p0 - 2.0 * p1 + p2; }
     dvec2 b() const { return 2.0 * (p1 - p0); }
-    dvec2 at(double u) const {
-        double v = 1.0 - u;
-        return v * v * p0 + 2.0 * u * v * p1 + u * u * p2;
-    }
+    // Power form p0 + u (b + u a): exact for a coordinate that is constant
+    // along the curve (a and b vanish there), which the Bernstein form is
+    // not; the scan conversion relies on it for curves along grid lines.
+    dvec2 at(double u) const { return p0 + u * (b() + u * a()); }
     dvec2 tangent(double u) const { return b() + 2.0 * u * a(); } // B'(u)
     Quad reversed() const { return {p2, p1, p0}; }
     // Restriction to [u0, u1] (blossoming).

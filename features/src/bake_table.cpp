@@ -75,15 +75,17 @@ double quantizePos(double t) {
     return k / 65535.0;
 }
 
+// Angle code a in 1..65535: theta = (a - 32768) / 32767 * pi / 2, so 0 and
+// +-pi/2 are exact (horizontal and vertical curves).
 double quantizeAngle(double theta) {
-    double u = std::round((wrapAngle(theta) / M_PI + 0.5) * 65535.0);
-    u = std::clamp(u, 0.0, 65535.0);
-    return (u / 65535.0 - 0.5) * M_PI;
+    double a = std::round(wrapAngle(theta) / (0.5 * M_PI) * 32767.0);
+    a = std::clamp(a, -32767.0, 32767.0);
+    return a / 32767.0 * (0.5 * M_PI);
 }
 
 uint32_t packEdgeWord(double posQ, double angleQ) {
     auto p = uint32_t(std::clamp(std::lround(posQ * 65535.0), 0L, 65535L));
-    auto a = uint32_t(std::clamp(std::lround((angleQ / M_PI + 0.5) * 65535.0), 0L, 65535L));
+    auto a = uint32_t(std::clamp(std::lround(angleQ / (0.5 * M_PI) * 32767.0), -32767L, 32767L) + 32768L);
     return p | (a << 16);
 }
 

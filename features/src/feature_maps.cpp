@@ -22,7 +22,7 @@ uint32_t FeatureMaps::configWord(int i, int j) const {
     if (left[index(i + 1, j)]) w |= 1u << 17;
     if (left[index(i + 1, j + 1)]) w |= 1u << 18;
     if (left[index(i, j + 1)]) w |= 1u << 19;
-    if (mode == BakeMode::Quadratic) w |= 1u << 20;
+    w |= 1u << 20; // edge words carry tangent angles (both modes)
     return w;
 }
 
@@ -61,14 +61,50 @@ GpuFeatureMaps FeatureMaps::packGpu() const {
 }
 
 double FeatureMaps::canonicalBytesPerTexel() const {
-    // d, gx, gy, seg, hT, vT (+ hA, vA) as float, left as a byte, per corner.
-    double perCorner = (mode == BakeMode::Quadratic ? 8.0 : 6.0) * 4.0 + 1.0;
+    // d, gx, gy, seg, hT, vT, hA, vA as float, left as a byte, per corner.
+    double perCorner = 8.0 * 4.0 + 1.0;
     double corners = double(size + 1) * double(size + 1);
     return perCorner * corners / (double(size) * double(size));
 }
 
 glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos) {
     return glsl::sgFeatSample(maps.cornerSampler(), maps.edgeSampler(), texelPos);
+}
+
+void evalKernelCpu(int kernel, const float* in, float* out) {
+    glsl::SgFeatEvalIn x;
+    for (int k = 0; k < kEvalInStride; ++k) x.v[k] = in[k];
+    glsl::SgFeatEvalOut y = glsl::sgFeatEvalKernel(kernel, x);
+    for (int k = 0; k < kEvalOutStride; ++k) out[k] = y.v[k];
+}
+
+std::string evalKernelGpuBody() { return "#include \"sg/features/kernels.comp.glsl\"\n"; }
+
+std::vector<std::string> evalKernelGpuDefines(int kernel) {
+    return {"SG_FEAT_EVAL_KERNEL " + std::to_string(kernel)};
+}
+
+std::string sampleGpuBody() { return "#include \"sg/features/sample.comp.glsl\"\n"; }
+
+void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
+    assert(i >= 0 && j >= 0 && i < maps.size && j < maps.size);
+    const int m = maps.size + 1;
+    auto corner = [&](int ci, int cj) { return &maps.corners[(size_t(cj) * size_t(m) + size_t(ci)) * 4]; };
+    const float* c[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)};
+    for (int k = 0; k < kEvalInStride; ++k) r[k] = 0.0f;
+    for (int k = 0; k < 4; ++k) {
+        r[k] = c[k][0];
+        r[4 + 2 * k] = c[k][1];
+        r[5 + 2 * k] = c[k][2];
+    }
+    r[12] = c[0][3];
+    const uint32_t* e = &maps.edges[(size_t(j) * size_t(maps.size) + size_t(i)) * 4];
+    for (int k = 0; k < 4; ++k) {
+        r[13 + 2 * k] = float(e[k] & 0xFFFFu);
+        r[14 + 2 * k] = float(e[k] >> 16);
+    }
+    r[21] = local.x;
+    r[22] = local.y;
 }
 
 std::vector<std::string> profileNames() { return {"vgroove", "crease", "ridge", "step", "seam", "table:h0,h1,..."}; }

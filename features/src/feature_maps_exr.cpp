@@ -24,14 +24,7 @@ const char* kLayout =
     "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
     "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
 
-std::vector<std::string> channelNames(BakeMode mode) {
-    std::vector<std::string> c{"d", "gx", "gy", "left", "seg", "hT", "vT"};
-    if (mode == BakeMode::Quadratic) {
-        c.push_back("hA");
-        c.push_back("vA");
-    }
-    return c;
-}
+std::vector<std::string> channelNames() { return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"}; }
 
 std::string pixelName(int i, int j) { return "corner (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
 
@@ -98,10 +91,10 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
         m.source = std::string(p->get_string());
     }
 
-    auto names = channelNames(m.mode);
+    auto names = channelNames();
     if (spec.nchannels != int(names.size())) {
-        throw InputError(name, "channels", "expected " + std::to_string(names.size()) + " channels for " + mode +
-                                               " maps, found " + std::to_string(spec.nchannels));
+        throw InputError(name, "channels", "expected " + std::to_string(names.size()) + " channels, found " +
+                                               std::to_string(spec.nchannels));
     }
     std::vector<int> slot(names.size(), -1);
     for (size_t c = 0; c < names.size(); ++c) {
@@ -161,12 +154,14 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             checkPos(vT, j < m.size, "vT");
             m.hPos[k] = hT;
             m.vPos[k] = vT;
-            if (m.mode == BakeMode::Quadratic) {
+            {
                 float hA = ch(7), vA = ch(8);
                 for (auto [a, t, chName] : {std::tuple{hA, hT, "hA"}, std::tuple{vA, vT, "vA"}}) {
                     if (std::fabs(a) > float(M_PI / 2) + 1e-6f) throw bad(chName, "angle outside [-pi/2, pi/2]");
                     if (t == -1.0f && a != 0.0f) throw bad(chName, "angle without a point");
-                    if (std::fabs(double(a) - detail::quantizeAngle(double(a))) > 1e-6) throw bad(chName, "angle not on the 16-bit grid");
+                    // Compared as line directions (mod pi): -pi/2 and pi/2 are one.
+                    double off = detail::wrapAngle(double(a) - detail::quantizeAngle(double(a)));
+                    if (std::fabs(off) > 1e-6) throw bad(chName, "angle not on the 16-bit grid");
                 }
                 m.hAngle[k] = hA;
                 m.vAngle[k] = vA;
@@ -233,7 +228,7 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
 void save(const FeatureMaps& m, const std::filesystem::path& path) {
     using io::InputError;
     const int g = m.size + 1;
-    auto names = channelNames(m.mode);
+    auto names = channelNames();
     const size_t nch = names.size();
     std::vector<float> px(size_t(g) * size_t(g) * nch);
     for (int row = 0; row < g; ++row) {
@@ -248,10 +243,8 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
             p[4] = float(m.seg[k]);
             p[5] = m.hPos[k];
             p[6] = m.vPos[k];
-            if (m.mode == BakeMode::Quadratic) {
-                p[7] = m.hAngle[k];
-                p[8] = m.vAngle[k];
-            }
+            p[7] = m.hAngle[k];
+            p[8] = m.vAngle[k];
         }
     }
     io::writeAtomically(path, [&](const std::filesystem::path& tmp) {

@@ -42,8 +42,9 @@
 //   hT, vT      point on the horizontal edge (i, j)-(i+1, j) / vertical
 //               edge (i, j)-(i, j+1): position in [2^-10, 1 - 2^-10] on the
 //               16-bit grid, or -1 when the edge has no point
-//   hA, vA      (quadratic mode only) tangent angle at that point, radians
-//               in [-pi/2, pi/2] on the 16-bit grid (0 without a point)
+//   hA, vA      tangent angle of the curve at that point, radians in
+//               [-pi/2, pi/2] on the 16-bit grid (0 without a point); the
+//               shape of curved segments and the gradient on the curve
 // Metadata: surfgrad:featureMapsVersion (int), surfgrad:mode ("linear" or
 // "quadratic"), surfgrad:size (int N), surfgrad:inputToTexelScaleX/Y and
 // surfgrad:inputToTexelOffsetX/Y (double), surfgrad:bandTexels (double),
@@ -90,6 +91,7 @@ inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
 inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) { return ivec2(s.width, s.height); }
 #include "sg/features/fetch.glsl"
 #include "sg/features/profile.glsl"
+#include "sg/features/kernels.glsl"
 } // namespace sg::glsl
 
 namespace sg::features {
@@ -210,6 +212,21 @@ void save(const FeatureMaps& maps, const std::filesystem::path& path);
 FeatureMaps load(const std::filesystem::path& path);
 // Same checks on an in-memory file (fuzzing); `name` appears in messages.
 FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name);
+
+// Evaluation kernels (shaders/sg/features/kernels.glsl, record layouts
+// there) for CPU/GPU parity: the C++ build of sgFeatEvalKernel, and the
+// compute-program body and defines that run the same kernel on the GPU
+// (assemble with sg::shaders::assemble, run with sg::gl::runCompute).
+inline constexpr int kEvalInStride = SG_FEAT_EVAL_IN;
+inline constexpr int kEvalOutStride = SG_FEAT_EVAL_OUT;
+void evalKernelCpu(int kernel, const float* in, float* out);
+std::string evalKernelGpuBody(); // includes sg/features/kernels.comp.glsl
+std::vector<std::string> evalKernelGpuDefines(int kernel);
+// Body of the texture-path compute program (sg/features/sample.comp.glsl):
+// samplers uFeatCorners / uFeatEdges, records of 2 floats -> 4 floats.
+std::string sampleGpuBody();
+// The SG_FEAT_K_EVAL record of texel (i, j) of `maps` at local point `local`.
+void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* record);
 
 // Named profiles: "vgroove", "crease", "ridge", "step", "seam", or
 // "table:h0,h1,...,hk" (2..16 heights in units of depth, at d = w * i / k).

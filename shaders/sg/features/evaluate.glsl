@@ -44,7 +44,7 @@
 struct SgFeatGeom {
     vec2 q[4];        // edge vertices (texel-local)
     vec2 tang[4];     // unit tangent of the curve at the edge point
-    bool angles;      // tangents are stored (quadratic maps)
+    bool angles;      // tangents are stored (layout.glsl bit 20)
     bool pt[4];       // edge carries a discontinuity point
     float t[4];       // position of the edge vertex along its edge
     vec3 cv[4];       // corner samples (d, grad.x, grad.y)
@@ -228,22 +228,33 @@ SG_FN vec3 sgFeatEdgeValueCorners(SgFeatGeom g, int reach, int e) {
     return vec3(v.x, m.y, m.z);
 }
 
-// On a discontinuity point of a quadratic map the gradient is the curve's
-// unit normal there (known from the signature's tangent angle), oriented
-// like the corner interpolation it replaces: exact on the curve, where the
-// corner samples only approximate it. Both texels sharing the point use the
-// same angle, so the gradient stays continuous across the texel edge.
-SG_FN vec3 sgFeatOnCurveNormal(SgFeatGeom g, int e, vec3 v) {
+// On a discontinuity point the gradient is the curve's unit normal there
+// (known from the signature's tangent angle), exact on the curve where the
+// corner samples only approximate it (they are smoothed, and turn near the
+// medial axis). It is oriented towards p's side: towards the one reachable
+// corner of the edge (the curve crosses the edge there, so the edge leads
+// into p's region); when both or neither are reachable (a curve ending on
+// the edge, or p between two segments meeting there), like the corner
+// interpolation of appendix step 3.1 that it replaces. Both texels sharing
+// the point use the same angle and the same orientation, so the gradient
+// stays continuous across the texel edge. An addition to the papers, which
+// interpolate the corner gradients here.
+SG_FN vec3 sgFeatOnCurveNormal(SgFeatGeom g, int reach, int e, vec3 v) {
     if (!g.pt[e] || !g.angles) return v;
     vec2 n = vec2(-g.tang[e].y, g.tang[e].x);
-    vec2 gl = vec2(v.y, v.z);
-    float s = dot(n, gl);
-    if (!(abs(s) > 0.05f * sqrt(dot(gl, gl)))) return v; // orientation unclear: keep
+    int c0 = sgFeatEdgeCorner0(e);
+    int c1 = sgFeatEdgeCorner1(e);
+    bool r0 = ((reach >> c0) & 1) != 0;
+    bool r1 = ((reach >> c1) & 1) != 0;
+    vec2 ref = vec2(v.y, v.z);
+    if (r0 != r1) ref = sgFeatCornerPos(r0 ? c0 : c1) - g.q[e];
+    float s = dot(n, ref);
+    if (!(abs(s) > 0.05f * sqrt(dot(ref, ref)))) return v; // orientation unclear: keep
     return vec3(v.x, s > 0.0f ? n.x : -n.x, s > 0.0f ? n.y : -n.y);
 }
 
 SG_FN vec3 sgFeatEdgeValue(SgFeatGeom g, int reach, int e) {
-    return sgFeatOnCurveNormal(g, e, sgFeatEdgeValueCorners(g, reach, e));
+    return sgFeatOnCurveNormal(g, reach, e, sgFeatEdgeValueCorners(g, reach, e));
 }
 
 // Value at the centre vertex r_m (step 4).

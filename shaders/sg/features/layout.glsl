@@ -76,14 +76,15 @@ SG_FN bool sgFeatCornerLeft(uint cfg, int k) {
 //   bits  0-15  position t on the edge, unorm16: t = value / 65535
 //   bits 16-31  tangent angle theta of the curve at the point, measured
 //               from +x (the paper's "horizon"), a line direction in
-//               [-pi/2, pi/2]: unorm16 of theta / pi + 1/2
+//               [-pi/2, pi/2]: code a in 1..65535 with
+//               theta = (a - 32768) / 32767 * pi / 2 (0 and +-pi/2 exact)
 // The bake stores positions and angles already rounded to these grids, so
 // the C++ and GLSL evaluators see identical values. Edges without a point
 // hold the paper's default (t, theta) = (0.5, 0).
 #define SG_FEAT_PI 3.14159265358979f
 SG_FN float sgFeatEdgePos(uint w) { return float(w & 0xFFFFu) / 65535.0f; }
 SG_FN float sgFeatEdgeAngle(uint w) {
-    return (float(w >> 16u) / 65535.0f - 0.5f) * SG_FEAT_PI;
+    return (float(w >> 16u) - 32768.0f) / 32767.0f * (0.5f * SG_FEAT_PI);
 }
 
 // Smallest and largest position of an edge point: the bake moves points off
