@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <atomic>
 #include <map>
 #include <set>
 
@@ -325,7 +326,9 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
 } // namespace
 
 SceneAssets loadAssets(const Scene& scene) {
+    static std::atomic<uint64_t> nextUid{1};
     SceneAssets assets;
+    assets.uid = nextUid++;
     FileCache files;
     for (const auto& mi : scene.meshes) {
         assets.meshes.push_back(loadMeshAsset(scene, mi, files));
@@ -382,6 +385,9 @@ void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
         MeshAsset& a = assets.meshes[i];
         if (a.mesh.morphTargets.empty()) continue;
         std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
+        if (w == a.appliedWeights) continue; // nothing moved
+        a.appliedWeights = w;
+        ++assets.meshVersion;
         a.mesh.positions = a.basePositions;
         a.mesh.normals = a.baseNormals;
         a.vertexTangents = a.baseTangents;

@@ -63,10 +63,10 @@ void uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>
 
 struct GlRenderer::Impl {
     std::unordered_map<std::string, GpuProgram> programs;
-    const SceneAssets* meshesFor = nullptr;
+    uint64_t meshesFor = 0, meshVersion = 0;
     std::vector<GpuMesh> meshes;
     bool meshesDirty = true;
-    std::unordered_map<const TextureImage*, GLuint> textures;
+    std::unordered_map<uint64_t, GLuint> textures; // by TextureImage::uid
     GLuint fbo = 0, colorTex = 0, depthRb = 0;
     int fbW = 0, fbH = 0;
     GLuint query = 0;
@@ -102,12 +102,14 @@ struct GlRenderer::Impl {
     }
 
     void uploadMeshes(const SceneAssets& assets) {
-        if (meshesFor != &assets || meshes.size() != assets.meshes.size()) {
+        if (meshesFor != assets.uid || meshes.size() != assets.meshes.size()) {
             for (auto& m : meshes) deleteMesh(m);
             meshes.assign(assets.meshes.size(), GpuMesh{});
-            meshesFor = &assets;
+            meshesFor = assets.uid;
             meshesDirty = true;
         }
+        if (meshVersion != assets.meshVersion) meshesDirty = true;
+        meshVersion = assets.meshVersion;
         if (!meshesDirty) return;
         for (size_t i = 0; i < assets.meshes.size(); ++i) {
             const MeshAsset& a = assets.meshes[i];
@@ -116,14 +118,17 @@ struct GlRenderer::Impl {
             if (fresh) glCreateVertexArrays(1, &g.vao);
             uploadAttrib(g.vao, g.vbo[0], 0, a.mesh.positions, 3);
             uploadAttrib(g.vao, g.vbo[1], 1, a.mesh.normals, 3);
+            static const std::vector<glm::vec2> none2;
+            static const std::vector<glm::vec4> none4;
+            // Tangents move with morphing; UVs and indices never change.
+            for (int k = 0; k < kMaxUvSets; ++k) {
+                size_t kk = size_t(k);
+                uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k), kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
+            }
             if (fresh || g.vertexCount != a.mesh.vertexCount()) {
                 for (int k = 0; k < kMaxUvSets; ++k) {
-                    static const std::vector<glm::vec2> none2;
-                    static const std::vector<glm::vec4> none4;
                     size_t kk = size_t(k);
                     uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k), kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
-                    uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k),
-                                 kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
                 }
                 if (!g.ebo) glCreateBuffers(1, &g.ebo);
                 glNamedBufferData(g.ebo, GLsizeiptr(a.mesh.indices.size() * sizeof(uint32_t)), a.mesh.indices.data(),
@@ -138,7 +143,7 @@ struct GlRenderer::Impl {
     }
 
     GLuint texture(const TextureImage* img) {
-        auto it = textures.find(img);
+        auto it = textures.find(img->uid);
         if (it != textures.end()) return it->second;
         GLuint t = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &t);
@@ -154,7 +159,7 @@ struct GlRenderer::Impl {
         glTextureParameteri(t, GL_TEXTURE_WRAP_S, wrap);
         glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
         glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, GLint(img->levels.size()) - 1);
-        textures.emplace(img, t);
+        textures.emplace(img->uid, t);
         sg::gl::checkError("texture upload");
         return t;
     }

@@ -15,6 +15,8 @@
 #include <algorithm>
 #include <cassert>
 #include <map>
+#include <cctype>
+#include <set>
 #include <sstream>
 
 #include "render_internal.h"
@@ -571,6 +573,118 @@ std::string fragmentBody(const MaterialPlan& plan) {
     return o.str();
 }
 
+namespace {
+
+bool isIdentStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
+bool isIdent(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// Effects on demand, at the level of functions: the shared library files
+// hold whole families of functions (e.g. every listing of the paper in
+// sg/surfgrad.glsl); a program keeps only those main() reaches. Shared
+// functions are recognised by their `SG_FN type name(` opening line;
+// removed ones are replaced by as many empty lines, so #line numbers stay
+// right. Overloads are kept or dropped together (by name).
+std::string stripUnreachableFunctions(const std::string& text) {
+    std::vector<std::string> lines;
+    {
+        std::istringstream in(text);
+        std::string l;
+        while (std::getline(in, l)) lines.push_back(l);
+    }
+    struct Fn {
+        std::string name;
+        size_t first, last; // line range
+    };
+    std::vector<Fn> fns;
+    std::vector<char> inFn(lines.size(), 0);
+    for (size_t i = 0; i < lines.size(); ++i) {
+        const std::string& l = lines[i];
+        if (l.rfind("SG_FN ", 0) != 0) continue;
+        size_t paren = l.find('(');
+        if (paren == std::string::npos) continue;
+        size_t e = paren;
+        while (e > 0 && l[e - 1] == ' ') --e;
+        size_t b = e;
+        while (b > 0 && isIdent(l[b - 1])) --b;
+        Fn f{l.substr(b, e - b), i, i};
+        // The body ends where the braces opened after the name balance.
+        int depth = 0;
+        bool opened = false;
+        size_t j = i;
+        for (; j < lines.size(); ++j) {
+            for (char c : lines[j]) {
+                if (c == '{') {
+                    ++depth;
+                    opened = true;
+                } else if (c == '}') {
+                    --depth;
+                }
+            }
+            if (opened && depth == 0) break;
+        }
+        if (j == lines.size()) continue; // unbalanced: leave the file alone
+        f.last = j;
+        for (size_t k = f.first; k <= f.last; ++k) inFn[k] = 1;
+        fns.push_back(f);
+        i = j;
+    }
+    auto tokens = [&](size_t from, size_t to, std::set<std::string>& out) {
+        for (size_t k = from; k <= to; ++k) {
+            const std::string& l = lines[k];
+            for (size_t p = 0; p < l.size();) {
+                if (l.compare(p, 2, "//") == 0) break;
+                if (isIdentStart(l[p]) && (p == 0 || !isIdent(l[p - 1]))) {
+                    size_t q = p;
+                    while (q < l.size() && isIdent(l[q])) ++q;
+                    out.insert(l.substr(p, q - p));
+                    p = q;
+                } else {
+                    ++p;
+                }
+            }
+        }
+    };
+    // Roots: everything outside shared functions (main, declarations).
+    std::set<std::string> used;
+    for (size_t k = 0; k < lines.size(); ++k) {
+        if (!inFn[k]) tokens(k, k, used);
+    }
+    std::set<std::string> kept;
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (const Fn& f : fns) {
+            if (kept.count(f.name) || !used.count(f.name)) continue;
+            kept.insert(f.name);
+            for (const Fn& g : fns) {
+                if (g.name == f.name) tokens(g.first, g.last, used);
+            }
+            changed = true;
+        }
+    }
+    std::string out;
+    out.reserve(text.size());
+    std::vector<char> drop(lines.size(), 0);
+    for (const Fn& f : fns) {
+        if (!kept.count(f.name)) {
+            for (size_t k = f.first; k <= f.last; ++k) drop[k] = 1;
+            // ... and the comment block documenting it, directly above.
+            for (size_t k = f.first; k > 0; --k) {
+                const std::string& l = lines[k - 1];
+                size_t p = l.find_first_not_of(" \t");
+                if (p == std::string::npos || l.compare(p, 2, "//") != 0) break;
+                drop[k - 1] = 1;
+            }
+        }
+    }
+    for (size_t k = 0; k < lines.size(); ++k) {
+        if (!drop[k]) out += lines[k];
+        out += '\n';
+    }
+    return out;
+}
+
+} // namespace
+
 ProgramSource assembleProgram(const MaterialPlan& plan) {
     std::vector<std::string> defs = {"SG_UV_COUNT " + std::to_string(plan.uvCount)};
     for (int k = 0; k < kMaxUvSets; ++k) {
@@ -584,7 +698,7 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     assert(vs);
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);
     auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
-    return ProgramSource{v.text, f.text, v.files, f.files};
+    return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files};
 }
 
 // ---------------------------------------------------------------------------

@@ -112,14 +112,18 @@ public:
     Node child(const char* key) const { return Node(j_.at(key), sub(key), file_); }
     Node item(size_t i) const { return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", file_); }
 
+    // A finite number in [lo, hi] ((lo, hi] when loOpen). Bounds at or
+    // beyond +-kHuge (1e6) mean "no bound" in messages.
     double number(const char* key, double def, double lo, double hi, bool loOpen = false) const {
         if (!has(key)) return def;
         const json& v = j_.at(key);
-        std::string range = rangeText(lo, hi, loOpen);
+        const bool hugeLo = lo <= -1e6, hugeHi = hi >= 1e6;
+        std::string range = rangeText(hugeLo ? -1e300 : lo, hugeHi ? 1e300 : hi, loOpen);
         if (!v.is_number()) failField(key, "expected a number" + range);
         double x = v.get<double>();
         if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
-            failField(key, "expected a number" + range);
+            bool tooBig = (x > hi && hugeHi) || (x < lo && hugeLo);
+            failField(key, "expected a number" + range + (tooBig ? " of magnitude at most 1e6" : ""));
         }
         return x;
     }

@@ -2,6 +2,7 @@
 // OpenGL 4.5 core section 8.14 (level of detail, eq. 8.7-8.9), 8.14.2
 // (GL_LINEAR_MIPMAP_LINEAR) and 8.14.1 (bilinear filtering, wrap modes).
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 
@@ -11,8 +12,10 @@ namespace sg::render {
 
 TextureImage makeTexture(int width, int height, std::vector<glm::vec4> texels, Wrap wrap) {
     assert(width >= 1 && height >= 1 && texels.size() == size_t(width) * size_t(height));
+    static std::atomic<uint64_t> nextUid{1};
     TextureImage img;
     img.wrap = wrap;
+    img.uid = nextUid++;
     img.levels.push_back(TextureLevel{width, height, std::move(texels)});
     while (img.levels.back().width > 1 || img.levels.back().height > 1) {
         const TextureLevel& src = img.levels.back();

@@ -26,6 +26,7 @@
 // tell the driver's LOD arithmetic apart from differences in shader code.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "surfgrad/glsl_cpp.h"
@@ -46,6 +47,7 @@ struct TextureLevel {
 struct TextureImage {
     std::vector<TextureLevel> levels;
     Wrap wrap = Wrap::Repeat;
+    uint64_t uid = 0; // unique per makeTexture() call: GPU caches key on it, not on addresses
 
     int width() const { return levels.empty() ? 0 : levels[0].width; }
     int height() const { return levels.empty() ? 0 : levels[0].height; }

@@ -246,9 +246,12 @@ struct MeshAsset {
     std::vector<std::vector<glm::vec4>> vertexTangents;
     std::vector<glm::vec3> basePositions, baseNormals; // before morphing
     std::vector<std::vector<glm::vec4>> baseTangents;  // before morphing
+    std::vector<float> appliedWeights;                 // morph weights in the arrays now
 };
 
 struct SceneAssets {
+    uint64_t uid = 0;         // unique per loadAssets() call (GPU caches key on it)
+    uint64_t meshVersion = 0; // bumped by applyFrame() when vertex data changed
     std::vector<MeshAsset> meshes; // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
     std::vector<std::string> log; // what was loaded/generated (for -v output and tests)
@@ -407,7 +410,8 @@ public:
     unsigned renderToTexture(const Scene& scene, const SceneAssets& assets, const View& view);
     // Forces the next render to use uber-shader plans (bench baseline).
     void setUber(bool uber) { uber_ = uber; }
-    // Call after applyFrame() changed the meshes' positions/normals.
+    // Meshes are re-uploaded when SceneAssets::uid or meshVersion changes
+    // (applyFrame bumps it); this forces it otherwise.
     void invalidateMeshes();
     const RenderStats& stats() const { return stats_; }
     size_t cachedPrograms() const;

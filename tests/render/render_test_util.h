@@ -1,0 +1,73 @@
+// Helpers shared by the renderer tests: a headless GL context per process,
+// scenes from JSON snippets, and GPU/CPU renders of the same view.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "surfgrad/gl.h"
+#include "surfgrad/render.h"
+#include "surfgrad/render_shaders.h"
+
+namespace sg::render::test {
+
+// One EGL surfaceless context and renderer for the whole test process.
+inline GlRenderer& gpu() {
+    static sg::gl::HeadlessContext ctx;
+    static GlRenderer renderer;
+    return renderer;
+}
+
+inline Scene sceneFromJson(const std::string& json, const std::string& name = "test.json") {
+    return parseScene(json, name, SURFGRAD_SOURCE_DIR);
+}
+
+// A sphere (or any mesh JSON) with one material of the given layers.
+// topExtra: more top-level fields, e.g. R"(, "camera": {...})".
+inline std::string oneMaterialScene(const std::string& layersJson, const std::string& meshJson,
+                                    const std::string& materialExtra = "", int w = 200, int h = 150,
+                                    const std::string& topExtra = "") {
+    return R"({ "output": {"width": )" + std::to_string(w) + R"(, "height": )" + std::to_string(h) +
+           R"(}, "materials": [{"name": "m", )" + materialExtra + R"( "layers": [)" + layersJson +
+           R"(]}], "meshes": [)" + meshJson + "]" + topExtra + "}";
+}
+
+inline const char* kSphere = R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}})";
+
+struct NormalRenders {
+    Image gpuNormal, gpuPrim, cpuNormal, cpuPrim;
+    VectorImageDiff diff;
+};
+
+inline NormalRenders renderNormalsBoth(const Scene& scene, const SceneAssets& assets, const CpuOptions& cpu,
+                                       Aov aov = Aov::Normal) {
+    NormalRenders r;
+    View v = makeView(scene, assets, 0, 0, aov);
+    View p = v;
+    p.aov = Aov::PrimId;
+    r.gpuNormal = gpu().render(scene, assets, v);
+    r.gpuPrim = gpu().render(scene, assets, p);
+    r.cpuNormal = renderCpu(scene, assets, v, cpu);
+    r.cpuPrim = renderCpu(scene, assets, p, cpu);
+    r.diff = compareVectorImages(r.gpuNormal, r.cpuNormal, r.gpuPrim, r.cpuPrim);
+    return r;
+}
+
+inline size_t countNonFinite(const Image& img) {
+    size_t n = 0;
+    for (const auto& p : img.pixels)
+        for (int c = 0; c < 4; ++c) n += !std::isfinite(p[c]);
+    return n;
+}
+
+inline size_t countCovered(const Image& prim) {
+    size_t n = 0;
+    for (const auto& p : prim.pixels) n += p.x > 0.0f;
+    return n;
+}
+
+} // namespace sg::render::test

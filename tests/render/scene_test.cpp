@@ -1,0 +1,223 @@
+// Scene schema validation (docs/scene.md): every kind of bad field is
+// rejected with an error naming the field path and the reason; valid scenes
+// (the built-in default included) parse into what they say.
+#include <gtest/gtest.h>
+
+#include "render_test_util.h"
+#include "surfgrad/io.h"
+
+namespace sg::render::test {
+namespace {
+
+struct BadCase {
+    const char* what;
+    std::string json;
+    const char* element; // expected InputError::element()
+    const char* reason;  // substring of InputError::reason()
+};
+
+std::string mat(const std::string& layers, const std::string& extra = "") {
+    return R"({"meshes": [{"procedural": {"type": "sphere"}}], "materials": [{"name": "m", )" + extra +
+           R"("layers": [)" + layers + "]}]}";
+}
+const std::string kMap = R"("map": {"procedural": "bumps"})";
+
+std::vector<BadCase> badCases() {
+    return {
+        {"invalid JSON", R"({"meshes": [)", "", "invalid JSON"},
+        {"root not an object", "[1, 2]", "(root)", "expected an object"},
+        {"unknown top-level field", R"({"meshes": [{"procedural": {"type": "sphere"}}], "mehses": []})", "mehses",
+         "unknown field"},
+        {"no meshes", R"({"materials": []})", "(root)", "missing \"meshes\""},
+        {"empty meshes", R"({"meshes": []})", "meshes", "at least one mesh"},
+        {"mesh without geometry", R"({"meshes": [{"name": "x"}]})", "meshes[0]", "exactly one of \"file\" or \"procedural\""},
+        {"unknown procedural type", R"({"meshes": [{"procedural": {"type": "teapot"}}]})", "meshes[0].procedural.type",
+         "expected one of"},
+        {"segments out of range", R"({"meshes": [{"procedural": {"type": "sphere", "segments": 1}}]})",
+         "meshes[0].procedural.segments", "expected an integer in [2, 2048]"},
+        {"strength not a number", mat(R"({"type": "uv_normal", )" + kMap + R"(, "strength": "high"})"),
+         "materials[0].layers[0].strength", "expected a number"},
+        {"layer type unknown", mat(R"({"type": "bump"})"), "materials[0].layers[0].type", "expected one of"},
+        {"layer type missing", mat(R"({"map": "x.png"})"), "materials[0].layers[0]", "missing \"type\""},
+        {"unknown layer field", mat(R"({"type": "uv_normal", )" + kMap + R"(, "strenght": 1})"),
+         "materials[0].layers[0].strenght", "unknown field"},
+        {"uv_set out of range", mat(R"({"type": "uv_normal", )" + kMap + R"(, "uv_set": 4})"),
+         "materials[0].layers[0].uv_set", "expected an integer in [0, 3]"},
+        {"missing map", mat(R"({"type": "height"})"), "materials[0].layers[0]", "missing \"map\""},
+        {"bad encoding", mat(R"({"type": "uv_normal", )" + kMap + R"(, "encoding": "bc5"})"),
+         "materials[0].layers[0].encoding", "expected one of"},
+        {"two-channel encoding for object normals", mat(R"({"type": "object_normal", )" + kMap + R"(, "encoding": "rg"})"),
+         "materials[0].layers[0].encoding", "needs all three components"},
+        {"green convention", mat(R"({"type": "uv_normal", )" + kMap + R"(, "green": "up"})"),
+         "materials[0].layers[0].green", "expected one of \"gl\", \"dx\""},
+        {"texture both file and procedural",
+         mat(R"({"type": "uv_normal", "map": {"file": "a.png", "procedural": "bumps"}})"),
+         "materials[0].layers[0].map", "exactly one of"},
+        {"procedural texture size", mat(R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 2}})"),
+         "materials[0].layers[0].map.size", "expected an integer in [4, 4096]"},
+        {"triplanar map and maps", mat(R"({"type": "triplanar", )" + kMap + R"(, "maps": ["a", "b", "c"]})"),
+         "materials[0].layers[0]", "exactly one of \"map\""},
+        {"triplanar two maps", mat(R"({"type": "triplanar", "maps": ["a.png", "b.png"]})"),
+         "materials[0].layers[0].maps", "array of 3 maps"},
+        {"triplanar sharpness zero", mat(R"({"type": "triplanar", )" + kMap + R"(, "sharpness": 0})"),
+         "materials[0].layers[0].sharpness", "expected a number in (0, 64]"},
+        {"decal zero direction", mat(R"({"type": "decal", )" + kMap + R"(, "direction": [0, 0, 0]})"),
+         "materials[0].layers[0].direction", "non-zero"},
+        {"decal up parallel to direction", mat(R"({"type": "decal", )" + kMap + R"(, "direction": [0, 1, 0], "up": [0, 2, 0]})"),
+         "materials[0].layers[0].up", "not parallel"},
+        {"decal size", mat(R"({"type": "decal", )" + kMap + R"(, "size": [1, 0, 1]})"), "materials[0].layers[0].size",
+         "> 0"},
+        {"decal angle fade order", mat(R"({"type": "decal", )" + kMap + R"(, "angle_fade_deg": [80, 20]})"),
+         "materials[0].layers[0].angle_fade_deg", "start <= end"},
+        {"noise octaves", mat(R"({"type": "noise", "octaves": 0})"), "materials[0].layers[0].octaves",
+         "expected an integer in [1, 12]"},
+        {"noise exponent below 1", mat(R"({"type": "noise", "exponent": 0.5})"), "materials[0].layers[0].exponent",
+         "expected a number in [1, 16]"},
+        {"noise frequency zero", mat(R"({"type": "noise", "frequency": 0})"), "materials[0].layers[0].frequency",
+         "> 0"},
+        {"deform not first", mat(R"({"type": "uv_normal", )" + kMap + R"(, "modifiers": [{"type": "scale"}, {"type": "deform"}]})"),
+         "materials[0].layers[0].modifiers[1]", "must come first"},
+        {"modulate without mask", mat(R"({"type": "uv_normal", )" + kMap + R"(, "modifiers": [{"type": "modulate"}]})"),
+         "materials[0].layers[0].modifiers[0]", "missing \"mask\""},
+        {"too many modifiers",
+         mat(R"({"type": "uv_normal", )" + kMap +
+             R"(, "modifiers": [{"type": "scale"}, {"type": "scale"}, {"type": "scale"}, {"type": "scale"}, {"type": "scale"}]})"),
+         "materials[0].layers[0].modifiers", "at most 4"},
+        {"curve boost negative", mat(R"({"type": "uv_normal", )" + kMap + R"(, "modifiers": [{"type": "curve", "boost": -1}]})"),
+         "materials[0].layers[0].modifiers[0].boost", ">= 0"},
+        {"nested post_resolve", mat(R"({"type": "post_resolve", "layers": [{"type": "post_resolve", "layers": []}]})"),
+         "materials[0].layers[0].layers[0]", "cannot be nested"},
+        {"layer after post_resolve", mat(R"({"type": "post_resolve", "layers": []}, {"type": "noise"})"),
+         "materials[0].layers[1]", "after a post_resolve group"},
+        {"roughness out of range", mat("", R"("roughness": 2, )"), "materials[0].roughness", "expected a number in [0, 1]"},
+        {"double-sided mode", mat("", R"("double_sided": "both", )"), "materials[0].double_sided", "expected one of"},
+        {"base colour components", mat("", R"("base_color": [1, 0.5], )"), "materials[0].base_color",
+         "expected an array of 3 numbers"},
+        {"unknown material name", R"({"meshes": [{"procedural": {"type": "sphere"}, "material": "gold"}]})",
+         "meshes[0].material", "no material named \"gold\""},
+        {"material index out of range", R"({"meshes": [{"procedural": {"type": "sphere"}, "material": 3}]})",
+         "meshes[0].material", "no material with index 3"},
+        {"tangent source", R"({"meshes": [{"procedural": {"type": "sphere"}, "tangents": ["mikkt"]}]})",
+         "meshes[0].tangents[0]", "expected \"pixel\", \"mikktspace\" or \"limit\""},
+        {"two vertex tangent sets",
+         R"({"meshes": [{"file": "m.obj", "tangents": ["mikktspace", "mikktspace"]}]})", "meshes[0].tangents",
+         "at most one UV set"},
+        {"limit tangents without limit", R"({"meshes": [{"file": "m.obj", "tangents": ["limit"]}]})",
+         "meshes[0].tangents", "\"limit\": true"},
+        {"subdivision of a procedural mesh",
+         R"({"meshes": [{"procedural": {"type": "sphere"}, "subdivision": {"level": 2}}]})", "meshes[0].subdivision",
+         "mesh files only"},
+        {"subdivision level", R"({"meshes": [{"file": "m.obj", "subdivision": {"level": 9}}]})",
+         "meshes[0].subdivision.level", "expected an integer in [0, 6]"},
+        {"morph key times", R"({"meshes": [{"file": "m.gltf", "morph": {"animation": {"keys": [{"time": 1, "weights": [0]}, {"time": 0.5, "weights": [1]}]}}}]})",
+         "meshes[0].morph.animation.keys[1].time", "must increase"},
+        {"singular transform", R"({"meshes": [{"procedural": {"type": "sphere"}, "transform": {"scale": [1, 0, 1]}}]})",
+         "meshes[0].transform.scale", "non-zero"},
+        {"output width", R"({"meshes": [{"procedural": {"type": "sphere"}}], "output": {"width": 0}})", "output.width",
+         "expected an integer in [1, 8192]"},
+        {"camera target equals position",
+         R"({"meshes": [{"procedural": {"type": "sphere"}}], "camera": {"position": [1, 2, 3], "target": [1, 2, 3]}})",
+         "camera.target", "must differ"},
+        {"light type", R"({"meshes": [{"procedural": {"type": "sphere"}}], "lights": [{"type": "spot"}]})",
+         "lights[0].type", "expected one of"},
+        {"too many lights",
+         R"({"meshes": [{"procedural": {"type": "sphere"}}], "lights": [{"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}, {"type": "point"}]})",
+         "lights", "at most 8"},
+        {"NaN-like value", R"({"meshes": [{"procedural": {"type": "sphere", "size": -1}}]})", "meshes[0].procedural.size",
+         "> 0"},
+        {"frames fps", R"({"meshes": [{"procedural": {"type": "sphere"}}], "frames": {"fps": 0}})", "frames.fps", "in (0, 1000]"},
+    };
+}
+
+TEST(SceneValidation, EveryBadFieldIsNamed) {
+    for (const BadCase& c : badCases()) {
+        SCOPED_TRACE(c.what);
+        try {
+            parseScene(c.json, "scene.json", ".");
+            ADD_FAILURE() << "accepted: " << c.json;
+        } catch (const io::InputError& e) {
+            EXPECT_EQ(e.file(), "scene.json");
+            EXPECT_EQ(e.element(), c.element) << e.what();
+            EXPECT_NE(e.reason().find(c.reason), std::string::npos) << e.what();
+            // The message a user sees: "scene.json: <field>: <reason>".
+            if (*c.element) {
+                EXPECT_EQ(std::string(e.what()).rfind(std::string("scene.json: ") + c.element + ": ", 0), 0u);
+            }
+        }
+    }
+}
+
+TEST(SceneValidation, ErrorsFoundWhenLoadingAssetsNameTheField) {
+    // A layer reading a UV set the mesh does not have (procedural meshes
+    // have the number of UV sets they are asked for).
+    Scene s = sceneFromJson(R"({"meshes": [{"procedural": {"type": "plane", "uv_sets": 1}}],
+        "materials": [{"layers": [{"type": "uv_normal", "uv_set": 2, "map": {"procedural": "tiles"}}]}]})");
+    SceneAssets a = loadAssets(s);
+    try {
+        planMaterial(s, a, 0, 0);
+        ADD_FAILURE() << "missing UV set accepted";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.element(), "materials[0].layers[0].uv_set");
+        EXPECT_NE(e.reason().find("has 1 UV set"), std::string::npos) << e.what();
+    }
+    // A texture file that does not exist.
+    Scene s2 = sceneFromJson(R"({"meshes": [{"procedural": {"type": "plane"}}],
+        "materials": [{"layers": [{"type": "uv_normal", "map": "no/such/file.png"}]}]})");
+    try {
+        loadAssets(s2);
+        ADD_FAILURE() << "missing texture accepted";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.element(), "materials[0].layers[0].map");
+        EXPECT_NE(e.reason().find("does not exist"), std::string::npos) << e.what();
+    }
+    // A mesh file that does not exist is reported by the mesh loader with the path.
+    Scene s3 = sceneFromJson(R"({"meshes": [{"file": "no/such/mesh.obj"}]})");
+    EXPECT_THROW(loadAssets(s3), io::InputError);
+}
+
+TEST(SceneValidation, ValidSceneParsesAsWritten) {
+    Scene s = sceneFromJson(R"({
+      "output": {"width": 320, "height": 200, "exposure": 2},
+      "materials": [{"name": "a", "double_sided": "flip", "roughness": 0.2, "layers": [
+        {"type": "uv_normal", "uv_set": 1, "green": "dx", "encoding": "ag", "strength": 0.5, "map": {"procedural": "weave"}},
+        {"type": "decal", "position": [1, 2, 3], "direction": [0, -1, 0], "up": [0, 0, -1], "size": [2, 4, 6], "map": "d.png"},
+        {"type": "post_resolve", "layers": [{"type": "noise", "noise": "fbm", "octaves": 3, "exponent": 2}]}]}],
+      "meshes": [{"procedural": {"type": "torus"}, "material": "a", "transform": {"translate": [1, 0, 0], "scale": 2}}],
+      "lights": [{"type": "point", "position": [0, 5, 0], "intensity": 10}]})");
+    ASSERT_EQ(s.materials.size(), 1u);
+    const Material& m = s.materials[0];
+    EXPECT_EQ(m.doubleSided, DoubleSided::Flip);
+    ASSERT_EQ(m.layers.size(), 3u);
+    EXPECT_EQ(m.layers[0].uvSet, 1);
+    EXPECT_TRUE(m.layers[0].flipV);
+    EXPECT_EQ(m.layers[0].encoding, NormalEncoding::Ag);
+    EXPECT_FLOAT_EQ(m.layers[0].strength, 0.5f);
+    // Decal frame: z points against the projection direction, x = up x z.
+    EXPECT_NEAR(glm::length(m.layers[1].decalAxisZ - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(m.layers[1].decalAxisY - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(m.layers[1].decalHalfSize - glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
+    EXPECT_EQ(m.layers[1].maps[0].wrap, Wrap::Clamp); // decals do not repeat
+    EXPECT_EQ(m.layers[2].kind, LayerKind::PostResolve);
+    ASSERT_EQ(m.layers[2].children.size(), 1u);
+    EXPECT_EQ(m.layers[2].children[0].noiseType, NoiseType::Fbm);
+    EXPECT_EQ(s.meshes[0].material, 0);
+    EXPECT_NEAR(s.meshes[0].transform[0][0], 2.0f, 1e-6f);
+    EXPECT_NEAR(s.meshes[0].transform[3][0], 1.0f, 1e-6f);
+    EXPECT_TRUE(s.lights[0].point);
+    EXPECT_EQ(s.output.width, 320);
+}
+
+TEST(SceneValidation, DefaultSceneIsValidAndUsesManyLayerKinds) {
+    Scene s = defaultScene();
+    EXPECT_GE(s.meshes.size(), 3u);
+    std::set<LayerKind> kinds;
+    for (const auto& m : s.materials)
+        for (const auto& L : m.layers) {
+            kinds.insert(L.kind);
+            for (const auto& c : L.children) kinds.insert(c.kind);
+        }
+    EXPECT_GE(kinds.size(), 6u) << "the default scene should show most layer kinds";
+}
+
+} // namespace
+} // namespace sg::render::test
