@@ -88,10 +88,16 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_O
     // invCO is (dXds, dYds) up to the positive factor 1/|det|.
     vec2 invCO = signDet * vec2(sy.y, -sx.y);
     vec3 tRaw = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
-    // The sigmas are tangent only up to rounding; removing the normal
-    // component again keeps t tangent (and so vB unit) even when the sigmas
-    // are pure rounding residue (dPdx, dPdy along the normal).
-    vec3 t = sgSafeNormalize(tRaw - dot(tRaw, f.nrmBase) * f.nrmBase, vec3(0.0f));
+    // The sigmas are tangent only up to rounding. Removing the normal
+    // component twice ("twice is enough", Gram-Schmidt) makes t tangent to
+    // working precision, so vB = n x t is unit too, even when the sigmas are
+    // rounding residue (dPdx, dPdy along the normal). If the tangent part is
+    // itself at rounding level (below 8 ulps of tRaw), there is no tangent
+    // direction: zero frame.
+    vec3 t1 = tRaw - dot(tRaw, f.nrmBase) * f.nrmBase;
+    vec3 t2 = t1 - dot(t1, f.nrmBase) * f.nrmBase;
+    if (!(sgMaxAbs3(t2) >= 8.0f * SG_FLT_EPSILON * sgMaxAbs3(tRaw))) return;
+    vec3 t = sgSafeNormalize(t2, vec3(0.0f));
     if (sgMaxAbs3(t) == 0.0f) return;
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);

@@ -1,5 +1,6 @@
 // Compute entry of the evaluation kernels (kernels.glsl): one invocation per
 // record; SG_EVAL_KERNEL (a define set by the host) selects the function.
+// glslang-validate: SG_EVAL_KERNEL 0
 #include "sg/eval/kernels.glsl"
 
 layout(local_size_x = 64) in;
