@@ -70,6 +70,13 @@ std::vector<LayerCase> layerCases() {
         {"deriv_map_modifiers",
          sphereScene(R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128},
                     "modifiers": [{"type": "scale", "alpha": 0.5}]})")},
+        {"feature_curves_surfgrad",
+         sphereScene(R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+                     R"(/svg/flame.svg", "size": 128}, "profile": "vgroove", "depth": 1.5, "width": 3})")},
+        {"feature_curves_paper_with_base",
+         sphereScene(R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+                     R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
+                        "mode": "paper", "tiling": 2, "base_map": )" + tiles + "}")},
         {"post_resolve",
          sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
                     {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2},

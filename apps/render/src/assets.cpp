@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_internal.h"
+#include "surfgrad/feature_maps.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -226,6 +227,41 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const 
 
 namespace {
 
+void collectFeatures(const Layer& L, std::vector<const Layer*>& out) {
+    if (!L.enabled) return;
+    if (L.kind == LayerKind::Feature && L.feature) out.push_back(&L);
+    for (const auto& c : L.children) collectFeatures(c, out);
+}
+
+// Loads or bakes a feature layer's maps (features are not baked unless an
+// enabled layer uses them).
+std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f, const std::string& sceneName) {
+    namespace sf = sg::features;
+    static std::atomic<uint64_t> nextUid{1};
+    sf::FeatureMaps maps;
+    if (!f.mapsFile.empty()) {
+        std::error_code ec;
+        if (!fs::is_regular_file(f.mapsFile, ec)) {
+            throw io::InputError(sceneName, f.fieldPath, "feature maps file " + f.mapsFile.string() + " does not exist");
+        }
+        maps = sf::load(f.mapsFile);
+    } else {
+        sf::CurveNetwork net = f.curvesKind == "svg"    ? sf::loadSvg(f.curvesFile)
+                               : f.curvesKind == "json" ? sf::loadCurvesJson(f.curvesFile)
+                                                        : sf::loadFont(f.curvesFile, f.text);
+        sf::BakeOptions opt;
+        opt.size = f.size;
+        opt.mode = f.quadratic ? sf::BakeMode::Quadratic : sf::BakeMode::Linear;
+        opt.marginTexels = f.marginTexels;
+        maps = sf::bake(net, opt);
+    }
+    auto a = std::make_shared<FeatureMapsAsset>();
+    a->gpu = maps.packGpu();
+    a->bandTexels = maps.bandTexels;
+    a->uid = nextUid++;
+    return a;
+}
+
 void collectTextures(const Layer& L, std::vector<const TextureSource*>& out) {
     if (!L.enabled) return; // effects on demand: nothing for disabled layers
     for (const auto& m : L.maps) out.push_back(&m);
@@ -345,6 +381,24 @@ SceneAssets loadAssets(const Scene& scene) {
         const Material& mat = scene.materials[size_t(mIdx)];
         if (mat.baseColorMap) sources.push_back(&*mat.baseColorMap);
         for (const Layer& L : mat.layers) collectTextures(L, sources);
+    }
+    std::vector<const Layer*> features;
+    for (int mIdx : usedMaterials)
+        for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectFeatures(L, features);
+    for (const Layer* L : features) {
+        std::string key = L->feature->key();
+        if (!assets.featureMaps.count(key)) {
+            assets.featureMaps[key] = loadFeatureMaps(*L->feature, scene.sourceName);
+            assets.log.push_back("feature maps " + key + ": " + std::to_string(assets.featureMaps[key]->gpu.size) +
+                                 "^2 texels");
+        }
+        // The profile must fit the band where distances are exact.
+        double band = assets.featureMaps[key]->bandTexels;
+        if (double(L->featWidth) > band - 1.5) {
+            throw io::InputError(scene.sourceName, L->fieldPath + ".width",
+                                 "the profile width must be at most " + std::to_string(band - 1.5) +
+                                     " texels (the maps hold exact distances up to " + std::to_string(band) + ")");
+        }
     }
     for (const TextureSource* src : sources) {
         std::string key = src->key();

@@ -189,10 +189,12 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     std::vector<MaterialPlan> plans;
     std::vector<detail::DrawUniforms> uniforms;
     std::vector<std::vector<sg::glsl::sampler2D>> samplers;
+    std::vector<std::vector<detail::FeatureSamplers>> featureSamplers;
     float primBase = 0.0f;
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         plans.push_back(planMaterial(scene, assets, int(mi), scene.meshes[mi].material));
-        uniforms.push_back(detail::drawUniforms(scene, plans.back(), view, int(mi), primBase));
+        uniforms.push_back(detail::drawUniforms(scene, assets, plans.back(), view, int(mi), primBase));
+        featureSamplers.push_back(detail::planFeatureSamplers(plans.back(), assets));
         samplers.push_back(detail::planSamplers(plans.back(), assets, options.textureLod));
         primBase += float(assets.meshes[mi].mesh.triangleCount());
     }
@@ -268,7 +270,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             in.frontFacing = st.front;
             in.primId = float(st.prim);
             img.pixels[pix] = detail::shadePixelCpu(plans[size_t(st.mesh)], uniforms[size_t(st.mesh)],
-                                                    samplers[size_t(st.mesh)], in);
+                                                    samplers[size_t(st.mesh)], featureSamplers[size_t(st.mesh)], in);
         }
     });
     return img;

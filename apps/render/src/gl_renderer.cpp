@@ -74,6 +74,10 @@ struct GlRenderer::Impl {
     ~Impl() {
         for (auto& m : meshes) deleteMesh(m);
         for (auto& [img, t] : textures) glDeleteTextures(1, &t);
+        for (auto& [uid, t] : featureTex) {
+            glDeleteTextures(1, &t.first);
+            glDeleteTextures(1, &t.second);
+        }
         if (fbo) glDeleteFramebuffers(1, &fbo);
         if (colorTex) glDeleteTextures(1, &colorTex);
         if (depthRb) glDeleteRenderbuffers(1, &depthRb);
@@ -164,6 +168,29 @@ struct GlRenderer::Impl {
         return t;
     }
 
+    std::unordered_map<uint64_t, std::pair<GLuint, GLuint>> featureTex; // by FeatureMapsAsset::uid
+
+    void featureTextures(const FeatureMapsAsset& fm, GLuint& corners, GLuint& edges) {
+        auto it = featureTex.find(fm.uid);
+        if (it == featureTex.end()) {
+            const auto& g = fm.gpu;
+            GLuint t[2];
+            glCreateTextures(GL_TEXTURE_2D, 2, t);
+            glTextureStorage2D(t[0], 1, GL_RGBA32F, g.size + 1, g.size + 1);
+            glTextureSubImage2D(t[0], 0, 0, 0, g.size + 1, g.size + 1, GL_RGBA, GL_FLOAT, g.corners.data());
+            glTextureStorage2D(t[1], 1, GL_RGBA32UI, g.size, g.size);
+            glTextureSubImage2D(t[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
+            for (GLuint x : t) {
+                glTextureParameteri(x, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+                glTextureParameteri(x, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            }
+            it = featureTex.emplace(fm.uid, std::make_pair(t[0], t[1])).first;
+            sg::gl::checkError("feature map upload");
+        }
+        corners = it->second.first;
+        edges = it->second.second;
+    }
+
     GpuProgram& program(const MaterialPlan& plan, RenderStats& stats) {
         auto it = programs.find(plan.signature);
         if (it != programs.end()) return it->second;
@@ -207,7 +234,7 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
         MaterialPlan plan = uber_ ? planUberMaterial(scene, assets, int(i), mi.material)
                                   : planMaterial(scene, assets, int(i), mi.material);
         GpuProgram& gp = I.program(plan, stats_);
-        detail::DrawUniforms u = detail::drawUniforms(scene, plan, view, int(i), primBase);
+        detail::DrawUniforms u = detail::drawUniforms(scene, assets, plan, view, int(i), primBase);
         GLuint id = gp.program.id();
         glUseProgram(id);
         glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
@@ -232,6 +259,19 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             glBindTextureUnit(GLuint(s), t);
             std::string name = "uTex" + std::to_string(s);
             glUniform1i(gp.loc(name.c_str()), GLint(s));
+        }
+        // Feature maps: corners (RGBA32F) and edges (RGBA32UI), read with
+        // texelFetch only, on the units after the regular textures.
+        for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
+            GLuint unit = GLuint(plan.textureKeys.size() + 2 * f);
+            auto it = assets.featureMaps.find(plan.featureKeys[f]);
+            GLuint tc = 0, te = 0;
+            if (it != assets.featureMaps.end()) I.featureTextures(*it->second, tc, te);
+            glBindTextureUnit(unit, tc);
+            glBindTextureUnit(unit + 1, te);
+            std::string c = "uFeatCorners" + std::to_string(f), e = "uFeatEdges" + std::to_string(f);
+            glUniform1i(gp.loc(c.c_str()), GLint(unit));
+            glUniform1i(gp.loc(e.c_str()), GLint(unit + 1));
         }
         const Material& mat = scene.materials[size_t(mi.material)];
         if (mat.doubleSided == DoubleSided::Off) {

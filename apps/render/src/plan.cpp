@@ -38,6 +38,7 @@ int recordCountOf(LayerKind k) {
     case LayerKind::Triplanar: return 2;
     case LayerKind::Decal: return 6;
     case LayerKind::Noise: return 3;
+    case LayerKind::Feature: return 9;
     case LayerKind::PostResolve: return 0;
     }
     return 0;
@@ -45,7 +46,7 @@ int recordCountOf(LayerKind k) {
 
 bool usesUv(LayerKind k) {
     return k == LayerKind::UvNormal || k == LayerKind::ObjectNormal || k == LayerKind::Height ||
-           k == LayerKind::DerivMap;
+           k == LayerKind::DerivMap || k == LayerKind::Feature;
 }
 
 // The shader file of a layer (with or without derivative-space modifiers).
@@ -60,6 +61,7 @@ const char* layerFile(LayerKind k, bool mods) {
     case LayerKind::Triplanar: return "sg/render/layer_triplanar.glsl";
     case LayerKind::Decal: return "sg/render/layer_decal.glsl";
     case LayerKind::Noise: return "sg/render/layer_noise.glsl";
+    case LayerKind::Feature: return "sg/render/layer_feature.glsl";
     case LayerKind::PostResolve: return "";
     }
     return "";
@@ -77,6 +79,7 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     case LayerKind::Triplanar: s = "tri"; break;
     case LayerKind::Decal: s = "dec"; break;
     case LayerKind::Noise: s = "noi"; break;
+    case LayerKind::Feature: s = "fea"; break;
     case LayerKind::PostResolve: s = "grp"; break;
     }
     if (usesUv(L.kind)) {
@@ -89,6 +92,7 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     s += ":t";
     for (int t : pl.tex) s += std::to_string(t) + ",";
     if (pl.maskTex >= 0) s += "m" + std::to_string(pl.maskTex);
+    if (pl.featureSlot >= 0) s += "f" + std::to_string(pl.featureSlot);
     return s;
 }
 
@@ -183,6 +187,12 @@ struct Planner {
         }
         if (L.kind == LayerKind::Triplanar || L.kind == LayerKind::Noise) {
             (L.space == Space::World ? plan.usesWorldVolume : plan.usesObjectVolume) = true;
+        }
+        if (L.kind == LayerKind::Feature && L.feature) {
+            std::string key = L.feature->key();
+            auto it = std::find(plan.featureKeys.begin(), plan.featureKeys.end(), key);
+            pl.featureSlot = int(it - plan.featureKeys.begin());
+            if (it == plan.featureKeys.end()) plan.featureKeys.push_back(key);
         }
         int nTex = L.kind == LayerKind::Triplanar ? 3 : (L.kind == LayerKind::Noise ? 0 : 1);
         for (int i = 0; i < nTex; ++i) {
@@ -320,6 +330,20 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
                 o[1] = {L.noiseLacunarity, L.noiseGain, L.noiseExponent, b(L.noiseAntialias)};
                 o[2] = glm::vec4(L.noiseOffset, 0.0f);
                 break;
+            case LayerKind::Feature: {
+                // The map size comes from the assets; packLayerRecords does not
+                // see them, so the renderers patch r0.z (featureMapSizes()).
+                o[0] = {L.strength, b(L.featPaperMode), 0.0f, L.featTiling};
+                o[1] = {L.featOffset.x, L.featOffset.y, b(!L.maps.empty()), enc};
+                o[2] = {b(L.flipV), 0, 0, 0};
+                sg::glsl::SgFeatProfile pr = sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
+                o[3] = {float(pr.kind), pr.depth, pr.w0, pr.w};
+                o[4] = {float(pr.tableCount), 0, 0, 0};
+                for (int t = 0; t < 4; ++t) {
+                    o[5 + t] = {pr.table[4 * t], pr.table[4 * t + 1], pr.table[4 * t + 2], pr.table[4 * t + 3]};
+                }
+                break;
+            }
             case LayerKind::PostResolve: break;
             }
             if (pl.hasModifiers) {
@@ -360,8 +384,8 @@ namespace detail {
 
 glm::mat3 normalMatrix(const glm::mat4& model) { return glm::transpose(glm::inverse(glm::mat3(model))); }
 
-DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const View& view, int meshIndex,
-                          float primBase) {
+DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan, const View& view,
+                          int meshIndex, float primBase) {
     DrawUniforms u;
     const Material& mat = scene.materials[size_t(plan.materialIndex)];
     const MeshInstance& mi = scene.meshes[size_t(meshIndex)];
@@ -378,6 +402,12 @@ DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const Vi
     u.detSign = glm::determinant(u.model3) < 0.0f ? -1.0f : 1.0f;
     u.lights = packLightRecords(scene, view);
     u.records = packLayerRecords(plan, view);
+    for (const auto& g : plan.groups)
+        for (const auto& pl : g) {
+            if (pl.featureSlot < 0) continue;
+            auto it = assets.featureMaps.find(plan.featureKeys[size_t(pl.featureSlot)]);
+            if (it != assets.featureMaps.end()) u.records[size_t(pl.record)].z = float(it->second->gpu.size);
+        }
     if (plan.uber) {
         u.uberFlags.assign(size_t(std::max(plan.uberFlagCount, 1)), 0.0f);
         // Only the material's enabled layers are on; stand-ins (created
@@ -395,6 +425,17 @@ DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const Vi
         }
     }
     return u;
+}
+
+std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan, const SceneAssets& assets) {
+    std::vector<FeatureSamplers> s(plan.featureKeys.size());
+    for (size_t i = 0; i < s.size(); ++i) {
+        auto it = assets.featureMaps.find(plan.featureKeys[i]);
+        if (it == assets.featureMaps.end()) continue;
+        s[i].corners = it->second->gpu.cornerSampler();
+        s[i].edges = it->second->gpu.edgeSampler();
+    }
+    return s;
 }
 
 std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,
@@ -457,6 +498,10 @@ std::string layerCall(const PlanLayer& pl) {
         return "sgLayerDecal(frame, vRelPos, sgUnpackDecal(" + recs(pl.record, 6) + "), " + tex(pl.tex[0]) + ")";
     case LayerKind::Noise:
         return "sgLayerNoise(frame, " + vol + ", sgUnpackNoise(" + recs(pl.record, 3) + "))";
+    case LayerKind::Feature:
+        return "sgLayerFeature(" + uv + ", sgUnpackFeatureLayer(" + recs(pl.record, 3) + "), sgUnpackFeatProfile(" +
+               recs(pl.record + 3, 6) + "), uFeatCorners" + std::to_string(pl.featureSlot) + ", uFeatEdges" +
+               std::to_string(pl.featureSlot) + ", " + tex(pl.tex[0]) + ")";
     case LayerKind::PostResolve: break;
     }
     return "vec3(0.0)";
@@ -488,6 +533,10 @@ std::string fragmentBody(const MaterialPlan& plan) {
     for (size_t i = 0; i < plan.textureKeys.size(); ++i) {
         o << "uniform sampler2D uTex" << i << "; // " << (plan.textureKeys[i].empty() ? "(none)" : plan.textureKeys[i])
           << "\n";
+    }
+    for (size_t i = 0; i < plan.featureKeys.size(); ++i) {
+        o << "uniform sampler2D uFeatCorners" << i << "; // " << plan.featureKeys[i] << "\n"
+          << "uniform usampler2D uFeatEdges" << i << ";\n";
     }
     if (plan.uber) o << "uniform float uLayerOn[" << std::max(plan.uberFlagCount, 1) << "];\n";
     o << "\nvoid main() {\n"
@@ -711,6 +760,7 @@ namespace {
 namespace G = sg::glsl;
 
 glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector<G::sampler2D>& smp,
+                   const std::vector<FeatureSamplers>& fsmp,
                    const G::SgFrame& frame, const std::array<G::SgUvFrame, kMaxUvSets>& uv,
                    const G::SgVolumeSpace& volWorld, const G::SgVolumeSpace& volObject,
                    const PixelInputs& in) {
@@ -745,6 +795,13 @@ glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector
         return G::sgLayerDecal(frame, in.relPos, G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]),
                                t(pl.tex[0]));
     case LayerKind::Noise: return G::sgLayerNoise(frame, vol, G::sgUnpackNoise(r[0], r[1], r[2]));
+    case LayerKind::Feature: {
+        if (pl.featureSlot < 0 || !fsmp[size_t(pl.featureSlot)].corners.rgba) return glm::vec3(0.0f);
+        const FeatureSamplers& fs = fsmp[size_t(pl.featureSlot)];
+        return G::sgLayerFeature(f, G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
+                                 G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]), fs.corners, fs.edges,
+                                 t(pl.tex[0]));
+    }
     case LayerKind::PostResolve: break;
     }
     return glm::vec3(0.0f);
@@ -757,7 +814,7 @@ bool layerOn(const PlanLayer& pl, const MaterialPlan& plan, const DrawUniforms& 
 } // namespace
 
 glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const std::vector<G::sampler2D>& smp,
-                        const PixelInputs& in) {
+                        const std::vector<FeatureSamplers>& fsmp, const PixelInputs& in) {
     G::SgFrame frame = G::sgPrologue(in.normal, in.dPdx, in.dPdy, in.frontFacing, u.bfaceMode);
     glm::vec3 baseNormal = frame.nrmBase;
     std::array<G::SgUvFrame, kMaxUvSets> uv{};
@@ -780,7 +837,7 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
     }
     glm::vec3 surfGrad(0.0f);
     for (const auto& pl : plan.groups[0]) {
-        if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, frame, uv, volWorld, volObject, in);
+        if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
     }
     glm::vec3 nrm = G::sgResolve(frame, surfGrad);
     glm::vec3 surfGradOut = surfGrad;
@@ -795,7 +852,7 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
         }
         surfGrad = glm::vec3(0.0f);
         for (const auto& pl : plan.groups[g]) {
-            if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, frame, uv, volWorld, volObject, in);
+            if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
         }
         nrm = G::sgResolve(frame, surfGrad);
     }

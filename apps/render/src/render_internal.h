@@ -6,8 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "surfgrad/feature_maps.h"
 #include "surfgrad/glsl_texture.h"
 #include "surfgrad/render.h"
+
+namespace sg::render {
+// Baked feature maps as both renderers read them.
+struct FeatureMapsAsset {
+    sg::features::GpuFeatureMaps gpu;
+    double bandTexels = 16.0;
+    uint64_t uid = 0; // unique per load (GPU caches key on it)
+};
+} // namespace sg::render
 
 namespace sg::render::detail {
 
@@ -40,8 +50,8 @@ struct DrawUniforms {
     std::vector<glm::vec4> records; // packLayerRecords
     std::vector<float> uberFlags;   // uber plans: 1 enabled, 0 disabled
 };
-DrawUniforms drawUniforms(const Scene& scene, const MaterialPlan& plan, const View& view, int meshIndex,
-                          float primBase);
+DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan, const View& view,
+                          int meshIndex, float primBase);
 
 // What the fragment program reads at one pixel, computed by the CPU
 // rasteriser: interpolated varyings (same names as sg/render/surface_fs.glsl)
@@ -55,10 +65,18 @@ struct PixelInputs {
     float primId = 0.0f; // gl_PrimitiveID
 };
 
+// Feature-map samplers of a plan's feature slots (CPU).
+struct FeatureSamplers {
+    sg::glsl::SgFeatCornerSampler corners;
+    sg::glsl::SgFeatEdgeSampler edges;
+};
+std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan, const SceneAssets& assets);
+
 // Runs the plan's shading on the CPU with the same shared functions, in the
 // same order, as the GLSL main() that fragmentBody(plan) generates.
 glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
-                        const std::vector<sg::glsl::sampler2D>& samplers, const PixelInputs& in);
+                        const std::vector<sg::glsl::sampler2D>& samplers,
+                        const std::vector<FeatureSamplers>& featureSamplers, const PixelInputs& in);
 
 // Samplers of a plan's texture slots.
 std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,

@@ -13,6 +13,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_internal.h"
+#include "surfgrad/feature_maps.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
 
@@ -34,6 +35,7 @@ const char* layerKindName(LayerKind k) {
     case LayerKind::Triplanar: return "triplanar";
     case LayerKind::Decal: return "decal";
     case LayerKind::Noise: return "noise";
+    case LayerKind::Feature: return "feature";
     case LayerKind::PostResolve: return "post_resolve";
     }
     return "?";
@@ -63,6 +65,12 @@ std::optional<Aov> parseAov(const std::string& name) {
 fs::path dataDirectory() {
     if (const char* env = std::getenv("SURFGRAD_DATA_DIR"); env && *env) return fs::path(env);
     return fs::path(SURFGRAD_DEFAULT_DATA_DIR);
+}
+
+std::string FeatureSource::key() const {
+    if (!mapsFile.empty()) return "maps:" + mapsFile.lexically_normal().string();
+    return "bake:" + curvesKind + ":" + curvesFile.lexically_normal().string() + ":" + text + ":" +
+           std::to_string(size) + (quadratic ? ":quadratic:" : ":linear:") + std::to_string(marginTexels);
 }
 
 std::string TextureSource::key() const {
@@ -332,11 +340,11 @@ struct Parser {
         L.fieldPath = n.path();
         if (!n.has("type")) {
             n.fail("missing \"type\" (uv_normal, object_normal, height, deriv_map, triplanar, "
-                   "decal, noise or post_resolve)");
+                   "decal, noise, feature or post_resolve)");
         }
         int kind = n.choice("type", 0,
                             {"uv_normal", "object_normal", "height", "deriv_map", "triplanar",
-                             "decal", "noise", "post_resolve"});
+                             "decal", "noise", "feature", "post_resolve"});
         L.kind = LayerKind(kind);
         L.enabled = n.boolean("enabled", true);
         auto requireMap = [&](const char* key, Wrap wrap) {
@@ -458,6 +466,59 @@ struct Parser {
             L.space = n.choice("space", 0, {"object", "world"}) == 0 ? Space::Object : Space::World;
             L.noiseAntialias = n.boolean("antialias", true);
             break;
+        case LayerKind::Feature: {
+            n.allowOnly({"type", "enabled", "maps", "curves", "uv_set", "tiling", "offset", "profile", "depth",
+                         "width", "w0", "mode", "strength", "base_map", "encoding", "green"});
+            if (n.has("maps") == n.has("curves")) {
+                n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features bake`) or "
+                       "\"curves\" (baked when the scene loads)");
+            }
+            FeatureSource fsrc;
+            fsrc.fieldPath = n.sub(n.has("maps") ? "maps" : "curves");
+            if (n.has("maps")) {
+                fsrc.mapsFile = resolvePath(n.child("maps"), n.string("maps", ""));
+            } else {
+                Node c = n.child("curves");
+                c.allowOnly({"svg", "json", "font", "text", "size", "mode", "margin"});
+                int kinds = int(c.has("svg")) + int(c.has("json")) + int(c.has("font"));
+                if (kinds != 1) c.fail("expected exactly one of \"svg\", \"json\" or \"font\"");
+                fsrc.curvesKind = c.has("svg") ? "svg" : c.has("json") ? "json" : "font";
+                fsrc.curvesFile = resolvePath(c.child(fsrc.curvesKind.c_str()), c.string(fsrc.curvesKind.c_str(), ""));
+                if (fsrc.curvesKind == "font") {
+                    fsrc.text = c.string("text", "");
+                    if (fsrc.text.empty()) c.failField("text", "expected the characters to lay out (a non-empty string)");
+                } else if (c.has("text")) {
+                    c.failField("text", "applies to fonts only");
+                }
+                fsrc.size = c.integer("size", 256, 8, 4096);
+                fsrc.quadratic = c.choice("mode", 0, {"linear", "quadratic"}) == 1;
+                fsrc.marginTexels = c.number("margin", 8.0, 0.0, 1024.0);
+            }
+            L.feature = fsrc;
+            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            L.featTiling = n.num("tiling", 1.0, 0.0, kHuge, true);
+            if (n.has("offset")) {
+                std::vector<float> o = n.floats("offset", -kHuge, kHuge, 2);
+                if (o.size() != 2) n.failField("offset", "expected [s, t]");
+                L.featOffset = glm::vec2(o[0], o[1]);
+            }
+            L.featProfile = n.string("profile", "crease");
+            L.featDepth = n.num("depth", 1.0, -1024.0, 1024.0);
+            L.featWidth = n.num("width", 3.0, 0.0, 1024.0, true);
+            L.featW0 = n.num("w0", 0.0, 0.0, 1024.0);
+            if (!(L.featW0 < L.featWidth)) n.failField("w0", "expected a number < width");
+            L.featPaperMode = n.choice("mode", 0, {"surfgrad", "paper"}) == 1;
+            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
+            if (n.has("base_map")) L.maps.push_back(texture(n.child("base_map"), Wrap::Repeat));
+            L.encoding = encoding(n, true);
+            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
+            try {
+                (void)sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
+            } catch (const io::InputError& e) {
+                n.failField("profile", e.reason());
+            }
+            break;
+        }
         case LayerKind::PostResolve: {
             n.allowOnly({"type", "enabled", "layers"});
             if (nested) n.fail("post_resolve groups cannot be nested (list them one after another)");

@@ -60,6 +60,7 @@ enum class LayerKind {
     Triplanar,    // triplanar projection (listings 13, 14)
     Decal,        // decal projector (listing 15)
     Noise,        // volume noise with analytic gradient (listing 12, section 4)
+    Feature,      // feature-curve maps (Parilov-Zorin 2008) as a TBN-style layer
     PostResolve,  // group resolved on top of the previous result (section 3)
 };
 const char* layerKindName(LayerKind k); // the schema's "type" string
@@ -80,6 +81,21 @@ struct TextureSource {
     bool srgb = false;           // colour texture: sRGB-decoded to linear on load
     std::string fieldPath;       // for messages, e.g. "materials[0].layers[1].map"
     std::string key() const;     // identity: equal keys share one texture
+};
+
+// Where a feature-curve layer's maps come from: a file written by
+// `surfgrad features bake`, or curves baked when the scene loads (only if
+// the layer is enabled: effects on demand).
+struct FeatureSource {
+    std::filesystem::path mapsFile; // .exr feature maps, or empty
+    std::string curvesKind;         // "svg", "json" or "font" (bake at load)
+    std::filesystem::path curvesFile;
+    std::string text;               // font: the characters
+    int size = 256;                 // bake: texels per side
+    bool quadratic = false;         // bake: quadratic (TOG 2008) or linear (TR2005)
+    double marginTexels = 8.0;
+    std::string fieldPath;
+    std::string key() const;
 };
 
 struct Modifier {
@@ -129,6 +145,13 @@ struct Layer {
     int noiseOctaves = 5;
     glm::vec3 noiseOffset{0.0f};
     bool noiseAntialias = true;
+
+    std::optional<FeatureSource> feature; // feature: the maps (maps[0] is the optional base map)
+    std::string featProfile = "crease";  // sg::features::makeProfile name
+    float featDepth = 1.0f, featW0 = 0.0f, featWidth = 3.0f; // texels
+    bool featPaperMode = false;
+    float featTiling = 1.0f;
+    glm::vec2 featOffset{0.0f};
 
     std::vector<Layer> children; // post_resolve group
 };
@@ -240,6 +263,8 @@ std::filesystem::path dataDirectory();
 // disabled or absent layers are not loaded; meshes are refined only as far as
 // asked; nothing is baked unless a layer uses it).
 
+struct FeatureMapsAsset;
+
 struct MeshAsset {
     sg::mesh::RenderMesh mesh;        // object space; morph targets kept
     // Vertex tangents per UV set (empty = that set uses per-pixel frames).
@@ -254,6 +279,8 @@ struct SceneAssets {
     uint64_t meshVersion = 0; // bumped by applyFrame() when vertex data changed
     std::vector<MeshAsset> meshes; // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
+    // Feature maps in their GPU layout, by FeatureSource::key().
+    std::map<std::string, std::shared_ptr<const FeatureMapsAsset>> featureMaps;
     std::vector<std::string> log; // what was loaded/generated (for -v output and tests)
 };
 
@@ -295,6 +322,7 @@ struct PlanLayer {
     int record = 0;      // first vec4 record in the material's uLayerData
     int recordCount = 0;
     int tex[3] = {-1, -1, -1}; // texture slots
+    int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
     int maskTex = -1;          // modulate mask slot
     bool hasModifiers = false;
     int modRecord = -1;        // first of 4 modifier records
@@ -313,6 +341,7 @@ struct MaterialPlan {
     std::vector<int> groupUberIndex;            // uber plans: flag of each group (-1 for 0)
     std::vector<std::string> textureKeys;       // slot -> TextureSource::key()
     std::vector<const TextureSource*> textureSources; // slot -> source
+    std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
     int recordCount = 0;
     int uberFlagCount = 0;
     uint32_t uvUsedMask = 0;        // UV sets read by some layer (or the base colour map)

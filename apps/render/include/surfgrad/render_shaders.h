@@ -7,6 +7,7 @@
 #pragma once
 
 #include "surfgrad/bump.h"
+#include "surfgrad/feature_maps.h" // the feature evaluator and its CPU samplers
 #include "surfgrad/glsl_texture.h"
 
 namespace sg::glsl {
@@ -22,5 +23,6 @@ namespace sg::glsl {
 #include "sg/render/deriv_mods.glsl"
 #include "sg/render/layer_uv_normal_mods.glsl"
 #include "sg/render/layer_deriv_map_mods.glsl"
+#include "sg/render/layer_feature.glsl"
 #include "sg/render/shading.glsl"
 } // namespace sg::glsl
