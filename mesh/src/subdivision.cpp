@@ -223,16 +223,18 @@ struct FactoredStencils {
 
     // Records refinement step `level` (1-based) of `refiner` as a block
     // reading the previous level at srcBase and writing at dstBase.
-    void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase) {
+    // fvarChannel >= 0 records InterpolateFaceVarying of that channel.
+    void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase, int fvarChannel = -1) {
         RecordedRows rows;
         rows.dstBase = dstBase;
-        const int nChild = refiner.GetLevel(level).GetNumVertices();
+        const int nChild = fvarChannel < 0 ? refiner.GetLevel(level).GetNumVertices() : refiner.GetLevel(level).GetNumFVarValues(fvarChannel);
         rows.rowOf.reserve(size_t(nChild));
         rows.rowStart.reserve(size_t(nChild));
         Far::PrimvarRefiner primvar(refiner);
         TokenView src{srcBase};
         RecorderView dst{&rows};
-        primvar.Interpolate(level, src, dst);
+        if (fvarChannel < 0) primvar.Interpolate(level, src, dst);
+        else primvar.InterpolateFaceVarying(level, src, dst, fvarChannel);
         StencilBlock b;
         b.dstBase = dstBase;
         b.count = uint32_t(rows.rowOf.size());
@@ -396,13 +398,28 @@ struct Subdivider::Impl {
     std::vector<uint32_t> levelToRefined, renderToLevel;
     bool cageHasHoles = false;
 
+    // Kept from the last uniform build: the refiner and, once the same
+    // topology comes again (or for animation), factored stencils for
+    // positions and every UV set, so a rebuild with new values is a few
+    // sparse matrix products (see sameTopology / rebuildValues).
+    std::unique_ptr<Far::TopologyRefiner> keptRefiner;
+    bool keyValid = false, stencilsRecorded = false, renderValid = false;
+    PolygonMesh key; // topology, tags and value counts of the kept build (values not used)
+    int keyLevel = -1;
+    SubdivOptions keyOptions;
+    std::vector<FactoredStencils> fvarStencils;
+    std::vector<glm::vec2> uvPoints;
+
     // Animation / limit.
-    FactoredStencils uniformStencils; // settings.animate && !limit
+    FactoredStencils uniformStencils; // cage -> every uniform level (positions, morph deltas)
     FactoredStencils limitStencils;   // limit: cage -> adaptive points + local points
     SampleTable samples;              // limit: per render vertex
     mutable std::vector<glm::vec3> points; // update() scratch
 
     void build(const PolygonMesh& cage);
+    bool sameTopology(const PolygonMesh& cage) const;
+    void recordUniformStencils(const Far::TopologyRefiner& refiner, const PolygonMesh& cage);
+    void rebuildValues(const PolygonMesh& cage);
     void refineUniform(const PolygonMesh& cage, Far::TopologyRefiner& refiner);
     void collectCreases(const Far::TopologyRefiner& refiner);
     std::vector<uint32_t> sectors(const Far::TopologyRefiner& refiner, const std::vector<uint32_t>& offsets) const;
@@ -968,6 +985,109 @@ void Subdivider::Impl::buildRender(const Far::TopologyRefiner& refiner) {
     refined.normalIndices = refined.faceVertices;
 }
 
+bool Subdivider::Impl::sameTopology(const PolygonMesh& cage) const {
+    const SubdivOptions& o = settings.options;
+    if (!keyValid || keyLevel != settings.level || keyOptions.scheme != o.scheme || keyOptions.boundary != o.boundary ||
+        keyOptions.fvar != o.fvar || keyOptions.creaseMethod != o.creaseMethod || keyOptions.triangles != o.triangles) {
+        return false;
+    }
+    auto sameCreases = [](const std::vector<EdgeCrease>& a, const std::vector<EdgeCrease>& b) {
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const EdgeCrease& x, const EdgeCrease& y) {
+                   return x.v0 == y.v0 && x.v1 == y.v1 && x.sharpness == y.sharpness;
+               });
+    };
+    auto sameCorners = [](const std::vector<VertexCorner>& a, const std::vector<VertexCorner>& b) {
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const VertexCorner& x, const VertexCorner& y) {
+                   return x.vertex == y.vertex && x.sharpness == y.sharpness;
+               });
+    };
+    if (cage.positions.size() != key.positions.size() || cage.faceSizes != key.faceSizes || cage.faceVertices != key.faceVertices ||
+        cage.holes != key.holes || !sameCreases(cage.creases, key.creases) || !sameCorners(cage.corners, key.corners) ||
+        cage.uvSets.size() != key.uvSets.size() || cage.morphTargets.size() != key.morphTargets.size()) {
+        return false;
+    }
+    for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+        if (cage.uvSets[s].indices != key.uvSets[s].indices || cage.uvSets[s].values.size() != key.uvSets[s].values.size()) return false;
+    }
+    return true;
+}
+
+void Subdivider::Impl::recordUniformStencils(const Far::TopologyRefiner& refiner, const PolygonMesh& cage) {
+    const int N = settings.level;
+    uniformStencils = FactoredStencils();
+    uniformStencils.numControl = uint32_t(cage.positions.size());
+    uint32_t base = 0;
+    for (int l = 1; l <= N; ++l) {
+        uint32_t next = base + uint32_t(refiner.GetLevel(l - 1).GetNumVertices());
+        uniformStencils.recordLevel(refiner, l, base, next);
+        base = next;
+    }
+    uniformStencils.numPoints = base + uint32_t(refiner.GetLevel(N).GetNumVertices());
+    fvarStencils.assign(cage.uvSets.size(), FactoredStencils());
+    for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+        FactoredStencils& f = fvarStencils[s];
+        f.numControl = uint32_t(cage.uvSets[s].values.size());
+        uint32_t b = 0;
+        for (int l = 1; l <= N; ++l) {
+            uint32_t next = b + uint32_t(refiner.GetLevel(l - 1).GetNumFVarValues(int(s)));
+            f.recordLevel(refiner, l, b, next, int(s));
+            b = next;
+        }
+        f.numPoints = b + uint32_t(refiner.GetLevel(N).GetNumFVarValues(int(s)));
+    }
+    stencilsRecorded = true;
+}
+
+void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
+    // Same topology as the kept build: only values change. refined()'s
+    // faces, UV indices, tags and the render split stay as they are.
+    detail::Stopwatch sw;
+    if (!stencilsRecorded) recordUniformStencils(*keptRefiner, cage);
+    timings.stencils = sw.lap();
+    const size_t nLevel = levelToRefined.size();
+    auto refineVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
+        points.resize(uniformStencils.numPoints);
+        std::copy(control.begin(), control.end(), points.begin());
+        uniformStencils.apply(points.data());
+        const glm::vec3* levelN = points.data() + (uniformStencils.numPoints - nLevel);
+        out.resize(refined.positions.size());
+        for (size_t v = 0; v < nLevel; ++v) {
+            if (levelToRefined[v] != UINT32_MAX) out[levelToRefined[v]] = levelN[v];
+        }
+    };
+    refineVec3(cage.positions, refined.positions);
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) refineVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
+    for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+        const FactoredStencils& f = fvarStencils[s];
+        uvPoints.resize(f.numPoints);
+        std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), uvPoints.begin());
+        f.apply(uvPoints.data());
+        std::vector<glm::vec2>& values = refined.uvSets[s].values;
+        values.assign(uvPoints.end() - std::ptrdiff_t(values.size()), uvPoints.end());
+    }
+    refined.morphWeights = cage.morphWeights;
+    timings.interpolate = sw.lap();
+    if (settings.buildRenderMesh) {
+        if (renderValid) {
+            const size_t nR = renderToRefined.size();
+            for (size_t r = 0; r < nR; ++r) render.positions[r] = refined.positions[renderToRefined[r]];
+            for (size_t s = 0; s < refined.uvSets.size(); ++s) {
+                for (size_t r = 0; r < nR; ++r) render.uvSets[s][r] = refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
+            }
+            for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
+                for (size_t r = 0; r < nR; ++r) render.morphTargets[t].positionDeltas[r] = refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+            }
+            render.morphWeights = refined.morphWeights;
+            computeVertexNormals(render, smoothGroup);
+            for (size_t r = nR; r-- > 0;) refined.normals[renderToRefined[r]] = render.normals[r];
+        } else {
+            buildRender(*keptRefiner);
+            renderValid = true;
+        }
+        timings.render = sw.lap();
+    }
+}
+
 void Subdivider::Impl::build(const PolygonMesh& cage) {
     timings = SubdivisionTimings();
     const SubdivOptions& o = settings.options;
@@ -991,6 +1111,13 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
                              std::to_string(settings.maxRefinedFaces));
     }
     cageVertices = cage.positions.size();
+    if (!settings.limit && settings.reuseTopology && sameTopology(cage)) {
+        rebuildValues(cage);
+        return;
+    }
+    keyValid = false;
+    stencilsRecorded = false;
+    renderValid = false;
     detail::Stopwatch sw;
     descriptor.build(cage);
     timings.convertIn = sw.lap();
@@ -1039,16 +1166,29 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     }
     if (settings.animate && !settings.limit) {
         sw.lap();
-        uniformStencils = FactoredStencils();
-        uniformStencils.numControl = uint32_t(cage.positions.size());
-        uint32_t base = 0;
-        for (int l = 1; l <= N; ++l) {
-            uint32_t next = base + uint32_t(refiner->GetLevel(l - 1).GetNumVertices());
-            uniformStencils.recordLevel(*refiner, l, base, next);
-            base = next;
-        }
-        uniformStencils.numPoints = base + uint32_t(refiner->GetLevel(N).GetNumVertices());
+        recordUniformStencils(*refiner, cage);
         timings.stencils = sw.lap();
+    }
+    // Keep what a rebuild of the same topology needs (uniform builds only:
+    // a limit build turns faces without patches into holes of refined()).
+    if (!settings.limit) {
+        keptRefiner = std::move(refiner);
+        keyValid = true;
+        keyLevel = N;
+        keyOptions = o;
+        renderValid = settings.buildRenderMesh;
+        key.positions.resize(cage.positions.size());
+        key.faceSizes = cage.faceSizes;
+        key.faceVertices = cage.faceVertices;
+        key.holes = cage.holes;
+        key.creases = cage.creases;
+        key.corners = cage.corners;
+        key.morphTargets.resize(cage.morphTargets.size());
+        key.uvSets.resize(cage.uvSets.size());
+        for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+            key.uvSets[s].indices = cage.uvSets[s].indices;
+            key.uvSets[s].values.resize(cage.uvSets[s].values.size());
+        }
     }
 }
 
@@ -1076,7 +1216,7 @@ const LimitFrame& Subdivider::limitFrame() const { return impl_->frame; }
 const SubdivisionTimings& Subdivider::timings() const { return impl_->timings; }
 size_t Subdivider::cageVertexCount() const { return impl_->cageVertices; }
 
-void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame) const {
+void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame, bool recomputeNormals) const {
     const Impl& m = *impl_;
     assert(m.settings.animate && "build with SubdivisionSettings::animate");
     assert(cagePositions.size() == m.cageVertices);
@@ -1101,7 +1241,9 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
         }
         m.samples.evaluate(m.points.data(), out.positions.data(), du, dv);
         out.normals.resize(nR);
-        for (size_t r = 0; r < nR; ++r) out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+        if (recomputeNormals) {
+            for (size_t r = 0; r < nR; ++r) out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+        }
         m.unifyCopies(out.positions.data(), out.normals.data());
         return;
     }
@@ -1110,7 +1252,7 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
     m.uniformStencils.apply(m.points.data());
     const glm::vec3* levelN = m.points.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
     for (size_t r = 0; r < nR; ++r) out.positions[r] = levelN[m.renderToLevel[r]];
-    computeVertexNormals(out, m.smoothGroup);
+    if (recomputeNormals) computeVertexNormals(out, m.smoothGroup);
 }
 
 } // namespace sg::mesh

@@ -381,6 +381,52 @@ TEST(Subdivision, StencilUpdateMatchesRebuild) {
     }
 }
 
+TEST(Subdivision, RebuildOfTheSameTopologyMatchesAFreshBuild) {
+    // The second build with the same topology takes the kept refiner and
+    // factored stencils (positions, UVs, morph deltas); the result must be
+    // the fresh build's.
+    PolygonMesh cage = loadPolygonMesh(sg::test::dataPath("gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"));
+    ASSERT_EQ(cage.morphTargets.size(), 2u);
+    cage.uvSets.push_back({"planar", {}, {}}); // a UV set with seams: every corner its own value
+    for (size_t c = 0; c < cage.cornerCount(); ++c) {
+        const glm::vec3& p = cage.positions[cage.faceVertices[c]];
+        cage.uvSets[0].values.push_back(glm::vec2(p.x, p.y) + float(c % 3) * 0.01f);
+        cage.uvSets[0].indices.push_back(uint32_t(c));
+    }
+    SubdivisionSettings s;
+    s.level = 2;
+    Subdivider reused(cage, s);
+    PolygonMesh moved = cage;
+    for (auto& p : moved.positions) p = glm::vec3(p.y, -p.x, p.z * 1.5f);
+    for (auto& t : moved.uvSets[0].values) t *= 2.0f;
+    moved.morphTargets[1].positionDeltas[0] += glm::vec3(0.1f);
+    reused.build(moved, s);
+    EXPECT_GT(reused.timings().stencils, 0.0); // the cached path ran (it records stencils once)
+    EXPECT_EQ(reused.timings().topology, 0.0);
+    Subdivider fresh(moved, s);
+    const RenderMesh &a = reused.renderMesh(), &b = fresh.renderMesh();
+    ASSERT_EQ(a.vertexCount(), b.vertexCount());
+    ASSERT_EQ(a.indices, b.indices);
+    float dp = 0, dn = 0, du = 0, dd = 0;
+    for (size_t r = 0; r < a.vertexCount(); ++r) {
+        dp = std::max(dp, glm::length(a.positions[r] - b.positions[r]));
+        dn = std::max(dn, glm::length(a.normals[r] - b.normals[r]));
+        du = std::max(du, glm::length(a.uvSets[0][r] - b.uvSets[0][r]));
+        dd = std::max(dd, glm::length(a.morphTargets[1].positionDeltas[r] - b.morphTargets[1].positionDeltas[r]));
+    }
+    // Same weights, summed in another order: float rounding on coordinates
+    // of size ~1 (the sphere has radius 1).
+    EXPECT_LT(dp, 1e-5f);
+    EXPECT_LT(dn, 1e-4f);
+    EXPECT_LT(du, 1e-5f);
+    EXPECT_LT(dd, 1e-5f);
+    // A different topology is refined from scratch.
+    PolygonMesh cube = cubeWith("");
+    reused.build(cube, s);
+    EXPECT_EQ(reused.refined().faceCount(), 6u * 16u);
+    EXPECT_GT(reused.timings().topology, 0.0);
+}
+
 TEST(Subdivision, HolesAreLeftOut) {
     PolygonMesh cage = loadPolygonMesh(dataPath("osd-shapes/catmark_hole_test1.obj"));
     ASSERT_FALSE(cage.holes.empty());

@@ -42,6 +42,11 @@ struct SubdivisionSettings {
     // Refused (InputError) before refining when the level-N face count
     // would exceed this.
     size_t maxRefinedFaces = size_t(1) << 24;
+    // A build whose cage has the same topology, tags, level and options as
+    // the previous uniform build of this Subdivider reuses its refiner and
+    // applies factored stencils to the new positions/UVs (recorded on the
+    // first repeat). false: always refine from scratch.
+    bool reuseTopology = true;
 };
 
 // Seconds spent in each stage of the last build() (steady clock).
@@ -66,7 +71,8 @@ public:
 
     // Refines `cage` (which must have passed validate()). Reuses this
     // object's buffers from the previous build (call it again instead of
-    // constructing a new Subdivider to avoid page faults on big levels).
+    // constructing a new Subdivider to avoid page faults on big levels), and
+    // its refined topology when only values changed (see reuseTopology).
     // Throws InputError (file, element, reason) when OpenSubdiv cannot take
     // the cage: Loop with a non-triangle face, a level outside
     // 0..kMaxSubdivisionLevel, a refined size above maxRefinedFaces. Holes:
@@ -102,7 +108,11 @@ public:
     // nothing else is touched and nothing is allocated once `out` has been
     // filled once. `out` must have renderMesh()'s vertex count (start from a
     // copy of renderMesh()). Positions must be finite (asserted).
-    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame = nullptr) const;
+    // recomputeNormals = false leaves out.normals alone (callers that
+    // morph or shade without them). Not safe to call concurrently on one
+    // Subdivider (it keeps scratch buffers).
+    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame = nullptr,
+                bool recomputeNormals = true) const;
 
     const SubdivisionTimings& timings() const;
     size_t cageVertexCount() const;

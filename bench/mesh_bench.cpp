@@ -1,0 +1,287 @@
+// Mesh pipeline benchmarks (bench/README.md, "Mesh"): every row is the
+// median of several runs, with its ratio to the baseline measured in the
+// same run, single thread.
+//
+//  1. Refinement of spot's control cage (quads, pentagons, triangles; one UV
+//     set) to levels 1..5:
+//       - OpenMesh's CatmullClarkT (positions only; no creases, no UVs),
+//       - plain Far: TopologyRefinerFactory + RefineUniform + PrimvarRefiner
+//         for positions and UVs (fresh buffers each call, like a one-off user),
+//       - ours: Subdivider::build (creases/corners/holes and every UV set
+//         carried; buffers reused between calls), plus the OpenMesh ->
+//         OpenSubdiv -> polygons conversion share.
+//  2. Animated cage at level 4: full re-refinement vs the factored stencil
+//     update (positions; then + normals), and for limit frames (positions,
+//     dP/du, dP/dv).
+//
+// Usage: mesh_bench [--runs N] [--max-level L]
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
+#include <opensubdiv/far/primvarRefiner.h>
+#include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/polymesh.h"
+#include "surfgrad/subdivision.h"
+
+namespace {
+
+using namespace sg::mesh;
+namespace Far = OpenSubdiv::Far;
+using Clock = std::chrono::steady_clock;
+
+double medianMs(int runs, const std::function<void()>& f) {
+    f(); // warm-up (first-touch page faults, caches)
+    std::vector<double> t;
+    for (int i = 0; i < runs; ++i) {
+        auto t0 = Clock::now();
+        f();
+        t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+    }
+    std::sort(t.begin(), t.end());
+    return t[t.size() / 2];
+}
+
+void row(const char* what, const char* input, double ms, double baselineMs, const char* baseline) {
+    std::printf("| %-44s | %-14s | %9.3f | %6.2fx vs %s |\n", what, input, ms, baselineMs / ms, baseline);
+}
+
+template <class V>
+struct Ref {
+    V* v;
+    void Clear() { *v = V(0.0f); }
+    template <class S>
+    void AddWithWeight(const S& s, float w) { *v += w * *s.v; }
+};
+template <class V>
+struct View {
+    V* b;
+    Ref<V> operator[](int i) const { return {b + i}; }
+};
+
+// Plain Far, the way a one-off user writes it.
+void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos, std::vector<glm::vec2>& outUv) {
+    Far::TopologyDescriptor d;
+    d.numVertices = int(cage.positions.size());
+    d.numFaces = int(cage.faceSizes.size());
+    d.numVertsPerFace = reinterpret_cast<const int*>(cage.faceSizes.data());
+    d.vertIndicesPerFace = reinterpret_cast<const int*>(cage.faceVertices.data());
+    Far::TopologyDescriptor::FVarChannel ch;
+    ch.numValues = int(cage.uvSets[0].values.size());
+    ch.valueIndices = reinterpret_cast<const int*>(cage.uvSets[0].indices.data());
+    d.numFVarChannels = 1;
+    d.fvarChannels = &ch;
+    OpenSubdiv::Sdc::Options so;
+    so.SetVtxBoundaryInterpolation(OpenSubdiv::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
+    so.SetFVarLinearInterpolation(OpenSubdiv::Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1);
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, so)));
+    r->RefineUniform(Far::TopologyRefiner::UniformOptions(level));
+    Far::PrimvarRefiner pr(*r);
+    std::vector<glm::vec3> src = cage.positions, dst;
+    std::vector<glm::vec2> usrc = cage.uvSets[0].values, udst;
+    for (int l = 1; l <= level; ++l) {
+        dst.assign(size_t(r->GetLevel(l).GetNumVertices()), glm::vec3(0.0f));
+        View<glm::vec3> s{src.data()}, t{dst.data()};
+        pr.Interpolate(l, s, t);
+        src.swap(dst);
+        udst.assign(size_t(r->GetLevel(l).GetNumFVarValues(0)), glm::vec2(0.0f));
+        View<glm::vec2> us{usrc.data()}, ut{udst.data()};
+        pr.InterpolateFaceVarying(l, us, ut, 0);
+        usrc.swap(udst);
+    }
+    outPos.swap(src);
+    outUv.swap(usrc);
+}
+
+struct OmTraits : OpenMesh::DefaultTraits {};
+using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<OmTraits>;
+
+} // namespace
+
+int main(int argc, char** argv) {
+    int runs = 15, maxLevel = 5;
+    for (int i = 1; i < argc; ++i) {
+        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::max(3, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) maxLevel = std::clamp(std::atoi(argv[++i]), 1, 6);
+    }
+    const std::string spotPath = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
+    PolygonMesh spot = loadPolygonMesh(spotPath);
+    std::printf("spot control cage: %zu vertices, %zu faces, 1 UV set; %d runs per row (median), single thread\n\n", spot.vertexCount(),
+                spot.faceCount(), runs);
+
+    // --- 1. Refinement ---------------------------------------------------------
+    std::printf("| %-44s | %-14s | %9s | %-22s |\n", "refinement", "input", "median ms", "ratio");
+    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(), std::string(11, '-').c_str(),
+                std::string(24, '-').c_str());
+    // OpenMesh input for the baseline (plain PolyMesh, no custom properties).
+    OmMesh omCage;
+    {
+        std::vector<OmMesh::VertexHandle> vh;
+        for (const auto& p : spot.positions) vh.push_back(omCage.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+        size_t c = 0;
+        for (uint32_t k : spot.faceSizes) {
+            std::vector<OmMesh::VertexHandle> f;
+            for (uint32_t j = 0; j < k; ++j) f.push_back(vh[spot.faceVertices[c + j]]);
+            omCage.add_face(f);
+            c += k;
+        }
+    }
+    PolyMeshProperties props;
+    PolyMesh spotOm = toPolyMesh(spot, props, spotPath); // ours, with UVs as halfedge properties
+    Subdivider sub;
+    for (int level = 1; level <= maxLevel; ++level) {
+        char in[32];
+        std::snprintf(in, sizeof in, "spot L%d", level);
+        double om = medianMs(runs, [&] {
+            OmMesh m = omCage;
+            OpenMesh::Subdivider::Uniform::CatmullClarkT<OmMesh> cc;
+            cc.attach(m);
+            cc(size_t(level));
+            cc.detach();
+        });
+        std::vector<glm::vec3> fp;
+        std::vector<glm::vec2> fu;
+        double far = medianMs(runs, [&] { plainFar(spot, level, fp, fu); });
+        SubdivisionSettings s;
+        s.level = level;
+        s.buildRenderMesh = false;
+        s.reuseTopology = false;
+        double ours = medianMs(runs, [&] { sub.build(spot, s); });
+        SubdivisionTimings tm = sub.timings();
+        s.reuseTopology = true;
+        sub.build(spot, s); // keeps the refiner; the next build records the stencils
+        PolygonMesh moved = spot;
+        size_t flip = 0;
+        double cached = medianMs(runs, [&] {
+            // New positions and UVs every call, same topology.
+            moved.positions[flip % moved.positions.size()].x += 1e-4f;
+            moved.uvSets[0].values[flip++ % moved.uvSets[0].values.size()].x += 1e-4f;
+            sub.build(moved, s);
+        });
+        s.reuseTopology = false;
+        double fromOm = medianMs(runs, [&] {
+            PolygonMesh c = fromPolyMesh(spotOm, props);
+            if (c.faceCount() != spot.faceCount()) std::abort();
+        });
+        double cold = medianMs(runs, [&] {
+            Subdivider fresh(spot, s);
+            if (fresh.refined().faceCount() == 0) std::abort();
+        });
+        row("OpenMesh CatmullClarkT (no creases, no UVs)", in, om, om, "OpenMesh");
+        row("plain Far create+refine+primvar (pos+UV)", in, far, om, "OpenMesh");
+        row("ours build: new topology (pos+UV)", in, ours, om, "OpenMesh");
+        row("ours build: fresh Subdivider per call", in, cold, om, "OpenMesh");
+        row("ours build: same topology, new values", in, cached, om, "OpenMesh");
+        std::printf("|   ours vs plain Far: %.2fx; stages ms: convert-in %.3f, topology %.3f, interpolate %.3f, convert-out %.3f\n", far / ours,
+                    1e3 * tm.convertIn, 1e3 * tm.topology, 1e3 * tm.interpolate, 1e3 * tm.convertOut);
+        double conv = fromOm + 1e3 * (tm.convertIn + tm.convertOut);
+        std::printf("|   OpenMesh<->OpenSubdiv conversion (PolyMesh->cage %.3f + descriptor + level-N polygons) = %.3f ms = %.0f%% of the "
+                    "refine time\n",
+                    fromOm, conv, 100.0 * conv / ours);
+    }
+
+    // --- 2. Animated cage at level 4 -------------------------------------------
+    std::printf("\n| %-44s | %-14s | %9s | %-22s |\n", "animated cage, per frame", "input", "median ms", "ratio");
+    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(), std::string(11, '-').c_str(),
+                std::string(24, '-').c_str());
+    std::mt19937 rng(1);
+    std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
+    std::vector<std::vector<glm::vec3>> frames(8, spot.positions);
+    for (auto& f : frames) {
+        for (auto& p : f) p += glm::vec3(jitter(rng), jitter(rng), jitter(rng));
+    }
+    size_t frame = 0;
+    PolygonMesh moving = spot;
+    const char* in = "spot L4";
+    {
+        SubdivisionSettings s;
+        s.level = 4;
+        s.buildRenderMesh = false;
+        s.reuseTopology = false; // a full re-refinement, as a user without stencils does
+        Subdivider full;
+        double rebuild = medianMs(runs, [&] {
+            moving.positions = frames[frame++ % frames.size()];
+            full.build(moving, s);
+        });
+        std::vector<glm::vec3> fp;
+        std::vector<glm::vec2> fu;
+        double far = medianMs(runs, [&] {
+            moving.positions = frames[frame++ % frames.size()];
+            plainFar(moving, 4, fp, fu);
+        });
+        // Far's flattened stencil table with its own UpdateValues.
+        double farStencilBuild = 0;
+        std::unique_ptr<const Far::StencilTable> table;
+        std::vector<glm::vec3> farOut;
+        {
+            auto t0 = Clock::now();
+            Far::TopologyDescriptor d;
+            d.numVertices = int(spot.positions.size());
+            d.numFaces = int(spot.faceSizes.size());
+            d.numVertsPerFace = reinterpret_cast<const int*>(spot.faceSizes.data());
+            d.vertIndicesPerFace = reinterpret_cast<const int*>(spot.faceVertices.data());
+            using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+            std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, OpenSubdiv::Sdc::Options())));
+            r->RefineUniform(Far::TopologyRefiner::UniformOptions(4));
+            Far::StencilTableFactory::Options so;
+            so.generateIntermediateLevels = false;
+            so.generateOffsets = true;
+            table.reset(Far::StencilTableFactory::Create(*r, so));
+            farStencilBuild = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+            farOut.resize(size_t(table->GetNumStencils()));
+        }
+        double farStencil = medianMs(runs, [&] {
+            const auto& f = frames[frame++ % frames.size()];
+            View<const glm::vec3> src{f.data()};
+            View<glm::vec3> dst{farOut.data()};
+            table->UpdateValues(src, dst);
+        });
+        SubdivisionSettings a = s;
+        a.animate = true;
+        a.buildRenderMesh = true;
+        auto t0 = Clock::now();
+        Subdivider anim(spot, a);
+        double ourBuild = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        RenderMesh out = anim.renderMesh();
+        double update = medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, nullptr, false); });
+        double updateN = medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, nullptr, true); });
+        row("full re-refinement, ours (build)", in, rebuild, rebuild, "re-refine");
+        row("plain Far create+refine+primvar (pos+UV)", in, far, rebuild, "re-refine");
+        row("Far StencilTable::UpdateValues (flattened)", in, farStencil, rebuild, "re-refine");
+        row("ours factored stencils: positions", in, update, rebuild, "re-refine");
+        row("ours factored stencils: positions + normals", in, updateN, rebuild, "re-refine");
+        std::printf("|   one-time setup: Far StencilTableFactory %.1f ms (%zu weights); ours build with stencils %.1f ms\n", farStencilBuild,
+                    table->GetControlIndices().size(), ourBuild);
+    }
+    {
+        SubdivisionSettings s;
+        s.level = 4;
+        s.limit = true;
+        Subdivider full;
+        double rebuild = medianMs(std::max(3, runs / 3), [&] {
+            moving.positions = frames[frame++ % frames.size()];
+            full.build(moving, s);
+        });
+        s.animate = true;
+        Subdivider anim(spot, s);
+        RenderMesh out = anim.renderMesh();
+        LimitFrame lf = anim.limitFrame();
+        double update = medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, &lf); });
+        row("limit: full rebuild (P, dP/du, dP/dv, N, UV)", in, rebuild, rebuild, "limit rebuild");
+        row("limit: stencil update (P, dP/du, dP/dv, N)", in, update, rebuild, "limit rebuild");
+    }
+    return 0;
+}
