@@ -73,7 +73,8 @@ SG_FN vec2 sgFeatProfileHeightSlope(SgFeatProfile pr, float d, float side) {
     }
     if (pr.kind == SG_FEAT_PROFILE_SEAM) {
         float a = 0.5f * SG_FEAT_PI;
-        return vec2(-dd * (1.0f - sin(a * t)), dd * a * cos(a * t) / w);
+        // (inside: cos(pi/2) is not exactly 0 in binary32.)
+        return vec2(-dd * (1.0f - sin(a * t)), inside * dd * a * cos(a * t) / w);
     }
     // Table: uniform Catmull-Rom with one-sided end tangents.
     int n = clamp(pr.tableCount, 2, SG_FEAT_TABLE_MAX);

@@ -1,0 +1,260 @@
+// CPU/GPU parity of the feature-curve evaluator: the same GLSL source
+// (shaders/sg/features/) compiled as C++ and run in a compute shader on the
+// headless llvmpipe context. Three paths: the evaluation kernel on texel
+// records (kernels.glsl), the texture path a renderer uses (sample.comp.glsl:
+// texelFetch from RGBA32F/RGBA32UI textures), and the profile functions.
+#include <epoxy/gl.h>
+
+#include <random>
+
+#include "maps_test_util.h"
+#include "surfgrad/gl.h"
+#include "surfgrad/shader_files.h"
+
+using namespace sg::features;
+using namespace sgtest;
+
+namespace {
+
+class FeatureMapsGpu : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() { ctx_ = new sg::gl::HeadlessContext(); }
+    static void TearDownTestSuite() {
+        delete ctx_;
+        ctx_ = nullptr;
+    }
+    static sg::gl::Program kernelProgram(int kernel) {
+        auto src = sg::shaders::assemble(evalKernelGpuBody(), "features-kernel", evalKernelGpuDefines(kernel));
+        return sg::gl::Program({{sg::gl::Stage::Compute, src}});
+    }
+    static sg::gl::HeadlessContext* ctx_;
+};
+sg::gl::HeadlessContext* FeatureMapsGpu::ctx_ = nullptr;
+
+// Networks exercising every configuration: curves, polylines, a star, tight
+// arcs (Eq. 7 repairs), curves on grid lines.
+std::vector<FeatureMaps> testMaps() {
+    std::vector<FeatureMaps> out;
+    NetBuilder a;
+    a.circle({10.3, 11.7}, 6.2, 10);
+    a.circle({24.1, 22.6}, 3.1, 8, 0.4);
+    a.polyline({{2.0, 2.0}, {30.0, 30.0}});
+    a.polyline({{1.5, 20.0}, {30.5, 20.0}});
+    dvec2 c(20.37, 8.61);
+    for (int k = 0; k < 8; ++k) a.polyline({c, c + 6.0 * dvec2(std::cos(0.3 + 0.785 * k), std::sin(0.3 + 0.785 * k))});
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 0; k < 12; ++k) {
+        dvec2 cc(4.0 + 24.0 * u(rng), 4.0 + 24.0 * u(rng));
+        double r = 0.4 + u(rng), a0 = 6.28 * u(rng), sw = 0.6 + 1.8 * u(rng);
+        a.begin();
+        a.quad(cc + r * dvec2(std::cos(a0), std::sin(a0)),
+               cc + r / std::cos(sw / 2) * dvec2(std::cos(a0 + sw / 2), std::sin(a0 + sw / 2)),
+               cc + r * dvec2(std::cos(a0 + sw), std::sin(a0 + sw)));
+    }
+    out.push_back(bake(a.net, texelSpace(32, BakeMode::Quadratic)));
+    out.push_back(bake(a.net, texelSpace(32, BakeMode::Linear)));
+    return out;
+}
+
+struct Diff {
+    size_t records = 0, compared = 0;
+    double maxDist = 0, maxAngle = 0;
+    size_t sideMismatch = 0, nonFinite = 0;
+};
+
+// Compares (d, gx, gy, side) outputs. Where d < 1e-3 texels the point lies
+// within rounding of a curve (binary32 positions are ~1e-6 apart there and
+// the GPU may contract multiply-adds into FMA), so the side test may go
+// either way: only d is compared there.
+void compare(const float* cpu, const float* gpu, int stride, size_t n, Diff& d) {
+    for (size_t k = 0; k < n; ++k) {
+        const float* a = cpu + k * size_t(stride);
+        const float* b = gpu + k * size_t(stride);
+        ++d.records;
+        bool fin = true;
+        for (int i = 0; i < 4; ++i) fin = fin && std::isfinite(a[i]) && std::isfinite(b[i]);
+        if (!fin) {
+            ++d.nonFinite;
+            continue;
+        }
+        d.maxDist = std::max(d.maxDist, double(std::fabs(a[0] - b[0])) / std::max(1.0, double(std::fabs(a[0]))));
+        if (a[0] < 1e-3f) continue;
+        ++d.compared;
+        double cosA = double(a[1]) * b[1] + double(a[2]) * b[2];
+        double la = std::hypot(a[1], a[2]), lb = std::hypot(b[1], b[2]);
+        if (la > 0.5 && lb > 0.5) d.maxAngle = std::max(d.maxAngle, std::acos(std::clamp(cosA / (la * lb), -1.0, 1.0)));
+        if (a[3] != b[3]) ++d.sideMismatch;
+    }
+}
+
+} // namespace
+
+// The evaluation kernel on every texel with features at 40 random and 9
+// boundary points, plus a sample of plain texels.
+TEST_F(FeatureMapsGpu, EvalKernelParity) {
+    sg::gl::Program prog = kernelProgram(SG_FEAT_K_EVAL);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    for (const FeatureMaps& m : testMaps()) {
+        GpuFeatureMaps g = m.packGpu();
+        std::vector<float> in;
+        std::vector<float> rec(static_cast<size_t>(kEvalInStride));
+        for (int j = 0; j < m.size; ++j) {
+            for (int i = 0; i < m.size; ++i) {
+                bool feat = (m.configWord(i, j) & 0xFFFFu) != 0;
+                if (!feat && (i + j) % 7) continue;
+                for (int s = 0; s < (feat ? 49 : 4); ++s) {
+                    glm::vec2 p = s < 9 ? glm::vec2(float(s % 3) * 0.5f, float(s / 3) * 0.5f) : glm::vec2(u(rng), u(rng));
+                    packEvalRecord(g, i, j, p, rec.data());
+                    in.insert(in.end(), rec.begin(), rec.end());
+                }
+            }
+        }
+        size_t n = in.size() / size_t(kEvalInStride);
+        std::vector<float> cpu(n * size_t(kEvalOutStride));
+        for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+        std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
+        Diff d;
+        compare(cpu.data(), gpu.data(), kEvalOutStride, n, d);
+        std::printf("%s maps: %zu records, max |d| diff %.2e (relative to max(1, d)), max gradient angle %.2e rad, "
+                    "%zu side mismatches of %zu\n",
+                    toString(m.mode), d.records, d.maxDist, d.maxAngle, d.sideMismatch, d.compared);
+        EXPECT_EQ(d.nonFinite, 0u);
+        // Both builds evaluate the same expressions in binary32; differences
+        // come from FMA contraction and library functions (cos, sin, sqrt,
+        // inversesqrt: llvmpipe is within a few ulps). Measured 1e-6; the
+        // bounds leave a factor of 10-50.
+        EXPECT_LT(d.maxDist, 5e-5);
+        EXPECT_LT(d.maxAngle, 1e-3);
+        // A side mismatch away from the curves would be a different triangle
+        // or region: none is allowed.
+        EXPECT_EQ(d.sideMismatch, 0u);
+    }
+}
+
+// Arbitrary texel words (every configuration bit pattern the format allows,
+// random positions and angles, extreme corner values): both builds stay
+// finite. Values are compared only for valid configurations (above), since
+// garbage signatures can be ill-conditioned.
+TEST_F(FeatureMapsGpu, EvalKernelFiniteOnArbitraryData) {
+    sg::gl::Program prog = kernelProgram(SG_FEAT_K_EVAL);
+    std::mt19937 rng(13);
+    std::uniform_int_distribution<uint32_t> bits(0, 0xFFFFFFFFu);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const size_t n = 20000;
+    std::vector<float> in(n * size_t(kEvalInStride), 0.0f);
+    for (size_t k = 0; k < n; ++k) {
+        float* r = &in[k * size_t(kEvalInStride)];
+        float scale = std::pow(10.0f, float(int(bits(rng) % 13) - 6)); // 1e-6 .. 1e6
+        for (int i = 0; i < 4; ++i) r[i] = u(rng) * scale;
+        for (int i = 4; i < 12; ++i) r[i] = (2.0f * u(rng) - 1.0f) * (bits(rng) % 5 == 0 ? 0.0f : 1.0f);
+        uint32_t cfg = bits(rng) & 0x1FFFFFu;
+        if ((cfg & 3u) == 3u) cfg &= ~1u; // 3 segments does not exist
+        r[12] = float(cfg);
+        for (int i = 13; i < 21; ++i) r[i] = float(bits(rng) & 0xFFFFu);
+        r[21] = u(rng);
+        r[22] = u(rng);
+    }
+    std::vector<float> cpu(n * size_t(kEvalOutStride));
+    for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+    std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
+    size_t bad = 0;
+    for (size_t k = 0; k < n * size_t(kEvalOutStride); ++k) bad += !std::isfinite(cpu[k]) || !std::isfinite(gpu[k]);
+    EXPECT_EQ(bad, 0u);
+}
+
+// The texture path: RGBA32F corners and RGBA32UI edges read with texelFetch,
+// sampled on a dense grid covering the map and its surroundings.
+TEST_F(FeatureMapsGpu, TexturePathParity) {
+    auto src = sg::shaders::assemble(sampleGpuBody(), "features-sample");
+    sg::gl::Program prog({{sg::gl::Stage::Compute, src}});
+    for (const FeatureMaps& m : testMaps()) {
+        GpuFeatureMaps g = m.packGpu();
+        GLuint tex[2];
+        glCreateTextures(GL_TEXTURE_2D, 2, tex);
+        glTextureStorage2D(tex[0], 1, GL_RGBA32F, g.size + 1, g.size + 1);
+        glTextureSubImage2D(tex[0], 0, 0, 0, g.size + 1, g.size + 1, GL_RGBA, GL_FLOAT, g.corners.data());
+        glTextureStorage2D(tex[1], 1, GL_RGBA32UI, g.size, g.size);
+        glTextureSubImage2D(tex[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
+        for (GLuint t : tex) {
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        glBindTextureUnit(0, tex[0]);
+        glBindTextureUnit(1, tex[1]);
+        glProgramUniform1i(prog.id(), prog.uniform("uFeatCorners"), 0);
+        glProgramUniform1i(prog.id(), prog.uniform("uFeatEdges"), 1);
+        std::vector<float> in;
+        const int per = 13; // not a divisor of the texel: covers texel interiors and edges
+        for (int j = -per; j <= (g.size + 1) * per; ++j) {
+            for (int i = -per; i <= (g.size + 1) * per; ++i) {
+                in.push_back(float(i) / float(per));
+                in.push_back(float(j) / float(per));
+            }
+        }
+        size_t n = in.size() / 2;
+        std::vector<float> gpu = sg::gl::runCompute(prog, in, 2, 4, n);
+        std::vector<float> cpu(n * 4);
+        for (size_t k = 0; k < n; ++k) {
+            auto r = sample(g, glm::vec2(in[2 * k], in[2 * k + 1]));
+            cpu[4 * k] = r.dist;
+            cpu[4 * k + 1] = r.grad.x;
+            cpu[4 * k + 2] = r.grad.y;
+            cpu[4 * k + 3] = r.side;
+        }
+        glDeleteTextures(2, tex);
+        sg::gl::checkError("texture path");
+        Diff d;
+        compare(cpu.data(), gpu.data(), 4, n, d);
+        std::printf("%s maps, texture path: %zu points, max |d| diff %.2e, max angle %.2e rad, %zu side mismatches\n",
+                    toString(m.mode), d.records, d.maxDist, d.maxAngle, d.sideMismatch);
+        EXPECT_EQ(d.nonFinite, 0u);
+        EXPECT_LT(d.maxDist, 5e-5); // as in EvalKernelParity
+        EXPECT_LT(d.maxAngle, 1e-3);
+        EXPECT_EQ(d.sideMismatch, 0u);
+    }
+}
+
+// Profiles: every kind, both compositions, random distances across the
+// blend band and random base normals.
+TEST_F(FeatureMapsGpu, ProfileKernelParity) {
+    sg::gl::Program prog = kernelProgram(SG_FEAT_K_PROFILE);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    const size_t n = 12000;
+    std::vector<float> in(n * size_t(kEvalInStride), 0.0f);
+    for (size_t k = 0; k < n; ++k) {
+        float* r = &in[k * size_t(kEvalInStride)];
+        float w = 0.5f + 6.0f * u(rng);
+        r[0] = 1.3f * w * u(rng);
+        float a = 6.2832f * u(rng);
+        r[1] = std::cos(a);
+        r[2] = std::sin(a);
+        r[3] = u(rng) < 0.5f ? -1.0f : 1.0f;
+        r[4] = float(k % SG_FEAT_PROFILE_COUNT);
+        r[5] = 4.0f * u(rng) - 2.0f;
+        r[6] = w * u(rng) * 0.8f;
+        r[7] = w;
+        r[8] = float(2 + k % 15);
+        for (int i = 0; i < SG_FEAT_TABLE_MAX; ++i) r[9 + i] = 2.0f * u(rng) - 1.0f;
+        r[25] = u(rng) - 0.5f;
+        r[26] = u(rng) - 0.5f;
+        glm::vec3 nb = glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, 1.0f));
+        r[27] = nb.x;
+        r[28] = nb.y;
+        r[29] = nb.z;
+    }
+    std::vector<float> cpu(n * size_t(kEvalOutStride));
+    for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_PROFILE, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+    std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
+    double worst = 0;
+    for (size_t k = 0; k < n * size_t(kEvalOutStride); ++k) {
+        ASSERT_TRUE(std::isfinite(cpu[k]) && std::isfinite(gpu[k]));
+        worst = std::max(worst, double(std::fabs(cpu[k] - gpu[k])) / std::max(1.0, double(std::fabs(cpu[k]))));
+    }
+    std::printf("profiles: %zu records, max difference %.2e\n", n, worst);
+    // Polynomials, sin/cos and one sqrt/normalize in binary32: a few ulps of
+    // values up to ~10 (slopes 2 depth / w).
+    EXPECT_LT(worst, 1e-5);
+}

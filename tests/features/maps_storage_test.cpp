@@ -1,0 +1,222 @@
+// OpenEXR storage of feature maps: lossless round trip (the loaded maps
+// evaluate bit for bit like the baked ones), atomic writes, and clear errors
+// for everything a hostile or damaged file can contain.
+#include <OpenImageIO/imageio.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "maps_test_util.h"
+#include "surfgrad/io.h"
+
+using namespace sg::features;
+using namespace sgtest;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+    fs::path path;
+    TempDir() {
+        path = fs::temp_directory_path() / ("sg_features_storage_" + std::to_string(::getpid()));
+        fs::create_directories(path);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path, ec);
+    }
+};
+
+FeatureMaps sampleMaps(BakeMode mode) {
+    NetBuilder b;
+    b.circle({8.3, 8.1}, 4.2, 8);
+    b.polyline({{1.5, 14.2}, {14.5, 12.9}, {9.0, 2.0}});
+    return bake(b.net, texelSpace(16, mode));
+}
+
+// Writes `spec` and float pixels to path with OIIO directly (to forge files).
+void writeExr(const fs::path& path, OIIO::ImageSpec spec, const std::vector<float>& px) {
+    auto out = OIIO::ImageOutput::create(path.string());
+    ASSERT_TRUE(out);
+    ASSERT_TRUE(out->open(path.string(), spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, px.data()));
+    ASSERT_TRUE(out->close());
+}
+
+std::string loadError(const fs::path& p) {
+    try {
+        load(p);
+    } catch (const sg::io::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+} // namespace
+
+TEST(FeatureMapsStorage, RoundTripIsExact) {
+    TempDir dir;
+    for (BakeMode mode : {BakeMode::Linear, BakeMode::Quadratic}) {
+        FeatureMaps m = sampleMaps(mode);
+        m.source = "unit test";
+        m.inputToTexel = {{2.5, 2.5}, {-1.25, 3.0}};
+        fs::path p = dir.path / "maps.exr";
+        save(m, p);
+        FeatureMaps l = load(p);
+        EXPECT_EQ(l.size, m.size);
+        EXPECT_EQ(l.mode, m.mode);
+        EXPECT_EQ(l.source, "unit test");
+        EXPECT_EQ(l.inputToTexel.scale, m.inputToTexel.scale);
+        EXPECT_EQ(l.inputToTexel.offset, m.inputToTexel.offset);
+        EXPECT_EQ(l.bandTexels, m.bandTexels);
+        EXPECT_EQ(l.smoothIterations, m.smoothIterations);
+        EXPECT_EQ(l.dist, m.dist);
+        EXPECT_EQ(l.gradX, m.gradX);
+        EXPECT_EQ(l.gradY, m.gradY);
+        EXPECT_EQ(l.left, m.left);
+        EXPECT_EQ(l.seg, m.seg);
+        EXPECT_EQ(l.hPos, m.hPos);
+        EXPECT_EQ(l.vPos, m.vPos);
+        EXPECT_EQ(l.hAngle, m.hAngle);
+        EXPECT_EQ(l.vAngle, m.vAngle);
+        GpuFeatureMaps a = m.packGpu(), b = l.packGpu();
+        EXPECT_EQ(a.corners, b.corners);
+        EXPECT_EQ(a.edges, b.edges);
+        // Same bytes from memory.
+        std::string bytes = sg::io::readFile(p);
+        FeatureMaps mm = loadFromMemory(bytes, "memory");
+        EXPECT_EQ(mm.dist, m.dist);
+        EXPECT_EQ(mm.seg, m.seg);
+    }
+}
+
+TEST(FeatureMapsStorage, WriteIsAtomicAndRefusesDirectories) {
+    TempDir dir;
+    FeatureMaps m = sampleMaps(BakeMode::Linear);
+    EXPECT_THROW(save(m, dir.path), sg::io::InputError);
+    EXPECT_THROW(save(m, dir.path / "missing" / "x.exr"), sg::io::InputError);
+    save(m, dir.path / "ok.exr");
+    for (const auto& e : fs::directory_iterator(dir.path)) {
+        EXPECT_EQ(e.path().filename(), "ok.exr") << "leftover temporary file " << e.path();
+    }
+}
+
+TEST(FeatureMapsStorage, RejectsBadFiles) {
+    TempDir dir;
+    FeatureMaps m = sampleMaps(BakeMode::Quadratic);
+    fs::path good = dir.path / "good.exr";
+    save(m, good);
+    // Not a file / not an image / not an EXR.
+    EXPECT_NE(loadError(dir.path / "none.exr").find("no such file"), std::string::npos);
+    sg::io::writeFileAtomically(dir.path / "text.exr", "hello");
+    EXPECT_NE(loadError(dir.path / "text.exr"), "");
+    // Truncated EXR.
+    std::string bytes = sg::io::readFile(good);
+    sg::io::writeFileAtomically(dir.path / "trunc.exr", bytes.substr(0, bytes.size() / 2));
+    EXPECT_NE(loadError(dir.path / "trunc.exr"), "");
+
+    // Forged files: start from the real spec and pixels, break one thing.
+    auto in = OIIO::ImageInput::open(good.string());
+    ASSERT_TRUE(in);
+    OIIO::ImageSpec spec = in->spec();
+    std::vector<float> px(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+    in.reset();
+    auto forge = [&](const std::string& name, auto&& edit) {
+        OIIO::ImageSpec s = spec;
+        std::vector<float> p = px;
+        edit(s, p);
+        fs::path f = dir.path / (name + ".exr");
+        writeExr(f, s, p);
+        return loadError(f);
+    };
+    auto chan = [&](const char* n) {
+        for (int c = 0; c < spec.nchannels; ++c) {
+            if (spec.channel_name(c) == n) return c;
+        }
+        return -1;
+    };
+    const int nc = spec.nchannels;
+    // Metadata.
+    EXPECT_NE(forge("version", [](auto& s, auto&) { s.attribute("surfgrad:featureMapsVersion", 99); })
+                  .find("featureMapsVersion"), std::string::npos);
+    EXPECT_NE(forge("mode", [](auto& s, auto&) { s.attribute("surfgrad:mode", "cubic"); }).find("surfgrad:mode"),
+              std::string::npos);
+    EXPECT_NE(forge("size", [](auto& s, auto&) { s.attribute("surfgrad:size", 15); }).find("pixels"), std::string::npos);
+    EXPECT_NE(forge("nosize", [](auto& s, auto&) { s.erase_attribute("surfgrad:size"); }).find("surfgrad:size"),
+              std::string::npos);
+    EXPECT_NE(forge("scale", [](auto& s, auto&) {
+                  double z = 0.0;
+                  s.attribute("surfgrad:inputToTexelScaleX", OIIO::TypeDesc::DOUBLE, &z);
+              }).find("Scale"),
+              std::string::npos);
+    EXPECT_NE(forge("band", [](auto& s, auto&) {
+                  double b = 1e9;
+                  s.attribute("surfgrad:bandTexels", OIIO::TypeDesc::DOUBLE, &b);
+              }).find("band"),
+              std::string::npos);
+    // Channels.
+    EXPECT_NE(forge("chname", [](auto& s, auto&) { s.channelnames[0] = "Z"; }).find("channel d"), std::string::npos);
+    // Values.
+    EXPECT_NE(forge("nan", [&](auto&, auto& p) { p[size_t(chan("gx"))] = std::nanf(""); }).find("not finite"),
+              std::string::npos);
+    EXPECT_NE(forge("negd", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find("channel d"),
+              std::string::npos);
+    EXPECT_NE(forge("longgrad", [&](auto&, auto& p) { p[size_t(chan("gx"))] = 3.0f; }).find("gradient"),
+              std::string::npos);
+    EXPECT_NE(forge("left", [&](auto&, auto& p) { p[size_t(chan("left"))] = 0.5f; }).find("left"),
+              std::string::npos);
+    EXPECT_NE(forge("seg", [&](auto&, auto& p) { p[size_t(chan("seg"))] = 3.0f; }).find("seg"), std::string::npos);
+    EXPECT_NE(forge("segfrac", [&](auto&, auto& p) { p[size_t(chan("seg"))] = 1.5f; }).find("seg"),
+              std::string::npos);
+    EXPECT_NE(forge("pos", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.0f; }).find("hT"), std::string::npos);
+    EXPECT_NE(forge("grid", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.5f + 1e-5f; }).find("grid"),
+              std::string::npos);
+    EXPECT_NE(forge("angle", [&](auto&, auto& p) { p[size_t(chan("hA"))] = 2.0f; }).find("hA"), std::string::npos);
+    // A segment ending on an edge without a point: find a texel with one
+    // and remove its S/N/E/W point.
+    EXPECT_NE(forge("segpoint",
+                    [&](auto& s, auto& p) {
+                        for (size_t k = 0; k < p.size() / size_t(nc); ++k) {
+                            float w = p[k * size_t(nc) + size_t(chan("seg"))];
+                            if (w == 0.0f) continue;
+                            uint32_t word = uint32_t(w);
+                            int e = int((word >> 2) & 3u);
+                            // Pixel k is corner (i, j) with row = k / g, j = g - 1 - row.
+                            int g = s.width;
+                            size_t row = k / size_t(g);
+                            // S edge: hT of this corner; W edge: vT of this corner;
+                            // N edge: hT one row up; E edge: vT one to the right.
+                            size_t idx = e == 0 ? k : e == 3 ? k : e == 2 ? k - size_t(g) : k + 1;
+                            (void)row;
+                            p[idx * size_t(nc) + size_t(chan(e == 0 || e == 2 ? "hT" : "vT"))] = -1.0f;
+                            return;
+                        }
+                    })
+                  .find("without a point"),
+              std::string::npos);
+    // A curved segment with a signature the runtime cannot use: the angles
+    // of a curved texel's edges turned by 60 degrees (staying on the 16-bit
+    // grid, so only the signature check can object).
+    std::string curvedErr = forge("badcurve", [&](auto& s, auto& p) {
+        int g = s.width;
+        for (size_t k = 0; k < p.size() / size_t(nc); ++k) {
+            uint32_t word = uint32_t(p[k * size_t(nc) + size_t(chan("seg"))]);
+            if (!((word & 3u) && ((word >> 6) & 1u))) continue;
+            for (size_t idx : {k, k - size_t(g), k + 1}) {
+                for (const char* a : {"hA", "vA"}) {
+                    float& ang = p[idx * size_t(nc) + size_t(chan(a))];
+                    if (ang == 0.0f) continue;
+                    double code = std::round(double(ang) / (M_PI / 2) * 32767.0) + 21845.0;
+                    if (code > 32767.0) code -= 65534.0;
+                    ang = float(code / 32767.0 * (M_PI / 2));
+                }
+            }
+            return;
+        }
+    });
+    EXPECT_NE(curvedErr.find("invalid signature"), std::string::npos) << curvedErr;
+    // The message format: "<file>: <element>: <reason>".
+    EXPECT_NE(forge("msg", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find(".exr: corner ("),
+              std::string::npos);
+}
