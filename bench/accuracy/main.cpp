@@ -1,0 +1,88 @@
+// bench_accuracy_cost: what accuracy costs in time. Every choice the library
+// offers (tangent frame source, subdivision level, blend method, feature-curve
+// mode, derivative method, precision) measured as error against an
+// independent ground truth (analytic, double precision) and as cost on the
+// machine it runs on. docs/accuracy-cost.md explains each table and shows a
+// run; bench/README.md ("Accuracy and cost") lists the options.
+//
+// Run (GPU tables need the llvmpipe environment):
+//   LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
+//   build/bin/bench_accuracy_cost [--table NAME|all] [--markdown] [--runs N]
+//                                 [--frames N] [--size N] [--quick]
+// NAME: frames, subdiv, blend, features, deriv, precision.
+#include <cstdio>
+#include <cstdlib>
+#include <algorithm>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include "tables.h"
+
+namespace {
+
+int usage() {
+    std::fprintf(stderr,
+                 "usage: bench_accuracy_cost [--table frames|subdiv|blend|features|deriv|precision|all]\n"
+                 "                           [--markdown] [--runs N] [--frames N] [--size N] [--quick]\n");
+    return 2;
+}
+
+bool parseInt(const char* s, int lo, int hi, int& out) {
+    char* end = nullptr;
+    const long v = std::strtol(s, &end, 10);
+    if (end == s || *end != '\0' || v < lo || v > hi) return false;
+    out = int(v);
+    return true;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    study::Options o;
+    std::string table = "all";
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const bool hasValue = i + 1 < argc;
+        if (a == "--markdown") o.markdown = true;
+        else if (a == "--quick") o.quick = true;
+        else if (a == "--table" && hasValue) table = argv[++i];
+        else if (a == "--runs" && hasValue) {
+            if (!parseInt(argv[++i], 1, 1000, o.runs)) return usage();
+        } else if (a == "--frames" && hasValue) {
+            if (!parseInt(argv[++i], 1, 1000, o.frames)) return usage();
+        } else if (a == "--size" && hasValue) {
+            if (!parseInt(argv[++i], 16, 4096, o.size)) return usage();
+        } else {
+            return usage();
+        }
+    }
+    if (o.quick) {
+        o.runs = std::min(o.runs, 3);
+        o.frames = std::min(o.frames, 3);
+        o.size = std::min(o.size, 256);
+    }
+    struct Entry {
+        const char* name;
+        void (*fn)(const study::Options&);
+    };
+    const Entry entries[] = {{"frames", study::tableFrames},   {"subdiv", study::tableSubdivision},
+                             {"blend", study::tableBlend},     {"features", study::tableFeatures},
+                             {"deriv", study::tableDerivatives}, {"precision", study::tablePrecision}};
+    bool found = false;
+    std::printf("bench_accuracy_cost: %u hardware threads; LP_NUM_THREADS=%s\n", std::thread::hardware_concurrency(),
+                std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)");
+    try {
+        for (const Entry& e : entries) {
+            if (table == "all" || table == e.name) {
+                found = true;
+                e.fn(o);
+            }
+        }
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_accuracy_cost: %s\n", e.what());
+        return 1;
+    }
+    if (!found) return usage();
+    return 0;
+}
