@@ -29,5 +29,7 @@ void addFeaturesCommands(CLI::App& app, int& status);
 //   CLI::App* mesh = addMeshCommands(app, status);
 //   addMeshTangentsCommand(*mesh, status);   // cmd_mesh_tangents.cpp
 CLI::App* addMeshCommands(CLI::App& app, int& status);
+// `surfgrad mesh tangents ...` (cmd_mesh_tangents.cpp), attached to the mesh group.
+void addMeshTangentsCommand(CLI::App& mesh, int& status);
 
 } // namespace sg::cli

@@ -74,9 +74,9 @@ size_t validateInput(const MikkTSpaceInput& in) {
             throw std::invalid_argument("MikkTSpace: face sizes do not sum to the " +
                                         std::to_string(cornerCount) + " corners");
     }
-    if (triangles >= (size_t(1) << 30))
+    if (triangles >= (size_t(1) << 28))
         throw std::invalid_argument("MikkTSpace: too many triangles (" +
-                                    std::to_string(triangles) + ", limit 2^30)");
+                                    std::to_string(triangles) + ", limit 2^28)");
     for (size_t c = 0; c < cornerCount; ++c)
         if (in.cornerVertices[c] >= vertexCount)
             throw std::invalid_argument("MikkTSpace: corner " + std::to_string(c) +
@@ -161,9 +161,17 @@ constexpr uint8_t kGroupedAll = 8 | 16 | 32;
 
 // An entry of the vertex -> incident corners table.
 struct Incidence {
-    uint32_t triCorner; // good triangle index << 2 | corner (0..2) at the vertex
-    uint32_t prev;      // welded id of the previous corner of that triangle
-    uint32_t next;      // welded id of the next corner
+    // Good triangle index << 4 | group-with-any << 3 | orientation << 2 |
+    // corner (0..2) at the vertex. The two flag bits are the triangle's at
+    // step 6; a deferred vertex reads the live orientation from the flags.
+    uint32_t packed;
+    uint32_t prev; // welded id of the previous corner of that triangle
+    uint32_t next; // welded id of the next corner
+
+    uint32_t tri() const { return packed >> 4; }
+    uint32_t corner() const { return packed & 3u; }
+    bool orient() const { return (packed & 4u) != 0; }
+    bool any() const { return (packed & 8u) != 0; }
 };
 
 struct WeldedVertex {
@@ -329,6 +337,8 @@ struct MikkTSpaceGenerator::Scratch {
     // Vertex -> incident corners.
     std::vector<uint32_t> incidenceStart;
     std::vector<Incidence> incidence;
+    std::vector<uint32_t> entryOf;    // good triangle corner -> its incidence entry
+    std::vector<glm::vec4> entryOut;  // results in incidence order
     // Terms of a chunk of vertices' entries (Terms layout).
     std::vector<float> terms;
     std::vector<int32_t> outNbr, inNbr, component;
@@ -611,14 +621,20 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     for (size_t j = 0; j < goodCount * 3; ++j) ++s.incidenceStart[gWelded[j] + 1];
     for (size_t w = 0; w < weldedCount; ++w) s.incidenceStart[w + 1] += s.incidenceStart[w];
     s.incidence.resize(goodCount * 3);
+    s.entryOf.resize(goodCount * 3);
     {
         // The next list's start serves as the cursor, shifted back after.
         uint32_t* cursor = s.incidenceStart.data();
         for (size_t t = 0; t < goodCount; ++t) {
             const uint32_t* w = gWelded + t * 3;
-            const uint32_t tc = uint32_t(t) << 2;
+            const uint32_t tc = uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
+                                ((s.flags[t] & kOrient) ? 4u : 0u);
+            uint32_t* entryOf = s.entryOf.data() + t * 3;
+            entryOf[0] = cursor[w[0]];
             s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
+            entryOf[1] = cursor[w[1]];
             s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
+            entryOf[2] = cursor[w[2]];
             s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
         }
         for (size_t w = weldedCount; w > 0; --w) s.incidenceStart[w] = s.incidenceStart[w - 1];
@@ -636,14 +652,24 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     const bool fullSpaces = hasQuads || frames != nullptr;
     if (fullSpaces) s.spaces.assign(cornerCount, mikk::CornerSpace{});
     glm::vec4* tangentsOut = cornerTangents.data();
-    if (!fullSpaces) // corners no group reaches keep the reference's default
-        for (size_t j = 0; j < goodCount * 3; ++j) tangentsOut[cornerOut(j)] = glm::vec4(1, 0, 0, -1);
-    auto writeCorner = [&](uint32_t corner, const mikk::FrameAccumulator& fr, bool orient) {
-        if (fullSpaces) mikk::writeCornerSpace(s.spaces[corner], fr, orient);
-        else tangentsOut[corner] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
+    // Every entry of a vertex without group-with-any triangles is written
+    // by its group below; entries of deferred vertices get the reference's
+    // default first (some may never be reached).
+    // Without quads or full frames, results go to entryOut in incidence
+    // order (sequential writes: a vertex's entries are contiguous) and are
+    // gathered into corner order afterwards; writing each corner straight
+    // into the corner-ordered output scatters 16-byte stores over the whole
+    // array and costs more.
+    if (!fullSpaces) s.entryOut.resize(goodCount * 3);
+    glm::vec4* const entryOut = s.entryOut.data();
+    const Incidence* const incidenceBase = s.incidence.data();
+    auto writeEntry = [&](const Incidence* entry, const mikk::FrameAccumulator& fr, bool orient) {
+        if (fullSpaces)
+            mikk::writeCornerSpace(s.spaces[cornerOut(size_t(entry->tri()) * 3 + entry->corner())], fr, orient);
+        else
+            entryOut[entry - incidenceBase] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
     };
     const float thresholdCos = mikk::defaultThresholdCos();
-    const uint8_t* const flags = s.flags.data();
     const TriDerivatives* const triDeriv = s.deriv.data();
     size_t maxDegree = 0;
     for (size_t w = 0; w < weldedCount; ++w)
@@ -670,7 +696,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const Incidence* list = s.incidence.data() + s.incidenceStart[w];
             const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
             for (size_t e = 0; e < k; ++e) {
-                batch.set(filled, triDeriv + (list[e].triCorner >> 2), wv + w, wv + list[e].prev,
+                batch.set(filled, triDeriv + list[e].tri(), wv + w, wv + list[e].prev,
                           wv + list[e].next);
                 if (++filled == 4) {
                     batch.compute(out, first);
@@ -790,56 +816,54 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     auto emitGroup = [&](const Incidence* list, const Terms& terms, const uint32_t* members,
                          size_t m, bool orient) {
         auto together = [&](uint32_t x, uint32_t y) {
-            const uint32_t tx = list[x].triCorner >> 2, ty = list[y].triCorner >> 2;
-            return ((flags[tx] | flags[ty]) & kAny) != 0 || faceOf(tx) == faceOf(ty) ||
+            return list[x].any() || list[y].any() || faceOf(list[x].tri()) == faceOf(list[y].tri()) ||
                    (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos &&
                     mikk::dot(terms.ot(x), terms.ot(y)) > thresholdCos);
         };
         auto accumulateOver = [&](mikk::FrameAccumulator& fr, uint32_t e) {
-            const uint32_t t = list[e].triCorner >> 2;
-            if (flags[t] & kAny) return; // bad triangles contribute nothing
+            if (list[e].any()) return; // bad triangles contribute nothing
+            const uint32_t t = list[e].tri();
             fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), s.magS[t], s.magT[t]);
-        };
-        auto cornerOfEntry = [&](uint32_t e) {
-            const uint32_t tc = list[e].triCorner;
-            return cornerOut(size_t(tc >> 2) * 3 + (tc & 3));
         };
         // Every pair passes the 180-degree threshold (dot products > -1)
         // when every member's unit vectors are within ~89 degrees of the
         // first member's (computed dots >= 0.02): any two are then at most
         // ~178 degrees apart, dot >= -0.9993, far from -1 for float
-        // rounding (~1e-6). Otherwise test every pair, as the reference.
+        // rounding (~1e-6). Checked while accumulating; otherwise every
+        // pair is tested, as the reference.
+        mikk::FrameAccumulator fr;
         bool oneSubgroup = true;
-        if (m > 1) {
+        {
             const Vec3 rs = terms.os(members[0]), rt = terms.ot(members[0]);
-            for (size_t x = 1; x < m && oneSubgroup; ++x)
-                oneSubgroup = mikk::dot(terms.os(members[x]), rs) >= 0.02f &&
-                              mikk::dot(terms.ot(members[x]), rt) >= 0.02f;
-            if (!oneSubgroup) {
-                oneSubgroup = true;
-                for (size_t x = 0; x < m && oneSubgroup; ++x)
-                    for (size_t y = x + 1; y < m; ++y)
-                        if (!together(members[x], members[y])) {
-                            oneSubgroup = false;
-                            break;
-                        }
+            accumulateOver(fr, members[0]);
+            for (size_t x = 1; x < m; ++x) {
+                const uint32_t e = members[x];
+                oneSubgroup &= mikk::dot(terms.os(e), rs) >= 0.02f && mikk::dot(terms.ot(e), rt) >= 0.02f;
+                accumulateOver(fr, e);
             }
         }
+        if (!oneSubgroup) {
+            oneSubgroup = true;
+            for (size_t x = 0; x < m && oneSubgroup; ++x)
+                for (size_t y = x + 1; y < m; ++y)
+                    if (!together(members[x], members[y])) {
+                        oneSubgroup = false;
+                        break;
+                    }
+        }
         if (oneSubgroup) {
-            mikk::FrameAccumulator fr;
-            for (size_t x = 0; x < m; ++x) accumulateOver(fr, members[x]);
             fr.finish();
-            for (size_t x = 0; x < m; ++x) writeCorner(cornerOfEntry(members[x]), fr, orient);
+            for (size_t x = 0; x < m; ++x) writeEntry(list + members[x], fr, orient);
             return;
         }
         // Rare: the group splits. Member x's subgroup is every member
         // together with it (x included: same face), ascending.
         for (size_t x = 0; x < m; ++x) {
-            mikk::FrameAccumulator fr;
+            mikk::FrameAccumulator sub;
             for (size_t y = 0; y < m; ++y)
-                if (together(members[x], members[y])) accumulateOver(fr, members[y]);
-            fr.finish();
-            writeCorner(cornerOfEntry(members[x]), fr, orient);
+                if (together(members[x], members[y])) accumulateOver(sub, members[y]);
+            sub.finish();
+            writeEntry(list + members[x], sub, orient);
         }
     };
 
@@ -858,7 +882,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
             if (k == 0) continue;
             bool touchesAny = false;
-            for (size_t e = 0; e < k; ++e) touchesAny |= (flags[list[e].triCorner >> 2] & kAny) != 0;
+            for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
             if (touchesAny) {
                 s.deferred.push_back(w);
                 continue;
@@ -866,17 +890,16 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const Terms terms = chunkTerms.offset(s.incidenceStart[w] - s.incidenceStart[w0]);
             if (k == 1) {
                 members[0] = 0;
-                emitGroup(list, terms, members, 1, (flags[list[0].triCorner >> 2] & kOrient) != 0);
+                emitGroup(list, terms, members, 1, list[0].orient());
                 continue;
             }
             pairEdges(list, k);
             // Usual case: one orientation, and the pairing links all entries
             // into one chain (open fan) or cycle (closed fan): one group
             // with every entry, already in ascending order.
-            const uint8_t orient0 = flags[list[0].triCorner >> 2] & kOrient;
+            const bool orient0 = list[0].orient();
             bool oneOrientation = true;
-            for (size_t e = 1; e < k; ++e)
-                oneOrientation &= (flags[list[e].triCorner >> 2] & kOrient) == orient0;
+            for (size_t e = 1; e < k; ++e) oneOrientation &= list[e].orient() == orient0;
             if (oneOrientation) {
                 int32_t start = 0;
                 for (size_t e = 0; e < k; ++e)
@@ -888,14 +911,14 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
                 if (reached == k) {
                     for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
-                    emitGroup(list, terms, members, k, orient0 != 0);
+                    emitGroup(list, terms, members, k, orient0);
                     continue;
                 }
             }
             for (size_t e = 0; e < k; ++e) comp[e] = -1;
             for (size_t seed = 0; seed < k; ++seed) {
                 if (comp[seed] >= 0) continue;
-                const uint8_t orientBit = flags[list[seed].triCorner >> 2] & kOrient;
+                const bool orientBit = list[seed].orient();
                 // Flood (members[] doubles as the stack), then list the
                 // component in ascending entry order.
                 comp[seed] = int32_t(seed);
@@ -904,9 +927,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 while (top > 0) {
                     const uint32_t e = members[--top];
                     for (const int32_t nb : {outNbr[e], inNbr[e]}) {
-                        if (nb < 0 || comp[nb] >= 0 ||
-                            (flags[list[nb].triCorner >> 2] & kOrient) != orientBit)
-                            continue;
+                        if (nb < 0 || comp[nb] >= 0 || list[nb].orient() != orientBit) continue;
                         comp[nb] = int32_t(seed);
                         members[top++] = uint32_t(nb);
                     }
@@ -914,7 +935,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 size_t m = 0;
                 for (size_t e = seed; e < k; ++e)
                     if (comp[e] == int32_t(seed)) members[m++] = uint32_t(e);
-                emitGroup(list, terms, members, m, orientBit != 0);
+                emitGroup(list, terms, members, m, orientBit);
             }
         }
         w0 = w1;
@@ -927,7 +948,12 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     // group's orientation.
     if (!s.deferred.empty()) {
         s.isDeferred.assign(weldedCount, 0);
-        for (const uint32_t w : s.deferred) s.isDeferred[w] = 1;
+        for (const uint32_t w : s.deferred) {
+            s.isDeferred[w] = 1;
+            if (fullSpaces) continue; // spaces start as the default
+            for (uint32_t j = s.incidenceStart[w]; j < s.incidenceStart[w + 1]; ++j)
+                entryOut[j] = glm::vec4(1, 0, 0, -1);
+        }
         uint8_t* const fl = s.flags.data();
         for (size_t f = 0; f < goodCount; ++f) {
             for (uint32_t i = 0; i < 3; ++i) {
@@ -938,7 +964,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 computeTerms(w, w + 1, chunkTerms);
                 pairEdges(list, k);
                 uint32_t seed = 0;
-                while ((list[seed].triCorner >> 2) != f) ++seed;
+                while (list[seed].tri() != f) ++seed;
                 const bool orient = (fl[f] & kOrient) != 0;
                 fl[f] |= uint8_t(kGrouped0 << i);
                 s.groupMembers.assign(1, seed);
@@ -948,7 +974,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 while (!s.stack.empty()) {
                     const uint32_t e = s.stack.back();
                     s.stack.pop_back();
-                    const uint32_t t = list[e].triCorner >> 2, c = list[e].triCorner & 3;
+                    const uint32_t t = list[e].tri(), c = list[e].corner();
                     if (fl[t] & (kGrouped0 << c)) continue;
                     if ((fl[t] & kAny) && (fl[t] & kGroupedAll) == 0)
                         fl[t] = uint8_t((fl[t] & ~kOrient) | (orient ? kOrient : 0));
@@ -963,6 +989,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             }
         }
     }
+
+    if (!fullSpaces) // entry order -> corner order
+        for (size_t j = 0; j < goodCount * 3; ++j) tangentsOut[cornerOut(j)] = entryOut[s.entryOf[j]];
 
     // --- Step 9: degenerate triangles copy frames from good corners.
     auto copyCorner = [&](uint32_t dst, uint32_t src) {

@@ -66,7 +66,7 @@ std::optional<TangentMethod> parseTangentMethod(std::string_view name);
 // (so no intermediate can become NaN); every index < positions.size();
 // normals.size() == uvs.size() == positions.size(); faceSizes either empty
 // (all faces are triangles and cornerVertices.size() is a multiple of 3) or
-// summing to cornerVertices.size(); fewer than 2^30 triangles. Normals
+// summing to cornerVertices.size(); fewer than 2^28 triangles. Normals
 // should be unit length (the reference assumes it; they are not
 // renormalized). Outputs are never NaN; for absurdly large coordinates
 // (dP/ds beyond 1e19) a tangent can collapse to 0 and magnitudes to +inf,
