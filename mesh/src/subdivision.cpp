@@ -292,50 +292,60 @@ struct FactoredStencils {
 
 // ---- Limit samples -----------------------------------------------------------
 
-// Basis weights per sample: the value at the home location, the two first
-// derivatives a hair inside the home face (see evaluateLimit); each with
-// its own patch points (the two may fall into different patches).
+// Basis weights per sample: the value at the home location and the two
+// first derivatives (at the same point for B-spline patches, a hair inside
+// the home face for end caps, see evaluateLimit). One list of patch points
+// per sample with three weights each, so a point shared by the value and
+// the derivatives is read once per frame; exact zero weights are dropped
+// (a B-spline patch evaluated at a corner has 9 non-zero of 16).
 struct SampleTable {
-    std::vector<uint32_t> offsetsP, pointP, offsetsD, pointD;
-    std::vector<float> wP, wDu, wDv;
+    std::vector<uint32_t> offsets, point;
+    std::vector<glm::vec3> weight; // (value, d/du, d/dv)
 
     void clear() {
-        offsetsP.assign(1, 0);
-        offsetsD.assign(1, 0);
-        pointP.clear();
-        pointD.clear();
-        wP.clear();
-        wDu.clear();
-        wDv.clear();
+        offsets.assign(1, 0);
+        point.clear();
+        weight.clear();
     }
-    void addValue(const Far::ConstIndexArray& cvs, const float* p) {
-        for (int k = 0; k < cvs.size(); ++k) {
-            pointP.push_back(uint32_t(cvs[k]));
-            wP.push_back(p[k]);
+    // Value weights from one patch, derivative weights from another (or the
+    // same) patch.
+    void add(const Far::ConstIndexArray& cvsP, const float* p, const Far::ConstIndexArray& cvsD, const float* du, const float* dv) {
+        const size_t first = point.size();
+        for (int k = 0; k < cvsP.size(); ++k) {
+            if (p[k] == 0.0f) continue;
+            point.push_back(uint32_t(cvsP[k]));
+            weight.push_back(glm::vec3(p[k], 0.0f, 0.0f));
         }
-        offsetsP.push_back(uint32_t(pointP.size()));
-    }
-    void addDerivatives(const Far::ConstIndexArray& cvs, const float* du, const float* dv) {
-        for (int k = 0; k < cvs.size(); ++k) {
-            pointD.push_back(uint32_t(cvs[k]));
-            wDu.push_back(du[k]);
-            wDv.push_back(dv[k]);
+        const size_t valueEnd = point.size();
+        for (int k = 0; k < cvsD.size(); ++k) {
+            if (du[k] == 0.0f && dv[k] == 0.0f) continue;
+            size_t at = valueEnd;
+            for (size_t j = first; j < valueEnd; ++j) {
+                if (point[j] == uint32_t(cvsD[k])) at = j;
+            }
+            if (at == valueEnd) {
+                point.push_back(uint32_t(cvsD[k]));
+                weight.push_back(glm::vec3(0.0f, du[k], dv[k]));
+            } else {
+                weight[at].y = du[k];
+                weight[at].z = dv[k];
+            }
         }
-        offsetsD.push_back(uint32_t(pointD.size()));
+        offsets.push_back(uint32_t(point.size()));
     }
     template <class V>
     void evaluate(const V* points, V* value, V* du, V* dv) const {
-        const size_t n = offsetsP.size() - 1;
+        const size_t n = offsets.size() - 1;
         for (size_t s = 0; s < n; ++s) {
-            V a(0.0f);
-            for (uint32_t k = offsetsP[s]; k < offsetsP[s + 1]; ++k) a += wP[k] * points[pointP[k]];
-            value[s] = a;
-            V b(0.0f), c(0.0f);
-            for (uint32_t k = offsetsD[s]; k < offsetsD[s + 1]; ++k) {
-                const V& x = points[pointD[k]];
-                b += wDu[k] * x;
-                c += wDv[k] * x;
+            V a(0.0f), b(0.0f), c(0.0f);
+            for (uint32_t k = offsets[s]; k < offsets[s + 1]; ++k) {
+                const V& x = points[point[k]];
+                const glm::vec3& w = weight[k];
+                a += w.x * x;
+                b += w.y * x;
+                c += w.z * x;
             }
+            value[s] = a;
             du[s] = b;
             dv[s] = c;
         }
@@ -829,12 +839,17 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
 
         const Far::PatchMap::Handle* h = cornerHandle[c];
         float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
-        patches->EvaluateBasis(*h, u, v, wP, wDu, wDv);
-        samples.addValue(patches->GetPatchVertices(*h), wP);
-        patches->EvaluateBasis(*derivHandle[r], derivUV[r].x, derivUV[r].y, wP, wDu, wDv);
+        float wValue[20];
+        patches->EvaluateBasis(*h, u, v, wValue, wDu, wDv);
+        // A regular (B-spline) patch has well-defined derivatives at its
+        // corners: evaluate the home face's patch at the corner itself (fewer
+        // non-zero weights, no shift); end caps keep the shifted point.
+        glm::vec2 at = derivUV[r];
+        if (patches->GetPatchDescriptor(*derivHandle[r]).GetType() == Far::PatchDescriptor::REGULAR) at = glm::vec2(u, v);
+        patches->EvaluateBasis(*derivHandle[r], at.x, at.y, wP, wDu, wDv);
         int n = patches->GetPatchVertices(*derivHandle[r]).size();
         toPtexUnits(patches->GetPatchParam(*derivHandle[r]), n, wDu, wDv);
-        samples.addDerivatives(patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
+        samples.add(patches->GetPatchVertices(*h), wValue, patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
         frame.ptexFace[r] = cornerPtex[c];
         frame.ptexUV[r] = glm::vec2(u, v);
     }
