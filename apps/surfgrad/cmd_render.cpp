@@ -130,7 +130,10 @@ void addRenderCommands(CLI::App& app, int& status) {
             fs::create_directories("out");
             out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro->aov) + ".png");
         }
-        std::vector<fs::path> inputs;
+        std::string outExt = lowerExt(out);
+        if (outExt != ".png" && outExt != ".exr") {
+            throw io::InputError(out.string(), "", "unsupported image format \"" + outExt + "\" (expected .png or .exr)");
+        }
         if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
         int w = 0, h = 0;
         if (!ro->size.empty()) parseSize(ro->size, w, h);
@@ -230,19 +233,21 @@ void addRenderCommands(CLI::App& app, int& status) {
     // ---- view
     auto* view = app.add_subcommand("view", "Interactive viewer (GLFW window + Dear ImGui)");
     struct ViewOpts {
-        std::string scene, screenshot;
+        std::string scene, screenshot, size;
         int frames = 0;
     };
     auto vo = std::make_shared<ViewOpts>();
     view->add_option("scene", vo->scene, "Scene JSON or model file (default: the built-in scene)");
     view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")->check(CLI::Range(0, 1000000));
     view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
+    view->add_option("--size", vo->size, "Window size WxH (default 1280x720)");
     view->callback([vo, &status] {
 #if SURFGRAD_HAVE_VIEWER
         ViewerOptions opt;
-        opt.sceneArg = vo->scene;
         opt.maxFrames = vo->frames;
         opt.screenshot = vo->screenshot;
+        if (!vo->size.empty()) parseSize(vo->size, opt.width, opt.height);
+        if (!opt.screenshot.empty() && !vo->scene.empty()) io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
         status = runViewer(sceneFromArg(vo->scene), opt);
 #else
         (void)vo;

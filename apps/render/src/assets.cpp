@@ -373,6 +373,12 @@ SceneAssets loadAssets(const Scene& scene) {
                              std::to_string(m.vertexCount()) + " vertices, " + std::to_string(m.triangleCount()) +
                              " triangles, " + std::to_string(m.uvSets.size()) + " UV sets");
     }
+    loadMissingAssets(scene, assets);
+    applyFrame(scene, assets, 0.0f);
+    return assets;
+}
+
+void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     // Textures of materials that some mesh uses and layers that are enabled.
     std::set<int> usedMaterials;
     for (const auto& mi : scene.meshes) usedMaterials.insert(mi.material);
@@ -408,8 +414,6 @@ SceneAssets loadAssets(const Scene& scene) {
         assets.log.push_back("texture " + key + ": " + std::to_string(t->width()) + "x" +
                              std::to_string(t->height()) + ", " + std::to_string(t->levels.size()) + " levels");
     }
-    applyFrame(scene, assets, 0.0f);
-    return assets;
 }
 
 namespace {

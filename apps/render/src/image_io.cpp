@@ -21,7 +21,9 @@ std::string lowerExt(const fs::path& p) {
     return e;
 }
 
+// Aov(-1): already display-referred.
 glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
+    if (int(aov) < 0) return glm::vec3(v);
     switch (aov) {
     case Aov::Color: return sg::glsl::sgToneMap(glm::vec3(v), exposure);
     case Aov::Uv: return glm::vec3(v.x - std::floor(v.x), v.y - std::floor(v.y), 0.0f);
@@ -38,6 +40,13 @@ glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
 }
 
 } // namespace
+
+void writeDisplayImage(const fs::path& path, const Image& image) {
+    if (lowerExt(path) != ".png") {
+        throw io::InputError(path.string(), "", "expected a .png file name for a display image");
+    }
+    writeImage(path, image, Aov(-1), 1.0f);
+}
 
 void writeImage(const fs::path& path, const Image& image, Aov aov, float exposure) {
     const std::string ext = lowerExt(path);
@@ -70,7 +79,7 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
             spec.alpha_channel = 3;
             spec.attribute("compression", "zip");
         }
-        spec.attribute("surfgrad:aov", aovName(aov));
+        spec.attribute("surfgrad:aov", int(aov) < 0 ? "display" : aovName(aov));
         if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, buf.data()) || !out->close()) {
             throw io::InputError(path.string(), "", "cannot write image: " + out->geterror());
         }

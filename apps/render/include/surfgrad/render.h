@@ -285,6 +285,9 @@ struct SceneAssets {
 };
 
 SceneAssets loadAssets(const Scene& scene);
+// Loads the textures and feature maps of layers that are enabled now but
+// were not when the assets were loaded (the viewer's layer toggles).
+void loadMissingAssets(const Scene& scene, SceneAssets& assets);
 // Applies the morph weights of time `seconds` to every animated mesh
 // (positions and normals; pixel frames need nothing else).
 void applyFrame(const Scene& scene, SceneAssets& assets, float seconds);
@@ -396,6 +399,9 @@ struct Image {
 // an unsupported extension or a failed write.
 void writeImage(const std::filesystem::path& path, const Image& image, Aov aov, float exposure);
 Image readImage(const std::filesystem::path& path); // RGBA float, bottom row first
+// Writes display-referred values in [0, 1] as they are (8-bit PNG, RGB), e.g.
+// a window capture.
+void writeDisplayImage(const std::filesystem::path& path, const Image& image);
 
 // Per-pixel comparison of two images of unit vectors (normal, tangent, ...
 // AOVs), e.g. the GPU and CPU renderers' outputs. Only pixels covered by the

@@ -1,0 +1,345 @@
+// The interactive viewer (see surfgrad/viewer.h): GLFW window, the shared
+// GlRenderer into its float framebuffer, a display pass (tone mapping or
+// vector encoding, the same sgToneMap the PNG writer uses), Dear ImGui.
+#include <epoxy/gl.h>
+// epoxy first: GLFW must not include its own GL header.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "render_internal.h"
+#include "surfgrad/gl.h"
+#include "surfgrad/io.h"
+#include "surfgrad/shader_files.h"
+#include "surfgrad/viewer.h"
+
+namespace sg::render {
+
+namespace {
+
+// Fullscreen display of the renderer's RGBA32F target: colour through the
+// display transform, vectors as 0.5 v + 0.5, uv as fract(uv).
+const char* kDisplayVs = R"(
+out vec2 vUv;
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    vUv = p;
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
+)";
+const char* kDisplayFs = R"(
+#include "sg/render/shading.glsl"
+in vec2 vUv;
+uniform sampler2D uImage;
+uniform int uAov;
+uniform float uExposure;
+layout(location = 0) out vec4 outColor;
+void main() {
+    vec4 v = texture(uImage, vUv);
+    vec3 c;
+    if (uAov == SG_AOV_COLOR) c = sgToneMap(v.xyz, uExposure);
+    else if (uAov == SG_AOV_UV) c = vec3(fract(v.xy), 0.0);
+    else if (uAov == SG_AOV_PRIM_ID) c = vec3(fract(v.x * 0.618034), fract(v.x * 0.41421), fract(v.x * 0.7320508));
+    else c = 0.5 * v.xyz + 0.5;
+    outColor = vec4(c, 1.0);
+}
+)";
+
+struct Orbit {
+    glm::vec3 target{0.0f};
+    float distance = 5.0f, azimuthDeg = 30.0f, elevationDeg = 20.0f, fovDeg = 35.0f;
+    float radius = 1.0f; // scene radius: near/far planes
+};
+
+Orbit orbitFromScene(const Scene& scene, const SceneAssets& assets, int w, int h) {
+    View v = makeView(scene, assets, w, h);
+    glm::vec3 lo, hi;
+    detail::sceneBounds(scene, assets, lo, hi);
+    Orbit o;
+    o.radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
+    o.target = scene.camera.automatic ? 0.5f * (lo + hi) : scene.camera.target;
+    glm::vec3 d = v.cameraPos - o.target;
+    o.distance = std::max(glm::length(d), 1e-3f);
+    glm::vec3 dir = d / o.distance;
+    o.elevationDeg = glm::degrees(std::asin(std::clamp(dir.y, -1.0f, 1.0f)));
+    o.azimuthDeg = glm::degrees(std::atan2(dir.x, dir.z));
+    o.fovDeg = scene.camera.fovDeg;
+    return o;
+}
+
+View orbitView(const Orbit& o, int w, int h, Aov aov) {
+    float nearP = std::max(o.distance - 2.0f * o.radius, o.distance * 1e-3f);
+    float farP = o.distance + 3.0f * o.radius;
+    return makeOrbitView(o.target, o.distance, o.azimuthDeg, o.elevationDeg, o.fovDeg, nearP, farP, w, h, aov);
+}
+
+struct Glfw {
+    GLFWwindow* window = nullptr;
+    Glfw(int w, int h, const std::string& title) {
+        glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "glfw %d: %s\n", code, msg); });
+        if (!glfwInit()) throw sg::gl::GlError("viewer: glfwInit failed (no X display? use xvfb-run)");
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+        glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+        glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+        glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+        window = glfwCreateWindow(w, h, title.c_str(), nullptr, nullptr);
+        if (!window) {
+            glfwTerminate();
+            throw sg::gl::GlError("viewer: cannot create a window with an OpenGL 4.5 core context");
+        }
+        glfwMakeContextCurrent(window);
+        glfwSwapInterval(1);
+    }
+    ~Glfw() {
+        if (window) glfwDestroyWindow(window);
+        glfwTerminate();
+    }
+};
+
+struct ImGuiScope {
+    explicit ImGuiScope(GLFWwindow* w) {
+        IMGUI_CHECKVERSION();
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = nullptr; // no imgui.ini next to the user's files
+        ImGui::StyleColorsDark();
+        ImGui_ImplGlfw_InitForOpenGL(w, true);
+        ImGui_ImplOpenGL3_Init("#version 450");
+    }
+    ~ImGuiScope() {
+        ImGui_ImplOpenGL3_Shutdown();
+        ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+};
+
+// The per-layer controls; returns true when the program set may change
+// (a layer toggled), so missing textures are loaded.
+bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
+    bool toggled = false;
+    for (size_t i = 0; i < layers.size(); ++i) {
+        Layer& L = layers[i];
+        ImGui::PushID((idPrefix + std::to_string(i)).c_str());
+        toggled |= ImGui::Checkbox(layerKindName(L.kind), &L.enabled);
+        if (L.kind == LayerKind::PostResolve) {
+            ImGui::Indent();
+            toggled |= layerControls(L.children, idPrefix + std::to_string(i) + "/");
+            ImGui::Unindent();
+        } else if (L.kind == LayerKind::Noise) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(140);
+            ImGui::SliderFloat("amplitude", &L.noiseAmplitude, -0.1f, 0.1f, "%.4f");
+            ImGui::SetNextItemWidth(140);
+            ImGui::SliderFloat("frequency", &L.noiseFrequency, 0.1f, 50.0f);
+        } else if (L.kind == LayerKind::Height) {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(140);
+            ImGui::SliderFloat("scale", &L.heightWorld, -0.1f, 0.1f, "%.4f");
+        } else {
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(140);
+            ImGui::SliderFloat("strength", &L.strength, -3.0f, 3.0f);
+        }
+        ImGui::PopID();
+    }
+    return toggled;
+}
+
+} // namespace
+
+int runViewer(Scene scene, const ViewerOptions& opt) {
+    Glfw glfw(opt.width, opt.height, opt.title);
+    SceneAssets assets = loadAssets(scene);
+    GlRenderer renderer;
+    ImGuiScope imgui(glfw.window);
+
+    auto vs = sg::shaders::assemble(kDisplayVs, "(viewer display vs)");
+    auto fs = sg::shaders::assemble(kDisplayFs, "(viewer display fs)");
+    sg::gl::Program display({{sg::gl::Stage::Vertex, vs}, {sg::gl::Stage::Fragment, fs}});
+    GLuint emptyVao = 0;
+    glCreateVertexArrays(1, &emptyVao);
+
+    int fbw = 0, fbh = 0;
+    glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
+    Orbit orbit = orbitFromScene(scene, assets, std::max(fbw, 1), std::max(fbh, 1));
+    const Orbit home = orbit;
+    int aovIndex = 0;
+    bool playing = scene.frameCount > 1;
+    float time = 0.0f;
+    bool morphOverride = false;
+    std::vector<std::vector<float>> morphWeights(scene.meshes.size());
+    for (size_t i = 0; i < scene.meshes.size(); ++i) morphWeights[i] = assets.meshes[i].appliedWeights;
+    std::string status;
+    double frameMs = 0.0;
+    auto last = std::chrono::steady_clock::now();
+    bool screenshotNow = false;
+    std::filesystem::path screenshotPath = opt.screenshot.empty() ? std::filesystem::path("out/view.png") : opt.screenshot;
+
+    for (int frame = 0; !glfwWindowShouldClose(glfw.window); ++frame) {
+        if (opt.maxFrames > 0 && frame >= opt.maxFrames) break;
+        glfwPollEvents();
+        auto now = std::chrono::steady_clock::now();
+        float dt = std::chrono::duration<float>(now - last).count();
+        frameMs = 1000.0 * double(dt);
+        last = now;
+        glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
+        if (fbw < 1 || fbh < 1) continue; // minimised
+
+        // Orbit camera from the mouse (unless ImGui wants it).
+        ImGuiIO& io = ImGui::GetIO();
+        if (!io.WantCaptureMouse) {
+            if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+                orbit.azimuthDeg -= 0.3f * io.MouseDelta.x;
+                orbit.elevationDeg = std::clamp(orbit.elevationDeg + 0.3f * io.MouseDelta.y, -89.0f, 89.0f);
+            }
+            if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) orbit.distance *= std::exp(0.01f * io.MouseDelta.y);
+            if (io.MouseWheel != 0.0f) orbit.distance *= std::exp(-0.1f * io.MouseWheel);
+            if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+                View v = orbitView(orbit, fbw, fbh, Aov::Color);
+                glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]), up(v.view[0][1], v.view[1][1], v.view[2][1]);
+                float k = orbit.distance * 0.002f;
+                orbit.target += k * (-io.MouseDelta.x * right + io.MouseDelta.y * up);
+            }
+            orbit.distance = std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
+        }
+
+        // Animation.
+        if (playing) time += dt;
+        if (!morphOverride) {
+            applyFrame(scene, assets, time);
+            for (size_t i = 0; i < scene.meshes.size(); ++i) morphWeights[i] = assets.meshes[i].appliedWeights;
+        }
+
+        View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
+        GLuint tex = 0;
+        try {
+            tex = renderer.renderToTexture(scene, assets, view);
+        } catch (const std::exception& e) {
+            status = e.what();
+        }
+        double gpuMs = renderer.stats().gpuMs;
+
+        if (screenshotNow) { // the panel's button: the render, without the panel
+            Image img = renderer.render(scene, assets, view);
+            writeImage(screenshotPath, img, view.aov, scene.output.exposure);
+            status = "wrote " + screenshotPath.string();
+            screenshotNow = false;
+        }
+
+        // Display pass.
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fbw, fbh);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (tex) {
+            glUseProgram(display.id());
+            glBindTextureUnit(0, tex);
+            glUniform1i(display.uniform("uImage"), 0);
+            glUniform1i(display.uniform("uAov"), aovIndex);
+            glUniform1f(display.uniform("uExposure"), scene.output.exposure);
+            glBindVertexArray(emptyVao);
+            glDrawArrays(GL_TRIANGLES, 0, 3);
+            glBindVertexArray(0);
+            glUseProgram(0);
+        }
+
+        // Panel.
+        ImGui_ImplOpenGL3_NewFrame();
+        ImGui_ImplGlfw_NewFrame();
+        ImGui::NewFrame();
+        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))), ImGuiCond_FirstUseEver);
+        ImGui::Begin("surfgrad");
+        ImGui::Text("%s", scene.sourceName.c_str());
+        ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", frameMs, gpuMs, renderer.stats().drawCalls);
+        ImGui::Text("%zu programs cached", renderer.cachedPrograms());
+        static const char* aovs[] = {"color", "normal", "surfgrad", "tangent", "bitangent", "basenormal", "uv", "primid"};
+        ImGui::Combo("AOV", &aovIndex, aovs, IM_ARRAYSIZE(aovs));
+        ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        if (ImGui::Button("reset camera")) orbit = home;
+        ImGui::SameLine();
+        if (ImGui::Button("screenshot")) screenshotNow = true;
+        bool toggled = false;
+        for (size_t m = 0; m < scene.materials.size(); ++m) {
+            Material& mat = scene.materials[m];
+            ImGui::PushID(int(m));
+            if (ImGui::CollapsingHeader(("material " + mat.name).c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+                int ds = int(mat.doubleSided);
+                static const char* modes[] = {"off (cull)", "none", "mirror", "flip"};
+                if (ImGui::Combo("double-sided", &ds, modes, IM_ARRAYSIZE(modes))) mat.doubleSided = DoubleSided(ds);
+                ImGui::ColorEdit3("base colour", &mat.baseColor[0]);
+                ImGui::SliderFloat("roughness", &mat.roughness, 0.02f, 1.0f);
+                toggled |= layerControls(mat.layers, "L");
+            }
+            ImGui::PopID();
+        }
+        bool anyMorph = false;
+        for (const auto& a : assets.meshes) anyMorph |= !a.mesh.morphTargets.empty();
+        if (anyMorph && ImGui::CollapsingHeader("blendshapes", ImGuiTreeNodeFlags_DefaultOpen)) {
+            ImGui::Checkbox("play", &playing);
+            ImGui::SameLine();
+            ImGui::SetNextItemWidth(160);
+            ImGui::SliderFloat("time (s)", &time, 0.0f, std::max(1.0f, float(scene.frameCount) / scene.fps));
+            ImGui::Checkbox("set weights by hand", &morphOverride);
+            for (size_t i = 0; i < scene.meshes.size(); ++i) {
+                auto& w = morphWeights[i];
+                for (size_t t = 0; t < w.size(); ++t) {
+                    ImGui::PushID(int(i * 1000 + t));
+                    std::string label = scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
+                    if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && morphOverride) {
+                        scene.meshes[i].morphKeys.clear();
+                        scene.meshes[i].morphWeights = w;
+                    }
+                    ImGui::PopID();
+                }
+            }
+            if (morphOverride) applyFrame(scene, assets, time);
+        }
+        if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
+        ImGui::End();
+        ImGui::Render();
+        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+        if (frame + 1 == opt.maxFrames && !opt.screenshot.empty()) {
+            // --screenshot with --frames: the whole window as shown (render,
+            // display pass and panel), read from the back buffer.
+            Image img;
+            img.width = fbw;
+            img.height = fbh;
+            img.pixels.resize(size_t(fbw) * size_t(fbh));
+            glReadBuffer(GL_BACK);
+            glPixelStorei(GL_PACK_ALIGNMENT, 4);
+            glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_FLOAT, img.pixels.data());
+            writeDisplayImage(opt.screenshot, img);
+        }
+        glfwSwapBuffers(glfw.window);
+
+        if (toggled) {
+            try {
+                loadMissingAssets(scene, assets);
+            } catch (const std::exception& e) {
+                status = e.what();
+            }
+        }
+    }
+    if (!opt.screenshot.empty() && opt.maxFrames == 0) {
+        // Closed by the user: the last view goes to the screenshot file.
+        glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
+        if (fbw > 0 && fbh > 0) {
+            View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
+            writeImage(opt.screenshot, renderer.render(scene, assets, view), view.aov, scene.output.exposure);
+        }
+    }
+    glDeleteVertexArrays(1, &emptyVao);
+    return 0;
+}
+
+} // namespace sg::render
