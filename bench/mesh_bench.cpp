@@ -263,8 +263,8 @@ int main(int argc, char** argv) {
         row("Far StencilTable::UpdateValues (flattened)", in, farStencil, rebuild, "re-refine");
         row("ours factored stencils: positions", in, update, rebuild, "re-refine");
         row("ours factored stencils: positions + normals", in, updateN, rebuild, "re-refine");
-        std::printf("|   one-time setup: Far StencilTableFactory %.1f ms (%zu weights); ours build with stencils %.1f ms\n", farStencilBuild,
-                    table->GetControlIndices().size(), ourBuild);
+        std::printf("|   one-time setup: Far StencilTableFactory %.1f ms (%zu weights); ours build with stencils %.1f ms (%zu weights)\n",
+                    farStencilBuild, table->GetControlIndices().size(), ourBuild, anim.stencilWeightCount());
     }
     {
         SubdivisionSettings s;
@@ -282,6 +282,8 @@ int main(int argc, char** argv) {
         double update = medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, &lf); });
         row("limit: full rebuild (P, dP/du, dP/dv, N, UV)", in, rebuild, rebuild, "limit rebuild");
         row("limit: stencil update (P, dP/du, dP/dv, N)", in, update, rebuild, "limit rebuild");
+        std::printf("|   limit update weights: %zu (adaptive points, local points, %zu samples)\n", anim.stencilWeightCount(),
+                    anim.renderMesh().vertexCount());
     }
     return 0;
 }

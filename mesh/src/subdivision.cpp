@@ -1230,6 +1230,11 @@ const std::vector<uint32_t>& Subdivider::renderToRefinedVertex() const { return 
 const LimitFrame& Subdivider::limitFrame() const { return impl_->frame; }
 const SubdivisionTimings& Subdivider::timings() const { return impl_->timings; }
 size_t Subdivider::cageVertexCount() const { return impl_->cageVertices; }
+size_t Subdivider::stencilWeightCount() const {
+    const Impl& m = *impl_;
+    if (m.settings.limit) return m.limitStencils.weightCount() + m.samples.point.size();
+    return m.uniformStencils.weightCount();
+}
 
 void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame, bool recomputeNormals) const {
     const Impl& m = *impl_;

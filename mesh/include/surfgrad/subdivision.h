@@ -116,6 +116,10 @@ public:
 
     const SubdivisionTimings& timings() const;
     size_t cageVertexCount() const;
+    // Weights in the stencil tables update() applies (its memory traffic):
+    // the uniform levels, or with limit the adaptive levels, local points and
+    // per-sample patch weights. 0 before they are built.
+    size_t stencilWeightCount() const;
 
 private:
     struct Impl;
