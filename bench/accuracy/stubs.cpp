@@ -1,0 +1,8 @@
+#include "tables.h"
+namespace study {
+
+
+void tableFeatures(const Options&) {}
+
+void tablePrecision(const Options&) {}
+}
