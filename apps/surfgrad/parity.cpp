@@ -411,8 +411,9 @@ std::string checkInvariants(const eval::Entry& e, const float* in, const float* 
     } else if (n == "screen-deriv-of-pos") {
         bounded("dpdx", 4 * kBig) && bounded("dpdy", 4 * kBig);
     } else if (n == "mikkts-basis") {
-        // |t| <= |tangent| / |n|: bounded by the clamp of sgRenormFactor.
-        bounded("t", 4 * kBig) && bounded("b", 4 * kBig);
+        // tang = min(1/|n|, SG_BIG) t and bino = sign cross(n/|n|, t): within
+        // SG_BIG * |t| and |t| for inputs in the domain.
+        bounded("t", 2 * kBig * kBig) && bounded("b", 2 * kBig);
     }
     (void)in;
     return why.str();

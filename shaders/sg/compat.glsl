@@ -46,18 +46,19 @@
 // absolute component first keeps dot(s, s) in [1, 3], so it neither
 // overflows (|v| ~ 1e30) nor underflows (|v| ~ 1e-30). Returns `fallback`
 // when v has no direction (largest component below FLT_MIN, or not finite).
+// Written as one straight path (a reciprocal, no division per component, no
+// fast/slow branches): llvmpipe evaluates both sides of a divergent branch,
+// and this runs twice on every pixel.
 SG_FN vec3 sgSafeNormalize(vec3 v, vec3 fallback) {
     float m = max(max(abs(v.x), abs(v.y)), abs(v.z));
-    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return fallback;
-    vec3 s = v / m;
-    return s * inversesqrt(dot(s, s));
+    vec3 s = v * (1.0f / m);
+    return (m >= SG_FLT_MIN && m <= SG_FLT_MAX) ? s * inversesqrt(dot(s, s)) : fallback;
 }
 
 SG_FN vec2 sgSafeNormalize2(vec2 v, vec2 fallback) {
     float m = max(abs(v.x), abs(v.y));
-    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return fallback;
-    vec2 s = v / m;
-    return s * inversesqrt(dot(s, s));
+    vec2 s = v * (1.0f / m);
+    return (m >= SG_FLT_MIN && m <= SG_FLT_MAX) ? s * inversesqrt(dot(s, s)) : fallback;
 }
 
 // Largest absolute component.

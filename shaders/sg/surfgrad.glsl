@@ -73,32 +73,32 @@ SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT
 // determinant below FLT_EPSILON: the two derivatives are parallel up to
 // rounding, and the paper's sign_det would be noise) or a pixel whose
 // sigmas vanish: vT = vB = 0, the layer contributes nothing. Otherwise both
-// are unit length and tangent (sigmas that vanish only up to rounding give
-// an arbitrary but valid frame).
+// are unit length and tangent.
 SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_OUT(vec3) vB) {
-    vT = vec3(0.0f);
-    vB = vec3(0.0f);
+    // One straight path with a final select (llvmpipe evaluates both sides
+    // of a branch; this is on every pixel of every UV set).
     float k = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
-    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return;
-    vec2 sx = sgDivScale2(dSTdx, k);
-    vec2 sy = sgDivScale2(dSTdy, k);
+    float rk = 1.0f / k;
+    vec2 sx = dSTdx * rk;
+    vec2 sy = dSTdy * rk;
     float det = sx.x * sy.y - sx.y * sy.x;
-    if (!(abs(det) >= SG_FLT_EPSILON)) return;
     float signDet = det < 0.0f ? -1.0f : 1.0f;
     // invCO is (dXds, dYds) up to the positive factor 1/|det|.
     vec2 invCO = signDet * vec2(sy.y, -sx.y);
     vec3 tRaw = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
-    // The sigmas are tangent only up to rounding. Removing the normal
-    // component twice ("twice is enough", Gram-Schmidt) makes t tangent to
-    // working precision, so vB = n x t is unit too, even when the sigmas are
-    // rounding residue (dPdx, dPdy along the normal). If the tangent part is
-    // itself at rounding level (below 8 ulps of tRaw), there is no tangent
-    // direction: zero frame.
+    // The sigmas are tangent only up to rounding; removing the normal
+    // component of their combination again keeps t tangent, so vB = n x t
+    // is unit too. After one projection t is perpendicular to n up to
+    // ~FLT_EPSILON |tRaw| / |t|; if the tangent part is below 2^-10 of tRaw
+    // (the combination of the sigmas cancels: a degenerate screen/UV
+    // configuration, or sigmas that are pure rounding residue) the
+    // direction is not reliable: zero frame. So is a tangent part whose
+    // squared length is below SG_FLT_MIN (sigmas below ~1e-19 per pixel).
     vec3 t1 = tRaw - dot(tRaw, f.nrmBase) * f.nrmBase;
-    vec3 t2 = t1 - dot(t1, f.nrmBase) * f.nrmBase;
-    if (!(sgMaxAbs3(t2) >= 8.0f * SG_FLT_EPSILON * sgMaxAbs3(tRaw))) return;
-    vec3 t = sgSafeNormalize(t2, vec3(0.0f));
-    if (sgMaxAbs3(t) == 0.0f) return;
+    float l2 = dot(t1, t1);
+    bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && abs(det) >= SG_FLT_EPSILON &&
+                 l2 >= SG_FLT_MIN && l2 >= 9.5367432e-7f * dot(tRaw, tRaw); // (2^-10)^2
+    vec3 t = valid ? t1 * inversesqrt(l2) : vec3(0.0f);
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
 }

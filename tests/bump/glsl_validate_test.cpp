@@ -69,6 +69,7 @@ std::string stageOf(const std::string& path) {
 // the smallest the file's header comment documents as valid.
 std::vector<std::string> knownDefines(const std::string& path) {
     if (path == "sg/render/surface_fs.glsl") return {"SG_LIGHT_COUNT 1", "SG_LAYER_RECORDS 1"};
+    if (path == "sg/features/kernels.comp.glsl") return {"SG_FEAT_EVAL_KERNEL 0"};
     return {};
 }
 
