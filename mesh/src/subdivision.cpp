@@ -1133,6 +1133,9 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     keyValid = false;
     stencilsRecorded = false;
     renderValid = false;
+    // Free the previous refiner before OpenSubdiv allocates the next one, so
+    // malloc hands the same pages back instead of faulting in new ones.
+    keptRefiner.reset();
     detail::Stopwatch sw;
     descriptor.build(cage);
     timings.convertIn = sw.lap();
