@@ -12,6 +12,7 @@
 // NAME: frames, subdiv, blend, features, deriv, precision.
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <algorithm>
 #include <exception>
 #include <string>
@@ -70,8 +71,17 @@ int main(int argc, char** argv) {
                              {"blend", study::tableBlend},     {"features", study::tableFeatures},
                              {"deriv", study::tableDerivatives}, {"precision", study::tablePrecision}};
     bool found = false;
-    std::printf("bench_accuracy_cost: %u hardware threads; LP_NUM_THREADS=%s\n", std::thread::hardware_concurrency(),
-                std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)");
+    // Load average: the machine's other work shows in every timing (ratios
+    // within one table are measured interleaved, so they suffer less).
+    std::string load = "?";
+    if (std::FILE* f = std::fopen("/proc/loadavg", "r")) {
+        char buf[64] = {0};
+        if (std::fgets(buf, sizeof buf, f)) load = std::string(buf, std::strcspn(buf, "\n"));
+        std::fclose(f);
+    }
+    std::printf("bench_accuracy_cost: %u hardware threads; LP_NUM_THREADS=%s; load average %s\n",
+                std::thread::hardware_concurrency(),
+                std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)", load.c_str());
     try {
         for (const Entry& e : entries) {
             if (table == "all" || table == e.name) {
