@@ -1,8 +1,0 @@
-#include "tables.h"
-namespace study {
-
-
-void tableFeatures(const Options&) {}
-
-void tablePrecision(const Options&) {}
-}
