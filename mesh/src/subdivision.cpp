@@ -466,9 +466,10 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
     const int N = settings.level;
     const size_t nSets = cage.uvSets.size();
     detail::Stopwatch sw;
-    // Positions: ping-pong through levels 1..N-1, level N straight into refined.positions.
+    // Ping-pong through levels 1..N-1, level N straight into refined()'s
+    // arrays: every buffer keeps its capacity from the previous build, so a
+    // rebuild touches no fresh pages.
     const Far::TopologyLevel& last = refiner.GetLevel(N);
-    std::vector<glm::vec3> levelN(size_t(last.GetNumVertices()));
     auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
         Far::PrimvarRefiner primvar(refiner);
         if (N == 0) {
@@ -485,19 +486,22 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
             src = dstBuf.data();
         }
     };
-    interpolateVec3(cage.positions, levelN);
-    std::vector<std::vector<glm::vec3>> deltasN(cage.morphTargets.size());
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) interpolateVec3(cage.morphTargets[t].positionDeltas, deltasN[t]);
-    std::vector<std::vector<glm::vec2>> uvN(nSets);
+    interpolateVec3(cage.positions, refined.positions);
+    refined.morphTargets.resize(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+        refined.morphTargets[t].name = cage.morphTargets[t].name;
+        interpolateVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
+    }
+    refined.uvSets.resize(nSets);
     for (size_t s = 0; s < nSets; ++s) {
         if (N == 0) {
-            uvN[s] = cage.uvSets[s].values;
+            refined.uvSets[s].values = cage.uvSets[s].values;
             continue;
         }
         Far::PrimvarRefiner primvar(refiner);
         const glm::vec2* src = cage.uvSets[s].values.data();
         for (int l = 1; l <= N; ++l) {
-            std::vector<glm::vec2>& dstBuf = l == N ? uvN[s] : (l % 2 ? uvA : uvB);
+            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
             dstBuf.resize(size_t(refiner.GetLevel(l).GetNumFVarValues(int(s))));
             View<const glm::vec2> sv{src};
             View<glm::vec2> dv{dstBuf.data()};
@@ -513,11 +517,9 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
     refined.faceVertices.clear();
     refined.faceSizes.reserve(size_t(nF));
     refined.faceVertices.reserve(size_t(nF) * (settings.options.scheme == Scheme::Loop ? 3 : 4));
-    refined.uvSets.resize(nSets);
     for (size_t s = 0; s < nSets; ++s) {
         refined.uvSets[s].name = cage.uvSets[s].name;
         refined.uvSets[s].indices.clear();
-        refined.uvSets[s].values = std::move(uvN[s]);
     }
     const bool anyHole = !cage.holes.empty();
     levelToRefined.assign(size_t(last.GetNumVertices()), anyHole ? UINT32_MAX : 0);
@@ -542,20 +544,14 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
     }
     auto compact = [&](std::vector<glm::vec3>& values) {
         if (!anyHole) return;
-        std::vector<glm::vec3> out(used);
+        bufA.resize(used);
         for (size_t v = 0; v < levelToRefined.size(); ++v) {
-            if (levelToRefined[v] != UINT32_MAX) out[levelToRefined[v]] = values[v];
+            if (levelToRefined[v] != UINT32_MAX) bufA[levelToRefined[v]] = values[v];
         }
-        values.swap(out);
+        values.swap(bufA);
     };
-    compact(levelN);
-    refined.positions.swap(levelN);
-    refined.morphTargets.resize(cage.morphTargets.size());
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
-        compact(deltasN[t]);
-        refined.morphTargets[t].name = cage.morphTargets[t].name;
-        refined.morphTargets[t].positionDeltas.swap(deltasN[t]);
-    }
+    compact(refined.positions);
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) compact(refined.morphTargets[t].positionDeltas);
     refined.morphWeights = cage.morphWeights;
     timings.convertOut = sw.lap();
 }
@@ -1189,7 +1185,7 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     }
     // Keep what a rebuild of the same topology needs (uniform builds only:
     // a limit build turns faces without patches into holes of refined()).
-    if (!settings.limit) {
+    if (!settings.limit && settings.reuseTopology) {
         keptRefiner = std::move(refiner);
         keyValid = true;
         keyLevel = N;
