@@ -60,7 +60,62 @@ struct Source {
     bool pixel;
 };
 
+std::vector<Source> sourcesOf(const TorusBump& scene) {
+    return {{"mikktspace", &scene.mikkMesh, false}, {"limit", &scene.limitMesh, false},
+            {"pixel (L16+L6)", &scene.pixelMesh, true}};
+}
+
+sg::gl::Program frameProgram(bool pixel, bool accuracy) {
+    std::vector<std::string> defs = {pixel ? "FRAME_PIXEL" : "FRAME_VERTEX"};
+    if (accuracy) defs.push_back("ACCURACY");
+    return makeProgram(torusVertexShader(), std::string(torusFragmentHead()) + kFragment, "frames", defs);
+}
+
+void useFrameProgram(const sg::gl::Program& p, const TorusBump& scene) {
+    glUseProgram(p.id());
+    glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &scene.viewProj[0][0]);
+    glUniform3fv(p.uniform("uCamPos"), 1, &scene.camPos[0]);
+    glUniform1i(p.uniform("uDeriv"), 0);
+}
+
 } // namespace
+
+FrameSourceErrors measureFrameSources(const TorusBump& scene, int size) {
+    const unsigned tex = makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
+    glBindTextureUnit(0, tex);
+    glEnable(GL_DEPTH_TEST);
+    glEnable(GL_CULL_FACE);
+    Target acc(size, size, 2);
+    FrameSourceErrors fe;
+    const auto sources = sourcesOf(scene);
+    for (size_t k = 0; k < 3; ++k) {
+        GpuMesh mesh(*sources[k].mesh);
+        const sg::gl::Program prog = frameProgram(sources[k].pixel, true);
+        acc.clear(glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+        useFrameProgram(prog, scene);
+        mesh.draw();
+        const auto nu = acc.read(0), bv = acc.read(1);
+        for (size_t i = 0; i < nu.size(); ++i) {
+            if (bv[i].w < 0.0f) continue; // not covered
+            const double s = nu[i].w, tt = bv[i].w;
+            const glm::dvec3 truth = scene.truthNormal(s, tt);
+            fe.err[k].push_back(angleDeg(glm::dvec3(nu[i]), truth));
+            if (k == 0) {
+                ++fe.covered;
+                const SurfacePoint p = scene.truthPoint(s, tt);
+                fe.baseErr.push_back(angleDeg(glm::dvec3(bv[i]), p.normal));
+                // The map's own reconstruction error: its bilinear sample
+                // resolved with the exact frame and normal.
+                glm::dvec3 tx, bx;
+                exactFrame(p, tx, bx);
+                const glm::dvec2 d = scene.sampleDeriv(s, tt);
+                fe.floorErr.push_back(angleDeg(glm::normalize(p.normal - d.x * tx - d.y * bx), truth));
+            }
+        }
+    }
+    deleteTexture(tex);
+    return fe;
+}
 
 void tableFrames(const Options& o) {
     const std::vector<int> levels = o.quick ? std::vector<int>{1} : std::vector<int>{1, 3};
@@ -70,65 +125,25 @@ void tableFrames(const Options& o) {
     t.header = {"level", "source", "tris", "p50 deg", "p90 deg", "p99 deg", "max deg", "frame ms", "vs mikktspace"};
     for (int level : levels) {
         TorusBump scene(level, o.quick);
-        const Source sources[3] = {{"mikktspace", &scene.mikkMesh, false},
-                                   {"limit", &scene.limitMesh, false},
-                                   {"pixel (L16+L6)", &scene.pixelMesh, true}};
+        const auto sources = sourcesOf(scene);
+        const int accSize = o.quick ? 384 : 1024;
+        const FrameSourceErrors fe = measureFrameSources(scene, accSize);
+        const auto& err = fe.err;
+
         const unsigned tex = makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
         glBindTextureUnit(0, tex);
         std::vector<std::unique_ptr<GpuMesh>> meshes;
-        std::vector<sg::gl::Program> accuracy, timing;
+        std::vector<sg::gl::Program> timing;
         for (const Source& s : sources) {
             meshes.push_back(std::make_unique<GpuMesh>(*s.mesh));
-            std::vector<std::string> defs = {s.pixel ? "FRAME_PIXEL" : "FRAME_VERTEX"};
-            const std::string fs = std::string(torusFragmentHead()) + kFragment;
-            timing.push_back(makeProgram(torusVertexShader(), fs, "frames", defs));
-            defs.push_back("ACCURACY");
-            accuracy.push_back(makeProgram(torusVertexShader(), fs, "frames_acc", defs));
-        }
-        auto use = [&](const sg::gl::Program& p) {
-            glUseProgram(p.id());
-            glUniformMatrix4fv(p.uniform("uViewProj"), 1, GL_FALSE, &scene.viewProj[0][0]);
-            glUniform3fv(p.uniform("uCamPos"), 1, &scene.camPos[0]);
-            glUniform1i(p.uniform("uDeriv"), 0);
-        };
-        glEnable(GL_DEPTH_TEST);
-        glEnable(GL_CULL_FACE);
-
-        // Accuracy pass.
-        const int accSize = o.quick ? 384 : 1024;
-        Target acc(accSize, accSize, 2);
-        std::vector<double> baseErr, floorErr;
-        std::vector<std::vector<double>> err(3);
-        size_t covered = 0;
-        for (int k = 0; k < 3; ++k) {
-            acc.clear(glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
-            use(accuracy[size_t(k)]);
-            meshes[size_t(k)]->draw();
-            const auto nu = acc.read(0), bv = acc.read(1);
-            for (size_t i = 0; i < nu.size(); ++i) {
-                if (bv[i].w < 0.0f) continue; // not covered
-                const double s = nu[i].w, tt = bv[i].w;
-                const glm::dvec3 truth = scene.truthNormal(s, tt);
-                err[size_t(k)].push_back(angleDeg(glm::dvec3(nu[i]), truth));
-                if (k == 0) {
-                    ++covered;
-                    const SurfacePoint p = scene.truthPoint(s, tt);
-                    baseErr.push_back(angleDeg(glm::dvec3(bv[i]), p.normal));
-                    // The map's own reconstruction error: its bilinear sample
-                    // resolved with the exact frame and normal.
-                    glm::dvec3 tx, bx;
-                    exactFrame(p, tx, bx);
-                    const glm::dvec2 d = scene.sampleDeriv(s, tt);
-                    floorErr.push_back(angleDeg(glm::normalize(p.normal - d.x * tx - d.y * bx), truth));
-                }
-            }
+            timing.push_back(frameProgram(s.pixel, false));
         }
 
         // Timing pass.
         Target tim(o.size, o.size, 1, false);
         const auto ms = timeVariants(3, [&](size_t k) {
             tim.clear();
-            use(timing[k]);
+            useFrameProgram(timing[k], scene);
             meshes[k]->draw();
         }, o);
         for (int k = 0; k < 3; ++k) {
@@ -136,12 +151,12 @@ void tableFrames(const Options& o) {
             t.add({std::to_string(level), sources[k].name, std::to_string(meshes[size_t(k)]->triangles()), fmtErr(e.p50),
                    fmtErr(e.p90), fmtErr(e.p99), fmtErr(e.max), fmt(ms[size_t(k)], 2), fmtRatio(ms[size_t(k)] / ms[0])});
         }
-        const ErrorStats b = errorStats(baseErr), fl = errorStats(floorErr);
+        const ErrorStats b = errorStats(fe.baseErr), fl = errorStats(fe.floorErr);
         t.add({std::to_string(level), "(interpolated base normal vs limit normal)", "", fmtErr(b.p50), fmtErr(b.p90),
                fmtErr(b.p99), fmtErr(b.max), "", ""});
         t.add({std::to_string(level), "(map reconstruction floor, exact frame)", "", fmtErr(fl.p50), fmtErr(fl.p90),
                fmtErr(fl.p99), fmtErr(fl.max), "", ""});
-        t.notes.push_back("level " + std::to_string(level) + ": " + std::to_string(covered) + " pixels at " +
+        t.notes.push_back("level " + std::to_string(level) + ": " + std::to_string(fe.covered) + " pixels at " +
                           std::to_string(accSize) + "^2; OpenSubdiv limit vs analytic B-spline max " +
                           fmtErr(scene.limitCheckMaxDist) + " object units; MikkTSpace split the mesh to " +
                           std::to_string(scene.mikkMesh.vertexCount()) + " vertices (" +

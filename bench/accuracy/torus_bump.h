@@ -53,6 +53,19 @@ struct TorusBump {
     glm::dvec2 sampleDeriv(double s, double t) const;
 };
 
+// Table 1's accuracy pass (table_frames.cpp): renders the scene at
+// size x size with each frame source and returns, per covered pixel, the
+// angle (degrees) between the resolved normal and truthNormal at the pixel's
+// UV. Index 0: MikkTSpace vertex tangents, 1: limit tangents, 2: per-pixel
+// frame (L16 + L6). Needs a current GL context.
+struct FrameSourceErrors {
+    std::vector<double> err[3];
+    std::vector<double> baseErr;  // interpolated base normal vs the limit normal
+    std::vector<double> floorErr; // the map's bilinear sample with the exact frame
+    size_t covered = 0;
+};
+FrameSourceErrors measureFrameSources(const TorusBump& scene, int size);
+
 // GLSL shared by the torus programs: the vertex shader, and the fragment
 // head declaring the inputs and uDeriv (the derivative map).
 const char* torusVertexShader();
