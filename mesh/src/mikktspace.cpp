@@ -28,6 +28,14 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+// x86-64 with GCC/Clang: an AVX2 copy of the SIMD kernels, chosen at run
+// time when the CPU has AVX2 (same bits; see TermBatch::compute8Avx2).
+#if defined(__SSE2__) && defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SG_MIKK_AVX2 1
+#include <immintrin.h>
+#else
+#define SG_MIKK_AVX2 0
+#endif
 
 #include "mikktspace_common.h"
 
@@ -93,8 +101,80 @@ float mikktspaceAngleFromCos(float cosine) { return mikk::acosRoundedToFloat(cos
 // double operations in the same order per lane, then the same margin test;
 // lanes that fail it (and c == 1, whose neighbour test reads a NaN) call
 // libm's acos.
-void mikktspaceAnglesFromCos(std::span<float> values) {
+namespace {
+
+bool cpuHasAvx2() {
+#if SG_MIKK_AVX2
+    static const bool has = __builtin_cpu_supports("avx2");
+    return has;
+#else
+    return false;
+#endif
+}
+
+#if SG_MIKK_AVX2
+// The SSE2 loop of mikktspaceAnglesFromCos four values at a time; returns
+// how many values it did (a multiple of 4).
+__attribute__((target("avx2"))) size_t anglesFromCosAvx2(float* values, size_t n) {
+    const __m256d half = _mm256_set1_pd(0.5), one = _mm256_set1_pd(1.0), two = _mm256_set1_pd(2.0);
+    const __m256d pi = _mm256_set1_pd(3.141592653589793115997963468544185161590576171875);
+    const __m256d halfPi = _mm256_set1_pd(1.5707963267948965579989817342720925807952880859375);
+    const __m256d signBit = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
+    const __m256d marginScale = _mm256_set1_pd(0x1p-36);
     size_t i = 0;
+    for (; i + 4 <= n; i += 4) {
+        float* v = values + i;
+        const __m128 cf = _mm_loadu_ps(v);
+        const __m256d x = _mm256_cvtps_pd(cf);
+        const __m256d a = _mm256_andnot_pd(signBit, x);
+        const __m256d small = _mm256_cmp_pd(a, half, _CMP_LE_OQ);
+        const __m256d zBig = _mm256_mul_pd(_mm256_sub_pd(one, a), half);
+        const __m256d z = _mm256_blendv_pd(zBig, _mm256_mul_pd(x, x), small);
+        __m256d q = _mm256_set1_pd(0x1.c93a92d53b4f1p-6);
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(-0x1.815314c864b09p-9));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.00d47e7966d94p-6));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.b02442413f6bap-7));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.1dc2ef640046fp-6));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.6e72146fda29ep-6));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.f1c81c59ea536p-6));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.6db6d8e71341bp-5));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.33333335a9cd6p-4));
+        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.5555555554f05p-3));
+        const __m256d r = _mm256_blendv_pd(_mm256_sqrt_pd(zBig), x, small);
+        const __m256d asinR = _mm256_add_pd(r, _mm256_mul_pd(_mm256_mul_pd(r, z), q));
+        const __m256d twoAsin = _mm256_mul_pd(two, asinR);
+        const __m256d yBig =
+            _mm256_blendv_pd(_mm256_sub_pd(pi, twoAsin), twoAsin, _mm256_cmp_pd(x, zero, _CMP_GT_OQ));
+        const __m256d y = _mm256_blendv_pd(yBig, _mm256_sub_pd(halfPi, asinR), small);
+        const __m128 f = _mm256_cvtpd_ps(y);
+        const __m128i bits = _mm_castps_si128(f);
+        const __m256d fd = _mm256_cvtps_pd(f);
+        const __m256d below = _mm256_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
+        const __m256d above = _mm256_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
+        const __m256d margin = _mm256_mul_pd(y, marginScale);
+        const __m256d ok = _mm256_and_pd(
+            _mm256_cmp_pd(_mm256_sub_pd(y, _mm256_mul_pd(half, _mm256_add_pd(fd, below))), margin, _CMP_GT_OQ),
+            _mm256_cmp_pd(_mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(fd, above)), y), margin, _CMP_GT_OQ));
+        const int okBits = _mm256_movemask_pd(ok);
+        alignas(16) float in[4], out[4];
+        _mm_store_ps(in, cf);
+        _mm_store_ps(out, f);
+        for (int l = 0; l < 4; ++l)
+            v[l] = (okBits >> l) & 1 ? out[l] : static_cast<float>(std::acos(static_cast<double>(in[l])));
+    }
+    return i;
+}
+#endif
+
+} // namespace
+
+void mikktspaceAnglesFromCos(std::span<float> values, bool allowWideSimd) {
+    size_t i = 0;
+#if SG_MIKK_AVX2
+    if (allowWideSimd && cpuHasAvx2()) i = anglesFromCosAvx2(values.data(), values.size());
+#else
+    (void)allowWideSimd;
+#endif
 #if defined(__SSE2__)
     const __m128d half = _mm_set1_pd(0.5), one = _mm_set1_pd(1.0), two = _mm_set1_pd(2.0);
     const __m128d pi = _mm_set1_pd(3.141592653589793115997963468544185161590576171875);
@@ -212,12 +292,13 @@ struct Terms {
 // lane (SSE2 when available: its add/mul/div/sqrt are the same IEEE
 // operations as the scalar ones, so the bits are the same).
 struct TermBatch {
+    static constexpr size_t kLanes = 8; // one AVX2 step or two SSE2 steps
     // Per lane: the triangle's derivatives, the vertex (normal, position)
     // and the previous and next corners' positions.
-    const TriDerivatives* deriv[4];
-    const WeldedVertex* vertex[4];
-    const WeldedVertex* prev[4];
-    const WeldedVertex* next[4];
+    const TriDerivatives* deriv[kLanes];
+    const WeldedVertex* vertex[kLanes];
+    const WeldedVertex* prev[kLanes];
+    const WeldedVertex* next[kLanes];
 
     void set(size_t lane, const TriDerivatives* d, const WeldedVertex* w, const WeldedVertex* p,
              const WeldedVertex* n) {
@@ -264,9 +345,10 @@ struct TermBatch {
         return {_mm_sub_ps(a.x, b.x), _mm_sub_ps(a.y, b.y), _mm_sub_ps(a.z, b.z)};
     }
 
-    void compute(const Terms& out, size_t j) const {
+    // Lanes first..first+3 into out at j.
+    void compute4(const Terms& out, size_t j, int first) const {
         auto rows = [&](auto field) {
-            return gather(field(0), field(1), field(2), field(3));
+            return gather(field(first), field(first + 1), field(first + 2), field(first + 3));
         };
         const V os = rows([&](int l) { return &deriv[l]->os.x; });
         const V ot = rows([&](int l) { return &deriv[l]->ot.x; });
@@ -285,9 +367,24 @@ struct TermBatch {
         _mm_storeu_ps(out.otz + j, pot.z);
         _mm_storeu_ps(out.angle + j, c);
     }
+#if SG_MIKK_AVX2
+    __attribute__((target("avx2"))) void compute8Avx2(const Terms& out, size_t j) const;
+#endif
+    // All kLanes lanes into out at j.
+    void compute(const Terms& out, size_t j, bool wide) const {
+#if SG_MIKK_AVX2
+        if (wide) {
+            compute8Avx2(out, j);
+            return;
+        }
+#endif
+        (void)wide;
+        compute4(out, j, 0);
+        compute4(out, j + 4, 4);
+    }
 #else
-    void compute(const Terms& out, size_t j) const {
-        for (size_t lane = 0; lane < 4; ++lane) {
+    void compute(const Terms& out, size_t j, bool /*wide*/) const {
+        for (size_t lane = 0; lane < kLanes; ++lane) {
             const Vec3 n = vertex[lane]->normal, p = vertex[lane]->position;
             const Vec3 os = mikk::projectToPlane(deriv[lane]->os, n);
             const Vec3 ot = mikk::projectToPlane(deriv[lane]->ot, n);
@@ -303,11 +400,161 @@ struct TermBatch {
 #endif
 };
 
-inline uint64_t mix(uint64_t h, uint32_t v) {
-    h ^= v;
-    h *= 0x9E3779B97F4A7C15ull;
+#if SG_MIKK_AVX2
+// The same as two compute4 calls, eight lanes per AVX2 instruction (the
+// same IEEE operations per lane; no FMA: the target is "avx2" only and the
+// file is compiled with -ffp-contract=off). Helpers are functions, not
+// lambdas: a lambda does not inherit the target attribute.
+#define SG_AVX2 __attribute__((target("avx2")))
+struct W8 {
+    __m256 x, y, z;
+};
+SG_AVX2 inline W8 gather8(const float* const* ptr) {
+    const TermBatch::V lo = TermBatch::gather(ptr[0], ptr[1], ptr[2], ptr[3]);
+    const TermBatch::V hi = TermBatch::gather(ptr[4], ptr[5], ptr[6], ptr[7]);
+    return {_mm256_insertf128_ps(_mm256_castps128_ps256(lo.x), hi.x, 1),
+            _mm256_insertf128_ps(_mm256_castps128_ps256(lo.y), hi.y, 1),
+            _mm256_insertf128_ps(_mm256_castps128_ps256(lo.z), hi.z, 1)};
+}
+SG_AVX2 inline __m256 dot8(const W8& a, const W8& b) {
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)), _mm256_mul_ps(a.z, b.z));
+}
+SG_AVX2 inline W8 sub8(const W8& a, const W8& b) {
+    return {_mm256_sub_ps(a.x, b.x), _mm256_sub_ps(a.y, b.y), _mm256_sub_ps(a.z, b.z)};
+}
+SG_AVX2 inline W8 project8(const W8& v, const W8& n) {
+    const __m256 absMask = _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF));
+    const __m256 tiny = _mm256_set1_ps(FLT_MIN);
+    const __m256 d = dot8(n, v);
+    const W8 r{_mm256_sub_ps(v.x, _mm256_mul_ps(d, n.x)), _mm256_sub_ps(v.y, _mm256_mul_ps(d, n.y)),
+               _mm256_sub_ps(v.z, _mm256_mul_ps(d, n.z))};
+    const __m256 nonZero =
+        _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(_mm256_and_ps(r.x, absMask), tiny, _CMP_GT_OQ),
+                                  _mm256_cmp_ps(_mm256_and_ps(r.y, absMask), tiny, _CMP_GT_OQ)),
+                     _mm256_cmp_ps(_mm256_and_ps(r.z, absMask), tiny, _CMP_GT_OQ));
+    const __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), _mm256_sqrt_ps(dot8(r, r)));
+    return {_mm256_blendv_ps(r.x, _mm256_mul_ps(inv, r.x), nonZero),
+            _mm256_blendv_ps(r.y, _mm256_mul_ps(inv, r.y), nonZero),
+            _mm256_blendv_ps(r.z, _mm256_mul_ps(inv, r.z), nonZero)};
+}
+
+SG_AVX2 void TermBatch::compute8Avx2(const Terms& out, size_t j) const {
+    const float* ptr[6][kLanes];
+    for (size_t l = 0; l < kLanes; ++l) {
+        ptr[0][l] = &deriv[l]->os.x;
+        ptr[1][l] = &deriv[l]->ot.x;
+        ptr[2][l] = &vertex[l]->normal.x;
+        ptr[3][l] = &vertex[l]->position.x;
+        ptr[4][l] = &prev[l]->position.x;
+        ptr[5][l] = &next[l]->position.x;
+    }
+    const W8 n = gather8(ptr[2]), p = gather8(ptr[3]);
+    const W8 pos = project8(gather8(ptr[0]), n), pot = project8(gather8(ptr[1]), n);
+    const W8 e1 = project8(sub8(gather8(ptr[4]), p), n), e2 = project8(sub8(gather8(ptr[5]), p), n);
+    const __m256 c = _mm256_min_ps(_mm256_max_ps(dot8(e1, e2), _mm256_set1_ps(-1.0f)), _mm256_set1_ps(1.0f));
+    _mm256_storeu_ps(out.osx + j, pos.x);
+    _mm256_storeu_ps(out.osy + j, pos.y);
+    _mm256_storeu_ps(out.osz + j, pos.z);
+    _mm256_storeu_ps(out.otx + j, pot.x);
+    _mm256_storeu_ps(out.oty + j, pot.y);
+    _mm256_storeu_ps(out.otz + j, pot.z);
+    _mm256_storeu_ps(out.angle + j, c);
+}
+#endif
+
+// Hash of a vertex's weld key (position, normal, uv with -0 as +0): four
+// independent 64-bit products (short dependency chain), then one final
+// mix. Only equal keys must hash equal; quality only affects speed.
+inline uint64_t weldHash(const glm::vec3& p, const glm::vec3& n, const glm::vec2& uv) {
+    auto pair = [](float a, float b) {
+        return uint64_t(mikk::weldBits(a)) | uint64_t(mikk::weldBits(b)) << 32;
+    };
+    uint64_t h = pair(p.x, p.y) * 0x9E3779B97F4A7C15ull;
+    h ^= pair(p.z, n.x) * 0xC2B2AE3D27D4EB4Full;
+    h ^= pair(n.y, n.z) * 0x165667B19E3779F9ull;
+    h ^= pair(uv.x, uv.y) * 0xD6E8FEB86659FD93ull;
+    h ^= h >> 32;
+    h *= 0x94D049BB133111EBull;
     return h ^ (h >> 29);
 }
+
+#if defined(__SSE2__)
+// mikk::faceDerivatives for four triangles at once (welded ids tri[0..11]):
+// the same IEEE operations per lane; lanes whose UV area or lengths are
+// zero compute garbage that the masks discard, exactly as the scalar
+// branches skip it. Writes deriv[0..3] (16-byte stores in order, each
+// overwriting the previous one's spill; deriv has a padding entry at the
+// end), magS/magT[0..3] and ORs the orientation and group-with-any bits
+// into flags[0..3].
+void faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivatives* deriv,
+                      float* magS, float* magT, uint8_t* flags) {
+    auto positions = [&](int corner) {
+        __m128 r0 = _mm_loadu_ps(&wv[tri[corner]].position.x);
+        __m128 r1 = _mm_loadu_ps(&wv[tri[3 + corner]].position.x);
+        __m128 r2 = _mm_loadu_ps(&wv[tri[6 + corner]].position.x);
+        __m128 r3 = _mm_loadu_ps(&wv[tri[9 + corner]].position.x);
+        _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+        return TermBatch::V{r0, r1, r2};
+    };
+    auto uvs = [&](int corner, __m128& u, __m128& v) {
+        auto load = [&](int lane) {
+            return _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&wv[tri[3 * lane + corner]].uv.x)));
+        };
+        const __m128 lo = _mm_unpacklo_ps(load(0), load(1)); // u0 u1 v0 v1
+        const __m128 hi = _mm_unpacklo_ps(load(2), load(3)); // u2 u3 v2 v3
+        u = _mm_movelh_ps(lo, hi);
+        v = _mm_movehl_ps(hi, lo);
+    };
+    const TermBatch::V p1 = positions(0), p2 = positions(1), p3 = positions(2);
+    __m128 u1, v1, u2, v2, u3, v3;
+    uvs(0, u1, v1);
+    uvs(1, u2, v2);
+    uvs(2, u3, v3);
+    const __m128 t21x = _mm_sub_ps(u2, u1), t21y = _mm_sub_ps(v2, v1);
+    const __m128 t31x = _mm_sub_ps(u3, u1), t31y = _mm_sub_ps(v3, v1);
+    const TermBatch::V d1 = TermBatch::sub4(p2, p1), d2 = TermBatch::sub4(p3, p1);
+    const __m128 area = _mm_sub_ps(_mm_mul_ps(t21x, t31y), _mm_mul_ps(t21y, t31x));
+    const __m128 signBit = _mm_set1_ps(-0.0f);
+    const __m128 negT31x = _mm_xor_ps(t31x, signBit);
+    const TermBatch::V os{_mm_sub_ps(_mm_mul_ps(t31y, d1.x), _mm_mul_ps(t21y, d2.x)),
+                          _mm_sub_ps(_mm_mul_ps(t31y, d1.y), _mm_mul_ps(t21y, d2.y)),
+                          _mm_sub_ps(_mm_mul_ps(t31y, d1.z), _mm_mul_ps(t21y, d2.z))};
+    const TermBatch::V ot{_mm_add_ps(_mm_mul_ps(negT31x, d1.x), _mm_mul_ps(t21x, d2.x)),
+                          _mm_add_ps(_mm_mul_ps(negT31x, d1.y), _mm_mul_ps(t21x, d2.y)),
+                          _mm_add_ps(_mm_mul_ps(negT31x, d1.z), _mm_mul_ps(t21x, d2.z))};
+    const __m128 zero = _mm_setzero_ps(), tiny = _mm_set1_ps(FLT_MIN);
+    const __m128 orient = _mm_cmpgt_ps(area, zero);
+    const __m128 absArea = _mm_andnot_ps(signBit, area);
+    const __m128 areaOk = _mm_cmpgt_ps(absArea, tiny);
+    const __m128 lenOs = _mm_sqrt_ps(TermBatch::dot4(os, os));
+    const __m128 lenOt = _mm_sqrt_ps(TermBatch::dot4(ot, ot));
+    const __m128 flip = _mm_or_ps(_mm_and_ps(orient, _mm_set1_ps(1.0f)), _mm_andnot_ps(orient, _mm_set1_ps(-1.0f)));
+    const __m128 osOk = _mm_and_ps(areaOk, _mm_cmpgt_ps(lenOs, tiny));
+    const __m128 otOk = _mm_and_ps(areaOk, _mm_cmpgt_ps(lenOt, tiny));
+    const __m128 sOs = _mm_div_ps(flip, lenOs), sOt = _mm_div_ps(flip, lenOt);
+    auto keep = [](__m128 mask, __m128 v) { return _mm_and_ps(mask, v); };
+    __m128 ox = keep(osOk, _mm_mul_ps(sOs, os.x)), oy = keep(osOk, _mm_mul_ps(sOs, os.y));
+    __m128 oz = keep(osOk, _mm_mul_ps(sOs, os.z)), o4 = zero;
+    __m128 tx = keep(otOk, _mm_mul_ps(sOt, ot.x)), ty = keep(otOk, _mm_mul_ps(sOt, ot.y));
+    __m128 tz = keep(otOk, _mm_mul_ps(sOt, ot.z)), t4 = zero;
+    const __m128 mS = keep(areaOk, _mm_div_ps(lenOs, absArea));
+    const __m128 mT = keep(areaOk, _mm_div_ps(lenOt, absArea));
+    const __m128 good = _mm_and_ps(areaOk, _mm_and_ps(_mm_cmpgt_ps(_mm_andnot_ps(signBit, mS), tiny),
+                                                       _mm_cmpgt_ps(_mm_andnot_ps(signBit, mT), tiny)));
+    _MM_TRANSPOSE4_PS(ox, oy, oz, o4);
+    _MM_TRANSPOSE4_PS(tx, ty, tz, t4);
+    const __m128 osLane[4] = {ox, oy, oz, o4}, otLane[4] = {tx, ty, tz, t4};
+    for (int l = 0; l < 4; ++l) {
+        _mm_storeu_ps(&deriv[l].os.x, osLane[l]);
+        _mm_storeu_ps(&deriv[l].ot.x, otLane[l]);
+    }
+    _mm_storeu_ps(magS, mS);
+    _mm_storeu_ps(magT, mT);
+    const int orientBits = _mm_movemask_ps(orient), goodBits = _mm_movemask_ps(good);
+    for (int l = 0; l < 4; ++l)
+        flags[l] |= uint8_t(((orientBits >> l) & 1 ? kOrient : 0) | ((goodBits >> l) & 1 ? 0 : kAny));
+}
+#endif
 
 } // namespace
 
@@ -355,6 +602,7 @@ struct MikkTSpaceGenerator::Scratch {
 };
 
 MikkTSpaceGenerator::MikkTSpaceGenerator() : scratch_(new Scratch) {}
+void MikkTSpaceGenerator::setWideSimd(bool enabled) { wideSimd_ = enabled; }
 MikkTSpaceGenerator::~MikkTSpaceGenerator() { delete scratch_; }
 
 void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::vec4>& cornerTangents,
@@ -460,16 +708,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const uint32_t v = s.firstUse[i];
             const glm::vec3 p = in.positions[v], n = in.normals[v];
             const glm::vec2 uv = in.uvs[v];
-            uint64_t h = 0x243F6A8885A308D3ull;
-            h = mix(h, mikk::weldBits(p.x));
-            h = mix(h, mikk::weldBits(p.y));
-            h = mix(h, mikk::weldBits(p.z));
-            h = mix(h, mikk::weldBits(n.x));
-            h = mix(h, mikk::weldBits(n.y));
-            h = mix(h, mikk::weldBits(n.z));
-            h = mix(h, mikk::weldBits(uv.x));
-            h = mix(h, mikk::weldBits(uv.y));
-            s.hashes[i] = h;
+            s.hashes[i] = weldHash(p, n, uv);
         }
         size_t tableSize = 64;
         while (tableSize < 2 * used) tableSize *= 2;
@@ -580,7 +819,14 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     s.deriv.resize(goodCount + 1); // the last entry pads 16-byte loads of the one before
     s.magS.resize(goodCount);
     s.magT.resize(goodCount);
-    for (size_t t = 0; t < goodCount; ++t) {
+    size_t firstScalar = 0;
+#if defined(__SSE2__)
+    for (; firstScalar + 4 <= goodCount; firstScalar += 4)
+        faceDerivatives4(wv, gWelded + firstScalar * 3, s.deriv.data() + firstScalar,
+                         s.magS.data() + firstScalar, s.magT.data() + firstScalar,
+                         s.flags.data() + firstScalar);
+#endif
+    for (size_t t = firstScalar; t < goodCount; ++t) {
         const WeldedVertex& a = wv[gWelded[t * 3]];
         const WeldedVertex& b = wv[gWelded[t * 3 + 1]];
         const WeldedVertex& c = wv[gWelded[t * 3 + 2]];
@@ -677,7 +923,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     // Vertices are processed in chunks of about kChunk entries whose terms
     // are computed together (4 entries per SIMD step) into these arrays.
     constexpr size_t kChunk = 1024;
-    const size_t termCapacity = std::max(kChunk, maxDegree) + 4;
+    const size_t termCapacity = std::max(kChunk, maxDegree) + TermBatch::kLanes;
+    const bool wide = wideSimd_ && cpuHasAvx2();
     s.terms.resize(7 * termCapacity);
     const Terms chunkTerms = Terms::over(s.terms.data(), termCapacity);
     s.outNbr.resize(maxDegree);
@@ -698,19 +945,19 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             for (size_t e = 0; e < k; ++e) {
                 batch.set(filled, triDeriv + list[e].tri(), wv + w, wv + list[e].prev,
                           wv + list[e].next);
-                if (++filled == 4) {
-                    batch.compute(out, first);
-                    first += 4;
+                if (++filled == TermBatch::kLanes) {
+                    batch.compute(out, first, wide);
+                    first += TermBatch::kLanes;
                     filled = 0;
                 }
             }
         }
         if (filled > 0) {
-            for (size_t lane = filled; lane < 4; ++lane) batch.copyLane(lane, 0);
-            batch.compute(out, first); // writes up to 3 entries past the end: capacity has room
+            for (size_t lane = filled; lane < TermBatch::kLanes; ++lane) batch.copyLane(lane, 0);
+            batch.compute(out, first, wide); // writes up to 7 entries past the end: capacity has room
             first += filled;
         }
-        mikktspaceAnglesFromCos({out.angle, first});
+        mikktspaceAnglesFromCos({out.angle, first}, wide);
     };
 
     // Which entries pair across each edge at the vertex: entry e's edge

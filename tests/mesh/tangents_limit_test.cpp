@@ -178,10 +178,14 @@ TEST(LimitTangents, AffinePlaneGivesTheExactConstantTangent) {
                 worst = std::max(worst, angleDeg(glm::vec3(t), expected));
                 EXPECT_EQ(t.w, w);
             }
-            // Limit derivatives and UVs in float (OpenSubdiv evaluates in
-            // float): a few 1e-7 relative, i.e. ~1e-5 degrees; 1e-3 leaves
-            // room for the stencil sums at boundary corners.
-            EXPECT_LT(worst, 1e-3) << sg::mesh::toString(scheme) << " det " << glm::determinant(a);
+            std::printf("affine plane, %s, det %.2f: max angle to the exact tangent %.2e deg\n",
+                        sg::mesh::toString(scheme), double(glm::determinant(a)), worst);
+            // Limit derivatives are evaluated in float (~1e-6 relative after
+            // the patch sums); the chain rule divides by the chart sines,
+            // which drop towards the collapsed smooth corners (measured max
+            // 4.3e-3 deg = 7.6e-5 rad next to them, ~1e-5 deg elsewhere).
+            // 0.01 deg bounds that; a wrong chain rule is off by degrees.
+            EXPECT_LT(worst, 1e-2) << sg::mesh::toString(scheme) << " det " << glm::determinant(a);
         }
     }
 }
@@ -295,8 +299,9 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
         const bool isLeft = x < 4.0f;
         EXPECT_EQ(t.w, isLeft ? 1.0f : -1.0f) << "vertex " << v << " x " << x << " s " << s;
         if (std::fabs(x - 4.0f) >= 2.0f) {
-            // Float limit evaluation: ~1e-5 degrees; 1e-3 as in the affine test.
-            EXPECT_LT(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}), 1e-3) << "vertex " << v;
+            // Float limit evaluation, as in the affine test (the plane's
+            // smooth corners are included here too).
+            EXPECT_LT(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}), 1e-2) << "vertex " << v;
             ++(isLeft ? left : right);
         }
     }

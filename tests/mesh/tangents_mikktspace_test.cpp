@@ -74,21 +74,25 @@ bool sameBits(const void* a, const void* b, size_t n) { return std::memcmp(a, b,
            << expected.x << ", " << expected.y << ", " << expected.z << ", " << expected.w << ")";
 }
 
-// Frames and tangents of the fast path (both its output modes) against the
-// oracle; returns the number of corners that differ in any bit.
+// Frames and tangents of the fast path (both output modes, wide and narrow
+// SIMD) against the oracle; returns the number of corners that differ in
+// any bit.
 size_t countOracleMismatches(const MikkTSpaceInput& in) {
     const std::vector<MikkTSpaceFrame> ref = sg::mesh::mikktspaceReferenceFrames(in);
-    MikkTSpaceGenerator g;
-    std::vector<glm::vec4> withFrames, direct;
+    MikkTSpaceGenerator g, narrow;
+    narrow.setWideSimd(false); // SSE2 kernels even where AVX2 exists
+    std::vector<glm::vec4> withFrames, direct, narrowDirect;
     std::vector<MikkTSpaceFrame> frames;
     g.generate(in, withFrames, &frames);
     g.generate(in, direct); // without frames: the direct-to-vec4 path
+    narrow.generate(in, narrowDirect);
     size_t bad = 0;
     for (size_t c = 0; c < ref.size(); ++c) {
         const glm::vec4 expected(ref[c].tangent, ref[c].sign);
         bad += !sameBits(&frames[c], &ref[c], sizeof(MikkTSpaceFrame)) ||
                !sameBits(&withFrames[c], &expected, sizeof(glm::vec4)) ||
-               !sameBits(&direct[c], &expected, sizeof(glm::vec4));
+               !sameBits(&direct[c], &expected, sizeof(glm::vec4)) ||
+               !sameBits(&narrowDirect[c], &expected, sizeof(glm::vec4));
     }
     return bad;
 }
@@ -568,17 +572,20 @@ TEST(MikkTSpace, AngleRoundingEqualsTheReferenceExpression) {
     for (float c : {1.0f, -1.0f, 0.0f, -0.0f, 0.5f, -0.5f, std::nextafter(0.5f, 1.0f),
                     std::nextafter(1.0f, 0.0f), std::nextafter(-1.0f, 0.0f), 1e-30f, 1.0f})
         cosines.push_back(c); // odd count: the batch's scalar tail runs too
-    std::vector<float> batch = cosines;
-    sg::mesh::mikktspaceAnglesFromCos(batch);
-    size_t scalarMismatches = 0, batchMismatches = 0;
+    std::vector<float> wide = cosines, narrow = cosines;
+    sg::mesh::mikktspaceAnglesFromCos(wide);          // AVX2 where available
+    sg::mesh::mikktspaceAnglesFromCos(narrow, false); // SSE2
+    size_t scalarMismatches = 0, wideMismatches = 0, narrowMismatches = 0;
     for (size_t i = 0; i < cosines.size(); ++i) {
         const float ref = static_cast<float>(std::acos(static_cast<double>(cosines[i])));
         const float scalar = sg::mesh::mikktspaceAngleFromCos(cosines[i]);
         scalarMismatches += !sameBits(&scalar, &ref, sizeof ref);
-        batchMismatches += !sameBits(&batch[i], &ref, sizeof ref);
+        wideMismatches += !sameBits(&wide[i], &ref, sizeof ref);
+        narrowMismatches += !sameBits(&narrow[i], &ref, sizeof ref);
     }
     EXPECT_EQ(scalarMismatches, 0u) << "of " << cosines.size();
-    EXPECT_EQ(batchMismatches, 0u) << "of " << cosines.size();
+    EXPECT_EQ(wideMismatches, 0u) << "of " << cosines.size();
+    EXPECT_EQ(narrowMismatches, 0u) << "of " << cosines.size();
 }
 
 TEST(TangentMethod, NamesRoundTrip) {

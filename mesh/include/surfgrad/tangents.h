@@ -119,9 +119,16 @@ public:
     void generate(const MikkTSpaceInput& input, std::vector<glm::vec4>& cornerTangents,
                   std::vector<MikkTSpaceFrame>* frames = nullptr);
 
+    // The SIMD kernels run 8 lanes wide with AVX2 when the CPU has it
+    // (checked at run time), else 4 lanes (SSE2). The results are the same
+    // bits either way; false forces the narrow path, for the tests that
+    // check exactly that and for benchmarks.
+    void setWideSimd(bool enabled);
+
 private:
     struct Scratch;
     Scratch* scratch_;
+    bool wideSimd_ = true;
 };
 
 // The oracle: a plain, step-by-step implementation of the published
@@ -135,9 +142,10 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
 // libm's acos (see mesh/src/mikktspace_common.h). Exposed for the
 // exhaustive check (bench: tangents_bench --check-acos) and the tests.
 float mikktspaceAngleFromCos(float cosine);
-// The same for many values in place (what the fast generator uses; two at
-// a time with SSE2).
-void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles);
+// The same for many values in place (what the fast generator uses: four at
+// a time with AVX2 when the CPU has it and allowWideSimd, else two with
+// SSE2; same bits).
+void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles, bool allowWideSimd = true);
 
 // Convenience: MikkTSpace tangents for `uvSet` of a RenderMesh (which must
 // have normals), stored into mesh.tangents (replacing any), with
