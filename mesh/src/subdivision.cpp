@@ -41,6 +41,7 @@
 #include <cassert>
 #include <cstring>
 #include <mutex>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "mesh_internal.h"
@@ -1078,7 +1079,13 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     }
     refined.morphWeights = cage.morphWeights;
     timings.interpolate = sw.lap();
-    if (settings.buildRenderMesh) {
+    if (!settings.buildRenderMesh) {
+        // As in a fresh build without a render mesh: no normals (the kept
+        // ones belong to the old positions).
+        refined.normals.clear();
+        refined.normalIndices.clear();
+        renderValid = false;
+    } else {
         if (renderValid) {
             const size_t nR = renderToRefined.size();
             for (size_t r = 0; r < nR; ++r) render.positions[r] = refined.positions[renderToRefined[r]];
@@ -1237,9 +1244,11 @@ size_t Subdivider::stencilWeightCount() const {
 
 void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame, bool recomputeNormals) const {
     const Impl& m = *impl_;
-    assert(m.settings.animate && "build with SubdivisionSettings::animate");
-    assert(cagePositions.size() == m.cageVertices);
-    assert(out.positions.size() == m.render.positions.size());
+    // Caller bugs, checked in release builds too: an unchecked call would
+    // write past the scratch buffers.
+    if (!m.settings.animate || cagePositions.size() != m.cageVertices || out.positions.size() != m.render.positions.size()) {
+        throw std::logic_error("Subdivider::update: needs SubdivisionSettings::animate, the cage's vertex count and a copy of renderMesh()");
+    }
     const size_t nR = out.positions.size();
     if (m.settings.limit) {
         m.points.resize(m.limitStencils.numPoints);

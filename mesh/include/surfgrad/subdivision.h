@@ -107,7 +107,8 @@ public:
     // (cage.vertexCount() entries, object space) by applying stencil tables;
     // nothing else is touched and nothing is allocated once `out` has been
     // filled once. `out` must have renderMesh()'s vertex count (start from a
-    // copy of renderMesh()). Positions must be finite (asserted).
+    // copy of renderMesh()). Positions must be finite. Throws
+    // std::logic_error (a caller bug) without animate or with mismatched sizes.
     // recomputeNormals = false leaves out.normals alone (callers that
     // morph or shade without them). Not safe to call concurrently on one
     // Subdivider (it keeps scratch buffers).
