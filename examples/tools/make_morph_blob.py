@@ -9,8 +9,12 @@ MorphPrimitivesTest has no normal deltas), and a normal-mapped blendshape
 needs both. This one is small (64 x 32 segments) and exact:
 
   base     unit sphere, s around (s = 0.5 faces +z), t from the south pole;
-           TEXCOORD_0 = (4 s, 2 t) so a tileable normal map repeats 4 x 2
-           (square tiles at the equator); NORMAL exact;
+           texture coordinate (4 s, 2 t) so a tileable normal map repeats
+           4 x 2 (square tiles at the equator; (4 s, 2 t) = (2, 1) faces +z).
+           glTF's texture origin is the top-left corner (v down), so
+           TEXCOORD_0 stores (4 s, 1 - 2 t): a reader that flips v to the
+           lower-left convention, as surfgrad does, gets (4 s, 2 t) back;
+           NORMAL exact;
   target 0 "squash": (x, y, z) -> (1.22 x, 0.62 y, 1.22 z);
   target 1 "lobes":  radius 1 + 0.28 sin(3 phi) sin(theta)^2, three lobes
            around the equator that vanish smoothly at the poles.
@@ -76,7 +80,7 @@ def main():
             p0, n0 = base(phi, theta), normal(base, phi, theta, pole)
             pos.append(p0)
             nrm.append(n0)
-            uv.append((4.0 * s, 2.0 * t))
+            uv.append((4.0 * s, 1.0 - 2.0 * t))  # glTF v points down
             for k, surf in enumerate((squash, lobes)):
                 p1, n1 = surf(phi, theta), normal(surf, phi, theta, pole)
                 dpos[k].append(tuple(a - b for a, b in zip(p1, p0)))

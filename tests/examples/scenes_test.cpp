@@ -46,7 +46,7 @@ std::string readText(const fs::path& p) {
 
 TEST(Examples, TheDocumentedExamplesExist) {
     std::vector<std::string> names = sceneExamples();
-    for (const char* required : {"tessellated-asset", "blendshape-asset", "terrain"}) {
+    for (const char* required : {"tessellated-asset", "blendshape-asset", "terrain", "feature-curves"}) {
         EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
     }
 }
