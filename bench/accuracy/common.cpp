@@ -208,10 +208,10 @@ void main() {
 )";
 }
 
-void drawFullscreen() {
-    static GLuint vao = 0;
-    if (vao == 0) glCreateVertexArrays(1, &vao);
-    glBindVertexArray(vao);
+FullscreenTriangle::FullscreenTriangle() { glCreateVertexArrays(1, &vao_); }
+FullscreenTriangle::~FullscreenTriangle() { glDeleteVertexArrays(1, &vao_); }
+void FullscreenTriangle::draw() const {
+    glBindVertexArray(vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 

@@ -65,6 +65,7 @@ struct Options {
     int frames = 8;  // frames per run; each = clear + draw + glFinish
     int size = 1024; // render size for timings (square)
     bool quick = false; // smaller sizes and fewer runs (tests, smoke runs)
+    std::string renderer; // GL_RENDERER of the context the tables run in (for the notes)
 };
 
 // ---------------------------------------------------------------------------
@@ -108,8 +109,20 @@ private:
 };
 
 // A full-screen triangle (no attributes; the vertex shader uses gl_VertexID).
+// The empty VAO it binds is created once per context: construct one
+// FullscreenTriangle per context (GL object names are per context).
 const char* fullscreenVertexShader();
-void drawFullscreen();
+class FullscreenTriangle {
+public:
+    FullscreenTriangle();
+    ~FullscreenTriangle();
+    FullscreenTriangle(const FullscreenTriangle&) = delete;
+    FullscreenTriangle& operator=(const FullscreenTriangle&) = delete;
+    void draw() const;
+
+private:
+    unsigned vao_ = 0;
+};
 
 // Compiles a vertex + fragment program from GLSL bodies (sg::shaders::assemble:
 // `#include "sg/..."` resolves against the embedded library).

@@ -18,6 +18,7 @@
 #include <string>
 #include <thread>
 
+#include "surfgrad/gl.h"
 #include "tables.h"
 
 namespace {
@@ -85,6 +86,10 @@ int main(int argc, char** argv) {
                 std::thread::hardware_concurrency(),
                 std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)", load.c_str());
     try {
+        // One context for every table (GL names are per context).
+        sg::gl::HeadlessContext ctx;
+        o.renderer = ctx.renderer();
+        std::printf("renderer: %s, OpenGL %s\n", o.renderer.c_str(), ctx.version().c_str());
         for (const Entry& e : entries) {
             if (table == "all" || table == e.name) e.fn(o);
         }

@@ -88,7 +88,7 @@ const char* kMethodNames[STUDY_BLEND_COUNT] = {"surface gradient (sum)", "linear
 } // namespace
 
 void tableBlend(const Options& o) {
-    sg::gl::HeadlessContext ctx;
+    const FullscreenTriangle fullscreen;
     const int w = o.quick ? 128 : 512;
     Layer base{1.0, {1.0, 0.6}, {2, 3}, {1, -4}, {0.0, 1.3}};
     Layer detail{1.0, {1.0, 0.7}, {13, -9}, {7, 16}, {0.4, 2.1}};
@@ -155,7 +155,7 @@ void tableBlend(const Options& o) {
                 glBindTextureUnit(1, order == 0 ? texB : texA);
                 target.clear();
                 setUniforms(one[size_t(m)], true);
-                drawFullscreen();
+                fullscreen.draw();
                 (order == 0 ? ab : ba) = target.read(0);
             }
             std::vector<double> err;
@@ -196,12 +196,12 @@ void tableBlend(const Options& o) {
     const auto msOne = timeVariants(STUDY_BLEND_COUNT, [&](size_t m) {
         tim.clear();
         setUniforms(one[m], false);
-        drawFullscreen();
+        fullscreen.draw();
     }, o);
     const auto msLoop = timeVariants(STUDY_BLEND_COUNT, [&](size_t m) {
         tim.clear();
         setUniforms(loop[m], false);
-        drawFullscreen();
+        fullscreen.draw();
     }, o);
     deleteTexture(texA);
     deleteTexture(texB);
@@ -219,7 +219,7 @@ void tableBlend(const Options& o) {
     t.notes.push_back("Errors in degrees over " + std::to_string(w) + "^2 texel centres (GPU output, RGBA32F maps and "
                       "target; truth in double). Regimes: each layer's steepest slope 0.25 / 1 / 3 (14 / 45 / 72 "
                       "degrees). 'order max': largest angle between blend(a,b) and blend(b,a), steep regime.");
-    t.notes.push_back("Cost: " + std::to_string(tw) + "^2 full-screen pass on " + ctx.renderer() + ", " +
+    t.notes.push_back("Cost: " + std::to_string(tw) + "^2 full-screen pass on " + o.renderer + ", " +
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratios to the surface-gradient method in the same run.");
     t.print(o.markdown);

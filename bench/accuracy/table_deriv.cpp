@@ -196,7 +196,7 @@ struct Sphere {
 } // namespace
 
 void tableDerivatives(const Options& o) {
-    sg::gl::HeadlessContext ctx;
+    const FullscreenTriangle fullscreen;
     const int size = o.quick ? 256 : 768;
     Sphere sph(size);
     const int mapW[3] = {0, o.quick ? 128 : 512, o.quick ? 512 : 2048};
@@ -306,7 +306,7 @@ void tableDerivatives(const Options& o) {
     for (size_t k = 0; k < variants.size(); ++k) {
         target.clear();
         use(k, acc[k]);
-        drawFullscreen();
+        fullscreen.draw();
         const auto nrm = target.read(0), dpdx = target.read(1);
         std::vector<double> ne, de;
         for (size_t i = 0; i < px; ++i) {
@@ -327,7 +327,7 @@ void tableDerivatives(const Options& o) {
     const auto ms = timeVariants(variants.size(), [&](size_t k) {
         timTarget.clear();
         use(k, tim[k]);
-        drawFullscreen();
+        fullscreen.draw();
     }, o);
     for (int m = 1; m <= 2; ++m) {
         deleteTexture(heightTex[m]);
@@ -355,7 +355,7 @@ void tableDerivatives(const Options& o) {
                       fmt(1.0 / (dsPerPixel * mapW[2]), 2) + " pixels per texel.");
     t.notes.push_back("dFdxCoarse vs dFdxFine on this driver: largest normal difference " + fmtErr(coarseVsFine) +
                       " degrees (llvmpipe computes coarse derivatives like fine ones: STACK.md).");
-    t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + ctx.renderer() + " (ray-sphere in every "
+    t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer + " (ray-sphere in every "
                       "variant), " + std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the first row.");
     t.print(o.markdown);

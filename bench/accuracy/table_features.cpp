@@ -191,7 +191,7 @@ void main() {
 } // namespace
 
 void tableFeatures(const Options& o) {
-    sg::gl::HeadlessContext ctx;
+    const FullscreenTriangle fullscreen;
     const int n = 128;
     const CurveNetwork net = drawing();
     sg::features::BakeOptions bo;
@@ -399,7 +399,7 @@ void tableFeatures(const Options& o) {
         glBindTextureUnit(0, texNormal);
         glBindTextureUnit(1, texCorners[mapSet]);
         glBindTextureUnit(2, texEdges[mapSet]);
-        drawFullscreen();
+        fullscreen.draw();
     }, o);
     glDeleteTextures(2, texCorners);
     glDeleteTextures(2, texEdges);
@@ -435,7 +435,7 @@ void tableFeatures(const Options& o) {
                       "w0 < d < w only); paper vs masked surfgrad on the bumpy base: at most " +
                       fmtErr(paperVsMaskedMax) + " degrees.");
     t.notes.push_back("Cost: " + std::to_string(view) + "^2 pass over a 32x32-texel window (" +
-                      std::to_string(featureTexels) + "/1024 texels with a discontinuity), " + ctx.renderer() + ", " +
+                      std::to_string(featureTexels) + "/1024 texels with a discontinuity), " + o.renderer + ", " +
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the bilinear map (RGBA8, GL_LINEAR). Accuracy per resolution "
                       "64..1024: features_bench accuracy.");

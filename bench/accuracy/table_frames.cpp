@@ -119,7 +119,6 @@ FrameSourceErrors measureFrameSources(const TorusBump& scene, int size) {
 
 void tableFrames(const Options& o) {
     const std::vector<int> levels = o.quick ? std::vector<int>{1} : std::vector<int>{1, 3};
-    sg::gl::HeadlessContext ctx;
     Table t;
     t.title = "Table 1: tangent frame source (B-spline torus, limit mesh, derivative map baked against the exact frame)";
     t.header = {"level", "source", "tris", "p50 deg", "p90 deg", "p99 deg", "max deg", "frame ms", "vs mikktspace"};

@@ -107,7 +107,6 @@ glm::dvec3 sharedPixelPath(const PixelInputs& in) {
 } // namespace
 
 void tablePrecision(const Options& o) {
-    sg::gl::HeadlessContext ctx;
     const int level = o.quick ? 1 : 3;
     TorusBump scene(level, o.quick);
     const unsigned tex = makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
@@ -208,7 +207,7 @@ void tablePrecision(const Options& o) {
     t.notes.push_back("binary16 is emulated (every operation rounded to binary16, precision_path.h); the binary32 "
                       "transcription differs from the shared C++ build (sg::glsl) by at most " + fmtErr(mirrorMax) +
                       " degrees.");
-    t.notes.push_back("cost n/a: " + ctx.renderer() + " exposes no 16-bit float arithmetic to GLSL (no float16_t "
+    t.notes.push_back("cost n/a: " + o.renderer + " exposes no 16-bit float arithmetic to GLSL (no float16_t "
                       "extension) and desktop GLSL ignores mediump, so binary16 runs at binary32 speed here; on "
                       "GPUs with double-rate fp16 the ALU part of this path could run up to 2x faster.");
     t.print(o.markdown);

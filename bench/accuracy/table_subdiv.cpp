@@ -120,7 +120,6 @@ TorusErrors torusErrors(const TorusCage& cage, const sg::mesh::RenderMesh& mesh)
 } // namespace
 
 void tableSubdivision(const Options& o) {
-    sg::gl::HeadlessContext ctx;
     const int maxLevel = o.quick ? 2 : 5;
     const int buildRuns = o.quick ? 1 : 5;
     sg::gl::Program program = makeProgram(kVertex, kFragment, "subdiv");
@@ -183,7 +182,7 @@ void tableSubdivision(const Options& o) {
                       "centroid of every triangle.");
     t.notes.push_back("build ms: Subdivider::build median of " + std::to_string(buildRuns) +
                       " (render mesh included; +limit adds limit evaluation). render: " + std::to_string(o.size) +
-                      "^2 Lambert pass on " + ctx.renderer() + ", " + std::to_string(o.runs) + " runs x " +
+                      "^2 Lambert pass on " + o.renderer + ", " + std::to_string(o.runs) + " runs x " +
                       std::to_string(o.frames) + " frames, ratio to level 0 (limit meshes have the same triangles).");
     t.print(o.markdown);
 
