@@ -440,6 +440,40 @@ struct Subdivider::Impl {
     // Copies of one vertex evaluated from different home faces differ in the
     // last bits; make them bitwise equal (no cracks): positions per refined
     // vertex, normals per smooth group.
+    // Area-weighted normals of the refined polygons (Newell normal per face,
+    // for a quad the cross product of its diagonals: the sum of its two
+    // triangles' normals, whichever diagonal splits it), summed per smooth
+    // group (vertex and sector) and normalized; the same for a build and
+    // every update(). `scratch` holds the sums.
+    void polygonNormals(const glm::vec3* pos, glm::vec3* nrm, std::vector<glm::vec3>& scratch) const {
+        const size_t nR = smoothGroup.size();
+        scratch.assign(nR, glm::vec3(0.0f));
+        const uint32_t* crv = split.cornerRenderVertex.data();
+        size_t c = 0;
+        for (uint32_t k : refined.faceSizes) {
+            if (crv[c] != UINT32_MAX) { // holes of refined() (limit builds) have no render vertices
+                glm::vec3 n;
+                if (k == 4) {
+                    n = glm::cross(pos[crv[c + 2]] - pos[crv[c]], pos[crv[c + 3]] - pos[crv[c + 1]]);
+                } else {
+                    n = glm::vec3(0.0f);
+                    for (uint32_t j = 0; j < k; ++j) n += glm::cross(pos[crv[c + j]], pos[crv[c + (j + 1) % k]]);
+                }
+                for (uint32_t j = 0; j < k; ++j) scratch[smoothGroup[crv[c + j]]] += n;
+            }
+            c += k;
+        }
+        for (size_t r = 0; r < nR; ++r) {
+            const glm::vec3& a = scratch[smoothGroup[r]];
+            float len = glm::length(a);
+            // A vanishing sum (a fin whose faces cancel, or degenerate faces)
+            // keeps the previous normal, or +z.
+            if (len > 0.0f && std::isfinite(len)) nrm[r] = a / len;
+            else if (!(glm::length(nrm[r]) > 0.5f)) nrm[r] = glm::vec3(0.0f, 0.0f, 1.0f);
+        }
+    }
+    mutable std::vector<glm::vec3> normalScratch;
+
     void unifyCopies(glm::vec3* pos, glm::vec3* nrm) const {
         for (size_t r = 0; r < positionRep.size(); ++r) {
             pos[r] = pos[positionRep[r]];
@@ -974,7 +1008,8 @@ void Subdivider::Impl::buildRender(const Far::TopologyRefiner& refiner) {
             positionRep[r] = f;
         }
     }
-    computeVertexNormals(render, smoothGroup);
+    render.normals.assign(nR, glm::vec3(0.0f));
+    polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
     render.morphTargets.resize(refined.morphTargets.size());
     for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
         render.morphTargets[t].name = refined.morphTargets[t].name;
@@ -1096,7 +1131,7 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
                 for (size_t r = 0; r < nR; ++r) render.morphTargets[t].positionDeltas[r] = refined.morphTargets[t].positionDeltas[renderToRefined[r]];
             }
             render.morphWeights = refined.morphWeights;
-            computeVertexNormals(render, smoothGroup);
+            polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
             for (size_t r = nR; r-- > 0;) refined.normals[renderToRefined[r]] = render.normals[r];
         } else {
             buildRender(*keptRefiner);
@@ -1280,7 +1315,7 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
     m.uniformStencils.apply(m.points.data());
     const glm::vec3* levelN = m.points.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
     for (size_t r = 0; r < nR; ++r) out.positions[r] = levelN[m.renderToLevel[r]];
-    if (recomputeNormals) computeVertexNormals(out, m.smoothGroup);
+    if (recomputeNormals) m.polygonNormals(out.positions.data(), out.normals.data(), m.normalScratch);
 }
 
 } // namespace sg::mesh

