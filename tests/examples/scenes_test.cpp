@@ -8,7 +8,8 @@
 //    distinct fragment and vertex program of the scene) passes the Khronos
 //    reference compiler, glslangValidator, independently of the GL driver;
 //  - README.md exists and names the rendered image, which exists under
-//    docs/images/examples/.
+//    docs/images/examples/;
+//  - `surfgrad view` opens it under xvfb-run and screenshots the window.
 // Examples are discovered from the source tree, so a new one is covered
 // without editing this file; the expected ones must be there.
 #include <gtest/gtest.h>
@@ -168,6 +169,29 @@ TEST_P(SceneExample, HasAReadmeAndARenderedImage) {
         << "README should give the render command";
     Image img = readImage(kSourceDir / image);
     EXPECT_GT(img.width, 0) << image << " missing or unreadable";
+}
+
+// The example opens in the interactive viewer (GLFW + Dear ImGui) under a
+// virtual X server, draws a few frames and screenshots the window: a valid
+// image of the requested size with the render and the panel in it.
+TEST_P(SceneExample, OpensInTheViewerUnderXvfb) {
+    fs::path dir = scratchDir("view_" + GetParam());
+    fs::path shot = dir / "shot.png";
+    RunResult r = run("xvfb-run -a -s '-screen 0 1280x1024x24' " + quote(kCli) + " view " + quote(scene()) +
+                      " --frames 3 --size 400x300 --screenshot " + quote(shot));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    Image img = readImage(shot);
+    ASSERT_EQ(img.width, 400) << r.output;
+    ASSERT_EQ(img.height, 300);
+    // Many distinct colours: shaded surfaces and the panel, not a cleared window.
+    std::set<int> colours;
+    for (int y = 0; y < img.height; y += 2) {
+        for (int x = 0; x < img.width; x += 2) {
+            colours.insert(int(img.at(x, y, 0) * 255.0f) << 16 | int(img.at(x, y, 1) * 255.0f) << 8 |
+                           int(img.at(x, y, 2) * 255.0f));
+        }
+    }
+    EXPECT_GT(colours.size(), 100u);
 }
 
 INSTANTIATE_TEST_SUITE_P(All, SceneExample, ::testing::ValuesIn(sceneExamples()),
