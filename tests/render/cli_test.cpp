@@ -16,18 +16,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Run {
+struct CmdResult {
     int status = -1;
     std::string output; // stdout + stderr
 };
 
-Run run(const std::string& args, const fs::path& cwd) {
+CmdResult run(const std::string& args, const fs::path& cwd) {
     fs::create_directories(cwd);
     fs::path log = cwd / "cmd.log";
     std::string cmd = "cd '" + cwd.string() + "' && " + std::string(SURFGRAD_BINARY_DIR) + "/bin/surfgrad " + args +
                       " > '" + log.string() + "' 2>&1";
     int rc = std::system(cmd.c_str());
-    Run r;
+    CmdResult r;
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
     std::ifstream in(log);
     std::stringstream ss;
@@ -55,7 +55,7 @@ size_t distinctColours(const Image& img) {
 
 TEST(Cli, RenderWithoutArgumentsWritesTheDefaultImage) {
     fs::path dir = scratch("default");
-    Run r = run("render --size 192x108", dir);
+    CmdResult r = run("render --size 192x108", dir);
     ASSERT_EQ(r.status, 0) << r.output;
     Image img = readImage(dir / "out/default.png");
     EXPECT_EQ(img.width, 192);
@@ -67,7 +67,7 @@ TEST(Cli, BadInputFailsWithTheFieldAndNoOutput) {
     fs::path dir = scratch("bad");
     std::ofstream(dir / "bad.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
         "materials": [{"layers": [{"type": "noise", "octaves": 40}]}]})";
-    Run r = run("render bad.json -o bad.png", dir);
+    CmdResult r = run("render bad.json -o bad.png", dir);
     EXPECT_EQ(r.status, 1);
     EXPECT_NE(r.output.find("bad.json: materials[0].layers[0].octaves: expected an integer in [1, 12]"),
               std::string::npos)
@@ -76,11 +76,11 @@ TEST(Cli, BadInputFailsWithTheFieldAndNoOutput) {
     // Same for `shader`, an unknown AOV, a bad size, an unsupported format,
     // and an output that would overwrite the input.
     EXPECT_EQ(run("shader bad.json", dir).status, 1);
-    Run aov = run("render --aov normals -o x.png", dir);
+    CmdResult aov = run("render --aov normals -o x.png", dir);
     EXPECT_EQ(aov.status, 1);
     EXPECT_NE(aov.output.find("--aov"), std::string::npos);
     EXPECT_NE(run("render --size 0x10 -o x.png", dir).status, 0);
-    Run fmt = run("render --size 8x8 -o x.bmp", dir);
+    CmdResult fmt = run("render --size 8x8 -o x.bmp", dir);
     EXPECT_EQ(fmt.status, 1);
     EXPECT_NE(fmt.output.find("unsupported image format"), std::string::npos);
     std::ofstream(dir / "ok.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}]})";
@@ -92,7 +92,7 @@ TEST(Cli, ShaderPrintsOnlyWhatTheSceneUses) {
     fs::path dir = scratch("shader");
     std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
         "materials": [{"layers": [{"type": "noise"}]}]})";
-    Run r = run("shader s.json", dir);
+    CmdResult r = run("shader s.json", dir);
     ASSERT_EQ(r.status, 0) << r.output;
     EXPECT_NE(r.output.find("#version 450"), std::string::npos);
     EXPECT_NE(r.output.find("sgLayerNoise"), std::string::npos);

@@ -261,7 +261,8 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             glUniform1i(gp.loc(name.c_str()), GLint(s));
         }
         // Feature maps: corners (RGBA32F) and edges (RGBA32UI), read with
-        // texelFetch only, on the units after the regular textures.
+        // texelFetch only, on the units after the regular textures; the
+        // per-layer sampler arrays point at them (and at the base maps).
         for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
             GLuint unit = GLuint(plan.textureKeys.size() + 2 * f);
             auto it = assets.featureMaps.find(plan.featureKeys[f]);
@@ -269,10 +270,16 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             if (it != assets.featureMaps.end()) I.featureTextures(*it->second, tc, te);
             glBindTextureUnit(unit, tc);
             glBindTextureUnit(unit + 1, te);
-            std::string c = "uFeatCorners" + std::to_string(f), e = "uFeatEdges" + std::to_string(f);
-            glUniform1i(gp.loc(c.c_str()), GLint(unit));
-            glUniform1i(gp.loc(e.c_str()), GLint(unit + 1));
         }
+        for (const auto& g : plan.groups)
+            for (const auto& pl : g) {
+                if (pl.featureIndex < 0) continue;
+                std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
+                GLint unit = GLint(plan.textureKeys.size()) + 2 * pl.featureSlot;
+                glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
+                glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
+                glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
+            }
         const Material& mat = scene.materials[size_t(mi.material)];
         if (mat.doubleSided == DoubleSided::Off) {
             glEnable(GL_CULL_FACE);

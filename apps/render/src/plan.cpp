@@ -193,6 +193,7 @@ struct Planner {
             auto it = std::find(plan.featureKeys.begin(), plan.featureKeys.end(), key);
             pl.featureSlot = int(it - plan.featureKeys.begin());
             if (it == plan.featureKeys.end()) plan.featureKeys.push_back(key);
+            pl.featureIndex = plan.featureLayerCount++;
         }
         int nTex = L.kind == LayerKind::Triplanar ? 3 : (L.kind == LayerKind::Noise ? 0 : 1);
         for (int i = 0; i < nTex; ++i) {
@@ -498,10 +499,7 @@ std::string layerCall(const PlanLayer& pl) {
         return "sgLayerDecal(frame, vRelPos, sgUnpackDecal(" + recs(pl.record, 6) + "), " + tex(pl.tex[0]) + ")";
     case LayerKind::Noise:
         return "sgLayerNoise(frame, " + vol + ", sgUnpackNoise(" + recs(pl.record, 3) + "))";
-    case LayerKind::Feature:
-        return "sgLayerFeature(" + uv + ", sgUnpackFeatureLayer(" + recs(pl.record, 3) + "), sgUnpackFeatProfile(" +
-               recs(pl.record + 3, 6) + "), uFeatCorners" + std::to_string(pl.featureSlot) + ", uFeatEdges" +
-               std::to_string(pl.featureSlot) + ", " + tex(pl.tex[0]) + ")";
+    case LayerKind::Feature: break; // emitted as a loop per group (fragmentBody)
     case LayerKind::PostResolve: break;
     }
     return "vec3(0.0)";
@@ -534,9 +532,33 @@ std::string fragmentBody(const MaterialPlan& plan) {
         o << "uniform sampler2D uTex" << i << "; // " << (plan.textureKeys[i].empty() ? "(none)" : plan.textureKeys[i])
           << "\n";
     }
-    for (size_t i = 0; i < plan.featureKeys.size(); ++i) {
-        o << "uniform sampler2D uFeatCorners" << i << "; // " << plan.featureKeys[i] << "\n"
-          << "uniform usampler2D uFeatEdges" << i << ";\n";
+    if (plan.featureLayerCount > 0) {
+        // Feature layers run in one loop per group (below), so the large
+        // evaluator is compiled once however many feature layers there are:
+        // llvmpipe's compile time grows faster than linearly with program
+        // size (two inlined copies took 40x the time of one). Per-layer data
+        // come from these arrays, indexed by the (dynamically uniform) loop
+        // counter.
+        std::vector<int> rec(size_t(plan.featureLayerCount)), uvs(rec.size()), flags(rec.size());
+        for (const auto& g : plan.groups)
+            for (const auto& pl : g) {
+                if (pl.featureIndex < 0) continue;
+                rec[size_t(pl.featureIndex)] = pl.record;
+                uvs[size_t(pl.featureIndex)] = pl.layer->uvSet;
+                flags[size_t(pl.featureIndex)] = pl.uberIndex;
+            }
+        auto arr = [&](const char* name, const std::vector<int>& v) {
+            o << "const int " << name << "[" << v.size() << "] = int[" << v.size() << "](";
+            for (size_t i = 0; i < v.size(); ++i) o << (i ? ", " : "") << v[i];
+            o << ");\n";
+        };
+        int n = plan.featureLayerCount;
+        o << "uniform sampler2D uFeatCorners[" << n << "];\n"
+          << "uniform usampler2D uFeatEdges[" << n << "];\n"
+          << "uniform sampler2D uFeatBase[" << n << "];\n";
+        arr("kFeatRecord", rec);
+        arr("kFeatUvSet", uvs);
+        if (plan.uber) arr("kFeatFlag", flags);
     }
     if (plan.uber) o << "uniform float uLayerOn[" << std::max(plan.uberFlagCount, 1) << "];\n";
     o << "\nvoid main() {\n"
@@ -591,7 +613,15 @@ std::string fragmentBody(const MaterialPlan& plan) {
             }
             o << indent << "surfGrad = vec3(0.0);\n";
         }
+        int featFirst = -1, featCount = 0;
+        uint32_t featUvMask = 0;
         for (const auto& pl : plan.groups[g]) {
+            if (pl.featureIndex >= 0) {
+                if (featFirst < 0) featFirst = pl.featureIndex;
+                ++featCount;
+                featUvMask |= 1u << pl.layer->uvSet;
+                continue;
+            }
             o << indent << "// " << layerKindName(pl.layer->kind) << " (" << pl.layer->fieldPath << ")\n";
             if (plan.uber) {
                 o << indent << "if (uLayerOn[" << pl.uberIndex << "] > 0.5) ";
@@ -599,6 +629,29 @@ std::string fragmentBody(const MaterialPlan& plan) {
                 o << indent;
             }
             o << "surfGrad += " << layerCall(pl) << ";\n";
+        }
+        if (featCount > 0) {
+            o << indent << "// feature layers " << featFirst << ".." << featFirst + featCount - 1
+              << " (one loop: the evaluator is compiled once)\n"
+              << indent << "for (int fi = " << featFirst << "; fi < " << featFirst + featCount << "; ++fi) {\n";
+            if (plan.uber) o << indent << "    if (!(uLayerOn[kFeatFlag[fi]] > 0.5)) continue;\n";
+            o << indent << "    int r = kFeatRecord[fi];\n";
+            int firstUv = -1;
+            for (int k = 0; k < plan.uvCount; ++k) {
+                if (!(featUvMask >> k & 1u)) continue;
+                if (firstUv < 0) {
+                    firstUv = k;
+                    o << indent << "    SgUvFrame fuv = uv" << k << ";\n";
+                } else {
+                    o << indent << "    if (kFeatUvSet[fi] == " << k << ") fuv = uv" << k << ";\n";
+                }
+            }
+            o << indent << "    surfGrad += sgLayerFeature(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + 1], "
+                           "uLayerData[r + 2]),\n"
+              << indent << "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
+                           "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n"
+              << indent << "        uFeatCorners[fi], uFeatEdges[fi], uFeatBase[fi]);\n"
+              << indent << "}\n";
         }
         if (g == 0) {
             o << "    vec3 nrm = sgResolve(frame, surfGrad); // listing 1\n"
@@ -836,9 +889,12 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
         baseColor *= glm::vec3(G::textureGrad(smp[size_t(plan.baseColorTex)], f.st, f.dSTdx, f.dSTdy));
     }
     glm::vec3 surfGrad(0.0f);
-    for (const auto& pl : plan.groups[0]) {
-        if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
-    }
+    // Same order as the GLSL: other layers first, then the feature loop.
+    for (int pass = 0; pass < 2; ++pass)
+        for (const auto& pl : plan.groups[0]) {
+            if ((pl.featureIndex >= 0) != (pass == 1)) continue;
+            if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
+        }
     glm::vec3 nrm = G::sgResolve(frame, surfGrad);
     glm::vec3 surfGradOut = surfGrad;
     glm::vec3 tangentOut = uv[0].vT, bitangentOut = uv[0].vB;
@@ -851,9 +907,11 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
             if (m >> k & 1u) uv[kk] = G::sgUvFramePixel(frame, uv[kk].st, uv[kk].dSTdx, uv[kk].dSTdy);
         }
         surfGrad = glm::vec3(0.0f);
-        for (const auto& pl : plan.groups[g]) {
-            if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
-        }
+        for (int pass = 0; pass < 2; ++pass)
+            for (const auto& pl : plan.groups[g]) {
+                if ((pl.featureIndex >= 0) != (pass == 1)) continue;
+                if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
+            }
         nrm = G::sgResolve(frame, surfGrad);
     }
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);

@@ -326,6 +326,7 @@ struct PlanLayer {
     int recordCount = 0;
     int tex[3] = {-1, -1, -1}; // texture slots
     int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
+    int featureIndex = -1;     // feature layers: index among the plan's feature layers
     int maskTex = -1;          // modulate mask slot
     bool hasModifiers = false;
     int modRecord = -1;        // first of 4 modifier records
@@ -345,6 +346,7 @@ struct MaterialPlan {
     std::vector<std::string> textureKeys;       // slot -> TextureSource::key()
     std::vector<const TextureSource*> textureSources; // slot -> source
     std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
+    int featureLayerCount = 0;                        // feature layers (all groups)
     int recordCount = 0;
     int uberFlagCount = 0;
     uint32_t uvUsedMask = 0;        // UV sets read by some layer (or the base colour map)
