@@ -927,10 +927,11 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     const bool wide = wideSimd_ && cpuHasAvx2();
     s.terms.resize(7 * termCapacity);
     const Terms chunkTerms = Terms::over(s.terms.data(), termCapacity);
-    s.outNbr.resize(maxDegree);
-    s.inNbr.resize(maxDegree);
-    s.component.resize(maxDegree);
-    s.members.resize(maxDegree);
+    const size_t localSize = std::max<size_t>(maxDegree, 8); // the 8-lane path writes 8
+    s.outNbr.resize(localSize);
+    s.inNbr.resize(localSize);
+    s.component.resize(localSize);
+    s.members.resize(localSize);
     int32_t* const outNbr = s.outNbr.data();
     int32_t* const inNbr = s.inNbr.data();
 
@@ -1128,13 +1129,78 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const Incidence* list = s.incidence.data() + s.incidenceStart[w];
             const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
             if (k == 0) continue;
-            bool touchesAny = false;
-            for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
-            if (touchesAny) {
-                s.deferred.push_back(w);
-                continue;
-            }
             const Terms terms = chunkTerms.offset(s.incidenceStart[w] - s.incidenceStart[w0]);
+#if defined(__SSE2__)
+            if (k <= 8) {
+                // The usual vertex, without data-dependent loops (their exits
+                // are what costs here): flags, pairing and the single-group
+                // test on all 8 lanes at once; lanes >= k hold ids no welded
+                // vertex has, distinct per lane.
+                alignas(16) uint32_t packed[8], nexts[8], prevs[8];
+                alignas(16) int32_t inLinks[8];
+                for (uint32_t e = 0; e < 8; ++e) {
+                    const bool used = e < k;
+                    packed[e] = used ? list[e].packed : 0u;
+                    nexts[e] = used ? list[e].next : 0xFFFFFF00u + e;
+                    prevs[e] = used ? list[e].prev : 0xFFFFFE00u + e;
+                    outNbr[e] = -1;
+                    inLinks[e] = -1;
+                }
+                auto load = [](const void* p) { return _mm_load_si128(static_cast<const __m128i*>(p)); };
+                auto bits8 = [](__m128i lo, __m128i hi) {
+                    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(lo))) |
+                           unsigned(_mm_movemask_ps(_mm_castsi128_ps(hi))) << 4;
+                };
+                const __m128i pk0 = load(packed), pk1 = load(packed + 4);
+                const __m128i anyBit = _mm_set1_epi32(8), orientBit = _mm_set1_epi32(4);
+                const unsigned valid = (1u << k) - 1u;
+                const unsigned anyBits = bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, anyBit), anyBit),
+                                               _mm_cmpeq_epi32(_mm_and_si128(pk1, anyBit), anyBit)) & valid;
+                if (anyBits != 0) {
+                    s.deferred.push_back(w);
+                    continue;
+                }
+                const unsigned orientBits =
+                    bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, orientBit), orientBit),
+                          _mm_cmpeq_epi32(_mm_and_si128(pk1, orientBit), orientBit)) & valid;
+                const __m128i n0 = load(nexts), n1 = load(nexts + 4), p0 = load(prevs), p1 = load(prevs + 4);
+                bool simple = true;
+                for (uint32_t e = 0; e < 8; ++e) {
+                    const __m128i x = _mm_set1_epi32(int(nexts[e]));
+                    const unsigned sameNext = bits8(_mm_cmpeq_epi32(n0, x), _mm_cmpeq_epi32(n1, x));
+                    const unsigned prevIsX = bits8(_mm_cmpeq_epi32(p0, x), _mm_cmpeq_epi32(p1, x));
+                    simple &= (sameNext & (sameNext - 1)) == 0 && (prevIsX & (prevIsX - 1)) == 0;
+                    if (prevIsX != 0) {
+                        const int32_t f = int32_t(__builtin_ctz(prevIsX));
+                        outNbr[e] = f;
+                        inLinks[f] = int32_t(e);
+                    }
+                }
+                if (simple && (orientBits == 0 || orientBits == valid)) {
+                    // One orientation: one group iff the out-links chain all
+                    // entries, from the entry without an in-link (open fan)
+                    // or from entry 0 (closed fan).
+                    const unsigned noIn = bits8(_mm_cmplt_epi32(load(inLinks), _mm_setzero_si128()),
+                                                _mm_cmplt_epi32(load(inLinks + 4), _mm_setzero_si128())) & valid;
+                    const int32_t start = noIn != 0 ? int32_t(__builtin_ctz(noIn)) : 0;
+                    size_t reached = 1;
+                    for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
+                    if (reached == k) {
+                        for (uint32_t e = 0; e < 8; ++e) members[e] = e;
+                        emitGroup(list, terms, members, k, orientBits != 0);
+                        continue;
+                    }
+                }
+            } else
+#endif
+            {
+                bool touchesAny = false;
+                for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
+                if (touchesAny) {
+                    s.deferred.push_back(w);
+                    continue;
+                }
+            }
             if (k == 1) {
                 members[0] = 0;
                 emitGroup(list, terms, members, 1, list[0].orient());
