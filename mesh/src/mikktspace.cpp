@@ -2,25 +2,28 @@
 // Wrinkled Surfaces Revisited", section 4.2; the published mikktspace.c
 // algorithm with its default 180-degree threshold). Same stages as the
 // oracle (mikktspace_reference.cpp, read that first) and the same float
-// kernels (mikktspace_common.h); what changes is the data layout:
+// operations (mikktspace_common.h, or SIMD lanes doing exactly those IEEE
+// operations in the same order); what changes is the data flow:
 //
-//  - welding hashes INPUT VERTICES (not corners): corners that name the same
-//    vertex have the same values, so V lookups instead of 3T; welded ids are
-//    numbered densely in order of first use and their values copied into
-//    compact arrays, so every later stage reads 32 bytes per welded vertex
-//    in roughly triangle order;
-//  - adjacency uses a vertex -> incident-corner table (counting sort, lists
-//    in ascending triangle order) whose entries carry the previous and next
-//    welded vertex of the corner: the triangles on an edge {a, b} are found
-//    by scanning a's list, in the order the reference's sorted edge list
-//    has them, without sorting 3T edges;
-//  - group membership is a bit per corner, the flood fill an explicit stack,
-//    and a group's projected derivatives and corner angles are computed once
-//    per member (the reference recomputes them per pair); when every pair of
-//    members passes the threshold test (almost always: the default threshold
-//    only separates exactly opposite frames) the group is one subgroup and
-//    its frame is accumulated once;
-//  - all buffers live in the generator and are reused between calls.
+//  - the weld hashes INPUT VERTICES (not corners): corners that name the
+//    same vertex have the same values, so V lookups instead of 3T, with the
+//    table slot prefetched; welded ids are numbered densely in order of
+//    first use and their values copied into one compact array;
+//  - a vertex -> incident-corner table (counting sort; lists in ascending
+//    triangle order; entries carry the previous and next welded vertex and
+//    the triangle's flags) replaces the global edge sort AND the group
+//    flood: the reference floods a group across the two edges at its
+//    vertex, so pairing (step 6), groups (step 7) and frames (step 8) of a
+//    vertex need only its own list. Vertices touching a group-with-any
+//    triangle (whose orientation the first group reaching it sets) are
+//    deferred and replayed in the reference's seed order;
+//  - per-corner terms (projected derivatives, corner cosine) 4 or 8 corners
+//    per SIMD step, angles 2 or 4 per step without libm's acos except near
+//    float rounding boundaries (mikk::acosRoundedToFloat); the subgroup test
+//    is settled in one dot product per member when every member is within
+//    89 degrees of the first (the 180-degree threshold then cannot split);
+//  - results are written in incidence order and gathered into corner order
+//    once; all buffers live in the generator and are reused between calls.
 #include <algorithm>
 #include <limits>
 #include <vector>
