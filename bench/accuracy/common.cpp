@@ -253,16 +253,19 @@ std::vector<double> timeVariants(size_t count, const std::function<void(size_t)>
     }
     std::vector<std::vector<double>> perRun(count);
     for (int r = 0; r < o.runs; ++r) {
-        for (size_t v = 0; v < count; ++v) {
-            std::vector<double> t;
-            for (int f = 0; f < o.frames; ++f) {
+        // Frame-level interleaving (A B C A B C ...): load from other
+        // processes changes within a second on a shared machine, so every
+        // variant samples the same moments.
+        std::vector<std::vector<double>> t(count);
+        for (int f = 0; f < o.frames; ++f) {
+            for (size_t v = 0; v < count; ++v) {
                 const auto t0 = Clock::now();
                 frame(v);
                 glFinish();
-                t.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                t[v].push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
             }
-            perRun[v].push_back(median(t));
         }
+        for (size_t v = 0; v < count; ++v) perRun[v].push_back(median(t[v]));
     }
     std::vector<double> out;
     for (auto& v : perRun) out.push_back(median(v));

@@ -6,10 +6,10 @@
 // Timing method (../shared/STACK.md, "Timing trap"): llvmpipe skips draws
 // that a later opaque draw covers, so each timed frame is exactly one
 // clear + draw + glFinish, measured on the wall clock. Variants of one table
-// are interleaved run by run (variant A, B, C, A, B, C, ...) so drift from
-// other load on the machine hits all of them alike; a variant's time is the
-// median over runs of the per-run median frame time, and every ratio is
-// against a baseline measured in the same run.
+// are interleaved frame by frame (A, B, C, A, B, C, ...) so drift from other
+// load on the machine hits all of them alike; a variant's time is the median
+// over runs of the per-run median frame time, and every ratio is against a
+// baseline measured in the same run.
 #pragma once
 
 #include <functional>
@@ -135,7 +135,8 @@ unsigned makeFloatTexture(int width, int height, int channels, const std::vector
                           bool repeatS, bool repeatT);
 void deleteTexture(unsigned tex);
 
-// Times frames of several variants, interleaved (see the file comment).
+// Times frames of several variants, interleaved frame by frame (see the
+// file comment).
 // frame(i) must draw variant i completely (clear + draw); the timer adds
 // glFinish. Returns per variant the median over runs of the per-run median
 // frame time, in milliseconds.
