@@ -160,6 +160,13 @@ void tableFrames(const Options& o) {
                           fmtErr(scene.limitCheckMaxDist) + " object units; MikkTSpace split the mesh to " +
                           std::to_string(scene.mikkMesh.vertexCount()) + " vertices (" +
                           std::to_string(scene.pixelMesh.vertexCount()) + " without tangents)");
+        glm::dvec2 mikkWorst(0.0), limitWorst(0.0);
+        const ErrorStats vm = errorStats(scene.vertexTangentErrors(scene.mikkMesh, &mikkWorst));
+        const ErrorStats vl = errorStats(scene.vertexTangentErrors(scene.limitMesh, &limitWorst));
+        t.notes.push_back("level " + std::to_string(level) + " vertex tangents vs the exact tangent at the vertex: "
+                          "MikkTSpace p50 " + fmtErr(vm.p50) + ", max " + fmtErr(vm.max) + " deg (at uv " +
+                          fmt(mikkWorst.x, 3) + ", " + fmt(mikkWorst.y, 3) + "); limit p50 " + fmtErr(vl.p50) +
+                          ", max " + fmtErr(vl.max) + " deg");
         deleteTexture(tex);
     }
     t.notes.push_back("Error: angle between the rendered normal and Blinn's perturbed normal of h(s,t) = " +

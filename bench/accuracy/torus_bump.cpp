@@ -87,6 +87,22 @@ glm::dvec2 TorusBump::sampleDeriv(double s, double t) const {
            ax * ay * texel(i0 + 1, j0 + 1);
 }
 
+std::vector<double> TorusBump::vertexTangentErrors(const sg::mesh::RenderMesh& mesh, glm::dvec2* worstUv) const {
+    std::vector<double> err;
+    double worst = -1;
+    for (size_t v = 0; v < mesh.vertexCount(); ++v) {
+        const glm::dvec2 uv(mesh.uvSets[0][v]);
+        glm::dvec3 t, b;
+        exactFrame(cage.limit(uv.x, uv.y), t, b);
+        err.push_back(angleDeg(glm::dvec3(mesh.tangents[v]), t));
+        if (err.back() > worst) {
+            worst = err.back();
+            if (worstUv) *worstUv = uv;
+        }
+    }
+    return err;
+}
+
 const char* torusVertexShader() {
     return R"(
 layout(location = 0) in vec3 aPos;

@@ -51,6 +51,10 @@ struct TorusBump {
     glm::dvec3 truthNormal(double s, double t) const; // Blinn on the exact limit surface
     // The map's bilinear reconstruction at (s, t) (GL_LINEAR, repeat), in double.
     glm::dvec2 sampleDeriv(double s, double t) const;
+    // Angle (degrees) between each vertex tangent of `mesh` (mikkMesh or
+    // limitMesh) and the exact tangent of the limit surface at the vertex's
+    // UV; worstUv receives the UV of the largest.
+    std::vector<double> vertexTangentErrors(const sg::mesh::RenderMesh& mesh, glm::dvec2* worstUv) const;
 };
 
 // Table 1's accuracy pass (table_frames.cpp): renders the scene at
