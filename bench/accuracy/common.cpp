@@ -98,7 +98,8 @@ void Table::print(bool markdown) const {
     }
     for (const auto& r : rows) line(r);
     if (!notes.empty()) std::printf("\n");
-    for (const auto& n : notes) std::printf("%s%s\n", markdown ? "" : "  ", n.c_str());
+    // Markdown: one list item per note (consecutive lines would merge).
+    for (const auto& n : notes) std::printf("%s%s\n", markdown ? "- " : "  ", n.c_str());
     std::fflush(stdout);
 }
 
