@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <ostream>
 
 #include <glm/glm.hpp>
 
@@ -78,6 +79,8 @@ Image renderNormals(const fs::path& dir, const std::string& name, const std::str
 struct Pose {
     float squash, lobes;
 };
+// For ctest's test names.
+void PrintTo(const Pose& p, std::ostream* os) { *os << "(" << p.squash << ", " << p.lobes << ")"; }
 
 class BlendshapeFrames : public ::testing::TestWithParam<Pose> {};
 

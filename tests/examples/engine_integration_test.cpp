@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <ostream>
 
 #include "../../examples/engine-integration/example_setup.h"
 #include "example_test_util.h"
@@ -157,6 +158,9 @@ struct LayerCase {
     bool useUv, useDecal;
     const char* derivs;
 };
+
+// For ctest's test names.
+void PrintTo(const LayerCase& c, std::ostream* os) { *os << c.layers << " / " << c.derivs; }
 
 class EngineIntegrationNormals : public ::testing::TestWithParam<LayerCase> {};
 
