@@ -109,12 +109,14 @@ void runBake(const BakeArgs& a) {
         j["curved_segments"] = st.curvedSegments;
         j["straightened_theta_min"] = st.straightenedThetaMin;
         j["straightened_flat"] = st.straightenedFlat;
+        j["straightened_crossing"] = st.straightenedCrossing;
         j["eq7_failures"] = st.eq7Failures;
         j["invalid_texels"] = st.invalidTexels;
         j["optimized_texels"] = st.optimizedTexels;
         j["fallback_texels"] = st.fallbackTexels;
         j["seconds"] = st.seconds;
-        j["seconds_phases"] = {{"scan", st.secondsScan},
+        j["cpu_seconds"] = st.cpuSeconds;
+        j["cpu_seconds_phases"] = {{"scan", st.secondsScan},
                                {"optimize", st.secondsOptimize},
                                {"distance", st.secondsDistance},
                                {"smooth", st.secondsSmooth}};

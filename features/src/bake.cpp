@@ -35,6 +35,8 @@
 #include <cmath>
 #include <numeric>
 
+#include <time.h>
+
 #include "bake_internal.h"
 #include "surfgrad/io.h"
 
@@ -47,7 +49,14 @@ const char* toString(BakeMode m) { return m == BakeMode::Linear ? "linear" : "qu
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double wallSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+// CPU time of the calling thread: phase timings that stay meaningful on a
+// shared machine.
+double threadCpu() {
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 constexpr double kJoinTol = 1e-7; // texels: segment ends closer than this are one point
 constexpr double kMaxCoord = 1e6; // texels: larger coordinates are absurd input
@@ -469,6 +478,7 @@ private:
 
 FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* statsOut) {
     auto t0 = Clock::now();
+    const double cpu0 = threadCpu();
     if (opt.size < 1 || opt.size > kMaxFeatureMapSize) {
         throw io::InputError("(options)", "size",
                              "must be 1.." + std::to_string(kMaxFeatureMapSize) + ", got " + std::to_string(opt.size));
@@ -503,7 +513,7 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     g.straightMask.assign(size_t(n) * size_t(n), 0);
 
     // Steps 2-3.
-    auto tScan = Clock::now();
+    double tScan = threadCpu();
     {
         Scanner scanner(g, st, opt.mode == BakeMode::Quadratic);
         std::vector<Stroke> strokes = buildStrokes(net, segs);
@@ -534,14 +544,14 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     g.hAcc.shrink_to_fit();
     g.vAcc.clear();
     g.vAcc.shrink_to_fit();
-    st.secondsScan = secondsSince(tScan);
+    st.secondsScan = threadCpu() - tScan;
 
     // Step 4.
-    auto tOpt = Clock::now();
+    double tOpt = threadCpu();
     if (opt.mode == BakeMode::Quadratic) {
         optimizeSignatures(g, st, opt.progress);
     }
-    st.secondsOptimize = secondsSince(tOpt);
+    st.secondsOptimize = threadCpu() - tOpt;
 
     FeatureMaps maps;
     maps.size = n;
@@ -577,6 +587,7 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     }
     st.straightenedThetaMin = counters.thetaMin;
     st.straightenedFlat = counters.flat;
+    st.straightenedCrossing = counters.cross;
     maps.hPos.assign(nc, -1.0f);
     maps.vPos.assign(nc, -1.0f);
     maps.hAngle.assign(nc, 0.0f);
@@ -591,7 +602,7 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     }
 
     // Step 5: distances.
-    auto tDist = Clock::now();
+    double tDist = threadCpu();
     const double band = opt.bandTexels;
     maps.dist.assign(nc, float(band));
     maps.gradX.assign(nc, 0.0f);
@@ -696,10 +707,10 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
             }
         }
     }
-    st.secondsDistance = secondsSince(tDist);
+    st.secondsDistance = threadCpu() - tDist;
 
     // Step 6: constrained Laplacian smoothing of the gradient.
-    auto tSmooth = Clock::now();
+    double tSmooth = threadCpu();
     {
         // Neighbour links per corner (bits: +x, -x, +y, -y): not across an
         // edge with a discontinuity point, and only between corners that
@@ -742,8 +753,9 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
             // Corners without links keep their value in both buffers.
         }
     }
-    st.secondsSmooth = secondsSince(tSmooth);
-    st.seconds = secondsSince(t0);
+    st.secondsSmooth = threadCpu() - tSmooth;
+    st.seconds = wallSince(t0);
+    st.cpuSeconds = threadCpu() - cpu0;
     if (statsOut) *statsOut = st;
     return maps;
 }

@@ -88,10 +88,11 @@ struct LocalTexel {
 LocalTexel decodeTexel(const Grid& g, int i, int j);
 
 struct ValidationCounters {
-    int thetaMin = 0, flat = 0, eq7 = 0;
+    int thetaMin = 0, flat = 0, eq7 = 0, cross = 0;
 };
 
-// Applies the straightening rules (theta_min of sec. 5.2, flat segments) to
+// Applies the straightening rules (theta_min of sec. 5.2, flat segments, the
+// flatter of two crossing curves) to
 // t.curved and returns the constraint violation of the texel's signature
 // (0 = valid: every curved segment has its tangent intersection inside the
 // texel, a safe side test (Eq. 7 or the exact test), and the 8-triangle

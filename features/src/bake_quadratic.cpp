@@ -91,15 +91,6 @@ bool tangentIntersection(dvec2 qa, double ta, dvec2 qb, double tb, dvec2& b1, do
     return true;
 }
 
-// The implicit form of Eq. 4 in double (same expansion as sgFeatImplicit).
-double implicitQ(const Quad& c, dvec2 p) {
-    dvec2 a = c.a(), b = c.b(), cc = c.p0 - p;
-    double af = a.x * cc.y - cc.x * a.y;
-    double ae = a.x * b.y - b.x * a.y;
-    double bf = b.x * cc.y - cc.x * b.y;
-    return af * af - ae * bf;
-}
-
 // Exact safety of the implicit side test: the parabola outside u in [0, 1]
 // never comes within kExtensionMargin of the closed texel (it can only
 // enter by crossing an edge line within the edge's extent).
@@ -357,6 +348,16 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
         t.seg[s] = c;
         t.curved[s] = true;
     }
+    // Two curved segments crossing the texel (S-N and W-E): the runtime
+    // intersects a line with a curve in closed form, so the flatter one
+    // becomes straight.
+    if (t.nseg == 2 && t.curved[0] && t.curved[1] && t.pair[0] == 4 && t.pair[1] == 5) {
+        auto dev = [&](int s) { return std::fabs(cross2(glm::normalize(t.seg[s].p2 - t.seg[s].p0), t.seg[s].p1 - t.seg[s].p0)); };
+        int flat = dev(0) <= dev(1) ? 0 : 1;
+        t.curved[flat] = false;
+        t.seg[flat] = {t.q[t.a[flat]], 0.5 * (t.q[t.a[flat]] + t.q[t.b[flat]]), t.q[t.b[flat]]};
+        if (counters) ++counters->cross;
+    }
     bool anyCurved = false;
     for (int s = 0; s < t.nseg; ++s) anyCurved |= t.curved[s];
     if (viol > 0.0 || !anyCurved) return viol; // straight partitions are always valid
@@ -380,29 +381,7 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
     segBetween(3, 1, pathH);
     double uV = 0.5, uH = 0.5;
     dvec2 rm;
-    if (pathV.curved && pathH.curved) {
-        // Exactly one crossing, each curve changing sides of the other once.
-        for (int pass = 0; pass < 2; ++pass) {
-            const Quad& c0 = pass == 0 ? pathV.c : pathH.c;
-            const Quad& c1 = pass == 0 ? pathH.c : pathV.c;
-            int changes = 0;
-            double prev = implicitQ(c1, c0.at(0.0));
-            for (int k = 1; k <= 64; ++k) {
-                double f = implicitQ(c1, c0.at(k / 64.0));
-                if ((f >= 0) != (prev >= 0)) ++changes;
-                prev = f;
-            }
-            if (changes != 1) return 0.5;
-            double lo = 0, hi = 1;
-            bool loSign = implicitQ(c1, c0.p0) >= 0;
-            for (int it = 0; it < 60; ++it) {
-                double mid = 0.5 * (lo + hi);
-                if ((implicitQ(c1, c0.at(mid)) >= 0) == loSign) lo = mid; else hi = mid;
-            }
-            (pass == 0 ? uV : uH) = 0.5 * (lo + hi);
-        }
-        rm = pathV.c.at(uV);
-    } else if (pathV.curved || pathH.curved) {
+    if (pathV.curved || pathH.curved) {
         const PEdge& cur = pathV.curved ? pathV : pathH;
         const PEdge& lin = pathV.curved ? pathH : pathV;
         dvec2 d = lin.c.p2 - lin.c.p0;

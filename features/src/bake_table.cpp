@@ -75,17 +75,18 @@ double quantizePos(double t) {
     return k / 65535.0;
 }
 
-// Angle code a in 1..65535: theta = (a - 32768) / 32767 * pi / 2, so 0 and
-// +-pi/2 are exact (horizontal and vertical curves).
+// Angle code a in 1..65535 of u = tan(theta / 2) = (a - 32768) / 32767
+// (layout.glsl): 0 and +-pi/2 are exact.
 double quantizeAngle(double theta) {
-    double a = std::round(wrapAngle(theta) / (0.5 * M_PI) * 32767.0);
+    double a = std::round(std::tan(0.5 * wrapAngle(theta)) * 32767.0);
     a = std::clamp(a, -32767.0, 32767.0);
-    return a / 32767.0 * (0.5 * M_PI);
+    return 2.0 * std::atan(a / 32767.0);
 }
 
 uint32_t packEdgeWord(double posQ, double angleQ) {
     auto p = uint32_t(std::clamp(std::lround(posQ * 65535.0), 0L, 65535L));
-    auto a = uint32_t(std::clamp(std::lround(angleQ / (0.5 * M_PI) * 32767.0), -32767L, 32767L) + 32768L);
+    double u = std::tan(0.5 * std::clamp(angleQ, -0.5 * M_PI, 0.5 * M_PI));
+    auto a = uint32_t(std::clamp(std::lround(u * 32767.0), -32767L, 32767L) + 32768L);
     return p | (a << 16);
 }
 

@@ -36,20 +36,30 @@ void FeatureMaps::edgeWords(int i, int j, uint32_t out[4]) const {
     out[3] = word(vPos[index(i, j)], vAngle[index(i, j)]);
 }
 
+namespace {
+
+// Half-float pair, with half denormals flushed to zero so GPUs that flush
+// them on unpacking agree with the CPU.
+uint32_t halfPair(float a, float b) {
+    auto flush = [](float v) { return std::fabs(v) < 6.103515625e-05f ? 0.0f : v; };
+    return glm::packHalf2x16(glm::vec2(flush(a), flush(b)));
+}
+
+} // namespace
+
 GpuFeatureMaps FeatureMaps::packGpu() const {
     GpuFeatureMaps g;
     g.size = size;
-    const int m = size + 1;
-    g.corners.assign(size_t(m) * size_t(m) * 4, 0.0f);
+    g.cornerPairs.assign(size_t(size) * size_t(size + 1) * 4, 0u);
     g.edges.assign(size_t(size) * size_t(size) * 4, 0u);
-    for (int j = 0; j < m; ++j) {
-        for (int i = 0; i < m; ++i) {
-            size_t k = index(i, j);
-            float* c = &g.corners[k * 4];
-            c[0] = dist[k];
-            c[1] = gradX[k];
-            c[2] = gradY[k];
-            c[3] = (i < size && j < size) ? float(configWord(i, j)) : 0.0f;
+    for (int j = 0; j <= size; ++j) {
+        for (int i = 0; i < size; ++i) {
+            size_t a = index(i, j), b = index(i + 1, j);
+            uint32_t* c = &g.cornerPairs[(size_t(j) * size_t(size) + size_t(i)) * 4];
+            c[0] = halfPair(dist[a], dist[b]);
+            c[1] = halfPair(gradX[a], gradY[a]);
+            c[2] = halfPair(gradX[b], gradY[b]);
+            c[3] = j < size ? configWord(i, j) : 0u;
         }
     }
     for (int j = 0; j < size; ++j) {
@@ -88,20 +98,18 @@ std::string sampleGpuBody() { return "#include \"sg/features/sample.comp.glsl\"\
 
 void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
     assert(i >= 0 && j >= 0 && i < maps.size && j < maps.size);
-    const int m = maps.size + 1;
-    auto corner = [&](int ci, int cj) { return &maps.corners[(size_t(cj) * size_t(m) + size_t(ci)) * 4]; };
-    const float* c[4] = {corner(i, j), corner(i + 1, j), corner(i + 1, j + 1), corner(i, j + 1)};
+    glsl::SgFeatTexel tx = glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
     for (int k = 0; k < kEvalInStride; ++k) r[k] = 0.0f;
+    for (int k = 0; k < 4; ++k) r[k] = tx.dist[k];
+    const glsl::vec2 g[4] = {tx.grad0, tx.grad1, tx.grad2, tx.grad3};
     for (int k = 0; k < 4; ++k) {
-        r[k] = c[k][0];
-        r[4 + 2 * k] = c[k][1];
-        r[5 + 2 * k] = c[k][2];
+        r[4 + 2 * k] = g[k].x;
+        r[5 + 2 * k] = g[k].y;
     }
-    r[12] = c[0][3];
-    const uint32_t* e = &maps.edges[(size_t(j) * size_t(maps.size) + size_t(i)) * 4];
+    r[12] = float(tx.cfg);
     for (int k = 0; k < 4; ++k) {
-        r[13 + 2 * k] = float(e[k] & 0xFFFFu);
-        r[14 + 2 * k] = float(e[k] >> 16);
+        r[13 + 2 * k] = float(tx.edges[k] & 0xFFFFu);
+        r[14 + 2 * k] = float(tx.edges[k] >> 16);
     }
     r[21] = local.x;
     r[22] = local.y;

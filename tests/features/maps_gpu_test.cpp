@@ -23,8 +23,10 @@ protected:
         delete ctx_;
         ctx_ = nullptr;
     }
-    static sg::gl::Program kernelProgram(int kernel) {
-        auto src = sg::shaders::assemble(evalKernelGpuBody(), "features-kernel", evalKernelGpuDefines(kernel));
+    static sg::gl::Program kernelProgram(int kernel, bool curved = true) {
+        auto defines = evalKernelGpuDefines(kernel);
+        if (!curved) defines.push_back("SG_FEAT_CURVED 0");
+        auto src = sg::shaders::assemble(evalKernelGpuBody(), "features-kernel", defines);
         return sg::gl::Program({{sg::gl::Stage::Compute, src}});
     }
     static sg::gl::HeadlessContext* ctx_;
@@ -92,8 +94,11 @@ void compare(const float* cpu, const float* gpu, int stride, size_t n, Diff& d) 
 
 // The evaluation kernel on every texel with features at 40 random and 9
 // boundary points, plus a sample of plain texels.
+// Linear maps are also evaluated by the straight-only build (SG_FEAT_CURVED
+// 0), which must give the full evaluator's results on them.
 TEST_F(FeatureMapsGpu, EvalKernelParity) {
     sg::gl::Program prog = kernelProgram(SG_FEAT_K_EVAL);
+    sg::gl::Program progLinear = kernelProgram(SG_FEAT_K_EVAL, false);
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (const FeatureMaps& m : testMaps()) {
@@ -114,12 +119,14 @@ TEST_F(FeatureMapsGpu, EvalKernelParity) {
         size_t n = in.size() / size_t(kEvalInStride);
         std::vector<float> cpu(n * size_t(kEvalOutStride));
         for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
-        std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
+        for (int variant = 0; variant < (m.mode == BakeMode::Linear ? 2 : 1); ++variant) {
+        std::vector<float> gpu = sg::gl::runCompute(variant ? progLinear : prog, in, kEvalInStride, kEvalOutStride, n);
         Diff d;
         compare(cpu.data(), gpu.data(), kEvalOutStride, n, d);
-        std::printf("%s maps: %zu records, max |d| diff %.2e (relative to max(1, d)), max gradient angle %.2e rad, "
+        std::printf("%s maps%s: %zu records, max |d| diff %.2e (relative to max(1, d)), max gradient angle %.2e rad, "
                     "%zu side mismatches of %zu\n",
-                    toString(m.mode), d.records, d.maxDist, d.maxAngle, d.sideMismatch, d.compared);
+                    toString(m.mode), variant ? " (SG_FEAT_CURVED 0)" : "", d.records, d.maxDist, d.maxAngle,
+                    d.sideMismatch, d.compared);
         EXPECT_EQ(d.nonFinite, 0u);
         // Both builds evaluate the same expressions in binary32; differences
         // come from FMA contraction and library functions (cos, sin, sqrt,
@@ -130,6 +137,7 @@ TEST_F(FeatureMapsGpu, EvalKernelParity) {
         // A side mismatch away from the curves would be a different triangle
         // or region: none is allowed.
         EXPECT_EQ(d.sideMismatch, 0u);
+        }
     }
 }
 
@@ -164,7 +172,7 @@ TEST_F(FeatureMapsGpu, EvalKernelFiniteOnArbitraryData) {
     EXPECT_EQ(bad, 0u);
 }
 
-// The texture path: RGBA32F corners and RGBA32UI edges read with texelFetch,
+// The texture path: RGBA32UI corner pairs and edges read with texelFetch,
 // sampled on a dense grid covering the map and its surroundings.
 TEST_F(FeatureMapsGpu, TexturePathParity) {
     auto src = sg::shaders::assemble(sampleGpuBody(), "features-sample");
@@ -173,8 +181,9 @@ TEST_F(FeatureMapsGpu, TexturePathParity) {
         GpuFeatureMaps g = m.packGpu();
         GLuint tex[2];
         glCreateTextures(GL_TEXTURE_2D, 2, tex);
-        glTextureStorage2D(tex[0], 1, GL_RGBA32F, g.size + 1, g.size + 1);
-        glTextureSubImage2D(tex[0], 0, 0, 0, g.size + 1, g.size + 1, GL_RGBA, GL_FLOAT, g.corners.data());
+        glTextureStorage2D(tex[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
+        glTextureSubImage2D(tex[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                            g.cornerPairs.data());
         glTextureStorage2D(tex[1], 1, GL_RGBA32UI, g.size, g.size);
         glTextureSubImage2D(tex[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
         for (GLuint t : tex) {

@@ -80,7 +80,7 @@ TEST(FeatureMapsStorage, RoundTripIsExact) {
         EXPECT_EQ(l.hAngle, m.hAngle);
         EXPECT_EQ(l.vAngle, m.vAngle);
         GpuFeatureMaps a = m.packGpu(), b = l.packGpu();
-        EXPECT_EQ(a.corners, b.corners);
+        EXPECT_EQ(a.cornerPairs, b.cornerPairs);
         EXPECT_EQ(a.edges, b.edges);
         // Same bytes from memory.
         std::string bytes = sg::io::readFile(p);
@@ -196,8 +196,8 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
                   .find("without a point"),
               std::string::npos);
     // A curved segment with a signature the runtime cannot use: the angles
-    // of a curved texel's edges turned by 60 degrees (staying on the 16-bit
-    // grid, so only the signature check can object).
+    // of a curved texel's edges turned by about 50 degrees (staying on the
+    // 16-bit grid, so only the signature check can object).
     std::string curvedErr = forge("badcurve", [&](auto& s, auto& p) {
         int g = s.width;
         for (size_t k = 0; k < p.size() / size_t(nc); ++k) {
@@ -207,9 +207,10 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
                 for (const char* a : {"hA", "vA"}) {
                     float& ang = p[idx * size_t(nc) + size_t(chan(a))];
                     if (ang == 0.0f) continue;
-                    double code = std::round(double(ang) / (M_PI / 2) * 32767.0) + 21845.0;
-                    if (code > 32767.0) code -= 65534.0;
-                    ang = float(code / 32767.0 * (M_PI / 2));
+                    // Angle code of u = tan(theta / 2) (layout.glsl), moved by half its range.
+                    double code = std::round(std::tan(0.5 * double(ang)) * 32767.0);
+                    code = code > 0.0 ? code - 16384.0 : code + 16384.0;
+                    ang = float(2.0 * std::atan(code / 32767.0));
                 }
             }
             return;

@@ -25,13 +25,16 @@
 //    (TexelTransform); font and SVG loaders already give y up.
 //
 // GPU LAYOUT (GpuFeatureMaps, read by shaders/sg/features/fetch.glsl with
-// texelFetch only; no filtering, mip level 0):
-//   corners  RGBA32F  (N+1) x (N+1): (d, grad.x, grad.y, float(config word))
-//   edges    RGBA32UI N x N: edge words of edges S, E, N, W of each texel
+// texelFetch only; GL_NEAREST, mip level 0):
+//   cornerPairs RGBA32UI N x (N+1): texel (i, j) = grid corners (i, j) and
+//               (i+1, j) as half floats (x: both distances, y, z: their
+//               gradients) plus the configuration word of texel (i, j) (w)
+//   edges       RGBA32UI N x N: edge words of edges S, E, N, W of each texel
 // Row j of each array is texture row j (the first row uploaded, t = 0).
 // Words are described in shaders/sg/features/layout.glsl. 32 bytes per
-// texel on the GPU (plus one row and column of corners).
-//
+// texel (plus one row of corner pairs); 3 fetches per sample. Distances and
+// gradients are rounded to half floats there (5e-4 texels at d < 1, 0.008
+// at the 16-texel band edge), positions and angles to 16 bits.
 // FILE LAYOUT (save/load, OpenEXR through OpenImageIO): one image of
 // (N+1) x (N+1) pixels, pixel (i, j) = grid corner (i, j), scanline 0 = the
 // top row (j = N) so viewers show the map upright. FLOAT channels:
@@ -60,6 +63,7 @@
 #include <string_view>
 #include <vector>
 
+#include <glm/gtc/packing.hpp>
 #include <glm/vec2.hpp>
 
 #include "surfgrad/curves.h"
@@ -68,8 +72,9 @@
 // The shared evaluator, compiled as C++. Samplers over CPU arrays first, so
 // fetch.glsl's texelFetch/textureSize calls resolve to them.
 namespace sg::glsl {
+// Both textures of the GPU layout hold 4 x 32-bit words per texel.
 struct SgFeatCornerSampler {
-    const float* rgba = nullptr; // (width x height) RGBA texels, row-major, row 0 first
+    const uint32_t* rgba = nullptr; // (width x height) RGBA texels, row-major, row 0 first
     int width = 0;
     int height = 0;
 };
@@ -78,10 +83,10 @@ struct SgFeatEdgeSampler {
     int width = 0;
     int height = 0;
 };
-inline vec4 texelFetch(const SgFeatCornerSampler& s, ivec2 p, int /*lod*/) {
+inline uvec4 texelFetch(const SgFeatCornerSampler& s, ivec2 p, int /*lod*/) {
     assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
-    const float* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
-    return vec4(t[0], t[1], t[2], t[3]);
+    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
+    return uvec4(t[0], t[1], t[2], t[3]);
 }
 inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
     assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
@@ -148,11 +153,15 @@ struct BakeStats {
     int curvedSegments = 0;       // stored as quadratic Beziers
     int straightenedThetaMin = 0; // theta < theta_min (TOG 2008 sec. 5.2)
     int straightenedFlat = 0;     // deviation from the chord below 1e-3 texels
+    int straightenedCrossing = 0; // the flatter of two curves crossing one texel
     int eq7Failures = 0;          // curved segments failing the Eq. 7 safety test
     int invalidTexels = 0;        // texels whose signature needed the optimisation
     int optimizedTexels = 0;      // ... and were made valid by it
     int fallbackTexels = 0;       // ... and were made valid by straightening instead
-    double seconds = 0.0;
+    double seconds = 0.0;    // wall-clock time of the whole bake
+    double cpuSeconds = 0.0; // CPU time of the calling thread (the bake is single-threaded)
+    // CPU time of the phases: scan conversion and configurations, signature
+    // optimisation (quadratic mode), distances, smoothing.
     double secondsScan = 0.0, secondsOptimize = 0.0, secondsDistance = 0.0, secondsSmooth = 0.0;
 };
 
@@ -187,12 +196,18 @@ struct FeatureMaps {
     double canonicalBytesPerTexel() const;
 };
 
-// The two textures of the GPU layout (see above), ready for glTexImage2D.
+// The two textures of the GPU layout (see above), ready for glTexImage2D:
+//   glTextureStorage2D(t, 1, GL_RGBA32UI, width, height);
+//   glTextureSubImage2D(t, 0, 0, 0, width, height, GL_RGBA_INTEGER,
+//                       GL_UNSIGNED_INT, data);
+// with GL_NEAREST filters, bound to usampler2D uniforms.
 struct GpuFeatureMaps {
-    int size = 0;
-    std::vector<float> corners;  // (N+1)^2 * 4
-    std::vector<uint32_t> edges; // N^2 * 4
-    glsl::SgFeatCornerSampler cornerSampler() const { return {corners.data(), size + 1, size + 1}; }
+    int size = 0;                      // N
+    std::vector<uint32_t> cornerPairs; // N x (N+1) texels * 4 words
+    std::vector<uint32_t> edges;       // N x N texels * 4 words
+    int cornerPairsWidth() const { return size; }
+    int cornerPairsHeight() const { return size + 1; }
+    glsl::SgFeatCornerSampler cornerSampler() const { return {cornerPairs.data(), size, size + 1}; }
     glsl::SgFeatEdgeSampler edgeSampler() const { return {edges.data(), size, size}; }
 };
 

@@ -61,7 +61,9 @@ SG_FN SgFeatCurve sgFeatSubCurve(SgFeatCurve c, float u0, float u1) {
 // with the sign at a reference point (sgFeatSameSide).
 SG_FN float sgFeatImplicit(SgFeatCurve c, vec2 p) {
     vec2 r = p - c.p0;
-    if (!c.curved) return sgFeatCross(c.p2 - c.p0, r);
+    float lin = sgFeatCross(c.p2 - c.p0, r);
+#if SG_FEAT_CURVED
+    if (!c.curved) return lin;
     vec2 a = c.p0 - 2.0f * c.p1 + c.p2;
     vec2 b = 2.0f * (c.p1 - c.p0);
     vec2 cc = -r;
@@ -69,6 +71,9 @@ SG_FN float sgFeatImplicit(SgFeatCurve c, vec2 p) {
     float ae = a.x * b.y - b.x * a.y;
     float bf = b.x * cc.y - cc.x * b.y;
     return af * af - ae * bf;
+#else
+    return lin;
+#endif
 }
 
 // True when p is on the same side of the curve as ref (ref must lie off the
@@ -84,11 +89,10 @@ SG_FN bool sgFeatSameSide(SgFeatCurve c, vec2 p, vec2 ref) {
 // best candidate clamped to [0, 1]; never NaN for finite input.
 SG_FN float sgFeatLineCurveParam(SgFeatCurve c, vec2 o, vec2 r, bool forwardOnly) {
     vec2 d0 = c.p0 - o;
-    if (!c.curved) {
-        float den = sgFeatCross(c.p2 - c.p0, r);
-        if (!(abs(den) >= SG_FLT_MIN)) return 0.5f;
-        return clamp(-sgFeatCross(d0, r) / den, 0.0f, 1.0f);
-    }
+    float den = sgFeatCross(c.p2 - c.p0, r);
+    float uLine = abs(den) >= SG_FLT_MIN ? clamp(-sgFeatCross(d0, r) / den, 0.0f, 1.0f) : 0.5f;
+#if SG_FEAT_CURVED
+    if (!c.curved) return uLine;
     vec2 a = c.p0 - 2.0f * c.p1 + c.p2;
     vec2 b = 2.0f * (c.p1 - c.p0);
     float qa = sgFeatCross(a, r);
@@ -111,6 +115,9 @@ SG_FN float sgFeatLineCurveParam(SgFeatCurve c, vec2 o, vec2 r, bool forwardOnly
         if (dot(e2, r) < 0.0f) s2 += 2.0f;
     }
     return clamp(s1 <= s2 ? u1 : u2, 0.0f, 1.0f);
+#else
+    return uLine;
+#endif
 }
 
 // Middle control point of the segment from q0 to q2 whose end tangents are

@@ -3,16 +3,19 @@
 // profile functions of profile.glsl). Layout: surfgrad/feature_maps.h and
 // docs/features.md.
 //
-// Textures (both read with texelFetch only, level 0; no filtering, so the
-// sampler state does not matter):
-//   corners  RGBA32F,  (N+1) x (N+1): texel (i, j) is the grid corner at
-//            texel-space point (i, j): R = distance (texels), G, B = the
-//            smoothed distance gradient, A = float(configuration word of
-//            texel (i, j)) (0 in the last row and column).
-//   edges    RGBA32UI, N x N: texel (i, j) holds the edge words of its edges
-//            S, E, N, W (layout.glsl). Only fetched for texels with features.
+// Textures (both RGBA32UI, read with texelFetch only, level 0; no
+// filtering: set GL_NEAREST, integer textures are incomplete with linear
+// filters):
+//   cornerPairs  N x (N+1): texel (i, j) holds grid corners (i, j) and
+//                (i+1, j) as half floats and the configuration of texel
+//                (i, j): x = packHalf2x16(d(i, j), d(i+1, j)),
+//                y = packHalf2x16(grad(i, j)), z = packHalf2x16(grad(i+1, j)),
+//                w = configuration word (layout.glsl; 0 in row N).
+//   edges        N x N: texel (i, j) holds the edge words of its edges
+//                S, E, N, W (layout.glsl).
 // Row j of each texture is texture row j (OpenGL's t = 0 row first), so y
-// points up as in texel space.
+// points up as in texel space. A texel costs three fetches: its corner pair
+// row j, the pair row j+1 and its edges. 32 bytes per texel.
 //
 // The same source compiles as C++: surfgrad/feature_maps.h defines the
 // sampler types SgFeatCornerSampler / SgFeatEdgeSampler over CPU arrays and
@@ -26,25 +29,26 @@
 #define SG_FEAT_CORNER_SAMPLER const SgFeatCornerSampler&
 #define SG_FEAT_EDGE_SAMPLER const SgFeatEdgeSampler&
 #else
-#define SG_FEAT_CORNER_SAMPLER sampler2D
+#define SG_FEAT_CORNER_SAMPLER usampler2D
 #define SG_FEAT_EDGE_SAMPLER usampler2D
 #endif
 
-// The data of texel ij (0 <= ij < N): 4 fetches, plus 1 when it has features.
+// The data of texel ij (0 <= ij < N): 3 fetches.
 SG_FN SgFeatTexel sgFeatFetch(SG_FEAT_CORNER_SAMPLER corners, SG_FEAT_EDGE_SAMPLER edges, ivec2 ij) {
-    vec4 c00 = texelFetch(corners, ij, 0);
-    vec4 c10 = texelFetch(corners, ivec2(ij.x + 1, ij.y), 0);
-    vec4 c11 = texelFetch(corners, ivec2(ij.x + 1, ij.y + 1), 0);
-    vec4 c01 = texelFetch(corners, ivec2(ij.x, ij.y + 1), 0);
+    uvec4 lo = texelFetch(corners, ij, 0);                     // corners SW, SE
+    uvec4 hi = texelFetch(corners, ivec2(ij.x, ij.y + 1), 0);  // corners NW, NE
+    vec2 dLo = unpackHalf2x16(lo.x);
+    vec2 dHi = unpackHalf2x16(hi.x);
     SgFeatTexel tx;
-    tx.dist = vec4(c00.x, c10.x, c11.x, c01.x);
-    tx.grad0 = vec2(c00.y, c00.z);
-    tx.grad1 = vec2(c10.y, c10.z);
-    tx.grad2 = vec2(c11.y, c11.z);
-    tx.grad3 = vec2(c01.y, c01.z);
-    // Exact: the word has 21 bits.
-    tx.cfg = uint(max(c00.w, 0.0f));
-    tx.edges = (tx.cfg & SG_FEAT_CFG_FEATURE_BITS) != 0u ? texelFetch(edges, ij, 0) : uvec4(0u);
+    tx.dist = vec4(dLo.x, dLo.y, dHi.y, dHi.x);
+    tx.grad0 = unpackHalf2x16(lo.y);
+    tx.grad1 = unpackHalf2x16(lo.z);
+    tx.grad2 = unpackHalf2x16(hi.z);
+    tx.grad3 = unpackHalf2x16(hi.y);
+    tx.cfg = lo.w;
+    // Fetched for every texel: where branches run under masks, skipping it
+    // for texels without features saves nothing.
+    tx.edges = texelFetch(edges, ij, 0);
     return tx;
 }
 

@@ -27,6 +27,13 @@
 
 #include "sg/compat.glsl"
 
+// 1: the full evaluator (maps baked in quadratic mode, and linear maps);
+// 0: straight segments only, cheaper (maps baked in linear mode). Define it
+// before including any sg/features file.
+#ifndef SG_FEAT_CURVED
+#define SG_FEAT_CURVED 1
+#endif
+
 #define SG_FEAT_S 0
 #define SG_FEAT_E 1
 #define SG_FEAT_N 2
@@ -76,15 +83,20 @@ SG_FN bool sgFeatCornerLeft(uint cfg, int k) {
 //   bits  0-15  position t on the edge, unorm16: t = value / 65535
 //   bits 16-31  tangent angle theta of the curve at the point, measured
 //               from +x (the paper's "horizon"), a line direction in
-//               [-pi/2, pi/2]: code a in 1..65535 with
-//               theta = (a - 32768) / 32767 * pi / 2 (0 and +-pi/2 exact)
+//               [-pi/2, pi/2], stored as u = tan(theta / 2) in [-1, 1]:
+//               code a in 1..65535 with u = (a - 32768) / 32767. The unit
+//               tangent is then ((1 - u^2), 2u) / (1 + u^2): no
+//               trigonometry in the shader; 0 and +-pi/2 are exact and the
+//               angle step is at most 3.1e-5 radians.
 // The bake stores positions and angles already rounded to these grids, so
 // the C++ and GLSL evaluators see identical values. Edges without a point
 // hold the paper's default (t, theta) = (0.5, 0).
 #define SG_FEAT_PI 3.14159265358979f
 SG_FN float sgFeatEdgePos(uint w) { return float(w & 0xFFFFu) / 65535.0f; }
-SG_FN float sgFeatEdgeAngle(uint w) {
-    return (float(w >> 16u) - 32768.0f) / 32767.0f * (0.5f * SG_FEAT_PI);
+SG_FN vec2 sgFeatEdgeTangent(uint w) {
+    float u = (float(w >> 16u) - 32768.0f) / 32767.0f;
+    float uu = u * u;
+    return vec2(1.0f - uu, 2.0f * u) / (1.0f + uu);
 }
 
 // Smallest and largest position of an edge point: the bake moves points off

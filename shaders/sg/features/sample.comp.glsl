@@ -9,7 +9,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = 0) readonly buffer SampleInput { float inData[]; };
 layout(std430, binding = 1) writeonly buffer SampleOutput { float outData[]; };
 uniform uint uCount;
-uniform sampler2D uFeatCorners;
+uniform usampler2D uFeatCorners;
 uniform usampler2D uFeatEdges;
 
 void main() {
