@@ -39,7 +39,7 @@ std::vector<KindMarker> kinds() {
          {"SG_RENDER_LAYER_DECAL_GLSL", "sgLayerDecal", "sgDecalVolumeGradient", "sgSurfgradFromDecal"}},
         {"noise", R"({"type": "noise"})", {"SG_RENDER_LAYER_NOISE_GLSL", "sgLayerNoise", "sgPerlinNoise", "sgNoiseHash"}},
         {"modifiers", R"({"type": "uv_normal", )" + map + R"(, "modifiers": [{"type": "scale", "alpha": 2}]})",
-         {"SG_RENDER_DERIV_MODS_GLSL", "sgApplyDerivMods", "sgLayerUvNormalMods"}},
+         {"SG_RENDER_DERIV_MODS_GLSL", "sgModScale", "sgSampleUvNormalHD"}},
         {"feature", R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) + R"(/svg/flame.svg", "size": 32}})",
          {"SG_RENDER_LAYER_FEATURE_GLSL", "sgLayerFeature", "sgFeatSample", "sgFeatDeriv", "usampler2D"}},
         {"post_resolve", R"({"type": "post_resolve", "layers": [{"type": "noise"}]})", {"sgReprologue"}},

@@ -88,10 +88,17 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     if (L.kind == LayerKind::Triplanar || L.kind == LayerKind::Noise) {
         s += L.space == Space::World ? "@w" : "@o";
     }
-    if (pl.hasModifiers) s += "+mods";
+    if (pl.hasModifiers) {
+        s += "+mods[";
+        for (size_t i = 0; i < L.modifiers.size(); ++i) {
+            static const char* code = "?scmd";
+            s += code[int(L.modifiers[i].kind)];
+            if (pl.modTex[i] >= 0) s += std::to_string(pl.modTex[i]);
+        }
+        s += "]";
+    }
     s += ":t";
     for (int t : pl.tex) s += std::to_string(t) + ",";
-    if (pl.maskTex >= 0) s += "m" + std::to_string(pl.maskTex);
     if (pl.featureSlot >= 0) s += "f" + std::to_string(pl.featureSlot);
     return s;
 }
@@ -166,14 +173,11 @@ struct Planner {
                           (L.kind == LayerKind::UvNormal || L.kind == LayerKind::DerivMap);
         if (pl.hasModifiers) {
             pl.modRecord = plan.recordCount;
-            plan.recordCount += kMaxModifiers;
-            const TextureSource* mask = nullptr;
-            for (const auto& m : L.modifiers) {
-                if (m.kind == ModifierKind::Modulate && m.mask) mask = &*m.mask;
+            plan.recordCount += int(L.modifiers.size());
+            for (size_t i = 0; i < L.modifiers.size() && i < size_t(kMaxModifiers); ++i) {
+                const Modifier& m = L.modifiers[i];
+                if (m.kind == ModifierKind::Modulate && m.mask) pl.modTex[i] = slot(&*m.mask);
             }
-            // Without a modulate modifier the mask sampler is never read;
-            // it aliases the layer's own map so no slot is wasted.
-            pl.maskTex = mask ? slot(mask) : -2;
         }
         if (usesUv(L.kind)) {
             if (L.uvSet >= plan.uvCount) {
@@ -201,7 +205,6 @@ struct Planner {
             if (!L.maps.empty()) src = &L.maps[std::min(size_t(i), L.maps.size() - 1)];
             pl.tex[i] = slot(src);
         }
-        if (pl.maskTex == -2) pl.maskTex = pl.tex[0];
         if (uber) pl.uberIndex = plan.uberFlagCount++;
         return pl;
     }
@@ -473,11 +476,6 @@ std::string layerCall(const PlanLayer& pl) {
     std::string vol = L.space == Space::World ? "volWorld" : "volObject";
     switch (L.kind) {
     case LayerKind::UvNormal:
-        if (pl.hasModifiers) {
-            return "sgLayerUvNormalMods(" + uv + ", sgUnpackUvNormal(" + recs(pl.record, 2) +
-                   "), sgUnpackDerivMods(" + recs(pl.modRecord, 4) + "), " + tex(pl.tex[0]) + ", " +
-                   tex(pl.maskTex) + ")";
-        }
         return "sgLayerUvNormal(" + uv + ", sgUnpackUvNormal(" + recs(pl.record, 2) + "), " + tex(pl.tex[0]) + ")";
     case LayerKind::ObjectNormal:
         return "sgLayerObjectNormal(frame, " + uv + ", sgUnpackObjectNormal(" + recs(pl.record, 1) +
@@ -485,11 +483,6 @@ std::string layerCall(const PlanLayer& pl) {
     case LayerKind::Height:
         return "sgLayerHeight(frame, " + uv + ", sgUnpackHeight(" + recs(pl.record, 1) + "), " + tex(pl.tex[0]) + ")";
     case LayerKind::DerivMap:
-        if (pl.hasModifiers) {
-            return "sgLayerDerivMapMods(frame, " + uv + ", sgUnpackDerivMap(" + recs(pl.record, 2) +
-                   "), sgUnpackDerivMods(" + recs(pl.modRecord, 4) + "), " + tex(pl.tex[0]) + ", " +
-                   tex(pl.maskTex) + ")";
-        }
         return "sgLayerDerivMap(frame, " + uv + ", sgUnpackDerivMap(" + recs(pl.record, 2) + "), " +
                tex(pl.tex[0]) + ")";
     case LayerKind::Triplanar:
@@ -503,6 +496,45 @@ std::string layerCall(const PlanLayer& pl) {
     case LayerKind::PostResolve: break;
     }
     return "vec3(0.0)";
+}
+
+// A layer with derivative-space modifiers as a block of statements: the
+// sample as height and derivative, one call per modifier in order (only
+// the kinds used are compiled in; nothing branches on a uniform), and the
+// surface gradient.
+std::string modifierBlock(const PlanLayer& pl, const std::string& indent) {
+    const Layer& L = *pl.layer;
+    std::string uv = uvVar(L.uvSet), in = indent + "    ";
+    bool uvn = L.kind == LayerKind::UvNormal;
+    bool deform = !L.modifiers.empty() && L.modifiers[0].kind == ModifierKind::Deform;
+    std::string o = "{\n";
+    o += in + (uvn ? "SgUvNormalParams p = sgUnpackUvNormal(" : "SgDerivMapParams p = sgUnpackDerivMap(") +
+         recs(pl.record, 2) + ");\n";
+    if (deform) {
+        o += in + "mat2 jac;\n";
+        o += in + "vec2 st = sgModWarp(" + rec(pl.modRecord) + ", " + uv + ".st, jac);\n";
+        o += in + "vec2 dx = jac * " + uv + ".dSTdx;\n" + in + "vec2 dy = jac * " + uv + ".dSTdy;\n";
+    } else {
+        o += in + "vec2 st = " + uv + ".st;\n" + in + "vec2 dx = " + uv + ".dSTdx;\n" + in + "vec2 dy = " + uv +
+             ".dSTdy;\n";
+    }
+    o += in + "SgHeightDeriv hd = " + (uvn ? "sgSampleUvNormalHD(" : "sgSampleDerivMapHD(") + tex(pl.tex[0]) +
+         ", st, dx, dy, p);\n";
+    for (size_t i = 0; i < L.modifiers.size(); ++i) {
+        std::string op = rec(pl.modRecord + int(i));
+        switch (L.modifiers[i].kind) {
+        case ModifierKind::Deform: o += in + "hd = sgModDeform(hd, jac);\n"; break;
+        case ModifierKind::Scale: o += in + "hd = sgModScale(hd, " + op + ");\n"; break;
+        case ModifierKind::Curve: o += in + "hd = sgModCurve(hd, " + op + ");\n"; break;
+        case ModifierKind::Modulate:
+            o += in + "hd = sgModModulate(hd, " + op + ", " + tex(pl.modTex[i]) + ", st, dx, dy);\n";
+            break;
+        }
+    }
+    o += in + "surfGrad += " +
+         (uvn ? "sgUvNormalSurfgrad(" + uv + ", p, hd)" : "sgDerivMapSurfgrad(frame, " + uv + ", p, hd.d, vec2(textureSize(" + tex(pl.tex[0]) + ", 0)))") +
+         ";\n";
+    return o + indent + "}\n";
 }
 
 uint32_t groupUvMask(const std::vector<PlanLayer>& g) {
@@ -628,7 +660,11 @@ std::string fragmentBody(const MaterialPlan& plan) {
             } else {
                 o << indent;
             }
-            o << "surfGrad += " << layerCall(pl) << ";\n";
+            if (pl.hasModifiers) {
+                o << modifierBlock(pl, indent);
+            } else {
+                o << "surfGrad += " << layerCall(pl) << ";\n";
+            }
         }
         if (featCount > 0) {
             o << indent << "// feature layers " << featFirst << ".." << featFirst + featCount - 1
@@ -822,24 +858,40 @@ glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector
     auto t = [&](int slot) { return slot >= 0 ? smp[size_t(slot)] : G::sampler2D{}; };
     const G::SgUvFrame& f = uv[size_t(L.uvSet)];
     const G::SgVolumeSpace& vol = L.space == Space::World ? volWorld : volObject;
-    auto mods = [&]() {
+    if (pl.hasModifiers) {
+        // modifierBlock(), statement by statement.
         const glm::vec4* m = &u.records[size_t(pl.modRecord)];
-        return G::sgUnpackDerivMods(m[0], m[1], m[2], m[3]);
-    };
+        bool uvn = L.kind == LayerKind::UvNormal;
+        bool deform = L.modifiers[0].kind == ModifierKind::Deform;
+        glm::mat2 jac(1.0f);
+        glm::vec2 st = f.st, dx = f.dSTdx, dy = f.dSTdy;
+        if (deform) {
+            st = G::sgModWarp(m[0], f.st, jac);
+            dx = jac * f.dSTdx;
+            dy = jac * f.dSTdy;
+        }
+        G::SgUvNormalParams pu = G::sgUnpackUvNormal(r[0], r[1]);
+        G::SgDerivMapParams pd = G::sgUnpackDerivMap(r[0], r[1]);
+        G::SgHeightDeriv hd = uvn ? G::sgSampleUvNormalHD(t(pl.tex[0]), st, dx, dy, pu)
+                                  : G::sgSampleDerivMapHD(t(pl.tex[0]), st, dx, dy, pd);
+        for (size_t i = 0; i < L.modifiers.size(); ++i) {
+            switch (L.modifiers[i].kind) {
+            case ModifierKind::Deform: hd = G::sgModDeform(hd, jac); break;
+            case ModifierKind::Scale: hd = G::sgModScale(hd, m[i]); break;
+            case ModifierKind::Curve: hd = G::sgModCurve(hd, m[i]); break;
+            case ModifierKind::Modulate: hd = G::sgModModulate(hd, m[i], t(pl.modTex[i]), st, dx, dy); break;
+            }
+        }
+        return uvn ? G::sgUvNormalSurfgrad(f, pu, hd)
+                   : G::sgDerivMapSurfgrad(frame, f, pd, hd.d, glm::vec2(G::textureSize(t(pl.tex[0]), 0)));
+    }
     switch (L.kind) {
     case LayerKind::UvNormal:
-        if (pl.hasModifiers) {
-            return G::sgLayerUvNormalMods(f, G::sgUnpackUvNormal(r[0], r[1]), mods(), t(pl.tex[0]), t(pl.maskTex));
-        }
         return G::sgLayerUvNormal(f, G::sgUnpackUvNormal(r[0], r[1]), t(pl.tex[0]));
     case LayerKind::ObjectNormal:
         return G::sgLayerObjectNormal(frame, f, G::sgUnpackObjectNormal(r[0]), u.normalMat, t(pl.tex[0]));
     case LayerKind::Height: return G::sgLayerHeight(frame, f, G::sgUnpackHeight(r[0]), t(pl.tex[0]));
     case LayerKind::DerivMap:
-        if (pl.hasModifiers) {
-            return G::sgLayerDerivMapMods(frame, f, G::sgUnpackDerivMap(r[0], r[1]), mods(), t(pl.tex[0]),
-                                          t(pl.maskTex));
-        }
         return G::sgLayerDerivMap(frame, f, G::sgUnpackDerivMap(r[0], r[1]), t(pl.tex[0]));
     case LayerKind::Triplanar:
         return G::sgLayerTriplanar(frame, vol, G::sgUnpackTriplanar(r[0], r[1]), t(pl.tex[0]), t(pl.tex[1]),

@@ -31,45 +31,9 @@
 // Records: one vec4 per modifier, (kind, a, b, c) with
 //   SCALE (1, alpha, 0, 0); CURVE (2, P, H, 0);
 //   MODULATE (3, mask channel, gain, 0); DEFORM (4, A, B, 0).
-struct SgDerivMods {
-    vec4 op0;
-    vec4 op1;
-    vec4 op2;
-    vec4 op3;
-    int count;
-};
-
-SG_FN SgDerivMods sgUnpackDerivMods(vec4 r0, vec4 r1, vec4 r2, vec4 r3) {
-    SgDerivMods m;
-    m.op0 = r0;
-    m.op1 = r1;
-    m.op2 = r2;
-    m.op3 = r3;
-    m.count = 0;
-    if (sgRecInt(r0.x) != SG_MOD_NONE) m.count = 1;
-    if (m.count == 1 && sgRecInt(r1.x) != SG_MOD_NONE) m.count = 2;
-    if (m.count == 2 && sgRecInt(r2.x) != SG_MOD_NONE) m.count = 3;
-    if (m.count == 3 && sgRecInt(r3.x) != SG_MOD_NONE) m.count = 4;
-    return m;
-}
-
-SG_FN vec4 sgDerivModOp(SgDerivMods m, int i) {
-    if (i == 0) return m.op0;
-    if (i == 1) return m.op1;
-    if (i == 2) return m.op2;
-    return m.op3;
-}
-
-// The warped lookup coordinate and the warp's Jacobian (identity when the
-// first modifier is not DEFORM).
-SG_FN vec2 sgDerivModsWarp(SgDerivMods m, vec2 st, SG_OUT(mat2) jac) {
-    jac = mat2(1.0f);
-    if (m.count > 0 && sgRecInt(m.op0.x) == SG_MOD_DEFORM) {
-        jac = sgSineWarpJacobian(st.x, m.op0.y, m.op0.z);
-        return vec2(st.x, st.y + m.op0.y * sin(m.op0.z * st.x));
-    }
-    return st;
-}
+// The assembled program calls one function per modifier, in order, so only
+// the modifier kinds a layer uses are compiled in and no branch depends on
+// a uniform (apps/render/src/plan.cpp).
 
 // A height and its derivative, the state the modifiers transform.
 struct SgHeightDeriv {
@@ -77,39 +41,49 @@ struct SgHeightDeriv {
     vec2 d;
 };
 
-// Applies the modifiers to a sample taken at the warped coordinate st (with
-// the warped screen derivatives dSTdx/dSTdy for the mask lookups). mask is
-// read only by MODULATE.
-SG_FN SgHeightDeriv sgApplyDerivMods(SgDerivMods m, SgHeightDeriv s, mat2 jac, sampler2D mask,
-                                     vec2 st, vec2 dSTdx, vec2 dSTdy) {
+// DEFORM, part 1: the warped lookup coordinate st' = (s, t + A sin(B s))
+// and the warp's Jacobian J (column-major: columns d/ds and d/dt).
+SG_FN vec2 sgModWarp(vec4 op, vec2 st, SG_OUT(mat2) jac) {
+    jac = sgSineWarpJacobian(st.x, op.y, op.z);
+    return vec2(st.x, st.y + op.y * sin(op.z * st.x));
+}
+
+// DEFORM, part 2: the derivative of h(warp(s, t)) is J^T times the
+// derivative sampled at the warped point (the height is unchanged).
+SG_FN SgHeightDeriv sgModDeform(SgHeightDeriv s, mat2 jac) {
     SgHeightDeriv r = s;
-    for (int i = 0; i < SG_MOD_MAX; ++i) {
-        if (i >= m.count) break;
-        vec4 op = sgDerivModOp(m, i);
-        int kind = sgRecInt(op.x);
-        if (kind == SG_MOD_SCALE) {
-            r.d = sgDerivScale(r.d, op.y);
-            r.h = op.y * r.h;
-        } else if (kind == SG_MOD_CURVE) {
-            r.d = sgDerivCurve(r.d, sgCurveBoostSlope(r.h, op.y, op.z));
-            r.h = sgCurveBoostValue(r.h, op.y, op.z);
-        } else if (kind == SG_MOD_MODULATE) {
-            int ch = sgRecInt(op.y);
-            vec2 texel = vec2(1.0f) / vec2(textureSize(mask, 0));
-            float mc = op.z * sgTexelChannel(textureGrad(mask, st, dSTdx, dSTdy), ch);
-            float ms1 = sgTexelChannel(textureGrad(mask, st + vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
-            float ms0 = sgTexelChannel(textureGrad(mask, st - vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
-            float mt1 = sgTexelChannel(textureGrad(mask, st + vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
-            float mt0 = sgTexelChannel(textureGrad(mask, st - vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
-            vec2 dm = op.z * vec2((ms1 - ms0) / (2.0f * texel.x), (mt1 - mt0) / (2.0f * texel.y));
-            r.d = sgDerivModulate(r.d, r.h, dm, mc);
-            r.h = r.h * mc;
-        } else if (kind == SG_MOD_DEFORM) {
-            // The lookup was warped by sgDerivModsWarp; the derivative of
-            // h(warp(s, t)) is J^T times the derivative at the warped point.
-            r.d = sgDerivDeform(r.d, jac);
-        }
-    }
+    r.d = sgDerivDeform(s.d, jac);
+    return r;
+}
+
+SG_FN SgHeightDeriv sgModScale(SgHeightDeriv s, vec4 op) {
+    SgHeightDeriv r;
+    r.d = sgDerivScale(s.d, op.y);
+    r.h = op.y * s.h;
+    return r;
+}
+
+SG_FN SgHeightDeriv sgModCurve(SgHeightDeriv s, vec4 op) {
+    SgHeightDeriv r;
+    r.d = sgDerivCurve(s.d, sgCurveBoostSlope(s.h, op.y, op.z));
+    r.h = sgCurveBoostValue(s.h, op.y, op.z);
+    return r;
+}
+
+// MODULATE by a mask sampled at st (the layer's, warped, coordinate) with
+// the layer's screen derivatives; dm by central differences one texel apart.
+SG_FN SgHeightDeriv sgModModulate(SgHeightDeriv s, vec4 op, sampler2D mask, vec2 st, vec2 dSTdx, vec2 dSTdy) {
+    int ch = sgRecInt(op.y);
+    vec2 texel = vec2(1.0f) / vec2(textureSize(mask, 0));
+    float mc = op.z * sgTexelChannel(textureGrad(mask, st, dSTdx, dSTdy), ch);
+    float ms1 = sgTexelChannel(textureGrad(mask, st + vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
+    float ms0 = sgTexelChannel(textureGrad(mask, st - vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
+    float mt1 = sgTexelChannel(textureGrad(mask, st + vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
+    float mt0 = sgTexelChannel(textureGrad(mask, st - vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
+    vec2 dm = op.z * vec2((ms1 - ms0) / (2.0f * texel.x), (mt1 - mt0) / (2.0f * texel.y));
+    SgHeightDeriv r;
+    r.d = sgDerivModulate(s.d, s.h, dm, mc);
+    r.h = s.h * mc;
     return r;
 }
 

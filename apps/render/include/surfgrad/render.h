@@ -327,9 +327,9 @@ struct PlanLayer {
     int tex[3] = {-1, -1, -1}; // texture slots
     int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
     int featureIndex = -1;     // feature layers: index among the plan's feature layers
-    int maskTex = -1;          // modulate mask slot
+    int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
     bool hasModifiers = false;
-    int modRecord = -1;        // first of 4 modifier records
+    int modRecord = -1;        // first modifier record (one per modifier)
     int uberIndex = -1;        // uber-shader enable flag
 };
 
