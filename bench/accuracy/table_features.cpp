@@ -155,7 +155,7 @@ uniform vec2 uWindowSize;
 uniform float uMapSize;
 uniform vec4 uProfile; // kind, depth, w0, w
 uniform sampler2D uNormalMap;
-uniform sampler2D uFeatCorners;
+uniform usampler2D uFeatCorners;
 uniform usampler2D uFeatEdges;
 layout(location = 0) out vec4 oColor;
 void main() {
@@ -342,9 +342,12 @@ void tableFeatures(const Options& o) {
     GLuint texCorners[2], texEdges[2], texNormal;
     const sg::features::GpuFeatureMaps* gm[2] = {&lin, &quad};
     for (int k = 0; k < 2; ++k) {
+        // Layout of surfgrad/feature_maps.h: corner pairs N x (N+1) and edge
+        // words N x N, both RGBA32UI.
         glCreateTextures(GL_TEXTURE_2D, 1, &texCorners[k]);
-        glTextureStorage2D(texCorners[k], 1, GL_RGBA32F, n + 1, n + 1);
-        glTextureSubImage2D(texCorners[k], 0, 0, 0, n + 1, n + 1, GL_RGBA, GL_FLOAT, gm[k]->corners.data());
+        glTextureStorage2D(texCorners[k], 1, GL_RGBA32UI, gm[k]->cornerPairsWidth(), gm[k]->cornerPairsHeight());
+        glTextureSubImage2D(texCorners[k], 0, 0, 0, gm[k]->cornerPairsWidth(), gm[k]->cornerPairsHeight(),
+                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, gm[k]->cornerPairs.data());
         glCreateTextures(GL_TEXTURE_2D, 1, &texEdges[k]);
         glTextureStorage2D(texEdges[k], 1, GL_RGBA32UI, n, n);
         glTextureSubImage2D(texEdges[k], 0, 0, 0, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT, gm[k]->edges.data());
