@@ -258,6 +258,7 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f, 
     auto a = std::make_shared<FeatureMapsAsset>();
     a->gpu = maps.packGpu();
     a->bandTexels = maps.bandTexels;
+    a->quadratic = maps.mode == sf::BakeMode::Quadratic;
     a->uid = nextUid++;
     return a;
 }

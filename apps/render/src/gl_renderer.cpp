@@ -176,8 +176,9 @@ struct GlRenderer::Impl {
             const auto& g = fm.gpu;
             GLuint t[2];
             glCreateTextures(GL_TEXTURE_2D, 2, t);
-            glTextureStorage2D(t[0], 1, GL_RGBA32F, g.size + 1, g.size + 1);
-            glTextureSubImage2D(t[0], 0, 0, 0, g.size + 1, g.size + 1, GL_RGBA, GL_FLOAT, g.corners.data());
+            glTextureStorage2D(t[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
+            glTextureSubImage2D(t[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(), GL_RGBA_INTEGER,
+                                GL_UNSIGNED_INT, g.cornerPairs.data());
             glTextureStorage2D(t[1], 1, GL_RGBA32UI, g.size, g.size);
             glTextureSubImage2D(t[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
             for (GLuint x : t) {
@@ -260,7 +261,7 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             std::string name = "uTex" + std::to_string(s);
             glUniform1i(gp.loc(name.c_str()), GLint(s));
         }
-        // Feature maps: corners (RGBA32F) and edges (RGBA32UI), read with
+        // Feature maps: corner pairs and edges (both RGBA32UI), read with
         // texelFetch only, on the units after the regular textures; the
         // per-layer sampler arrays point at them (and at the base maps).
         for (size_t f = 0; f < plan.featureKeys.size(); ++f) {

@@ -198,6 +198,10 @@ struct Planner {
             pl.featureSlot = int(it - plan.featureKeys.begin());
             if (it == plan.featureKeys.end()) plan.featureKeys.push_back(key);
             pl.featureIndex = plan.featureLayerCount++;
+            // Effects on demand inside the evaluator: the curved-segment
+            // code (TOG 2008) only when some map was baked with curves.
+            auto fm = assets.featureMaps.find(key);
+            if (fm != assets.featureMaps.end() && fm->second->quadratic) plan.featureCurved = true;
         }
         int nTex = L.kind == LayerKind::Triplanar ? 3 : (L.kind == LayerKind::Noise ? 0 : 1);
         for (int i = 0; i < nTex; ++i) {
@@ -250,6 +254,7 @@ struct Planner {
             sig << "]";
         }
         if (plan.baseColorTex >= 0) sig << "|bc@uv" << plan.baseColorUvSet << ":t" << plan.baseColorTex;
+        if (plan.featureLayerCount > 0) sig << (plan.featureCurved ? "|featcurved" : "|featstraight");
         sig << "|tex" << plan.textureKeys.size();
         plan.signature = sig.str();
     }
@@ -585,7 +590,7 @@ std::string fragmentBody(const MaterialPlan& plan) {
             o << ");\n";
         };
         int n = plan.featureLayerCount;
-        o << "uniform sampler2D uFeatCorners[" << n << "];\n"
+        o << "uniform usampler2D uFeatCorners[" << n << "];\n"
           << "uniform usampler2D uFeatEdges[" << n << "];\n"
           << "uniform sampler2D uFeatBase[" << n << "];\n";
         arr("kFeatRecord", rec);
@@ -832,6 +837,7 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     std::vector<std::string> fdefs = defs;
     fdefs.push_back("SG_LIGHT_COUNT " + std::to_string(plan.lightCount));
     fdefs.push_back("SG_LAYER_RECORDS " + std::to_string(std::max(plan.recordCount, 1)));
+    if (plan.featureLayerCount > 0) fdefs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
     const char* vs = sg::shaders::find("sg/render/surface_vs.glsl");
     assert(vs);
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);

@@ -15,7 +15,8 @@ namespace sg::render {
 struct FeatureMapsAsset {
     sg::features::GpuFeatureMaps gpu;
     double bandTexels = 16.0;
-    uint64_t uid = 0; // unique per load (GPU caches key on it)
+    bool quadratic = false; // baked in quadratic mode (curved segments)
+    uint64_t uid = 0;       // unique per load (GPU caches key on it)
 };
 } // namespace sg::render
 
