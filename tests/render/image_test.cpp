@@ -77,6 +77,14 @@ std::vector<LayerCase> layerCases() {
          sphereScene(R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
                      R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
                         "mode": "paper", "tiling": 2, "base_map": )" + tiles + "}")},
+        {"spot_subdivided_mikktspace_tangents",
+         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + "}",
+                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2}, "tangents": ["mikktspace"]})")},
+        {"spot_limit_surface_tangents",
+         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + "}",
+                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true}, "tangents": ["limit"]})")},
         {"post_resolve",
          sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
                     {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2},
@@ -132,6 +140,37 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
 
 INSTANTIATE_TEST_SUITE_P(Kinds, LayerImage, ::testing::ValuesIn(layerCases()),
                          [](const auto& tpi) { return std::string(tpi.param.name); });
+
+// Blendshapes: a glTF weight animation sampled mid-way; the morphed mesh is
+// re-uploaded (SceneAssets::meshVersion) and both renderers see the same
+// shape. Same bounds as the layer cases.
+TEST(Morph, AnimatedMorphSphereMidAnimation) {
+    Scene s = sceneForModel(std::string(SURFGRAD_DATA_DIR) + "/gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf");
+    s.output.width = 200;
+    s.output.height = 150;
+    ASSERT_FALSE(s.meshes[0].morphKeys.empty()) << "the glTF weight animation becomes morph keys";
+    SceneAssets a = loadAssets(s);
+    View v0 = makeView(s, a, 0, 0, Aov::Normal);
+    Image at0 = gpu().render(s, a, v0);
+    uint64_t version = a.meshVersion;
+    applyFrame(s, a, 0.5f * s.meshes[0].morphKeys.back().time);
+    EXPECT_NE(a.meshVersion, version);
+    CpuOptions parity;
+    parity.derivatives = CpuDerivatives::Quad;
+    parity.textureLod = sg::glsl::LodRule::FastLog2;
+    NormalRenders p = renderNormalsBoth(s, a, parity);
+    EXPECT_GT(p.diff.compared, 2000u);
+    EXPECT_EQ(p.diff.nonFinite, 0u);
+    EXPECT_LE(p.diff.maxDeg, 0.05);
+    // The shape moved: normals differ from frame 0 somewhere.
+    double maxChange = 0.0;
+    for (size_t i = 0; i < at0.pixels.size(); ++i) {
+        if (p.gpuPrim.pixels[i].x <= 0.0f || glm::length(glm::vec3(at0.pixels[i])) < 0.5f) continue;
+        float c = glm::dot(glm::vec3(at0.pixels[i]), glm::vec3(p.gpuNormal.pixels[i]));
+        maxChange = std::max(maxChange, double(glm::degrees(std::acos(std::clamp(c, -1.0f, 1.0f)))));
+    }
+    EXPECT_GT(maxChange, 5.0);
+}
 
 // Section 2.10 on a plane seen from BELOW (every fragment back-facing):
 //   none   - n' = normalize(n - g): the front side's normal;
@@ -231,6 +270,40 @@ void compareTangentFrames(const char* model) {
 
 TEST(TangentFrames, NormalTangentTestPixelVsMikkTSpace) { compareTangentFrames("NormalTangentTest"); }
 TEST(TangentFrames, NormalTangentMirrorTestPixelVsMikkTSpace) { compareTangentFrames("NormalTangentMirrorTest"); }
+
+// The three tangent sources on a curved, subdivided mesh (spot's cage at
+// level 2, its own UVs, a bricks normal map): per-pixel frame (listing 6),
+// MikkTSpace vertex tangents and exact limit-surface tangents (both with
+// the section 2.2 basis). Here the frames really differ: MikkTSpace and
+// limit tangents follow dP/ds of the (non-conformal) UV map, the per-pixel
+// frame is orthonormal. The bounds only catch a broken frame (a flipped
+// axis moves the median by tens of degrees): median <= 3, p99 <= 25.
+TEST(TangentFrames, SpotPixelVsMikkTSpaceVsLimit) {
+    std::string spot = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
+    auto scene = [&](const char* tangents, bool limit) {
+        return sceneFromJson(oneMaterialScene(R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 512}})",
+                                              R"({"file": ")" + spot + R"(", "subdivision": {"level": 2, "limit": )" +
+                                                  (limit ? "true" : "false") + R"(}, "tangents": [")" + tangents + "\"]}",
+                                              "", 320, 240));
+    };
+    Scene sp = scene("pixel", true), sm = scene("mikktspace", true), sl = scene("limit", true);
+    SceneAssets ap = loadAssets(sp), am = loadAssets(sm), al = loadAssets(sl);
+    View v = makeView(sp, ap, 0, 0, Aov::Normal), pv = v;
+    pv.aov = Aov::PrimId;
+    Image np = gpu().render(sp, ap, v), pp = gpu().render(sp, ap, pv);
+    Image nm = gpu().render(sm, am, v), pm = gpu().render(sm, am, pv);
+    Image nl = gpu().render(sl, al, v), pl = gpu().render(sl, al, pv);
+    auto report = [](const char* what, const VectorImageDiff& d) {
+        std::printf("[spot L2] %s: %zu px, mean %.3f p50 %.3f p90 %.3f p99 %.3f max %.2f deg\n", what, d.compared,
+                    d.meanDeg, d.p50Deg, d.p90Deg, d.p99Deg, d.maxDeg);
+        EXPECT_GT(d.compared, 5000u);
+        EXPECT_LE(d.p50Deg, 3.0);
+        EXPECT_LE(d.p99Deg, 25.0);
+    };
+    report("pixel vs mikktspace", compareVectorImages(np, nm, pp, pm));
+    report("pixel vs limit", compareVectorImages(np, nl, pp, pl));
+    report("mikktspace vs limit", compareVectorImages(nm, nl, pm, pl));
+}
 
 TEST(DefaultScene, RendersWithoutNaNAndMatchesTheCpuReference) {
     Scene s = defaultScene();

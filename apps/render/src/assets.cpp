@@ -531,6 +531,28 @@ Scene sceneForModel(const fs::path& model) {
         mi.file = model;
         mi.fileInstance = int(i);
         mi.transform = inst.objectToWorld;
+        // The node's weight animation (glTF sec. 3.11) as linear keys: the
+        // animation's own keys when linear, else samples at 30 Hz of
+        // sampleWeights (step / cubic spline).
+        for (const auto& anim : fs.animations) {
+            if (anim.node != inst.node || anim.times.empty() ||
+                anim.targetCount != inst.mesh.morphTargets.size() || anim.targetCount == 0) {
+                continue;
+            }
+            std::vector<float> times;
+            if (anim.interpolation == sm::AnimInterpolation::Linear) {
+                times = anim.times;
+            } else {
+                float t0 = anim.times.front(), t1 = anim.times.back();
+                int n = std::clamp(int((t1 - t0) * 30.0f) + 1, 2, 4096);
+                for (int k = 0; k < n; ++k) times.push_back(t0 + (t1 - t0) * float(k) / float(n - 1));
+            }
+            for (float t : times) mi.morphKeys.push_back(MorphKey{t, sm::sampleWeights(anim, t)});
+            mi.morphLoop = true;
+            float duration = anim.times.back();
+            s.frameCount = std::max(s.frameCount, int(std::ceil(duration * s.fps)) + 1);
+            break;
+        }
         if (inst.material >= 0 && size_t(inst.material) < s.materials.size()) {
             mi.material = inst.material;
         } else {
