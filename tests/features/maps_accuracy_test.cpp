@@ -180,3 +180,50 @@ TEST(FeatureMapsAccuracy, AllFinite) {
         expectAllFinite(m.packGpu(), 6);
     }
 }
+
+// C0 continuity across texel edges (TOG 2008 DFR1b, DFR2): both texels
+// sharing an edge interpolate the same values along it, so d and the
+// gradient agree on its two sides. Checked on every texel edge of the map
+// at 1/16-texel steps, 1e-4 texels to either side, away from curve ends and
+// junctions (where the configuration of one texel may have dropped a
+// segment its neighbour keeps: TOG 2008 Fig. 6 right).
+TEST(FeatureMapsAccuracy, ContinuousAcrossTexelEdges) {
+    for (BakeMode mode : {BakeMode::Linear, BakeMode::Quadratic}) {
+        CurveNetwork net = curvyNetwork();
+        FeatureMaps m = bake(net, texelSpace(64, mode));
+        GpuFeatureMaps g = m.packGpu();
+        double worstD = 0, worstAngle = 0;
+        int checked = 0;
+        for (int e = 1; e < 64; ++e) {
+            for (int k = 0; k < 64 * 16; ++k) {
+                float t = (float(k) + 0.5f) / 16.0f;
+                for (int dir = 0; dir < 2; ++dir) {
+                    glm::vec2 a = dir ? glm::vec2(float(e) - 1e-4f, t) : glm::vec2(t, float(e) - 1e-4f);
+                    glm::vec2 b = dir ? glm::vec2(float(e) + 1e-4f, t) : glm::vec2(t, float(e) + 1e-4f);
+                    if (distToSpecialPoint(net, dvec2(a)) < 1.5) continue;
+                    auto ra = sample(g, a), rb = sample(g, b);
+                    // Next to a curve the two sides may straddle it; beyond the
+                    // band (no curve within 16 texels) there is no gradient.
+                    if (std::min(ra.dist, rb.dist) < 2e-3f || std::max(ra.dist, rb.dist) >= 15.0f) continue;
+                    ++checked;
+                    worstD = std::max(worstD, double(std::fabs(ra.dist - rb.dist)));
+                    double cosA = std::clamp(double(ra.grad.x * rb.grad.x + ra.grad.y * rb.grad.y), -1.0, 1.0);
+                    double ang = std::acos(cosA) * 180.0 / M_PI;
+                    if (std::getenv("SG_TEST_VERBOSE") && ang > 0.5)
+                        std::printf("  jump %.2f deg at %.4f %.4f: d %.4f %.4f grad (%.3f %.3f) (%.3f %.3f)\n", ang, a.x, a.y,
+                                    ra.dist, rb.dist, ra.grad.x, ra.grad.y, rb.grad.x, rb.grad.y);
+                    worstAngle = std::max(worstAngle, ang);
+                }
+            }
+        }
+        std::printf("%s: %d edge samples, max |d jump| %.2e, max gradient jump %.3f deg\n", toString(mode), checked,
+                    worstD, worstAngle);
+        EXPECT_GT(checked, 100000);
+        // The 2e-4 texel step between the two samples times |grad d| <= 1,
+        // plus binary32 rounding.
+        EXPECT_LT(worstD, 5e-4);
+        // The gradient is interpolated linearly between vertex values
+        // shared by both sides: only the step and rounding separate them.
+        EXPECT_LT(worstAngle, 0.5);
+    }
+}

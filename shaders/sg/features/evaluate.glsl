@@ -23,9 +23,10 @@
 //     from reachable corners only: a corner keeps its sample; an edge vertex
 //     interpolates its edge's reachable corners (two: linear; one: copy;
 //     none: the value at the other end of a segment through it, step
-//     3.1.3), with d = 0 on a discontinuity point (step 3.2) and, there, the
-//     gradient replaced by the curve's normal (our addition, see
-//     sgFeatOnCurveNormal); r_m interpolates its path's end values (step 4),
+//     3.1.3; we use the mean of the region's corners), with d = 0 on a
+//     discontinuity point (step 3.2) and, there, the gradient replaced by
+//     the curve's normal (our addition, see sgFeatOnCurveNormal); r_m
+//     interpolates its path's end values (step 4),
 //     along the discontinuity when one passes through r_m, else the average
 //     of both paths (TR2005-872, Fig. 7).
 //  5. Interpolate in the triangle (section 5.3): barycentric for straight
@@ -201,16 +202,18 @@ struct SgFeatEdgeValues {
 };
 
 // On a discontinuity point the gradient is the curve's unit normal there
-// (from the signature's tangent angle), exact on the curve where the corner
+// (from the signature's tangent angle): exact on the curve, where the corner
 // samples only approximate it (they are smoothed, and turn near the medial
-// axis). It is oriented towards p's side: towards the one reachable corner
-// of the edge (the curve crosses the edge there, so the edge leads into p's
-// region); when both or neither are reachable (a curve ending on the edge,
-// or p between two segments meeting there), like the corner interpolation
-// of appendix step 3.1 it replaces. Both texels sharing the point use the
-// same angle and orientation, so the gradient stays continuous across the
-// texel edge. An addition to the papers, which interpolate the corner
-// gradients here.
+// axis). Where a segment of this texel ends on the edge, the curve separates
+// the edge's two corners and exactly one is reachable: the normal points
+// towards it (the edge leads from the point into p's region), and both
+// texels sharing the point see the same angle and corner, so the gradient
+// stays continuous across the texel edge. Where a curve merely ends on the
+// edge (both corners reachable) or two segments meet with p between them
+// (none), the corner values of appendix step 3.1 orient it. (Measured on an
+// eight-ray star, this gives fewer gradient jumps across texel edges than
+// keeping the corner values there.) An addition to the papers, which always
+// interpolate the corner gradients here.
 SG_FN vec3 sgFeatOnCurveNormal(SgFeatGeom g, int reach, int e, vec3 v) {
     vec2 tg = sgFeatTang(g, e);
     vec2 n = vec2(-tg.y, tg.x);
@@ -221,7 +224,9 @@ SG_FN vec3 sgFeatOnCurveNormal(SgFeatGeom g, int reach, int e, vec3 v) {
     vec2 ref = r0 != r1 ? sgFeatCornerPos(r0 ? c0 : c1) - sgFeatQ(g, e) : vec2(v.y, v.z);
     float s = dot(n, ref);
     bool pt = e == 0 ? g.pt[0] : (e == 1 ? g.pt[1] : (e == 2 ? g.pt[2] : g.pt[3]));
-    bool use = pt && g.angles && s * s > 0.0025f * dot(ref, ref); // |s| > 0.05 |ref|
+    // |s| > 0.05 |ref|: with an unclear orientation (a curve nearly along the
+    // edge) the corner values stay.
+    bool use = pt && g.angles && s * s > 0.0025f * dot(ref, ref);
     vec2 o = s > 0.0f ? n : -n;
     return use ? vec3(v.x, o.x, o.y) : v;
 }
@@ -251,9 +256,10 @@ SG_FN SgFeatEdgeValues sgFeatEdgeValues(SgFeatGeom g, int reach) {
     vec3 mean = (w0 * g.cv[0] + w1 * g.cv[1] + w2 * g.cv[2] + w3 * g.cv[3]) / max(w0 + w1 + w2 + w3, 1.0f);
     // Step 3.1.3 (an edge point with no reachable corner: the common end of
     // two segments with p between them): the paper takes the value at
-    // another segment end; here its gradient only orients the curve normal
-    // that replaces it (sgFeatOnCurveNormal), and the mean of the region's
-    // corners (sgFeatEdgeBasic's fallback) orients it the same way.
+    // another segment end; we take the mean of the region's corners
+    // (sgFeatEdgeBasic's fallback), which needs no data-dependent indexing.
+    // Between two segments that leave one point along one tangent the true
+    // gradient flips at their medial axis anyway.
     bool ok = false;
     SgFeatEdgeValues r;
     r.v[0] = sgFeatOnCurveNormal(g, reach, 0, sgFeatEdgeBasic(g, reach, 0, mean, ok));
