@@ -3,9 +3,12 @@
 // build():
 //  1. PolygonMesh -> Far::TopologyDescriptor (arrays are used in place;
 //     creases, corners, holes and one face-varying channel per UV set);
-//  2. uniform TopologyRefiner to level N; positions (and morph deltas)
+//  2. uniform refinement to level N; positions (and morph deltas)
 //     through PrimvarRefiner::Interpolate, UVs through
-//     InterpolateFaceVarying, ping-pong buffers kept between builds;
+//     InterpolateFaceVarying, ping-pong buffers kept between builds. A
+//     manifold Catmull-Clark cage (without a limit evaluation) takes the
+//     specialised refiner of uniform_refiner.h instead: the same numbers
+//     bit for bit from OpenSubdiv's level 0, 3-4x faster;
 //  3. level-N faces (holes dropped) -> refined() polygons;
 //  4. limit (optional): a second, adaptively refined TopologyRefiner
 //     (isolation >= N, so every level-N vertex is a patch corner and patch
@@ -46,6 +49,7 @@
 
 #include "mesh_internal.h"
 #include "surfgrad/mesh_io.h"
+#include "uniform_refiner.h"
 
 namespace sg::mesh {
 
@@ -226,16 +230,48 @@ struct FactoredStencils {
     // reading the previous level at srcBase and writing at dstBase.
     // fvarChannel >= 0 records InterpolateFaceVarying of that channel.
     void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase, int fvarChannel = -1) {
+        const int nChild = fvarChannel < 0 ? refiner.GetLevel(level).GetNumVertices() : refiner.GetLevel(level).GetNumFVarValues(fvarChannel);
+        record(uint32_t(nChild), srcBase, dstBase, [&](const TokenView& src, RecorderView& dst) {
+            Far::PrimvarRefiner primvar(refiner);
+            if (fvarChannel < 0) primvar.Interpolate(level, src, dst);
+            else primvar.InterpolateFaceVarying(level, src, dst, fvarChannel);
+        });
+    }
+    // The same from the specialised refiner (uniform_refiner.h), through
+    // its writer protocol.
+    void recordLevel(const detail::UniformRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase, int fvarChannel = -1) {
+        const uint32_t nChild = fvarChannel < 0 ? refiner.level(level).numVerts : refiner.numFVarValues(level, fvarChannel);
+        record(nChild, srcBase, dstBase, [&](const TokenView& src, RecorderView& dst) {
+            struct Writer {
+                RecordedRows* rows;
+                uint32_t srcBase;
+                void begin(uint32_t child) {
+                    rows->rowOf.push_back(child);
+                    rows->rowStart.push_back(uint32_t(rows->src.size()));
+                }
+                void add(uint32_t parent, float w) {
+                    rows->src.push_back(srcBase + parent);
+                    rows->weight.push_back(w);
+                }
+                void addChild(uint32_t child, float w) {
+                    rows->src.push_back(rows->dstBase + child);
+                    rows->weight.push_back(w);
+                }
+                void end() {}
+            } writer{dst.rows, src.base};
+            if (fvarChannel < 0) refiner.interpolate(level, writer);
+            else refiner.interpolateFaceVarying(level, writer, fvarChannel);
+        });
+    }
+    template <class Interpolate>
+    void record(uint32_t nChild, uint32_t srcBase, uint32_t dstBase, Interpolate&& interpolate) {
         RecordedRows rows;
         rows.dstBase = dstBase;
-        const int nChild = fvarChannel < 0 ? refiner.GetLevel(level).GetNumVertices() : refiner.GetLevel(level).GetNumFVarValues(fvarChannel);
         rows.rowOf.reserve(size_t(nChild));
         rows.rowStart.reserve(size_t(nChild));
-        Far::PrimvarRefiner primvar(refiner);
         TokenView src{srcBase};
         RecorderView dst{&rows};
-        if (fvarChannel < 0) primvar.Interpolate(level, src, dst);
-        else primvar.InterpolateFaceVarying(level, src, dst, fvarChannel);
+        interpolate(src, dst);
         StencilBlock b;
         b.dstBase = dstBase;
         b.count = uint32_t(rows.rowOf.size());
@@ -413,7 +449,10 @@ struct Subdivider::Impl {
     // topology comes again (or for animation), factored stencils for
     // positions and every UV set, so a rebuild with new values is a few
     // sparse matrix products (see sameTopology / rebuildValues).
-    std::unique_ptr<Far::TopologyRefiner> keptRefiner;
+    std::unique_ptr<Far::TopologyRefiner> keptRefiner; // Far builds
+    detail::UniformRefiner fast;                       // specialised builds (its levels stay until the next build)
+    bool fastBuilt = false;                            // the last uniform build used `fast`
+    std::string fastDeclined;                          // why `fast` declined the last cage
     bool keyValid = false, stencilsRecorded = false, renderValid = false;
     PolygonMesh key; // topology, tags and value counts of the kept build (values not used)
     int keyLevel = -1;
@@ -429,14 +468,16 @@ struct Subdivider::Impl {
 
     void build(const PolygonMesh& cage);
     bool sameTopology(const PolygonMesh& cage) const;
-    void recordUniformStencils(const Far::TopologyRefiner& refiner, const PolygonMesh& cage);
+    // far: the uniform Far refiner, or nullptr for the specialised one.
+    void recordUniformStencils(const Far::TopologyRefiner* far, const PolygonMesh& cage);
     void rebuildValues(const PolygonMesh& cage);
     void refineUniform(const PolygonMesh& cage, Far::TopologyRefiner& refiner);
+    void refineUniformFast(const PolygonMesh& cage);
     void collectCreases(const Far::TopologyRefiner& refiner);
-    std::vector<uint32_t> sectors(const Far::TopologyRefiner& refiner, const std::vector<uint32_t>& offsets) const;
+    std::vector<uint32_t> sectors(const std::vector<uint32_t>& offsets) const;
     void locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex, std::vector<glm::vec2>& cornerUV) const;
     void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace);
-    void buildRender(const Far::TopologyRefiner& refiner);
+    void buildRender();
     // Copies of one vertex evaluated from different home faces differ in the
     // last bits; make them bitwise equal (no cracks): positions per refined
     // vertex, normals per smooth group.
@@ -591,6 +632,51 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
     timings.convertOut = sw.lap();
 }
 
+void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
+    // As refineUniform, from the specialised refiner: no holes, every level-N
+    // vertex is used, so refined() numbers them as level N does.
+    const int N = settings.level;
+    const size_t nSets = cage.uvSets.size();
+    detail::Stopwatch sw;
+    auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
+        const glm::vec3* src = control.data();
+        for (int l = 1; l <= N; ++l) {
+            std::vector<glm::vec3>& dstBuf = l == N ? out : (l % 2 ? bufA : bufB);
+            dstBuf.resize(fast.level(l).numVerts);
+            detail::ArrayWriter<glm::vec3> writer{src, dstBuf.data(), glm::vec3(0.0f)};
+            fast.interpolate(l, writer);
+            src = dstBuf.data();
+        }
+    };
+    interpolateVec3(cage.positions, refined.positions);
+    refined.morphTargets.resize(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+        refined.morphTargets[t].name = cage.morphTargets[t].name;
+        interpolateVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
+    }
+    refined.uvSets.resize(nSets);
+    for (size_t s = 0; s < nSets; ++s) {
+        refined.uvSets[s].name = cage.uvSets[s].name;
+        const glm::vec2* src = cage.uvSets[s].values.data();
+        for (int l = 1; l <= N; ++l) {
+            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
+            dstBuf.resize(fast.numFVarValues(l, int(s)));
+            detail::ArrayWriter<glm::vec2> writer{src, dstBuf.data(), glm::vec2(0.0f)};
+            fast.interpolateFaceVarying(l, writer, int(s));
+            src = dstBuf.data();
+        }
+    }
+    timings.interpolate = sw.lap();
+    const detail::RefineLevel& last = fast.level(N);
+    refined.faceSizes.assign(last.numFaces, 4u);
+    fast.takeLastFaceVertices(refined.faceVertices);
+    for (size_t s = 0; s < nSets; ++s) fast.takeLastFaceValues(int(s), refined.uvSets[s].indices);
+    levelToRefined.resize(last.numVerts);
+    std::iota(levelToRefined.begin(), levelToRefined.end(), 0u);
+    refined.morphWeights = cage.morphWeights;
+    timings.convertOut = sw.lap();
+}
+
 void Subdivider::Impl::collectCreases(const Far::TopologyRefiner& refiner) {
     // The sharpness left after N levels, on interior edges (boundary edges
     // carry the boundary rule, not a tag) and on vertices that are tagged
@@ -615,16 +701,14 @@ void Subdivider::Impl::collectCreases(const Far::TopologyRefiner& refiner) {
     }
 }
 
-std::vector<uint32_t> Subdivider::Impl::sectors(const Far::TopologyRefiner& refiner, const std::vector<uint32_t>& offsets) const {
+std::vector<uint32_t> Subdivider::Impl::sectors(const std::vector<uint32_t>& offsets) const {
     // Union-find over corners across interior edges that are not infinitely
-    // sharp: each root is one smooth sector around a vertex.
-    const Far::TopologyLevel& last = refiner.GetLevel(settings.level);
+    // sharp: each root is one smooth sector around a vertex. The infinitely
+    // sharp interior edges of level N are refined().creases with infinite
+    // sharpness (collectCreases / UniformRefiner::lastLevelCreases).
     std::vector<uint64_t> sharp;
-    for (int e = 0; e < last.GetNumEdges(); ++e) {
-        if (last.IsEdgeBoundary(e) || last.GetEdgeSharpness(e) < kInfiniteSharpness) continue;
-        Far::ConstIndexArray ev = last.GetEdgeVertices(e);
-        uint32_t a = levelToRefined[size_t(ev[0])], b = levelToRefined[size_t(ev[1])];
-        if (a != UINT32_MAX && b != UINT32_MAX) sharp.push_back(detail::edgeKey(a, b));
+    for (const EdgeCrease& c : refined.creases) {
+        if (c.sharpness >= kInfiniteSharpness) sharp.push_back(detail::edgeKey(c.v0, c.v1));
     }
     std::vector<uint32_t> sector(refined.faceVertices.size());
     if (sharp.empty()) {
@@ -830,7 +914,7 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     }
     timings.limit += sw.lap();
     // Render vertices over the surviving faces (the split needs dropFace).
-    buildRender(uniform);
+    buildRender();
     timings.render = sw.lap();
     const size_t nR = split.renderFirstCorner.size();
     // Derivative locations: the corner moved kInward of the way to its
@@ -970,11 +1054,11 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     timings.limit += sw.lap();
 }
 
-void Subdivider::Impl::buildRender(const Far::TopologyRefiner& refiner) {
+void Subdivider::Impl::buildRender() {
     std::vector<uint32_t> offsets = faceOffsets(refined);
     std::vector<uint32_t> sector;
     const bool needSectors = !refined.creases.empty();
-    if (needSectors) sector = sectors(refiner, offsets);
+    if (needSectors) sector = sectors(offsets);
     detail::splitRenderVertices(refined, offsets, needSectors ? sector.data() : nullptr, split);
     const size_t nR = split.renderSourceVertex.size();
     renderToRefined = split.renderSourceVertex;
@@ -1059,28 +1143,38 @@ bool Subdivider::Impl::sameTopology(const PolygonMesh& cage) const {
     return true;
 }
 
-void Subdivider::Impl::recordUniformStencils(const Far::TopologyRefiner& refiner, const PolygonMesh& cage) {
+void Subdivider::Impl::recordUniformStencils(const Far::TopologyRefiner* far, const PolygonMesh& cage) {
     const int N = settings.level;
+    auto numVerts = [&](int l) { return far ? uint32_t(far->GetLevel(l).GetNumVertices()) : fast.level(l).numVerts; };
+    // Level 0 holds the cage's UV values (Far indexes them as given).
+    auto numValues = [&](int l, int s) {
+        if (l == 0) return uint32_t(cage.uvSets[size_t(s)].values.size());
+        return far ? uint32_t(far->GetLevel(l).GetNumFVarValues(s)) : fast.numFVarValues(l, s);
+    };
+    auto record = [&](FactoredStencils& f, int l, uint32_t srcBase, uint32_t dstBase, int channel) {
+        if (far) f.recordLevel(*far, l, srcBase, dstBase, channel);
+        else f.recordLevel(fast, l, srcBase, dstBase, channel);
+    };
     uniformStencils = FactoredStencils();
     uniformStencils.numControl = uint32_t(cage.positions.size());
     uint32_t base = 0;
     for (int l = 1; l <= N; ++l) {
-        uint32_t next = base + uint32_t(refiner.GetLevel(l - 1).GetNumVertices());
-        uniformStencils.recordLevel(refiner, l, base, next);
+        uint32_t next = base + numVerts(l - 1);
+        record(uniformStencils, l, base, next, -1);
         base = next;
     }
-    uniformStencils.numPoints = base + uint32_t(refiner.GetLevel(N).GetNumVertices());
+    uniformStencils.numPoints = base + numVerts(N);
     fvarStencils.assign(cage.uvSets.size(), FactoredStencils());
     for (size_t s = 0; s < cage.uvSets.size(); ++s) {
         FactoredStencils& f = fvarStencils[s];
         f.numControl = uint32_t(cage.uvSets[s].values.size());
         uint32_t b = 0;
         for (int l = 1; l <= N; ++l) {
-            uint32_t next = b + uint32_t(refiner.GetLevel(l - 1).GetNumFVarValues(int(s)));
-            f.recordLevel(refiner, l, b, next, int(s));
+            uint32_t next = b + numValues(l - 1, int(s));
+            record(f, l, b, next, int(s));
             b = next;
         }
-        f.numPoints = b + uint32_t(refiner.GetLevel(N).GetNumFVarValues(int(s)));
+        f.numPoints = b + numValues(N, int(s));
     }
     stencilsRecorded = true;
 }
@@ -1089,7 +1183,7 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     // Same topology as the kept build: only values change. refined()'s
     // faces, UV indices, tags and the render split stay as they are.
     detail::Stopwatch sw;
-    if (!stencilsRecorded) recordUniformStencils(*keptRefiner, cage);
+    if (!stencilsRecorded) recordUniformStencils(fastBuilt ? nullptr : keptRefiner.get(), cage);
     timings.stencils = sw.lap();
     const size_t nLevel = levelToRefined.size();
     auto refineVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
@@ -1134,7 +1228,7 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
             polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
             for (size_t r = nR; r-- > 0;) refined.normals[renderToRefined[r]] = render.normals[r];
         } else {
-            buildRender(*keptRefiner);
+            buildRender();
             renderValid = true;
         }
         timings.render = sw.lap();
@@ -1171,19 +1265,18 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     keyValid = false;
     stencilsRecorded = false;
     renderValid = false;
+    fastBuilt = false;
+    fastDeclined.clear();
     // Free the previous refiner before OpenSubdiv allocates the next one, so
     // malloc hands the same pages back instead of faulting in new ones.
     keptRefiner.reset();
     detail::Stopwatch sw;
     descriptor.build(cage);
     timings.convertIn = sw.lap();
+    // Level 0 (OpenSubdiv's factory: validation, edges, tags, face-varying
+    // channels) is shared by both refiners.
     std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(descriptor, o, file);
-    Far::TopologyRefiner::UniformOptions uo(N);
-    // Edges of the last level are needed only for crease tags and sharp sectors.
-    uo.fullTopologyInLastLevel = !cage.creases.empty() || !cage.corners.empty();
-    refiner->RefineUniform(uo);
-    timings.topology = sw.lap();
-
+    const bool tags = !cage.creases.empty() || !cage.corners.empty();
     refined.name = cage.name;
     refined.options = o;
     refined.explicitTags = cage.explicitTags;
@@ -1191,14 +1284,37 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     refined.normals.clear();
     refined.normalIndices.clear();
     cageHasHoles = !cage.holes.empty();
-    refineUniform(cage, *refiner);
-    sw.lap();
-    if (uo.fullTopologyInLastLevel) collectCreases(*refiner);
-    else {
-        refined.creases.clear();
-        refined.corners.clear();
+    if (settings.specializedRefiner && !settings.limit && N >= 1) {
+        fastBuilt = fast.accept(*refiner, cage, fastDeclined);
+    } else {
+        fastDeclined = settings.limit ? "limit evaluation" : (N < 1 ? "level 0" : "not asked");
     }
-    timings.convertOut += sw.lap();
+    if (fastBuilt) {
+        fast.refine(N);
+        timings.topology = sw.lap();
+        refineUniformFast(cage);
+        sw.lap();
+        if (tags) fast.lastLevelCreases(refined.creases, refined.corners, o.boundary == BoundaryInterpolation::EdgeAndCorner);
+        else {
+            refined.creases.clear();
+            refined.corners.clear();
+        }
+        timings.convertOut += sw.lap();
+    } else {
+        Far::TopologyRefiner::UniformOptions uo(N);
+        // Edges of the last level are needed only for crease tags and sharp sectors.
+        uo.fullTopologyInLastLevel = tags;
+        refiner->RefineUniform(uo);
+        timings.topology = sw.lap();
+        refineUniform(cage, *refiner);
+        sw.lap();
+        if (tags) collectCreases(*refiner);
+        else {
+            refined.creases.clear();
+            refined.corners.clear();
+        }
+        timings.convertOut += sw.lap();
+    }
 
     render = RenderMesh();
     frame = LimitFrame();
@@ -1217,18 +1333,19 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
         }
     } else if (settings.buildRenderMesh) {
         sw.lap();
-        buildRender(*refiner);
+        buildRender();
         timings.render = sw.lap();
     }
     if (settings.animate && !settings.limit) {
         sw.lap();
-        recordUniformStencils(*refiner, cage);
+        recordUniformStencils(fastBuilt ? nullptr : refiner.get(), cage);
         timings.stencils = sw.lap();
     }
     // Keep what a rebuild of the same topology needs (uniform builds only:
     // a limit build turns faces without patches into holes of refined()).
+    // A specialised build keeps its levels in `fast`.
     if (!settings.limit && settings.reuseTopology) {
-        keptRefiner = std::move(refiner);
+        if (!fastBuilt) keptRefiner = std::move(refiner);
         keyValid = true;
         keyLevel = N;
         keyOptions = o;
@@ -1270,6 +1387,8 @@ const RenderMesh& Subdivider::renderMesh() const { return impl_->render; }
 const std::vector<uint32_t>& Subdivider::renderToRefinedVertex() const { return impl_->renderToRefined; }
 const LimitFrame& Subdivider::limitFrame() const { return impl_->frame; }
 const SubdivisionTimings& Subdivider::timings() const { return impl_->timings; }
+bool Subdivider::usedSpecializedRefiner() const { return impl_->fastBuilt; }
+const std::string& Subdivider::specializedRefinerDeclined() const { return impl_->fastDeclined; }
 size_t Subdivider::cageVertexCount() const { return impl_->cageVertices; }
 size_t Subdivider::stencilWeightCount() const {
     const Impl& m = *impl_;
