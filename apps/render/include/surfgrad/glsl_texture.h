@@ -16,6 +16,11 @@
 // can still differ is the driver's LOD arithmetic (llvmpipe: see
 // docs/scene.md, "CPU reference") and float rounding.
 //
+// There is deliberately no texture(): it takes the screen derivatives from
+// the 2x2 quad implicitly, and shared functions never use implicit
+// derivatives (docs/architecture.md): callers pass dFdxFine values on the
+// GPU and analytic ones on the CPU, so both sides select the same LOD.
+//
 // A default-constructed sampler2D (no image) samples (0, 0, 0, 1), like an
 // incomplete texture in GL, and has size (1, 1).
 //

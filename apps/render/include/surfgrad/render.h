@@ -424,7 +424,10 @@ VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image&
 // Renderers
 
 struct RenderStats {
-    double gpuMs = 0.0;       // GPU time of the draws (timer query)
+    // GPU time of the draws (GL_TIME_ELAPSED). Meaningful on hardware; on
+    // llvmpipe rasterisation happens at the flush, outside the query, so it
+    // reads near 0 (bench/render_bench times render + glFinish instead).
+    double gpuMs = 0.0;
     int programsCompiled = 0; // programs compiled by this call (cache misses)
     int drawCalls = 0;
 };
@@ -446,7 +449,8 @@ public:
     // Renders into the internal framebuffer without reading back (viewer,
     // benchmarks); returns its GL texture name.
     unsigned renderToTexture(const Scene& scene, const SceneAssets& assets, const View& view);
-    // Forces the next render to use uber-shader plans (bench baseline).
+    // While set, every material renders through its uber-shader plan
+    // (planUberMaterial; the bench baseline).
     void setUber(bool uber) { uber_ = uber; }
     // Meshes are re-uploaded when SceneAssets::uid or meshVersion changes
     // (applyFrame bumps it); this forces it otherwise.
