@@ -92,9 +92,11 @@ SG_FN bool sgFeatCornerLeft(uint cfg, int k) {
 // the C++ and GLSL evaluators see identical values. Edges without a point
 // hold the paper's default (t, theta) = (0.5, 0).
 #define SG_FEAT_PI 3.14159265358979f
-SG_FN float sgFeatEdgePos(uint w) { return float(w & 0xFFFFu) / 65535.0f; }
+// (Multiplications by the reciprocal, not divisions: identical in both
+// builds, and a few ulps from the bake's exact grid values.)
+SG_FN float sgFeatEdgePos(uint w) { return float(w & 0xFFFFu) * (1.0f / 65535.0f); }
 SG_FN vec2 sgFeatEdgeTangent(uint w) {
-    float u = (float(w >> 16u) - 32768.0f) / 32767.0f;
+    float u = (float(w >> 16u) - 32768.0f) * (1.0f / 32767.0f);
     float uu = u * u;
     return vec2(1.0f - uu, 2.0f * u) / (1.0f + uu);
 }
