@@ -97,8 +97,10 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
         }
         s += "]";
     }
-    s += ":t";
-    for (int t : pl.tex) s += std::to_string(t) + ",";
+    std::string slots;
+    for (int t : pl.tex)
+        if (t >= 0) slots += (slots.empty() ? "" : ",") + std::to_string(t);
+    if (!slots.empty()) s += ":t" + slots;
     if (pl.featureSlot >= 0) s += "f" + std::to_string(pl.featureSlot);
     return s;
 }
