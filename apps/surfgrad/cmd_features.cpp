@@ -216,9 +216,9 @@ float toSrgb(float c) {
 
 void runRender(const RenderArgs& a) {
     io::checkNotInput(a.out, {a.maps});
+    glsl::SgFeatProfile prof = makeProfile(a.profile, a.depth, a.blend, a.width);
     FeatureMaps maps = load(a.maps);
     GpuFeatureMaps gpu = maps.packGpu();
-    glsl::SgFeatProfile prof = makeProfile(a.profile, a.depth, a.blend, a.width);
     if (a.width > float(maps.bandTexels) - 1.5f) {
         throw CliError("features render: --width " + fmt(a.width) + " exceeds the maps' distance band " +
                        fmt(float(maps.bandTexels)) + " minus 1.5 texels (bake with a larger --band)");
