@@ -27,8 +27,9 @@
 //     field"); the gradient is the unit vector from the closest point.
 //  6. Constrained Laplacian smoothing of the gradient (sec. 4): each corner
 //     moves halfway to the mean of its grid neighbours, excluding those
-//     across a texel edge that carries a discontinuity point. The distance
-//     is never smoothed.
+//     across a texel edge that carries a discontinuity point and those with
+//     no curve within the band (no gradient). The distance is never
+//     smoothed.
 #include <algorithm>
 #include <bit>
 #include <chrono>

@@ -10,9 +10,13 @@
 // the middle control point is the intersection of the two tangent lines. A
 // signature is INVALID when the runtime (shaders/sg/features/evaluate.glsl)
 // could not use it: parallel tangents that are not a straight segment, a
-// middle point outside the texel, an implicit side test that the parabola's
-// other parts would fool, or a partition triangle that is not star-shaped
-// (1C) / monotone (2C) for its interpolation scheme.
+// curve leaving the texel (the paper asks for the middle control point
+// inside the texel, which implies it but straightens curves that hug an
+// edge), an implicit side test that the parabola's other parts would fool
+// (Eq. 7, then an exact test), or a partition triangle that is not
+// star-shaped (1C) / monotone and ordered (2C) for its interpolation
+// scheme. Straightening rules (always valid): theta_min, flat pieces, the
+// flatter of two crossing curves.
 //
 // Optimisation. The paper minimises the thin-plate energy of the affected
 // segments (this texel's and the connected ones in its four edge
@@ -28,10 +32,12 @@
 // 2006): infeasible trial points are ranked by their violation and never
 // beat a feasible one. On the smooth part of the problem compass search
 // converges to a stationary point like SQP (Lewis and Torczon, 1999); with
-// at most eight variables it costs a few hundred validations. A weak
-// anchor 0.25 (t - t_initial)^2 keeps points near the centre of mass of the
-// input crossings, which the local energy alone would let drift along the
-// edge. Starts: the current signature; the paper's Eq. 7 remedy (middle
+// at most eight variables it costs a few hundred validations. The energy
+// adds a fidelity term (kFidelityWeight times the squared distance from the
+// input curve's farthest-from-chord point in the texel to the segment:
+// without it the thin-plate energy straightens curves the search only needs
+// to nudge) and a weak anchor 0.25 (t - t_initial)^2 keeping points near
+// the centre of mass of the input crossings. Starts: the current signature; the paper's Eq. 7 remedy (middle
 // point moved onto the chord's perpendicular bisector, x0 = 0); tangents
 // from the neighbouring edge points (Catmull-Rom). A texel the search
 // cannot make valid has its segments straightened, which is always valid

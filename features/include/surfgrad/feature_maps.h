@@ -34,7 +34,11 @@
 // Words are described in shaders/sg/features/layout.glsl. 32 bytes per
 // texel (plus one row of corner pairs); 3 fetches per sample. Distances and
 // gradients are rounded to half floats there (5e-4 texels at d < 1, 0.008
-// at the 16-texel band edge), positions and angles to 16 bits.
+// at the 16-texel band edge), positions and angles to 16 bits. Shaders for
+// maps baked in linear mode may define SG_FEAT_CURVED 0 before including
+// the features files (straight segments only: cheaper, same results on such
+// maps). Calling sequence and costs: docs/features.md.
+//
 // FILE LAYOUT (save/load, OpenEXR through OpenImageIO): one image of
 // (N+1) x (N+1) pixels, pixel (i, j) = grid corner (i, j), scanline 0 = the
 // top row (j = N) so viewers show the map upright. FLOAT channels:
