@@ -439,6 +439,8 @@ struct Subdivider::Impl {
     Descriptor descriptor;
     std::vector<glm::vec3> bufA, bufB;
     std::vector<glm::vec2> uvA, uvB;
+    std::vector<std::vector<glm::vec4>> levelPoints; // specialised refiner: levels 1..N-1
+    std::vector<std::vector<glm::vec2>> levelValues; // specialised refiner: UV levels 1..N-1
 
     // Level-N vertex -> refined() vertex (UINT32_MAX: unused, e.g. in holes),
     // and render vertex -> level-N vertex (for update()).
@@ -638,15 +640,22 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
     const int N = settings.level;
     const size_t nSets = cage.uvSets.size();
     detail::Stopwatch sw;
+    // Levels 1..N-1 as 4-float values (detail::Vec4Writer), one buffer per
+    // level so none is shrunk and re-zeroed between builds.
+    if (levelPoints.size() < size_t(N)) levelPoints.resize(size_t(N));
     auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
-        const glm::vec3* src = control.data();
-        for (int l = 1; l <= N; ++l) {
-            std::vector<glm::vec3>& dstBuf = l == N ? out : (l % 2 ? bufA : bufB);
-            dstBuf.resize(fast.level(l).numVerts);
-            detail::ArrayWriter<glm::vec3> writer{src, dstBuf.data(), glm::vec3(0.0f)};
-            fast.interpolate(l, writer);
-            src = dstBuf.data();
+        out.resize(fast.level(N).numVerts);
+        if (N == 1) {
+            fast.interpolate(1, detail::Vec4Writer<glm::vec3, glm::vec3>{control.data(), out.data()});
+            return;
         }
+        levelPoints[1].resize(fast.level(1).numVerts);
+        fast.interpolate(1, detail::Vec4Writer<glm::vec3, glm::vec4>{control.data(), levelPoints[1].data()});
+        for (int l = 2; l < N; ++l) {
+            levelPoints[size_t(l)].resize(fast.level(l).numVerts);
+            fast.interpolate(l, detail::Vec4Writer<glm::vec4, glm::vec4>{levelPoints[size_t(l) - 1].data(), levelPoints[size_t(l)].data()});
+        }
+        fast.interpolate(N, detail::Vec4Writer<glm::vec4, glm::vec3>{levelPoints[size_t(N) - 1].data(), out.data()});
     };
     interpolateVec3(cage.positions, refined.positions);
     refined.morphTargets.resize(cage.morphTargets.size());
@@ -658,11 +667,11 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
     for (size_t s = 0; s < nSets; ++s) {
         refined.uvSets[s].name = cage.uvSets[s].name;
         const glm::vec2* src = cage.uvSets[s].values.data();
+        if (levelValues.size() < size_t(N)) levelValues.resize(size_t(N));
         for (int l = 1; l <= N; ++l) {
-            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
+            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : levelValues[size_t(l)];
             dstBuf.resize(fast.numFVarValues(l, int(s)));
-            detail::ArrayWriter<glm::vec2> writer{src, dstBuf.data(), glm::vec2(0.0f)};
-            fast.interpolateFaceVarying(l, writer, int(s));
+            fast.interpolateFaceVarying(l, detail::ArrayWriter<glm::vec2>{src, dstBuf.data(), glm::vec2(0.0f)}, int(s));
             src = dstBuf.data();
         }
     }

@@ -123,6 +123,7 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
     Z.vertInFace.clear();
     Z.vertEdges.clear();
     Z.vertInEdge.clear();
+    Z.vertRing.clear();
     sized(Z.vertSharpness, Z.numVerts);
     sized(Z.vertTags, Z.numVerts);
     sized(Z.vertRules, Z.numVerts);
@@ -144,6 +145,7 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
         for (int i = 0; i < ve.size(); ++i) {
             Z.vertEdges.push_back(uint32_t(ve[i]));
             Z.vertInEdge.push_back(uint16_t(vie[i]));
+            Z.vertRing.push_back(Z.edgeVerts[2 * size_t(ve[i]) + (vie[i] ^ 1u)]);
             if (Z.edgeTags[size_t(ve[i])] & kEdgeSemiSharp) tag |= kVertSemiSharpEdges;
         }
         Z.vertSharpness[v] = L.GetVertexSharpness(int(v));
@@ -526,11 +528,13 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         sized(C.vertInFace, fAt);
         sized(C.vertEdges, eAt);
         sized(C.vertInEdge, eAt);
+        sized(C.vertRing, eAt);
     }
     uint32_t* cvf = C.vertFaces.data();
     uint16_t* cvif = C.vertInFace.data();
     uint32_t* cve = C.vertEdges.data();
     uint16_t* cvie = C.vertInEdge.data();
+    uint32_t* cvr = C.vertRing.data();
     for (uint32_t v = 0; v < nV; ++v) {
         uint32_t fo = C.vertFaceOffsets[v];
         for (uint32_t i = P.vertFaceOffsets[v]; i < P.vertFaceOffsets[v + 1]; ++i, ++fo) {
@@ -543,6 +547,7 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         for (uint32_t i = P.vertEdgeOffsets[v]; i < P.vertEdgeOffsets[v + 1]; ++i, ++eo) {
             cve[eo] = nC + 2 * P.vertEdges[i] + P.vertInEdge[i];
             cvie[eo] = 1;
+            cvr[eo] = firstEdge + P.vertEdges[i];
         }
     }
     for (uint32_t f = 0; f < nF; ++f) {
@@ -553,6 +558,7 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             cvif[fo + j] = uint16_t(k == 4 ? ((j + 2) & 3) : 2);
             cve[eo + j] = off + (j ? j - 1 : k - 1);
             cvie[eo + j] = 0;
+            cvr[eo + j] = firstEdge + pfe[off + (j ? j - 1 : k - 1)];
         }
     }
     for (uint32_t e = 0; e < nE; ++e) {
@@ -561,9 +567,12 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         const uint32_t eo = C.vertEdgeOffsets[firstEdge + e];
         uint32_t* edges = cve + eo;
         uint16_t* inEdge = cvie + eo;
+        uint32_t* ring = cvr + eo;
         edges[0] = nC + 2 * e;
         edges[1] = nC + 2 * e + 1;
         inEdge[0] = inEdge[1] = 0;
+        ring[0] = pev[2 * e];
+        ring[1] = pev[2 * e + 1];
         for (uint32_t i = 0; i < nfE; ++i) {
             const uint32_t pf = P.edgeFaces[2 * e + i], eif = P.edgeInFace[2 * e + i];
             const uint32_t off = pfo[pf], k = pfo[pf + 1] - off;
@@ -574,12 +583,17 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             cvif[fo++] = uint16_t(k == 4 ? child1 : 1);
             edges[2 + i] = off + eif;
             inEdge[2 + i] = 1;
+            ring[2 + i] = firstFace + pf;
             if (i == 0) {
                 // Order (half, face edge, half, ...) counter-clockwise: the
                 // first half is the one this face's edge direction leaves.
-                if (pfv[off + eif] == pev[2 * e]) std::swap(edges[0], edges[1]);
+                if (pfv[off + eif] == pev[2 * e]) {
+                    std::swap(edges[0], edges[1]);
+                    std::swap(ring[0], ring[1]);
+                }
                 std::swap(edges[1], edges[2]);
                 std::swap(inEdge[1], inEdge[2]);
+                std::swap(ring[1], ring[2]);
             }
         }
     }
@@ -686,15 +700,17 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
     }
     CF.valueOffsets[C.numVerts] = total;
 
-    sized(CF.valueTags, total);
-    const uint8_t splitTag = fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease) : uint8_t(kValueMismatch);
-    for (uint32_t v = 0; v < nV; ++v) {
-        for (uint32_t s = 0; s < CF.valueOffsets[v + 1] - CF.valueOffsets[v]; ++s) CF.valueTags[CF.valueOffsets[v] + s] = PF.valueTags[PF.valueOffsets[v] + s];
-    }
-    for (uint32_t f = 0; f < nF; ++f) CF.valueTags[CF.valueOffsets[firstFace + f]] = 0;
-    for (uint32_t e = 0; e < nE; ++e) {
-        const uint8_t t = (PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear)) ? splitTag : 0;
-        for (uint32_t i = CF.valueOffsets[firstEdge + e]; i < CF.valueOffsets[firstEdge + e + 1]; ++i) CF.valueTags[i] = t;
+    if (!last) { // (the last level's value tags are never read)
+        sized(CF.valueTags, total);
+        const uint8_t splitTag = fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease) : uint8_t(kValueMismatch);
+        for (uint32_t v = 0; v < nV; ++v) {
+            for (uint32_t s = CF.valueOffsets[v]; s < CF.valueOffsets[v + 1]; ++s) CF.valueTags[s] = PF.valueTags[PF.valueOffsets[v] + (s - CF.valueOffsets[v])];
+        }
+        for (uint32_t f = 0; f < nF; ++f) CF.valueTags[CF.valueOffsets[firstFace + f]] = 0;
+        for (uint32_t e = 0; e < nE; ++e) {
+            const uint8_t t = (PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear)) ? splitTag : 0;
+            for (uint32_t i = CF.valueOffsets[firstEdge + e]; i < CF.valueOffsets[firstEdge + e + 1]; ++i) CF.valueTags[i] = t;
+        }
     }
 
     // Each child corner's value: the sibling of its parent corner for a

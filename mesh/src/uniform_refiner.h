@@ -46,6 +46,10 @@
 #include <opensubdiv/sdc/crease.h>
 #include <opensubdiv/sdc/options.h>
 
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -91,6 +95,7 @@ struct RefineLevel {
     std::vector<uint32_t> vertFaceOffsets, vertEdgeOffsets; // numVerts + 1
     std::vector<uint32_t> vertFaces, vertEdges;              // counter-clockwise around the vertex
     std::vector<uint16_t> vertInFace, vertInEdge;            // the vertex's index in that face / edge
+    std::vector<uint32_t> vertRing;                          // per vertex edge: the edge's other vertex
     // Any sharpness > 0, boundary or non-smooth rule: tags, sharpness and
     // rules are kept (else every vertex and edge of the level is smooth).
     bool tagged = false;
@@ -259,6 +264,31 @@ struct ArrayWriter {
     void end() { dst[at] = acc; }
 };
 
+// ArrayWriter for xyz values with the arithmetic done on 4 floats (the 4th
+// lane zero and ignored): In/Out are glm::vec3 or glm::vec4 arrays (the
+// Subdivider keeps intermediate levels as vec4). Each weighted add is then
+// one 4-lane multiply and one 4-lane add whose x, y, z lanes are exactly
+// the scalar IEEE operations ArrayWriter<glm::vec3> performs (no fused
+// multiply-add: the build does not enable FMA), so results are bitwise equal.
+template <class In, class Out>
+struct Vec4Writer {
+    const In* src;
+    Out* dst;
+    glm::vec4 acc{0.0f};
+    uint32_t at = 0;
+    static glm::vec4 widen(const glm::vec3& v) { return glm::vec4(v, 0.0f); }
+    static glm::vec4 widen(const glm::vec4& v) { return v; }
+    static void store(glm::vec3& out, const glm::vec4& v) { out = glm::vec3(v); }
+    static void store(glm::vec4& out, const glm::vec4& v) { out = v; }
+    void begin(uint32_t child) {
+        at = child;
+        acc = glm::vec4(0.0f);
+    }
+    void add(uint32_t parent, float w) { acc += w * widen(src[parent]); }
+    void addChild(uint32_t child, float w) { acc += w * widen(dst[child]); }
+    void end() { store(dst[at], acc); }
+};
+
 inline int UniformRefiner::edgeMask(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2], float fw[2]) const {
     const bool creased = P.tagged && P.edgeSharpness[e] > 0.0f;
     if (!creased && !triangleRule_(P)) {
@@ -291,15 +321,14 @@ inline void UniformRefiner::edgeFaceValues(const RefineLevel& P, const FVarLevel
 }
 
 inline void UniformRefiner::vertexEdgeValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t* out) const {
-    const uint32_t* ve = P.vertEdges.data() + P.vertEdgeOffsets[v];
-    const uint16_t* vie = P.vertInEdge.data() + P.vertEdgeOffsets[v];
+    const uint32_t* rv = P.vertRing.data() + P.vertEdgeOffsets[v];
     const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
     const uint16_t* vif = P.vertInFace.data() + P.vertFaceOffsets[v];
     const uint32_t ne = P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
     const uint32_t nf = P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
     const bool boundary = ne > nf;
     for (uint32_t i = 0; i < ne; ++i) {
-        const uint32_t other = P.edgeVerts[2 * ve[i] + (vie[i] ^ 1u)];
+        const uint32_t other = rv[i];
         if (valueCount(F, other) == 1) {
             out[i] = valueAt(F, other, 0);
         } else if (boundary && i == ne - 1) {
@@ -341,15 +370,14 @@ void UniformRefiner::interpolate(int level, Writer w) const {
     std::vector<float> buffer;
     for (uint32_t v = 0; v < P.numVerts; ++v) {
         const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
-        const uint32_t* ve = P.vertEdges.data() + P.vertEdgeOffsets[v];
-        const uint16_t* vie = P.vertInEdge.data() + P.vertEdgeOffsets[v];
+        const uint32_t* rv = P.vertRing.data() + P.vertEdgeOffsets[v];
         const uint32_t nf = P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
         const uint32_t ne = P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
         w.begin(v);
         if (nf == ne && nf < uint32_t(kSmoothTable) && smoothVertex(P, v)) {
             const float ring = smoothRingWeight_[nf];
             for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], ring);
-            for (uint32_t i = 0; i < ne; ++i) w.add(P.edgeVerts[2 * ve[i] + (vie[i] ^ 1u)], ring);
+            for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], ring);
             w.add(v, smoothVertexWeight_[nf]);
             w.end();
             continue;
@@ -361,7 +389,7 @@ void UniformRefiner::interpolate(int level, Writer w) const {
             for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], m.fw[i]);
         }
         if (m.ne > 0) {
-            for (uint32_t i = 0; i < ne; ++i) w.add(P.edgeVerts[2 * ve[i] + (vie[i] ^ 1u)], m.ew[i]);
+            for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], m.ew[i]);
         }
         w.add(v, m.vw[0]);
         w.end();
