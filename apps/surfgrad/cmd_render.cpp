@@ -64,17 +64,14 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
                         : tbn == "mikktspace" ? TangentSource::MikkTSpace
                                               : TangentSource::Limit;
     for (auto& m : scene.meshes) {
-        // The UV set the first normal-mapped layer reads gets vertex
-        // tangents (meshes carry one tangent set); pixel resets them all.
-        int uvSet = 0;
-        for (const auto& L : scene.materials[size_t(m.material)].layers) {
-            if (L.kind == LayerKind::UvNormal) {
-                uvSet = L.uvSet;
-                break;
-            }
+        // Every UV set whose tangent basis an enabled layer reads gets the
+        // source (pixel resets them all; vertex tangents are generated only
+        // for those sets anyway).
+        uint32_t sets = src == TangentSource::Pixel ? 0u : tangentBasisUvSets(scene.materials[size_t(m.material)]);
+        m.tangents.assign(size_t(kMaxUvSets), TangentSource::Pixel);
+        for (int k = 0; k < kMaxUvSets; ++k) {
+            if (sets >> k & 1u) m.tangents[size_t(k)] = src;
         }
-        m.tangents.assign(size_t(uvSet) + 1, TangentSource::Pixel);
-        m.tangents[size_t(uvSet)] = src;
         if (src == TangentSource::Limit && !m.subdivLimit) {
             if (!m.file.empty()) {
                 m.subdivLimit = true;

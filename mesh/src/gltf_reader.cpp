@@ -547,6 +547,7 @@ void GltfReader::materials(Scene& scene) {
         mat.normalTexCoord = src.normalTexture.texCoord;
         if (!std::isfinite(src.normalTexture.scale)) fail(el, "non-finite normalTexture.scale");
         mat.normalScale = float(src.normalTexture.scale);
+        mat.doubleSided = src.doubleSided;
         if (mat.baseColorTexCoord < 0 || mat.normalTexCoord < 0 || size_t(mat.baseColorTexCoord) >= limits_.maxUvSets ||
             size_t(mat.normalTexCoord) >= limits_.maxUvSets) {
             fail(el, "texCoord index out of range");

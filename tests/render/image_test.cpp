@@ -21,6 +21,7 @@
 #include <gtest/gtest.h>
 
 #include "render_test_util.h"
+#include "surfgrad/mesh_io.h"
 
 namespace sg::render::test {
 namespace {
@@ -85,6 +86,15 @@ std::vector<LayerCase> layerCases() {
          oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + "}",
                           R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
                               R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true}, "tangents": ["limit"]})")},
+        // Two UV sets, two vertex-tangent sources: limit tangents on the
+        // unwrap, MikkTSpace on a derived tiling set (tangent_sets_test.cpp
+        // checks the tangents themselves).
+        {"spot_two_uv_sets_limit_and_mikktspace_tangents",
+         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks +
+                              R"(}, {"type": "uv_normal", "uv_set": 1, "strength": 0.6, "map": )" + tiles + "}",
+                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true},
+                              "uv_sets": [{"from": 0, "scale": [3, 3], "rotate_deg": 30}], "tangents": ["limit", "mikktspace"]})")},
         {"post_resolve",
          sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
                     {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2},
@@ -220,6 +230,56 @@ TEST(DoubleSided, OffCullsBackFaces) {
     View v = makeView(s, a, 0, 0, Aov::PrimId);
     EXPECT_EQ(countCovered(gpu().render(s, a, v)), 0u);
     EXPECT_EQ(countCovered(renderCpu(s, a, v)), 0u);
+}
+
+// glTF's material.doubleSided (sec. 3.9.5) when a model is framed with
+// sceneForModel: false (written, or absent as in BoxTextured) culls back
+// faces, true renders them in mirror mode. Seen from the opposite side of
+// the default camera, the single-sided plane of MorphPrimitivesTest
+// vanishes in both renderers (all but the few pixels of its morphed bump's
+// side faces that really face that camera: under 5% of what the same model
+// shows in mirror mode); the double-sided NormalTangentTest does not.
+TEST(DoubleSided, GltfModelsFollowTheirMaterialsDoubleSidedFlag) {
+    auto model = [](const char* name) {
+        return std::string(SURFGRAD_DATA_DIR) + "/gltf/" + name + "/glTF/" + name + ".gltf";
+    };
+    struct Case {
+        const char* name;
+        bool doubleSided;
+    };
+    for (const Case& c : {Case{"MorphPrimitivesTest", false}, Case{"BoxTextured", false}, Case{"NormalTangentTest", true}}) {
+        SCOPED_TRACE(c.name);
+        sg::mesh::Scene file = sg::mesh::loadScene(model(c.name));
+        ASSERT_FALSE(file.materials.empty());
+        for (const auto& m : file.materials) EXPECT_EQ(m.doubleSided, c.doubleSided);
+        Scene s = sceneForModel(model(c.name));
+        for (const auto& m : s.materials) EXPECT_EQ(m.doubleSided, c.doubleSided ? DoubleSided::Mirror : DoubleSided::Off);
+    }
+    auto coverage = [](Scene s, bool fromBehind) {
+        s.output.width = 96;
+        s.output.height = 72;
+        if (fromBehind) { // the automatic camera's direction reversed
+            s.camera.azimuthDeg += 180.0f;
+            s.camera.elevationDeg = -s.camera.elevationDeg;
+        }
+        SceneAssets a = loadAssets(s);
+        View v = makeView(s, a, 0, 0, Aov::PrimId);
+        return std::make_pair(countCovered(gpu().render(s, a, v)), countCovered(renderCpu(s, a, v)));
+    };
+    Scene single = sceneForModel(model("MorphPrimitivesTest"));
+    auto front = coverage(single, false), back = coverage(single, true);
+    EXPECT_GT(front.first, 500u);
+    EXPECT_GT(front.second, 500u);
+    Scene forced = single;
+    for (auto& m : forced.materials) m.doubleSided = DoubleSided::Mirror;
+    auto backMirror = coverage(forced, true);
+    EXPECT_GT(backMirror.first, 500u);
+    EXPECT_LT(double(back.first), 0.05 * double(backMirror.first)) << "single-sided: back faces culled (GPU)";
+    EXPECT_LT(double(back.second), 0.05 * double(backMirror.second)) << "single-sided: back faces culled (CPU)";
+    Scene twoSided = sceneForModel(model("NormalTangentTest"));
+    auto twoBack = coverage(twoSided, true);
+    EXPECT_GT(twoBack.first, 500u);
+    EXPECT_GT(twoBack.second, 500u);
 }
 
 // glTF sample models through the whole pipeline (mesh module loader, base

@@ -99,9 +99,20 @@ std::vector<BadCase> badCases() {
          "meshes[0].material", "no material with index 3"},
         {"tangent source", R"({"meshes": [{"procedural": {"type": "sphere"}, "tangents": ["mikkt"]}]})",
          "meshes[0].tangents[0]", "expected \"pixel\", \"mikktspace\" or \"limit\""},
-        {"two vertex tangent sets",
-         R"({"meshes": [{"file": "m.obj", "tangents": ["mikktspace", "mikktspace"]}]})", "meshes[0].tangents",
-         "at most one UV set"},
+        {"derived UV set source", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"from": 4}]}]})",
+         "meshes[0].uv_sets[0].from", "expected an integer in [0, 3]"},
+        {"derived UV set zero scale", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"scale": [8, 0]}]}]})",
+         "meshes[0].uv_sets[0].scale", "non-zero"},
+        {"derived UV set scale shape", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"scale": [1, 2, 3]}]}]})",
+         "meshes[0].uv_sets[0].scale", "a number or an array of 2 numbers"},
+        {"derived UV set offset", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"offset": 0.5}]}]})",
+         "meshes[0].uv_sets[0].offset", "an array of 2 numbers"},
+        {"derived UV set rotation", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"rotate_deg": "30"}]}]})",
+         "meshes[0].uv_sets[0].rotate_deg", "expected a number"},
+        {"derived UV set unknown field", R"({"meshes": [{"file": "m.obj", "uv_sets": [{"from": 0, "rotate": 30}]}]})",
+         "meshes[0].uv_sets[0].rotate", "unknown field"},
+        {"too many derived UV sets", R"({"meshes": [{"file": "m.obj", "uv_sets": [{}, {}, {}, {}, {}]}]})",
+         "meshes[0].uv_sets", "at most 4"},
         {"limit tangents without limit", R"({"meshes": [{"file": "m.obj", "tangents": ["limit"]}]})",
          "meshes[0].tangents", "\"limit\": true"},
         {"subdivision of a procedural mesh",
@@ -170,6 +181,24 @@ TEST(SceneValidation, ErrorsFoundWhenLoadingAssetsNameTheField) {
         EXPECT_EQ(e.element(), "materials[0].layers[0].map");
         EXPECT_NE(e.reason().find("does not exist"), std::string::npos) << e.what();
     }
+    // Derived UV sets: the source must exist when the set is added (a
+    // file's set count is known only then), and a mesh has at most 4 sets.
+    auto loadError = [](const std::string& json, const std::string& element, const std::string& reason) {
+        Scene sc = sceneFromJson(json);
+        try {
+            loadAssets(sc);
+            ADD_FAILURE() << "accepted: " << json;
+        } catch (const io::InputError& e) {
+            EXPECT_EQ(e.element(), element) << e.what();
+            EXPECT_NE(e.reason().find(reason), std::string::npos) << e.what();
+        }
+    };
+    loadError(R"({"meshes": [{"procedural": {"type": "plane", "uv_sets": 1}, "uv_sets": [{"from": 1}]}]})",
+              "meshes[0].uv_sets[0].from", "has 1 UV set(s)");
+    loadError(R"({"meshes": [{"procedural": {"type": "plane", "uv_sets": 3}, "uv_sets": [{"from": 0}, {"from": 1}]}]})",
+              "meshes[0].uv_sets[1]", "at most 4 UV sets");
+    loadError(R"({"meshes": [{"procedural": {"type": "plane", "uv_sets": 2}, "tangents": ["pixel", "pixel", "mikktspace"]}]})",
+              "meshes[0].tangents[2]", "no UV set 2");
     // A mesh file that does not exist is reported by the mesh loader with the path.
     Scene s3 = sceneFromJson(R"({"meshes": [{"file": "no/such/mesh.obj"}]})");
     EXPECT_THROW(loadAssets(s3), io::InputError);
@@ -182,7 +211,9 @@ TEST(SceneValidation, ValidSceneParsesAsWritten) {
         {"type": "uv_normal", "uv_set": 1, "green": "dx", "encoding": "ag", "strength": 0.5, "map": {"procedural": "weave"}},
         {"type": "decal", "position": [1, 2, 3], "direction": [0, -1, 0], "up": [0, 0, -1], "size": [2, 4, 6], "map": "d.png"},
         {"type": "post_resolve", "layers": [{"type": "noise", "noise": "fbm", "octaves": 3, "exponent": 2}]}]}],
-      "meshes": [{"procedural": {"type": "torus"}, "material": "a", "transform": {"translate": [1, 0, 0], "scale": 2}}],
+      "meshes": [{"procedural": {"type": "torus"}, "material": "a", "transform": {"translate": [1, 0, 0], "scale": 2},
+                  "uv_sets": [{"from": 1, "scale": 8, "rotate_deg": 30, "offset": [0.25, -1]}, {"scale": [2, -3]}],
+                  "tangents": ["mikktspace", "pixel", "mikktspace"]}],
       "lights": [{"type": "point", "position": [0, 5, 0], "intensity": 10}]})");
     ASSERT_EQ(s.materials.size(), 1u);
     const Material& m = s.materials[0];
@@ -201,6 +232,18 @@ TEST(SceneValidation, ValidSceneParsesAsWritten) {
     ASSERT_EQ(m.layers[2].children.size(), 1u);
     EXPECT_EQ(m.layers[2].children[0].noiseType, NoiseType::Fbm);
     EXPECT_EQ(s.meshes[0].material, 0);
+    const auto& uvs = s.meshes[0].derivedUvSets;
+    ASSERT_EQ(uvs.size(), 2u);
+    EXPECT_EQ(uvs[0].from, 1);
+    EXPECT_EQ(uvs[0].scale, glm::vec2(8.0f));
+    EXPECT_FLOAT_EQ(uvs[0].rotateDeg, 30.0f);
+    EXPECT_EQ(uvs[0].offset, glm::vec2(0.25f, -1.0f));
+    EXPECT_EQ(uvs[1].from, 0);
+    EXPECT_EQ(uvs[1].scale, glm::vec2(2.0f, -3.0f));
+    EXPECT_EQ(uvs[1].fieldPath, "meshes[0].uv_sets[1]");
+    // Any number of UV sets may carry vertex tangents, each its own source.
+    EXPECT_EQ(s.meshes[0].tangents,
+              (std::vector<TangentSource>{TangentSource::MikkTSpace, TangentSource::Pixel, TangentSource::MikkTSpace}));
     EXPECT_NEAR(s.meshes[0].transform[0][0], 2.0f, 1e-6f);
     EXPECT_NEAR(s.meshes[0].transform[3][0], 1.0f, 1e-6f);
     EXPECT_TRUE(s.lights[0].point);

@@ -285,6 +285,117 @@ struct FileCache {
 
 std::string elementOf(const MeshInstance& mi, const std::string& sub) { return mi.fieldPath + "." + sub; }
 
+// Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o) to
+// the built mesh, and their limit derivatives (the linear part R S times
+// those of the source set) to `limit` when the mesh has one. After
+// refinement is exact: subdivision masks are affine combinations, which
+// commute with an affine map, so refining set 0 and mapping it equals
+// refining the mapped set; it also costs no extra face-varying channel.
+// Vertices are already split wherever the source set has seams, and a
+// derived set is a function of its source, so it needs no further splits.
+void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh& mesh, sm::LimitFrame& limit) {
+    for (const DerivedUvSet& d : mi.derivedUvSets) {
+        const size_t count = mesh.uvSets.size();
+        if (size_t(d.from) >= count) {
+            throw io::InputError(scene.sourceName, d.fieldPath + ".from",
+                                 "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
+                                     std::to_string(int(count) - 1) + ") at this point, no set " +
+                                     std::to_string(d.from));
+        }
+        if (count >= size_t(kMaxUvSets)) {
+            throw io::InputError(scene.sourceName, d.fieldPath,
+                                 "a mesh can have at most " + std::to_string(kMaxUvSets) + " UV sets (it has " +
+                                     std::to_string(count) + " already)");
+        }
+        const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
+        // Column-major: R = [[c, s], [-s, c]] as columns, then scale per axis.
+        const glm::mat2 lin = glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+        std::vector<glm::vec2> uv(mesh.uvSets[size_t(d.from)]);
+        for (auto& st : uv) st = lin * st + d.offset;
+        mesh.uvSets.push_back(std::move(uv));
+        if (!limit.empty() && limit.dUVdu.size() == count && limit.dUVdv.size() == count) {
+            std::vector<glm::vec2> du(limit.dUVdu[size_t(d.from)]), dv(limit.dUVdv[size_t(d.from)]);
+            for (auto& x : du) x = lin * x;
+            for (auto& x : dv) x = lin * x;
+            limit.dUVdu.push_back(std::move(du));
+            limit.dUVdv.push_back(std::move(dv));
+        }
+    }
+}
+
+// Vertex tangents for the UV sets in `wanted` (bit k: set k), each from its
+// own source. Limit tangents first: they need the limit frame aligned with
+// the vertices, which holds only until MikkTSpace splits one. Each
+// MikkTSpace pass may split vertices (sg::mesh::applyCornerTangents keeps
+// the first copy in place and appends the others); the arrays of the sets
+// done before are extended by copying each new vertex's original, found
+// through the index buffer (corner c pointed at the original before and
+// at the copy after). MikkTSpace welds corners by value, so a split made
+// for one set does not change another set's tangents.
+void generateVertexTangents(const Scene& scene, const MeshInstance& mi, uint32_t wanted, const sm::LimitFrame& limit,
+                            MeshAsset& a) {
+    a.vertexTangents.assign(a.mesh.uvSets.size(), {});
+    auto source = [&](size_t k) { return k < mi.tangents.size() ? mi.tangents[k] : TangentSource::Pixel; };
+    auto element = [&](size_t k) { return elementOf(mi, "tangents[" + std::to_string(k) + "]"); };
+    for (size_t k = 0; k < mi.tangents.size(); ++k) {
+        if (mi.tangents[k] != TangentSource::Pixel && k >= a.mesh.uvSets.size()) {
+            throw io::InputError(scene.sourceName, element(k), "the mesh has no UV set " + std::to_string(k));
+        }
+    }
+    for (size_t k = 0; k < a.mesh.uvSets.size(); ++k) {
+        if (!(wanted >> k & 1u) || source(k) != TangentSource::Limit) continue;
+        if (limit.empty()) {
+            throw io::InputError(scene.sourceName, element(k), "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+        }
+        try {
+            sm::generateLimitTangents(a.mesh, limit, int(k));
+        } catch (const std::invalid_argument& e) {
+            throw io::InputError(scene.sourceName, element(k), std::string("limit tangents failed: ") + e.what());
+        }
+        a.vertexTangents[k] = std::move(a.mesh.tangents);
+    }
+    for (size_t k = 0; k < a.mesh.uvSets.size(); ++k) {
+        if (!(wanted >> k & 1u) || source(k) != TangentSource::MikkTSpace) continue;
+        const std::vector<uint32_t> cornersBefore = a.mesh.indices;
+        const size_t countBefore = a.mesh.vertexCount();
+        try {
+            sm::generateMikkTSpaceTangents(a.mesh, int(k));
+        } catch (const std::invalid_argument& e) {
+            throw io::InputError(scene.sourceName, element(k), std::string("MikkTSpace failed: ") + e.what());
+        }
+        const size_t countAfter = a.mesh.vertexCount();
+        if (countAfter > countBefore) {
+            std::vector<uint32_t> original(countAfter);
+            for (size_t v = 0; v < countBefore; ++v) original[v] = uint32_t(v);
+            for (size_t c = 0; c < cornersBefore.size(); ++c) original[a.mesh.indices[c]] = cornersBefore[c];
+            for (auto& t : a.vertexTangents) {
+                if (t.empty()) continue;
+                t.resize(countAfter);
+                for (size_t v = countBefore; v < countAfter; ++v) t[v] = t[original[v]];
+            }
+        }
+        a.vertexTangents[k] = std::move(a.mesh.tangents);
+    }
+    // The per-set arrays are the renderer's; the mesh's single slot stays empty.
+    a.mesh.tangents.clear();
+    a.mesh.tangentUvSet = -1;
+}
+
+// The UV sets of `mi` that get vertex tangents: asked for by the mesh and
+// read by an enabled layer of its material.
+uint32_t vertexTangentSets(const Scene& scene, const MeshInstance& mi) {
+    uint32_t asked = 0;
+    for (size_t k = 0; k < mi.tangents.size(); ++k) {
+        if (mi.tangents[k] != TangentSource::Pixel) asked |= 1u << k;
+    }
+    return asked & tangentBasisUvSets(scene.materials[size_t(mi.material)]);
+}
+
+uint64_t nextLayoutId() {
+    static std::atomic<uint64_t> next{1};
+    return next++;
+}
+
 MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& files) {
     MeshAsset a;
     sm::LimitFrame limit;
@@ -317,32 +428,8 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
         if (mi.subdivLimit) limit = sub.limitFrame();
     }
     if (a.mesh.normals.size() != a.mesh.positions.size()) sm::computeVertexNormals(a.mesh);
-    a.vertexTangents.resize(a.mesh.uvSets.size());
-    for (size_t k = 0; k < mi.tangents.size(); ++k) {
-        std::string el = elementOf(mi, "tangents[" + std::to_string(k) + "]");
-        if (mi.tangents[k] == TangentSource::Pixel) continue;
-        if (k >= a.mesh.uvSets.size()) {
-            throw io::InputError(scene.sourceName, el, "the mesh has no UV set " + std::to_string(k));
-        }
-        if (mi.tangents[k] == TangentSource::MikkTSpace) {
-            // May split vertices (mirrored UV seams): done before anything
-            // else copies per-vertex arrays.
-            try {
-                sm::generateMikkTSpaceTangents(a.mesh, int(k));
-            } catch (const std::invalid_argument& e) {
-                throw io::InputError(scene.sourceName, el, std::string("MikkTSpace failed: ") + e.what());
-            }
-            a.vertexTangents.assign(a.mesh.uvSets.size(), {});
-            a.vertexTangents[k] = a.mesh.tangents;
-        } else { // limit
-            if (limit.empty()) {
-                throw io::InputError(scene.sourceName, el, "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
-            }
-            std::vector<glm::vec4> t(a.mesh.vertexCount());
-            sm::limitTangents(limit.dPdu, limit.dPdv, limit.dUVdu[k], limit.dUVdv[k], t);
-            a.vertexTangents[k] = std::move(t);
-        }
-    }
+    addDerivedUvSets(scene, mi, a.mesh, limit);
+    generateVertexTangents(scene, mi, vertexTangentSets(scene, mi), limit, a);
     if (!mi.morphWeights.empty() && mi.morphWeights.size() != a.mesh.morphTargets.size()) {
         throw io::InputError(scene.sourceName, mi.fieldPath + ".morph.weights",
                              "the mesh has " + std::to_string(a.mesh.morphTargets.size()) +
@@ -357,7 +444,43 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
     a.basePositions = a.mesh.positions;
     a.baseNormals = a.mesh.normals;
     a.baseTangents = a.vertexTangents;
+    a.layoutId = nextLayoutId();
     return a;
+}
+
+// Sets the morph weights of one mesh asset (positions, normals, vertex
+// tangents from the base arrays plus weighted deltas).
+void applyWeights(MeshAsset& a, const std::vector<float>& w) {
+    a.appliedWeights = w;
+    a.mesh.positions = a.basePositions;
+    a.mesh.normals = a.baseNormals;
+    a.vertexTangents = a.baseTangents;
+    for (size_t t = 0; t < a.mesh.morphTargets.size() && t < w.size(); ++t) {
+        const auto& mt = a.mesh.morphTargets[t];
+        for (size_t v = 0; v < mt.positionDeltas.size(); ++v) a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
+        for (size_t v = 0; v < mt.normalDeltas.size() && v < a.mesh.normals.size(); ++v) {
+            a.mesh.normals[v] += w[t] * mt.normalDeltas[v];
+        }
+        // Vertex tangents follow the glTF rule too (blended deltas);
+        // without deltas they stay those of the base shape: only the
+        // per-pixel frame is exact on a morphed mesh (Mikkelsen 2019, 1).
+        for (auto& vt : a.vertexTangents) {
+            for (size_t v = 0; v < mt.tangentDeltas.size() && v < vt.size(); ++v) {
+                vt[v] += glm::vec4(w[t] * mt.tangentDeltas[v], 0.0f);
+            }
+        }
+    }
+    // glTF's rule: blended normals are renormalized.
+    for (auto& n : a.mesh.normals) {
+        float l = glm::length(n);
+        if (l > 1e-20f && std::isfinite(l)) n /= l;
+    }
+    for (auto& vt : a.vertexTangents) {
+        for (auto& t : vt) {
+            float l = glm::length(glm::vec3(t));
+            if (l > 1e-20f && std::isfinite(l)) t = glm::vec4(glm::vec3(t) / l, t.w);
+        }
+    }
 }
 
 } // namespace
@@ -407,6 +530,24 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
                                      " texels (the maps hold exact distances up to " + std::to_string(band) + ")");
         }
     }
+    // Meshes whose enabled layers now read the basis of a UV set they ask
+    // vertex tangents for, but do not have them: rebuilt (MikkTSpace may
+    // split vertices, so the whole vertex layout is new), same morph weights.
+    FileCache files;
+    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
+        MeshAsset& a = assets.meshes[i];
+        uint32_t have = 0;
+        for (size_t k = 0; k < a.vertexTangents.size(); ++k) {
+            if (!a.vertexTangents[k].empty()) have |= 1u << k;
+        }
+        const uint32_t sets = (1u << std::min(a.mesh.uvSets.size(), size_t(kMaxUvSets))) - 1u;
+        if ((vertexTangentSets(scene, scene.meshes[i]) & sets & ~have) == 0) continue;
+        std::vector<float> weights = a.appliedWeights;
+        a = loadMeshAsset(scene, scene.meshes[i], files);
+        if (!weights.empty()) applyWeights(a, weights);
+        ++assets.meshVersion;
+        assets.log.push_back("mesh " + scene.meshes[i].fieldPath + ": rebuilt with vertex tangents for newly enabled layers");
+    }
     for (const TextureSource* src : sources) {
         std::string key = src->key();
         if (assets.textures.count(key)) continue;
@@ -445,37 +586,8 @@ void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
         if (a.mesh.morphTargets.empty()) continue;
         std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
         if (w == a.appliedWeights) continue; // nothing moved
-        a.appliedWeights = w;
+        applyWeights(a, w);
         ++assets.meshVersion;
-        a.mesh.positions = a.basePositions;
-        a.mesh.normals = a.baseNormals;
-        a.vertexTangents = a.baseTangents;
-        for (size_t t = 0; t < a.mesh.morphTargets.size() && t < w.size(); ++t) {
-            const auto& mt = a.mesh.morphTargets[t];
-            for (size_t v = 0; v < mt.positionDeltas.size(); ++v) a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
-            for (size_t v = 0; v < mt.normalDeltas.size() && v < a.mesh.normals.size(); ++v) {
-                a.mesh.normals[v] += w[t] * mt.normalDeltas[v];
-            }
-            // Vertex tangents follow the glTF rule too (blended deltas);
-            // without deltas they stay those of the base shape: only the
-            // per-pixel frame is exact on a morphed mesh (Mikkelsen 2019, 1).
-            for (auto& vt : a.vertexTangents) {
-                for (size_t v = 0; v < mt.tangentDeltas.size() && v < vt.size(); ++v) {
-                    vt[v] += glm::vec4(w[t] * mt.tangentDeltas[v], 0.0f);
-                }
-            }
-        }
-        // glTF's rule: blended normals are renormalized.
-        for (auto& n : a.mesh.normals) {
-            float l = glm::length(n);
-            if (l > 1e-20f && std::isfinite(l)) n /= l;
-        }
-        for (auto& vt : a.vertexTangents) {
-            for (auto& t : vt) {
-                float l = glm::length(glm::vec3(t));
-                if (l > 1e-20f && std::isfinite(l)) t = glm::vec4(glm::vec3(t) / l, t.w);
-            }
-        }
     }
 }
 
@@ -484,8 +596,10 @@ Scene sceneForModel(const fs::path& model) {
     // map as a uv_normal layer on the map's texture coordinate set with the
     // glTF normal scale as strength. glTF normal maps are green-up in the
     // image (+Y up, section 3.9.3); with images and t both flipped on load
-    // that is our "gl" convention. Materials are rendered double-sided in
-    // MIRROR mode (glTF's doubleSided lighting: the normal flips on the back).
+    // that is our "gl" convention. glTF's doubleSided (sec. 3.9.5) decides
+    // the back faces: false (the default, also of the default material)
+    // culls them; true renders them in MIRROR mode (Mikkelsen 2019, 2.10),
+    // which is glTF's rule: the normal is reversed on the back side.
     Scene s;
     s.sourceName = model.string();
     s.baseDir = model.parent_path();
@@ -496,7 +610,7 @@ Scene sceneForModel(const fs::path& model) {
         m.name = gm.name.empty() ? "material" + std::to_string(i) : gm.name;
         m.fieldPath = model.filename().string() + " materials[" + std::to_string(i) + "]";
         m.baseColor = glm::clamp(glm::vec3(gm.baseColorFactor), glm::vec3(0.0f), glm::vec3(1.0f));
-        m.doubleSided = DoubleSided::Mirror;
+        m.doubleSided = gm.doubleSided ? DoubleSided::Mirror : DoubleSided::Off;
         if (!gm.baseColorTexture.empty()) {
             TextureSource t;
             t.file = gm.baseColorTexture;
@@ -522,7 +636,7 @@ Scene sceneForModel(const fs::path& model) {
     Material fallback;
     fallback.name = "default";
     fallback.fieldPath = "(default material)";
-    fallback.doubleSided = DoubleSided::Mirror;
+    fallback.doubleSided = DoubleSided::Off; // glTF's default material is single-sided
     for (size_t i = 0; i < fs.instances.size(); ++i) {
         const sm::SceneInstance& inst = fs.instances[i];
         MeshInstance mi;

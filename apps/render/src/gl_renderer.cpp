@@ -23,7 +23,7 @@ struct GpuMesh {
     GLuint vbo[10] = {};
     GLuint ebo = 0;
     GLsizei indexCount = 0;
-    size_t vertexCount = 0;
+    uint64_t layoutId = 0; // MeshAsset::layoutId of the uploaded UVs and indices
 };
 
 struct GpuProgram {
@@ -129,7 +129,7 @@ struct GlRenderer::Impl {
                 size_t kk = size_t(k);
                 uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k), kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
             }
-            if (fresh || g.vertexCount != a.mesh.vertexCount()) {
+            if (fresh || g.layoutId != a.layoutId) {
                 for (int k = 0; k < kMaxUvSets; ++k) {
                     size_t kk = size_t(k);
                     uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k), kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
@@ -139,7 +139,7 @@ struct GlRenderer::Impl {
                                   GL_STATIC_DRAW);
                 glVertexArrayElementBuffer(g.vao, g.ebo);
                 g.indexCount = GLsizei(a.mesh.indices.size());
-                g.vertexCount = a.mesh.vertexCount();
+                g.layoutId = a.layoutId;
             }
         }
         meshesDirty = false;

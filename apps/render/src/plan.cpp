@@ -49,6 +49,13 @@ bool usesUv(LayerKind k) {
            k == LayerKind::DerivMap || k == LayerKind::Feature;
 }
 
+// Layer kinds whose surface gradient is built on the UV set's tangent
+// basis (vT, vB of SgUvFrame: listing 5 / section 2.2).
+bool readsTangentBasis(const Layer& L) {
+    return L.kind == LayerKind::UvNormal || L.kind == LayerKind::Feature ||
+           (L.kind == LayerKind::DerivMap && !L.derivTexelSpace);
+}
+
 // The shader file of a layer (with or without derivative-space modifiers).
 const char* layerFile(LayerKind k, bool mods) {
     switch (k) {
@@ -262,6 +269,20 @@ struct Planner {
     }
 };
 
+} // namespace
+
+uint32_t tangentBasisUvSets(const Material& material) {
+    uint32_t sets = 0;
+    // Group 0 only: post_resolve groups re-derive every UV basis per pixel
+    // from the resolved normal (section 2.11), so they never read vertex tangents.
+    for (const Layer& L : material.layers) {
+        if (L.enabled && readsTangentBasis(L) && L.uvSet >= 0 && L.uvSet < kMaxUvSets) sets |= 1u << L.uvSet;
+    }
+    return sets;
+}
+
+namespace {
+
 MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshIndex, int materialIndex,
                       bool uber) {
     assert(meshIndex >= 0 && size_t(meshIndex) < scene.meshes.size());
@@ -271,8 +292,11 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
     p.plan.materialIndex = materialIndex;
     p.plan.uber = uber;
     p.plan.uvCount = std::min(int(ma.mesh.uvSets.size()), kMaxUvSets);
+    // Vertex tangents are read only where an enabled layer uses the set's
+    // basis (a mesh may keep tangents of a set whose layers were switched off).
+    const uint32_t basisSets = tangentBasisUvSets(scene.materials[size_t(materialIndex)]);
     for (int k = 0; k < p.plan.uvCount && k < int(ma.vertexTangents.size()); ++k) {
-        if (!ma.vertexTangents[size_t(k)].empty()) p.plan.vertexTangentMask |= 1u << k;
+        if (!ma.vertexTangents[size_t(k)].empty() && (basisSets >> k & 1u)) p.plan.vertexTangentMask |= 1u << k;
     }
     p.plan.lightCount = std::max(1, int(scene.lights.size()));
     p.plan.groups.emplace_back();

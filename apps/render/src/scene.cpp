@@ -275,6 +275,23 @@ struct Parser {
         return t;
     }
 
+    // [s, t]: two finite numbers in [lo, hi] (`what` names the accepted forms).
+    static glm::vec2 vec2(const Node& n, const char* key, glm::vec2 def, double lo, double hi,
+                          const char* what = "an array of 2 numbers") {
+        if (!n.has(key)) return def;
+        const json& v = n.value().at(key);
+        auto bad = [&] { n.failField(key, std::string("expected ") + what + " of magnitude at most 1e6"); };
+        if (!v.is_array() || v.size() != 2) bad();
+        glm::vec2 r;
+        for (int i = 0; i < 2; ++i) {
+            if (!v[size_t(i)].is_number()) bad();
+            double x = v[size_t(i)].get<double>();
+            if (!std::isfinite(x) || x < lo || x > hi) bad();
+            r[i] = float(x);
+        }
+        return r;
+    }
+
     static int channelIndex(const Node& n, const char* key, int def) {
         return n.choice(key, def, {"r", "g", "b", "a"});
     }
@@ -603,7 +620,7 @@ struct Parser {
     }
 
     MeshInstance mesh(const Node& n, const std::vector<Material>& materials) const {
-        n.allowOnly({"name", "file", "procedural", "subdivision", "tangents", "morph", "transform",
+        n.allowOnly({"name", "file", "procedural", "subdivision", "uv_sets", "tangents", "morph", "transform",
                      "material"});
         MeshInstance m;
         m.fieldPath = n.path();
@@ -635,6 +652,32 @@ struct Parser {
             m.subdivLimit = s.boolean("limit", false);
             if (m.procedural) n.failField("subdivision", "applies to mesh files only (procedural meshes take \"segments\")");
         }
+        if (n.has("uv_sets")) {
+            // Derived sets (DerivedUvSet); whether `from` exists and the
+            // total stays <= kMaxUvSets is checked when the mesh is loaded
+            // (a file's own set count is not known here).
+            n.requireArray("uv_sets", size_t(kMaxUvSets));
+            Node arr = n.child("uv_sets");
+            for (size_t i = 0; i < arr.value().size(); ++i) {
+                Node d = arr.item(i);
+                d.allowOnly({"from", "scale", "rotate_deg", "offset"});
+                DerivedUvSet u;
+                u.fieldPath = d.path();
+                u.from = d.integer("from", 0, 0, kMaxUvSets - 1);
+                if (d.has("scale") && d.value().at("scale").is_number()) {
+                    u.scale = glm::vec2(d.num("scale", 1.0, -kHuge, kHuge));
+                } else {
+                    u.scale = vec2(d, "scale", glm::vec2(1.0f), -kHuge, kHuge, "a number or an array of 2 numbers");
+                }
+                // A zero scale collapses the set (no tangent basis anywhere).
+                if (std::abs(u.scale.x) < 1e-6f || std::abs(u.scale.y) < 1e-6f) {
+                    d.failField("scale", "expected non-zero scales (magnitude at least 1e-6)");
+                }
+                u.rotateDeg = d.num("rotate_deg", 0.0, -kHuge, kHuge);
+                u.offset = vec2(d, "offset", glm::vec2(0.0f), -kHuge, kHuge);
+                m.derivedUvSets.push_back(u);
+            }
+        }
         if (n.has("tangents")) {
             const json& t = n.value().at("tangents");
             auto parseOne = [&](const json& v, const std::string& path) {
@@ -653,11 +696,6 @@ struct Parser {
                 }
             } else {
                 n.failField("tangents", "expected a tangent source or an array of them, one per UV set (at most 4)");
-            }
-            int vertexSets = 0;
-            for (auto s : m.tangents) vertexSets += s != TangentSource::Pixel;
-            if (vertexSets > 1) {
-                n.failField("tangents", "at most one UV set can use vertex tangents (meshes carry one tangent set)");
             }
             for (auto s : m.tangents) {
                 if (s == TangentSource::Limit && !m.subdivLimit) {

@@ -144,6 +144,10 @@ struct Material {
     std::string normalTexture;
     int normalTexCoord = 0;
     float normalScale = 1.0f;
+    // glTF material.doubleSided (sec. 3.9.5; default false): false means
+    // back faces are culled; true means they are rendered with the normal
+    // reversed for lighting.
+    bool doubleSided = false;
 };
 
 enum class AnimInterpolation : uint8_t { Linear, Step, CubicSpline };

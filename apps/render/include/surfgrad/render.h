@@ -181,6 +181,21 @@ struct Procedural {
     int uvSets = 2;            // UV sets generated (set 1 = set 0 * 4: a tiling detail set)
 };
 
+// A UV set derived from an existing one by an affine map of the texture
+// plane (the mesh-level "uv_sets" field): st' = R(rotateDeg) (scale * st)
+// + offset, R counter-clockwise in the (s, t) plane (t up). Appended after
+// the mesh's own sets, in order; `from` may name an earlier derived set.
+// Applied to the refined (and limit) mesh: every subdivision mask is an
+// affine combination, so the map commutes with face-varying refinement
+// and limit evaluation (the limit UV derivatives take its linear part).
+struct DerivedUvSet {
+    int from = 0;
+    glm::vec2 scale{1.0f}; // non-zero; negative mirrors the set
+    float rotateDeg = 0.0f;
+    glm::vec2 offset{0.0f};
+    std::string fieldPath; // e.g. "meshes[0].uv_sets[0]"
+};
+
 struct MeshInstance {
     std::string name;
     std::string fieldPath;
@@ -191,6 +206,7 @@ struct MeshInstance {
     std::string subdivScheme;          // "" (the file's tags, else catmark), "catmark", "loop", "bilinear"
     int subdivLevel = 0;
     bool subdivLimit = false;
+    std::vector<DerivedUvSet> derivedUvSets; // appended after the mesh's own UV sets
     std::vector<TangentSource> tangents; // per UV set; missing = pixel
     std::vector<float> morphWeights;     // empty: the file's defaults
     std::vector<MorphKey> morphKeys;     // weight animation (linear between keys)
@@ -267,12 +283,24 @@ struct FeatureMapsAsset;
 
 struct MeshAsset {
     sg::mesh::RenderMesh mesh;        // object space; morph targets kept
-    // Vertex tangents per UV set (empty = that set uses per-pixel frames).
+    // Vertex tangents per UV set (empty = that set uses per-pixel frames),
+    // aligned with mesh's vertices. Generated for a set only when the mesh
+    // asks for vertex tangents on it AND an enabled layer reads its basis
+    // (tangentBasisUvSets); any number of sets at once, each with its own
+    // source (MikkTSpace may split vertices: earlier sets' arrays follow).
     std::vector<std::vector<glm::vec4>> vertexTangents;
     std::vector<glm::vec3> basePositions, baseNormals; // before morphing
     std::vector<std::vector<glm::vec4>> baseTangents;  // before morphing
     std::vector<float> appliedWeights;                 // morph weights in the arrays now
+    uint64_t layoutId = 0; // unique per built vertex/index layout (GPU caches key on it)
 };
+
+// UV sets whose tangent basis the enabled layers of `material` read (bit k:
+// UV set k): the TBN-style layers uv_normal, deriv_map in "tbn" space and
+// feature, outside post_resolve groups (those use the per-pixel frame of
+// the resolved normal, section 2.11). Vertex tangents are generated, and
+// read by the shader, only for these sets (effects on demand).
+uint32_t tangentBasisUvSets(const Material& material);
 
 struct SceneAssets {
     uint64_t uid = 0;         // unique per loadAssets() call (GPU caches key on it)
@@ -286,7 +314,9 @@ struct SceneAssets {
 
 SceneAssets loadAssets(const Scene& scene);
 // Loads the textures and feature maps of layers that are enabled now but
-// were not when the assets were loaded (the viewer's layer toggles).
+// were not when the assets were loaded (the viewer's layer toggles), and
+// rebuilds a mesh whose newly enabled layers read a UV set it asks vertex
+// tangents for but does not have yet (its morph weights are kept).
 void loadMissingAssets(const Scene& scene, SceneAssets& assets);
 // Applies the morph weights of time `seconds` to every animated mesh
 // (positions and normals; pixel frames need nothing else).
