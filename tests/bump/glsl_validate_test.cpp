@@ -64,15 +64,9 @@ std::string stageOf(const std::string& path) {
     return "frag";
 }
 
-// Program fragments whose defines come from their host program and whose
-// file does not (yet) carry a `// glslang-validate:` line; the values are
-// the smallest the file's header comment documents as valid.
-std::vector<std::string> knownDefines(const std::string& path) {
-    if (path == "sg/render/surface_fs.glsl") return {"SG_LIGHT_COUNT 1", "SG_LAYER_RECORDS 1"};
-    if (path == "sg/features/kernels.comp.glsl") return {"SG_FEAT_EVAL_KERNEL 0"};
-    return {};
-}
-
+// Defines a file needs to compile on its own (values its host program
+// normally sets), from its `// glslang-validate: NAME VALUE, ...` lines: the
+// file states them beside the contract that documents them.
 std::vector<std::string> definesOf(const std::string& text) {
     std::vector<std::string> defines;
     std::istringstream in(text);
@@ -119,7 +113,6 @@ TEST_P(GlslFile, CompilesStandalone) {
     const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
     if (!hasMain) body += "void main() {}\n";
     std::vector<std::string> defines = definesOf(text);
-    if (defines.empty()) defines = knownDefines(path);
     const auto src = sg::shaders::assemble(body, "validate[" + path + "]", defines);
     const RunResult r = validate(src.text, stage, path);
     EXPECT_EQ(r.exitCode, 0) << path << " (" << stage << "):\n"

@@ -1,6 +1,7 @@
 // Compute entry of the feature-curve evaluation kernels (kernels.glsl): one
 // invocation per record; SG_FEAT_EVAL_KERNEL (a define set by the host)
 // selects the function.
+// glslang-validate: SG_FEAT_EVAL_KERNEL 0
 #include "sg/features/kernels.glsl"
 
 layout(local_size_x = 64) in;

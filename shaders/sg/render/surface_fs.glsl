@@ -3,6 +3,7 @@
 // includes only the layer files the material uses). Defines as in
 // sg/render/surface_vs.glsl, plus SG_LIGHT_COUNT (>= 1) and
 // SG_LAYER_RECORDS (>= 1, vec4 records of packed layer parameters).
+// glslang-validate: SG_LIGHT_COUNT 1, SG_LAYER_RECORDS 1
 #ifndef SG_RENDER_SURFACE_FS_GLSL
 #define SG_RENDER_SURFACE_FS_GLSL
 
