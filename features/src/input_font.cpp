@@ -51,24 +51,6 @@ std::string codepointName(std::uint32_t cp) {
     return buf;
 }
 
-void appendUtf8(std::string& out, std::uint32_t cp) {
-    if (cp < 0x80) {
-        out += char(cp);
-    } else if (cp < 0x800) {
-        out += char(0xC0 | (cp >> 6));
-        out += char(0x80 | (cp & 0x3F));
-    } else if (cp < 0x10000) {
-        out += char(0xE0 | (cp >> 12));
-        out += char(0x80 | ((cp >> 6) & 0x3F));
-        out += char(0x80 | (cp & 0x3F));
-    } else {
-        out += char(0xF0 | (cp >> 18));
-        out += char(0x80 | ((cp >> 12) & 0x3F));
-        out += char(0x80 | ((cp >> 6) & 0x3F));
-        out += char(0x80 | (cp & 0x3F));
-    }
-}
-
 // Strict UTF-8 (no overlongs, no surrogates, <= U+10FFFF).
 std::vector<std::uint32_t> decodeUtf8(std::string_view s, const std::string& source) {
     std::vector<std::uint32_t> out;
@@ -253,7 +235,7 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
         std::string glyphName = codepointName(cp);
         if (cp >= 0x20 && cp != 0x7F) {
             glyphName += " '";
-            appendUtf8(glyphName, cp);
+            detail::appendUtf8(glyphName, cp);
             glyphName += "'";
         }
         const std::string el = "glyph " + codepointName(cp);

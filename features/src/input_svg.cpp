@@ -216,24 +216,6 @@ private:
         }
     }
 
-    static void appendUtf8(std::string& out, std::uint32_t cp) {
-        if (cp < 0x80) {
-            out += char(cp);
-        } else if (cp < 0x800) {
-            out += char(0xC0 | (cp >> 6));
-            out += char(0x80 | (cp & 0x3F));
-        } else if (cp < 0x10000) {
-            out += char(0xE0 | (cp >> 12));
-            out += char(0x80 | ((cp >> 6) & 0x3F));
-            out += char(0x80 | (cp & 0x3F));
-        } else {
-            out += char(0xF0 | (cp >> 18));
-            out += char(0x80 | ((cp >> 12) & 0x3F));
-            out += char(0x80 | ((cp >> 6) & 0x3F));
-            out += char(0x80 | (cp & 0x3F));
-        }
-    }
-
     std::string decode(std::string_view raw, std::size_t offset) const {
         std::string out;
         out.reserve(raw.size());
@@ -261,7 +243,7 @@ private:
                     cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
                     fail(offset + k, "invalid character reference &" + std::string(ref) + ";");
                 }
-                appendUtf8(out, cp);
+                detail::appendUtf8(out, cp);
             } else {
                 fail(offset + k, "entity &" + std::string(ref) +
                                      "; is not supported (only &lt; &gt; &amp; &quot; &apos; and "

@@ -8,6 +8,7 @@
 
 #include "surfgrad/curves.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -64,5 +65,9 @@ private:
     bool open_ = false;
     glm::dvec2 start_{0.0}, cur_{0.0};
 };
+
+// Appends code point cp (<= 0x10FFFF, not a surrogate: callers pass decoded
+// text) to out as UTF-8; the loaders quote characters in error messages.
+void appendUtf8(std::string& out, std::uint32_t cp);
 
 } // namespace sg::features::detail

@@ -150,15 +150,15 @@ RenderMesh toRenderMesh(const PolygonMesh& mesh) {
     return out;
 }
 
-PolygonMesh toPolygonMesh(const RenderMesh& mesh) {
-    const size_t nR = mesh.positions.size();
-    // Weld key: position, then every target's position delta (exact).
+std::vector<uint32_t> detail::coincidentVertexGroups(const RenderMesh& mesh) {
+    const size_t n = mesh.positions.size();
     auto cmp = [](const glm::vec3& p, const glm::vec3& q) {
         if (p.x != q.x) return p.x < q.x ? -1 : 1;
         if (p.y != q.y) return p.y < q.y ? -1 : 1;
         if (p.z != q.z) return p.z < q.z ? -1 : 1;
         return 0;
     };
+    // Key: position, then every target's position delta.
     auto keyCmp = [&](uint32_t a, uint32_t b) {
         int c = cmp(mesh.positions[a], mesh.positions[b]);
         for (size_t t = 0; c == 0 && t < mesh.morphTargets.size(); ++t) {
@@ -167,14 +167,22 @@ PolygonMesh toPolygonMesh(const RenderMesh& mesh) {
         }
         return c;
     };
-    std::vector<uint32_t> order(nR);
+    std::vector<uint32_t> order(n);
     std::iota(order.begin(), order.end(), 0u);
+    // Ties by index: the first of each run is the group's smallest index.
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
         int c = keyCmp(a, b);
         return c != 0 ? c < 0 : a < b;
     });
-    std::vector<uint32_t> rep(nR);
-    for (size_t i = 0; i < nR; ++i) rep[order[i]] = (i > 0 && keyCmp(order[i], order[i - 1]) == 0) ? rep[order[i - 1]] : order[i];
+    std::vector<uint32_t> rep(n);
+    for (size_t i = 0; i < n; ++i) rep[order[i]] = (i > 0 && keyCmp(order[i], order[i - 1]) == 0) ? rep[order[i - 1]] : order[i];
+    return rep;
+}
+
+PolygonMesh toPolygonMesh(const RenderMesh& mesh) {
+    const size_t nR = mesh.positions.size();
+    // Weld: position and every target's position delta equal (exact).
+    const std::vector<uint32_t> rep = detail::coincidentVertexGroups(mesh);
     // Cage vertices numbered by first use in the index buffer.
     std::vector<uint32_t> cageOf(nR, UINT32_MAX);
     PolygonMesh out;

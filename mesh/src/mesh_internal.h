@@ -19,6 +19,7 @@
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/polygon_mesh.h"
+#include "surfgrad/render_mesh.h"
 
 namespace sg::mesh::detail {
 
@@ -99,6 +100,13 @@ struct RenderSplit {
     std::vector<uint32_t> renderFirstCorner;  // per render vertex: its home corner
     std::vector<uint32_t> indices;            // triangles
 };
+// Per render vertex: the smallest index of the vertices that coincide with
+// it in the base mesh AND in every morph target (exact comparison of the
+// position and of each target's position delta), i.e. copies of one cage
+// vertex split at UV seams or normal creases. rep[v] == v for the first of
+// each group. O(n log n).
+std::vector<uint32_t> coincidentVertexGroups(const RenderMesh& mesh);
+
 // cornerSector: optional per-corner smooth-sector id (corners with different
 // ids never share a render vertex).
 void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets, const uint32_t* cornerSector,

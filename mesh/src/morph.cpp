@@ -25,31 +25,7 @@ void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
 Morpher::Morpher(const RenderMesh& base, const LimitFrame* baseFrame) : base_(&base), baseFrame_(baseFrame) {
     // Smooth groups: render vertices that coincide in the base mesh and in
     // every target (exact comparison), i.e. copies split at UV seams.
-    const size_t n = base.positions.size();
-    auto cmp = [](const glm::vec3& p, const glm::vec3& q) {
-        if (p.x != q.x) return p.x < q.x ? -1 : 1;
-        if (p.y != q.y) return p.y < q.y ? -1 : 1;
-        if (p.z != q.z) return p.z < q.z ? -1 : 1;
-        return 0;
-    };
-    auto keyCmp = [&](uint32_t a, uint32_t b) {
-        int c = cmp(base.positions[a], base.positions[b]);
-        for (size_t t = 0; c == 0 && t < base.morphTargets.size(); ++t) {
-            const auto& d = base.morphTargets[t].positionDeltas;
-            if (!d.empty()) c = cmp(d[a], d[b]);
-        }
-        return c;
-    };
-    std::vector<uint32_t> order(n);
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        int c = keyCmp(a, b);
-        return c != 0 ? c < 0 : a < b;
-    });
-    smoothGroup_.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-        smoothGroup_[order[i]] = (i > 0 && keyCmp(order[i], order[i - 1]) == 0) ? smoothGroup_[order[i - 1]] : order[i];
-    }
+    smoothGroup_ = detail::coincidentVertexGroups(base);
 }
 
 namespace {
