@@ -119,6 +119,84 @@ private:
     const InputLimits& limits_;
 };
 
+// PLY header grammar (Turk's format as OpenMesh reads it), checked in full
+// before OpenMesh's reader sees the file: that reader indexes its element
+// list without checking it (a `property` line before any `element` line
+// crashes it). Lines: `ply`, one `format ascii|binary_little_endian|
+// binary_big_endian 1.0` before any element, `comment ...`, `obj_info ...`,
+// `element NAME COUNT`, `property TYPE NAME` or `property list TYPE TYPE
+// NAME` after an element, `end_header`. Anything else is an error naming
+// the header line. Also checks each element's count against the file size
+// (every element takes at least one byte per property).
+void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize) {
+    auto fail = [&](size_t lineNo, const std::string& reason) {
+        throw InputError(file, "header line " + std::to_string(lineNo), reason);
+    };
+    auto isType = [](const std::string& t) {
+        static const char* kTypes[] = {"char",  "uchar",  "short",  "ushort",  "int",    "uint",   "float",   "double",
+                                       "int8",  "uint8",  "int16",  "uint16",  "int32",  "uint32", "float32", "float64"};
+        for (const char* k : kTypes) {
+            if (t == k) return true;
+        }
+        return false;
+    };
+    std::string line;
+    if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) fail(1, "not a PLY file (first line is not 'ply')");
+    std::string element;
+    uint64_t count = 0, props = 0;
+    bool format = false;
+    auto checkCount = [&]() {
+        if (!element.empty() && count > fileSize / std::max<uint64_t>(props, 1)) {
+            throw InputError(file, "header", "declares " + std::to_string(count) + " " + element + " elements but the file has only " +
+                                                 std::to_string(fileSize) + " bytes");
+        }
+    };
+    // A header longer than this is not a mesh header (OpenMesh reads it
+    // line by line; a multi-megabyte "header" is a malformed file).
+    constexpr size_t kMaxHeaderLines = 10000;
+    for (size_t lineNo = 2; lineNo <= kMaxHeaderLines && std::getline(in, line); ++lineNo) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream ls(line);
+        std::string kw;
+        ls >> kw;
+        std::vector<std::string> rest;
+        for (std::string w; ls >> w;) rest.push_back(w);
+        if (kw == "comment" || kw == "obj_info") continue;
+        if (kw == "format") {
+            if (format) fail(lineNo, "a second format line");
+            if (!element.empty()) fail(lineNo, "format after an element");
+            if (rest.size() != 2 || (rest[0] != "ascii" && rest[0] != "binary_little_endian" && rest[0] != "binary_big_endian") ||
+                rest[1] != "1.0") {
+                fail(lineNo, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+            }
+            format = true;
+        } else if (kw == "element") {
+            if (!format) fail(lineNo, "element before the format line");
+            checkCount();
+            if (rest.size() != 2 || rest[1].empty() || rest[1].size() > 18 ||
+                rest[1].find_first_not_of("0123456789") != std::string::npos) {
+                fail(lineNo, "expected 'element NAME COUNT' with a non-negative integer count");
+            }
+            element = rest[0];
+            count = std::stoull(rest[1]);
+            props = 0;
+        } else if (kw == "property") {
+            if (element.empty()) fail(lineNo, "property before any element");
+            const bool list = !rest.empty() && rest[0] == "list";
+            const bool ok = list ? (rest.size() == 4 && isType(rest[1]) && isType(rest[2])) : (rest.size() == 2 && isType(rest[0]));
+            if (!ok) fail(lineNo, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME' with PLY types");
+            ++props;
+        } else if (kw == "end_header") {
+            if (!format) fail(lineNo, "no format line");
+            checkCount();
+            return;
+        } else {
+            fail(lineNo, "unknown header keyword '" + kw.substr(0, 32) + "'");
+        }
+    }
+    throw InputError(file, "header", "no end_header within " + std::to_string(kMaxHeaderLines) + " lines");
+}
+
 // Header counts against the file size: every vertex and face takes at
 // least a few bytes (3 coordinates of >= 2 characters in ASCII, 4 bytes in
 // binary; a face at least 4 numbers), so a count beyond that is a lie.
@@ -169,34 +247,7 @@ void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext
         if (counts[1] > fileSize / 8) tooMany("faces", counts[1]);
         return;
     }
-    if (ext == ".ply") {
-        if (!std::getline(in, line) || line.rfind("ply", 0) != 0) throw InputError(file, "header", "not a PLY file (no 'ply' magic)");
-        std::string element;
-        uint64_t count = 0, props = 0;
-        auto check = [&]() {
-            if (!element.empty() && count > fileSize / std::max<uint64_t>(props, 1)) tooMany(element + " elements", count);
-        };
-        size_t lines = 0;
-        while (std::getline(in, line) && ++lines < 10000) {
-            std::istringstream ls(line);
-            std::string kw;
-            ls >> kw;
-            if (kw == "element") {
-                check();
-                long long n = -1;
-                ls >> element >> n;
-                if (n < 0) throw InputError(file, "header", "bad element line '" + line.substr(0, 64) + "'");
-                count = uint64_t(n);
-                props = 0;
-            } else if (kw == "property") {
-                ++props;
-            } else if (kw == "end_header") {
-                check();
-                return;
-            }
-        }
-        throw InputError(file, "header", "no end_header");
-    }
+    if (ext == ".ply") checkPlyHeader(in, file, fileSize);
 }
 
 } // namespace

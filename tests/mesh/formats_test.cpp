@@ -71,6 +71,42 @@ TEST(Formats, LyingHeadersAreRefused) {
     expectInputError([&] { loadPolygonMesh(dir / "big.stl"); }, "header", "declares 1000000 triangles");
 }
 
+// PLY headers are parsed in full before OpenMesh's reader sees them: its
+// header code indexes the element list unchecked (a property line before
+// any element, as in this mutated file found by fuzz_mesh_openmesh,
+// crashed it). Each malformed line is named by its number.
+TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
+    TempDir dir;
+    struct Case {
+        const char* text;
+        const char* element;
+        const char* reason;
+    };
+    const std::string props = "property float x\nproperty float y\nproperty float z\n";
+    const Case cases[] = {
+        {"ply\nformat ascii 1.0\neement vertex 4\nproperty float x\nend_header\n", "header line 3", "unknown header keyword 'eement'"},
+        {"ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\nend_header\n", "header line 3", "property before any element"},
+        {"ply\nelement vertex 1\nend_header\n", "header line 2", "element before the format line"},
+        {"ply\nformat ascii 2.0\nend_header\n", "header line 2", "expected 'format ascii"},
+        {"ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", "header line 3", "non-negative integer count"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", "header line 4", "PLY types"},
+        {"ply\nformat ascii 1.0\nelement face 1\nproperty list uchar vertex_indices\nend_header\n", "header line 4",
+         "property list TYPE TYPE NAME"},
+        {"ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", "header line 3", "a second format line"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\n", "header", "no end_header"},
+        {"plyx\nformat ascii 1.0\nend_header\n", "header line 1", "not a PLY file"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.text);
+        writeText(dir / "bad.ply", c.text);
+        expectInputError([&] { loadPolygonMesh(dir / "bad.ply"); }, c.element, c.reason);
+    }
+    // Comments, obj_info, CRLF line ends and both list forms are accepted.
+    writeText(dir / "ok.ply", "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement vertex 3\r\n" + props +
+                                  "element face 1\r\nproperty list uint8 int32 vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+    EXPECT_EQ(loadPolygonMesh(dir / "ok.ply").faceCount(), 1u);
+}
+
 TEST(Formats, BinaryStlIsWeldedByOpenMesh) {
     // Two triangles of a square, each with its own copies of the corners.
     TempDir dir;
