@@ -15,12 +15,17 @@
 //
 //   bench/tangents_bench [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]
 //   bench/tangents_bench --check-acos
+//   bench/tangents_bench --profile-runs N
 //
 // --check-acos instead verifies, for every one of the 2^31 floats in
 // [-1, 1], that the fast angle rounding MikkTSpace uses
 // (sg::mesh::mikktspaceAngleFromCos and the batch mikktspaceAnglesFromCos)
 // equals (float)std::acos(double(c)), the reference's expression (a few
 // minutes).
+//
+// --profile-runs N runs only the reused fast generator N times and prints
+// the median and minimum CPU time (no oracle, no comparison), for
+// `perf record`.
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -152,7 +157,7 @@ int checkAcos() {
 
 int main(int argc, char** argv) {
     std::string obj = std::string(SURFGRAD_DATA_DIR) + "/meshes/blub/blub_triangulated.obj";
-    int runs = 9, oracleRuns = 3, splits = 3;
+    int runs = 9, oracleRuns = 3, splits = 3, profileRuns = 0;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string {
@@ -164,8 +169,9 @@ int main(int argc, char** argv) {
         else if (a == "--splits") splits = std::max(0, std::stoi(next()));
         else if (a == "--obj") obj = next();
         else if (a == "--check-acos") return checkAcos();
+        else if (a == "--profile-runs") profileRuns = std::max(1, std::stoi(next()));
         else {
-            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] | --check-acos\n", argv[0]);
+            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] [--profile-runs N] | --check-acos\n", argv[0]);
             return 2;
         }
     }
@@ -180,6 +186,17 @@ int main(int argc, char** argv) {
     in.normals = m.normals;
     in.uvs = m.uvs;
     in.cornerVertices = m.indices;
+
+    if (profileRuns > 0) {
+        sg::mesh::MikkTSpaceGenerator generator;
+        std::vector<glm::vec4> out;
+        generator.generate(in, out);
+        const Timings t = timeRuns(profileRuns, [&] { generator.generate(in, out); });
+        std::printf("fast, generator reused: median %.1f ms cpu (min %.1f), %.2f Mtri/s (%d runs, no oracle)\n",
+                    median(t.cpuMs), *std::min_element(t.cpuMs.begin(), t.cpuMs.end()),
+                    triangles / (median(t.cpuMs) * 1e3), profileRuns);
+        return 0;
+    }
 
     std::vector<sg::mesh::MikkTSpaceFrame> oracle;
     const Timings oracleT = timeRuns(oracleRuns, [&] { oracle = sg::mesh::mikktspaceReferenceFrames(in); });

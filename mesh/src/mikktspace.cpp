@@ -22,8 +22,12 @@
 //    float rounding boundaries (mikk::acosRoundedToFloat); the subgroup test
 //    is settled in one dot product per member when every member is within
 //    89 degrees of the first (the 180-degree threshold then cannot split);
-//  - results are written in incidence order and gathered into corner order
-//    once; all buffers live in the generator and are reused between calls.
+//  - the per-entry gathers (the triangle's derivatives, the neighbours'
+//    positions) are prefetched a few dozen entries ahead: they are the
+//    scattered reads of the whole computation;
+//  - a vertex whose corners all get one frame (the usual case) stores it
+//    once; corner order is gathered at the end, in triangle order; all
+//    buffers live in the generator and are reused between calls.
 #include <algorithm>
 #include <limits>
 #include <vector>
@@ -241,6 +245,7 @@ constexpr uint8_t kAny = 2;           // group-with-any (zero UV area or magnitu
 constexpr uint8_t kQuadOneDegen = 4;  // quad whose other triangle is degenerate
 constexpr uint8_t kGrouped0 = 8;      // corner 0 is in a group (then 16, 32)
 constexpr uint8_t kGroupedAll = 8 | 16 | 32;
+constexpr uint8_t kDegenerate = 64;   // two corners at one position (steps 3-5 only)
 
 // An entry of the vertex -> incident corners table.
 struct Incidence {
@@ -257,15 +262,23 @@ struct Incidence {
     bool any() const { return (packed & 8u) != 0; }
 };
 
-struct WeldedVertex {
+// 32 bytes, 32-aligned: the 16-byte loads of the SIMD kernels (position,
+// normal) never straddle a cache line, and one prefetch brings a vertex.
+struct alignas(32) WeldedVertex {
     Vec3 position;
     Vec3 normal;
     glm::vec2 uv;
 };
 
-// A good triangle's normalized first-order derivatives (eq. 18/19).
-struct TriDerivatives {
-    Vec3 os, ot;
+// A good triangle's normalized first-order derivatives (eq. 18/19) and
+// magnitudes, one half cache line: the term kernels load os and ot (16
+// bytes each, the magnitude riding along) and the accumulation reads the
+// magnitudes from the same line.
+struct alignas(32) TriDerivatives {
+    Vec3 os;
+    float magS;
+    Vec3 ot;
+    float magT;
 };
 
 // Per-entry terms of a vertex's incidence list, structure of arrays: the
@@ -315,9 +328,9 @@ struct TermBatch {
     struct V {
         __m128 x, y, z;
     };
-    // Four 16-byte loads (x, y, z and one float of whatever follows, which
-    // is in bounds: TriDerivatives and WeldedVertex hold more after each
-    // Vec3, and the derivative array has a padding entry), transposed.
+    // Four 16-byte loads (x, y, z and the float that follows, which is in
+    // bounds: TriDerivatives and WeldedVertex hold more after each Vec3),
+    // transposed.
     static V gather(const float* a, const float* b, const float* c, const float* d) {
         __m128 r0 = _mm_loadu_ps(a), r1 = _mm_loadu_ps(b), r2 = _mm_loadu_ps(c), r3 = _mm_loadu_ps(d);
         _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
@@ -485,12 +498,12 @@ inline uint64_t weldHash(const glm::vec3& p, const glm::vec3& n, const glm::vec2
 // mikk::faceDerivatives for four triangles at once (welded ids tri[0..11]):
 // the same IEEE operations per lane; lanes whose UV area or lengths are
 // zero compute garbage that the masks discard, exactly as the scalar
-// branches skip it. Writes deriv[0..3] (16-byte stores in order, each
-// overwriting the previous one's spill; deriv has a padding entry at the
-// end), magS/magT[0..3] and ORs the orientation and group-with-any bits
-// into flags[0..3].
-void faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivatives* deriv,
-                      float* magS, float* magT, uint8_t* flags) {
+// branches skip it. Writes deriv[0..3] (two 16-byte stores each: os with
+// magS, ot with magT), ORs the orientation, group-with-any and degenerate
+// (two corners at one position, mikk::exactlyEqual) bits into flags[0..3]
+// and returns how many of the four are degenerate.
+size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivatives* deriv,
+                        uint8_t* flags) {
     auto positions = [&](int corner) {
         __m128 r0 = _mm_loadu_ps(&wv[tri[corner]].position.x);
         __m128 r1 = _mm_loadu_ps(&wv[tri[3 + corner]].position.x);
@@ -537,25 +550,30 @@ void faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivative
     const __m128 sOs = _mm_div_ps(flip, lenOs), sOt = _mm_div_ps(flip, lenOt);
     auto keep = [](__m128 mask, __m128 v) { return _mm_and_ps(mask, v); };
     __m128 ox = keep(osOk, _mm_mul_ps(sOs, os.x)), oy = keep(osOk, _mm_mul_ps(sOs, os.y));
-    __m128 oz = keep(osOk, _mm_mul_ps(sOs, os.z)), o4 = zero;
+    __m128 oz = keep(osOk, _mm_mul_ps(sOs, os.z));
     __m128 tx = keep(otOk, _mm_mul_ps(sOt, ot.x)), ty = keep(otOk, _mm_mul_ps(sOt, ot.y));
-    __m128 tz = keep(otOk, _mm_mul_ps(sOt, ot.z)), t4 = zero;
+    __m128 tz = keep(otOk, _mm_mul_ps(sOt, ot.z));
     const __m128 mS = keep(areaOk, _mm_div_ps(lenOs, absArea));
     const __m128 mT = keep(areaOk, _mm_div_ps(lenOt, absArea));
+    __m128 o4 = mS, t4 = mT; // transposed: {os, magS}, {ot, magT} per triangle
     const __m128 good = _mm_and_ps(areaOk, _mm_and_ps(_mm_cmpgt_ps(_mm_andnot_ps(signBit, mS), tiny),
                                                        _mm_cmpgt_ps(_mm_andnot_ps(signBit, mT), tiny)));
     _MM_TRANSPOSE4_PS(ox, oy, oz, o4);
     _MM_TRANSPOSE4_PS(tx, ty, tz, t4);
     const __m128 osLane[4] = {ox, oy, oz, o4}, otLane[4] = {tx, ty, tz, t4};
     for (int l = 0; l < 4; ++l) {
-        _mm_storeu_ps(&deriv[l].os.x, osLane[l]);
-        _mm_storeu_ps(&deriv[l].ot.x, otLane[l]);
+        _mm_store_ps(&deriv[l].os.x, osLane[l]);
+        _mm_store_ps(&deriv[l].ot.x, otLane[l]);
     }
-    _mm_storeu_ps(magS, mS);
-    _mm_storeu_ps(magT, mT);
+    auto same = [](const TermBatch::V& a, const TermBatch::V& b) {
+        return _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(a.x, b.x), _mm_cmpeq_ps(a.y, b.y)), _mm_cmpeq_ps(a.z, b.z));
+    };
+    const int degenerateBits = _mm_movemask_ps(_mm_or_ps(_mm_or_ps(same(p1, p2), same(p1, p3)), same(p2, p3)));
     const int orientBits = _mm_movemask_ps(orient), goodBits = _mm_movemask_ps(good);
     for (int l = 0; l < 4; ++l)
-        flags[l] |= uint8_t(((orientBits >> l) & 1 ? kOrient : 0) | ((goodBits >> l) & 1 ? 0 : kAny));
+        flags[l] |= uint8_t(((orientBits >> l) & 1 ? kOrient : 0) | ((goodBits >> l) & 1 ? 0 : kAny) |
+                            ((degenerateBits >> l) & 1 ? kDegenerate : 0));
+    return size_t(__builtin_popcount(unsigned(degenerateBits)));
 }
 #endif
 
@@ -571,24 +589,24 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<uint32_t> vertexClass; // input vertex -> welded id
     std::vector<uint32_t> firstUse;    // input vertices in order of first use
     std::vector<uint64_t> hashes;      // of firstUse's values
+    std::vector<WeldedVertex> staged;  // firstUse's values (becomes `welded` without duplicates)
+    std::vector<uint32_t> stagedId;    // firstUse index -> welded id
     std::vector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
     std::vector<WeldedVertex> welded;
     std::vector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
     // Degenerate handling and the good-first order.
-    std::vector<uint8_t> degenerate;
     std::vector<uint8_t> quadOneDegen; // only with quads and degenerates
     std::vector<uint32_t> order; // good triangles then degenerate ones (only if any degenerate)
     std::vector<uint32_t> goodWelded, goodCorner, goodFace;
     std::vector<uint8_t> goodVertInFace;
     // Per good triangle.
-    std::vector<TriDerivatives> deriv; // + 1 padding entry (16-byte loads)
-    std::vector<float> magS, magT;
+    std::vector<TriDerivatives> deriv;
     std::vector<uint8_t> flags;
     // Vertex -> incident corners.
     std::vector<uint32_t> incidenceStart;
     std::vector<Incidence> incidence;
-    std::vector<uint32_t> entryOf;    // good triangle corner -> its incidence entry
-    std::vector<glm::vec4> entryOut;  // results in incidence order
+    std::vector<glm::vec4> vertexOut; // one frame per welded vertex, or w = 0: see entryOut
+    std::vector<glm::vec4> entryOut;  // results in incidence order (vertices with w = 0)
     // Terms of a chunk of vertices' entries (Terms layout).
     std::vector<float> terms;
     std::vector<int32_t> outNbr, inNbr, component;
@@ -702,15 +720,20 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 s.firstUse.push_back(v);
             }
         }
-        // Pass 2: hash them, then look each up in an open-addressing table
-        // (slot = welded id and 32 hash bits, so a probe rarely reads the
-        // candidate's values), prefetching the slot a few vertices ahead.
+        // Pass 2: copy their values, in order of first use, into `staged`
+        // and hash them. Pass 3: look each up in an open-addressing table
+        // (slot = staged index of the class's first vertex and 32 hash
+        // bits, so a probe rarely reads the candidate's values),
+        // prefetching the slot a few vertices ahead; the values compared
+        // are read from `staged` (sequentially), not from the input.
         const size_t used = s.firstUse.size();
         s.hashes.resize(used);
+        s.staged.resize(used);
         for (size_t i = 0; i < used; ++i) {
             const uint32_t v = s.firstUse[i];
             const glm::vec3 p = in.positions[v], n = in.normals[v];
             const glm::vec2 uv = in.uvs[v];
+            s.staged[i] = {mikk::toVec3(p), mikk::toVec3(n), uv};
             s.hashes[i] = weldHash(p, n, uv);
         }
         size_t tableSize = 64;
@@ -718,68 +741,97 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         const size_t mask = tableSize - 1;
         constexpr uint64_t kEmpty = ~uint64_t(0);
         s.hashTable.assign(tableSize, kEmpty);
-        s.welded.clear();
-        s.welded.reserve(used);
+        s.stagedId.resize(used);
+        const WeldedVertex* const staged = s.staged.data();
+        uint32_t* const stagedId = s.stagedId.data();
+        uint32_t classCount = 0;
         constexpr size_t kAhead = 16;
         for (size_t i = 0; i < used; ++i) {
             if (i + kAhead < used) __builtin_prefetch(&s.hashTable[s.hashes[i + kAhead] & mask]);
-            const uint32_t v = s.firstUse[i];
             const uint64_t h = s.hashes[i];
             const uint64_t tag = h & 0xFFFFFFFF00000000ull;
-            const glm::vec3 p = in.positions[v], n = in.normals[v];
-            const glm::vec2 uv = in.uvs[v];
+            const WeldedVertex& x = staged[i];
             uint32_t id;
             for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
                 const uint64_t entry = s.hashTable[slot];
                 if (entry == kEmpty) {
-                    id = uint32_t(s.welded.size());
-                    s.welded.push_back({mikk::toVec3(p), mikk::toVec3(n), uv});
-                    s.hashTable[slot] = tag | id;
+                    id = classCount++;
+                    s.hashTable[slot] = tag | i;
                     break;
                 }
                 if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
-                const WeldedVertex& w = s.welded[uint32_t(entry)];
-                if (w.position.x == p.x && w.position.y == p.y && w.position.z == p.z &&
-                    w.normal.x == n.x && w.normal.y == n.y && w.normal.z == n.z &&
-                    w.uv.x == uv.x && w.uv.y == uv.y) {
-                    id = uint32_t(entry);
+                const WeldedVertex& y = staged[uint32_t(entry)];
+                if (mikk::exactlyEqual(x.position, y.position) && mikk::exactlyEqual(x.normal, y.normal) &&
+                    x.uv.x == y.uv.x && x.uv.y == y.uv.y) {
+                    id = stagedId[uint32_t(entry)];
                     break;
                 }
             }
-            s.vertexClass[v] = id;
+            stagedId[i] = id;
+            s.vertexClass[s.firstUse[i]] = id;
         }
-        // Pass 3: welded id per triangle corner.
+        // Welded values: each class's first vertex (new ids appear in
+        // increasing order); without duplicates that is `staged` itself.
+        if (classCount == used) {
+            s.welded.swap(s.staged);
+        } else {
+            s.welded.resize(classCount);
+            uint32_t nextId = 0;
+            for (size_t i = 0; i < used; ++i)
+                if (stagedId[i] == nextId) s.welded[nextId++] = staged[i];
+        }
+        // Pass 4: welded id per triangle corner.
         s.triWelded.resize(triCount * 3);
         for (size_t c = 0; c < triCount * 3; ++c) s.triWelded[c] = s.vertexClass[triVertex[c]];
     }
     const WeldedVertex* wv = s.welded.data();
 
-    // --- Steps 3-4: degenerate triangles (two corners at one position) go
-    // last; quads with one degenerate half are marked.
-    s.degenerate.assign(triCount, 0);
+    // --- Steps 3-5: per-triangle derivatives and orientation (eq. 18/19)
+    // of every triangle in input order, with the degenerate test (two
+    // corners at one position) in the same pass: both read the same
+    // positions. Then degenerate triangles go last (the good ones keep
+    // their order; their derivatives and flags move to the front) and
+    // quads with one degenerate half are marked. A degenerate triangle's
+    // derivatives are computed and dropped.
+    s.deriv.resize(triCount);
+    s.flags.assign(triCount, 0); // indexed in the good-first order after the compaction
     size_t degenerateCount = 0;
-    for (size_t t = 0; t < triCount; ++t) {
-        const Vec3& p0 = wv[s.triWelded[t * 3]].position;
-        const Vec3& p1 = wv[s.triWelded[t * 3 + 1]].position;
-        const Vec3& p2 = wv[s.triWelded[t * 3 + 2]].position;
-        const bool d = mikk::exactlyEqual(p0, p1) || mikk::exactlyEqual(p0, p2) ||
-                       mikk::exactlyEqual(p1, p2);
-        s.degenerate[t] = d;
-        degenerateCount += d;
+    {
+        const uint32_t* const tw = s.triWelded.data();
+        size_t firstScalar = 0;
+#if defined(__SSE2__)
+        for (; firstScalar + 4 <= triCount; firstScalar += 4)
+            degenerateCount += faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
+                                                s.flags.data() + firstScalar);
+#endif
+        for (size_t t = firstScalar; t < triCount; ++t) {
+            const WeldedVertex& a = wv[tw[t * 3]];
+            const WeldedVertex& b = wv[tw[t * 3 + 1]];
+            const WeldedVertex& c = wv[tw[t * 3 + 2]];
+            const mikk::FaceDerivatives d =
+                mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
+            s.deriv[t] = {d.vOs, d.magS, d.vOt, d.magT};
+            const bool degenerate = mikk::exactlyEqual(a.position, b.position) ||
+                                    mikk::exactlyEqual(a.position, c.position) ||
+                                    mikk::exactlyEqual(b.position, c.position);
+            s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0) |
+                                  (degenerate ? kDegenerate : 0));
+            degenerateCount += degenerate;
+        }
     }
     const size_t goodCount = triCount - degenerateCount;
-    s.flags.assign(triCount, 0); // indexed in the good-first order below
     const uint32_t* gWelded = s.triWelded.data();
     const uint32_t* gCorner = hasQuads ? s.triCorner.data() : nullptr;
     const uint32_t* gFace = hasQuads ? s.triFace.data() : nullptr;
     const uint8_t* gVertInFace = hasQuads ? s.triVertInFace.data() : nullptr;
     std::vector<uint8_t>& quadOneDegen = s.quadOneDegen;
     if (degenerateCount > 0) {
+        auto isDegenerate = [&](size_t t) { return (s.flags[t] & kDegenerate) != 0; };
         if (hasQuads) {
             quadOneDegen.assign(triCount, 0);
             for (size_t t = 0; t + 1 < triCount;) {
                 if (s.triFace[t] == s.triFace[t + 1]) {
-                    if (s.degenerate[t] != s.degenerate[t + 1]) quadOneDegen[t] = quadOneDegen[t + 1] = 1;
+                    if (isDegenerate(t) != isDegenerate(t + 1)) quadOneDegen[t] = quadOneDegen[t + 1] = 1;
                     t += 2;
                 } else {
                     ++t;
@@ -788,9 +840,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         }
         s.order.clear();
         for (size_t t = 0; t < triCount; ++t)
-            if (!s.degenerate[t]) s.order.push_back(uint32_t(t));
+            if (!isDegenerate(t)) s.order.push_back(uint32_t(t));
         for (size_t t = 0; t < triCount; ++t)
-            if (s.degenerate[t]) s.order.push_back(uint32_t(t));
+            if (isDegenerate(t)) s.order.push_back(uint32_t(t));
         s.goodWelded.resize(triCount * 3);
         s.goodCorner.resize(triCount * 3);
         if (hasQuads) {
@@ -804,9 +856,15 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 s.goodCorner[t * 3 + i] = outCornerOf(s.triCorner.data(), src * 3 + i);
                 if (hasQuads) s.goodVertInFace[t * 3 + i] = s.triVertInFace[src * 3 + i];
             }
-            if (hasQuads) {
-                s.goodFace[t] = s.triFace[src];
-                if (quadOneDegen[src]) s.flags[t] |= kQuadOneDegen;
+            if (hasQuads) s.goodFace[t] = s.triFace[src];
+            // In place: order[t] >= t for the good prefix, and a degenerate
+            // triangle keeps no derivative bits.
+            const uint8_t quadBit = hasQuads && quadOneDegen[src] ? kQuadOneDegen : 0;
+            if (t < goodCount) {
+                s.deriv[t] = s.deriv[src];
+                s.flags[t] = uint8_t((s.flags[src] & (kOrient | kAny)) | quadBit);
+            } else {
+                s.flags[t] = quadBit;
             }
         }
         gWelded = s.goodWelded.data();
@@ -818,28 +876,6 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     auto cornerOut = [&](size_t j) -> uint32_t { return gCorner ? gCorner[j] : uint32_t(j); };
     auto faceOf = [&](size_t t) -> uint32_t { return gFace ? gFace[t] : uint32_t(t); };
 
-    // --- Step 5: per-triangle derivatives and orientation (eq. 18/19).
-    s.deriv.resize(goodCount + 1); // the last entry pads 16-byte loads of the one before
-    s.magS.resize(goodCount);
-    s.magT.resize(goodCount);
-    size_t firstScalar = 0;
-#if defined(__SSE2__)
-    for (; firstScalar + 4 <= goodCount; firstScalar += 4)
-        faceDerivatives4(wv, gWelded + firstScalar * 3, s.deriv.data() + firstScalar,
-                         s.magS.data() + firstScalar, s.magT.data() + firstScalar,
-                         s.flags.data() + firstScalar);
-#endif
-    for (size_t t = firstScalar; t < goodCount; ++t) {
-        const WeldedVertex& a = wv[gWelded[t * 3]];
-        const WeldedVertex& b = wv[gWelded[t * 3 + 1]];
-        const WeldedVertex& c = wv[gWelded[t * 3 + 2]];
-        const mikk::FaceDerivatives d =
-            mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
-        s.deriv[t] = {d.vOs, d.vOt};
-        s.magS[t] = d.magS;
-        s.magT[t] = d.magT;
-        s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0));
-    }
     if (hasQuads) { // one orientation per quad
         for (size_t t = 0; t + 1 < goodCount;) {
             if (faceOf(t) != faceOf(t + 1)) {
@@ -870,20 +906,22 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     for (size_t j = 0; j < goodCount * 3; ++j) ++s.incidenceStart[gWelded[j] + 1];
     for (size_t w = 0; w < weldedCount; ++w) s.incidenceStart[w + 1] += s.incidenceStart[w];
     s.incidence.resize(goodCount * 3);
-    s.entryOf.resize(goodCount * 3);
     {
         // The next list's start serves as the cursor, shifted back after.
         uint32_t* cursor = s.incidenceStart.data();
+        constexpr size_t kAheadT = 16; // triangles
         for (size_t t = 0; t < goodCount; ++t) {
             const uint32_t* w = gWelded + t * 3;
+            if (t + kAheadT < goodCount) {
+                const uint32_t* wa = w + kAheadT * 3;
+                __builtin_prefetch(s.incidence.data() + cursor[wa[0]], 1);
+                __builtin_prefetch(s.incidence.data() + cursor[wa[1]], 1);
+                __builtin_prefetch(s.incidence.data() + cursor[wa[2]], 1);
+            }
             const uint32_t tc = uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
                                 ((s.flags[t] & kOrient) ? 4u : 0u);
-            uint32_t* entryOf = s.entryOf.data() + t * 3;
-            entryOf[0] = cursor[w[0]];
             s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
-            entryOf[1] = cursor[w[1]];
             s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
-            entryOf[2] = cursor[w[2]];
             s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
         }
         for (size_t w = weldedCount; w > 0; --w) s.incidenceStart[w] = s.incidenceStart[w - 1];
@@ -904,12 +942,20 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     // Every entry of a vertex without group-with-any triangles is written
     // by its group below; entries of deferred vertices get the reference's
     // default first (some may never be reached).
-    // Without quads or full frames, results go to entryOut in incidence
-    // order (sequential writes: a vertex's entries are contiguous) and are
-    // gathered into corner order afterwards; writing each corner straight
-    // into the corner-ordered output scatters 16-byte stores over the whole
-    // array and costs more.
-    if (!fullSpaces) s.entryOut.resize(goodCount * 3);
+    // Without quads or full frames, the usual vertex (one group, one
+    // subgroup: every corner at it gets the same frame) stores that frame
+    // once in vertexOut; other vertices store w = 0 there (a real w is
+    // +-1) and their entries' results in entryOut, in incidence order.
+    // Corner order is gathered afterwards, in triangle order, from
+    // vertexOut (welded ids are numbered in order of first use, so these
+    // reads are nearly sequential); writing each corner straight into the
+    // corner-ordered output scatters 16-byte stores over the whole array
+    // and costs more.
+    if (!fullSpaces) {
+        s.vertexOut.resize(s.welded.size());
+        s.entryOut.resize(goodCount * 3);
+    }
+    glm::vec4* const vertexOut = s.vertexOut.data();
     glm::vec4* const entryOut = s.entryOut.data();
     const Incidence* const incidenceBase = s.incidence.data();
     auto writeEntry = [&](const Incidence* entry, const mikk::FrameAccumulator& fr, bool orient) {
@@ -940,6 +986,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
 
     // Terms of the entries of vertices [w0, w1) (consecutive in the
     // incidence array), entry j at index j - incidenceStart[w0].
+    const size_t entryCount = goodCount * 3;
+    constexpr size_t kPrefetchAhead = 32; // entries; 16..96 measure the same
     auto computeTerms = [&](uint32_t w0, uint32_t w1, const Terms& out) {
         TermBatch batch;
         size_t filled = 0, first = 0;
@@ -947,6 +995,13 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             const Incidence* list = s.incidence.data() + s.incidenceStart[w];
             const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
             for (size_t e = 0; e < k; ++e) {
+                const size_t ahead = s.incidenceStart[w] + e + kPrefetchAhead;
+                if (ahead < entryCount) {
+                    const Incidence& a = incidenceBase[ahead];
+                    __builtin_prefetch(triDeriv + a.tri());
+                    __builtin_prefetch(wv + a.prev);
+                    __builtin_prefetch(wv + a.next);
+                }
                 batch.set(filled, triDeriv + list[e].tri(), wv + w, wv + list[e].prev,
                           wv + list[e].next);
                 if (++filled == TermBatch::kLanes) {
@@ -1062,10 +1117,11 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         }
     };
 
-    // Frames of one group (entries `members` of `list`, ascending) into
-    // its corners; `terms` holds the list's terms from index 0.
-    auto emitGroup = [&](const Incidence* list, const Terms& terms, const uint32_t* members,
-                         size_t m, bool orient) {
+    // Frames of one group (entries `members` of `list`, the incidence list
+    // of vertex w, ascending) into its corners; `terms` holds the list's
+    // terms from index 0. wholeVertex: the group is every entry of w.
+    auto emitGroup = [&](uint32_t w, const Incidence* list, const Terms& terms, const uint32_t* members,
+                         size_t m, bool orient, bool wholeVertex) {
         auto together = [&](uint32_t x, uint32_t y) {
             return list[x].any() || list[y].any() || faceOf(list[x].tri()) == faceOf(list[y].tri()) ||
                    (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos &&
@@ -1074,7 +1130,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         auto accumulateOver = [&](mikk::FrameAccumulator& fr, uint32_t e) {
             if (list[e].any()) return; // bad triangles contribute nothing
             const uint32_t t = list[e].tri();
-            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), s.magS[t], s.magT[t]);
+            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), triDeriv[t].magS, triDeriv[t].magT);
         };
         // Every pair passes the 180-degree threshold (dot products > -1)
         // when every member's unit vectors are within ~89 degrees of the
@@ -1104,6 +1160,13 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         }
         if (oneSubgroup) {
             fr.finish();
+            if (!fullSpaces && wholeVertex) {
+                vertexOut[w] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
+                return;
+            }
+        }
+        if (!fullSpaces) vertexOut[w].w = 0.0f; // per entry
+        if (oneSubgroup) {
             for (size_t x = 0; x < m; ++x) writeEntry(list + members[x], fr, orient);
             return;
         }
@@ -1190,7 +1253,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
                     if (reached == k) {
                         for (uint32_t e = 0; e < 8; ++e) members[e] = e;
-                        emitGroup(list, terms, members, k, orientBits != 0);
+                        emitGroup(w, list, terms, members, k, orientBits != 0, true);
                         continue;
                     }
                 }
@@ -1206,7 +1269,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             }
             if (k == 1) {
                 members[0] = 0;
-                emitGroup(list, terms, members, 1, list[0].orient());
+                emitGroup(w, list, terms, members, 1, list[0].orient(), true);
                 continue;
             }
             pairEdges(list, k);
@@ -1227,7 +1290,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
                 if (reached == k) {
                     for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
-                    emitGroup(list, terms, members, k, orient0);
+                    emitGroup(w, list, terms, members, k, orient0, true);
                     continue;
                 }
             }
@@ -1251,7 +1314,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 size_t m = 0;
                 for (size_t e = seed; e < k; ++e)
                     if (comp[e] == int32_t(seed)) members[m++] = uint32_t(e);
-                emitGroup(list, terms, members, m, orientBit);
+                emitGroup(w, list, terms, members, m, orientBit, false);
             }
         }
         w0 = w1;
@@ -1267,6 +1330,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         for (const uint32_t w : s.deferred) {
             s.isDeferred[w] = 1;
             if (fullSpaces) continue; // spaces start as the default
+            vertexOut[w].w = 0.0f;
             for (uint32_t j = s.incidenceStart[w]; j < s.incidenceStart[w + 1]; ++j)
                 entryOut[j] = glm::vec4(1, 0, 0, -1);
         }
@@ -1301,13 +1365,25 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     if (outNbr[e] >= 0) s.stack.push_back(uint32_t(outNbr[e]));
                 }
                 std::sort(s.groupMembers.begin(), s.groupMembers.end());
-                emitGroup(list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient);
+                emitGroup(w, list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient, false);
             }
         }
     }
 
-    if (!fullSpaces) // entry order -> corner order
-        for (size_t j = 0; j < goodCount * 3; ++j) tangentsOut[cornerOut(j)] = entryOut[s.entryOf[j]];
+    if (!fullSpaces) { // -> corner order
+        for (size_t t = 0; t < goodCount; ++t) {
+            for (size_t i = 0; i < 3; ++i) {
+                const uint32_t w = gWelded[t * 3 + i];
+                glm::vec4 v = vertexOut[w];
+                if (v.w == 0.0f) { // this corner's entry (a good triangle meets w once)
+                    uint32_t j = s.incidenceStart[w];
+                    while (s.incidence[j].tri() != t) ++j;
+                    v = entryOut[j];
+                }
+                tangentsOut[cornerOut(t * 3 + i)] = v;
+            }
+        }
+    }
 
     // --- Step 9: degenerate triangles copy frames from good corners.
     auto copyCorner = [&](uint32_t dst, uint32_t src) {
