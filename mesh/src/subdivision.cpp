@@ -283,8 +283,11 @@ struct FactoredStencils {
         blocks.push_back(std::move(b));
     }
 
-    // A Far::StencilTable whose control indices are global point indices.
-    void appendTable(const Far::StencilTable& table, uint32_t dstBase) {
+    // A Far stencil table whose control indices are global point indices.
+    // (StencilTableReal<float>, not StencilTable: PatchTable creates its
+    // local-point tables as the former, and its non-template getters
+    // static_cast them to the latter, a downcast UBSan rejects.)
+    void appendTable(const Far::StencilTableReal<float>& table, uint32_t dstBase) {
         StencilBlock b;
         b.dstBase = dstBase;
         b.count = uint32_t(table.GetNumStencils());
@@ -894,7 +897,7 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     for (int l = 1; l < adaptive->GetNumLevels(); ++l) limitStencils.recordLevel(*adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
     const uint32_t refinedTotal = levelBase.back();
     uint32_t localCount = 0;
-    if (const Far::StencilTable* local = patches->GetLocalPointStencilTable()) {
+    if (const Far::StencilTableReal<float>* local = patches->GetLocalPointStencilTable<float>()) {
         limitStencils.appendTable(*local, refinedTotal);
         localCount = uint32_t(local->GetNumStencils());
     }
@@ -1010,7 +1013,7 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
             fvBase[size_t(l) + 1] = fvBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumFVarValues(ch));
         }
-        const Far::StencilTable* local = patches->GetLocalPointFaceVaryingStencilTable(ch);
+        const Far::StencilTableReal<float>* local = patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
         std::vector<glm::vec2> values(fvBase.back() + (local ? size_t(local->GetNumStencils()) : 0));
         std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
         Far::PrimvarRefiner primvar(*adaptive);
