@@ -25,10 +25,18 @@ using mat2 = glm::dmat2;
 using mat3 = glm::dmat3;
 using mat4 = glm::dmat4;
 // Every `float` in the shared source (scalars, struct fields, casts) becomes
-// a double in this translation unit only.
+// a double in this translation unit only (clang warns on redefining a
+// keyword; that is the point here).
+#ifdef __clang__
+#pragma clang diagnostic push
+#pragma clang diagnostic ignored "-Wkeyword-macro"
+#endif
 #define float double
 #include "sgd/eval/kernels.glsl"
 #undef float
+#ifdef __clang__
+#pragma clang diagnostic pop
+#endif
 } // namespace sg::glsl_double
 
 namespace sg::eval {

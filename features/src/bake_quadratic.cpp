@@ -344,6 +344,12 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
             if (counters) ++counters->thetaMin;
             continue;
         }
+        // A curve leaving the texel (measured above) is invalid; the
+        // amount it leaves by ranks infeasible trial points in the search.
+        if (out > 0.0) {
+            viol += out;
+            continue;
+        }
         Quad c{qa, b1, qb};
         bool eq7 = eq7Safe(c);
         if (!eq7 && counters) ++counters->eq7;

@@ -91,7 +91,7 @@ private:
     // range-checked after the whole file is read (forward references).
     std::vector<int64_t> cornerV_, cornerT_, cornerN_;
     std::vector<uint32_t> faceLine_;
-    size_t cornersWithoutUv_ = 0, cornersWithoutNormal_ = 0;
+    size_t cornersWithoutUv_ = 0;
     size_t ignored_ = 0;
     std::string firstIgnored_;
     std::vector<std::string> unknownTags_;

@@ -29,7 +29,7 @@ namespace {
 
 class RecordingImporter final : public OM::IO::BaseImporter {
 public:
-    RecordingImporter(const std::string& file, const InputLimits& limits) : file_(file), limits_(limits) {}
+    explicit RecordingImporter(const InputLimits& limits) : limits_(limits) {}
 
     OM::VertexHandle add_vertex(const OM::Vec3f& p) override {
         if (positions.size() >= limits_.maxVertices) {
@@ -115,7 +115,6 @@ public:
 
 private:
     bool valid(OM::VertexHandle v) const { return v.idx() >= 0 && size_t(v.idx()) < positions.size(); }
-    const std::string& file_;
     const InputLimits& limits_;
 };
 
@@ -265,7 +264,7 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
     std::string ext = meshFormat(path);
     checkHeaderCounts(path, ext, size);
 
-    RecordingImporter importer(file, limits);
+    RecordingImporter importer(limits);
     OM::IO::Options opt = OM::IO::Options::VertexTexCoord | OM::IO::Options::VertexNormal;
     // OpenMesh reports problems on its own error stream; ours are InputErrors.
     bool errWasEnabled = ::omerr().is_enabled(), logWasEnabled = ::omlog().is_enabled();

@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const sg::eval::LineError&) {
         return 0; // a documented rejection
     }
-    std::vector<float> out(size_t(sg::eval::outStride()));
+    std::vector<float> out(static_cast<size_t>(sg::eval::outStride()));
     sg::eval::evalCpu(e, rec.data(), out.data());
     for (const auto& f : e.outputs) {
         for (int i = f.slot; i < f.slot + f.width; ++i) {

@@ -230,7 +230,6 @@ private:
     const std::string& file_;
 };
 
-constexpr double kBig = 1e9;  // "no bound" for Node ranges
 constexpr double kHuge = 1e6; // largest sensible coordinate/size
 
 struct Parser {
