@@ -9,6 +9,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <cstdint>
 #include <memory>
 
 #include "bake_internal.h"
@@ -23,6 +24,48 @@ const char* kLayout =
     "surfgrad feature maps: (N+1)^2 grid corners, scanline 0 = top (j = N); d,gx,gy,left per corner; "
     "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
     "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
+
+// The EXR header's attribute list, checked before OpenEXR reads it:
+// OpenEXR allocates each attribute's declared size before reading it, so a
+// 2 KB file declaring a 2 GB string attribute takes 2 GB (found by
+// fuzz_feature_maps). Layout (OpenEXR file layout, "Header"): magic
+// 76 2f 31 01, a version word (bits 0-7 version 2; 0x800 deep, 0x1000
+// multi-part), then attributes {name\0, type\0, int32 size, size bytes}
+// ended by an empty name. Feature maps are single-part scanline or tiled
+// images; every declared size must fit in the bytes that follow.
+void checkExrHeader(const std::string& bytes, const std::string& name) {
+    auto fail = [&](const std::string& reason) { throw io::InputError(name, "EXR header", reason); };
+    auto u8 = [&](size_t i) { return uint32_t(static_cast<unsigned char>(bytes[i])); };
+    auto u32 = [&](size_t i) { return u8(i) | u8(i + 1) << 8 | u8(i + 2) << 16 | u8(i + 3) << 24; };
+    if (bytes.size() < 8 || u32(0) != 20000630u) fail("not an OpenEXR file (magic number)");
+    const uint32_t version = u32(4);
+    if ((version & 0xFFu) != 2u) fail("EXR version " + std::to_string(version & 0xFFu) + " (this reader knows 2)");
+    if (version & 0x1800u) fail("deep or multi-part EXR (feature maps are single-part images)");
+    size_t at = 8;
+    // A null-terminated name of at most 255 characters (the long-name limit).
+    auto cstring = [&](const char* what) {
+        const size_t end = bytes.find('\0', at);
+        if (end == std::string::npos || end - at > 255) fail(std::string("unterminated or over-long attribute ") + what + " at byte " + std::to_string(at));
+        std::string out = bytes.substr(at, end - at);
+        at = end + 1;
+        return out;
+    };
+    constexpr int kMaxAttributes = 1024; // real headers have a few dozen
+    for (int n = 0; n < kMaxAttributes; ++n) {
+        const std::string attr = cstring("name");
+        if (attr.empty()) return; // end of the header
+        cstring("type");
+        if (bytes.size() - at < 4) fail("attribute '" + attr.substr(0, 64) + "' has no size");
+        const uint32_t size = u32(at);
+        at += 4;
+        if (size > bytes.size() - at) {
+            fail("attribute '" + attr.substr(0, 64) + "' declares " + std::to_string(size) + " bytes but the file has " +
+                 std::to_string(bytes.size() - at) + " left");
+        }
+        at += size;
+    }
+    fail("more than " + std::to_string(kMaxAttributes) + " header attributes");
+}
 
 std::vector<std::string> channelNames() { return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"}; }
 
@@ -279,11 +322,13 @@ FeatureMaps load(const std::filesystem::path& path) {
     if (!std::filesystem::is_regular_file(path, ec)) {
         throw io::InputError(path.string(), "", std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
     }
-    auto in = OIIO::ImageInput::open(path.string());
-    return readFrom(in.get(), path.string());
+    // The largest map (kMaxFeatureMapSize, 9 float channels, uncompressed)
+    // is about 600 MB; read into memory so the header is checked first.
+    return loadFromMemory(io::readFile(path, size_t(1) << 30), path.string());
 }
 
 FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name) {
+    checkExrHeader(bytes, name);
     OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
     auto in = OIIO::ImageInput::open("memory.exr", nullptr, &reader);
     return readFrom(in.get(), name);

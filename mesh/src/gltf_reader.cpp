@@ -368,7 +368,7 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
     totalVertices_ += nV;
     if (totalVertices_ > limits_.maxVertices) fail(el, "the scene has more than " + std::to_string(limits_.maxVertices) + " vertices (limit)");
     rm.positions.resize(nV);
-    std::memcpy(rm.positions.data(), pos.data(), nV * sizeof(glm::vec3));
+    if (nV > 0) std::memcpy(rm.positions.data(), pos.data(), nV * sizeof(glm::vec3)); // (no null pointers into memcpy)
 
     auto sizeCheck = [&](const std::vector<float>& v, int comps, const std::string& what) {
         if (v.size() != nV * size_t(comps)) fail(el, what + " has " + std::to_string(v.size() / size_t(comps)) + " elements; POSITION has " + std::to_string(nV));
@@ -454,7 +454,7 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
             std::vector<float> d = readFloats(it->second, 3, true, tel + " " + name);
             if (d.size() != nV * 3) fail(tel, std::string(name) + " has " + std::to_string(d.size() / 3) + " elements; POSITION has " + std::to_string(nV));
             dst.resize(nV);
-            std::memcpy(dst.data(), d.data(), d.size() * sizeof(float));
+            if (!d.empty()) std::memcpy(dst.data(), d.data(), d.size() * sizeof(float));
         };
         read3("POSITION", mt.positionDeltas);
         read3("NORMAL", mt.normalDeltas);

@@ -13,6 +13,10 @@
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <charconv>
+#include <cctype>
+#include <iterator>
+#include <string_view>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -196,10 +200,113 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
     throw InputError(file, "header", "no end_header within " + std::to_string(kMaxHeaderLines) + " lines");
 }
 
+// ASCII OFF, checked token by token the way OpenMesh's reader consumes it,
+// before that reader sees the file. Its face loop reads each face's vertex
+// count into an unsigned int and then reads that many indices without
+// checking the stream: a count of "-10" (4294967286 as unsigned) or a
+// stale count after a failed read spins for billions of iterations (found
+// by fuzz_mesh_openmesh). So every token that reader will take as a count
+// is checked here. Layout: line 1 the keyword [ST][C][N]OFF alone; then nV
+// nF nE; then per vertex 3 coordinates (6 with N) read as tokens, the rest
+// of that line skipped (colours, texture coordinates); then per face a
+// vertex count k in [1, maxFaceDegree] and k integer indices (anything
+// after them on the line is left to the next token read, as OpenMesh
+// does). 4OFF/nOFF (other dimensions) and BINARY OFF are refused by name.
+void checkOff(const std::filesystem::path& path, const std::string& file, uint64_t fileSize, const InputLimits& limits) {
+    std::ifstream in(path, std::ios::binary);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    size_t at = 0, line = 1;
+    auto fail = [&](const std::string& element, const std::string& reason) { throw InputError(file, element, reason); };
+    auto lineName = [&]() { return "line " + std::to_string(line); };
+    // Next whitespace-separated token (empty at the end of the file).
+    auto token = [&]() {
+        while (at < text.size() && std::isspace(static_cast<unsigned char>(text[at]))) {
+            if (text[at] == '\n') ++line;
+            ++at;
+        }
+        const size_t start = at;
+        while (at < text.size() && !std::isspace(static_cast<unsigned char>(text[at]))) ++at;
+        return std::string_view(text).substr(start, at - start);
+    };
+    auto skipLine = [&]() {
+        while (at < text.size() && text[at] != '\n') ++at;
+    };
+    auto integer = [&](std::string_view t, uint64_t maxValue, const std::string& element, const std::string& what) {
+        uint64_t v = 0;
+        auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+        if (t.empty() || ec != std::errc() || p != t.data() + t.size() || v > maxValue) {
+            fail(element, "expected " + what + ", found '" + std::string(t.substr(0, 32)) + "'");
+        }
+        return v;
+    };
+    // Keyword line.
+    const std::string_view magic = token();
+    const size_t offAt = magic.find("OFF");
+    if (offAt == std::string_view::npos || offAt + 3 != magic.size()) fail("header", "not an OFF file (no OFF keyword)");
+    std::string_view prefix = magic.substr(0, offAt);
+    bool normals = false;
+    for (std::string_view known : {"ST", "C", "N"}) {
+        if (prefix.substr(0, known.size()) == known) {
+            normals |= known == "N";
+            prefix.remove_prefix(known.size());
+        }
+    }
+    if (prefix == "4" || prefix == "n" || prefix == "4n") fail("header", "OFF of dimension other than 3 (" + std::string(magic) + ") is not supported");
+    if (!prefix.empty()) fail("header", "unknown OFF keyword '" + std::string(magic.substr(0, 32)) + "'");
+    {
+        // The rest of the keyword line: nothing, or BINARY.
+        const size_t eol = text.find('\n', at);
+        std::istringstream rest(text.substr(at, eol == std::string::npos ? std::string::npos : eol - at));
+        std::string word;
+        if (rest >> word) {
+            if (word == "BINARY") fail("header", "binary OFF is not supported (use ASCII OFF or PLY)");
+            fail("header", "expected the OFF keyword alone on line 1, found '" + word.substr(0, 32) + "'");
+        }
+        skipLine();
+    }
+    const uint64_t nV = integer(token(), UINT32_MAX, "header", "a vertex count");
+    const uint64_t nF = integer(token(), UINT32_MAX, "header", "a face count");
+    integer(token(), UINT32_MAX, "header", "an edge count");
+    // Every vertex and face takes at least a few bytes.
+    if (nV > fileSize / 6) fail("header", "declares " + std::to_string(nV) + " vertices but the file has only " + std::to_string(fileSize) + " bytes");
+    if (nF > fileSize / 4) fail("header", "declares " + std::to_string(nF) + " faces but the file has only " + std::to_string(fileSize) + " bytes");
+    if (nV > limits.maxVertices) fail("header", std::to_string(nV) + " vertices; the limit is " + std::to_string(limits.maxVertices));
+    if (nF > limits.maxFaces) fail("header", std::to_string(nF) + " faces; the limit is " + std::to_string(limits.maxFaces));
+    const int coords = normals ? 6 : 3;
+    for (uint64_t v = 0; v < nV; ++v) {
+        for (int k = 0; k < coords; ++k) {
+            const std::string_view t = token();
+            double x = 0.0;
+            auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+            if (t.empty() || p != t.data() + t.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+                fail("vertex " + std::to_string(v), lineName() + ": expected a number, found '" + std::string(t.substr(0, 32)) + "'");
+            }
+        }
+        skipLine();
+    }
+    for (uint64_t f = 0; f < nF; ++f) {
+        const std::string element = "face " + std::to_string(f);
+        const std::string_view t = token();
+        if (t.empty()) fail(element, "the file ends before face " + std::to_string(f) + " of " + std::to_string(nF));
+        const uint64_t k = integer(t, limits.maxFaceDegree, element,
+                                   lineName() + ": a vertex count in [1, " + std::to_string(limits.maxFaceDegree) + "]");
+        if (k == 0) fail(element, lineName() + ": a face needs at least one vertex");
+        for (uint64_t j = 0; j < k; ++j) {
+            const std::string_view idx = token();
+            if (idx.empty()) fail(element, "the file ends inside the face (" + std::to_string(j) + " of " + std::to_string(k) + " indices)");
+            long long value = 0;
+            auto [p, ec] = std::from_chars(idx.data(), idx.data() + idx.size(), value);
+            if (idx.empty() || ec != std::errc() || p != idx.data() + idx.size()) {
+                fail(element, lineName() + ": expected " + std::to_string(k) + " vertex indices, found '" + std::string(idx.substr(0, 32)) + "'");
+            }
+        }
+    }
+}
+
 // Header counts against the file size: every vertex and face takes at
 // least a few bytes (3 coordinates of >= 2 characters in ASCII, 4 bytes in
 // binary; a face at least 4 numbers), so a count beyond that is a lie.
-void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize) {
+void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize, const InputLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     std::string file = path.string();
     auto tooMany = [&](const std::string& what, uint64_t n) {
@@ -218,32 +325,8 @@ void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext
     }
     std::string line;
     if (ext == ".off") {
-        // [ST][C][N][4][n]OFF [BINARY], then (after comments) nV nF nE.
-        std::string magic;
-        if (!(in >> magic) || magic.find("OFF") == std::string::npos) {
-            throw InputError(file, "header", "not an OFF file (no OFF keyword)");
-        }
-        std::string tok;
-        uint64_t counts[2] = {0, 0};
-        int k = 0;
-        while (k < 2 && in >> tok) {
-            if (tok == "BINARY") continue;
-            if (tok[0] == '#') {
-                std::getline(in, line);
-                continue;
-            }
-            try {
-                size_t used = 0;
-                long long v = std::stoll(tok, &used);
-                if (used != tok.size() || v < 0) throw InputError(file, "header", "bad count '" + tok.substr(0, 32) + "'");
-                counts[k++] = uint64_t(v);
-            } catch (const std::logic_error&) {
-                throw InputError(file, "header", "bad count '" + tok.substr(0, 32) + "'");
-            }
-        }
-        if (k < 2) throw InputError(file, "header", "missing vertex/face counts");
-        if (counts[0] > fileSize / 6) tooMany("vertices", counts[0]);
-        if (counts[1] > fileSize / 8) tooMany("faces", counts[1]);
+        in.close();
+        checkOff(path, file, fileSize, limits);
         return;
     }
     if (ext == ".ply") checkPlyHeader(in, file, fileSize);
@@ -262,7 +345,7 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
         throw InputError(file, "", "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.maxFileBytes));
     }
     std::string ext = meshFormat(path);
-    checkHeaderCounts(path, ext, size);
+    checkHeaderCounts(path, ext, size, limits);
 
     RecordingImporter importer(limits);
     OM::IO::Options opt = OM::IO::Options::VertexTexCoord | OM::IO::Options::VertexNormal;

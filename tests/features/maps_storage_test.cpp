@@ -114,6 +114,25 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
     std::string bytes = sg::io::readFile(good);
     sg::io::writeFileAtomically(dir.path / "trunc.exr", bytes.substr(0, bytes.size() / 2));
     EXPECT_NE(loadError(dir.path / "trunc.exr"), "");
+    // Header attributes are checked before OpenEXR allocates them: the
+    // first attribute's size word (after magic, version, its name and type,
+    // each null-terminated) raised to 2^31 - 1, far past the end of the file.
+    {
+        const size_t nameEnd = bytes.find('\0', 8), typeEnd = bytes.find('\0', nameEnd + 1);
+        ASSERT_NE(typeEnd, std::string::npos);
+        const std::string firstAttr = bytes.substr(8, nameEnd - 8);
+        const size_t sizeAt = typeEnd + 1;
+        std::string forged = bytes;
+        const unsigned char big[4] = {0xFF, 0xFF, 0xFF, 0x7F};
+        forged.replace(sizeAt, 4, reinterpret_cast<const char*>(big), 4);
+        sg::io::writeFileAtomically(dir.path / "hugeattr.exr", forged);
+        const std::string e = loadError(dir.path / "hugeattr.exr");
+        EXPECT_NE(e.find("attribute '" + firstAttr + "' declares 2147483647 bytes"), std::string::npos) << e;
+        std::string multi = bytes;
+        multi[5] = char(static_cast<unsigned char>(multi[5]) | 0x10); // version bit 0x1000: multi-part
+        sg::io::writeFileAtomically(dir.path / "multipart.exr", multi);
+        EXPECT_NE(loadError(dir.path / "multipart.exr").find("multi-part"), std::string::npos);
+    }
 
     // Forged files: start from the real spec and pixels, break one thing.
     auto in = OIIO::ImageInput::open(good.string());

@@ -107,6 +107,42 @@ TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
     EXPECT_EQ(loadPolygonMesh(dir / "ok.ply").faceCount(), 1u);
 }
 
+// ASCII OFF is checked token by token before OpenMesh's reader, whose face
+// loop trusts each face's vertex count (a count of -10 read as unsigned
+// spun for billions of iterations: found by fuzz_mesh_openmesh, kept in
+// its corpus). Each case names the element and the line.
+TEST(Formats, MalformedOffIsNamedBeforeOpenMeshReadsIt) {
+    TempDir dir;
+    struct Case {
+        const char* text;
+        const char* element;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-10 0 1 2\n", "face 0", "line 6: a vertex count in [1, "},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "face 0", "the file ends inside the face (2 of 3 indices)"},
+        {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "face 1", "the file ends before face 1 of 2"},
+        {"OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n", "vertex 1", "line 4: expected a number, found 'x'"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "face 0", "expected 3 vertex indices, found '1.5'"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "face 0", "at least one vertex"},
+        {"OFF BINARY\n", "header", "binary OFF is not supported"},
+        {"4OFF\n1 0 0\n0 0 0 1\n", "header", "dimension other than 3"},
+        {"OFF4 1 5\n", "header", "not an OFF file"},
+        {"XOFF\n", "header", "unknown OFF keyword 'XOFF'"},
+        {"OFF 3 1 0\n", "header", "the OFF keyword alone on line 1"},
+        {"OFF\n3 -1 0\n", "header", "expected a face count"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.text);
+        writeText(dir / "bad.off", c.text);
+        expectInputError([&] { loadPolygonMesh(dir / "bad.off"); }, c.element, c.reason);
+    }
+    // Normals (NOFF: 6 numbers per vertex), colours after the coordinates
+    // (skipped with the rest of the line) and CRLF line ends are accepted.
+    writeText(dir / "ok.off", "NOFF\r\n3 1 0\r\n0 0 0 0 0 1\r\n1 0 0 0 0 1 255 0 0\r\n0 1 0 0 0 1\r\n3 0 1 2\r\n");
+    EXPECT_EQ(loadPolygonMesh(dir / "ok.off").faceCount(), 1u);
+}
+
 TEST(Formats, BinaryStlIsWeldedByOpenMesh) {
     // Two triangles of a square, each with its own copies of the corners.
     TempDir dir;

@@ -25,6 +25,7 @@ const std::string kMap = R"("map": {"procedural": "bumps"})";
 std::vector<BadCase> badCases() {
     return {
         {"invalid JSON", R"({"meshes": [)", "", "invalid JSON"},
+        {"number too large for a double", R"({"output": {"width": 1e999}})", "", "number overflow"},
         {"root not an object", "[1, 2]", "(root)", "expected an object"},
         {"unknown top-level field", R"({"meshes": [{"procedural": {"type": "sphere"}}], "mehses": []})", "mehses",
          "unknown field"},

@@ -859,11 +859,12 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
     json root;
     try {
         root = json::parse(jsonText);
-    } catch (const json::parse_error& e) {
-        // nlohmann's message carries "at line L, column C".
+    } catch (const json::exception& e) {
+        // parse_error (nlohmann's message carries "at line L, column C") or
+        // out_of_range (a number too large for a double, e.g. 1e999).
         std::string what = e.what();
-        auto p = what.find("parse error");
-        throw io::InputError(sourceName, "", "invalid JSON: " + (p == std::string::npos ? what : what.substr(p)));
+        auto p = what.find("] ");
+        throw io::InputError(sourceName, "", "invalid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
     }
     Parser p{sourceName, baseDir};
     return p.scene(root);
