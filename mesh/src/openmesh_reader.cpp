@@ -131,7 +131,28 @@ private:
 // NAME` after an element, `end_header`. Anything else is an error naming
 // the header line. Also checks each element's count against the file size
 // (every element takes at least one byte per property).
-void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize) {
+// Bytes of a PLY scalar type (checked by isType first).
+int plyTypeBytes(const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "double" || t == "float64") return 8;
+    return 4;
+}
+
+struct PlyProperty {
+    bool list = false;
+    std::string countType, itemType; // itemType: the scalar type of non-lists
+};
+struct PlyElement {
+    std::string name;
+    uint64_t count = 0;
+    std::vector<PlyProperty> props;
+};
+
+void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, const std::string& format,
+                  const std::vector<PlyElement>& elements, const InputLimits& limits);
+
+void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize, const InputLimits& limits) {
     auto fail = [&](size_t lineNo, const std::string& reason) {
         throw InputError(file, "header line " + std::to_string(lineNo), reason);
     };
@@ -148,6 +169,8 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
     std::string element;
     uint64_t count = 0, props = 0;
     bool format = false;
+    std::string formatName;
+    std::vector<PlyElement> elements;
     auto checkCount = [&]() {
         if (!element.empty() && count > fileSize / std::max<uint64_t>(props, 1)) {
             throw InputError(file, "header", "declares " + std::to_string(count) + " " + element + " elements but the file has only " +
@@ -173,6 +196,7 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
                 fail(lineNo, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
             }
             format = true;
+            formatName = rest[0];
         } else if (kw == "element") {
             if (!format) fail(lineNo, "element before the format line");
             checkCount();
@@ -183,21 +207,119 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
             element = rest[0];
             count = std::stoull(rest[1]);
             props = 0;
+            elements.push_back({element, count, {}});
         } else if (kw == "property") {
             if (element.empty()) fail(lineNo, "property before any element");
             const bool list = !rest.empty() && rest[0] == "list";
             const bool ok = list ? (rest.size() == 4 && isType(rest[1]) && isType(rest[2])) : (rest.size() == 2 && isType(rest[0]));
             if (!ok) fail(lineNo, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME' with PLY types");
+            if (list && (rest[1] == "float" || rest[1] == "double" || rest[1] == "float32" || rest[1] == "float64")) {
+                fail(lineNo, "a list count must have an integer type");
+            }
             ++props;
+            elements.back().props.push_back(list ? PlyProperty{true, rest[1], rest[2]} : PlyProperty{false, "", rest[0]});
         } else if (kw == "end_header") {
             if (!format) fail(lineNo, "no format line");
             checkCount();
+            checkPlyBody(in, file, fileSize, formatName, elements, limits);
             return;
         } else {
             fail(lineNo, "unknown header keyword '" + kw.substr(0, 32) + "'");
         }
     }
     throw InputError(file, "header", "no end_header within " + std::to_string(kMaxHeaderLines) + " lines");
+}
+
+// PLY body, checked item by item before OpenMesh's reader sees it: that
+// reader reads a list's count and then resizes a vector to it, so a count
+// of -30 read as unsigned asked for 2^31 handles (found by
+// fuzz_mesh_openmesh). Every list count must be an integer in [0,
+// maxFaceDegree]; every value must be present (ASCII: each item on its
+// own line with exactly its values, numbers only; binary: the bytes fit in
+// the file). The element/property order is the header's.
+void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, const std::string& format,
+                  const std::vector<PlyElement>& elements, const InputLimits& limits) {
+    const std::streamoff start = in.tellg();
+    if (start < 0) throw InputError(file, "header", "cannot read the data after end_header");
+    std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    (void)fileSize; // data.size() is what is left of it
+    const uint64_t maxList = limits.maxFaceDegree;
+    auto where = [&](const PlyElement& e, uint64_t i) { return e.name + " " + std::to_string(i); };
+    if (format == "ascii") {
+        size_t at = 0;
+        for (const PlyElement& e : elements) {
+            for (uint64_t i = 0; i < e.count; ++i) {
+                if (at >= data.size()) throw InputError(file, where(e, i), "the file ends before " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
+                size_t eol = data.find('\n', at);
+                if (eol == std::string::npos) eol = data.size();
+                std::string_view lineText(data.data() + at, eol - at);
+                at = eol + 1;
+                std::vector<std::string_view> tok;
+                for (size_t p = 0; p < lineText.size();) {
+                    while (p < lineText.size() && std::isspace(static_cast<unsigned char>(lineText[p]))) ++p;
+                    const size_t q = p;
+                    while (p < lineText.size() && !std::isspace(static_cast<unsigned char>(lineText[p]))) ++p;
+                    if (p > q) tok.push_back(lineText.substr(q, p - q));
+                }
+                size_t k = 0;
+                auto number = [&](bool integerOnly, uint64_t* value) {
+                    if (k >= tok.size()) throw InputError(file, where(e, i), "too few values on its line");
+                    const std::string_view t = tok[k++];
+                    if (integerOnly) {
+                        long long v = 0;
+                        auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+                        if (ec != std::errc() || p != t.data() + t.size() || v < 0 || uint64_t(v) > maxList) {
+                            throw InputError(file, where(e, i), "list size '" + std::string(t.substr(0, 32)) + "' is not an integer in [0, " + std::to_string(maxList) + "]");
+                        }
+                        *value = uint64_t(v);
+                        return;
+                    }
+                    double x = 0.0;
+                    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+                    if (p != t.data() + t.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+                        throw InputError(file, where(e, i), "expected a number, found '" + std::string(t.substr(0, 32)) + "'");
+                    }
+                };
+                for (const PlyProperty& pr : e.props) {
+                    uint64_t n = 1;
+                    if (pr.list) number(true, &n);
+                    for (uint64_t j = 0; j < n; ++j) number(false, nullptr);
+                }
+                if (k != tok.size()) throw InputError(file, where(e, i), "more values on its line than its properties");
+            }
+        }
+        return;
+    }
+    const bool bigEndian = format == "binary_big_endian";
+    size_t at = 0;
+    for (const PlyElement& e : elements) {
+        for (uint64_t i = 0; i < e.count; ++i) {
+            for (const PlyProperty& pr : e.props) {
+                uint64_t n = 1;
+                if (pr.list) {
+                    const int bytes = plyTypeBytes(pr.countType);
+                    if (data.size() - at < size_t(bytes)) throw InputError(file, where(e, i), "the file ends inside the item");
+                    uint64_t raw = 0;
+                    for (int b = 0; b < bytes; ++b) {
+                        const uint64_t byte = static_cast<unsigned char>(data[at + size_t(bigEndian ? b : bytes - 1 - b)]);
+                        raw = raw << 8 | byte;
+                    }
+                    at += size_t(bytes);
+                    const bool isSigned = pr.countType[0] != 'u';
+                    if (isSigned && (raw >> (8 * bytes - 1)) != 0) {
+                        throw InputError(file, where(e, i), "negative list size");
+                    }
+                    if (raw > maxList) {
+                        throw InputError(file, where(e, i), "list size " + std::to_string(raw) + " is above " + std::to_string(maxList));
+                    }
+                    n = raw;
+                }
+                const uint64_t bytes = n * uint64_t(plyTypeBytes(pr.itemType));
+                if (data.size() - at < bytes) throw InputError(file, where(e, i), "the file ends inside the item");
+                at += size_t(bytes);
+            }
+        }
+    }
 }
 
 // ASCII OFF, checked token by token the way OpenMesh's reader consumes it,
@@ -329,7 +451,7 @@ void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext
         checkOff(path, file, fileSize, limits);
         return;
     }
-    if (ext == ".ply") checkPlyHeader(in, file, fileSize);
+    if (ext == ".ply") checkPlyHeader(in, file, fileSize, limits);
 }
 
 } // namespace

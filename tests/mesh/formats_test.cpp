@@ -101,6 +101,40 @@ TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
         writeText(dir / "bad.ply", c.text);
         expectInputError([&] { loadPolygonMesh(dir / "bad.ply"); }, c.element, c.reason);
     }
+    // The body, item by item (OpenMesh resizes to a list's size before
+    // reading it: a size of -30 read as unsigned asked for 2^31 handles;
+    // found by fuzz_mesh_openmesh and kept in its corpus).
+    const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\n" + props +
+                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const Case bodies[] = {
+        {"0 0 0\n1 0 0\n0 1 0\n-30 0 1 2\n", "face 0", "list size '-30' is not an integer in [0, "},
+        {"0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "face 0", "too few values"},
+        {"0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n", "face 0", "more values on its line"},
+        {"0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n", "vertex 1", "expected a number, found 'x'"},
+        {"0 0 0\n1 0 0\n0 1 0\n", "face 0", "the file ends before face 0 of 1"},
+    };
+    for (const Case& c : bodies) {
+        SCOPED_TRACE(c.text);
+        writeText(dir / "bad.ply", head + c.text);
+        expectInputError([&] { loadPolygonMesh(dir / "bad.ply"); }, c.element, c.reason);
+    }
+    // Binary: a signed list size below zero, and one that runs past the end.
+    auto binary = [&](int8_t count, int indices, const char* countType = "char") {
+        std::string b = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + props + "element face 1\nproperty list " +
+                        countType + " int vertex_indices\nend_header\n";
+        const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        b.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+        b.push_back(char(count));
+        for (int32_t k = 0; k < indices; ++k) b.append(reinterpret_cast<const char*>(&k), 4);
+        return b;
+    };
+    writeText(dir / "negbin.ply", binary(-3, 3));
+    expectInputError([&] { loadPolygonMesh(dir / "negbin.ply"); }, "face 0", "negative list size");
+    writeText(dir / "shortbin.ply", binary(3, 2));
+    expectInputError([&] { loadPolygonMesh(dir / "shortbin.ply"); }, "face 0", "the file ends inside the item");
+    writeText(dir / "okbin.ply", binary(3, 3, "uchar"));
+    EXPECT_EQ(loadPolygonMesh(dir / "okbin.ply").faceCount(), 1u);
+
     // Comments, obj_info, CRLF line ends and both list forms are accepted.
     writeText(dir / "ok.ply", "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement vertex 3\r\n" + props +
                                   "element face 1\r\nproperty list uint8 int32 vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
