@@ -541,6 +541,18 @@ long double refinedFaceEstimate(const PolygonMesh& cage, Scheme scheme, int leve
     return total;
 }
 
+// Positions and every morph target's position deltas (vertex data: the
+// same masks), through `interpolate(cageValues, refinedValues)`.
+template <class Interpolate>
+void refineVertexData(const PolygonMesh& cage, PolygonMesh& refined, Interpolate&& interpolate) {
+    interpolate(cage.positions, refined.positions);
+    refined.morphTargets.resize(cage.morphTargets.size());
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
+        refined.morphTargets[t].name = cage.morphTargets[t].name;
+        interpolate(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
+    }
+}
+
 } // namespace
 
 void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefiner& refiner) {
@@ -567,12 +579,7 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
             src = dstBuf.data();
         }
     };
-    interpolateVec3(cage.positions, refined.positions);
-    refined.morphTargets.resize(cage.morphTargets.size());
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
-        refined.morphTargets[t].name = cage.morphTargets[t].name;
-        interpolateVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
-    }
+    refineVertexData(cage, refined, interpolateVec3);
     refined.uvSets.resize(nSets);
     for (size_t s = 0; s < nSets; ++s) {
         if (N == 0) {
@@ -660,12 +667,7 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
         }
         fast.interpolate(N, detail::Vec4Writer<glm::vec4, glm::vec3>{levelPoints[size_t(N) - 1].data(), out.data()});
     };
-    interpolateVec3(cage.positions, refined.positions);
-    refined.morphTargets.resize(cage.morphTargets.size());
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
-        refined.morphTargets[t].name = cage.morphTargets[t].name;
-        interpolateVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
-    }
+    refineVertexData(cage, refined, interpolateVec3);
     refined.uvSets.resize(nSets);
     for (size_t s = 0; s < nSets; ++s) {
         refined.uvSets[s].name = cage.uvSets[s].name;
