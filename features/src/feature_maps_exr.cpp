@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <utility>
 
 #include "bake_internal.h"
 #include "surfgrad/feature_maps.h"
@@ -33,6 +34,23 @@ const char* kLayout =
 // multi-part), then attributes {name\0, type\0, int32 size, size bytes}
 // ended by an empty name. Feature maps are single-part scanline or tiled
 // images; every declared size must fit in the bytes that follow.
+// Bytes OpenEXR's reader of a fixed-size attribute type consumes (0 for
+// types read by their declared size: string, stringvector, floatvector,
+// unknown/opaque; chlist and preview are checked separately).
+int exrFixedTypeBytes(const std::string& type) {
+    static const std::pair<const char*, int> kFixed[] = {
+        {"int", 4},        {"float", 4},       {"double", 8},          {"rational", 8}, {"timecode", 8},
+        {"v2i", 8},        {"v2f", 8},         {"v2d", 16},            {"v3i", 12},     {"v3f", 12},
+        {"v3d", 24},       {"box2i", 16},      {"box2f", 16},          {"m33f", 36},    {"m33d", 72},
+        {"m44f", 64},      {"m44d", 128},      {"chromaticities", 32}, {"keycode", 28}, {"tiledesc", 9},
+        {"compression", 1}, {"lineOrder", 1},  {"envmap", 1},          {"deepImageState", 1},
+    };
+    for (const auto& [t, n] : kFixed) {
+        if (type == t) return n;
+    }
+    return 0;
+}
+
 void checkExrHeader(const std::string& bytes, const std::string& name) {
     auto fail = [&](const std::string& reason) { throw io::InputError(name, "EXR header", reason); };
     auto u8 = [&](size_t i) { return uint32_t(static_cast<unsigned char>(bytes[i])); };
@@ -54,13 +72,42 @@ void checkExrHeader(const std::string& bytes, const std::string& name) {
     for (int n = 0; n < kMaxAttributes; ++n) {
         const std::string attr = cstring("name");
         if (attr.empty()) return; // end of the header
-        cstring("type");
+        const std::string type = cstring("type");
         if (bytes.size() - at < 4) fail("attribute '" + attr.substr(0, 64) + "' has no size");
         const uint32_t size = u32(at);
         at += 4;
         if (size > bytes.size() - at) {
             fail("attribute '" + attr.substr(0, 64) + "' declares " + std::to_string(size) + " bytes but the file has " +
                  std::to_string(bytes.size() - at) + " left");
+        }
+        // OpenEXR's readers of the known types read what the type needs, not
+        // the declared size: a size that disagrees would leave its stream
+        // somewhere else than this scan, reading later bytes as attributes.
+        auto badSize = [&](const std::string& need) {
+            fail("attribute '" + attr.substr(0, 64) + "' of type " + type + " declares " + std::to_string(size) + " bytes; the type needs " + need);
+        };
+        if (const int fixed = exrFixedTypeBytes(type); fixed > 0 && size != uint32_t(fixed)) badSize(std::to_string(fixed));
+        if (type == "chlist") {
+            // Channels {name\0, int32 type, uint8 pLinear, 3 reserved, int32
+            // xSampling, int32 ySampling}, ended by an empty name, exactly
+            // filling the attribute.
+            size_t p = at;
+            const size_t end = at + size;
+            for (;;) {
+                const size_t nameEnd = bytes.find('\0', p);
+                if (nameEnd == std::string::npos || nameEnd >= end) badSize("its channel list to end inside it");
+                if (nameEnd == p) {
+                    if (nameEnd + 1 != end) badSize("its channel list to end exactly at its end");
+                    break;
+                }
+                p = nameEnd + 1 + 16;
+                if (p > end) badSize("room for every channel record");
+            }
+        }
+        if (type == "preview") {
+            // uint32 width, uint32 height, then 4 bytes per pixel (OpenEXR
+            // allocates width * height * 4 before reading them).
+            if (size < 8 || uint64_t(u32(at)) * uint64_t(u32(at + 4)) * 4u != uint64_t(size) - 8u) badSize("8 + 4 * width * height");
         }
         at += size;
     }

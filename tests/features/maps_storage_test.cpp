@@ -128,6 +128,16 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
         sg::io::writeFileAtomically(dir.path / "hugeattr.exr", forged);
         const std::string e = loadError(dir.path / "hugeattr.exr");
         EXPECT_NE(e.find("attribute '" + firstAttr + "' declares 2147483647 bytes"), std::string::npos) << e;
+        // A chlist whose records do not end exactly at its declared size:
+        // OpenEXR reads channel records up to the empty name whatever the
+        // size says, so the two would disagree on where the next attribute
+        // starts (a fuzzed 820-byte file then asked for 2 GB).
+        const size_t chAt = bytes.find(std::string("channels\0chlist\0", 16));
+        ASSERT_NE(chAt, std::string::npos);
+        std::string shortList = bytes;
+        shortList[chAt + 16] = char(static_cast<unsigned char>(shortList[chAt + 16]) - 1); // size - 1 (low byte)
+        sg::io::writeFileAtomically(dir.path / "chlist.exr", shortList);
+        EXPECT_NE(loadError(dir.path / "chlist.exr").find("type chlist declares"), std::string::npos);
         std::string multi = bytes;
         multi[5] = char(static_cast<unsigned char>(multi[5]) | 0x10); // version bit 0x1000: multi-part
         sg::io::writeFileAtomically(dir.path / "multipart.exr", multi);
