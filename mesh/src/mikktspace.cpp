@@ -137,16 +137,9 @@ __attribute__((target("avx2"))) size_t anglesFromCosAvx2(float* values, size_t n
         const __m256d small = _mm256_cmp_pd(a, half, _CMP_LE_OQ);
         const __m256d zBig = _mm256_mul_pd(_mm256_sub_pd(one, a), half);
         const __m256d z = _mm256_blendv_pd(zBig, _mm256_mul_pd(x, x), small);
-        __m256d q = _mm256_set1_pd(0x1.c93a92d53b4f1p-6);
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(-0x1.815314c864b09p-9));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.00d47e7966d94p-6));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.b02442413f6bap-7));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.1dc2ef640046fp-6));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.6e72146fda29ep-6));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.f1c81c59ea536p-6));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.6db6d8e71341bp-5));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.33333335a9cd6p-4));
-        q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(0x1.5555555554f05p-3));
+        __m256d q = _mm256_set1_pd(mikk::kAcosQ[0]);
+#pragma GCC unroll 10
+        for (int k = 1; k < 10; ++k) q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(mikk::kAcosQ[k]));
         const __m256d r = _mm256_blendv_pd(_mm256_sqrt_pd(zBig), x, small);
         const __m256d asinR = _mm256_add_pd(r, _mm256_mul_pd(_mm256_mul_pd(r, z), q));
         const __m256d twoAsin = _mm256_mul_pd(two, asinR);
@@ -199,16 +192,9 @@ void mikktspaceAnglesFromCos(std::span<float> values, bool allowWideSimd) {
         const __m128d small = _mm_cmple_pd(a, half);
         const __m128d zBig = _mm_mul_pd(_mm_sub_pd(one, a), half);
         const __m128d z = blend(small, _mm_mul_pd(x, x), zBig);
-        __m128d q = _mm_set1_pd(0x1.c93a92d53b4f1p-6);
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(-0x1.815314c864b09p-9));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.00d47e7966d94p-6));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.b02442413f6bap-7));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.1dc2ef640046fp-6));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.6e72146fda29ep-6));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.f1c81c59ea536p-6));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.6db6d8e71341bp-5));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.33333335a9cd6p-4));
-        q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(0x1.5555555554f05p-3));
+        __m128d q = _mm_set1_pd(mikk::kAcosQ[0]);
+#pragma GCC unroll 10
+        for (int k = 1; k < 10; ++k) q = _mm_add_pd(_mm_mul_pd(q, z), _mm_set1_pd(mikk::kAcosQ[k]));
         const __m128d r = blend(small, x, _mm_sqrt_pd(zBig));
         const __m128d asinR = _mm_add_pd(r, _mm_mul_pd(_mm_mul_pd(r, z), q));
         const __m128d twoAsin = _mm_mul_pd(two, asinR);

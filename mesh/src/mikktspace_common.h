@@ -123,22 +123,23 @@ inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::v
 // over all 2^31 floats in [-1, 1] is in the benchmark
 // (tangents_bench --check-acos) and a sample in the tests. The fast
 // MikkTSpace path uses the two-lane SIMD copy, mikktspaceAnglesFromCos.
+// Q's coefficients, highest degree first (Horner order); every copy of the
+// kernel (scalar here, AVX2 and SSE2 in mikktspace.cpp) evaluates them in
+// this order, so all give the same double.
+inline constexpr double kAcosQ[10] = {
+    0x1.c93a92d53b4f1p-6, -0x1.815314c864b09p-9, 0x1.00d47e7966d94p-6, 0x1.b02442413f6bap-7, 0x1.1dc2ef640046fp-6,
+    0x1.6e72146fda29ep-6, 0x1.f1c81c59ea536p-6,  0x1.6db6d8e71341bp-5, 0x1.33333335a9cd6p-4, 0x1.5555555554f05p-3,
+};
+
 inline float acosRoundedToFloat(float c) {
     constexpr double kPi = 3.141592653589793115997963468544185161590576171875;
     constexpr double kHalfPi = 1.5707963267948965579989817342720925807952880859375;
     const double x = c;
     const double a = std::fabs(x);
     auto q = [](double z) {
-        double p = 0x1.c93a92d53b4f1p-6;
-        p = p * z + -0x1.815314c864b09p-9;
-        p = p * z + 0x1.00d47e7966d94p-6;
-        p = p * z + 0x1.b02442413f6bap-7;
-        p = p * z + 0x1.1dc2ef640046fp-6;
-        p = p * z + 0x1.6e72146fda29ep-6;
-        p = p * z + 0x1.f1c81c59ea536p-6;
-        p = p * z + 0x1.6db6d8e71341bp-5;
-        p = p * z + 0x1.33333335a9cd6p-4;
-        p = p * z + 0x1.5555555554f05p-3;
+        double p = kAcosQ[0];
+#pragma GCC unroll 10
+        for (int k = 1; k < 10; ++k) p = p * z + kAcosQ[k];
         return p;
     };
     double y;
