@@ -64,10 +64,10 @@ void run(benchmark::State& state, F&& fn) {
     state.SetItemsProcessed(int64_t(state.iterations()));
 }
 
-#define SG_BENCH(name, expr)                                                                    \
-    void BM_##name(benchmark::State& state) {                                                 \
-        run(state, [](const Inputs& x, size_t i) { return expr; });                           \
-    }                                                                                         \
+#define SG_BENCH(name, expr)                                                                       \
+    void BM_##name(benchmark::State& state) {                                                      \
+        run(state, [](const Inputs& x, size_t i) { return expr; });                                \
+    }                                                                                              \
     BENCHMARK(BM_##name)->Name(#name)
 
 SG_BENCH(baseline_load3, x.c[i]);
@@ -85,13 +85,14 @@ SG_BENCH(scale_dependent_L8,
          g::sgSurfgradScaleDependent(x.frame[i], x.d[i], x.e[i], x.f[i], g::vec2(1024.0f)));
 SG_BENCH(screen_deriv_L8, g::sgSurfgradFromScreenDeriv(x.frame[i], x.d[i]));
 SG_BENCH(height_3tap_L9, g::sgHeightDeriv3Tap(x.s[i], x.d[i].x, x.d[i].y));
-SG_BENCH(parallax_project_L10,
-         g::sgProjectVecToTextureSpace(x.frame[i], x.n[(i + 1) & 1023], x.e[i], x.f[i], 0.05f, false));
+SG_BENCH(parallax_project_L10, g::sgProjectVecToTextureSpace(x.frame[i], x.n[(i + 1) & 1023],
+                                                             x.e[i], x.f[i], 0.05f, false));
 SG_BENCH(texoffs_to_surface_L11, g::sgTexSpaceOffsToSurface(x.frame[i], x.e[i], x.f[i], x.d[i]));
 SG_BENCH(volume_L12, g::sgSurfgradFromVolumeGradient(x.frame[i], x.c[i]));
 SG_BENCH(triplanar_weights_L14, g::sgTriplanarWeights(x.n[i], 3.0f));
-SG_BENCH(triplanar_L13_L14, g::sgSurfgradFromTriplanar(x.frame[i], g::sgTriplanarWeights(x.n[i], 3.0f),
-                                                      x.d[i], x.e[i], x.f[i], false, false));
+SG_BENCH(triplanar_L13_L14,
+         g::sgSurfgradFromTriplanar(x.frame[i], g::sgTriplanarWeights(x.n[i], 3.0f), x.d[i], x.e[i],
+                                    x.f[i], false, false));
 SG_BENCH(decal_L15, g::sgSurfgradFromDecal(x.frame[i], x.d[i], x.a[i], x.b[i], false));
 SG_BENCH(prologue_L16, g::sgPrologue(x.c[i], x.a[i], x.b[i], (i & 1) != 0, SG_BFACE_FLIP));
 SG_BENCH(reprologue, g::sgReprologue(x.frame[i], x.n[(i + 3) & 1023], x.a[i], x.b[i]));
@@ -110,7 +111,8 @@ SG_BENCH(loviscach_scale, g::sgDerivScale(x.d[i], x.s[i]));
 SG_BENCH(loviscach_add, g::sgDerivAdd(x.d[i], x.s[i], x.e[i], 0.5f));
 SG_BENCH(loviscach_modulate, g::sgDerivModulate(x.d[i], x.s[i], x.e[i], 0.5f));
 SG_BENCH(loviscach_curve, g::sgDerivCurve(x.d[i], g::sgCurveBoostSlope(x.s[i], 100.0f, 0.5f)));
-SG_BENCH(loviscach_deform_sine, g::sgDerivDeform(x.d[i], g::sgSineWarpJacobian(x.s[i], 0.02f, 100.0f)));
+SG_BENCH(loviscach_deform_sine,
+         g::sgDerivDeform(x.d[i], g::sgSineWarpJacobian(x.s[i], 0.02f, 100.0f)));
 SG_BENCH(bounded_scale, g::sgBoundedScale3(x.c[i], g::vec4(x.s[i], 1e10f, 1e-12f, 3.0f)));
 // The per-pixel TBN chain of the llvmpipe benchmark, on the CPU:
 // L16 + L6 + L4 + L5 + L1 against the vertex-tangent chain mikkts + L4 + L5 + L1.
@@ -118,7 +120,8 @@ SG_BENCH(chain_per_pixel_tbn, ([&] {
              g::SgFrame fr = g::sgPrologue(x.c[i], x.a[i], x.b[i], true, SG_BFACE_NONE);
              g::vec3 t, b;
              g::sgGenBasisTB(fr, x.e[i], x.f[i], t, b);
-             return g::sgResolve(fr, g::sgSurfgradFromTBN(g::sgTspaceNormalToDeriv(x.d[i], false), t, b));
+             return g::sgResolve(
+                 fr, g::sgSurfgradFromTBN(g::sgTspaceNormalToDeriv(x.d[i], false), t, b));
          }()));
 SG_BENCH(chain_vertex_tangent, ([&] {
              g::SgFrame fr;
@@ -126,7 +129,8 @@ SG_BENCH(chain_vertex_tangent, ([&] {
              fr.resolveSign = 1.0f;
              g::vec3 t, b;
              g::sgMikktsBasis(x.c[i], x.t4[i], t, b);
-             return g::sgResolve(fr, g::sgSurfgradFromTBN(g::sgTspaceNormalToDeriv(x.d[i], false), t, b));
+             return g::sgResolve(
+                 fr, g::sgSurfgradFromTBN(g::sgTspaceNormalToDeriv(x.d[i], false), t, b));
          }()));
 
 } // namespace

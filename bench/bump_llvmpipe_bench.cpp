@@ -133,8 +133,10 @@ std::vector<Vertex> makeGrid(int n, std::vector<unsigned>& indices) {
             const float u = float(i) / float(n), w = float(j) / float(n);
             const float x = -1.6f + 3.2f * u, y = -1.6f + 3.2f * w;
             const float z = -2.2f + amp * std::sin(freq * x) * std::cos(freq * y);
-            const glm::vec3 pu(3.2f, 0, 3.2f * amp * freq * std::cos(freq * x) * std::cos(freq * y));
-            const glm::vec3 pv(0, 3.2f, -3.2f * amp * freq * std::sin(freq * x) * std::sin(freq * y));
+            const glm::vec3 pu(3.2f, 0,
+                               3.2f * amp * freq * std::cos(freq * x) * std::cos(freq * y));
+            const glm::vec3 pv(0, 3.2f,
+                               -3.2f * amp * freq * std::sin(freq * x) * std::sin(freq * y));
             const glm::vec3 nn = glm::normalize(glm::cross(pu, pv));
             const glm::vec3 tt = glm::normalize(pu);
             v.push_back({{x, y, z}, {nn.x, nn.y, nn.z}, {tt.x, tt.y, tt.z, 1.0f}, {4 * u, 4 * w}});
@@ -142,7 +144,8 @@ std::vector<Vertex> makeGrid(int n, std::vector<unsigned>& indices) {
     }
     for (int j = 0; j < n; ++j) {
         for (int i = 0; i < n; ++i) {
-            const unsigned a = unsigned(j * (n + 1) + i), b = a + 1, c = a + unsigned(n + 1), d = c + 1;
+            const unsigned a = unsigned(j * (n + 1) + i), b = a + 1, c = a + unsigned(n + 1),
+                           d = c + 1;
             indices.insert(indices.end(), {a, b, d, a, d, c});
         }
     }
@@ -156,9 +159,12 @@ std::vector<unsigned char> makeNormalMap(int size) {
         for (int x = 0; x < size; ++x) {
             const float s = 2 * 3.14159265f * 6 * float(x) / float(size);
             const float t = 2 * 3.14159265f * 6 * float(y) / float(size);
-            glm::vec3 n = glm::normalize(glm::vec3(-0.6f * std::cos(s) * std::sin(t), -0.6f * std::sin(s) * std::cos(t), 1.0f));
-            px[(size_t(y) * size_t(size) + size_t(x)) * 2 + 0] = (unsigned char)std::lround((n.x * 0.5f + 0.5f) * 255);
-            px[(size_t(y) * size_t(size) + size_t(x)) * 2 + 1] = (unsigned char)std::lround((n.y * 0.5f + 0.5f) * 255);
+            glm::vec3 n = glm::normalize(glm::vec3(-0.6f * std::cos(s) * std::sin(t),
+                                                   -0.6f * std::sin(s) * std::cos(t), 1.0f));
+            px[(size_t(y) * size_t(size) + size_t(x)) * 2 + 0] =
+                (unsigned char)std::lround((n.x * 0.5f + 0.5f) * 255);
+            px[(size_t(y) * size_t(size) + size_t(x)) * 2 + 1] =
+                (unsigned char)std::lround((n.y * 0.5f + 0.5f) * 255);
         }
     }
     return px;
@@ -196,12 +202,20 @@ int main(int argc, char** argv) {
         sg::gl::HeadlessContext ctx;
         using sg::gl::Stage;
         auto vs = sg::shaders::assemble(kVertex, "bench_vs");
-        sg::gl::Program perPixel({{Stage::Vertex, vs},
-                                  {Stage::Fragment, sg::shaders::assemble(std::string(kFragmentHead) + kFragmentPerPixel, "per_pixel_fs")}});
-        sg::gl::Program perPixelPlain({{Stage::Vertex, vs},
-                                       {Stage::Fragment, sg::shaders::assemble(std::string(kFragmentHead) + kFragmentPerPixelPlain, "per_pixel_plain_fs")}});
-        sg::gl::Program vertexTangent({{Stage::Vertex, vs},
-                                       {Stage::Fragment, sg::shaders::assemble(std::string(kFragmentHead) + kFragmentVertexTangent, "vertex_tangent_fs")}});
+        sg::gl::Program perPixel(
+            {{Stage::Vertex, vs},
+             {Stage::Fragment, sg::shaders::assemble(std::string(kFragmentHead) + kFragmentPerPixel,
+                                                     "per_pixel_fs")}});
+        sg::gl::Program perPixelPlain(
+            {{Stage::Vertex, vs},
+             {Stage::Fragment,
+              sg::shaders::assemble(std::string(kFragmentHead) + kFragmentPerPixelPlain,
+                                    "per_pixel_plain_fs")}});
+        sg::gl::Program vertexTangent(
+            {{Stage::Vertex, vs},
+             {Stage::Fragment,
+              sg::shaders::assemble(std::string(kFragmentHead) + kFragmentVertexTangent,
+                                    "vertex_tangent_fs")}});
 
         std::vector<unsigned> indices;
         const auto verts = makeGrid(128, indices);
@@ -209,11 +223,14 @@ int main(int argc, char** argv) {
         glCreateVertexArrays(1, &vao);
         glCreateBuffers(1, &vbo);
         glCreateBuffers(1, &ibo);
-        glNamedBufferData(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(), GL_STATIC_DRAW);
-        glNamedBufferData(ibo, GLsizeiptr(indices.size() * sizeof(unsigned)), indices.data(), GL_STATIC_DRAW);
+        glNamedBufferData(vbo, GLsizeiptr(verts.size() * sizeof(Vertex)), verts.data(),
+                          GL_STATIC_DRAW);
+        glNamedBufferData(ibo, GLsizeiptr(indices.size() * sizeof(unsigned)), indices.data(),
+                          GL_STATIC_DRAW);
         glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
         glVertexArrayElementBuffer(vao, ibo);
-        const GLuint offsets[] = {offsetof(Vertex, pos), offsetof(Vertex, nrm), offsetof(Vertex, tan), offsetof(Vertex, uv)};
+        const GLuint offsets[] = {offsetof(Vertex, pos), offsetof(Vertex, nrm),
+                                  offsetof(Vertex, tan), offsetof(Vertex, uv)};
         const GLint sizes[] = {3, 3, 4, 2};
         for (GLuint a = 0; a < 4; ++a) {
             glEnableVertexArrayAttrib(vao, a);
@@ -227,7 +244,8 @@ int main(int argc, char** argv) {
         glCreateTextures(GL_TEXTURE_2D, 1, &tex);
         glTextureStorage2D(tex, 10, GL_RG8, mapSize, mapSize);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTextureSubImage2D(tex, 0, 0, 0, mapSize, mapSize, GL_RG, GL_UNSIGNED_BYTE, mapPixels.data());
+        glTextureSubImage2D(tex, 0, 0, 0, mapSize, mapSize, GL_RG, GL_UNSIGNED_BYTE,
+                            mapPixels.data());
         glGenerateTextureMipmap(tex);
         glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -275,9 +293,11 @@ int main(int argc, char** argv) {
         size_t covered = 0, maxDiff = 0;
         double sumDiff = 0;
         for (size_t i = 0; i < imgPixel.size(); i += 4) {
-            covered += imgPixel[i + 3] == 255 && (imgPixel[i] | imgPixel[i + 1] | imgPixel[i + 2]) != 0;
+            covered +=
+                imgPixel[i + 3] == 255 && (imgPixel[i] | imgPixel[i + 1] | imgPixel[i + 2]) != 0;
             for (int c = 0; c < 3; ++c) {
-                const size_t d = size_t(std::abs(int(imgPixel[i + size_t(c)]) - int(imgVertex[i + size_t(c)])));
+                const size_t d =
+                    size_t(std::abs(int(imgPixel[i + size_t(c)]) - int(imgVertex[i + size_t(c)])));
                 maxDiff = std::max(maxDiff, d);
                 sumDiff += double(d);
             }
@@ -289,14 +309,18 @@ int main(int argc, char** argv) {
         std::vector<double> wall[3], cpu[3];
         for (int r = 0; r < runs; ++r) {
             for (int variant = 0; variant < 3; ++variant) {
-                const auto& p = variant == 0 ? vertexTangent : variant == 1 ? perPixel : perPixelPlain;
+                const auto& p = variant == 0   ? vertexTangent
+                                : variant == 1 ? perPixel
+                                               : perPixelPlain;
                 std::vector<double> tw, tc;
                 for (int f = 0; f < frames; ++f) {
                     const auto t0 = std::chrono::steady_clock::now();
                     const double c0 = cpuMs();
                     drawFrame(p);
                     tc.push_back(cpuMs() - c0);
-                    tw.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                    tw.push_back(std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - t0)
+                                     .count());
                 }
                 wall[variant].push_back(median(tw));
                 cpu[variant].push_back(median(tc));
@@ -304,24 +328,27 @@ int main(int argc, char** argv) {
         }
         std::printf("bench_bump_llvmpipe: %dx%d fragment pass, %zu triangles, %s\n", size, size,
                     indices.size() / 3, ctx.renderer().c_str());
-        std::printf("coverage %.1f%% of pixels; per-pixel vs vertex-tangent image: max |diff| %zu/255, mean %.3f/255\n",
+        std::printf("coverage %.1f%% of pixels; per-pixel vs vertex-tangent image: max |diff| "
+                    "%zu/255, mean %.3f/255\n",
                     100.0 * double(covered) / (double(size) * size), maxDiff,
                     sumDiff / (3.0 * double(size) * size));
         std::printf("%-42s %9s %8s %11s %9s %8s\n", "variant", "wall ms", "ratio", "wall range",
                     "CPU ms", "ratio");
-        const char* names[3] = {"vertex tangents (mikkts + L5 + L1)", "per-pixel TBN (L16 + L6 + L5 + L1)",
+        const char* names[3] = {"vertex tangents (mikkts + L5 + L1)",
+                                "per-pixel TBN (L16 + L6 + L5 + L1)",
                                 "per-pixel TBN, plain listings (no guards)"};
         const double baseWall = median(wall[0]), baseCpu = median(cpu[0]);
         for (int v = 0; v < 3; ++v) {
             const double mw = median(wall[v]), mc = median(cpu[v]);
-            std::printf("%-42s %9.2f %7.3fx %5.0f..%-5.0f %9.2f %7.3fx\n", names[v], mw, mw / baseWall,
-                        *std::min_element(wall[v].begin(), wall[v].end()),
+            std::printf("%-42s %9.2f %7.3fx %5.0f..%-5.0f %9.2f %7.3fx\n", names[v], mw,
+                        mw / baseWall, *std::min_element(wall[v].begin(), wall[v].end()),
                         *std::max_element(wall[v].begin(), wall[v].end()), mc, mc / baseCpu);
         }
-        std::printf("(%d runs x %d frames, each frame = draw + glFinish; medians of per-run medians;\n"
-                    " CPU ms = process CPU time of all llvmpipe threads, robust to other load; "
-                    "goal: ratio <= 1.15)\n",
-                    runs, frames);
+        std::printf(
+            "(%d runs x %d frames, each frame = draw + glFinish; medians of per-run medians;\n"
+            " CPU ms = process CPU time of all llvmpipe threads, robust to other load; "
+            "goal: ratio <= 1.15)\n",
+            runs, frames);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_bump_llvmpipe: %s\n", e.what());
         return 1;

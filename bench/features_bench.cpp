@@ -74,7 +74,8 @@ CurveNetwork polylineNetwork() {
         double a = ang(rng);
         for (int k = 0; k < 4; ++k) {
             a += 0.5 * (ang(rng) / M_PI - 1.0);
-            dvec2 q = glm::clamp(p + len(rng) * dvec2(std::cos(a), std::sin(a)), dvec2(2.0), dvec2(510.0));
+            dvec2 q = glm::clamp(p + len(rng) * dvec2(std::cos(a), std::sin(a)), dvec2(2.0),
+                                 dvec2(510.0));
             addLine(n, p, q, c);
             p = q;
         }
@@ -89,8 +90,8 @@ struct BakeRow {
     BakeStats st;
 };
 
-BakeRow timeBake(const std::string& what, const std::string& input, const CurveNetwork& net, BakeOptions o,
-                 int runs, double goal) {
+BakeRow timeBake(const std::string& what, const std::string& input, const CurveNetwork& net,
+                 BakeOptions o, int runs, double goal) {
     BakeRow r;
     r.what = what;
     r.input = input;
@@ -123,15 +124,18 @@ void benchBake(int runs) {
         o.size = 512;
         o.fit = false;
         o.mode = BakeMode::Linear;
-        rows.push_back(timeBake("linear", "500 random polylines", polylineNetwork(), o, runs, 0.100));
+        rows.push_back(
+            timeBake("linear", "500 random polylines", polylineNetwork(), o, runs, 0.100));
         o.mode = BakeMode::Quadratic;
-        rows.push_back(timeBake("quadratic", "500 random polylines", polylineNetwork(), o, runs, 0.0));
+        rows.push_back(
+            timeBake("quadratic", "500 random polylines", polylineNetwork(), o, runs, 0.0));
     }
     const char* font = "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc";
     // The glyph with the most curved segments among a few complex ones.
     CurveNetwork glyph;
     std::string glyphName;
-    for (const char* ch : {"\xe9\xbe\x8d", "\xe9\xac\xb1", "\xe5\xbf\x83", "\xe6\x84\x9b", "\xe7\xb9\x81"}) {
+    for (const char* ch :
+         {"\xe9\xbe\x8d", "\xe9\xac\xb1", "\xe5\xbf\x83", "\xe6\x84\x9b", "\xe7\xb9\x81"}) {
         try {
             CurveNetwork g = loadFont(font, ch);
             int q = 0, gq = 0;
@@ -152,8 +156,9 @@ void benchBake(int runs) {
         o.mode = BakeMode::Quadratic;
         int q = 0;
         for (const auto& s : glyph.segments) q += s.kind == Segment::Kind::Quadratic;
-        rows.push_back(timeBake("quadratic", "WenQuanYi " + glyphName + " (" + std::to_string(q) + " quadratics)", glyph, o,
-                                runs, 2.0));
+        rows.push_back(timeBake(
+            "quadratic", "WenQuanYi " + glyphName + " (" + std::to_string(q) + " quadratics)",
+            glyph, o, runs, 2.0));
         o.mode = BakeMode::Linear;
         rows.push_back(timeBake("linear", "WenQuanYi " + glyphName, glyph, o, runs, 0.0));
     }
@@ -169,21 +174,26 @@ void benchBake(int runs) {
             std::printf("(skipping %s: %s)\n", path.c_str(), e.what());
         }
     }
-    std::printf("\nPreprocessing, one core (median of %d runs; CPU = thread time, wall includes waiting on a shared "
+    std::printf("\nPreprocessing, one core (median of %d runs; CPU = thread time, wall includes "
+                "waiting on a shared "
                 "machine)\n",
                 runs);
-    std::printf("| mode | input | segments | map | CPU ms | wall ms | distance ms (baseline) | ratio to baseline | "
-                "scan ms | optimise ms | smooth ms | feature texels | curved | invalid->opt/straight | goal |\n");
+    std::printf("| mode | input | segments | map | CPU ms | wall ms | distance ms (baseline) | "
+                "ratio to baseline | "
+                "scan ms | optimise ms | smooth ms | feature texels | curved | "
+                "invalid->opt/straight | goal |\n");
     std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : rows) {
-        std::string goal = r.goal > 0 ? (r.cpu < r.goal ? "< " : ">= ") + std::to_string(int(r.goal * 1000)) + " ms " +
+        std::string goal = r.goal > 0 ? (r.cpu < r.goal ? "< " : ">= ") +
+                                            std::to_string(int(r.goal * 1000)) + " ms " +
                                             (r.cpu < r.goal ? "met" : "MISSED")
                                       : "-";
-        std::printf("| %s | %s | %d | %d^2 | %.1f | %.1f | %.1f | %.2fx | %.1f | %.1f | %.1f | %d | %d | %d->%d/%d | %s |\n",
-                    r.what.c_str(), r.input.c_str(), r.segments, r.size, r.cpu * 1e3, r.wall * 1e3, r.distance * 1e3,
-                    r.cpu / std::max(r.distance, 1e-9), r.scan * 1e3, r.optimize * 1e3, r.smooth * 1e3,
-                    r.st.texelsWithFeatures, r.st.curvedSegments, r.st.invalidTexels, r.st.optimizedTexels,
-                    r.st.fallbackTexels, goal.c_str());
+        std::printf("| %s | %s | %d | %d^2 | %.1f | %.1f | %.1f | %.2fx | %.1f | %.1f | %.1f | %d "
+                    "| %d | %d->%d/%d | %s |\n",
+                    r.what.c_str(), r.input.c_str(), r.segments, r.size, r.cpu * 1e3, r.wall * 1e3,
+                    r.distance * 1e3, r.cpu / std::max(r.distance, 1e-9), r.scan * 1e3,
+                    r.optimize * 1e3, r.smooth * 1e3, r.st.texelsWithFeatures, r.st.curvedSegments,
+                    r.st.invalidTexels, r.st.optimizedTexels, r.st.fallbackTexels, goal.c_str());
     }
 }
 
@@ -194,7 +204,9 @@ dvec2 bez(const Segment& s, double t) {
     double u = 1.0 - t;
     return u * u * s.p0 + 2.0 * t * u * s.p1 + t * t * s.p2;
 }
-dvec2 bezTan(const Segment& s, double t) { return 2.0 * (1.0 - t) * (s.p1 - s.p0) + 2.0 * t * (s.p2 - s.p1); }
+dvec2 bezTan(const Segment& s, double t) {
+    return 2.0 * (1.0 - t) * (s.p1 - s.p0) + 2.0 * t * (s.p2 - s.p1);
+}
 
 // The test drawing in a unit square: a circle of radius 0.28 (8 quadratic
 // arcs), an S curve of two quadratics and a straight line at 17 degrees.
@@ -205,7 +217,8 @@ CurveNetwork drawing() {
     const double r = 0.28;
     for (int k = 0; k < 8; ++k) {
         double a0 = 0.3 + M_PI / 4 * k, a1 = a0 + M_PI / 4, am = 0.5 * (a0 + a1);
-        addQuad(n, c + r * dvec2(std::cos(a0), std::sin(a0)), c + r / std::cos(M_PI / 8) * dvec2(std::cos(am), std::sin(am)),
+        addQuad(n, c + r * dvec2(std::cos(a0), std::sin(a0)),
+                c + r / std::cos(M_PI / 8) * dvec2(std::cos(am), std::sin(am)),
                 c + r * dvec2(std::cos(a1), std::sin(a1)), 0);
     }
     n.segments.back().p2 = n.segments.front().p0;
@@ -227,11 +240,14 @@ struct ErrorStats {
 void benchAccuracy() {
     const CurveNetwork base = drawing();
     const float depth = 1.0f, width = 2.0f; // V-groove, texels
-    std::printf("\nAccuracy: V-groove (depth %.0f, half-width %.0f texels), probes across the curves at 64 samples per "
-                "texel; crease = where the normal's component across the curve changes sign; normal error vs the "
+    std::printf("\nAccuracy: V-groove (depth %.0f, half-width %.0f texels), probes across the "
+                "curves at 64 samples per "
+                "texel; crease = where the normal's component across the curve changes sign; "
+                "normal error vs the "
                 "exact profile normal within the groove\n",
                 double(depth), double(width));
-    std::printf("| map | method | crease error texels (mean / max) | crease px @16x (max) | crease px @64x (max) | "
+    std::printf("| map | method | crease error texels (mean / max) | crease px @16x (max) | crease "
+                "px @64x (max) | "
                 "normal error deg (mean / p95 / max) |\n|---|---|---|---|---|---|\n");
     glm::vec3 flat(0.0f, 0.0f, 1.0f);
     for (int n : {64, 128, 256, 512, 1024}) {
@@ -268,10 +284,12 @@ void benchAccuracy() {
             samples[k] = profileNormal(exact.dist[k], glm::vec2(exact.gradX[k], exact.gradY[k]));
         }
         auto bilinear = [&](glm::vec2 p) {
-            int i = std::clamp(int(std::floor(p.x)), 0, n - 1), j = std::clamp(int(std::floor(p.y)), 0, n - 1);
+            int i = std::clamp(int(std::floor(p.x)), 0, n - 1),
+                j = std::clamp(int(std::floor(p.y)), 0, n - 1);
             float fx = p.x - float(i), fy = p.y - float(j);
             auto at = [&](int a, int b) { return samples[size_t(b) * size_t(n + 1) + size_t(a)]; };
-            glm::vec3 v = glm::mix(glm::mix(at(i, j), at(i + 1, j), fx), glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
+            glm::vec3 v = glm::mix(glm::mix(at(i, j), at(i + 1, j), fx),
+                                   glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
             return glm::normalize(v);
         };
         auto featureNormal = [&](const GpuFeatureMaps& g, glm::vec2 p) {
@@ -291,7 +309,8 @@ void benchAccuracy() {
                 bool ok = glm::length(q - s.p0) > 3.0 && glm::length(q - s.p2) > 3.0;
                 for (size_t m = 0; m < net.segments.size() && ok; ++m) {
                     if (net.segments[m].curve == s.curve) continue;
-                    for (int z = 0; z <= 200 && ok; ++z) ok = glm::length(bez(net.segments[m], z / 200.0) - q) > 6.0;
+                    for (int z = 0; z <= 200 && ok; ++z)
+                        ok = glm::length(bez(net.segments[m], z / 200.0) - q) > 6.0;
                 }
                 if (ok) probes.push_back({q, dvec2(-tan.y, tan.x)});
             }
@@ -309,7 +328,8 @@ void benchAccuracy() {
                     double t = -double(width) + 2.0 * double(width) * (s + 0.5) / steps;
                     dvec2 p = pr.point + t * pr.normal;
                     glm::vec2 pf(p);
-                    glm::vec3 nrm = mth == 0 ? bilinear(pf) : featureNormal(mth == 1 ? lin : quad, pf);
+                    glm::vec3 nrm =
+                        mth == 0 ? bilinear(pf) : featureNormal(mth == 1 ? lin : quad, pf);
                     double c = nrm.x * pr.normal.x + nrm.y * pr.normal.y;
                     if (havePrev && prevC > 0.0 && c <= 0.0 && cross > 1e8) {
                         // Bisect the sign change (the normal flips
@@ -318,7 +338,8 @@ void benchAccuracy() {
                         for (int it = 0; it < 24; ++it) {
                             double mid = 0.5 * (lo + hi);
                             glm::vec2 pm(pr.point + mid * pr.normal);
-                            glm::vec3 nm = mth == 0 ? bilinear(pm) : featureNormal(mth == 1 ? lin : quad, pm);
+                            glm::vec3 nm =
+                                mth == 0 ? bilinear(pm) : featureNormal(mth == 1 ? lin : quad, pm);
                             ((nm.x * pr.normal.x + nm.y * pr.normal.y) > 0.0 ? lo : hi) = mid;
                         }
                         cross = 0.5 * (lo + hi);
@@ -327,11 +348,13 @@ void benchAccuracy() {
                     prevT = t;
                     havePrev = true;
                     // Exact normal: distance |t| along the probe's normal.
-                    glm::vec2 g = glm::vec2(float(t >= 0 ? pr.normal.x : -pr.normal.x), float(t >= 0 ? pr.normal.y : -pr.normal.y));
+                    glm::vec2 g = glm::vec2(float(t >= 0 ? pr.normal.x : -pr.normal.x),
+                                            float(t >= 0 ? pr.normal.y : -pr.normal.y));
                     glm::vec3 ex = profileNormal(float(std::fabs(t)), g);
                     if (std::fabs(t) > 1.0 / 64.0 && std::fabs(t) < width - 1.0 / 64.0) {
                         stats[mth].normalDeg.push_back(
-                            std::acos(std::clamp(double(glm::dot(ex, nrm)), -1.0, 1.0)) * 180.0 / M_PI);
+                            std::acos(std::clamp(double(glm::dot(ex, nrm)), -1.0, 1.0)) * 180.0 /
+                            M_PI);
                     }
                 }
                 stats[mth].crease.push_back(cross > 1e8 ? double(width) : std::fabs(cross));
@@ -346,8 +369,9 @@ void benchAccuracy() {
             meanN /= std::max<size_t>(1, e.normalDeg.size());
             double maxC = *std::max_element(e.crease.begin(), e.crease.end());
             double maxN = *std::max_element(e.normalDeg.begin(), e.normalDeg.end());
-            std::printf("| %d^2 | %s | %.4f / %.4f | %.2f | %.2f | %.2f / %.2f / %.2f |\n", n, names[mth], meanC, maxC,
-                        maxC * 16.0, maxC * 64.0, meanN, percentile(e.normalDeg, 0.95), maxN);
+            std::printf("| %d^2 | %s | %.4f / %.4f | %.2f | %.2f | %.2f / %.2f / %.2f |\n", n,
+                        names[mth], meanC, maxC, maxC * 16.0, maxC * 64.0, meanN,
+                        percentile(e.normalDeg, 0.95), maxN);
         }
     }
 }
@@ -358,8 +382,10 @@ int main(int argc, char** argv) {
     std::string what = "all";
     int runs = 7;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-        else what = argv[i];
+        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+            runs = std::max(1, std::atoi(argv[++i]));
+        else
+            what = argv[i];
     }
     if (what == "all" || what == "bake") benchBake(runs);
     if (what == "all" || what == "accuracy") benchAccuracy();

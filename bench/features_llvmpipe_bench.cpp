@@ -152,7 +152,8 @@ CurveNetwork denseNetwork(int n) {
     return net;
 }
 
-GLuint makeTexture(GLenum internal, int w, int h, GLenum format, GLenum type, const void* data, GLenum filter) {
+GLuint makeTexture(GLenum internal, int w, int h, GLenum format, GLenum type, const void* data,
+                   GLenum filter) {
     GLuint t;
     glCreateTextures(GL_TEXTURE_2D, 1, &t);
     glTextureStorage2D(t, 1, internal, w, h);
@@ -193,7 +194,8 @@ int main(int argc, char** argv) {
         sets.push_back(std::move(s));
     }
     try {
-        CurveNetwork net = loadFont("/usr/share/fonts/truetype/wqy/wqy-microhei.ttc", "\xe7\xb9\x81");
+        CurveNetwork net =
+            loadFont("/usr/share/fonts/truetype/wqy/wqy-microhei.ttc", "\xe7\xb9\x81");
         MapSet s;
         s.name = "glyph (whole)";
         BakeOptions o;
@@ -221,19 +223,23 @@ int main(int argc, char** argv) {
 
     auto program = [&](const char* frag, const char* name, std::vector<std::string> defines = {}) {
         auto vs = sg::shaders::assemble(kVertex, std::string(name) + ".vert");
-        auto fs = sg::shaders::assemble(std::string(kFragmentHead) + frag, std::string(name) + ".frag", defines);
+        auto fs = sg::shaders::assemble(std::string(kFragmentHead) + frag,
+                                        std::string(name) + ".frag", defines);
         return sg::gl::Program({{sg::gl::Stage::Vertex, vs}, {sg::gl::Stage::Fragment, fs}});
     };
     sg::gl::Program base = program(kFragmentBaseline, "baseline");
     sg::gl::Program feat = program(kFragmentFeatures, "features");
     // Linear maps use the straight-segment evaluator (SG_FEAT_CURVED 0).
-    sg::gl::Program featLinear = program(kFragmentFeatures, "features-linear", {"SG_FEAT_CURVED 0"});
+    sg::gl::Program featLinear =
+        program(kFragmentFeatures, "features-linear", {"SG_FEAT_CURVED 0"});
     sg::gl::Program fetchOnly = program(kFragmentFetchOnly, "fetchonly");
 
-    std::printf("\nShader cost, %dx%d fragments, llvmpipe (median frame over %d runs of %d frames, one draw + glFinish "
+    std::printf("\nShader cost, %dx%d fragments, llvmpipe (median frame over %d runs of %d frames, "
+                "one draw + glFinish "
                 "per frame; CPU = process CPU time, all llvmpipe threads)\n",
                 size, size, runs, frames);
-    std::printf("| map | FCR | variant | CPU ms / frame | wall ms / frame | CPU ns / pixel | ratio to baseline (CPU) | goal "
+    std::printf("| map | FCR | variant | CPU ms / frame | wall ms / frame | CPU ns / pixel | ratio "
+                "to baseline (CPU) | goal "
                 "|\n|---|---|---|---|---|---|---|---|\n");
     for (MapSet& s : sets) {
         const int n = s.lin.size;
@@ -241,7 +247,8 @@ int main(int argc, char** argv) {
         size_t inFeat = 0;
         for (int y = 0; y < size; ++y) {
             for (int x = 0; x < size; ++x) {
-                glm::vec2 p = s.windowMin + (glm::vec2(float(x), float(y)) + 0.5f) / float(size) * s.windowSize;
+                glm::vec2 p = s.windowMin +
+                              (glm::vec2(float(x), float(y)) + 0.5f) / float(size) * s.windowSize;
                 int i = std::clamp(int(p.x), 0, n - 1), j = std::clamp(int(p.y), 0, n - 1);
                 inFeat += (s.quad.configWord(i, j) & 0xFFFFu) != 0;
             }
@@ -259,7 +266,8 @@ int main(int argc, char** argv) {
             nm[4 * k + 2] = uint8_t(std::lround((v.z * 0.5f + 0.5f) * 255.0f));
             nm[4 * k + 3] = 255;
         }
-        GLuint normalTex = makeTexture(GL_RGBA8, n + 1, n + 1, GL_RGBA, GL_UNSIGNED_BYTE, nm.data(), GL_LINEAR);
+        GLuint normalTex =
+            makeTexture(GL_RGBA8, n + 1, n + 1, GL_RGBA, GL_UNSIGNED_BYTE, nm.data(), GL_LINEAR);
         struct Variant {
             const char* name;
             const FeatureMaps* maps; // nullptr: baseline
@@ -282,9 +290,10 @@ int main(int argc, char** argv) {
             glUniform2f(prog.uniform("uWindowSize"), s.windowSize.x, s.windowSize.y);
             if (v.maps) {
                 GpuFeatureMaps g = v.maps->packGpu();
-                tex[0] = makeTexture(GL_RGBA32UI, n, n + 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.cornerPairs.data(),
-                                     GL_NEAREST);
-                tex[1] = makeTexture(GL_RGBA32UI, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data(), GL_NEAREST);
+                tex[0] = makeTexture(GL_RGBA32UI, n, n + 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                                     g.cornerPairs.data(), GL_NEAREST);
+                tex[1] = makeTexture(GL_RGBA32UI, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                                     g.edges.data(), GL_NEAREST);
                 glBindTextureUnit(0, tex[0]);
                 glBindTextureUnit(1, tex[1]);
                 glUniform1i(prog.uniform("uFeatCorners"), 0);
@@ -307,7 +316,9 @@ int main(int argc, char** argv) {
                     glDrawArrays(GL_TRIANGLES, 0, 3);
                     glFinish();
                     ts.push_back(processCpuMs() - c0);
-                    tw.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+                    tw.push_back(std::chrono::duration<double, std::milli>(
+                                     std::chrono::steady_clock::now() - t0)
+                                     .count());
                 }
                 perRun.push_back(median(ts));
                 perRunWall.push_back(median(tw));
@@ -315,11 +326,13 @@ int main(int argc, char** argv) {
             double ms = median(perRun);
             double wallMs = median(perRunWall);
             if (!v.maps) baseMs = ms;
-            std::string goal = v.goal > 0 ? (ms / baseMs <= v.goal ? "<= " : "> ") + std::to_string(int(v.goal)) +
-                                                "x " + (ms / baseMs <= v.goal ? "met" : "MISSED")
+            std::string goal = v.goal > 0 ? (ms / baseMs <= v.goal ? "<= " : "> ") +
+                                                std::to_string(int(v.goal)) + "x " +
+                                                (ms / baseMs <= v.goal ? "met" : "MISSED")
                                           : "-";
-            std::printf("| %s | %.1f%% | %s | %.2f | %.2f | %.1f | %.2fx | %s |\n", s.name.c_str(), 100.0 * s.fcr, v.name,
-                        ms, wallMs, ms * 1e6 / (double(size) * size), ms / baseMs, goal.c_str());
+            std::printf("| %s | %.1f%% | %s | %.2f | %.2f | %.1f | %.2fx | %s |\n", s.name.c_str(),
+                        100.0 * s.fcr, v.name, ms, wallMs, ms * 1e6 / (double(size) * size),
+                        ms / baseMs, goal.c_str());
             if (tex[0]) glDeleteTextures(2, tex);
             sg::gl::checkError("features_llvmpipe_bench draw");
         }

@@ -95,7 +95,8 @@ std::vector<double> interleavedMediansMs(int runs, const std::vector<std::functi
 }
 
 void row(const char* what, const char* input, double ms, double baselineMs, const char* baseline) {
-    std::printf("| %-44s | %-14s | %9.3f | %6.2fx vs %s |\n", what, input, ms, baselineMs / ms, baseline);
+    std::printf("| %-44s | %-14s | %9.3f | %6.2fx vs %s |\n", what, input, ms, baselineMs / ms,
+                baseline);
 }
 
 template <class V>
@@ -103,7 +104,9 @@ struct Ref {
     V* v;
     void Clear() { *v = V(0.0f); }
     template <class S>
-    void AddWithWeight(const S& s, float w) { *v += w * *s.v; }
+    void AddWithWeight(const S& s, float w) {
+        *v += w * *s.v;
+    }
 };
 template <class V>
 struct View {
@@ -112,7 +115,8 @@ struct View {
 };
 
 // Plain Far, the way a one-off user writes it.
-void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos, std::vector<glm::vec2>& outUv) {
+void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos,
+              std::vector<glm::vec2>& outUv) {
     Far::TopologyDescriptor d;
     d.numVertices = int(cage.positions.size());
     d.numFaces = int(cage.faceSizes.size());
@@ -127,7 +131,8 @@ void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos
     so.SetVtxBoundaryInterpolation(OpenSubdiv::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
     so.SetFVarLinearInterpolation(OpenSubdiv::Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1);
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, so)));
+    std::unique_ptr<Far::TopologyRefiner> r(
+        Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, so)));
     r->RefineUniform(Far::TopologyRefiner::UniformOptions(level));
     Far::PrimvarRefiner pr(*r);
     std::vector<glm::vec3> src = cage.positions, dst;
@@ -155,9 +160,12 @@ int main(int argc, char** argv) {
     int runs = 15, maxLevel = 5;
     bool keepMemory = false;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::max(3, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc) maxLevel = std::clamp(std::atoi(argv[++i]), 1, 6);
-        else if (!std::strcmp(argv[i], "--keep-memory")) keepMemory = true;
+        if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+            runs = std::max(3, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--max-level") && i + 1 < argc)
+            maxLevel = std::clamp(std::atoi(argv[++i]), 1, 6);
+        else if (!std::strcmp(argv[i], "--keep-memory"))
+            keepMemory = true;
     }
     if (keepMemory) {
         // 32 MB is glibc's largest mmap threshold on 64-bit; every buffer
@@ -168,22 +176,26 @@ int main(int argc, char** argv) {
             return 1;
         }
     }
-    const std::string spotPath = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
+    const std::string spotPath =
+        std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
     PolygonMesh spot = loadPolygonMesh(spotPath);
-    std::printf("spot control cage: %zu vertices, %zu faces, 1 UV set; %d runs per row (median, candidates interleaved, each warm), single "
+    std::printf("spot control cage: %zu vertices, %zu faces, 1 UV set; %d runs per row (median, "
+                "candidates interleaved, each warm), single "
                 "thread; allocator: %s\n\n",
                 spot.vertexCount(), spot.faceCount(), runs,
-                keepMemory ? "--keep-memory (freed memory stays in the process)" : "glibc default (large blocks returned to the OS)");
+                keepMemory ? "--keep-memory (freed memory stays in the process)"
+                           : "glibc default (large blocks returned to the OS)");
 
     // --- 1. Refinement ---------------------------------------------------------
     std::printf("| %-44s | %-14s | %9s | %-22s |\n", "refinement", "input", "median ms", "ratio");
-    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(), std::string(11, '-').c_str(),
-                std::string(24, '-').c_str());
+    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(),
+                std::string(11, '-').c_str(), std::string(24, '-').c_str());
     // OpenMesh input for the baseline (plain PolyMesh, no custom properties).
     OmMesh omCage;
     {
         std::vector<OmMesh::VertexHandle> vh;
-        for (const auto& p : spot.positions) vh.push_back(omCage.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
+        for (const auto& p : spot.positions)
+            vh.push_back(omCage.add_vertex(OmMesh::Point(p.x, p.y, p.z)));
         size_t c = 0;
         for (uint32_t k : spot.faceSizes) {
             std::vector<OmMesh::VertexHandle> f;
@@ -208,29 +220,31 @@ int main(int argc, char** argv) {
         sFar.specializedRefiner = false;
         Subdivider viaFar;
         std::vector<double> stIn, stTopo, stInterp, stOut;
-        const std::vector<double> med = interleavedMediansMs(
-            runs, {[&] {
-                       OmMesh m = omCage;
-                       OpenMesh::Subdivider::Uniform::CatmullClarkT<OmMesh> cc;
-                       cc.attach(m);
-                       cc(size_t(level));
-                       cc.detach();
-                   },
-                   [&] { plainFar(spot, level, fp, fu); },
-                   [&] {
-                       sub.build(spot, s);
-                       stIn.push_back(sub.timings().convertIn);
-                       stTopo.push_back(sub.timings().topology);
-                       stInterp.push_back(sub.timings().interpolate);
-                       stOut.push_back(sub.timings().convertOut);
-                   },
-                   [&] { viaFar.build(spot, sFar); },
-                   [&] {
-                       Subdivider fresh(spot, s);
-                       if (fresh.refined().faceCount() == 0) std::abort();
-                   }});
+        const std::vector<double> med =
+            interleavedMediansMs(runs, {[&] {
+                                            OmMesh m = omCage;
+                                            OpenMesh::Subdivider::Uniform::CatmullClarkT<OmMesh> cc;
+                                            cc.attach(m);
+                                            cc(size_t(level));
+                                            cc.detach();
+                                        },
+                                        [&] { plainFar(spot, level, fp, fu); },
+                                        [&] {
+                                            sub.build(spot, s);
+                                            stIn.push_back(sub.timings().convertIn);
+                                            stTopo.push_back(sub.timings().topology);
+                                            stInterp.push_back(sub.timings().interpolate);
+                                            stOut.push_back(sub.timings().convertOut);
+                                        },
+                                        [&] { viaFar.build(spot, sFar); },
+                                        [&] {
+                                            Subdivider fresh(spot, s);
+                                            if (fresh.refined().faceCount() == 0) std::abort();
+                                        }});
         const double om = med[0], far = med[1], ours = med[2], oursFar = med[3], cold = med[4];
-        if (!sub.usedSpecializedRefiner()) std::printf("|   (specialised refiner declined: %s)\n", sub.specializedRefinerDeclined().c_str());
+        if (!sub.usedSpecializedRefiner())
+            std::printf("|   (specialised refiner declined: %s)\n",
+                        sub.specializedRefinerDeclined().c_str());
         auto medOf = [](std::vector<double> v) {
             std::sort(v.begin(), v.end());
             return v[v.size() / 2];
@@ -261,19 +275,23 @@ int main(int argc, char** argv) {
         row("ours build, OpenSubdiv Far path", in, oursFar, om, "OpenMesh");
         row("ours build: fresh Subdivider per call", in, cold, om, "OpenMesh");
         row("ours build: same topology, new values", in, cached, om, "OpenMesh");
-        std::printf("|   ours vs plain Far: %.2fx, vs our Far path %.2fx; stage medians ms: convert-in %.3f, topology %.3f, interpolate %.3f, "
+        std::printf("|   ours vs plain Far: %.2fx, vs our Far path %.2fx; stage medians ms: "
+                    "convert-in %.3f, topology %.3f, interpolate %.3f, "
                     "convert-out %.3f\n",
-                    far / ours, oursFar / ours, 1e3 * tm.convertIn, 1e3 * tm.topology, 1e3 * tm.interpolate, 1e3 * tm.convertOut);
+                    far / ours, oursFar / ours, 1e3 * tm.convertIn, 1e3 * tm.topology,
+                    1e3 * tm.interpolate, 1e3 * tm.convertOut);
         double conv = fromOm + 1e3 * (tm.convertIn + tm.convertOut);
-        std::printf("|   OpenMesh<->OpenSubdiv conversion (PolyMesh->cage %.3f + descriptor + level-N polygons) = %.3f ms = %.0f%% of the "
+        std::printf("|   OpenMesh<->OpenSubdiv conversion (PolyMesh->cage %.3f + descriptor + "
+                    "level-N polygons) = %.3f ms = %.0f%% of the "
                     "refine time\n",
                     fromOm, conv, 100.0 * conv / ours);
     }
 
     // --- 2. Animated cage at level 4 -------------------------------------------
-    std::printf("\n| %-44s | %-14s | %9s | %-22s |\n", "animated cage, per frame", "input", "median ms", "ratio");
-    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(), std::string(11, '-').c_str(),
-                std::string(24, '-').c_str());
+    std::printf("\n| %-44s | %-14s | %9s | %-22s |\n", "animated cage, per frame", "input",
+                "median ms", "ratio");
+    std::printf("|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(16, '-').c_str(),
+                std::string(11, '-').c_str(), std::string(24, '-').c_str());
     std::mt19937 rng(1);
     std::uniform_real_distribution<float> jitter(-0.01f, 0.01f);
     std::vector<std::vector<glm::vec3>> frames(8, spot.positions);
@@ -305,7 +323,8 @@ int main(int argc, char** argv) {
             d.numVertsPerFace = reinterpret_cast<const int*>(spot.faceSizes.data());
             d.vertIndicesPerFace = reinterpret_cast<const int*>(spot.faceVertices.data());
             using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-            std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, OpenSubdiv::Sdc::Options())));
+            std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(
+                d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, OpenSubdiv::Sdc::Options())));
             r->RefineUniform(Far::TopologyRefiner::UniformOptions(4));
             Far::StencilTableFactory::Options so;
             so.generateIntermediateLevels = false;
@@ -342,7 +361,8 @@ int main(int argc, char** argv) {
                    },
                    [&] { anim.update(frames[frame % frames.size()], out, nullptr, false); },
                    [&] { anim.update(frames[frame % frames.size()], out, nullptr, true); }});
-        const double far = med[0], rebuild = med[1], rebuildPositions = med[2], farStencil = med[3], update = med[4], updateN = med[5];
+        const double far = med[0], rebuild = med[1], rebuildPositions = med[2], farStencil = med[3],
+                     update = med[4], updateN = med[5];
         // Baseline: OpenSubdiv's full re-refinement (the issue's "full
         // re-refinement, measured 2.4 ms" anchor is Far's).
         row("full re-refinement: plain Far (pos+UV)", in, far, far, "Far re-refine");
@@ -351,10 +371,14 @@ int main(int argc, char** argv) {
         row("Far StencilTable::UpdateValues (flattened)", in, farStencil, far, "Far re-refine");
         row("ours factored stencils: positions", in, update, far, "Far re-refine");
         row("ours factored stencils: positions + normals", in, updateN, far, "Far re-refine");
-        std::printf("|   vs our own positions-only re-refinement (%.3f ms): factored stencils %.2fx, + normals %.2fx, Far UpdateValues %.2fx\n",
-                    rebuildPositions, rebuildPositions / update, rebuildPositions / updateN, rebuildPositions / farStencil);
-        std::printf("|   one-time setup: Far StencilTableFactory %.1f ms (%zu weights); ours build with stencils %.1f ms (%zu weights)\n",
-                    farStencilBuild, table->GetControlIndices().size(), ourBuild, anim.stencilWeightCount());
+        std::printf("|   vs our own positions-only re-refinement (%.3f ms): factored stencils "
+                    "%.2fx, + normals %.2fx, Far UpdateValues %.2fx\n",
+                    rebuildPositions, rebuildPositions / update, rebuildPositions / updateN,
+                    rebuildPositions / farStencil);
+        std::printf("|   one-time setup: Far StencilTableFactory %.1f ms (%zu weights); ours build "
+                    "with stencils %.1f ms (%zu weights)\n",
+                    farStencilBuild, table->GetControlIndices().size(), ourBuild,
+                    anim.stencilWeightCount());
     }
     {
         SubdivisionSettings s;
@@ -369,11 +393,12 @@ int main(int argc, char** argv) {
         Subdivider anim(spot, s);
         RenderMesh out = anim.renderMesh();
         LimitFrame lf = anim.limitFrame();
-        double update = medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, &lf); });
+        double update =
+            medianMs(runs, [&] { anim.update(frames[frame++ % frames.size()], out, &lf); });
         row("limit: full rebuild (P, dP/du, dP/dv, N, UV)", in, rebuild, rebuild, "limit rebuild");
         row("limit: stencil update (P, dP/du, dP/dv, N)", in, update, rebuild, "limit rebuild");
-        std::printf("|   limit update weights: %zu (adaptive points, local points, %zu samples)\n", anim.stencilWeightCount(),
-                    anim.renderMesh().vertexCount());
+        std::printf("|   limit update weights: %zu (adaptive points, local points, %zu samples)\n",
+                    anim.stencilWeightCount(), anim.renderMesh().vertexCount());
     }
     return 0;
 }

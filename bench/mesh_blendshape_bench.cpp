@@ -39,7 +39,9 @@ namespace {
 using namespace sg::mesh;
 using Clock = std::chrono::steady_clock;
 
-double ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+double ms(Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -107,7 +109,8 @@ void addSphericalUvs(PolygonMesh& cage) {
     std::vector<glm::vec2> perVertex(cage.positions.size());
     for (size_t v = 0; v < cage.positions.size(); ++v) {
         glm::vec3 d = glm::normalize(cage.positions[v] - centre);
-        perVertex[v] = glm::vec2(0.5f + std::atan2(d.x, d.z) / (2.0f * float(M_PI)), 0.5f + std::asin(std::clamp(d.y, -1.0f, 1.0f)) / float(M_PI));
+        perVertex[v] = glm::vec2(0.5f + std::atan2(d.x, d.z) / (2.0f * float(M_PI)),
+                                 0.5f + std::asin(std::clamp(d.y, -1.0f, 1.0f)) / float(M_PI));
     }
     FaceVaryingChannel ch;
     ch.name = "lonlat";
@@ -161,13 +164,16 @@ struct GpuMesh {
         if (n > vertexCapacity) {
             vertexCapacity = n;
             const size_t bytes[4] = {12, 12, 8, 16};
-            for (int a = 0; a < 4; ++a) glNamedBufferData(vbo[a], GLsizeiptr(n * bytes[a]), nullptr, GL_DYNAMIC_DRAW);
+            for (int a = 0; a < 4; ++a)
+                glNamedBufferData(vbo[a], GLsizeiptr(n * bytes[a]), nullptr, GL_DYNAMIC_DRAW);
             mask = 0xf;
         }
         if (mask & 1) glNamedBufferSubData(vbo[0], 0, GLsizeiptr(n * 12), m.positions.data());
         if (mask & 2) glNamedBufferSubData(vbo[1], 0, GLsizeiptr(n * 12), m.normals.data());
-        if ((mask & 4) && !m.uvSets.empty()) glNamedBufferSubData(vbo[2], 0, GLsizeiptr(n * 8), m.uvSets[0].data());
-        if ((mask & 8) && !m.tangents.empty()) glNamedBufferSubData(vbo[3], 0, GLsizeiptr(n * 16), m.tangents.data());
+        if ((mask & 4) && !m.uvSets.empty())
+            glNamedBufferSubData(vbo[2], 0, GLsizeiptr(n * 8), m.uvSets[0].data());
+        if ((mask & 8) && !m.tangents.empty())
+            glNamedBufferSubData(vbo[3], 0, GLsizeiptr(n * 16), m.tangents.data());
         if (indices) {
             if (m.indices.size() > indexCapacity) {
                 indexCapacity = m.indices.size();
@@ -184,11 +190,15 @@ struct GpuMesh {
 int main(int argc, char** argv) {
     int frames = 12, level = 4, size = 512;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) frames = std::max(3, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--level") && i + 1 < argc) level = std::clamp(std::atoi(argv[++i]), 1, 5);
-        else if (!std::strcmp(argv[i], "--size") && i + 1 < argc) size = std::clamp(std::atoi(argv[++i]), 64, 2048);
+        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+            frames = std::max(3, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--level") && i + 1 < argc)
+            level = std::clamp(std::atoi(argv[++i]), 1, 5);
+        else if (!std::strcmp(argv[i], "--size") && i + 1 < argc)
+            size = std::clamp(std::atoi(argv[++i]), 64, 2048);
     }
-    const std::string file = std::string(SURFGRAD_DATA_DIR) + "/gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf";
+    const std::string file =
+        std::string(SURFGRAD_DATA_DIR) + "/gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf";
     Scene scene = loadScene(file);
     PolygonMesh cage = loadPolygonMesh(file);
     addSphericalUvs(cage);
@@ -196,17 +206,20 @@ int main(int argc, char** argv) {
     s.level = level;
     Subdivider sub(cage, s, file);
     const RenderMesh& base = sub.renderMesh();
-    std::printf("AnimatedMorphSphere: cage %zu vertices / %zu faces, level %d: %zu render vertices, %zu triangles, %zu targets; %dx%d, "
+    std::printf("AnimatedMorphSphere: cage %zu vertices / %zu faces, level %d: %zu render "
+                "vertices, %zu triangles, %zu targets; %dx%d, "
                 "%d frames (medians)\n\n",
-                cage.vertexCount(), cage.faceCount(), level, base.vertexCount(), base.triangleCount(), base.morphTargets.size(), size, size,
-                frames);
+                cage.vertexCount(), cage.faceCount(), level, base.vertexCount(),
+                base.triangleCount(), base.morphTargets.size(), size, size, frames);
 
     sg::gl::HeadlessContext ctx;
     std::printf("GL: %s\n\n", ctx.renderer().c_str());
     auto program = [&](bool vertexTangents) {
-        std::vector<std::string> defs = {std::string("VERTEX_TANGENTS ") + (vertexTangents ? "1" : "0")};
-        return sg::gl::Program({{sg::gl::Stage::Vertex, sg::shaders::assemble(kVertex, "blendshape.vert")},
-                                {sg::gl::Stage::Fragment, sg::shaders::assemble(kFragment, "blendshape.frag", defs)}});
+        std::vector<std::string> defs = {std::string("VERTEX_TANGENTS ") +
+                                         (vertexTangents ? "1" : "0")};
+        return sg::gl::Program(
+            {{sg::gl::Stage::Vertex, sg::shaders::assemble(kVertex, "blendshape.vert")},
+             {sg::gl::Stage::Fragment, sg::shaders::assemble(kFragment, "blendshape.frag", defs)}});
     };
     sg::gl::Program progVertex = program(true), progPixel = program(false);
 
@@ -227,8 +240,10 @@ int main(int argc, char** argv) {
     std::vector<uint8_t> texels(size_t(texSize) * texSize * 4);
     for (int y = 0; y < texSize; ++y) {
         for (int x = 0; x < texSize; ++x) {
-            float u = float(x) / texSize * 16.0f * 2.0f * float(M_PI), v = float(y) / texSize * 8.0f * 2.0f * float(M_PI);
-            glm::vec3 n = glm::normalize(glm::vec3(-0.6f * std::cos(u) * std::sin(v), -0.6f * std::sin(u) * std::cos(v), 1.0f));
+            float u = float(x) / texSize * 16.0f * 2.0f * float(M_PI),
+                  v = float(y) / texSize * 8.0f * 2.0f * float(M_PI);
+            glm::vec3 n = glm::normalize(glm::vec3(-0.6f * std::cos(u) * std::sin(v),
+                                                   -0.6f * std::sin(u) * std::cos(v), 1.0f));
             uint8_t* t = &texels[(size_t(y) * texSize + size_t(x)) * 4];
             t[0] = uint8_t(std::lround((n.x * 0.5f + 0.5f) * 255));
             t[1] = uint8_t(std::lround((n.y * 0.5f + 0.5f) * 255));
@@ -256,8 +271,9 @@ int main(int argc, char** argv) {
     float radius = 0.5f * glm::length(hi - lo);
     glm::mat4 model(1.0f);
     glm::vec3 camera = centre + radius * glm::vec3(0.0f, 0.4f, 3.2f);
-    glm::mat4 viewProj = glm::perspective(glm::radians(40.0f), 1.0f, 0.1f * radius, 10.0f * radius) *
-                         glm::lookAt(camera, centre, glm::vec3(0, 1, 0));
+    glm::mat4 viewProj =
+        glm::perspective(glm::radians(40.0f), 1.0f, 0.1f * radius, 10.0f * radius) *
+        glm::lookAt(camera, centre, glm::vec3(0, 1, 0));
     auto setUniforms = [&](const sg::gl::Program& p) {
         glUseProgram(p.id());
         glUniformMatrix4fv(p.uniform("uModel"), 1, GL_FALSE, glm::value_ptr(model));
@@ -270,7 +286,8 @@ int main(int argc, char** argv) {
     const MorphWeightAnimation* anim = scene.animations.empty() ? nullptr : &scene.animations[0];
     auto weightsAt = [&](int f) {
         if (!anim) return std::vector<float>(base.morphTargets.size(), 0.5f);
-        float t = anim->times.front() + (anim->times.back() - anim->times.front()) * float(f) / float(frames);
+        float t = anim->times.front() +
+                  (anim->times.back() - anim->times.front()) * float(f) / float(frames);
         return sampleWeights(*anim, t);
     };
     std::vector<uint8_t> imgVertex(size_t(size) * size * 4), imgPixel(imgVertex.size());
@@ -343,15 +360,20 @@ int main(int argc, char** argv) {
         diff += std::abs(int(imgVertex[i]) - int(imgPixel[i]));
         ++covered;
     }
-    std::printf("| %-40s | %9s | %9s | %9s | %9s |\n", "blendshape frame (ms, median)", "morph", "tangents", "upload+draw", "total");
-    std::printf("|%s|%s|%s|%s|%s|\n", std::string(42, '-').c_str(), std::string(11, '-').c_str(), std::string(11, '-').c_str(),
-                std::string(11, '-').c_str(), std::string(11, '-').c_str());
-    std::printf("| %-40s | %9.2f | %9.2f | %9.2f | %9.2f |\n", "vertex tangents (MikkTSpace per frame)", median(vMorph), median(vTangent),
+    std::printf("| %-40s | %9s | %9s | %9s | %9s |\n", "blendshape frame (ms, median)", "morph",
+                "tangents", "upload+draw", "total");
+    std::printf("|%s|%s|%s|%s|%s|\n", std::string(42, '-').c_str(), std::string(11, '-').c_str(),
+                std::string(11, '-').c_str(), std::string(11, '-').c_str(),
+                std::string(11, '-').c_str());
+    std::printf("| %-40s | %9.2f | %9.2f | %9.2f | %9.2f |\n",
+                "vertex tangents (MikkTSpace per frame)", median(vMorph), median(vTangent),
                 median(vDraw), median(vTotal));
-    std::printf("| %-40s | %9.2f | %9s | %9.2f | %9.2f |\n", "per-pixel frame (no tangents)", median(pMorph), "-", median(pDraw),
-                median(pTotal));
-    std::printf("\nper-pixel total is %.2fx lower than the vertex-tangent total (goal >= 5x); MikkTSpace split %zu vertices; mean |image "
+    std::printf("| %-40s | %9.2f | %9s | %9.2f | %9.2f |\n", "per-pixel frame (no tangents)",
+                median(pMorph), "-", median(pDraw), median(pTotal));
+    std::printf("\nper-pixel total is %.2fx lower than the vertex-tangent total (goal >= 5x); "
+                "MikkTSpace split %zu vertices; mean |image "
                 "difference| %.2f / 255 over %zu covered pixels\n",
-                median(vTotal) / median(pTotal), splitVertices, covered ? diff / double(covered) : 0.0, covered);
+                median(vTotal) / median(pTotal), splitVertices,
+                covered ? diff / double(covered) : 0.0, covered);
     return 0;
 }

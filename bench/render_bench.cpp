@@ -79,7 +79,8 @@ std::vector<Timing> timeInterleaved(GlRenderer& gl, const std::vector<Case>& cas
 std::string sphereScene(const std::string& layers) {
     return R"({"camera": {"position": [0, 0, 2.6], "target": [0, 0, 0], "fov_deg": 40},
       "materials": [{"name": "m", "layers": [)" +
-           layers + R"(]}], "meshes": [{"procedural": {"type": "sphere", "size": 1, "segments": 96}}]})";
+           layers +
+           R"(]}], "meshes": [{"procedural": {"type": "sphere", "size": 1, "segments": 96}}]})";
 }
 
 struct KindCase {
@@ -91,38 +92,52 @@ std::vector<KindCase> kinds() {
     std::string data = std::string(SURFGRAD_DATA_DIR);
     return {
         {"uv_normal", R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 512}})"},
-        {"uv_normal + modifiers", R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 512}, "height": {"channel": "a"},
+        {"uv_normal + modifiers",
+         R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 512}, "height": {"channel": "a"},
            "modifiers": [{"type": "deform", "amplitude": 0.02, "frequency": 20}, {"type": "curve", "boost": 100}]})"},
-        {"object_normal", R"({"type": "object_normal", "strength": 0.2, "map": {"procedural": "bumps", "size": 512}})"},
-        {"height (3 taps)", R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 512}})"},
-        {"deriv_map", R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 512}})"},
-        {"triplanar (3 planes)", R"({"type": "triplanar", "scale": 2, "map": {"procedural": "tiles", "size": 512}})"},
-        {"decal", R"({"type": "decal", "position": [0, 0, 1], "size": [1.5, 1.5, 1], "map": {"procedural": "scratches", "size": 512}})"},
-        {"noise perlin", R"({"type": "noise", "noise": "perlin", "amplitude": 0.02, "frequency": 6})"},
-        {"noise turbulence 5 oct + x^3", R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "octaves": 5, "exponent": 3})"},
-        {"feature curves (linear)", R"({"type": "feature", "curves": {"svg": ")" + data +
-                                        R"(/svg/flame.svg", "size": 256}, "profile": "crease", "depth": 2, "width": 4})"},
-        {"post_resolve (noise)", R"({"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.01, "frequency": 8}]})"},
+        {"object_normal",
+         R"({"type": "object_normal", "strength": 0.2, "map": {"procedural": "bumps", "size": 512}})"},
+        {"height (3 taps)",
+         R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 512}})"},
+        {"deriv_map",
+         R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 512}})"},
+        {"triplanar (3 planes)",
+         R"({"type": "triplanar", "scale": 2, "map": {"procedural": "tiles", "size": 512}})"},
+        {"decal",
+         R"({"type": "decal", "position": [0, 0, 1], "size": [1.5, 1.5, 1], "map": {"procedural": "scratches", "size": 512}})"},
+        {"noise perlin",
+         R"({"type": "noise", "noise": "perlin", "amplitude": 0.02, "frequency": 6})"},
+        {"noise turbulence 5 oct + x^3",
+         R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "octaves": 5, "exponent": 3})"},
+        {"feature curves (linear)",
+         R"({"type": "feature", "curves": {"svg": ")" + data +
+             R"(/svg/flame.svg", "size": 256}, "profile": "crease", "depth": 2, "width": 4})"},
+        {"post_resolve (noise)",
+         R"({"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.01, "frequency": 8}]})"},
     };
 }
 
 void row(const std::string& what, const Timing& t, double baseline) {
-    std::printf("| %-34s | %9.2f | %9.2f | %8.2f | %6.2fx |\n", what.c_str(), t.wallMs, baseline, t.firstMs,
-                baseline > 0 ? t.wallMs / baseline : 1.0);
+    std::printf("| %-34s | %9.2f | %9.2f | %8.2f | %6.2fx |\n", what.c_str(), t.wallMs, baseline,
+                t.firstMs, baseline > 0 ? t.wallMs / baseline : 1.0);
 }
 
 void rule() {
     std::printf("|%s|%s|%s|%s|%s|\n", std::string(36, '-').c_str(), std::string(11, '-').c_str(),
-                std::string(11, '-').c_str(), std::string(10, '-').c_str(), std::string(9, '-').c_str());
+                std::string(11, '-').c_str(), std::string(10, '-').c_str(),
+                std::string(9, '-').c_str());
 }
 
 } // namespace
 
 int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc) gFrames = std::max(3, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--width") && i + 1 < argc) gWidth = std::max(16, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--height") && i + 1 < argc) gHeight = std::max(16, std::atoi(argv[++i]));
+        if (!std::strcmp(argv[i], "--frames") && i + 1 < argc)
+            gFrames = std::max(3, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--width") && i + 1 < argc)
+            gWidth = std::max(16, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--height") && i + 1 < argc)
+            gHeight = std::max(16, std::atoi(argv[++i]));
         else {
             std::fprintf(stderr, "usage: render_bench [--frames N] [--width W] [--height H]\n");
             return 2;
@@ -135,7 +150,8 @@ int main(int argc, char** argv) {
     const char* header = "| %-34s | %9s | %9s | %8s | %7s |\n";
 
     // 1. Assembled vs uber-shader.
-    std::printf("## 1. One-layer scene: assembled program vs uber-shader (every kind compiled in, off by uniforms)\n\n");
+    std::printf("## 1. One-layer scene: assembled program vs uber-shader (every kind compiled in, "
+                "off by uniforms)\n\n");
     std::printf(header, "program", "frame ms", "base ms", "1st ms", "ratio");
     rule();
     {
@@ -144,11 +160,13 @@ int main(int argc, char** argv) {
         auto t = timeInterleaved(gl, {{&s, &a, false}, {&s, &a, true}});
         row("assembled (uv_normal only)", t[0], t[0].wallMs);
         row("uber-shader (same scene)", t[1], t[0].wallMs);
-        std::printf("\nassembled is %.2fx faster than the uber-shader (goal >= 1.5x)\n\n", t[1].wallMs / t[0].wallMs);
+        std::printf("\nassembled is %.2fx faster than the uber-shader (goal >= 1.5x)\n\n",
+                    t[1].wallMs / t[0].wallMs);
     }
 
     // 2. Cost per layer kind, each timed interleaved with the no-layer sphere.
-    std::printf("## 2. Cost per layer kind (sphere filling most of the frame; base = no layer, same run)\n\n");
+    std::printf("## 2. Cost per layer kind (sphere filling most of the frame; base = no layer, "
+                "same run)\n\n");
     std::printf(header, "layers", "frame ms", "base ms", "1st ms", "vs base");
     rule();
     Scene s0 = parseScene(sphereScene(""), "no-layer", ".");
@@ -164,14 +182,17 @@ int main(int argc, char** argv) {
     {
         std::string joined;
         for (const auto& l : all) joined += (joined.empty() ? "" : ", ") + l;
-        Scene s = parseScene(sphereScene(joined + R"(, {"type": "post_resolve", "layers": [{"type": "noise"}]})"), "all", ".");
+        Scene s = parseScene(
+            sphereScene(joined + R"(, {"type": "post_resolve", "layers": [{"type": "noise"}]})"),
+            "all", ".");
         SceneAssets a = loadAssets(s);
         auto t = timeInterleaved(gl, {{&s0, &a0, false}, {&s, &a, false}});
         row("all of the above together", t[1], t[0].wallMs);
     }
 
     // 3. Default scene and examples, interleaved with the default scene.
-    std::printf("\n## 3. Scenes at %dx%d (base = the built-in default scene, same run)\n\n", gWidth, gHeight);
+    std::printf("\n## 3. Scenes at %dx%d (base = the built-in default scene, same run)\n\n", gWidth,
+                gHeight);
     std::printf(header, "scene", "frame ms", "base ms", "1st ms", "vs def.");
     rule();
     Scene def = defaultScene();
@@ -194,7 +215,8 @@ int main(int argc, char** argv) {
             auto t = timeInterleaved(gl, {{&def, &defA, false}, {&s, &a, false}});
             row(p.parent_path().filename().string(), t[1], t[0].wallMs);
         } catch (const std::exception& e) {
-            std::printf("| %-34s | failed: %s\n", p.parent_path().filename().string().c_str(), e.what());
+            std::printf("| %-34s | failed: %s\n", p.parent_path().filename().string().c_str(),
+                        e.what());
         }
     }
     return 0;

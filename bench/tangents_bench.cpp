@@ -132,8 +132,8 @@ int checkAcos() {
                              std::memcmp(&batch[i], &ref, sizeof ref) != 0 ||
                              std::memcmp(&narrowBatch[i], &ref, sizeof ref) != 0;
             if (bad && mismatches < 10)
-                std::printf("mismatch: cos %a: scalar %a, batch %a, reference %a\n", double(block[i]),
-                            double(scalar), double(batch[i]), double(ref));
+                std::printf("mismatch: cos %a: scalar %a, batch %a, reference %a\n",
+                            double(block[i]), double(scalar), double(batch[i]), double(ref));
             mismatches += bad;
             ++checked;
         }
@@ -150,7 +150,8 @@ int checkAcos() {
     }
     flush();
     std::printf("acos check: %llu floats in [-1, 1], %llu mismatches (%.0f s)\n",
-                static_cast<unsigned long long>(checked), static_cast<unsigned long long>(mismatches),
+                static_cast<unsigned long long>(checked),
+                static_cast<unsigned long long>(mismatches),
                 std::chrono::duration<double>(Clock::now() - t0).count());
     return mismatches == 0 ? 0 : 1;
 }
@@ -164,14 +165,23 @@ int main(int argc, char** argv) {
             if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
             return argv[++i];
         };
-        if (a == "--runs") runs = std::max(1, std::stoi(next()));
-        else if (a == "--oracle-runs") oracleRuns = std::max(1, std::stoi(next()));
-        else if (a == "--splits") splits = std::max(0, std::stoi(next()));
-        else if (a == "--obj") obj = next();
-        else if (a == "--check-acos") return checkAcos();
-        else if (a == "--profile-runs") profileRuns = std::max(1, std::stoi(next()));
+        if (a == "--runs")
+            runs = std::max(1, std::stoi(next()));
+        else if (a == "--oracle-runs")
+            oracleRuns = std::max(1, std::stoi(next()));
+        else if (a == "--splits")
+            splits = std::max(0, std::stoi(next()));
+        else if (a == "--obj")
+            obj = next();
+        else if (a == "--check-acos")
+            return checkAcos();
+        else if (a == "--profile-runs")
+            profileRuns = std::max(1, std::stoi(next()));
         else {
-            std::fprintf(stderr, "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] [--profile-runs N] | --check-acos\n", argv[0]);
+            std::fprintf(stderr,
+                         "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] "
+                         "[--profile-runs N] | --check-acos\n",
+                         argv[0]);
             return 2;
         }
     }
@@ -192,16 +202,19 @@ int main(int argc, char** argv) {
         std::vector<glm::vec4> out;
         generator.generate(in, out);
         const Timings t = timeRuns(profileRuns, [&] { generator.generate(in, out); });
-        std::printf("fast, generator reused: median %.1f ms cpu (min %.1f), %.2f Mtri/s (%d runs, no oracle)\n",
+        std::printf("fast, generator reused: median %.1f ms cpu (min %.1f), %.2f Mtri/s (%d runs, "
+                    "no oracle)\n",
                     median(t.cpuMs), *std::min_element(t.cpuMs.begin(), t.cpuMs.end()),
                     triangles / (median(t.cpuMs) * 1e3), profileRuns);
         return 0;
     }
 
     std::vector<sg::mesh::MikkTSpaceFrame> oracle;
-    const Timings oracleT = timeRuns(oracleRuns, [&] { oracle = sg::mesh::mikktspaceReferenceFrames(in); });
+    const Timings oracleT =
+        timeRuns(oracleRuns, [&] { oracle = sg::mesh::mikktspaceReferenceFrames(in); });
     std::vector<glm::vec4> expected(oracle.size());
-    for (size_t c = 0; c < oracle.size(); ++c) expected[c] = glm::vec4(oracle[c].tangent, oracle[c].sign);
+    for (size_t c = 0; c < oracle.size(); ++c)
+        expected[c] = glm::vec4(oracle[c].tangent, oracle[c].sign);
 
     sg::mesh::MikkTSpaceGenerator generator;
     std::vector<glm::vec4> warm;
@@ -225,20 +238,21 @@ int main(int argc, char** argv) {
     };
 
     const double oracleCpu = median(oracleT.cpuMs), oracleWall = median(oracleT.wallMs);
-    std::printf("\nMikkTSpace tangents, one thread, median of N runs. cpu = thread CPU time (what one\n"
-                "core spent), wall = elapsed; Mtri/s from cpu; ratio = oracle / row, cpu (wall)\n");
+    std::printf(
+        "\nMikkTSpace tangents, one thread, median of N runs. cpu = thread CPU time (what one\n"
+        "core spent), wall = elapsed; Mtri/s from cpu; ratio = oracle / row, cpu (wall)\n");
     std::printf("%-44s %3s %9s %9s %8s %15s %9s\n", "what", "N", "cpu ms", "wall ms", "Mtri/s",
                 "ratio cpu(wall)", "identical");
     auto row = [&](const char* what, const Timings& t, const char* same) {
         const double cpu = median(t.cpuMs), wall = median(t.wallMs);
-        std::printf("%-44s %3zu %9.1f %9.1f %8.2f %7.2fx (%4.2fx) %9s\n", what, t.cpuMs.size(), cpu, wall,
-                    triangles / (cpu * 1e3), oracleCpu / cpu, oracleWall / wall, same);
+        std::printf("%-44s %3zu %9.1f %9.1f %8.2f %7.2fx (%4.2fx) %9s\n", what, t.cpuMs.size(), cpu,
+                    wall, triangles / (cpu * 1e3), oracleCpu / cpu, oracleWall / wall, same);
     };
     row("oracle (step-by-step reference, baseline)", oracleT, "-");
     row("fast, generator reused (buffers kept)", warmT, identical(warm) ? "yes" : "NO");
     row("fast, SSE2 kernels only (no AVX2)", narrowT, identical(narrow) ? "yes" : "NO");
     row("fast, new generator per call (cold buffers)", coldT, identical(cold) ? "yes" : "NO");
-    std::printf("%-44s %3s %9s %9s %8.2f %15s %9s\n", "anchor: C reference mmikk/MikkTSpace", "-", "-",
-                "-", 0.5, "-", "(STACK.md)");
+    std::printf("%-44s %3s %9s %9s %8.2f %15s %9s\n", "anchor: C reference mmikk/MikkTSpace", "-",
+                "-", "-", 0.5, "-", "(STACK.md)");
     return identical(warm) && identical(narrow) && identical(cold) ? 0 : 1;
 }

@@ -106,7 +106,8 @@ void addEvalCommand(CLI::App& app, int& status) {
                 if (err) {
                     std::cout << *err << "\n";
                 } else {
-                    std::cout << eval::formatResult(*e, &out[r * size_t(eval::outStride())]) << "\n";
+                    std::cout << eval::formatResult(*e, &out[r * size_t(eval::outStride())])
+                              << "\n";
                     ++r;
                 }
             }

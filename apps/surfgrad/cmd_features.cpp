@@ -117,9 +117,9 @@ void runBake(const BakeArgs& a) {
         j["seconds"] = st.seconds;
         j["cpu_seconds"] = st.cpuSeconds;
         j["cpu_seconds_phases"] = {{"scan", st.secondsScan},
-                               {"optimize", st.secondsOptimize},
-                               {"distance", st.secondsDistance},
-                               {"smooth", st.secondsSmooth}};
+                                   {"optimize", st.secondsOptimize},
+                                   {"distance", st.secondsDistance},
+                                   {"smooth", st.secondsSmooth}};
         j["input_to_texel"] = {{"scale", {st.inputToTexel.scale.x, st.inputToTexel.scale.y}},
                                {"offset", {st.inputToTexel.offset.x, st.inputToTexel.offset.y}}};
         j["memory"] = {{"gpu_bytes_per_texel", FeatureMaps::kGpuBytesPerTexel},
@@ -164,10 +164,12 @@ std::vector<glm::vec2> readPoints(const std::string& file) {
         if (tok.empty()) continue;
         double x = 0, y = 0;
         if (tok.size() != 2 || !parseNumber(tok[0], x) || !parseNumber(tok[1], y)) {
-            throw io::InputError(file, "line " + std::to_string(lineNo), "expected two finite numbers \"x y\"");
+            throw io::InputError(file, "line " + std::to_string(lineNo),
+                                 "expected two finite numbers \"x y\"");
         }
         if (std::fabs(x) > 1e30 || std::fabs(y) > 1e30) {
-            throw io::InputError(file, "line " + std::to_string(lineNo), "coordinate outside float range");
+            throw io::InputError(file, "line " + std::to_string(lineNo),
+                                 "coordinate outside float range");
         }
         pts.emplace_back(float(x), float(y));
     }
@@ -187,7 +189,8 @@ void runSample(const std::string& mapsFile, const std::string& pointsFile) {
     std::string out;
     for (const auto& p : pts) {
         glsl::SgFeatResult r = sample(gpu, p);
-        out += fmt(p.x) + " " + fmt(p.y) + " " + fmt(r.dist) + " " + fmt(r.grad.x) + " " + fmt(r.grad.y) + "\n";
+        out += fmt(p.x) + " " + fmt(p.y) + " " + fmt(r.dist) + " " + fmt(r.grad.x) + " " +
+               fmt(r.grad.y) + "\n";
     }
     std::fwrite(out.data(), 1, out.size(), stdout);
 }
@@ -220,25 +223,29 @@ void runRender(const RenderArgs& a) {
     FeatureMaps maps = load(a.maps);
     GpuFeatureMaps gpu = maps.packGpu();
     if (a.width > float(maps.bandTexels) - 1.5f) {
-        throw CliError("features render: --width " + fmt(a.width) + " exceeds the maps' distance band " +
-                       fmt(float(maps.bandTexels)) + " minus 1.5 texels (bake with a larger --band)");
+        throw CliError("features render: --width " + fmt(a.width) +
+                       " exceeds the maps' distance band " + fmt(float(maps.bandTexels)) +
+                       " minus 1.5 texels (bake with a larger --band)");
     }
-    if (!(a.zoom > 0.0f && a.zoom <= 4096.0f)) throw CliError("features render: --zoom must be in (0, 4096]");
+    if (!(a.zoom > 0.0f && a.zoom <= 4096.0f))
+        throw CliError("features render: --zoom must be in (0, 4096]");
     if (a.composition != "surfgrad" && a.composition != "paper") {
         throw CliError("features render: --composition must be surfgrad or paper");
     }
-    if (!a.compare.empty() && a.compare != "bilinear") throw CliError("features render: --compare takes 'bilinear'");
+    if (!a.compare.empty() && a.compare != "bilinear")
+        throw CliError("features render: --compare takes 'bilinear'");
     unsigned w = 0, h = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(a.size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X') || w < 1 ||
-        h < 1 || w > 4096 || h > 4096) {
+    if (std::sscanf(a.size.c_str(), "%u%c%u%c", &w, &x, &h, &extra) != 3 ||
+        (x != 'x' && x != 'X') || w < 1 || h < 1 || w > 4096 || h > 4096) {
         throw CliError("features render: --size must be WxH with 1 <= W, H <= 4096");
     }
     glm::vec2 centre(0.5f * float(maps.size));
     if (!a.center.empty()) {
         size_t comma = a.center.find(',');
         double cx = 0, cy = 0;
-        if (comma == std::string::npos || !parseNumber(std::string_view(a.center).substr(0, comma), cx) ||
+        if (comma == std::string::npos ||
+            !parseNumber(std::string_view(a.center).substr(0, comma), cx) ||
             !parseNumber(std::string_view(a.center).substr(comma + 1), cy)) {
             throw CliError("features render: --center must be x,y in texel space");
         }
@@ -266,21 +273,27 @@ void runRender(const RenderArgs& a) {
                 size_t k = maps.index(i, j);
                 glsl::SgFeatResult r;
                 r.dist = maps.dist[k];
-                r.grad = glsl::sgSafeNormalize2(glm::vec2(maps.gradX[k], maps.gradY[k]), glm::vec2(0.0f));
+                r.grad = glsl::sgSafeNormalize2(glm::vec2(maps.gradX[k], maps.gradY[k]),
+                                                glm::vec2(0.0f));
                 r.side = maps.left[k] ? 1.0f : -1.0f;
-                sampleNormals[k] = a.composition == "paper"
-                                       ? glsl::sgFeatNormalPaper(r, prof, flat)
-                                       : glsl::sgFeatNormalFromDeriv(glsl::sgFeatDeriv(r, prof, glm::vec2(0.0f)));
+                sampleNormals[k] =
+                    a.composition == "paper"
+                        ? glsl::sgFeatNormalPaper(r, prof, flat)
+                        : glsl::sgFeatNormalFromDeriv(glsl::sgFeatDeriv(r, prof, glm::vec2(0.0f)));
             }
         }
     }
     auto bilinearNormal = [&](glm::vec2 p) {
         const int m = maps.size + 1;
         glm::vec2 pc = glm::clamp(p, glm::vec2(0.0f), glm::vec2(float(maps.size)));
-        int i = std::min(int(std::floor(pc.x)), maps.size - 1), j = std::min(int(std::floor(pc.y)), maps.size - 1);
+        int i = std::min(int(std::floor(pc.x)), maps.size - 1),
+            j = std::min(int(std::floor(pc.y)), maps.size - 1);
         float fx = pc.x - float(i), fy = pc.y - float(j);
-        auto at = [&](int ci, int cj) { return sampleNormals[size_t(cj) * size_t(m) + size_t(ci)]; };
-        glm::vec3 n = glm::mix(glm::mix(at(i, j), at(i + 1, j), fx), glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
+        auto at = [&](int ci, int cj) {
+            return sampleNormals[size_t(cj) * size_t(m) + size_t(ci)];
+        };
+        glm::vec3 n = glm::mix(glm::mix(at(i, j), at(i + 1, j), fx),
+                               glm::mix(at(i, j + 1), at(i + 1, j + 1), fx), fy);
         return glsl::sgSafeNormalize(n, flat);
     };
     // 3x3 supersampling per pixel keeps the close-up's creases free of
@@ -308,10 +321,12 @@ void runRender(const RenderArgs& a) {
     }
     io::writeAtomically(a.out, [&](const fs::path& tmp) {
         auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out) throw io::InputError(a.out, "", "cannot create an image writer: " + OIIO::geterror());
+        if (!out)
+            throw io::InputError(a.out, "", "cannot create an image writer: " + OIIO::geterror());
         OIIO::ImageSpec spec(int(W), int(h), 3, OIIO::TypeDesc::UINT8);
         spec.attribute("oiio:ColorSpace", "sRGB");
-        if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, img.data()) || !out->close()) {
+        if (!out->open(tmp.string(), spec) ||
+            !out->write_image(OIIO::TypeDesc::FLOAT, img.data()) || !out->close()) {
             throw io::InputError(a.out, "", "write failed: " + out->geterror());
         }
     });
@@ -324,13 +339,15 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     features->require_subcommand(1);
 
     auto bakeArgs = std::make_shared<BakeArgs>();
-    auto* bakeCmd = features->add_subcommand("bake", "Bake a curve network into feature maps (OpenEXR)");
+    auto* bakeCmd =
+        features->add_subcommand("bake", "Bake a curve network into feature maps (OpenEXR)");
     // --json F names a JSON input; a bare --json (anywhere) asks for the
     // statistics as JSON, as the command line in the issue spells both.
     auto jsonArgs = std::make_shared<std::vector<std::string>>();
-    auto* jsonOpt = bakeCmd->add_option("--json", *jsonArgs,
-                                        "--json F: curve network as JSON (docs/features-input.md); "
-                                        "bare --json: print the statistics as JSON")
+    auto* jsonOpt = bakeCmd
+                        ->add_option("--json", *jsonArgs,
+                                     "--json F: curve network as JSON (docs/features-input.md); "
+                                     "bare --json: print the statistics as JSON")
                         ->expected(0, 1)
                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     bakeCmd->add_option("--svg", bakeArgs->svg, "SVG drawing");
@@ -338,9 +355,12 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     bakeCmd->add_option("--text", bakeArgs->text, "UTF-8 text to take from the font");
     bakeCmd->add_option("--face", bakeArgs->face, "Face index in a font collection");
     bakeCmd->add_option("--size", bakeArgs->size, "Texels per side N")->required();
-    bakeCmd->add_option("--mode", bakeArgs->mode, "linear (straight segments) or quadratic (Bezier curves)");
-    bakeCmd->add_option("--margin", bakeArgs->margin, "Texels kept free around the drawing (default 8)");
-    bakeCmd->add_option("--band", bakeArgs->band, "Distances are exact up to this many texels (default 16)");
+    bakeCmd->add_option("--mode", bakeArgs->mode,
+                        "linear (straight segments) or quadratic (Bezier curves)");
+    bakeCmd->add_option("--margin", bakeArgs->margin,
+                        "Texels kept free around the drawing (default 8)");
+    bakeCmd->add_option("--band", bakeArgs->band,
+                        "Distances are exact up to this many texels (default 16)");
     bakeCmd->add_option("--smooth", bakeArgs->smooth, "Gradient smoothing iterations (default 10)");
     bakeCmd->add_option("-o,--output", bakeArgs->out, "Output maps (.exr)")->required();
     bakeCmd->callback([bakeArgs, jsonArgs, jsonOpt] {
@@ -357,24 +377,33 @@ void addFeaturesCommands(CLI::App& app, int& status) {
 
     auto sampleMaps = std::make_shared<std::string>();
     auto samplePoints = std::make_shared<std::string>();
-    auto* sampleCmd = features->add_subcommand("sample", "Reconstructed distance and gradient at points");
+    auto* sampleCmd =
+        features->add_subcommand("sample", "Reconstructed distance and gradient at points");
     sampleCmd->add_option("maps", *sampleMaps, "Feature maps (.exr)")->required();
-    sampleCmd->add_option("--points", *samplePoints, "File of \"x y\" lines in texel space")->required();
+    sampleCmd->add_option("--points", *samplePoints, "File of \"x y\" lines in texel space")
+        ->required();
     sampleCmd->callback([sampleMaps, samplePoints] { runSample(*sampleMaps, *samplePoints); });
 
     auto renderArgs = std::make_shared<RenderArgs>();
-    auto* renderCmd = features->add_subcommand("render", "Lit close-up of the feature normal field (PNG)");
+    auto* renderCmd =
+        features->add_subcommand("render", "Lit close-up of the feature normal field (PNG)");
     renderCmd->add_option("maps", renderArgs->maps, "Feature maps (.exr)")->required();
-    renderCmd->add_option("--profile", renderArgs->profile,
-                          "vgroove, crease, ridge, step, seam or table:h0,h1,...")->required();
+    renderCmd
+        ->add_option("--profile", renderArgs->profile,
+                     "vgroove, crease, ridge, step, seam or table:h0,h1,...")
+        ->required();
     renderCmd->add_option("--width", renderArgs->width, "Profile half-width w, texels (default 3)");
     renderCmd->add_option("--depth", renderArgs->depth, "Profile depth, texels (default 1)");
-    renderCmd->add_option("--blend", renderArgs->blend, "w0: band where only the profile acts, texels (default 0)");
+    renderCmd->add_option("--blend", renderArgs->blend,
+                          "w0: band where only the profile acts, texels (default 0)");
     renderCmd->add_option("--zoom", renderArgs->zoom, "Pixels per texel (default 16)");
-    renderCmd->add_option("--center", renderArgs->center, "Centre x,y in texel space (default: map centre)");
+    renderCmd->add_option("--center", renderArgs->center,
+                          "Centre x,y in texel space (default: map centre)");
     renderCmd->add_option("--size", renderArgs->size, "Image size WxH per panel (default 512x512)");
-    renderCmd->add_option("--composition", renderArgs->composition, "surfgrad (default) or paper (Eq. 1)");
-    renderCmd->add_option("--compare", renderArgs->compare, "bilinear: add a plain bilinear normal map panel");
+    renderCmd->add_option("--composition", renderArgs->composition,
+                          "surfgrad (default) or paper (Eq. 1)");
+    renderCmd->add_option("--compare", renderArgs->compare,
+                          "bilinear: add a plain bilinear normal map panel");
     renderCmd->add_option("-o,--output", renderArgs->out, "Output image (.png)")->required();
     renderCmd->callback([renderArgs] { runRender(*renderArgs); });
     (void)status;

@@ -53,14 +53,20 @@ void printNotes(const std::vector<std::string>& notes) {
 struct SchemeFlags {
     std::string scheme, boundary, fvar;
     void add(CLI::App* cmd) {
-        cmd->add_option("--scheme", scheme, "catmark | loop | bilinear (default: the file's 't scheme' tag, else catmark)")
+        cmd->add_option(
+               "--scheme", scheme,
+               "catmark | loop | bilinear (default: the file's 't scheme' tag, else catmark)")
             ->check(CLI::IsMember({"catmark", "loop", "bilinear"}));
-        cmd->add_option("--boundary", boundary, "none | edge-only | edge-and-corner (default: the file's tag, else edge-only)")
+        cmd->add_option(
+               "--boundary", boundary,
+               "none | edge-only | edge-and-corner (default: the file's tag, else edge-only)")
             ->check(CLI::IsMember({"none", "edge-only", "edge-and-corner"}));
         cmd->add_option("--fvar", fvar,
-                        "UV interpolation: smooth | corners-only | corners-plus1 | corners-plus2 | boundaries | all "
+                        "UV interpolation: smooth | corners-only | corners-plus1 | corners-plus2 | "
+                        "boundaries | all "
                         "(default: the file's tag, else corners-plus1)")
-            ->check(CLI::IsMember({"smooth", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"}));
+            ->check(CLI::IsMember(
+                {"smooth", "corners-only", "corners-plus1", "corners-plus2", "boundaries", "all"}));
     }
     SubdivOptions resolve(const PolygonMesh& cage) const {
         SubdivOptions o = cage.options;
@@ -120,25 +126,33 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
         return;
     }
     std::printf("%s\n", file.c_str());
-    std::printf("  vertices %zu, faces %zu, edges %zu, corners %zu\n", info.vertices, info.faces, info.edges, info.corners);
+    std::printf("  vertices %zu, faces %zu, edges %zu, corners %zu\n", info.vertices, info.faces,
+                info.edges, info.corners);
     std::string h;
-    for (auto it = hist.begin(); it != hist.end(); ++it) h += " " + it.key() + ":" + std::to_string(it.value().get<size_t>());
+    for (auto it = hist.begin(); it != hist.end(); ++it)
+        h += " " + it.key() + ":" + std::to_string(it.value().get<size_t>());
     std::printf("  face degrees%s\n", h.c_str());
     std::string setNames;
     for (const auto& s : m.uvSets) setNames += " " + s.name;
-    std::printf("  uv sets %zu%s%s\n", m.uvSets.size(), setNames.empty() ? "" : ":", setNames.c_str());
-    std::printf("  creases %zu (%zu infinitely sharp), corners %zu, holes %zu\n", info.creases, info.infiniteCreases, info.cornerTags, info.holes);
-    std::printf("  boundary loops %zu (%zu edges), isolated vertices %zu, Euler characteristic %d\n", info.boundaryLoops,
-                info.boundaryEdges, info.isolatedVertices, info.eulerCharacteristic);
+    std::printf("  uv sets %zu%s%s\n", m.uvSets.size(), setNames.empty() ? "" : ":",
+                setNames.c_str());
+    std::printf("  creases %zu (%zu infinitely sharp), corners %zu, holes %zu\n", info.creases,
+                info.infiniteCreases, info.cornerTags, info.holes);
+    std::printf(
+        "  boundary loops %zu (%zu edges), isolated vertices %zu, Euler characteristic %d\n",
+        info.boundaryLoops, info.boundaryEdges, info.isolatedVertices, info.eulerCharacteristic);
     std::printf("  %s", info.manifold ? "manifold" : "NOT manifold");
-    if (!info.manifold) std::printf(" (%zu non-manifold edges, %zu non-manifold vertices)", info.nonManifoldEdges, info.nonManifoldVertices);
-    std::printf("\n  scheme %s, boundary %s, fvar %s; morph targets %zu\n", toString(m.options.scheme), toString(m.options.boundary),
-                toString(m.options.fvar), m.morphTargets.size());
+    if (!info.manifold)
+        std::printf(" (%zu non-manifold edges, %zu non-manifold vertices)", info.nonManifoldEdges,
+                    info.nonManifoldVertices);
+    std::printf("\n  scheme %s, boundary %s, fvar %s; morph targets %zu\n",
+                toString(m.options.scheme), toString(m.options.boundary), toString(m.options.fvar),
+                m.morphTargets.size());
     printNotes(report.notes);
 }
 
-void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, bool limit, const std::string& out, bool asJson,
-                  bool repair) {
+void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, bool limit,
+                  const std::string& out, bool asJson, bool repair) {
     io::checkNotInput(out, {file});
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions lo;
@@ -152,7 +166,9 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
     s.options = flags.resolve(cage);
     std::string ext = meshFormat(out);
     const bool gltf = ext == ".gltf" || ext == ".glb";
-    if (!gltf && ext != ".obj" && ext != ".ply") throw CliError(out + ": unknown output format '" + ext + "' (expected .obj, .ply, .gltf or .glb)");
+    if (!gltf && ext != ".obj" && ext != ".ply")
+        throw CliError(out + ": unknown output format '" + ext +
+                       "' (expected .obj, .ply, .gltf or .glb)");
     s.buildRenderMesh = gltf || limit; // limit evaluation runs on the render vertices
     t0 = std::chrono::steady_clock::now();
     Subdivider sub(cage, s, file);
@@ -160,7 +176,8 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
     t0 = std::chrono::steady_clock::now();
     WriteOptions wo;
     wo.inputs = {file};
-    std::vector<std::string> notes = gltf ? writeRenderMesh(out, sub.renderMesh(), wo) : writePolygonMesh(out, sub.refined(), wo);
+    std::vector<std::string> notes = gltf ? writeRenderMesh(out, sub.renderMesh(), wo)
+                                          : writePolygonMesh(out, sub.refined(), wo);
     double writeSeconds = secondsSince(t0);
     const SubdivisionTimings& tm = sub.timings();
     json j = {{"input", file},
@@ -185,10 +202,13 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
     std::vector<std::string> all = report.notes;
     all.insert(all.end(), notes.begin(), notes.end());
     j["notes"] = all;
-    if (asJson) std::cout << j.dump(2) << "\n";
+    if (asJson)
+        std::cout << j.dump(2) << "\n";
     else {
-        std::printf("%s: level %d %s%s: %zu faces, %zu vertices in %.3f s -> %s\n", file.c_str(), level, toString(s.options.scheme),
-                    limit ? " (limit)" : "", sub.refined().faceCount(), sub.refined().vertexCount(), refineSeconds, out.c_str());
+        std::printf("%s: level %d %s%s: %zu faces, %zu vertices in %.3f s -> %s\n", file.c_str(),
+                    level, toString(s.options.scheme), limit ? " (limit)" : "",
+                    sub.refined().faceCount(), sub.refined().vertexCount(), refineSeconds,
+                    out.c_str());
     }
     printNotes(all);
 }
@@ -200,7 +220,8 @@ std::vector<float> parseWeights(const std::string& text) {
     while (std::getline(ss, item, ',')) {
         char* end = nullptr;
         double d = std::strtod(item.c_str(), &end);
-        if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(d) || std::fabs(d) > 1e6) {
+        if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(d) ||
+            std::fabs(d) > 1e6) {
             throw CliError("--weights: '" + item + "' is not a finite number (|w| <= 1e6)");
         }
         w.push_back(float(d));
@@ -209,8 +230,9 @@ std::vector<float> parseWeights(const std::string& text) {
     return w;
 }
 
-void runMorph(const std::string& file, const std::string& weightsText, const std::string& normalsMode, int level, bool limit,
-              const std::string& out, bool asJson, bool repair) {
+void runMorph(const std::string& file, const std::string& weightsText,
+              const std::string& normalsMode, int level, bool limit, const std::string& out,
+              bool asJson, bool repair) {
     io::checkNotInput(out, {file});
     std::vector<float> weights = parseWeights(weightsText);
     MorphNormals mode = normalsMode == "blend" ? MorphNormals::Blend : MorphNormals::Recompute;
@@ -228,7 +250,8 @@ void runMorph(const std::string& file, const std::string& weightsText, const std
         targets = base.morphTargets.size();
         if (targets == 0) throw io::InputError(file, "", "has no morph targets");
         if (weights.size() != targets) {
-            throw CliError(file + " has " + std::to_string(targets) + " morph targets; --weights gave " + std::to_string(weights.size()));
+            throw CliError(file + " has " + std::to_string(targets) +
+                           " morph targets; --weights gave " + std::to_string(weights.size()));
         }
         Morpher morpher(base);
         morpher.apply(weights, mode, result);
@@ -239,7 +262,8 @@ void runMorph(const std::string& file, const std::string& weightsText, const std
         targets = cage.morphTargets.size();
         if (targets == 0) throw io::InputError(file, "", "has no morph targets");
         if (weights.size() != targets) {
-            throw CliError(file + " has " + std::to_string(targets) + " morph targets; --weights gave " + std::to_string(weights.size()));
+            throw CliError(file + " has " + std::to_string(targets) +
+                           " morph targets; --weights gave " + std::to_string(weights.size()));
         }
         // Morph the cage, then subdivide (subdivision is linear: the same as
         // morphing the refined mesh with refined deltas).
@@ -253,19 +277,28 @@ void runMorph(const std::string& file, const std::string& weightsText, const std
         s.options = cage.options;
         Subdivider sub(morphed, s, file);
         result = sub.renderMesh();
-        if (mode == MorphNormals::Blend) report.notes.push_back("--normals blend needs the file's normal deltas; subdivided meshes recompute them");
+        if (mode == MorphNormals::Blend)
+            report.notes.push_back(
+                "--normals blend needs the file's normal deltas; subdivided meshes recompute them");
     }
     double seconds = secondsSince(t0);
     std::vector<std::string> notes = writeRenderMesh(out, result, wo);
     std::vector<std::string> all = report.notes;
     all.insert(all.end(), notes.begin(), notes.end());
     if (asJson) {
-        std::cout << json{{"input", file}, {"output", out}, {"targets", targets}, {"weights", weights},
-                          {"vertices", result.vertexCount()}, {"triangles", result.triangleCount()}, {"seconds", seconds}, {"notes", all}}
+        std::cout << json{{"input", file},
+                          {"output", out},
+                          {"targets", targets},
+                          {"weights", weights},
+                          {"vertices", result.vertexCount()},
+                          {"triangles", result.triangleCount()},
+                          {"seconds", seconds},
+                          {"notes", all}}
                          .dump(2)
                   << "\n";
     } else {
-        std::printf("%s: %zu targets morphed, %zu vertices -> %s\n", file.c_str(), targets, result.vertexCount(), out.c_str());
+        std::printf("%s: %zu targets morphed, %zu vertices -> %s\n", file.c_str(), targets,
+                    result.vertexCount(), out.c_str());
     }
     printNotes(all);
 }
@@ -273,24 +306,28 @@ void runMorph(const std::string& file, const std::string& weightsText, const std
 } // namespace
 
 CLI::App* addMeshCommands(CLI::App& app, int& status) {
-    CLI::App* mesh = app.add_subcommand("mesh", "mesh pipeline: inspect, subdivide, morph (OBJ/OFF/PLY/STL/glTF)");
+    CLI::App* mesh = app.add_subcommand(
+        "mesh", "mesh pipeline: inspect, subdivide, morph (OBJ/OFF/PLY/STL/glTF)");
     mesh->require_subcommand(1);
 
     {
-        auto* cmd = mesh->add_subcommand("info", "vertices, faces, face degrees, UV sets, tags, boundary loops, manifoldness");
+        auto* cmd = mesh->add_subcommand(
+            "info", "vertices, faces, face degrees, UV sets, tags, boundary loops, manifoldness");
         auto file = std::make_shared<std::string>();
         auto asJson = std::make_shared<bool>(false);
         auto repair = std::make_shared<bool>(false);
         cmd->add_option("FILE", *file, "mesh file (.obj .off .ply .stl .gltf .glb)")->required();
         cmd->add_flag("--json", *asJson, "print JSON");
-        cmd->add_flag("--repair", *repair, "drop degenerate faces and weld exact duplicate vertices first");
+        cmd->add_flag("--repair", *repair,
+                      "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([file, asJson, repair, &status] {
             runInfo(*file, *asJson, *repair);
             status = 0;
         });
     }
     {
-        auto* cmd = mesh->add_subcommand("subdivide", "refine with OpenSubdiv (uniform, optional limit surface)");
+        auto* cmd = mesh->add_subcommand(
+            "subdivide", "refine with OpenSubdiv (uniform, optional limit surface)");
         auto file = std::make_shared<std::string>();
         auto out = std::make_shared<std::string>();
         auto level = std::make_shared<int>(2);
@@ -299,19 +336,26 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto repair = std::make_shared<bool>(false);
         auto flags = std::make_shared<SchemeFlags>();
         cmd->add_option("FILE", *file, "control cage")->required();
-        cmd->add_option("--level", *level, "uniform refinement level")->required()->check(CLI::Range(0, kMaxSubdivisionLevel));
+        cmd->add_option("--level", *level, "uniform refinement level")
+            ->required()
+            ->check(CLI::Range(0, kMaxSubdivisionLevel));
         flags->add(cmd);
         cmd->add_flag("--limit", *limit, "positions, normals and UVs on the limit surface");
-        cmd->add_option("-o,--output", *out, "output .obj/.ply (polygons) or .gltf/.glb (triangles with normals)")->required();
-        cmd->add_flag("--json", *asJson, "print statistics as JSON (faces, vertices, seconds, ...)");
-        cmd->add_flag("--repair", *repair, "drop degenerate faces and weld exact duplicate vertices first");
+        cmd->add_option("-o,--output", *out,
+                        "output .obj/.ply (polygons) or .gltf/.glb (triangles with normals)")
+            ->required();
+        cmd->add_flag("--json", *asJson,
+                      "print statistics as JSON (faces, vertices, seconds, ...)");
+        cmd->add_flag("--repair", *repair,
+                      "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
             runSubdivide(*file, *level, *flags, *limit, *out, *asJson, *repair);
             status = 0;
         });
     }
     {
-        auto* cmd = mesh->add_subcommand("morph", "apply morph-target weights and write the result");
+        auto* cmd =
+            mesh->add_subcommand("morph", "apply morph-target weights and write the result");
         auto file = std::make_shared<std::string>();
         auto out = std::make_shared<std::string>();
         auto weights = std::make_shared<std::string>();
@@ -323,12 +367,16 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         cmd->add_option("FILE", *file, "mesh with morph targets (glTF)")->required();
         cmd->add_option("--weights", *weights, "one weight per target: w0,w1,...")->required();
         cmd->add_option("-o,--output", *out, "output .gltf/.glb/.obj/.ply")->required();
-        cmd->add_option("--normals", *normals, "recompute (from the morphed surface) or blend (the targets' normal deltas)")
+        cmd->add_option(
+               "--normals", *normals,
+               "recompute (from the morphed surface) or blend (the targets' normal deltas)")
             ->check(CLI::IsMember({"recompute", "blend"}));
-        cmd->add_option("--level", *level, "subdivide the morphed cage to this level")->check(CLI::Range(0, kMaxSubdivisionLevel));
+        cmd->add_option("--level", *level, "subdivide the morphed cage to this level")
+            ->check(CLI::Range(0, kMaxSubdivisionLevel));
         cmd->add_flag("--limit", *limit, "evaluate the limit surface of the morphed cage");
         cmd->add_flag("--json", *asJson, "print JSON");
-        cmd->add_flag("--repair", *repair, "drop degenerate faces and weld exact duplicate vertices first");
+        cmd->add_flag("--repair", *repair,
+                      "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
             runMorph(*file, *weights, *normals, *level, *limit, *out, *asJson, *repair);
             status = 0;

@@ -49,7 +49,8 @@ void runTangents(const TangentsOptions& o, int& status) {
                        "nothing is stored)");
     const std::string outFormat = mesh::meshFormat(o.output);
     if (outFormat != ".gltf" && outFormat != ".glb")
-        throw CliError(o.output + ": TANGENT needs a glTF output (.gltf or .glb), not '" + outFormat + "'");
+        throw CliError(o.output + ": TANGENT needs a glTF output (.gltf or .glb), not '" +
+                       outFormat + "'");
     if (o.level < 0 || o.level > mesh::kMaxSubdivisionLevel)
         throw CliError("--level " + std::to_string(o.level) + ": expected 0.." +
                        std::to_string(mesh::kMaxSubdivisionLevel));
@@ -70,7 +71,8 @@ void runTangents(const TangentsOptions& o, int& status) {
         result = subdivider.renderMesh();
         if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
-                                 "the mesh has " + std::to_string(result.uvSets.size()) + " UV set(s)");
+                                 "the mesh has " + std::to_string(result.uvSets.size()) +
+                                     " UV set(s)");
         changed = mesh::generateTangents(result, *method, o.uvSet,
                                          settings.limit ? &subdivider.limitFrame() : nullptr);
     } else {
@@ -78,16 +80,19 @@ void runTangents(const TangentsOptions& o, int& status) {
         result = mesh::loadRenderMesh(o.input);
         if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
-                                 "the mesh has " + std::to_string(result.uvSets.size()) + " UV set(s)");
+                                 "the mesh has " + std::to_string(result.uvSets.size()) +
+                                     " UV set(s)");
         changed = mesh::generateTangents(result, *method, o.uvSet);
     }
 
     mesh::WriteOptions write;
     write.inputs = {o.input};
     const std::vector<std::string> notes = mesh::writeRenderMesh(o.output, result, write);
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    const char* changedKey = *method == mesh::TangentMethod::Limit ? "irregular_vertices" : "split_vertices";
+    const char* changedKey =
+        *method == mesh::TangentMethod::Limit ? "irregular_vertices" : "split_vertices";
     if (o.json) {
         nlohmann::json j;
         j["method"] = std::string(mesh::tangentMethodName(*method));
@@ -101,12 +106,14 @@ void runTangents(const TangentsOptions& o, int& status) {
         j["seconds"] = seconds;
         std::cout << j.dump() << "\n";
     } else {
-        std::printf("%s: %s tangents for TEXCOORD_%d%s: %zu vertices, %zu triangles, %zu %s -> %s (%.3f s)\n",
+        std::printf("%s: %s tangents for TEXCOORD_%d%s: %zu vertices, %zu triangles, %zu %s -> %s "
+                    "(%.3f s)\n",
                     o.input.c_str(), std::string(mesh::tangentMethodName(*method)).c_str(), o.uvSet,
                     subdivide ? (" at level " + std::to_string(o.level)).c_str() : "",
                     result.vertexCount(), result.triangleCount(), changed,
-                    *method == mesh::TangentMethod::Limit ? "irregular vertices (neighbour fallback)"
-                                                          : "vertices split",
+                    *method == mesh::TangentMethod::Limit
+                        ? "irregular vertices (neighbour fallback)"
+                        : "vertices split",
                     o.output.c_str(), seconds);
         for (const std::string& n : notes) std::printf("note: %s\n", n.c_str());
     }
@@ -130,7 +137,8 @@ void addMeshTangentsCommand(CLI::App& meshGroup, int& status) {
                     "Uniform subdivision level first (limit: the level whose vertices get limit "
                     "frames; 0 = the cage's own vertices)")
         ->capture_default_str();
-    cmd->add_option("--scheme", opts->scheme, "catmark, loop or bilinear (default: the file's tag)");
+    cmd->add_option("--scheme", opts->scheme,
+                    "catmark, loop or bilinear (default: the file's tag)");
     cmd->add_option("-o,--output", opts->output, "Output .gltf or .glb")->required();
     cmd->add_flag("--json", opts->json, "Print a JSON summary");
     cmd->callback([opts, &status] { runTangents(*opts, status); });

@@ -49,10 +49,10 @@ Scene sceneFromArg(const std::string& arg) {
 void parseSize(const std::string& s, int& w, int& h) {
     unsigned a = 0, b = 0;
     char x = 0, extra = 0;
-    if (std::sscanf(s.c_str(), "%u%c%u%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') || a < 1 ||
-        b < 1 || a > unsigned(kMaxImageSize) || b > unsigned(kMaxImageSize)) {
-        throw CliError("--size: expected WxH with 1 <= W, H <= " + std::to_string(kMaxImageSize) + ", got \"" + s +
-                       "\"");
+    if (std::sscanf(s.c_str(), "%u%c%u%c", &a, &x, &b, &extra) != 3 || (x != 'x' && x != 'X') ||
+        a < 1 || b < 1 || a > unsigned(kMaxImageSize) || b > unsigned(kMaxImageSize)) {
+        throw CliError("--size: expected WxH with 1 <= W, H <= " + std::to_string(kMaxImageSize) +
+                       ", got \"" + s + "\"");
     }
     w = int(a);
     h = int(b);
@@ -60,14 +60,16 @@ void parseSize(const std::string& s, int& w, int& h) {
 
 void overrideTangents(Scene& scene, const std::string& tbn) {
     if (tbn.empty()) return;
-    TangentSource src = tbn == "pixel" ? TangentSource::Pixel
+    TangentSource src = tbn == "pixel"        ? TangentSource::Pixel
                         : tbn == "mikktspace" ? TangentSource::MikkTSpace
                                               : TangentSource::Limit;
     for (auto& m : scene.meshes) {
         // Every UV set whose tangent basis an enabled layer reads gets the
         // source (pixel resets them all; vertex tangents are generated only
         // for those sets anyway).
-        uint32_t sets = src == TangentSource::Pixel ? 0u : tangentBasisUvSets(scene.materials[size_t(m.material)]);
+        uint32_t sets = src == TangentSource::Pixel
+                            ? 0u
+                            : tangentBasisUvSets(scene.materials[size_t(m.material)]);
         m.tangents.assign(size_t(kMaxUvSets), TangentSource::Pixel);
         for (int k = 0; k < kMaxUvSets; ++k) {
             if (sets >> k & 1u) m.tangents[size_t(k)] = src;
@@ -77,7 +79,8 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
                 m.subdivLimit = true;
                 m.subdivide = true;
             } else {
-                throw CliError("--tbn limit: mesh " + m.fieldPath + " is procedural (limit frames need a subdivision mesh file)");
+                throw CliError("--tbn limit: mesh " + m.fieldPath +
+                               " is procedural (limit frames need a subdivision mesh file)");
             }
         }
     }
@@ -87,32 +90,45 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
 
 void addRenderCommands(CLI::App& app, int& status) {
     // ---- render
-    auto* render = app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
+    auto* render =
+        app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
     struct RenderOpts {
         std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact";
         double frame = 0.0;
         bool cpu = false, allFrames = false, verbose = false, compare = false;
     };
     auto ro = std::make_shared<RenderOpts>();
-    render->add_option("scene", ro->scene, "Scene JSON, or a model file (glTF/OBJ) to frame automatically");
-    render->add_option("-o,--output", ro->out, "Output image (.png tone-mapped, .exr linear); default out/<name>.png");
+    render->add_option("scene", ro->scene,
+                       "Scene JSON, or a model file (glTF/OBJ) to frame automatically");
+    render->add_option("-o,--output", ro->out,
+                       "Output image (.png tone-mapped, .exr linear); default out/<name>.png");
     render->add_option("--size", ro->size, "Image size WxH (default: the scene's output size)");
-    render->add_option("--aov", ro->aov, "Output variable: color, normal, surfgrad, tangent, bitangent, basenormal, uv, primid");
-    render->add_option("--frame", ro->frame, "Frame number (time = frame / fps)")->check(CLI::Range(0.0, 1e7));
-    render->add_option("--tbn", ro->tbn, "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit")
+    render->add_option(
+        "--aov", ro->aov,
+        "Output variable: color, normal, surfgrad, tangent, bitangent, basenormal, uv, primid");
+    render->add_option("--frame", ro->frame, "Frame number (time = frame / fps)")
+        ->check(CLI::Range(0.0, 1e7));
+    render
+        ->add_option("--tbn", ro->tbn,
+                     "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit")
         ->check(CLI::IsMember({"pixel", "mikktspace", "limit"}));
     render->add_flag("--cpu", ro->cpu, "Use the CPU reference renderer instead of OpenGL");
-    render->add_option("--cpu-derivatives", ro->cpuDeriv,
-                       "CPU reference screen derivatives: analytic (exact) or quad (emulates dFdxFine)")
+    render
+        ->add_option(
+            "--cpu-derivatives", ro->cpuDeriv,
+            "CPU reference screen derivatives: analytic (exact) or quad (emulates dFdxFine)")
         ->check(CLI::IsMember({"analytic", "quad"}));
-    render->add_option("--cpu-lod", ro->cpuLod,
-                       "CPU reference texture LOD: exact (GL spec log2) or llvmpipe (its fast log2)")
+    render
+        ->add_option("--cpu-lod", ro->cpuLod,
+                     "CPU reference texture LOD: exact (GL spec log2) or llvmpipe (its fast log2)")
         ->check(CLI::IsMember({"exact", "llvmpipe"}));
-    render->add_flag("--all-frames", ro->allFrames, "Render every frame of the scene to OUT_NNNN.ext");
+    render->add_flag("--all-frames", ro->allFrames,
+                     "Render every frame of the scene to OUT_NNNN.ext");
     render->add_flag("-v,--verbose", ro->verbose, "Print what was loaded and compiled");
-    render->add_flag("--compare-cpu", ro->compare,
-                     "Also render the normal AOV with the CPU reference and print the per-pixel angle "
-                     "differences (pixels covered by the same primitive in both)");
+    render->add_flag(
+        "--compare-cpu", ro->compare,
+        "Also render the normal AOV with the CPU reference and print the per-pixel angle "
+        "differences (pixels covered by the same primitive in both)");
     render->callback([ro, &status] {
         auto aov = parseAov(ro->aov);
         if (!aov) throw CliError("--aov: unknown output \"" + ro->aov + "\"");
@@ -129,7 +145,9 @@ void addRenderCommands(CLI::App& app, int& status) {
         }
         std::string outExt = lowerExt(out);
         if (outExt != ".png" && outExt != ".exr") {
-            throw io::InputError(out.string(), "", "unsupported image format \"" + outExt + "\" (expected .png or .exr)");
+            throw io::InputError(out.string(), "",
+                                 "unsupported image format \"" + outExt +
+                                     "\" (expected .png or .exr)");
         }
         if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
         int w = 0, h = 0;
@@ -146,8 +164,10 @@ void addRenderCommands(CLI::App& app, int& status) {
             gl = std::make_unique<GlRenderer>();
         }
         CpuOptions cpuOpt;
-        cpuOpt.derivatives = ro->cpuDeriv == "quad" ? CpuDerivatives::Quad : CpuDerivatives::Analytic;
-        cpuOpt.textureLod = ro->cpuLod == "llvmpipe" ? sg::glsl::LodRule::FastLog2 : sg::glsl::LodRule::Exact;
+        cpuOpt.derivatives =
+            ro->cpuDeriv == "quad" ? CpuDerivatives::Quad : CpuDerivatives::Analytic;
+        cpuOpt.textureLod =
+            ro->cpuLod == "llvmpipe" ? sg::glsl::LodRule::FastLog2 : sg::glsl::LodRule::Exact;
         int first = int(ro->frame), count = 1;
         if (ro->allFrames) {
             first = 0;
@@ -158,12 +178,14 @@ void addRenderCommands(CLI::App& app, int& status) {
             applyFrame(scene, assets, frame / scene.fps);
             if (gl) gl->invalidateMeshes();
             View view = makeView(scene, assets, w, h, *aov);
-            Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
+            Image img =
+                gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
             fs::path target = out;
             if (ro->allFrames) {
                 char suffix[16];
                 std::snprintf(suffix, sizeof suffix, "_%04d", first + f);
-                target = out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+                target =
+                    out.parent_path() / (out.stem().string() + suffix + out.extension().string());
             }
             writeImage(target, img, *aov, scene.output.exposure);
             if (ro->compare && gl) {
@@ -171,18 +193,22 @@ void addRenderCommands(CLI::App& app, int& status) {
                 nv.aov = Aov::Normal;
                 pv.aov = Aov::PrimId;
                 Image gn = gl->render(scene, assets, nv), gp = gl->render(scene, assets, pv);
-                Image cn = renderCpu(scene, assets, nv, cpuOpt), cp = renderCpu(scene, assets, pv, cpuOpt);
+                Image cn = renderCpu(scene, assets, nv, cpuOpt),
+                      cp = renderCpu(scene, assets, pv, cpuOpt);
                 VectorImageDiff d = compareVectorImages(gn, cn, gp, cp);
-                std::printf("normal AOV, OpenGL vs CPU reference: %zu pixels compared, %zu coverage "
-                            "mismatches, %zu non-finite\n  angle (deg): mean %.4g  p50 %.4g  p90 %.4g  "
-                            "p99 %.4g  p99.9 %.4g  max %.4g at (%d, %d)\n",
-                            d.compared, d.coverageMismatch, d.nonFinite, d.meanDeg, d.p50Deg, d.p90Deg,
-                            d.p99Deg, d.p999Deg, d.maxDeg, d.maxX, d.maxY);
+                std::printf(
+                    "normal AOV, OpenGL vs CPU reference: %zu pixels compared, %zu coverage "
+                    "mismatches, %zu non-finite\n  angle (deg): mean %.4g  p50 %.4g  p90 %.4g  "
+                    "p99 %.4g  p99.9 %.4g  max %.4g at (%d, %d)\n",
+                    d.compared, d.coverageMismatch, d.nonFinite, d.meanDeg, d.p50Deg, d.p90Deg,
+                    d.p99Deg, d.p999Deg, d.maxDeg, d.maxX, d.maxY);
             }
-            double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::printf("wrote %s (%dx%d, %s, %s%s, %.2f s)\n", target.string().c_str(), img.width, img.height,
-                        aovName(*aov), gl ? "OpenGL" : "CPU reference",
-                        gl ? (", " + std::to_string(gl->stats().programsCompiled) + " programs compiled, GPU " +
+            double secs =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            std::printf("wrote %s (%dx%d, %s, %s%s, %.2f s)\n", target.string().c_str(), img.width,
+                        img.height, aovName(*aov), gl ? "OpenGL" : "CPU reference",
+                        gl ? (", " + std::to_string(gl->stats().programsCompiled) +
+                              " programs compiled, GPU " +
                               std::to_string(gl->stats().gpuMs).substr(0, 6) + " ms")
                                  .c_str()
                            : "",
@@ -212,7 +238,8 @@ void addRenderCommands(CLI::App& app, int& status) {
             MaterialPlan plan = planMaterial(scene, assets, int(i), scene.meshes[i].material);
             if (!seen.insert(plan.signature).second) continue;
             ProgramSource src = assembleProgram(plan);
-            std::printf("// ==== %s (material %s): fragment program\n", scene.meshes[i].fieldPath.c_str(),
+            std::printf("// ==== %s (material %s): fragment program\n",
+                        scene.meshes[i].fieldPath.c_str(),
                         scene.materials[size_t(plan.materialIndex)].name.c_str());
             std::fputs(so->body ? fragmentBody(plan).c_str() : src.fragment.c_str(), stdout);
             if (so->vertex) {
@@ -235,7 +262,8 @@ void addRenderCommands(CLI::App& app, int& status) {
     };
     auto vo = std::make_shared<ViewOpts>();
     view->add_option("scene", vo->scene, "Scene JSON or model file (default: the built-in scene)");
-    view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")->check(CLI::Range(0, 1000000));
+    view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")
+        ->check(CLI::Range(0, 1000000));
     view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
     view->add_option("--size", vo->size, "Window size WxH (default 1280x720)");
     view->callback([vo, &status] {
@@ -244,12 +272,14 @@ void addRenderCommands(CLI::App& app, int& status) {
         opt.maxFrames = vo->frames;
         opt.screenshot = vo->screenshot;
         if (!vo->size.empty()) parseSize(vo->size, opt.width, opt.height);
-        if (!opt.screenshot.empty() && !vo->scene.empty()) io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
+        if (!opt.screenshot.empty() && !vo->scene.empty())
+            io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
         status = runViewer(sceneFromArg(vo->scene), opt);
 #else
         (void)vo;
         (void)status;
-        throw CliError("view: this build has no viewer (configure with -DSURFGRAD_BUILD_VIEWER=ON)");
+        throw CliError(
+            "view: this build has no viewer (configure with -DSURFGRAD_BUILD_VIEWER=ON)");
 #endif
     });
 }

@@ -36,9 +36,9 @@ void addSelftestCommand(CLI::App& app, int& status) {
         parity::GpuEvaluator gpuEval(ctx);
         std::printf("surfgrad selftest: C++ (GLM, binary32) build vs GLSL build on %s\n",
                     ctx.renderer().c_str());
-        std::printf("%-22s %7s %10s %10s %10s %9s %7s %8s %6s %9s %9s  %s\n", "function",
-                    "inputs", "max abs", "max rel", "max mixed", "tolerance", "NaN/Inf",
-                    "ill-cond", "expl", "cpu-f64", "gpu-f64", "verdict");
+        std::printf("%-22s %7s %10s %10s %10s %9s %7s %8s %6s %9s %9s  %s\n", "function", "inputs",
+                    "max abs", "max rel", "max mixed", "tolerance", "NaN/Inf", "ill-cond", "expl",
+                    "cpu-f64", "gpu-f64", "verdict");
         bool allOk = true;
         for (const auto& e : eval::entries()) {
             if (!only->empty() && e.name != *only) continue;
@@ -48,14 +48,14 @@ void addSelftestCommand(CLI::App& app, int& status) {
             const bool finite = row.nonFiniteCpu == 0 && row.nonFiniteGpu == 0;
             const bool illOk = double(row.illConditioned + row.backwardExplained) <=
                                tol.maxIllFraction * double(row.records);
-            const bool ok = finite && row.invariantViolations == 0 && row.maxMixedErr <= tol.mixed &&
-                            illOk;
+            const bool ok =
+                finite && row.invariantViolations == 0 && row.maxMixedErr <= tol.mixed && illOk;
             allOk &= ok;
-            std::printf("%-22s %7zu %10.3g %10.3g %10.3g %9.2g %3zu/%-3zu %8zu %6zu %9.2g %9.2g  %s\n",
-                        row.entry.c_str(), row.records, row.maxAbsErr, row.maxRelErr,
-                        row.maxMixedErr, tol.mixed, row.nonFiniteCpu, row.nonFiniteGpu,
-                        row.illConditioned, row.backwardExplained, row.maxCpuRefErr,
-                        row.maxGpuRefErr, ok ? "ok" : "FAIL");
+            std::printf(
+                "%-22s %7zu %10.3g %10.3g %10.3g %9.2g %3zu/%-3zu %8zu %6zu %9.2g %9.2g  %s\n",
+                row.entry.c_str(), row.records, row.maxAbsErr, row.maxRelErr, row.maxMixedErr,
+                tol.mixed, row.nonFiniteCpu, row.nonFiniteGpu, row.illConditioned,
+                row.backwardExplained, row.maxCpuRefErr, row.maxGpuRefErr, ok ? "ok" : "FAIL");
             if (row.invariantViolations) {
                 std::printf("  %zu records break the contract; first: %s\n",
                             row.invariantViolations, row.firstViolation.c_str());
@@ -82,7 +82,8 @@ void addSelftestCommand(CLI::App& app, int& status) {
             "whose binary64\nresult moves by > tolerance/4 under a 2^-21 relative input "
             "perturbation; expl = CPU/GPU\ndisagreements both explained as exact results of "
             "inputs within 2^-18 (backward\nerror); both are excluded from the maxima and "
-            "still checked for finiteness and\ninvariants. cpu-f64, gpu-f64 = max mixed error of each build vs the same formulas "
+            "still checked for finiteness and\ninvariants. cpu-f64, gpu-f64 = max mixed error of "
+            "each build vs the same formulas "
             "in binary64. %.1f s\n",
             secs);
         std::printf("%s\n", allOk ? "selftest: all functions agree" : "selftest: FAILED");

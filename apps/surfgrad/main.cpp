@@ -23,7 +23,8 @@ int main(int argc, char** argv) {
     sg::cli::addEvalCommand(app, status);
     sg::cli::addSelftestCommand(app, status);
     sg::cli::addRenderCommands(app, status);
-    CLI::App* meshGroup = sg::cli::addMeshCommands(app, status); // more mesh subcommands attach here
+    CLI::App* meshGroup =
+        sg::cli::addMeshCommands(app, status); // more mesh subcommands attach here
     sg::cli::addMeshTangentsCommand(*meshGroup, status);
     sg::cli::addFeaturesCommands(app, status);
     try {

@@ -52,11 +52,16 @@ struct Gen {
 // bound), zero or ordinary.
 double advScale(Gen& g) {
     switch (g.pick(6)) {
-    case 0: return g.mag(-18, -12);
-    case 1: return g.mag(12, 18);
-    case 2: return 0.0;
-    case 3: return g.mag(-44, -38); // binary32 denormals: GPUs flush them
-    default: return g.mag(-3, 3);
+    case 0:
+        return g.mag(-18, -12);
+    case 1:
+        return g.mag(12, 18);
+    case 2:
+        return 0.0;
+    case 3:
+        return g.mag(-44, -38); // binary32 denormals: GPUs flush them
+    default:
+        return g.mag(-3, 3);
     }
 }
 
@@ -99,9 +104,14 @@ void fillCamera(Gen& g, float* rec, bool adversarial) {
     if (glm::dot(n, toEye) < 0) n = -n;
     if (adversarial) {
         switch (g.pick(3)) {
-        case 0: n = glm::normalize(n - glm::dot(n, toEye) * toEye); break; // edge-on
-        case 1: n = -n; break;                                             // back-facing
-        default: n = glm::normalize(n + toEye * g.mag(-8, -2));           // nearly edge-on
+        case 0:
+            n = glm::normalize(n - glm::dot(n, toEye) * toEye);
+            break; // edge-on
+        case 1:
+            n = -n;
+            break; // back-facing
+        default:
+            n = glm::normalize(n + toEye * g.mag(-8, -2)); // nearly edge-on
         }
     }
     for (int i = 0; i < 3; ++i) {
@@ -260,8 +270,8 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
     ctx_.makeCurrent();
     auto it = programs_.find(e.kernel);
     if (it == programs_.end()) {
-        auto src = shaders::assemble(eval::evalGpuBody(), "eval[" + e.name + "]",
-                                     eval::evalGpuDefines(e));
+        auto src =
+            shaders::assemble(eval::evalGpuBody(), "eval[" + e.name + "]", eval::evalGpuDefines(e));
         it = programs_.emplace(e.kernel, gl::Program({{gl::Stage::Compute, src}})).first;
     }
     const size_t in = size_t(eval::inStride());
@@ -310,8 +320,8 @@ double conditionProbe(const eval::Entry& e, const float* in, int perturbations) 
     return worst;
 }
 
-bool backwardExplained(const eval::Entry& e, const float* in, const double* cpu,
-                       const double* gpu, double mixedTol) {
+bool backwardExplained(const eval::Entry& e, const float* in, const double* cpu, const double* gpu,
+                       double mixedTol) {
     const int nin = eval::inStride();
     const size_t nout = size_t(eval::outStride());
     std::vector<double> x(static_cast<size_t>(nin)), xp, yp(nout);
@@ -499,7 +509,8 @@ Row compare(GpuEvaluator& gpuEval, const eval::Entry& e, const std::vector<float
         eval::evalDouble(e, x.data(), ref.data());
         // Accuracy vs binary64, leaving out results that are exact for a
         // nearby input (a rounding-level sign branch taken the other way).
-        for (auto [out, maxErr] : {std::pair{&c, &row.maxCpuRefErr}, std::pair{&q, &row.maxGpuRefErr}}) {
+        for (auto [out, maxErr] :
+             {std::pair{&c, &row.maxCpuRefErr}, std::pair{&q, &row.maxGpuRefErr}}) {
             double err = mixedError(e, out->data(), ref.data());
             if (err > mixedTol && (conditionProbe(e, in, kPerturbationsLong) > mixedTol / 4 ||
                                    backwardExplained(e, in, out->data(), out->data(), mixedTol))) {

@@ -75,15 +75,15 @@ struct Row {
     size_t illConditioned = 0;    // records the conditioning probe excludes (see above)
     size_t backwardExplained = 0; // disagreements explained by the backward-error check
     // Over well-conditioned records:
-    double maxAbsErr = 0;   // max |gpu - cpu| over output components
-    double maxRelErr = 0;   // max |gpu - cpu|_inf / |cpu|_inf per field (|cpu|_inf >= 1e-30)
-    double maxMixedErr = 0; // max mixed error (the toleranced measure)
+    double maxAbsErr = 0;    // max |gpu - cpu| over output components
+    double maxRelErr = 0;    // max |gpu - cpu|_inf / |cpu|_inf per field (|cpu|_inf >= 1e-30)
+    double maxMixedErr = 0;  // max mixed error (the toleranced measure)
     double maxCpuRefErr = 0; // max mixed error of the CPU build vs binary64
     double maxGpuRefErr = 0; // max mixed error of the GPU build vs binary64
     // Over all records:
-    double maxMixedErrAll = 0; // including ill-conditioned records
-    size_t nonFiniteCpu = 0;   // records with a NaN/Inf output on the CPU
-    size_t nonFiniteGpu = 0;   // ... on the GPU
+    double maxMixedErrAll = 0;      // including ill-conditioned records
+    size_t nonFiniteCpu = 0;        // records with a NaN/Inf output on the CPU
+    size_t nonFiniteGpu = 0;        // ... on the GPU
     size_t invariantViolations = 0; // records breaking the function's invariants
     std::string firstViolation;     // description of the first one
     size_t worstRecord = 0;         // index of the well-conditioned record with maxMixedErr
@@ -129,8 +129,8 @@ std::string checkInvariants(const eval::Entry& e, const float* in, const float* 
 // The backward-error check above: true when cpu and gpu (output records of
 // entry e for input `in`) are each within mixedTol of the binary64 result at
 // some input within kBackwardRadius of `in`.
-bool backwardExplained(const eval::Entry& e, const float* in, const double* cpu,
-                       const double* gpu, double mixedTol);
+bool backwardExplained(const eval::Entry& e, const float* in, const double* cpu, const double* gpu,
+                       double mixedTol);
 
 // One record as text: the entry's input fields and, when given, output fields
 // of the CPU, GPU and binary64 evaluations (for --verbose reports).

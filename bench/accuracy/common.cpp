@@ -53,9 +53,12 @@ std::string fmt(double v, int decimals) {
 std::string fmtErr(double v) {
     char buf[64];
     if (v == 0.0) return "0";
-    if (std::fabs(v) >= 100.0) std::snprintf(buf, sizeof buf, "%.0f", v);
-    else if (std::fabs(v) >= 0.1) std::snprintf(buf, sizeof buf, "%.3g", v);
-    else std::snprintf(buf, sizeof buf, "%.2e", v);
+    if (std::fabs(v) >= 100.0)
+        std::snprintf(buf, sizeof buf, "%.0f", v);
+    else if (std::fabs(v) >= 0.1)
+        std::snprintf(buf, sizeof buf, "%.3g", v);
+    else
+        std::snprintf(buf, sizeof buf, "%.2e", v);
     return buf;
 }
 
@@ -69,7 +72,8 @@ void Table::print(bool markdown) const {
     std::vector<size_t> width(header.size(), 0);
     for (size_t c = 0; c < header.size(); ++c) width[c] = header[c].size();
     for (const auto& r : rows) {
-        for (size_t c = 0; c < r.size() && c < width.size(); ++c) width[c] = std::max(width[c], r[c].size());
+        for (size_t c = 0; c < r.size() && c < width.size(); ++c)
+            width[c] = std::max(width[c], r[c].size());
     }
     auto line = [&](const std::vector<std::string>& cells) {
         std::string s = markdown ? "|" : "";
@@ -79,8 +83,10 @@ void Table::print(bool markdown) const {
                 s += " " + cell + std::string(width[c] - cell.size(), ' ') + " |";
             } else {
                 // First column left-aligned, numbers right-aligned.
-                if (c == 0) s += cell + std::string(width[c] - cell.size(), ' ');
-                else s += "  " + std::string(width[c] - cell.size(), ' ') + cell;
+                if (c == 0)
+                    s += cell + std::string(width[c] - cell.size(), ' ');
+                else
+                    s += "  " + std::string(width[c] - cell.size(), ' ') + cell;
             }
         }
         std::printf("%s\n", s.c_str());
@@ -89,7 +95,8 @@ void Table::print(bool markdown) const {
     line(header);
     if (markdown) {
         std::string s = "|";
-        for (size_t c = 0; c < width.size(); ++c) s += (c == 0 ? " :" : " ") + std::string(width[c] - 1, '-') + (c == 0 ? " |" : ": |");
+        for (size_t c = 0; c < width.size(); ++c)
+            s += (c == 0 ? " :" : " ") + std::string(width[c] - 1, '-') + (c == 0 ? " |" : ": |");
         std::printf("%s\n", s.c_str());
     } else {
         size_t total = 0;
@@ -112,8 +119,10 @@ Target::Target(int width, int height, int colorCount, bool floatColor)
     std::vector<GLenum> bufs;
     for (int i = 0; i < colorCount; ++i) {
         glCreateRenderbuffers(1, &color_[size_t(i)]);
-        glNamedRenderbufferStorage(color_[size_t(i)], floatColor ? GL_RGBA32F : GL_RGBA8, width, height);
-        glNamedFramebufferRenderbuffer(fbo_, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_RENDERBUFFER, color_[size_t(i)]);
+        glNamedRenderbufferStorage(color_[size_t(i)], floatColor ? GL_RGBA32F : GL_RGBA8, width,
+                                   height);
+        glNamedFramebufferRenderbuffer(fbo_, GLenum(GL_COLOR_ATTACHMENT0 + i), GL_RENDERBUFFER,
+                                       color_[size_t(i)]);
         bufs.push_back(GLenum(GL_COLOR_ATTACHMENT0 + i));
     }
     glNamedFramebufferDrawBuffers(fbo_, GLsizei(bufs.size()), bufs.data());
@@ -175,11 +184,12 @@ GpuMesh::GpuMesh(const sg::mesh::RenderMesh& mesh) {
     glCreateBuffers(1, &vbo_);
     glCreateBuffers(1, &ibo_);
     glNamedBufferData(vbo_, GLsizeiptr(v.size() * sizeof(PackedVertex)), v.data(), GL_STATIC_DRAW);
-    glNamedBufferData(ibo_, GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(), GL_STATIC_DRAW);
+    glNamedBufferData(ibo_, GLsizeiptr(mesh.indices.size() * sizeof(uint32_t)), mesh.indices.data(),
+                      GL_STATIC_DRAW);
     glVertexArrayVertexBuffer(vao_, 0, vbo_, 0, sizeof(PackedVertex));
     glVertexArrayElementBuffer(vao_, ibo_);
-    const GLuint offsets[] = {offsetof(PackedVertex, pos), offsetof(PackedVertex, nrm), offsetof(PackedVertex, uv),
-                              offsetof(PackedVertex, tan)};
+    const GLuint offsets[] = {offsetof(PackedVertex, pos), offsetof(PackedVertex, nrm),
+                              offsetof(PackedVertex, uv), offsetof(PackedVertex, tan)};
     const GLint sizes[] = {3, 3, 2, 4};
     for (GLuint a = 0; a < 4; ++a) {
         glEnableVertexArrayAttrib(vao_, a);
@@ -209,22 +219,27 @@ void main() {
 )";
 }
 
-FullscreenTriangle::FullscreenTriangle() { glCreateVertexArrays(1, &vao_); }
-FullscreenTriangle::~FullscreenTriangle() { glDeleteVertexArrays(1, &vao_); }
+FullscreenTriangle::FullscreenTriangle() {
+    glCreateVertexArrays(1, &vao_);
+}
+FullscreenTriangle::~FullscreenTriangle() {
+    glDeleteVertexArrays(1, &vao_);
+}
 void FullscreenTriangle::draw() const {
     glBindVertexArray(vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
 }
 
-sg::gl::Program makeProgram(const std::string& vertexBody, const std::string& fragmentBody, const std::string& name,
-                            const std::vector<std::string>& defines) {
+sg::gl::Program makeProgram(const std::string& vertexBody, const std::string& fragmentBody,
+                            const std::string& name, const std::vector<std::string>& defines) {
     using sg::gl::Stage;
-    return sg::gl::Program({{Stage::Vertex, sg::shaders::assemble(vertexBody, name + "_vs", defines)},
-                            {Stage::Fragment, sg::shaders::assemble(fragmentBody, name + "_fs", defines)}});
+    return sg::gl::Program(
+        {{Stage::Vertex, sg::shaders::assemble(vertexBody, name + "_vs", defines)},
+         {Stage::Fragment, sg::shaders::assemble(fragmentBody, name + "_fs", defines)}});
 }
 
-unsigned makeFloatTexture(int width, int height, int channels, const std::vector<float>& texels, bool repeatS,
-                          bool repeatT) {
+unsigned makeFloatTexture(int width, int height, int channels, const std::vector<float>& texels,
+                          bool repeatS, bool repeatT) {
     const GLenum internal = channels == 1 ? GL_R32F : channels == 2 ? GL_RG32F : GL_RGBA32F;
     const GLenum format = channels == 1 ? GL_RED : channels == 2 ? GL_RG : GL_RGBA;
     GLuint tex = 0;
@@ -245,7 +260,8 @@ void deleteTexture(unsigned tex) {
     glDeleteTextures(1, &t);
 }
 
-std::vector<double> timeVariants(size_t count, const std::function<void(size_t)>& frame, const Options& o) {
+std::vector<double> timeVariants(size_t count, const std::function<void(size_t)>& frame,
+                                 const Options& o) {
     using Clock = std::chrono::steady_clock;
     // Warm-up: shader JIT, first texture/buffer use.
     for (size_t v = 0; v < count; ++v) {
@@ -263,7 +279,8 @@ std::vector<double> timeVariants(size_t count, const std::function<void(size_t)>
                 const auto t0 = Clock::now();
                 frame(v);
                 glFinish();
-                t[v].push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                t[v].push_back(
+                    std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
             }
         }
         for (size_t v = 0; v < count; ++v) perRun[v].push_back(median(t[v]));

@@ -61,10 +61,10 @@ std::string fmtRatio(double v); // "1.23x"
 
 struct Options {
     bool markdown = false;
-    int runs = 7;    // timing runs per variant (interleaved)
-    int frames = 8;  // frames per run; each = clear + draw + glFinish
-    int size = 1024; // render size for timings (square)
-    bool quick = false; // smaller sizes and fewer runs (tests, smoke runs)
+    int runs = 7;         // timing runs per variant (interleaved)
+    int frames = 8;       // frames per run; each = clear + draw + glFinish
+    int size = 1024;      // render size for timings (square)
+    bool quick = false;   // smaller sizes and fewer runs (tests, smoke runs)
     std::string renderer; // GL_RENDERER of the context the tables run in (for the notes)
 };
 

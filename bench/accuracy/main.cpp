@@ -24,9 +24,10 @@
 namespace {
 
 int usage() {
-    std::fprintf(stderr,
-                 "usage: bench_accuracy_cost [--table frames|subdiv|blend|features|deriv|precision|all]\n"
-                 "                           [--markdown] [--runs N] [--frames N] [--size N] [--quick]\n");
+    std::fprintf(
+        stderr,
+        "usage: bench_accuracy_cost [--table frames|subdiv|blend|features|deriv|precision|all]\n"
+        "                           [--markdown] [--runs N] [--frames N] [--size N] [--quick]\n");
     return 2;
 }
 
@@ -46,9 +47,12 @@ int main(int argc, char** argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const bool hasValue = i + 1 < argc;
-        if (a == "--markdown") o.markdown = true;
-        else if (a == "--quick") o.quick = true;
-        else if (a == "--table" && hasValue) table = argv[++i];
+        if (a == "--markdown")
+            o.markdown = true;
+        else if (a == "--quick")
+            o.quick = true;
+        else if (a == "--table" && hasValue)
+            table = argv[++i];
         else if (a == "--runs" && hasValue) {
             if (!parseInt(argv[++i], 1, 1000, o.runs)) return usage();
         } else if (a == "--frames" && hasValue) {
@@ -68,9 +72,10 @@ int main(int argc, char** argv) {
         const char* name;
         void (*fn)(const study::Options&);
     };
-    const Entry entries[] = {{"frames", study::tableFrames},   {"subdiv", study::tableSubdivision},
-                             {"blend", study::tableBlend},     {"features", study::tableFeatures},
-                             {"deriv", study::tableDerivatives}, {"precision", study::tablePrecision}};
+    const Entry entries[] = {
+        {"frames", study::tableFrames},     {"subdiv", study::tableSubdivision},
+        {"blend", study::tableBlend},       {"features", study::tableFeatures},
+        {"deriv", study::tableDerivatives}, {"precision", study::tablePrecision}};
     bool found = table == "all";
     for (const Entry& e : entries) found = found || table == e.name;
     if (!found) return usage();
@@ -84,7 +89,8 @@ int main(int argc, char** argv) {
     }
     std::printf("bench_accuracy_cost: %u hardware threads; LP_NUM_THREADS=%s; load average %s\n",
                 std::thread::hardware_concurrency(),
-                std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)", load.c_str());
+                std::getenv("LP_NUM_THREADS") ? std::getenv("LP_NUM_THREADS") : "(default)",
+                load.c_str());
     try {
         // One context for every table (GL names are per context).
         sg::gl::HeadlessContext ctx;

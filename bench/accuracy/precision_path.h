@@ -57,40 +57,86 @@ struct Half {
     friend bool operator<(Half a, Half b) { return a.v < b.v; }
 };
 
-inline float toFloat(float x) { return x; }
-inline float toFloat(double x) { return float(x); }
-inline float toFloat(Half x) { return x.v; }
-inline float sabs(float x) { return std::fabs(x); }
-inline double sabs(double x) { return std::fabs(x); }
-inline Half sabs(Half x) { return Half(std::fabs(x.v)); }
-inline float srsqrt(float x) { return 1.0f / std::sqrt(x); }
-inline double srsqrt(double x) { return 1.0 / std::sqrt(x); }
-inline Half srsqrt(Half x) { return Half(1.0f / std::sqrt(x.v)); } // one rounding, like a hardware rsqrt
-template <class T> T smax(T a, T b) { return a < b ? b : a; }
+inline float toFloat(float x) {
+    return x;
+}
+inline float toFloat(double x) {
+    return float(x);
+}
+inline float toFloat(Half x) {
+    return x.v;
+}
+inline float sabs(float x) {
+    return std::fabs(x);
+}
+inline double sabs(double x) {
+    return std::fabs(x);
+}
+inline Half sabs(Half x) {
+    return Half(std::fabs(x.v));
+}
+inline float srsqrt(float x) {
+    return 1.0f / std::sqrt(x);
+}
+inline double srsqrt(double x) {
+    return 1.0 / std::sqrt(x);
+}
+inline Half srsqrt(Half x) {
+    return Half(1.0f / std::sqrt(x.v));
+} // one rounding, like a hardware rsqrt
+template <class T>
+T smax(T a, T b) {
+    return a < b ? b : a;
+}
 
-template <class T> struct V2 {
+template <class T>
+struct V2 {
     T x, y;
 };
-template <class T> struct V3 {
+template <class T>
+struct V3 {
     T x, y, z;
 };
-template <class T> V3<T> operator+(V3<T> a, V3<T> b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-template <class T> V3<T> operator-(V3<T> a, V3<T> b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-template <class T> V3<T> operator*(T s, V3<T> a) { return {s * a.x, s * a.y, s * a.z}; }
-template <class T> V3<T> operator/(V3<T> a, T s) { return {a.x / s, a.y / s, a.z / s}; }
-template <class T> T dot(V3<T> a, V3<T> b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-template <class T> V3<T> cross(V3<T> a, V3<T> b) {
+template <class T>
+V3<T> operator+(V3<T> a, V3<T> b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+template <class T>
+V3<T> operator-(V3<T> a, V3<T> b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+template <class T>
+V3<T> operator*(T s, V3<T> a) {
+    return {s * a.x, s * a.y, s * a.z};
+}
+template <class T>
+V3<T> operator/(V3<T> a, T s) {
+    return {a.x / s, a.y / s, a.z / s};
+}
+template <class T>
+T dot(V3<T> a, V3<T> b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+template <class T>
+V3<T> cross(V3<T> a, V3<T> b) {
     return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-template <class T> T maxAbs(V3<T> v) { return smax(smax(sabs(v.x), sabs(v.y)), sabs(v.z)); }
-template <class T> T maxAbs(V2<T> v) { return smax(sabs(v.x), sabs(v.y)); }
+template <class T>
+T maxAbs(V3<T> v) {
+    return smax(smax(sabs(v.x), sabs(v.y)), sabs(v.z));
+}
+template <class T>
+T maxAbs(V2<T> v) {
+    return smax(sabs(v.x), sabs(v.y));
+}
 
-constexpr float kFltMin = 1.175494351e-38f;  // SG_FLT_MIN
-constexpr float kFltMax = 3.402823466e+38f;  // SG_FLT_MAX
-constexpr float kFltEps = 1.192092896e-07f;  // SG_FLT_EPSILON
+constexpr float kFltMin = 1.175494351e-38f; // SG_FLT_MIN
+constexpr float kFltMax = 3.402823466e+38f; // SG_FLT_MAX
+constexpr float kFltEps = 1.192092896e-07f; // SG_FLT_EPSILON
 
 // sgSafeNormalize.
-template <class T> V3<T> safeNormalize(V3<T> v, V3<T> fallback) {
+template <class T>
+V3<T> safeNormalize(V3<T> v, V3<T> fallback) {
     const T m = maxAbs(v);
     if (!(toFloat(m) >= kFltMin) || !(toFloat(m) <= kFltMax)) return fallback;
     const V3<T> s = v / m;
@@ -98,20 +144,23 @@ template <class T> V3<T> safeNormalize(V3<T> v, V3<T> fallback) {
 }
 
 // sgScaleToUnitMax3.
-template <class T> V3<T> scaleToUnitMax(V3<T> v) {
+template <class T>
+V3<T> scaleToUnitMax(V3<T> v) {
     const T m = maxAbs(v);
     if (!(toFloat(m) >= kFltMin) || !(toFloat(m) <= kFltMax)) return {T(0.0f), T(0.0f), T(0.0f)};
     return v / m;
 }
 
-template <class T> struct Frame {
+template <class T>
+struct Frame {
     V3<T> nrmBase, dPdx, dPdy, sigmaX, sigmaY;
     T flipSign, resolveSign;
 };
 
 // sgPrologue for a front face, double-sided mode NONE (the vertex normal
 // is never degenerate on the test mesh; the geometric fallback is kept).
-template <class T> Frame<T> prologue(V3<T> vtxNormal, V3<T> dPdx, V3<T> dPdy) {
+template <class T>
+Frame<T> prologue(V3<T> vtxNormal, V3<T> dPdx, V3<T> dPdy) {
     Frame<T> f;
     const V3<T> z{T(0.0f), T(0.0f), T(1.0f)};
     const V3<T> c = cross(scaleToUnitMax(dPdx), scaleToUnitMax(dPdy));
@@ -128,7 +177,8 @@ template <class T> Frame<T> prologue(V3<T> vtxNormal, V3<T> dPdx, V3<T> dPdy) {
 }
 
 // sgGenBasisTB.
-template <class T> void genBasisTB(const Frame<T>& f, V2<T> dSTdx, V2<T> dSTdy, V3<T>& vT, V3<T>& vB) {
+template <class T>
+void genBasisTB(const Frame<T>& f, V2<T> dSTdx, V2<T> dSTdy, V3<T>& vT, V3<T>& vB) {
     const V3<T> zero{T(0.0f), T(0.0f), T(0.0f)};
     vT = zero;
     vB = zero;
@@ -153,7 +203,8 @@ template <class T> void genBasisTB(const Frame<T>& f, V2<T> dSTdx, V2<T> dSTdy, 
 }
 
 // sgTspaceNormalToDeriv (flipV = false).
-template <class T> V2<T> tspaceNormalToDeriv(V2<T> m) {
+template <class T>
+V2<T> tspaceNormalToDeriv(V2<T> m) {
     const T fS = T(1.0f / (128.0f * 128.0f));
     const V2<T> mSq{m.x * m.x, m.y * m.y};
     const T mzSq = T(1.0f) - mSq.x - mSq.y;
@@ -167,7 +218,8 @@ template <class T> V2<T> tspaceNormalToDeriv(V2<T> m) {
 }
 
 // sgRenormFactor + sgMikktsBasis (no huge-value branch: inputs are unit-scale).
-template <class T> void mikktsBasis(V3<T> vtxNormal, V3<T> t, T w, V3<T>& tang, V3<T>& bino, V3<T>& nUnit) {
+template <class T>
+void mikktsBasis(V3<T> vtxNormal, V3<T> t, T w, V3<T>& tang, V3<T>& bino, V3<T>& nUnit) {
     const T m = maxAbs(vtxNormal);
     const V3<T> s = vtxNormal / m;
     const T renorm = srsqrt(dot(s, s)) / m;
@@ -178,7 +230,8 @@ template <class T> void mikktsBasis(V3<T> vtxNormal, V3<T> t, T w, V3<T>& tang, 
 }
 
 // sgSurfgradFromTBN + sgResolve.
-template <class T> V3<T> resolveTBN(const Frame<T>& f, V2<T> deriv, V3<T> vT, V3<T> vB) {
+template <class T>
+V3<T> resolveTBN(const Frame<T>& f, V2<T> deriv, V3<T> vT, V3<T> vB) {
     const V3<T> sg = deriv.x * vT + deriv.y * vB;
     return safeNormalize(f.nrmBase - f.resolveSign * sg, f.nrmBase);
 }

@@ -29,14 +29,17 @@ struct Layer {
     glm::dvec2 grad(double x, double y) const {
         glm::dvec2 g(0.0);
         for (int k = 0; k < 2; ++k) {
-            const double c = w[k] * 2.0 * M_PI * std::cos(2.0 * M_PI * (fx[k] * x + fy[k] * y) + ph[k]);
+            const double c =
+                w[k] * 2.0 * M_PI * std::cos(2.0 * M_PI * (fx[k] * x + fy[k] * y) + ph[k]);
             g += c * glm::dvec2(fx[k], fy[k]);
         }
         return amp * g;
     }
 };
 
-glm::dvec3 normalOfGrad(const glm::dvec2& g) { return glm::normalize(glm::dvec3(-g.x, -g.y, 1.0)); }
+glm::dvec3 normalOfGrad(const glm::dvec2& g) {
+    return glm::normalize(glm::dvec3(-g.x, -g.y, 1.0));
+}
 
 const char* kFragment = R"(
 uniform sampler2D uA;
@@ -83,7 +86,8 @@ void main() {
 }
 )";
 
-const char* kMethodNames[STUDY_BLEND_COUNT] = {"surface gradient (sum)", "linear", "overlay", "UDN", "whiteout", "RNM"};
+const char* kMethodNames[STUDY_BLEND_COUNT] = {
+    "surface gradient (sum)", "linear", "overlay", "UDN", "whiteout", "RNM"};
 
 } // namespace
 
@@ -121,7 +125,8 @@ void tableBlend(const Options& o) {
         glUniform3fv(p.uniform("uN"), 1, &n[0]);
         glUniform1i(p.uniform("uA"), 0);
         glUniform1i(p.uniform("uB"), 1);
-        if (p.uniform("uRot") >= 0) glUniform2f(p.uniform("uRot"), std::cos(0.39f), std::sin(0.39f));
+        if (p.uniform("uRot") >= 0)
+            glUniform2f(p.uniform("uRot"), std::cos(0.39f), std::sin(0.39f));
     };
 
     // errors[method][regime], order dependence (steep) per method.
@@ -161,7 +166,9 @@ void tableBlend(const Options& o) {
             std::vector<double> err;
             for (size_t k = 0; k < ab.size(); ++k) {
                 err.push_back(angleDeg(glm::dvec3(ab[k]), truth[k]));
-                if (r == 2) orderMax[size_t(m)] = std::max(orderMax[size_t(m)], angleDeg(glm::dvec3(ab[k]), glm::dvec3(ba[k])));
+                if (r == 2)
+                    orderMax[size_t(m)] = std::max(orderMax[size_t(m)],
+                                                   angleDeg(glm::dvec3(ab[k]), glm::dvec3(ba[k])));
             }
             stats[size_t(m)][size_t(r)] = errorStats(err);
         }
@@ -193,34 +200,45 @@ void tableBlend(const Options& o) {
     glBindTextureUnit(0, texA);
     glBindTextureUnit(1, texB);
     Target tim(tw, tw, 1, false);
-    const auto msOne = timeVariants(STUDY_BLEND_COUNT, [&](size_t m) {
-        tim.clear();
-        setUniforms(one[m], false);
-        fullscreen.draw();
-    }, o);
-    const auto msLoop = timeVariants(STUDY_BLEND_COUNT, [&](size_t m) {
-        tim.clear();
-        setUniforms(loop[m], false);
-        fullscreen.draw();
-    }, o);
+    const auto msOne = timeVariants(
+        STUDY_BLEND_COUNT,
+        [&](size_t m) {
+            tim.clear();
+            setUniforms(one[m], false);
+            fullscreen.draw();
+        },
+        o);
+    const auto msLoop = timeVariants(
+        STUDY_BLEND_COUNT,
+        [&](size_t m) {
+            tim.clear();
+            setUniforms(loop[m], false);
+            fullscreen.draw();
+        },
+        o);
     deleteTexture(texA);
     deleteTexture(texB);
 
     Table t;
-    t.title = "Table 3: blend method (two height layers, same UV set; truth = normal of the summed heights)";
-    t.header = {"method",       "gentle p50", "gentle max", "moderate p50", "moderate max", "steep p50", "steep max",
-                "order max",    "1 blend ms", "ratio",      "16 blends ms", "ratio"};
+    t.title = "Table 3: blend method (two height layers, same UV set; truth = normal of the summed "
+              "heights)";
+    t.header = {"method",       "gentle p50", "gentle max",   "moderate p50",
+                "moderate max", "steep p50",  "steep max",    "order max",
+                "1 blend ms",   "ratio",      "16 blends ms", "ratio"};
     for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
         const auto& s = stats[size_t(m)];
-        t.add({kMethodNames[m], fmtErr(s[0].p50), fmtErr(s[0].max), fmtErr(s[1].p50), fmtErr(s[1].max), fmtErr(s[2].p50),
-               fmtErr(s[2].max), fmtErr(orderMax[size_t(m)]), fmt(msOne[size_t(m)], 2), fmtRatio(msOne[size_t(m)] / msOne[0]),
+        t.add({kMethodNames[m], fmtErr(s[0].p50), fmtErr(s[0].max), fmtErr(s[1].p50),
+               fmtErr(s[1].max), fmtErr(s[2].p50), fmtErr(s[2].max), fmtErr(orderMax[size_t(m)]),
+               fmt(msOne[size_t(m)], 2), fmtRatio(msOne[size_t(m)] / msOne[0]),
                fmt(msLoop[size_t(m)], 2), fmtRatio(msLoop[size_t(m)] / msLoop[0])});
     }
-    t.notes.push_back("Errors in degrees over " + std::to_string(w) + "^2 texel centres (GPU output, RGBA32F maps and "
-                      "target; truth in double). Regimes: each layer's steepest slope 0.25 / 1 / 3 (14 / 45 / 72 "
-                      "degrees). 'order max': largest angle between blend(a,b) and blend(b,a), steep regime.");
-    t.notes.push_back("Cost: " + std::to_string(tw) + "^2 full-screen pass on " + o.renderer + ", " +
-                      std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
+    t.notes.push_back(
+        "Errors in degrees over " + std::to_string(w) +
+        "^2 texel centres (GPU output, RGBA32F maps and "
+        "target; truth in double). Regimes: each layer's steepest slope 0.25 / 1 / 3 (14 / 45 / 72 "
+        "degrees). 'order max': largest angle between blend(a,b) and blend(b,a), steep regime.");
+    t.notes.push_back("Cost: " + std::to_string(tw) + "^2 full-screen pass on " + o.renderer +
+                      ", " + std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratios to the surface-gradient method in the same run.");
     t.print(o.markdown);
 }

@@ -154,7 +154,8 @@ struct Sphere {
     double amp = 0.03, fs = 12, ft = 6;
     Sphere(int sz) : size(sz) {
         const glm::dvec3 target(0.0, 0.0, 0.0);
-        const glm::dmat4 viewRel = glm::lookAt(glm::dvec3(0.0), target - camPos, glm::dvec3(0, 0, 1));
+        const glm::dmat4 viewRel =
+            glm::lookAt(glm::dvec3(0.0), target - camPos, glm::dvec3(0, 0, 1));
         const glm::dmat4 proj = glm::perspective(glm::radians(42.0), 1.0, 0.5, 10.0);
         glm::dmat4 vp(1.0);
         vp = glm::translate(vp, glm::dvec3(size / 2.0, size / 2.0, 0.5));
@@ -163,7 +164,8 @@ struct Sphere {
     }
     // Ray-sphere hit of window point (x, y) (pixel centre at .5), world space.
     bool hit(double x, double y, glm::dvec3& world) const {
-        const glm::dvec4 a = invScr * glm::dvec4(x, y, 0.0, 1.0), b = invScr * glm::dvec4(x, y, 1.0, 1.0);
+        const glm::dvec4 a = invScr * glm::dvec4(x, y, 0.0, 1.0),
+                         b = invScr * glm::dvec4(x, y, 1.0, 1.0);
         const glm::dvec3 o = glm::dvec3(a) / a.w;
         const glm::dvec3 d = glm::normalize(glm::dvec3(b) / b.w - o);
         const glm::dvec3 oc = o + camPos;
@@ -173,20 +175,26 @@ struct Sphere {
         return true;
     }
     glm::dvec2 chart(const glm::dvec3& n) const {
-        return {std::atan2(n.x, -n.y) / (2 * M_PI) + 0.5, std::asin(std::clamp(n.z, -1.0, 1.0)) / M_PI + 0.5};
+        return {std::atan2(n.x, -n.y) / (2 * M_PI) + 0.5,
+                std::asin(std::clamp(n.z, -1.0, 1.0)) / M_PI + 0.5};
     }
     SurfacePoint point(const glm::dvec2& st) const {
         const double ph = 2 * M_PI * (st.x - 0.5), th = M_PI * (st.y - 0.5);
         SurfacePoint p;
-        p.pos = radius * glm::dvec3(std::cos(th) * std::sin(ph), -std::cos(th) * std::cos(ph), std::sin(th));
-        p.dPds = 2 * M_PI * radius * glm::dvec3(std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), 0.0);
-        p.dPdt = M_PI * radius * glm::dvec3(-std::sin(th) * std::sin(ph), std::sin(th) * std::cos(ph), std::cos(th));
+        p.pos = radius *
+                glm::dvec3(std::cos(th) * std::sin(ph), -std::cos(th) * std::cos(ph), std::sin(th));
+        p.dPds = 2 * M_PI * radius *
+                 glm::dvec3(std::cos(th) * std::cos(ph), std::cos(th) * std::sin(ph), 0.0);
+        p.dPdt =
+            M_PI * radius *
+            glm::dvec3(-std::sin(th) * std::sin(ph), std::sin(th) * std::cos(ph), std::cos(th));
         p.normal = glm::normalize(glm::cross(p.dPds, p.dPdt));
         return p;
     }
     glm::dvec2 heightGrad(const glm::dvec2& st) const {
         const double as = 2 * M_PI * fs, at = 2 * M_PI * ft;
-        return amp * glm::dvec2(as * std::cos(as * st.x) * std::sin(at * st.y), at * std::sin(as * st.x) * std::cos(at * st.y));
+        return amp * glm::dvec2(as * std::cos(as * st.x) * std::sin(at * st.y),
+                                at * std::sin(as * st.x) * std::cos(at * st.y));
     }
     double height(const glm::dvec2& st) const {
         return amp * std::sin(2 * M_PI * fs * st.x) * std::sin(2 * M_PI * ft * st.y);
@@ -247,7 +255,8 @@ void tableDerivatives(const Options& o) {
     auto use = [&](size_t k, const sg::gl::Program& p) {
         glUseProgram(p.id());
         glUniformMatrix4fv(p.uniform("uInvScr"), 1, GL_FALSE, &invScr[0][0]);
-        glUniform3f(p.uniform("uCamPos"), float(sph.camPos.x), float(sph.camPos.y), float(sph.camPos.z));
+        glUniform3f(p.uniform("uCamPos"), float(sph.camPos.x), float(sph.camPos.y),
+                    float(sph.camPos.z));
         glUniform1f(p.uniform("uRadius"), float(sph.radius));
         glUniform3f(p.uniform("uHeightParams"), float(sph.amp), float(sph.fs), float(sph.ft));
         const int m = variants[k].map;
@@ -279,7 +288,8 @@ void tableDerivatives(const Options& o) {
             const int qx = x & ~1, qy = y & ~1;
             bool quad = true;
             for (int dy = 0; dy < 2; ++dy) {
-                for (int dx = 0; dx < 2; ++dx) quad = quad && hitMask[size_t(qy + dy) * size_t(size) + size_t(qx + dx)];
+                for (int dx = 0; dx < 2; ++dx)
+                    quad = quad && hitMask[size_t(qy + dy) * size_t(size) + size_t(qx + dx)];
             }
             glm::dvec3 w, wl, wr;
             if (!quad || !sph.hit(x + 0.5, y + 0.5, w) || !sph.hit(x + 0.5 - eps, y + 0.5, wl) ||
@@ -288,7 +298,8 @@ void tableDerivatives(const Options& o) {
             }
             const glm::dvec3 n = glm::normalize(w);
             const glm::dvec3 view = glm::normalize(sph.camPos - w);
-            if (std::fabs(n.z) > std::sin(M_PI / 3) || glm::dot(n, view) < std::sin(M_PI / 12)) continue;
+            if (std::fabs(n.z) > std::sin(M_PI / 3) || glm::dot(n, view) < std::sin(M_PI / 12))
+                continue;
             counted[k] = 1;
             const glm::dvec2 st = sph.chart(n);
             const glm::dvec2 g = sph.heightGrad(st);
@@ -312,8 +323,11 @@ void tableDerivatives(const Options& o) {
         for (size_t i = 0; i < px; ++i) {
             if (!counted[i]) continue;
             ne.push_back(angleDeg(glm::dvec3(nrm[i]), truthN[i]));
-            de.push_back(glm::length(glm::dvec3(dpdx[i]) - truthDpdx[i]) / glm::length(truthDpdx[i]));
-            if (k == 1) coarseVsFine = std::max(coarseVsFine, angleDeg(glm::dvec3(nrm[i]), glm::dvec3(fineNormals[i])));
+            de.push_back(glm::length(glm::dvec3(dpdx[i]) - truthDpdx[i]) /
+                         glm::length(truthDpdx[i]));
+            if (k == 1)
+                coarseVsFine = std::max(coarseVsFine,
+                                        angleDeg(glm::dvec3(nrm[i]), glm::dvec3(fineNormals[i])));
         }
         if (k == 0) {
             fineNormals = nrm;
@@ -324,39 +338,49 @@ void tableDerivatives(const Options& o) {
     }
 
     Target timTarget(size, size, 1, false);
-    const auto ms = timeVariants(variants.size(), [&](size_t k) {
-        timTarget.clear();
-        use(k, tim[k]);
-        fullscreen.draw();
-    }, o);
+    const auto ms = timeVariants(
+        variants.size(),
+        [&](size_t k) {
+            timTarget.clear();
+            use(k, tim[k]);
+            fullscreen.draw();
+        },
+        o);
     for (int m = 1; m <= 2; ++m) {
         deleteTexture(heightTex[m]);
         deleteTexture(derivTex[m]);
     }
 
     Table t;
-    t.title = "Table 5: derivative method (ray-traced sphere, scale-dependent bump of a known height, truth in double)";
-    t.header = {"method", "p50 deg", "p90 deg", "p99 deg", "max deg", "dPdx rel err p50", "dPdx rel err max", "frame ms",
-                "ratio"};
+    t.title = "Table 5: derivative method (ray-traced sphere, scale-dependent bump of a known "
+              "height, truth in double)";
+    t.header = {"method",           "p50 deg",          "p90 deg",  "p99 deg", "max deg",
+                "dPdx rel err p50", "dPdx rel err max", "frame ms", "ratio"};
     for (size_t k = 0; k < variants.size(); ++k) {
         const bool posRow = k < 4;
-        t.add({variants[k].name, fmtErr(nStats[k].p50), fmtErr(nStats[k].p90), fmtErr(nStats[k].p99), fmtErr(nStats[k].max),
-               posRow ? fmtErr(dStats[k].p50) : "", posRow ? fmtErr(dStats[k].max) : "", fmt(ms[k], 2),
-               fmtRatio(ms[k] / ms[0])});
+        t.add({variants[k].name, fmtErr(nStats[k].p50), fmtErr(nStats[k].p90),
+               fmtErr(nStats[k].p99), fmtErr(nStats[k].max), posRow ? fmtErr(dStats[k].p50) : "",
+               posRow ? fmtErr(dStats[k].max) : "", fmt(ms[k], 2), fmtRatio(ms[k] / ms[0])});
     }
     // Texels per pixel at the centre of the view, for the map rows.
     glm::dvec3 wc, wx;
     sph.hit(size / 2.0, size / 2.0, wc);
     sph.hit(size / 2.0 + 1.0, size / 2.0, wx);
-    const double dsPerPixel = std::fabs(sph.chart(glm::normalize(wx)).x - sph.chart(glm::normalize(wc)).x);
-    t.notes.push_back(std::to_string(used) + " pixels of a " + std::to_string(size) + "^2 view; h = " + fmt(sph.amp, 3) +
-                      " sin(2 pi 12 s) sin(2 pi 6 t) on the unit sphere (bump tilt p50 " + fmt(errorStats(tilt).p50, 1) +
-                      ", max " + fmt(errorStats(tilt).max, 1) + " degrees). Maps at the view centre: " + fmt(1.0 / (dsPerPixel * mapW[1]), 2) + " and " +
-                      fmt(1.0 / (dsPerPixel * mapW[2]), 2) + " pixels per texel.");
-    t.notes.push_back("dFdxCoarse vs dFdxFine on this driver: largest normal difference " + fmtErr(coarseVsFine) +
+    const double dsPerPixel =
+        std::fabs(sph.chart(glm::normalize(wx)).x - sph.chart(glm::normalize(wc)).x);
+    t.notes.push_back(
+        std::to_string(used) + " pixels of a " + std::to_string(size) + "^2 view; h = " +
+        fmt(sph.amp, 3) + " sin(2 pi 12 s) sin(2 pi 6 t) on the unit sphere (bump tilt p50 " +
+        fmt(errorStats(tilt).p50, 1) + ", max " + fmt(errorStats(tilt).max, 1) +
+        " degrees). Maps at the view centre: " + fmt(1.0 / (dsPerPixel * mapW[1]), 2) + " and " +
+        fmt(1.0 / (dsPerPixel * mapW[2]), 2) + " pixels per texel.");
+    t.notes.push_back("dFdxCoarse vs dFdxFine on this driver: largest normal difference " +
+                      fmtErr(coarseVsFine) +
                       " degrees (llvmpipe computes coarse derivatives like fine ones: STACK.md).");
-    t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer + " (ray-sphere in every "
-                      "variant), " + std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
+    t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer +
+                      " (ray-sphere in every "
+                      "variant), " +
+                      std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the first row.");
     t.print(o.markdown);
 }

@@ -54,7 +54,9 @@ dvec2 bezier(const Segment& s, double t) {
     const double u = 1.0 - t;
     return u * u * s.p0 + 2.0 * t * u * s.p1 + t * t * s.p2;
 }
-dvec2 bezierTangent(const Segment& s, double t) { return 2.0 * (1.0 - t) * (s.p1 - s.p0) + 2.0 * t * (s.p2 - s.p1); }
+dvec2 bezierTangent(const Segment& s, double t) {
+    return 2.0 * (1.0 - t) * (s.p1 - s.p0) + 2.0 * t * (s.p2 - s.p1);
+}
 
 void addSegment(CurveNetwork& n, dvec2 a, dvec2 c, dvec2 b, int curve, bool line) {
     Segment s;
@@ -76,8 +78,8 @@ CurveNetwork drawing() {
     for (int k = 0; k < 8; ++k) {
         const double a0 = 0.2 + M_PI / 4 * k, a1 = a0 + M_PI / 4, am = 0.5 * (a0 + a1);
         addSegment(n, c + r * dvec2(std::cos(a0), std::sin(a0)),
-                   c + r / std::cos(M_PI / 8) * dvec2(std::cos(am), std::sin(am)), c + r * dvec2(std::cos(a1), std::sin(a1)),
-                   0, false);
+                   c + r / std::cos(M_PI / 8) * dvec2(std::cos(am), std::sin(am)),
+                   c + r * dvec2(std::cos(a1), std::sin(a1)), 0, false);
     }
     n.segments.back().p2 = n.segments.front().p0;
     addSegment(n, {12.0, 18.0}, {38.0, 52.0}, {66.0, 30.0}, 1, false);
@@ -103,8 +105,10 @@ double segmentDistance(const Segment& s, dvec2 p, dvec2& closest) {
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
     for (int it = 0; it < 60; ++it) {
         const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-        if (glm::length(bezier(s, a) - p) < glm::length(bezier(s, b) - p)) hi = b;
-        else lo = a;
+        if (glm::length(bezier(s, a) - p) < glm::length(bezier(s, b) - p))
+            hi = b;
+        else
+            lo = a;
     }
     closest = bezier(s, 0.5 * (lo + hi));
     return glm::length(closest - p);
@@ -137,15 +141,19 @@ struct Base {
     double amp = 0.5, lx = 9.7, ly = 13.1;
     dvec2 grad(dvec2 p) const {
         const double ax = 2 * M_PI / lx, ay = 2 * M_PI / ly;
-        return amp * dvec2(ax * std::cos(ax * p.x) * std::sin(ay * p.y), ay * std::sin(ax * p.x) * std::cos(ay * p.y));
+        return amp * dvec2(ax * std::cos(ax * p.x) * std::sin(ay * p.y),
+                           ay * std::sin(ax * p.x) * std::cos(ay * p.y));
     }
 };
 
-glm::dvec3 normalOfDeriv(dvec2 d) { return glm::normalize(glm::dvec3(-d.x, -d.y, 1.0)); }
+glm::dvec3 normalOfDeriv(dvec2 d) {
+    return glm::normalize(glm::dvec3(-d.x, -d.y, 1.0));
+}
 
 enum Mode { Bilinear, LinearSurfgrad, QuadSurfgrad, QuadPaper, QuadMasked, ModeCount };
-const char* kModeNames[ModeCount] = {"bilinear normal map 128^2", "linear maps, surfgrad", "quadratic maps, surfgrad",
-                                     "quadratic maps, paper (Eq. 1)", "quadratic maps, surfgrad, base in layer (masked)"};
+const char* kModeNames[ModeCount] = {"bilinear normal map 128^2", "linear maps, surfgrad",
+                                     "quadratic maps, surfgrad", "quadratic maps, paper (Eq. 1)",
+                                     "quadratic maps, surfgrad, base in layer (masked)"};
 
 const char* kFragment = R"(
 #include "sg/features/fetch.glsl"
@@ -230,12 +238,13 @@ void tableFeatures(const Options& o) {
         }
     }
     auto bilinear = [&](const std::vector<glm::dvec3>& map, dvec2 p) {
-        const double x = std::clamp(p.x - 0.5, 0.0, n - 1.0), y = std::clamp(p.y - 0.5, 0.0, n - 1.0);
+        const double x = std::clamp(p.x - 0.5, 0.0, n - 1.0),
+                     y = std::clamp(p.y - 0.5, 0.0, n - 1.0);
         const int i = std::min(int(x), n - 2), j = std::min(int(y), n - 2);
         const double fx = x - i, fy = y - j;
         auto at = [&](int a, int b) { return map[size_t(b) * size_t(n) + size_t(a)]; };
-        return glm::normalize((1 - fx) * (1 - fy) * at(i, j) + fx * (1 - fy) * at(i + 1, j) + (1 - fx) * fy * at(i, j + 1) +
-                              fx * fy * at(i + 1, j + 1));
+        return glm::normalize((1 - fx) * (1 - fy) * at(i, j) + fx * (1 - fy) * at(i + 1, j) +
+                              (1 - fx) * fy * at(i, j + 1) + fx * fy * at(i + 1, j + 1));
     };
     // Normal of a mode at p, flat or bumpy base.
     auto modeNormal = [&](int mode, dvec2 p, bool bumpy) -> glm::dvec3 {
@@ -245,13 +254,15 @@ void tableFeatures(const Options& o) {
         if (mode == QuadPaper) {
             return glm::dvec3(sg::glsl::sgFeatNormalPaper(r, prof, glm::vec3(normalOfDeriv(bd))));
         }
-        if (mode == QuadMasked) return normalOfDeriv(dvec2(sg::glsl::sgFeatDeriv(r, prof, glm::vec2(bd))));
+        if (mode == QuadMasked)
+            return normalOfDeriv(dvec2(sg::glsl::sgFeatDeriv(r, prof, glm::vec2(bd))));
         return surfgradNormal(r, bd);
     };
     // The same composition with the exact distance (flat base).
     auto exactFlat = [&](int mode, const Exact& e) -> glm::dvec3 {
         const auto r = result(float(e.dist), glm::vec2(e.grad));
-        if (mode == QuadPaper) return glm::dvec3(sg::glsl::sgFeatNormalPaper(r, prof, glm::vec3(0, 0, 1)));
+        if (mode == QuadPaper)
+            return glm::dvec3(sg::glsl::sgFeatNormalPaper(r, prof, glm::vec3(0, 0, 1)));
         return surfgradNormal(r, dvec2(0.0));
     };
 
@@ -281,7 +292,8 @@ void tableFeatures(const Options& o) {
             for (const dvec2& e : openEnds) ok = ok && glm::length(q - e) > 3.0;
             for (const Segment& other : net.segments) {
                 if (other.curve == s.curve) continue;
-                for (int z = 0; z <= 100 && ok; ++z) ok = glm::length(bezier(other, z / 100.0) - q) > 6.0;
+                for (int z = 0; z <= 100 && ok; ++z)
+                    ok = glm::length(bezier(other, z / 100.0) - q) > 6.0;
             }
             if (ok) probes.push_back({q, dvec2(-tan.y, tan.x)});
         }
@@ -328,9 +340,11 @@ void tableFeatures(const Options& o) {
                     const glm::dvec3 nb = modeNormal(m, p, true);
                     bumpyErr[size_t(m)].push_back(angleDeg(nb, carved));
                     if (m == QuadPaper) {
-                        paperVsMaskedMax = std::max(paperVsMaskedMax, angleDeg(nb, modeNormal(QuadMasked, p, true)));
-                        paperVsSurfgradFlatMax =
-                            std::max(paperVsSurfgradFlatMax, angleDeg(exactFlat(QuadPaper, ex[s]), exactFlat(QuadSurfgrad, ex[s])));
+                        paperVsMaskedMax = std::max(paperVsMaskedMax,
+                                                    angleDeg(nb, modeNormal(QuadMasked, p, true)));
+                        paperVsSurfgradFlatMax = std::max(
+                            paperVsSurfgradFlatMax,
+                            angleDeg(exactFlat(QuadPaper, ex[s]), exactFlat(QuadSurfgrad, ex[s])));
                     }
                 }
             }
@@ -345,12 +359,15 @@ void tableFeatures(const Options& o) {
         // Layout of surfgrad/feature_maps.h: corner pairs N x (N+1) and edge
         // words N x N, both RGBA32UI.
         glCreateTextures(GL_TEXTURE_2D, 1, &texCorners[k]);
-        glTextureStorage2D(texCorners[k], 1, GL_RGBA32UI, gm[k]->cornerPairsWidth(), gm[k]->cornerPairsHeight());
-        glTextureSubImage2D(texCorners[k], 0, 0, 0, gm[k]->cornerPairsWidth(), gm[k]->cornerPairsHeight(),
-                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, gm[k]->cornerPairs.data());
+        glTextureStorage2D(texCorners[k], 1, GL_RGBA32UI, gm[k]->cornerPairsWidth(),
+                           gm[k]->cornerPairsHeight());
+        glTextureSubImage2D(texCorners[k], 0, 0, 0, gm[k]->cornerPairsWidth(),
+                            gm[k]->cornerPairsHeight(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                            gm[k]->cornerPairs.data());
         glCreateTextures(GL_TEXTURE_2D, 1, &texEdges[k]);
         glTextureStorage2D(texEdges[k], 1, GL_RGBA32UI, n, n);
-        glTextureSubImage2D(texEdges[k], 0, 0, 0, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT, gm[k]->edges.data());
+        glTextureSubImage2D(texEdges[k], 0, 0, 0, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                            gm[k]->edges.data());
         for (GLuint t : {texCorners[k], texEdges[k]}) {
             glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -360,7 +377,9 @@ void tableFeatures(const Options& o) {
         // RGBA8 normal map, as a plain normal map is stored.
         std::vector<unsigned char> px(size_t(n) * size_t(n) * 4);
         for (size_t k = 0; k < flatMap.size(); ++k) {
-            for (int c = 0; c < 3; ++c) px[k * 4 + size_t(c)] = (unsigned char)std::lround((flatMap[k][c] * 0.5 + 0.5) * 255);
+            for (int c = 0; c < 3; ++c)
+                px[k * 4 + size_t(c)] =
+                    (unsigned char)std::lround((flatMap[k][c] * 0.5 + 0.5) * 255);
             px[k * 4 + 3] = 255;
         }
         glCreateTextures(GL_TEXTURE_2D, 1, &texNormal);
@@ -378,32 +397,38 @@ void tableFeatures(const Options& o) {
     // uniform, as the renderer's layer records pass it.
     const int timedModes[5] = {Bilinear, LinearSurfgrad, QuadSurfgrad, QuadPaper, QuadSurfgrad};
     std::vector<sg::gl::Program> progs;
-    progs.push_back(makeProgram(fullscreenVertexShader(), kFragment, "feat_bilinear", {uview, "BILINEAR"}));
+    progs.push_back(
+        makeProgram(fullscreenVertexShader(), kFragment, "feat_bilinear", {uview, "BILINEAR"}));
     progs.push_back(makeProgram(fullscreenVertexShader(), kFragment, "feat_surfgrad", {uview}));
     progs.push_back(makeProgram(fullscreenVertexShader(), kFragment, "feat_surfgrad", {uview}));
-    progs.push_back(makeProgram(fullscreenVertexShader(), kFragment, "feat_paper", {uview, "PAPER"}));
-    progs.push_back(makeProgram(fullscreenVertexShader(), kFragment, "feat_uniform", {uview, "KIND_UNIFORM"}));
+    progs.push_back(
+        makeProgram(fullscreenVertexShader(), kFragment, "feat_paper", {uview, "PAPER"}));
+    progs.push_back(
+        makeProgram(fullscreenVertexShader(), kFragment, "feat_uniform", {uview, "KIND_UNIFORM"}));
     // Window: 32x32 texels where the circle and the S curve pass.
     const glm::vec2 windowMin(22.0f, 40.0f), windowSize(32.0f);
     Target tim(view, view, 1, false);
     glDisable(GL_DEPTH_TEST);
-    const auto ms = timeVariants(5, [&](size_t k) {
-        tim.clear();
-        const sg::gl::Program& p = progs[k];
-        glUseProgram(p.id());
-        glUniform2fv(p.uniform("uWindowMin"), 1, &windowMin[0]);
-        glUniform2fv(p.uniform("uWindowSize"), 1, &windowSize[0]);
-        glUniform1f(p.uniform("uMapSize"), float(n));
-        glUniform4f(p.uniform("uProfile"), float(prof.kind), prof.depth, prof.w0, prof.w);
-        glUniform1i(p.uniform("uNormalMap"), 0);
-        glUniform1i(p.uniform("uFeatCorners"), 1);
-        glUniform1i(p.uniform("uFeatEdges"), 2);
-        const int mapSet = timedModes[k] == LinearSurfgrad ? 0 : 1;
-        glBindTextureUnit(0, texNormal);
-        glBindTextureUnit(1, texCorners[mapSet]);
-        glBindTextureUnit(2, texEdges[mapSet]);
-        fullscreen.draw();
-    }, o);
+    const auto ms = timeVariants(
+        5,
+        [&](size_t k) {
+            tim.clear();
+            const sg::gl::Program& p = progs[k];
+            glUseProgram(p.id());
+            glUniform2fv(p.uniform("uWindowMin"), 1, &windowMin[0]);
+            glUniform2fv(p.uniform("uWindowSize"), 1, &windowSize[0]);
+            glUniform1f(p.uniform("uMapSize"), float(n));
+            glUniform4f(p.uniform("uProfile"), float(prof.kind), prof.depth, prof.w0, prof.w);
+            glUniform1i(p.uniform("uNormalMap"), 0);
+            glUniform1i(p.uniform("uFeatCorners"), 1);
+            glUniform1i(p.uniform("uFeatEdges"), 2);
+            const int mapSet = timedModes[k] == LinearSurfgrad ? 0 : 1;
+            glBindTextureUnit(0, texNormal);
+            glBindTextureUnit(1, texCorners[mapSet]);
+            glBindTextureUnit(2, texEdges[mapSet]);
+            fullscreen.draw();
+        },
+        o);
     glDeleteTextures(2, texCorners);
     glDeleteTextures(2, texEdges);
     glDeleteTextures(1, &texNormal);
@@ -412,36 +437,44 @@ void tableFeatures(const Options& o) {
     int featureTexels = 0;
     for (int j = 0; j < 32; ++j) {
         for (int i = 0; i < 32; ++i) {
-            if (quadMaps.seg[quadMaps.index(int(windowMin.x) + i, int(windowMin.y) + j)] != 0) ++featureTexels;
+            if (quadMaps.seg[quadMaps.index(int(windowMin.x) + i, int(windowMin.y) + j)] != 0)
+                ++featureTexels;
         }
     }
 
     Table t;
-    t.title = "Table 4: feature-curve mode (128^2 map, crease profile D = 1, w0 = 0.5, w = 3 texels)";
-    t.header = {"mode", "crease mean tx", "crease max tx", "max px @64x", "flat p50 deg", "flat p99 deg",
-                "bumpy p50 deg", "bumpy max deg", "frame ms", "ratio"};
+    t.title =
+        "Table 4: feature-curve mode (128^2 map, crease profile D = 1, w0 = 0.5, w = 3 texels)";
+    t.header = {"mode",         "crease mean tx", "crease max tx", "max px @64x", "flat p50 deg",
+                "flat p99 deg", "bumpy p50 deg",  "bumpy max deg", "frame ms",    "ratio"};
     for (int m = 0; m < ModeCount; ++m) {
         const ErrorStats c = errorStats(crease[size_t(m)]), f = errorStats(flatErr[size_t(m)]),
                          b = errorStats(bumpyErr[size_t(m)]);
         int timed = -1;
         for (int k = 3; k >= 0; --k) timed = timedModes[k] == m ? k : timed;
-        t.add({kModeNames[m], fmtErr(c.mean), fmtErr(c.max), fmt(c.max * 64.0, 1), fmtErr(f.p50), fmtErr(f.p99),
-               fmtErr(b.p50), fmtErr(b.max), timed >= 0 ? fmt(ms[size_t(timed)], 2) : "(as surfgrad)",
+        t.add({kModeNames[m], fmtErr(c.mean), fmtErr(c.max), fmt(c.max * 64.0, 1), fmtErr(f.p50),
+               fmtErr(f.p99), fmtErr(b.p50), fmtErr(b.max),
+               timed >= 0 ? fmt(ms[size_t(timed)], 2) : "(as surfgrad)",
                timed >= 0 ? fmtRatio(ms[size_t(timed)] / ms[0]) : ""});
     }
-    t.add({"quadratic maps, surfgrad, profile kind in a uniform", "(same)", "", "", "", "", "", "", fmt(ms[4], 2),
-           fmtRatio(ms[4] / ms[0])});
-    t.notes.push_back(std::to_string(probes.size()) + " probes x " + std::to_string(steps) +
-                      " samples. 'flat': against the same composition with the exact distance; 'bumpy': against "
-                      "the carved surface (profile height + base height). Paper vs surfgrad with exact distances, "
-                      "flat base: at most " + fmtErr(paperVsSurfgradFlatMax) + " degrees apart (inside the blend band "
-                      "w0 < d < w only); paper vs masked surfgrad on the bumpy base: at most " +
-                      fmtErr(paperVsMaskedMax) + " degrees.");
-    t.notes.push_back("Cost: " + std::to_string(view) + "^2 pass over a 32x32-texel window (" +
-                      std::to_string(featureTexels) + "/1024 texels with a discontinuity), " + o.renderer + ", " +
-                      std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
-                      " frames, medians; ratio to the bilinear map (RGBA8, GL_LINEAR). Accuracy per resolution "
-                      "64..1024: features_bench accuracy.");
+    t.add({"quadratic maps, surfgrad, profile kind in a uniform", "(same)", "", "", "", "", "", "",
+           fmt(ms[4], 2), fmtRatio(ms[4] / ms[0])});
+    t.notes.push_back(
+        std::to_string(probes.size()) + " probes x " + std::to_string(steps) +
+        " samples. 'flat': against the same composition with the exact distance; 'bumpy': against "
+        "the carved surface (profile height + base height). Paper vs surfgrad with exact "
+        "distances, "
+        "flat base: at most " +
+        fmtErr(paperVsSurfgradFlatMax) +
+        " degrees apart (inside the blend band "
+        "w0 < d < w only); paper vs masked surfgrad on the bumpy base: at most " +
+        fmtErr(paperVsMaskedMax) + " degrees.");
+    t.notes.push_back(
+        "Cost: " + std::to_string(view) + "^2 pass over a 32x32-texel window (" +
+        std::to_string(featureTexels) + "/1024 texels with a discontinuity), " + o.renderer + ", " +
+        std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
+        " frames, medians; ratio to the bilinear map (RGBA8, GL_LINEAR). Accuracy per resolution "
+        "64..1024: features_bench accuracy.");
     t.print(o.markdown);
 }
 

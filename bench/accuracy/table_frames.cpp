@@ -61,14 +61,16 @@ struct Source {
 };
 
 std::vector<Source> sourcesOf(const TorusBump& scene) {
-    return {{"mikktspace", &scene.mikkMesh, false}, {"limit", &scene.limitMesh, false},
+    return {{"mikktspace", &scene.mikkMesh, false},
+            {"limit", &scene.limitMesh, false},
             {"pixel (L16+L6)", &scene.pixelMesh, true}};
 }
 
 sg::gl::Program frameProgram(bool pixel, bool accuracy) {
     std::vector<std::string> defs = {pixel ? "FRAME_PIXEL" : "FRAME_VERTEX"};
     if (accuracy) defs.push_back("ACCURACY");
-    return makeProgram(torusVertexShader(), std::string(torusFragmentHead()) + kFragment, "frames", defs);
+    return makeProgram(torusVertexShader(), std::string(torusFragmentHead()) + kFragment, "frames",
+                       defs);
 }
 
 void useFrameProgram(const sg::gl::Program& p, const TorusBump& scene) {
@@ -109,7 +111,8 @@ FrameSourceErrors measureFrameSources(const TorusBump& scene, int size) {
                 glm::dvec3 tx, bx;
                 exactFrame(p, tx, bx);
                 const glm::dvec2 d = scene.sampleDeriv(s, tt);
-                fe.floorErr.push_back(angleDeg(glm::normalize(p.normal - d.x * tx - d.y * bx), truth));
+                fe.floorErr.push_back(
+                    angleDeg(glm::normalize(p.normal - d.x * tx - d.y * bx), truth));
             }
         }
     }
@@ -120,8 +123,10 @@ FrameSourceErrors measureFrameSources(const TorusBump& scene, int size) {
 void tableFrames(const Options& o) {
     const std::vector<int> levels = o.quick ? std::vector<int>{1} : std::vector<int>{1, 3};
     Table t;
-    t.title = "Table 1: tangent frame source (B-spline torus, limit mesh, derivative map baked against the exact frame)";
-    t.header = {"level", "source", "tris", "p50 deg", "p90 deg", "p99 deg", "max deg", "frame ms", "vs mikktspace"};
+    t.title = "Table 1: tangent frame source (B-spline torus, limit mesh, derivative map baked "
+              "against the exact frame)";
+    t.header = {"level",   "source",  "tris",     "p50 deg",      "p90 deg",
+                "p99 deg", "max deg", "frame ms", "vs mikktspace"};
     for (int level : levels) {
         TorusBump scene(level, o.quick);
         const auto sources = sourcesOf(scene);
@@ -129,7 +134,8 @@ void tableFrames(const Options& o) {
         const FrameSourceErrors fe = measureFrameSources(scene, accSize);
         const auto& err = fe.err;
 
-        const unsigned tex = makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
+        const unsigned tex =
+            makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
         glBindTextureUnit(0, tex);
         std::vector<std::unique_ptr<GpuMesh>> meshes;
         std::vector<sg::gl::Program> timing;
@@ -140,40 +146,50 @@ void tableFrames(const Options& o) {
 
         // Timing pass.
         Target tim(o.size, o.size, 1, false);
-        const auto ms = timeVariants(3, [&](size_t k) {
-            tim.clear();
-            useFrameProgram(timing[k], scene);
-            meshes[k]->draw();
-        }, o);
+        const auto ms = timeVariants(
+            3,
+            [&](size_t k) {
+                tim.clear();
+                useFrameProgram(timing[k], scene);
+                meshes[k]->draw();
+            },
+            o);
         for (int k = 0; k < 3; ++k) {
             const ErrorStats e = errorStats(err[size_t(k)]);
-            t.add({std::to_string(level), sources[k].name, std::to_string(meshes[size_t(k)]->triangles()), fmtErr(e.p50),
-                   fmtErr(e.p90), fmtErr(e.p99), fmtErr(e.max), fmt(ms[size_t(k)], 2), fmtRatio(ms[size_t(k)] / ms[0])});
+            t.add({std::to_string(level), sources[k].name,
+                   std::to_string(meshes[size_t(k)]->triangles()), fmtErr(e.p50), fmtErr(e.p90),
+                   fmtErr(e.p99), fmtErr(e.max), fmt(ms[size_t(k)], 2),
+                   fmtRatio(ms[size_t(k)] / ms[0])});
         }
         const ErrorStats b = errorStats(fe.baseErr), fl = errorStats(fe.floorErr);
-        t.add({std::to_string(level), "(interpolated base normal vs limit normal)", "", fmtErr(b.p50), fmtErr(b.p90),
-               fmtErr(b.p99), fmtErr(b.max), "", ""});
-        t.add({std::to_string(level), "(map reconstruction floor, exact frame)", "", fmtErr(fl.p50), fmtErr(fl.p90),
-               fmtErr(fl.p99), fmtErr(fl.max), "", ""});
-        t.notes.push_back("level " + std::to_string(level) + ": " + std::to_string(fe.covered) + " pixels at " +
-                          std::to_string(accSize) + "^2; OpenSubdiv limit vs analytic B-spline max " +
-                          fmtErr(scene.limitCheckMaxDist) + " object units; MikkTSpace split the mesh to " +
-                          std::to_string(scene.mikkMesh.vertexCount()) + " vertices (" +
-                          std::to_string(scene.pixelMesh.vertexCount()) + " without tangents)");
+        t.add({std::to_string(level), "(interpolated base normal vs limit normal)", "",
+               fmtErr(b.p50), fmtErr(b.p90), fmtErr(b.p99), fmtErr(b.max), "", ""});
+        t.add({std::to_string(level), "(map reconstruction floor, exact frame)", "", fmtErr(fl.p50),
+               fmtErr(fl.p90), fmtErr(fl.p99), fmtErr(fl.max), "", ""});
+        t.notes.push_back(
+            "level " + std::to_string(level) + ": " + std::to_string(fe.covered) + " pixels at " +
+            std::to_string(accSize) + "^2; OpenSubdiv limit vs analytic B-spline max " +
+            fmtErr(scene.limitCheckMaxDist) + " object units; MikkTSpace split the mesh to " +
+            std::to_string(scene.mikkMesh.vertexCount()) + " vertices (" +
+            std::to_string(scene.pixelMesh.vertexCount()) + " without tangents)");
         glm::dvec2 mikkWorst(0.0), limitWorst(0.0);
         const ErrorStats vm = errorStats(scene.vertexTangentErrors(scene.mikkMesh, &mikkWorst));
         const ErrorStats vl = errorStats(scene.vertexTangentErrors(scene.limitMesh, &limitWorst));
-        t.notes.push_back("level " + std::to_string(level) + " vertex tangents vs the exact tangent at the vertex: "
-                          "MikkTSpace p50 " + fmtErr(vm.p50) + ", max " + fmtErr(vm.max) + " deg (at uv " +
-                          fmt(mikkWorst.x, 3) + ", " + fmt(mikkWorst.y, 3) + "); limit p50 " + fmtErr(vl.p50) +
-                          ", max " + fmtErr(vl.max) + " deg");
+        t.notes.push_back("level " + std::to_string(level) +
+                          " vertex tangents vs the exact tangent at the vertex: "
+                          "MikkTSpace p50 " +
+                          fmtErr(vm.p50) + ", max " + fmtErr(vm.max) + " deg (at uv " +
+                          fmt(mikkWorst.x, 3) + ", " + fmt(mikkWorst.y, 3) + "); limit p50 " +
+                          fmtErr(vl.p50) + ", max " + fmtErr(vl.max) + " deg");
         deleteTexture(tex);
     }
-    t.notes.push_back("Error: angle between the rendered normal and Blinn's perturbed normal of h(s,t) = " +
-                      fmt(HeightField().amplitude, 3) + " sin(16 pi s) sin(8 pi t) on the exact B-spline limit "
-                      "surface at the pixel's UV (double). Timing: " + std::to_string(o.size) + "^2, RGBA8 target, " +
-                      std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
-                      " frames, medians; same vertex buffer layout for all sources.");
+    t.notes.push_back(
+        "Error: angle between the rendered normal and Blinn's perturbed normal of h(s,t) = " +
+        fmt(HeightField().amplitude, 3) +
+        " sin(16 pi s) sin(8 pi t) on the exact B-spline limit "
+        "surface at the pixel's UV (double). Timing: " +
+        std::to_string(o.size) + "^2, RGBA8 target, " + std::to_string(o.runs) + " runs x " +
+        std::to_string(o.frames) + " frames, medians; same vertex buffer layout for all sources.");
     t.print(o.markdown);
 }
 

@@ -64,28 +64,49 @@ struct PixelInputs {
     glm::dvec2 uv, dSTdx, dSTdy, m; // m: tangent-space normal xy of the map sample
 };
 
-template <class T> V3<T> v3(const glm::dvec3& v) { return {T(float(v.x)), T(float(v.y)), T(float(v.z))}; }
-template <> V3<double> v3<double>(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-template <class T> V2<T> v2(const glm::dvec2& v) { return {T(float(v.x)), T(float(v.y))}; }
-template <> V2<double> v2<double>(const glm::dvec2& v) { return {v.x, v.y}; }
-template <class T> glm::dvec3 back(const V3<T>& v) { return {toFloat(v.x), toFloat(v.y), toFloat(v.z)}; }
-template <> glm::dvec3 back<double>(const V3<double>& v) { return {v.x, v.y, v.z}; }
+template <class T>
+V3<T> v3(const glm::dvec3& v) {
+    return {T(float(v.x)), T(float(v.y)), T(float(v.z))};
+}
+template <>
+V3<double> v3<double>(const glm::dvec3& v) {
+    return {v.x, v.y, v.z};
+}
+template <class T>
+V2<T> v2(const glm::dvec2& v) {
+    return {T(float(v.x)), T(float(v.y))};
+}
+template <>
+V2<double> v2<double>(const glm::dvec2& v) {
+    return {v.x, v.y};
+}
+template <class T>
+glm::dvec3 back(const V3<T>& v) {
+    return {toFloat(v.x), toFloat(v.y), toFloat(v.z)};
+}
+template <>
+glm::dvec3 back<double>(const V3<double>& v) {
+    return {v.x, v.y, v.z};
+}
 
 // The per-pixel-frame path in precision T, with the given position and UV
 // derivatives (already in T).
 template <class T>
-glm::dvec3 pixelPath(const PixelInputs& in, V3<T> dPdx, V3<T> dPdy, V2<T> dSTdx, V2<T> dSTdy, glm::dvec2 m) {
+glm::dvec3 pixelPath(const PixelInputs& in, V3<T> dPdx, V3<T> dPdy, V2<T> dSTdx, V2<T> dSTdy,
+                     glm::dvec2 m) {
     const Frame<T> f = prologue(v3<T>(in.normal), dPdx, dPdy);
     V3<T> t, b;
     genBasisTB(f, dSTdx, dSTdy, t, b);
     return back(resolveTBN(f, tspaceNormalToDeriv(v2<T>(m)), t, b));
 }
 
-template <class T> glm::dvec3 pixelPath(const PixelInputs& in) {
+template <class T>
+glm::dvec3 pixelPath(const PixelInputs& in) {
     return pixelPath<T>(in, v3<T>(in.dPdx), v3<T>(in.dPdy), v2<T>(in.dSTdx), v2<T>(in.dSTdy), in.m);
 }
 
-template <class T> glm::dvec3 vertexPath(const PixelInputs& in) {
+template <class T>
+glm::dvec3 vertexPath(const PixelInputs& in) {
     V3<T> tang, bino, nUnit;
     mikktsBasis(v3<T>(in.normal), v3<T>(in.tangentXyz), T(float(in.tangentW)), tang, bino, nUnit);
     Frame<T> f;
@@ -98,10 +119,12 @@ template <class T> glm::dvec3 vertexPath(const PixelInputs& in) {
 // transcription at T = float.
 glm::dvec3 sharedPixelPath(const PixelInputs& in) {
     using namespace sg::glsl;
-    const SgFrame f = sgPrologue(vec3(in.normal), vec3(in.dPdx), vec3(in.dPdy), true, SG_BFACE_NONE);
+    const SgFrame f =
+        sgPrologue(vec3(in.normal), vec3(in.dPdx), vec3(in.dPdy), true, SG_BFACE_NONE);
     vec3 t, b;
     sgGenBasisTB(f, vec2(in.dSTdx), vec2(in.dSTdy), t, b);
-    return glm::dvec3(sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(vec2(in.m), false), t, b)));
+    return glm::dvec3(
+        sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(vec2(in.m), false), t, b)));
 }
 
 } // namespace
@@ -112,7 +135,8 @@ void tablePrecision(const Options& o) {
     const unsigned tex = makeFloatTexture(scene.texW, scene.texH, 2, scene.derivTexels, true, true);
     glBindTextureUnit(0, tex);
     GpuMesh mesh(scene.mikkMesh);
-    sg::gl::Program prog = makeProgram(torusVertexShader(), std::string(torusFragmentHead()) + kInputs, "precision");
+    sg::gl::Program prog =
+        makeProgram(torusVertexShader(), std::string(torusFragmentHead()) + kInputs, "precision");
     const int size = o.quick ? 256 : 768;
     Target target(size, size, 6);
     target.clear(glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
@@ -167,22 +191,28 @@ void tablePrecision(const Options& o) {
             // position and UV rounded to binary16, differenced in binary16.
             auto h3 = [](const glm::dvec3& v) { return v3<Half>(v); };
             auto h2 = [](const glm::dvec2& v) { return v2<Half>(v); };
-            const V3<Half> p0 = h3(in.relPos), px = h3(in.relPos + in.dPdx), py = h3(in.relPos + in.dPdy);
+            const V3<Half> p0 = h3(in.relPos), px = h3(in.relPos + in.dPdx),
+                           py = h3(in.relPos + in.dPdy);
             const V2<Half> s0 = h2(in.uv), sx = h2(in.uv + in.dSTdx), sy = h2(in.uv + in.dSTdy);
-            n[PixF16Vary] = pixelPath<Half>(in, px - p0, py - p0, V2<Half>{sx.x - s0.x, sx.y - s0.y},
-                                            V2<Half>{sy.x - s0.x, sy.y - s0.y}, in.m);
+            n[PixF16Vary] =
+                pixelPath<Half>(in, px - p0, py - p0, V2<Half>{sx.x - s0.x, sx.y - s0.y},
+                                V2<Half>{sy.x - s0.x, sy.y - s0.y}, in.m);
         }
         {
             // Absolute world positions far from the origin, differenced in binary32.
             const glm::vec3 pw(in.relPos + glm::dvec3(scene.camPos) + farOffset);
             const glm::vec3 pwx = pw + glm::vec3(in.dPdx), pwy = pw + glm::vec3(in.dPdy);
-            n[PixF32Abs] = pixelPath<float>(in, v3<float>(glm::dvec3(pwx - pw)), v3<float>(glm::dvec3(pwy - pw)),
-                                            v2<float>(in.dSTdx), v2<float>(in.dSTdy), in.m);
+            n[PixF32Abs] = pixelPath<float>(in, v3<float>(glm::dvec3(pwx - pw)),
+                                            v3<float>(glm::dvec3(pwy - pw)), v2<float>(in.dSTdx),
+                                            v2<float>(in.dSTdy), in.m);
         }
         {
-            auto q8 = [](double c) { return std::round((c * 0.5 + 0.5) * 255.0) / 255.0 * 2.0 - 1.0; };
-            n[PixF32Rg8] = pixelPath<float>(in, v3<float>(in.dPdx), v3<float>(in.dPdy), v2<float>(in.dSTdx),
-                                            v2<float>(in.dSTdy), glm::dvec2(q8(in.m.x), q8(in.m.y)));
+            auto q8 = [](double c) {
+                return std::round((c * 0.5 + 0.5) * 255.0) / 255.0 * 2.0 - 1.0;
+            };
+            n[PixF32Rg8] =
+                pixelPath<float>(in, v3<float>(in.dPdx), v3<float>(in.dPdy), v2<float>(in.dSTdx),
+                                 v2<float>(in.dSTdy), glm::dvec2(q8(in.m.x), q8(in.m.y)));
         }
         n[VtxF32] = vertexPath<float>(in);
         n[VtxF16] = vertexPath<Half>(in);
@@ -196,20 +226,33 @@ void tablePrecision(const Options& o) {
     Table t;
     t.title = "Table 6: precision (torus level " + std::to_string(level) +
               ", table 1's path evaluated on the GPU's per-pixel inputs)";
-    t.header = {"path and precision", "vs binary64 p50", "p99", "max", "vs truth p50", "p99", "max", "cost"};
+    t.header = {"path and precision",
+                "vs binary64 p50",
+                "p99",
+                "max",
+                "vs truth p50",
+                "p99",
+                "max",
+                "cost"};
     for (int r = 0; r < RowCount; ++r) {
         const ErrorStats a = errorStats(vs64[size_t(r)]), b = errorStats(vsTruth[size_t(r)]);
-        t.add({names[r], fmtErr(a.p50), fmtErr(a.p99), fmtErr(a.max), fmtErr(b.p50), fmtErr(b.p99), fmtErr(b.max), "n/a"});
+        t.add({names[r], fmtErr(a.p50), fmtErr(a.p99), fmtErr(a.max), fmtErr(b.p50), fmtErr(b.p99),
+               fmtErr(b.max), "n/a"});
     }
-    t.notes.push_back("Degrees over " + std::to_string(vs64[0].size()) + " pixels (" + std::to_string(size) +
-                      "^2). 'vs binary64': the same path on the same inputs in double; 'vs truth': Blinn's normal "
+    t.notes.push_back("Degrees over " + std::to_string(vs64[0].size()) + " pixels (" +
+                      std::to_string(size) +
+                      "^2). 'vs binary64': the same path on the same inputs in double; 'vs truth': "
+                      "Blinn's normal "
                       "on the exact surface (table 1).");
-    t.notes.push_back("binary16 is emulated (every operation rounded to binary16, precision_path.h); the binary32 "
-                      "transcription differs from the shared C++ build (sg::glsl) by at most " + fmtErr(mirrorMax) +
-                      " degrees.");
-    t.notes.push_back("cost n/a: " + o.renderer + " exposes no 16-bit float arithmetic to GLSL (no float16_t "
-                      "extension) and desktop GLSL ignores mediump, so binary16 runs at binary32 speed here; on "
-                      "GPUs with double-rate fp16 the ALU part of this path could run up to 2x faster.");
+    t.notes.push_back("binary16 is emulated (every operation rounded to binary16, "
+                      "precision_path.h); the binary32 "
+                      "transcription differs from the shared C++ build (sg::glsl) by at most " +
+                      fmtErr(mirrorMax) + " degrees.");
+    t.notes.push_back(
+        "cost n/a: " + o.renderer +
+        " exposes no 16-bit float arithmetic to GLSL (no float16_t "
+        "extension) and desktop GLSL ignores mediump, so binary16 runs at binary32 speed here; on "
+        "GPUs with double-rate fp16 the ALU part of this path could run up to 2x faster.");
     t.print(o.markdown);
 }
 

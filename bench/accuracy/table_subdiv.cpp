@@ -61,8 +61,8 @@ void main() {
 }
 )";
 
-double buildMs(sg::mesh::Subdivider& sub, const sg::mesh::PolygonMesh& cage, sg::mesh::SubdivisionSettings settings,
-               int runs) {
+double buildMs(sg::mesh::Subdivider& sub, const sg::mesh::PolygonMesh& cage,
+               sg::mesh::SubdivisionSettings settings, int runs) {
     using Clock = std::chrono::steady_clock;
     settings.reuseTopology = false;
     sub.build(cage, settings); // warm-up: first-touch page faults
@@ -98,7 +98,8 @@ TorusErrors torusErrors(const TorusCage& cage, const sg::mesh::RenderMesh& mesh)
     for (size_t v = 0; v < mesh.vertexCount(); ++v) {
         sample(glm::dvec3(mesh.positions[v]), glm::dvec3(mesh.normals[v]), glm::dvec2(uv[v]));
     }
-    const double bary[4][3] = {{0.5, 0.5, 0.0}, {0.0, 0.5, 0.5}, {0.5, 0.0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+    const double bary[4][3] = {
+        {0.5, 0.5, 0.0}, {0.0, 0.5, 0.5}, {0.5, 0.0, 0.5}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
     for (size_t tri = 0; tri < mesh.triangleCount(); ++tri) {
         const uint32_t* ix = &mesh.indices[tri * 3];
         for (const auto& b : bary) {
@@ -128,13 +129,17 @@ void tableSubdivision(const Options& o) {
     glEnable(GL_CULL_FACE);
 
     // Renders each mesh of a list, interleaved, and returns the medians.
-    auto renderMs = [&](const std::vector<std::unique_ptr<GpuMesh>>& meshes, const glm::mat4& viewProj) {
-        return timeVariants(meshes.size(), [&](size_t k) {
-            tim.clear(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-            glUseProgram(program.id());
-            glUniformMatrix4fv(program.uniform("uViewProj"), 1, GL_FALSE, &viewProj[0][0]);
-            meshes[k]->draw();
-        }, o);
+    auto renderMs = [&](const std::vector<std::unique_ptr<GpuMesh>>& meshes,
+                        const glm::mat4& viewProj) {
+        return timeVariants(
+            meshes.size(),
+            [&](size_t k) {
+                tim.clear(glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+                glUseProgram(program.id());
+                glUniformMatrix4fv(program.uniform("uViewProj"), 1, GL_FALSE, &viewProj[0][0]);
+                meshes[k]->draw();
+            },
+            o);
     };
 
     // a) Torus.
@@ -142,9 +147,10 @@ void tableSubdivision(const Options& o) {
     sg::mesh::PolygonMesh cage = torus.polygonMesh();
     sg::mesh::validate(cage, "bspline_torus");
     Table t;
-    t.title = "Table 2a: subdivision level, B-spline torus (exact limit surface known; major radius 1, minor 0.45)";
-    t.header = {"level", "mesh", "tris", "max dev", "rms dev", "normal p50", "normal p99", "normal max", "build ms",
-                "render ms", "render ratio"};
+    t.title = "Table 2a: subdivision level, B-spline torus (exact limit surface known; major "
+              "radius 1, minor 0.45)";
+    t.header = {"level",      "mesh",       "tris",     "max dev",   "rms dev",     "normal p50",
+                "normal p99", "normal max", "build ms", "render ms", "render ratio"};
     std::vector<std::unique_ptr<GpuMesh>> gpu;
     struct Row {
         int level;
@@ -168,22 +174,28 @@ void tableSubdivision(const Options& o) {
         }
     }
     const glm::vec3 eye(0.35f, -2.3f, 1.95f);
-    const glm::mat4 torusView = glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 10.0f) *
-                                glm::lookAt(eye, glm::vec3(0.0f, 0.05f, -0.15f), glm::vec3(0, 0, 1));
+    const glm::mat4 torusView =
+        glm::perspective(glm::radians(50.0f), 1.0f, 0.1f, 10.0f) *
+        glm::lookAt(eye, glm::vec3(0.0f, 0.05f, -0.15f), glm::vec3(0, 0, 1));
     const auto torusMs = renderMs(gpu, torusView);
     for (const Row& r : rows) {
         const size_t k = size_t(r.level);
-        t.add({std::to_string(r.level), r.limit ? "+limit" : "refined", std::to_string(r.tris), fmtErr(r.e.maxDev),
-               fmtErr(r.e.rmsDev), fmtErr(r.e.normal.p50), fmtErr(r.e.normal.p99), fmtErr(r.e.normal.max), fmt(r.ms, 3),
-               r.limit ? "" : fmt(torusMs[k], 2), r.limit ? "" : fmtRatio(torusMs[k] / torusMs[0])});
+        t.add({std::to_string(r.level), r.limit ? "+limit" : "refined", std::to_string(r.tris),
+               fmtErr(r.e.maxDev), fmtErr(r.e.rmsDev), fmtErr(r.e.normal.p50),
+               fmtErr(r.e.normal.p99), fmtErr(r.e.normal.max), fmt(r.ms, 3),
+               r.limit ? "" : fmt(torusMs[k], 2),
+               r.limit ? "" : fmtRatio(torusMs[k] / torusMs[0])});
     }
-    t.notes.push_back("Deviations in object units along the true normal; normal errors in degrees (interpolated vertex "
-                      "normal vs the limit normal at the same UV); samples: every vertex, 3 edge midpoints and the "
+    t.notes.push_back("Deviations in object units along the true normal; normal errors in degrees "
+                      "(interpolated vertex "
+                      "normal vs the limit normal at the same UV); samples: every vertex, 3 edge "
+                      "midpoints and the "
                       "centroid of every triangle.");
     t.notes.push_back("build ms: Subdivider::build median of " + std::to_string(buildRuns) +
-                      " (render mesh included; +limit adds limit evaluation). render: " + std::to_string(o.size) +
-                      "^2 Lambert pass on " + o.renderer + ", " + std::to_string(o.runs) + " runs x " +
-                      std::to_string(o.frames) + " frames, ratio to level 0 (limit meshes have the same triangles).");
+                      " (render mesh included; +limit adds limit evaluation). render: " +
+                      std::to_string(o.size) + "^2 Lambert pass on " + o.renderer + ", " +
+                      std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
+                      " frames, ratio to level 0 (limit meshes have the same triangles).");
     t.print(o.markdown);
 
     // b) Spot.
@@ -197,9 +209,11 @@ void tableSubdivision(const Options& o) {
     }
     const double diag = glm::length(glm::dvec3(hi - lo));
     Table u;
-    u.title = "Table 2b: subdivision level, spot's control cage (extraordinary vertices; OpenSubdiv limit as reference)";
-    u.header = {"level", "tris", "vertex dist max", "vertex dist rms", "normal p50", "normal p99", "normal max",
-                "build ms", "+limit build ms", "render ms", "render ratio"};
+    u.title = "Table 2b: subdivision level, spot's control cage (extraordinary vertices; "
+              "OpenSubdiv limit as reference)";
+    u.header = {"level",           "tris",       "vertex dist max", "vertex dist rms",
+                "normal p50",      "normal p99", "normal max",      "build ms",
+                "+limit build ms", "render ms",  "render ratio"};
     std::vector<std::unique_ptr<GpuMesh>> spotGpu;
     struct SpotRow {
         int level;
@@ -219,33 +233,39 @@ void tableSubdivision(const Options& o) {
         const double msLimit = buildMs(subLimit, spot, s, buildRuns);
         const sg::mesh::RenderMesh& a = sub.renderMesh();
         const sg::mesh::RenderMesh& b = subLimit.renderMesh();
-        if (a.vertexCount() != b.vertexCount() || sub.renderToRefinedVertex() != subLimit.renderToRefinedVertex()) {
+        if (a.vertexCount() != b.vertexCount() ||
+            sub.renderToRefinedVertex() != subLimit.renderToRefinedVertex()) {
             throw std::runtime_error("spot: refined and limit builds do not share their vertices");
         }
         double maxDist = 0, sumSq = 0;
         std::vector<double> nerr;
         for (size_t v = 0; v < a.vertexCount(); ++v) {
-            const double d = glm::length(glm::dvec3(a.positions[v]) - glm::dvec3(b.positions[v])) / diag;
+            const double d =
+                glm::length(glm::dvec3(a.positions[v]) - glm::dvec3(b.positions[v])) / diag;
             maxDist = std::max(maxDist, d);
             sumSq += d * d;
             nerr.push_back(angleDeg(glm::dvec3(a.normals[v]), glm::dvec3(b.normals[v])));
         }
-        spotRows.push_back({level, a.triangleCount(), maxDist, std::sqrt(sumSq / double(a.vertexCount())),
-                            errorStats(nerr), ms, msLimit});
+        spotRows.push_back({level, a.triangleCount(), maxDist,
+                            std::sqrt(sumSq / double(a.vertexCount())), errorStats(nerr), ms,
+                            msLimit});
         spotGpu.push_back(std::make_unique<GpuMesh>(a));
     }
     const glm::vec3 c = 0.5f * (lo + hi);
     const float r = 0.5f * float(diag);
-    const glm::mat4 spotView = glm::perspective(glm::radians(40.0f), 1.0f, 0.05f * r, 10.0f * r) *
-                               glm::lookAt(c + r * glm::vec3(1.6f, 0.9f, 2.2f), c, glm::vec3(0, 1, 0));
+    const glm::mat4 spotView =
+        glm::perspective(glm::radians(40.0f), 1.0f, 0.05f * r, 10.0f * r) *
+        glm::lookAt(c + r * glm::vec3(1.6f, 0.9f, 2.2f), c, glm::vec3(0, 1, 0));
     const auto spotMs = renderMs(spotGpu, spotView);
     for (const SpotRow& s : spotRows) {
         const size_t k = size_t(s.level);
-        u.add({std::to_string(s.level), std::to_string(s.tris), fmtErr(s.maxDist), fmtErr(s.rmsDist), fmtErr(s.normal.p50),
-               fmtErr(s.normal.p99), fmtErr(s.normal.max), fmt(s.ms, 3), fmt(s.msLimit, 3), fmt(spotMs[k], 2),
+        u.add({std::to_string(s.level), std::to_string(s.tris), fmtErr(s.maxDist),
+               fmtErr(s.rmsDist), fmtErr(s.normal.p50), fmtErr(s.normal.p99), fmtErr(s.normal.max),
+               fmt(s.ms, 3), fmt(s.msLimit, 3), fmt(spotMs[k], 2),
                fmtRatio(spotMs[k] / spotMs[0])});
     }
-    u.notes.push_back("Vertex distances relative to the bounding-box diagonal; normal errors in degrees (area-weighted "
+    u.notes.push_back("Vertex distances relative to the bounding-box diagonal; normal errors in "
+                      "degrees (area-weighted "
                       "normal of the refined mesh vs the limit normal, at the vertices).");
     u.print(o.markdown);
 }

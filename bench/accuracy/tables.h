@@ -7,11 +7,11 @@
 
 namespace study {
 
-void tableFrames(const Options& o);       // 1: tangent frame source
-void tableSubdivision(const Options& o);  // 2: subdivision level
-void tableBlend(const Options& o);        // 3: blend method
-void tableFeatures(const Options& o);     // 4: feature-curve mode
-void tableDerivatives(const Options& o);  // 5: derivative method
-void tablePrecision(const Options& o);    // 6: precision
+void tableFrames(const Options& o);      // 1: tangent frame source
+void tableSubdivision(const Options& o); // 2: subdivision level
+void tableBlend(const Options& o);       // 3: blend method
+void tableFeatures(const Options& o);    // 4: feature-curve mode
+void tableDerivatives(const Options& o); // 5: derivative method
+void tablePrecision(const Options& o);   // 6: precision
 
 } // namespace study

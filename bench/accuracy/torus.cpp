@@ -7,7 +7,9 @@ namespace study {
 
 namespace {
 
-int wrap(int i, int n) { return ((i % n) + n) % n; }
+int wrap(int i, int n) {
+    return ((i % n) + n) % n;
+}
 
 // Uniform cubic B-spline basis on one span, x in [0, 1], and its derivative.
 // With control points c[k-1..k+2] for the span [k, k+1], the limit at x = 0
@@ -43,7 +45,8 @@ sg::mesh::PolygonMesh TorusCage::polygonMesh() const {
     uv.name = "st";
     // (n+1) x (m+1) UV values: the seams carry both s = 0 and s = 1.
     for (int j = 0; j <= m; ++j) {
-        for (int i = 0; i <= n; ++i) uv.values.push_back(glm::vec2(float(i) / float(n), float(j) / float(m)));
+        for (int i = 0; i <= n; ++i)
+            uv.values.push_back(glm::vec2(float(i) / float(n), float(j) / float(m)));
     }
     auto vtx = [&](int i, int j) { return uint32_t(wrap(j, m) * n + wrap(i, n)); };
     auto uvi = [&](int i, int j) { return uint32_t(j * (n + 1) + i); };

@@ -25,15 +25,15 @@
 namespace study {
 
 struct SurfacePoint {
-    glm::dvec3 pos;    // object space
-    glm::dvec3 dPds;   // d(pos)/ds, object units per UV unit
+    glm::dvec3 pos;  // object space
+    glm::dvec3 dPds; // d(pos)/ds, object units per UV unit
     glm::dvec3 dPdt;
     glm::dvec3 normal; // unit, normalize(dPds x dPdt): outward
 };
 
 struct TorusCage {
-    int n = 16, m = 8;          // faces around the major / minor circle
-    double majorRadius = 1.0;   // cage, object units
+    int n = 16, m = 8;        // faces around the major / minor circle
+    double majorRadius = 1.0; // cage, object units
     double minorRadius = 0.45;
 
     // Control point (i, j), indices taken modulo n and m. The torus lies in

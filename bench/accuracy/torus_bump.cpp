@@ -18,7 +18,8 @@ double HeightField::h(double s, double t) const {
 
 glm::dvec2 HeightField::grad(double s, double t) const {
     const double as = 2.0 * M_PI * kS, at = 2.0 * M_PI * kT;
-    return {amplitude * as * std::cos(as * s) * std::sin(at * t), amplitude * at * std::sin(as * s) * std::cos(at * t)};
+    return {amplitude * as * std::cos(as * s) * std::sin(at * t),
+            amplitude * at * std::sin(as * s) * std::cos(at * t)};
 }
 
 TorusBump::TorusBump(int lvl, bool quick) : level(lvl) {
@@ -39,7 +40,8 @@ TorusBump::TorusBump(int lvl, bool quick) : level(lvl) {
     for (size_t v = 0; v < pixelMesh.vertexCount(); ++v) {
         const glm::vec2 uv = pixelMesh.uvSets[0][v];
         const glm::dvec3 p = cage.limit(uv.x, uv.y).pos;
-        limitCheckMaxDist = std::max(limitCheckMaxDist, glm::length(p - glm::dvec3(pixelMesh.positions[v])));
+        limitCheckMaxDist =
+            std::max(limitCheckMaxDist, glm::length(p - glm::dvec3(pixelMesh.positions[v])));
     }
     if (limitCheckMaxDist > 1e-4) {
         throw std::runtime_error("torus: OpenSubdiv limit positions differ from the B-spline by " +
@@ -83,11 +85,12 @@ glm::dvec2 TorusBump::sampleDeriv(double s, double t) const {
         return glm::dvec2(derivTexels[k], derivTexels[k + 1]);
     };
     const int i0 = int(fx), j0 = int(fy);
-    return (1 - ax) * (1 - ay) * texel(i0, j0) + ax * (1 - ay) * texel(i0 + 1, j0) + (1 - ax) * ay * texel(i0, j0 + 1) +
-           ax * ay * texel(i0 + 1, j0 + 1);
+    return (1 - ax) * (1 - ay) * texel(i0, j0) + ax * (1 - ay) * texel(i0 + 1, j0) +
+           (1 - ax) * ay * texel(i0, j0 + 1) + ax * ay * texel(i0 + 1, j0 + 1);
 }
 
-std::vector<double> TorusBump::vertexTangentErrors(const sg::mesh::RenderMesh& mesh, glm::dvec2* worstUv) const {
+std::vector<double> TorusBump::vertexTangentErrors(const sg::mesh::RenderMesh& mesh,
+                                                   glm::dvec2* worstUv) const {
     std::vector<double> err;
     double worst = -1;
     for (size_t v = 0; v < mesh.vertexCount(); ++v) {

@@ -54,7 +54,8 @@ struct TorusBump {
     // Angle (degrees) between each vertex tangent of `mesh` (mikkMesh or
     // limitMesh) and the exact tangent of the limit surface at the vertex's
     // UV; worstUv receives the UV of the largest.
-    std::vector<double> vertexTangentErrors(const sg::mesh::RenderMesh& mesh, glm::dvec2* worstUv) const;
+    std::vector<double> vertexTangentErrors(const sg::mesh::RenderMesh& mesh,
+                                            glm::dvec2* worstUv) const;
 };
 
 // Table 1's accuracy pass (table_frames.cpp): renders the scene at

@@ -61,12 +61,14 @@ std::vector<float> parseLine(const Entry& e, std::string_view line) {
             if (!it->is_boolean()) throw LineError("key '" + f.key + "': expected true or false");
             rec[size_t(f.slot)] = it->get<bool>() ? 1.0f : 0.0f;
         } else if (f.kind == FieldKind::Int) {
-            if (!it->is_number_integer()) throw LineError("key '" + f.key + "': expected an integer");
+            if (!it->is_number_integer())
+                throw LineError("key '" + f.key + "': expected an integer");
             // Range-checked below; clamp first so the conversion is defined.
-            const long long v = it->is_number_unsigned()
-                                    ? static_cast<long long>(std::min<unsigned long long>(
-                                          it->get<unsigned long long>(), 1u << 20))
-                                    : std::clamp<long long>(it->get<long long>(), -(1 << 20), 1 << 20);
+            const long long v =
+                it->is_number_unsigned()
+                    ? static_cast<long long>(
+                          std::min<unsigned long long>(it->get<unsigned long long>(), 1u << 20))
+                    : std::clamp<long long>(it->get<long long>(), -(1 << 20), 1 << 20);
             rec[size_t(f.slot)] = float(v);
         } else if (f.width == 1) {
             rec[size_t(f.slot)] = toFloat(*it, f.key);

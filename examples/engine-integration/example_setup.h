@@ -30,7 +30,9 @@ constexpr float kFovYDeg = 40.0f;
 constexpr float kNear = 0.1f, kFar = 10.0f;
 
 // ---- light (direction TOWARD the light, world space)
-inline glm::vec3 lightDirection() { return glm::normalize(glm::vec3(-0.5f, 0.6f, 0.65f)); }
+inline glm::vec3 lightDirection() {
+    return glm::normalize(glm::vec3(-0.5f, 0.6f, 0.65f));
+}
 
 // ---- sphere: s = longitude, t = latitude, both in [0,1]; s = 0.5 faces the
 // camera (the texture seam is at the back), t = 0 is the south pole. At the
@@ -53,7 +55,8 @@ inline void sphereTangents(glm::vec3 p, glm::vec3& dPds, glm::vec3& dPdt) {
     glm::vec2 st = sphereUv(p);
     float phi = 2.0f * kPi * (st.x - 0.5f), theta = kPi * st.y;
     dPds = glm::vec3(std::cos(phi), 0.0f, -std::sin(phi));
-    dPdt = glm::vec3(std::cos(theta) * std::sin(phi), std::sin(theta), std::cos(theta) * std::cos(phi));
+    dPdt = glm::vec3(std::cos(theta) * std::sin(phi), std::sin(theta),
+                     std::cos(theta) * std::cos(phi));
 }
 
 // ---- layer 1: dimples on UV0, kCellsS x kCellsT cells (square at the
@@ -86,12 +89,14 @@ inline glm::vec2 dimpleDeriv(glm::vec2 st) {
 constexpr float kRingRadius = 0.62f, kRingWidth = 0.11f, kRingHeight = 0.07f;
 constexpr float kBossWidth = 0.22f, kBossHeight = 0.07f;
 constexpr int kDecalMapSize = 256;
-constexpr float kDecalHalfSize = 0.42f;  // half width/height of the projector box
-constexpr float kDecalHalfDepth = 0.5f;  // half depth of the box
-constexpr float kDecalCosStart = 0.5f;   // angle fade: full below 60 degrees ...
-constexpr float kDecalCosEnd = 0.17f;    // ... none beyond 80 degrees
+constexpr float kDecalHalfSize = 0.42f; // half width/height of the projector box
+constexpr float kDecalHalfDepth = 0.5f; // half depth of the box
+constexpr float kDecalCosStart = 0.5f;  // angle fade: full below 60 degrees ...
+constexpr float kDecalCosEnd = 0.17f;   // ... none beyond 80 degrees
 
-inline glm::vec3 decalCenter() { return glm::normalize(glm::vec3(-0.42f, 0.33f, 0.85f)); }
+inline glm::vec3 decalCenter() {
+    return glm::normalize(glm::vec3(-0.42f, 0.33f, 0.85f));
+}
 // Projector frame: z points back toward the projector (out of the surface),
 // x = up cross z, y = z cross x (right-handed).
 inline void decalAxes(glm::vec3& x, glm::vec3& y, glm::vec3& z) {
@@ -107,13 +112,17 @@ inline glm::vec2 decalDeriv(glm::vec2 uv) {
     float q = (r - kRingRadius) / kRingWidth;
     // dh/dr of both terms; the boss term is written as a multiple of r so
     // (a,b)/r below has no 0/0 at the centre.
-    float ringOverR = r > 0.0f ? kRingHeight * std::exp(-q * q) * (-2.0f * q / kRingWidth) / r : 0.0f;
-    float bossOverR = kBossHeight * std::exp(-(r * r) / (kBossWidth * kBossWidth)) * (-2.0f / (kBossWidth * kBossWidth));
+    float ringOverR =
+        r > 0.0f ? kRingHeight * std::exp(-q * q) * (-2.0f * q / kRingWidth) / r : 0.0f;
+    float bossOverR = kBossHeight * std::exp(-(r * r) / (kBossWidth * kBossWidth)) *
+                      (-2.0f / (kBossWidth * kBossWidth));
     return (ringOverR + bossOverR) * glm::vec2(a, b);
 }
 
 // The unit tangent-space normal a map stores for derivative d.
-inline glm::vec3 derivToNormal(glm::vec2 d) { return glm::normalize(glm::vec3(-d.x, -d.y, 1.0f)); }
+inline glm::vec3 derivToNormal(glm::vec2 d) {
+    return glm::normalize(glm::vec3(-d.x, -d.y, 1.0f));
+}
 
 // Strengths (bump scales, listing 2) of the two layers.
 constexpr float kNormalMapStrength = 1.0f, kDecalStrength = 1.0f;

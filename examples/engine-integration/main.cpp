@@ -47,23 +47,32 @@ namespace {
 
 using namespace example;
 
-[[noreturn]] void fail(const std::string& msg) { throw std::runtime_error(msg); }
+[[noreturn]] void fail(const std::string& msg) {
+    throw std::runtime_error(msg);
+}
 
 // ---------------------------------------------------------------- EGL (headless)
 // Mesa's surfaceless platform: a GL 4.5 core context with no window system;
 // everything is drawn into an FBO.
 void createHeadlessContext() {
-    EGLDisplay dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay dpy =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     EGLint major = 0, minor = 0;
-    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor)) fail("EGL: no surfaceless display");
+    if (dpy == EGL_NO_DISPLAY || !eglInitialize(dpy, &major, &minor))
+        fail("EGL: no surfaceless display");
     if (!eglBindAPI(EGL_OPENGL_API)) fail("EGL: OpenGL API unavailable");
-    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                 4,
+                                 EGL_CONTEXT_MINOR_VERSION,
+                                 5,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                  EGL_NONE};
     // EGL_KHR_no_config_context: no surface, so no config is needed.
     EGLContext ctx = eglCreateContext(dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, ctxAttribs);
     if (ctx == EGL_NO_CONTEXT) fail("EGL: cannot create an OpenGL 4.5 core context");
-    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx)) fail("EGL: eglMakeCurrent failed");
+    if (!eglMakeCurrent(dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx))
+        fail("EGL: eglMakeCurrent failed");
 }
 
 // ---------------------------------------------------------------- shaders
@@ -124,7 +133,8 @@ GLuint makeNormalMap(int w, int h, GLenum wrap, DerivFn deriv) {
         for (int x = 0; x < w; ++x) {
             glm::vec3 m = derivToNormal(deriv(glm::vec2((x + 0.5f) / w, (y + 0.5f) / h)));
             for (int c = 0; c < 3; ++c) {
-                texels[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] = uint8_t(std::lround((0.5f * m[c] + 0.5f) * 255.0f));
+                texels[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
+                    uint8_t(std::lround((0.5f * m[c] + 0.5f) * 255.0f));
             }
         }
     }
@@ -157,7 +167,8 @@ void writePng(const std::string& path, int w, int h, const std::vector<uint8_t>&
     std::vector<uint8_t> raw; // each row: filter byte 0 + RGB
     for (int y = 0; y < h; ++y) {
         raw.push_back(0);
-        raw.insert(raw.end(), rgbTopFirst.begin() + ptrdiff_t(y) * w * 3, rgbTopFirst.begin() + ptrdiff_t(y + 1) * w * 3);
+        raw.insert(raw.end(), rgbTopFirst.begin() + ptrdiff_t(y) * w * 3,
+                   rgbTopFirst.begin() + ptrdiff_t(y + 1) * w * 3);
     }
     std::vector<uint8_t> z = {0x78, 0x01};
     uint32_t a = 1, b = 0; // Adler-32
@@ -171,10 +182,14 @@ void writePng(const std::string& path, int w, int h, const std::vector<uint8_t>&
     } while (off < raw.size());
     for (uint8_t v : raw) a = (a + v) % 65521u, b = (b + a) % 65521u;
     uint32_t adler = (b << 16) | a;
-    z.insert(z.end(), {uint8_t(adler >> 24), uint8_t(adler >> 16), uint8_t(adler >> 8), uint8_t(adler)});
+    z.insert(z.end(),
+             {uint8_t(adler >> 24), uint8_t(adler >> 16), uint8_t(adler >> 8), uint8_t(adler)});
 
     std::ofstream out(path, std::ios::binary);
-    auto be32 = [&](uint32_t v) { uint8_t q[4] = {uint8_t(v >> 24), uint8_t(v >> 16), uint8_t(v >> 8), uint8_t(v)}; out.write((const char*)q, 4); };
+    auto be32 = [&](uint32_t v) {
+        uint8_t q[4] = {uint8_t(v >> 24), uint8_t(v >> 16), uint8_t(v >> 8), uint8_t(v)};
+        out.write((const char*)q, 4);
+    };
     auto chunk = [&](const char* type, const std::vector<uint8_t>& data) {
         be32(uint32_t(data.size()));
         std::vector<uint8_t> td(type, type + 4);
@@ -183,8 +198,8 @@ void writePng(const std::string& path, int w, int h, const std::vector<uint8_t>&
         be32(crc32(td.data(), td.size()) ^ 0xffffffffu);
     };
     out.write("\x89PNG\r\n\x1a\n", 8);
-    chunk("IHDR", {uint8_t(w >> 24), uint8_t(w >> 16), uint8_t(w >> 8), uint8_t(w), uint8_t(h >> 24), uint8_t(h >> 16),
-                   uint8_t(h >> 8), uint8_t(h), 8, 2, 0, 0, 0});
+    chunk("IHDR", {uint8_t(w >> 24), uint8_t(w >> 16), uint8_t(w >> 8), uint8_t(w),
+                   uint8_t(h >> 24), uint8_t(h >> 16), uint8_t(h >> 8), uint8_t(h), 8, 2, 0, 0, 0});
     chunk("IDAT", z);
     chunk("IEND", {});
     if (!out) fail("cannot write " + path);
@@ -198,7 +213,8 @@ float linearToSrgb(float v) {
 struct Options {
     std::string out = "engine_integration.png", shaderDir = EXAMPLE_SHADER_DIR;
     int width = 640, height = 640;
-    bool normalAov = false, useUv = true, useDecal = true, analyticDerivs = false, printShader = false;
+    bool normalAov = false, useUv = true, useDecal = true, analyticDerivs = false,
+         printShader = false;
 };
 
 Options parseArgs(int argc, char** argv) {
@@ -209,13 +225,16 @@ Options parseArgs(int argc, char** argv) {
             if (i + 1 >= argc) fail(a + ": missing value");
             return argv[++i];
         };
-        if (a == "-o") o.out = next();
-        else if (a == "--shader-dir") o.shaderDir = next();
-        else if (a == "--print-shader") o.printShader = true;
+        if (a == "-o")
+            o.out = next();
+        else if (a == "--shader-dir")
+            o.shaderDir = next();
+        else if (a == "--print-shader")
+            o.printShader = true;
         else if (a == "--size") {
             std::string v = next();
-            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 || o.height < 1 ||
-                o.width > 8192 || o.height > 8192)
+            if (std::sscanf(v.c_str(), "%dx%d", &o.width, &o.height) != 2 || o.width < 1 ||
+                o.height < 1 || o.width > 8192 || o.height > 8192)
                 fail("--size: expected WxH (1..8192), got " + v);
         } else if (a == "--aov") {
             std::string v = next();
@@ -223,7 +242,8 @@ Options parseArgs(int argc, char** argv) {
             o.normalAov = v == "normal";
         } else if (a == "--layers") {
             std::string v = next();
-            if (v != "uv,decal" && v != "uv" && v != "decal" && v != "none") fail("--layers: expected uv,decal|uv|decal|none");
+            if (v != "uv,decal" && v != "uv" && v != "decal" && v != "none")
+                fail("--layers: expected uv,decal|uv|decal|none");
             o.useUv = v.find("uv") != std::string::npos;
             o.useDecal = v.find("decal") != std::string::npos;
         } else if (a == "--derivs") {
@@ -246,8 +266,10 @@ int main(int argc, char** argv) try {
     // surfgrad_shaders; the sample's own shaders are read from disk.
     std::vector<std::string> defines;
     if (opt.analyticDerivs) defines.push_back("EXAMPLE_ANALYTIC_DERIVS");
-    sg::shaders::Assembled vs = sg::shaders::assemble(readText(opt.shaderDir + "/bumped.vert"), "bumped.vert");
-    sg::shaders::Assembled fs = sg::shaders::assemble(readText(opt.shaderDir + "/bumped.frag"), "bumped.frag", defines);
+    sg::shaders::Assembled vs =
+        sg::shaders::assemble(readText(opt.shaderDir + "/bumped.vert"), "bumped.vert");
+    sg::shaders::Assembled fs =
+        sg::shaders::assemble(readText(opt.shaderDir + "/bumped.frag"), "bumped.frag", defines);
     if (opt.printShader) {
         std::fwrite(fs.text.data(), 1, fs.text.size(), stdout);
         return 0;
@@ -275,7 +297,8 @@ int main(int argc, char** argv) try {
     glNamedBufferStorage(ibo, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
     glVertexArrayVertexBuffer(vao, 0, vbo, 0, sizeof(Vertex));
     glVertexArrayElementBuffer(vao, ibo);
-    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal), offsetof(Vertex, uv0)};
+    const GLuint offsets[3] = {offsetof(Vertex, position), offsetof(Vertex, normal),
+                               offsetof(Vertex, uv0)};
     for (GLuint a = 0; a < 3; ++a) {
         glEnableVertexArrayAttrib(vao, a);
         glVertexArrayAttribFormat(vao, a, a == 2 ? 2 : 3, GL_FLOAT, GL_FALSE, offsets[a]);
@@ -289,7 +312,8 @@ int main(int argc, char** argv) try {
     const glm::vec3 cameraPos(0.0f, 0.0f, kCameraDistance);
     const float aspect = float(opt.width) / float(opt.height);
     glm::mat4 proj = glm::perspective(glm::radians(kFovYDeg), aspect, kNear, kFar);
-    glm::mat4 viewRot = glm::lookAt(glm::vec3(0.0f), -cameraPos, glm::vec3(0, 1, 0)); // no translation
+    glm::mat4 viewRot =
+        glm::lookAt(glm::vec3(0.0f), -cameraPos, glm::vec3(0, 1, 0)); // no translation
     glm::mat4 viewProjRel = proj * viewRot;
     glm::mat4 viewport(1.0f); // NDC -> window pixels, depth -> [0,1]
     viewport[0][0] = 0.5f * opt.width;
@@ -307,7 +331,8 @@ int main(int argc, char** argv) try {
     glUniformMatrix3fv(loc("uNormalMat"), 1, GL_FALSE, glm::value_ptr(glm::mat3(1.0f)));
     glUniform3fv(loc("uCameraPos"), 1, glm::value_ptr(cameraPos));
     glUniformMatrix4fv(loc("uViewProjRel"), 1, GL_FALSE, glm::value_ptr(viewProjRel));
-    if (opt.analyticDerivs) glUniformMatrix4fv(loc("uInvViewProjScr"), 1, GL_FALSE, glm::value_ptr(invViewProjScr));
+    if (opt.analyticDerivs)
+        glUniformMatrix4fv(loc("uInvViewProjScr"), 1, GL_FALSE, glm::value_ptr(invViewProjScr));
     glUniform1i(loc("uBfaceMode"), 0); // SG_BFACE_NONE (back faces are culled anyway)
     glUniform1i(loc("uNormalMap"), 0);
     glUniform1f(loc("uNormalStrength"), opt.useUv ? kNormalMapStrength : 0.0f);
@@ -334,7 +359,8 @@ int main(int argc, char** argv) try {
     glNamedRenderbufferStorage(depth, GL_DEPTH_COMPONENT24, opt.width, opt.height);
     glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
     glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
-    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) fail("incomplete framebuffer");
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        fail("incomplete framebuffer");
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, opt.width, opt.height);
     const float background[4] = {0.02f, 0.022f, 0.026f, 0.0f};
@@ -353,15 +379,19 @@ int main(int argc, char** argv) try {
     std::vector<uint8_t> rgb(size_t(opt.width) * size_t(opt.height) * 3);
     for (int y = 0; y < opt.height; ++y) {
         for (int x = 0; x < opt.width; ++x) {
-            const float* p = &rgba[(size_t(opt.height - 1 - y) * size_t(opt.width) + size_t(x)) * 4];
+            const float* p =
+                &rgba[(size_t(opt.height - 1 - y) * size_t(opt.width) + size_t(x)) * 4];
             for (int c = 0; c < 3; ++c) {
-                float v = opt.normalAov ? (p[3] > 0.0f ? 0.5f * p[c] + 0.5f : 0.0f) : linearToSrgb(p[c]);
-                rgb[(size_t(y) * size_t(opt.width) + size_t(x)) * 3 + size_t(c)] = uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+                float v =
+                    opt.normalAov ? (p[3] > 0.0f ? 0.5f * p[c] + 0.5f : 0.0f) : linearToSrgb(p[c]);
+                rgb[(size_t(y) * size_t(opt.width) + size_t(x)) * 3 + size_t(c)] =
+                    uint8_t(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
             }
         }
     }
     writePng(opt.out, opt.width, opt.height, rgb);
-    std::printf("wrote %s (%dx%d, %s)\n", opt.out.c_str(), opt.width, opt.height, opt.normalAov ? "normal" : "color");
+    std::printf("wrote %s (%dx%d, %s)\n", opt.out.c_str(), opt.width, opt.height,
+                opt.normalAov ? "normal" : "color");
     return 0;
 } catch (const std::exception& e) {
     std::fprintf(stderr, "example_engine_integration: error: %s\n", e.what());

@@ -45,12 +45,16 @@ namespace sg::features {
 
 using namespace detail;
 
-const char* toString(BakeMode m) { return m == BakeMode::Linear ? "linear" : "quadratic"; }
+const char* toString(BakeMode m) {
+    return m == BakeMode::Linear ? "linear" : "quadratic";
+}
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double wallSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double wallSince(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 // CPU time of the calling thread: phase timings that stay meaningful on a
 // shared machine.
 double threadCpu() {
@@ -75,7 +79,8 @@ struct Stroke {
 std::string segName(const CurveNetwork& net, size_t k) {
     std::string s = "segment " + std::to_string(k);
     const auto& seg = net.segments[k];
-    if (seg.curve >= 0 && size_t(seg.curve) < net.curves.size() && !net.curves[size_t(seg.curve)].name.empty()) {
+    if (seg.curve >= 0 && size_t(seg.curve) < net.curves.size() &&
+        !net.curves[size_t(seg.curve)].name.empty()) {
         s += " (curve '" + net.curves[size_t(seg.curve)].name + "')";
     }
     return s;
@@ -111,12 +116,15 @@ std::vector<OSeg> toTexelSpace(const CurveNetwork& net, const TexelTransform& xf
         // A quadratic whose middle point equals an end is a straight line
         // (handled below); coincident END points leave no chord.
         if (same(s.p0, s.p2)) {
-            throw io::InputError(file, segName(net, k),
-                                 o.line || same(s.p0, s.p1) ? "coincident control points (zero-length segment)"
-                                                            : "coincident end points (the quadratic folds back on itself)");
+            throw io::InputError(
+                file, segName(net, k),
+                o.line || same(s.p0, s.p1)
+                    ? "coincident control points (zero-length segment)"
+                    : "coincident end points (the quadratic folds back on itself)");
         }
         if (glm::length(o.q.p2 - o.q.p0) <= 1e-9) {
-            throw io::InputError(file, segName(net, k), "segment shorter than 1e-9 texels at this map size");
+            throw io::InputError(file, segName(net, k),
+                                 "segment shorter than 1e-9 texels at this map size");
         }
         if (!o.line) {
             dvec2 e = o.q.p2 - o.q.p0, m = o.q.p1 - o.q.p0;
@@ -124,9 +132,10 @@ std::vector<OSeg> toTexelSpace(const CurveNetwork& net, const TexelTransform& xf
             if (std::fabs(cross2(e, m)) <= 1e-12 * ee) {
                 double along = glm::dot(m, e) / ee;
                 if (along < 0.0 || along > 1.0) {
-                    throw io::InputError(file, segName(net, k),
-                                         "quadratic folds back on itself (collinear control points, middle "
-                                         "point outside the chord)");
+                    throw io::InputError(
+                        file, segName(net, k),
+                        "quadratic folds back on itself (collinear control points, middle "
+                        "point outside the chord)");
                 }
                 // Collinear and inside the chord: geometrically straight.
                 o.line = true;
@@ -145,7 +154,8 @@ TexelTransform fitTransform(const CurveNetwork& net, const BakeOptions& opt) {
     net.bounds(lo, hi);
     for (double v : {lo.x, lo.y, hi.x, hi.y}) {
         if (!std::isfinite(v)) {
-            throw io::InputError(net.source.empty() ? "(curve network)" : net.source, "", "non-finite coordinate");
+            throw io::InputError(net.source.empty() ? "(curve network)" : net.source, "",
+                                 "non-finite coordinate");
         }
     }
     double avail = double(opt.size) - 2.0 * opt.marginTexels;
@@ -177,7 +187,8 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
         chains.back().segs.push_back(segs[k]);
     }
     for (auto& c : chains) {
-        c.closed = c.segs.size() >= 2 && glm::length(c.segs.front().q.p0 - c.segs.back().q.p2) <= kJoinTol;
+        c.closed =
+            c.segs.size() >= 2 && glm::length(c.segs.front().q.p0 - c.segs.back().q.p2) <= kJoinTol;
     }
     // Open chain ends: position and the direction the chain leaves it in.
     struct End {
@@ -197,7 +208,8 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
     // Group coincident ends (sweep in x), pair the most opposite first.
     std::vector<int> order(ends.size());
     std::iota(order.begin(), order.end(), 0);
-    std::sort(order.begin(), order.end(), [&](int a, int b) { return ends[size_t(a)].pos.x < ends[size_t(b)].pos.x; });
+    std::sort(order.begin(), order.end(),
+              [&](int a, int b) { return ends[size_t(a)].pos.x < ends[size_t(b)].pos.x; });
     std::vector<int> group(ends.size(), -1);
     int groups = 0;
     for (size_t a = 0; a < order.size(); ++a) {
@@ -206,7 +218,8 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
         for (size_t b = a + 1; b < order.size(); ++b) {
             int eb = order[b];
             if (ends[size_t(eb)].pos.x - ends[size_t(ea)].pos.x > kJoinTol) break;
-            if (group[size_t(eb)] < 0 && glm::length(ends[size_t(eb)].pos - ends[size_t(ea)].pos) <= kJoinTol) {
+            if (group[size_t(eb)] < 0 &&
+                glm::length(ends[size_t(eb)].pos - ends[size_t(ea)].pos) <= kJoinTol) {
                 group[size_t(eb)] = group[size_t(ea)];
             }
         }
@@ -218,10 +231,12 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
         std::vector<std::pair<double, std::pair<int, int>>> cand;
         for (size_t a = 0; a < m.size(); ++a) {
             for (size_t b = a + 1; b < m.size(); ++b) {
-                cand.push_back({glm::dot(ends[size_t(m[a])].dir, ends[size_t(m[b])].dir), {m[a], m[b]}});
+                cand.push_back(
+                    {glm::dot(ends[size_t(m[a])].dir, ends[size_t(m[b])].dir), {m[a], m[b]}});
             }
         }
-        std::stable_sort(cand.begin(), cand.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+        std::stable_sort(cand.begin(), cand.end(),
+                         [](const auto& x, const auto& y) { return x.first < y.first; });
         for (const auto& [dotv, pr] : cand) {
             (void)dotv;
             if (ends[size_t(pr.first)].partner < 0 && ends[size_t(pr.second)].partner < 0) {
@@ -231,7 +246,8 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
         }
     }
     std::vector<int> endOf(chains.size() * 2, -1);
-    for (size_t e = 0; e < ends.size(); ++e) endOf[size_t(ends[e].chain) * 2 + size_t(ends[e].side)] = int(e);
+    for (size_t e = 0; e < ends.size(); ++e)
+        endOf[size_t(ends[e].chain) * 2 + size_t(ends[e].side)] = int(e);
 
     std::vector<Stroke> strokes;
     std::vector<bool> used(chains.size(), false);
@@ -240,7 +256,8 @@ std::vector<Stroke> buildStrokes(const CurveNetwork& net, const std::vector<OSeg
         if (!reversed) {
             st.segs.insert(st.segs.end(), cs.begin(), cs.end());
         } else {
-            for (auto it = cs.rbegin(); it != cs.rend(); ++it) st.segs.push_back({it->q.reversed(), it->line});
+            for (auto it = cs.rbegin(); it != cs.rend(); ++it)
+                st.segs.push_back({it->q.reversed(), it->line});
         }
     };
     auto walk = [&](int c, bool reversed) {
@@ -310,7 +327,8 @@ public:
             uint8_t old = g_.segMask[ti];
             uint8_t nw = transition(old, pair);
             if (!(old & (1u << pair))) {
-                st_.segmentsDropped += std::popcount(unsigned(old)) + 1 - std::popcount(unsigned(nw));
+                st_.segmentsDropped +=
+                    std::popcount(unsigned(old)) + 1 - std::popcount(unsigned(nw));
             }
             g_.segMask[ti] = nw;
             if (v.quad && (nw & (1u << pair))) {
@@ -368,7 +386,8 @@ private:
         dvec2 lo = glm::min(glm::min(c.p0, c.p1), c.p2), hi = glm::max(glm::max(c.p0, c.p1), c.p2);
         dvec2 a = c.a(), b = c.b();
         for (int axis = 0; axis < 2; ++axis) {
-            double from = std::max(std::ceil(lo[axis]), 0.0), to = std::min(std::floor(hi[axis]), double(g_.n));
+            double from = std::max(std::ceil(lo[axis]), 0.0),
+                   to = std::min(std::floor(hi[axis]), double(g_.n));
             for (double line = from; line <= to; line += 1.0) {
                 double r[2];
                 int n = s.line ? 0 : quadRoots(a[axis], b[axis], c.p0[axis] - line, r);
@@ -428,7 +447,10 @@ private:
         while ((ci != i || cj != j) && guard++ < 8) {
             int ni = ci, nj = cj;
             bool stepY = cj != j && (j > cj || ci == i);
-            if (stepY) nj += j > cj ? 1 : -1; else ni += i > ci ? 1 : -1;
+            if (stepY)
+                nj += j > cj ? 1 : -1;
+            else
+                ni += i > ci ? 1 : -1;
             step(ci, cj, ni, nj, x, tan);
             ci = ni;
             cj = nj;
@@ -443,10 +465,31 @@ private:
         int outEdge, inEdge;
         bool horizontal; // the shared edge is horizontal
         int ei, ej;      // corner the shared edge starts at
-        if (ni == ci + 1) { outEdge = 1; inEdge = 3; horizontal = false; ei = ni; ej = cj; }
-        else if (ni == ci - 1) { outEdge = 3; inEdge = 1; horizontal = false; ei = ci; ej = cj; }
-        else if (nj == cj + 1) { outEdge = 2; inEdge = 0; horizontal = true; ei = ci; ej = nj; }
-        else { outEdge = 0; inEdge = 2; horizontal = true; ei = ci; ej = cj; }
+        if (ni == ci + 1) {
+            outEdge = 1;
+            inEdge = 3;
+            horizontal = false;
+            ei = ni;
+            ej = cj;
+        } else if (ni == ci - 1) {
+            outEdge = 3;
+            inEdge = 1;
+            horizontal = false;
+            ei = ci;
+            ej = cj;
+        } else if (nj == cj + 1) {
+            outEdge = 2;
+            inEdge = 0;
+            horizontal = true;
+            ei = ci;
+            ej = nj;
+        } else {
+            outEdge = 0;
+            inEdge = 2;
+            horizontal = true;
+            ei = ci;
+            ej = cj;
+        }
         double pos = horizontal ? x.x - ei : x.y - ej;
         bool exists = horizontal ? (ei >= 0 && ei < g_.n && ej >= 0 && ej <= g_.n)
                                  : (ei >= 0 && ei <= g_.n && ej >= 0 && ej < g_.n);
@@ -482,7 +525,8 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     const double cpu0 = threadCpu();
     if (opt.size < 1 || opt.size > kMaxFeatureMapSize) {
         throw io::InputError("(options)", "size",
-                             "must be 1.." + std::to_string(kMaxFeatureMapSize) + ", got " + std::to_string(opt.size));
+                             "must be 1.." + std::to_string(kMaxFeatureMapSize) + ", got " +
+                                 std::to_string(opt.size));
     }
     if (!(opt.bandTexels >= 1.0 && opt.bandTexels <= 1024.0)) {
         throw io::InputError("(options)", "band", "must be 1..1024 texels");
@@ -498,7 +542,8 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     TexelTransform xf = opt.fit ? fitTransform(net, opt) : opt.transform;
     if (!std::isfinite(xf.scale.x) || !std::isfinite(xf.scale.y) || !std::isfinite(xf.offset.x) ||
         !std::isfinite(xf.offset.y) || xf.scale.x == 0.0 || xf.scale.y == 0.0) {
-        throw io::InputError("(options)", "transform", "scale must be finite and non-zero, offset finite");
+        throw io::InputError("(options)", "transform",
+                             "scale must be finite and non-zero, offset finite");
     }
     st.inputToTexel = xf;
     std::vector<OSeg> segs = toTexelSpace(net, xf);
@@ -536,7 +581,8 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
             const EdgeAcc& acc = dir == 0 ? g.hAcc[k] : g.vAcc[k];
             if (acc.count == 0) continue;
             double theta = 0.0;
-            if (std::hypot(acc.sumCos, acc.sumSin) > 1e-9 * acc.count) theta = 0.5 * std::atan2(acc.sumSin, acc.sumCos);
+            if (std::hypot(acc.sumCos, acc.sumSin) > 1e-9 * acc.count)
+                theta = 0.5 * std::atan2(acc.sumSin, acc.sumCos);
             (dir == 0 ? g.hPos : g.vPos)[k] = quantizePos(acc.sumPos / acc.count);
             (dir == 0 ? g.hAng : g.vAng)[k] = quantizeAngle(theta);
         }
@@ -660,7 +706,10 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
                         auto clip = [&](double a, double b, double vmin, double vmax) {
                             // vmin <= a x + b <= vmax
                             if (a == 0) {
-                                if (b < vmin || b > vmax) { lo2 = 1e300; hi2 = -1e300; }
+                                if (b < vmin || b > vmax) {
+                                    lo2 = 1e300;
+                                    hi2 = -1e300;
+                                }
                                 return;
                             }
                             double x1 = (vmin - b) / a, x2 = (vmax - b) / a;
@@ -677,7 +726,8 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
                         xa = std::min(xa, std::min(s.q.p0.x, s.q.p2.x));
                         xb = std::max(xb, std::max(s.q.p0.x, s.q.p2.x));
                     }
-                    int ia = std::max(i0, int(std::ceil(xa))), ib = std::min(i1, int(std::floor(xb)));
+                    int ia = std::max(i0, int(std::ceil(xa))),
+                        ib = std::min(i1, int(std::floor(xb)));
                     size_t ci = maps.index(ia, j);
                     for (int i = ia; i <= ib; ++i, ++ci) {
                         double dx = i - p0.x;
@@ -702,7 +752,8 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
                     }
                 }
             }
-            if (opt.progress && (k & 255) == 255 && Clock::now() - last > std::chrono::milliseconds(200)) {
+            if (opt.progress && (k & 255) == 255 &&
+                Clock::now() - last > std::chrono::milliseconds(200)) {
                 opt.progress("distance", double(k + 1) / double(segs.size()));
                 last = Clock::now();
             }
@@ -726,14 +777,18 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
                 uint8_t l = 0;
                 if (i + 1 < m && !(maps.hPos[k] >= 0.0f) && maps.dist[k + 1] < inBand) l |= 1;
                 if (i > 0 && !(maps.hPos[k - 1] >= 0.0f) && maps.dist[k - 1] < inBand) l |= 2;
-                if (j + 1 < m && !(maps.vPos[k] >= 0.0f) && maps.dist[k + size_t(m)] < inBand) l |= 4;
-                if (j > 0 && !(maps.vPos[k - size_t(m)] >= 0.0f) && maps.dist[k - size_t(m)] < inBand) l |= 8;
+                if (j + 1 < m && !(maps.vPos[k] >= 0.0f) && maps.dist[k + size_t(m)] < inBand)
+                    l |= 4;
+                if (j > 0 && !(maps.vPos[k - size_t(m)] >= 0.0f) &&
+                    maps.dist[k - size_t(m)] < inBand)
+                    l |= 8;
                 links[k] = l;
             }
         }
         std::vector<float> gx2(maps.gradX), gy2(maps.gradY);
         float weight[16];
-        for (int l = 0; l < 16; ++l) weight[l] = l ? 0.5f / float(std::popcount(unsigned(l))) : 0.0f;
+        for (int l = 0; l < 16; ++l)
+            weight[l] = l ? 0.5f / float(std::popcount(unsigned(l))) : 0.0f;
         for (int it = 0; it < opt.smoothIterations; ++it) {
             const float* gx = maps.gradX.data();
             const float* gy = maps.gradY.data();
@@ -741,10 +796,22 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
                 uint8_t l = links[k];
                 if (!l) continue;
                 float sx = 0, sy = 0;
-                if (l & 1) { sx += gx[k + 1]; sy += gy[k + 1]; }
-                if (l & 2) { sx += gx[k - 1]; sy += gy[k - 1]; }
-                if (l & 4) { sx += gx[k + size_t(m)]; sy += gy[k + size_t(m)]; }
-                if (l & 8) { sx += gx[k - size_t(m)]; sy += gy[k - size_t(m)]; }
+                if (l & 1) {
+                    sx += gx[k + 1];
+                    sy += gy[k + 1];
+                }
+                if (l & 2) {
+                    sx += gx[k - 1];
+                    sy += gy[k - 1];
+                }
+                if (l & 4) {
+                    sx += gx[k + size_t(m)];
+                    sy += gy[k + size_t(m)];
+                }
+                if (l & 8) {
+                    sx += gx[k - size_t(m)];
+                    sy += gy[k - size_t(m)];
+                }
                 float w = weight[l];
                 gx2[k] = 0.5f * gx[k] + w * sx;
                 gy2[k] = 0.5f * gy[k] + w * sy;

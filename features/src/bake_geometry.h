@@ -13,7 +13,9 @@ namespace sg::features::detail {
 
 using dvec2 = glm::dvec2;
 
-inline double cross2(dvec2 a, dvec2 b) { return a.x * b.y - a.y * b.x; }
+inline double cross2(dvec2 a, dvec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 // B(u) = (1-u)^2 p0 + 2u(1-u) p1 + u^2 p2 = p0 + b u + a u^2.
 struct Quad {

@@ -29,7 +29,7 @@ int pairOf(int edgeA, int edgeB); // -1 when edgeA == edgeB
 uint8_t transition(uint8_t mask, int pair);
 
 // Quantization of edge signatures to the 16-bit grids of layout.glsl.
-double quantizePos(double t);     // also clamps to [SG_FEAT_EDGE_MARGIN, 1 - margin]
+double quantizePos(double t); // also clamps to [SG_FEAT_EDGE_MARGIN, 1 - margin]
 double quantizeAngle(double theta);
 uint32_t packEdgeWord(double posQ, double angleQ);
 
@@ -49,9 +49,9 @@ struct Grid {
     std::vector<EdgeAcc> hAcc, vAcc;
     std::vector<double> hPos, hAng, vPos, vAng; // final, quantized; pos < 0: no point
     // Per texel (index j * n + i).
-    std::vector<uint8_t> segMask;     // segment types present
-    std::vector<uint8_t> quadMask;    // ... coming from quadratic input (curve candidates)
-    std::vector<uint8_t> straightMask;// ... forced straight (optimisation fallback)
+    std::vector<uint8_t> segMask;      // segment types present
+    std::vector<uint8_t> quadMask;     // ... coming from quadratic input (curve candidates)
+    std::vector<uint8_t> straightMask; // ... forced straight (optimisation fallback)
     // Quadratic mode: for each (texel, segment type) with curve input, the
     // mean texel-local position of the input curve's point farthest from
     // the segment's chord (the fidelity target of the optimisation).
@@ -60,7 +60,9 @@ struct Grid {
         int count = 0;
     };
     std::unordered_map<uint64_t, Target> targets;
-    static uint64_t targetKey(size_t texel, int pair) { return uint64_t(texel) * kPairCount + uint64_t(pair); }
+    static uint64_t targetKey(size_t texel, int pair) {
+        return uint64_t(texel) * kPairCount + uint64_t(pair);
+    }
 
     size_t ci(int i, int j) const { return size_t(j) * size_t(n + 1) + size_t(i); }
     size_t ti(int i, int j) const { return size_t(j) * size_t(n) + size_t(i); }

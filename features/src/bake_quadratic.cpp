@@ -37,11 +37,10 @@
 // input curve's farthest-from-chord point in the texel to the segment:
 // without it the thin-plate energy straightens curves the search only needs
 // to nudge) and a weak anchor 0.25 (t - t_initial)^2 keeping points near
-// the centre of mass of the input crossings. Starts: the current signature; the paper's Eq. 7 remedy (middle
-// point moved onto the chord's perpendicular bisector, x0 = 0); tangents
-// from the neighbouring edge points (Catmull-Rom). A texel the search
-// cannot make valid has its segments straightened, which is always valid
-// (the linear partition of TR2005).
+// the centre of mass of the input crossings. Starts: the current signature; the paper's Eq. 7
+// remedy (middle point moved onto the chord's perpendicular bisector, x0 = 0); tangents from the
+// neighbouring edge points (Catmull-Rom). A texel the search cannot make valid has its segments
+// straightened, which is always valid (the linear partition of TR2005).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -54,14 +53,14 @@ namespace {
 
 // Margins (texels unless stated). They keep the runtime's binary32
 // decisions away from their thresholds.
-constexpr double kFlatDeviation = 1e-3;       // straight when the curve deviates less from its chord
-constexpr double kExtensionMargin = 1e-3;     // parabola extension kept this far from the texel
-constexpr double kStarMargin = 1e-3;          // sine of the smallest sweep angle (1C)
-constexpr double kOrderMargin = 1e-4;         // separation of 2C edges
-constexpr double kAreaMargin = 1e-6;          // straight inner triangle orientation
-constexpr double kSliverArea = 0.005;         // 1C triangles this thin need not be star-shaped
-constexpr double kCurveMargin = 1e-4;         // curve interior kept this far inside the texel
-constexpr double kInwardSin = 1e-3;           // curves leave their end points into the texel
+constexpr double kFlatDeviation = 1e-3;   // straight when the curve deviates less from its chord
+constexpr double kExtensionMargin = 1e-3; // parabola extension kept this far from the texel
+constexpr double kStarMargin = 1e-3;      // sine of the smallest sweep angle (1C)
+constexpr double kOrderMargin = 1e-4;     // separation of 2C edges
+constexpr double kAreaMargin = 1e-6;      // straight inner triangle orientation
+constexpr double kSliverArea = 0.005;     // 1C triangles this thin need not be star-shaped
+constexpr double kCurveMargin = 1e-4;     // curve interior kept this far inside the texel
+constexpr double kInwardSin = 1e-3;       // curves leave their end points into the texel
 // Weight of the squared distance from the input curve's sample to the
 // segment, added to the thin-plate energy (texels^-2 vs. the energy's
 // texels^2). The thin-plate energy of a one-texel piece of a circle of
@@ -73,19 +72,31 @@ constexpr double kFidelityWeight = 1000.0;
 
 dvec2 edgePoint(int e, double t) {
     switch (e) {
-    case 0: return {t, 0.0};
-    case 1: return {1.0, t};
-    case 2: return {t, 1.0};
-    default: return {0.0, t};
+    case 0:
+        return {t, 0.0};
+    case 1:
+        return {1.0, t};
+    case 2:
+        return {t, 1.0};
+    default:
+        return {0.0, t};
     }
 }
 
-dvec2 cornerPos(int k) { return {(k == 1 || k == 2) ? 1.0 : 0.0, k >= 2 ? 1.0 : 0.0}; }
+dvec2 cornerPos(int k) {
+    return {(k == 1 || k == 2) ? 1.0 : 0.0, k >= 2 ? 1.0 : 0.0};
+}
 
-dvec2 dirOf(double theta) { return {std::cos(theta), std::sin(theta)}; }
+dvec2 dirOf(double theta) {
+    return {std::cos(theta), std::sin(theta)};
+}
 
-double posOf(const Grid& g, int i, int j, int e) { return const_cast<Grid&>(g).pos(i, j, e); }
-double angOf(const Grid& g, int i, int j, int e) { return const_cast<Grid&>(g).ang(i, j, e); }
+double posOf(const Grid& g, int i, int j, int e) {
+    return const_cast<Grid&>(g).pos(i, j, e);
+}
+double angOf(const Grid& g, int i, int j, int e) {
+    return const_cast<Grid&>(g).ang(i, j, e);
+}
 
 // Middle control point from the signature; false when the tangent lines
 // are (nearly) parallel.
@@ -203,7 +214,9 @@ struct PEdge {
     bool curved = false;
 };
 
-PEdge lineEdge(dvec2 a, dvec2 b) { return {{a, 0.5 * (a + b), b}, false}; }
+PEdge lineEdge(dvec2 a, dvec2 b) {
+    return {{a, 0.5 * (a + b), b}, false};
+}
 
 } // namespace
 
@@ -316,7 +329,10 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
         for (int end = 0; end < 2; ++end) {
             int e = end == 0 ? a : b;
             dvec2 q = end == 0 ? qa : qb;
-            dvec2 inward = e == 0 ? dvec2(0, 1) : e == 1 ? dvec2(-1, 0) : e == 2 ? dvec2(0, -1) : dvec2(1, 0);
+            dvec2 inward = e == 0   ? dvec2(0, 1)
+                           : e == 1 ? dvec2(-1, 0)
+                           : e == 2 ? dvec2(0, -1)
+                                    : dvec2(1, 0);
             double len = glm::length(b1 - q);
             double sn = len > 0 ? glm::dot(b1 - q, inward) / len : -1.0;
             out += std::max(0.0, kInwardSin - sn);
@@ -364,7 +380,10 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
     // intersects a line with a curve in closed form, so the flatter one
     // becomes straight.
     if (t.nseg == 2 && t.curved[0] && t.curved[1] && t.pair[0] == 4 && t.pair[1] == 5) {
-        auto dev = [&](int s) { return std::fabs(cross2(glm::normalize(t.seg[s].p2 - t.seg[s].p0), t.seg[s].p1 - t.seg[s].p0)); };
+        auto dev = [&](int s) {
+            return std::fabs(
+                cross2(glm::normalize(t.seg[s].p2 - t.seg[s].p0), t.seg[s].p1 - t.seg[s].p0));
+        };
         int flat = dev(0) <= dev(1) ? 0 : 1;
         t.curved[flat] = false;
         t.seg[flat] = {t.q[t.a[flat]], 0.5 * (t.q[t.a[flat]] + t.q[t.b[flat]]), t.q[t.b[flat]]};
@@ -398,7 +417,8 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
         const PEdge& lin = pathV.curved ? pathH : pathV;
         dvec2 d = lin.c.p2 - lin.c.p0;
         double r[2];
-        int n = quadRoots(cross2(cur.c.a(), d), cross2(cur.c.b(), d), cross2(cur.c.p0 - lin.c.p0, d), r);
+        int n = quadRoots(cross2(cur.c.a(), d), cross2(cur.c.b(), d),
+                          cross2(cur.c.p0 - lin.c.p0, d), r);
         int inside = 0;
         double u = 0.5;
         for (int k = 0; k < n; ++k) {
@@ -443,9 +463,12 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
             double sC = cross2(t.q[eb] - t.q[ea], corner - t.q[ea]);
             viol += std::max(0.0, kAreaMargin - (sC > 0 ? -sIn : sIn));
         } else if (nc == 1) {
-            if (diag.curved) viol += starViolation(diag.c, rm);
-            else if (sa.curved) viol += starViolation(sa.c, t.q[eb]);
-            else viol += starViolation(sb.c, t.q[ea]);
+            if (diag.curved)
+                viol += starViolation(diag.c, rm);
+            else if (sa.curved)
+                viol += starViolation(sa.c, t.q[eb]);
+            else
+                viol += starViolation(sb.c, t.q[ea]);
         } else if (!diag.curved) {
             viol += twoCViolation(sa.c, sb.c);
         } else if (sa.curved) {
@@ -456,7 +479,6 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
     }
     return viol;
 }
-
 
 namespace {
 
@@ -492,7 +514,9 @@ double texelEnergy(const Grid& g, int i, int j) {
     return e;
 }
 
-double angleOf(dvec2 d) { return wrapAngle(std::atan2(d.y, d.x)); }
+double angleOf(dvec2 d) {
+    return wrapAngle(std::atan2(d.y, d.x));
+}
 
 // Optimises the signature of texel (i, j); true when it ends valid.
 bool optimizeTexel(Grid& g, int i, int j) {
@@ -576,8 +600,13 @@ bool optimizeTexel(Grid& g, int i, int j) {
             dvec2 here{0.0}, there{0.0};
             bool hasHere = false, hasThere = false;
             for (int sg = 0; sg < t.nseg && !hasHere; ++sg) {
-                if (t.a[sg] == e) { here = t.q[t.b[sg]]; hasHere = true; }
-                else if (t.b[sg] == e) { here = t.q[t.a[sg]]; hasHere = true; }
+                if (t.a[sg] == e) {
+                    here = t.q[t.b[sg]];
+                    hasHere = true;
+                } else if (t.b[sg] == e) {
+                    here = t.q[t.a[sg]];
+                    hasHere = true;
+                }
             }
             if (ni >= 0 && nj >= 0 && ni < g.n && nj < g.n) {
                 LocalTexel u = decodeTexel(g, ni, nj);
@@ -589,7 +618,8 @@ bool optimizeTexel(Grid& g, int i, int j) {
                     }
                 }
             }
-            if (hasHere && hasThere && glm::length(there - here) > 1e-6) s[2 * k + 1] = angleOf(there - here);
+            if (hasHere && hasThere && glm::length(there - here) > 1e-6)
+                s[2 * k + 1] = angleOf(there - here);
         }
         starts.push_back(s);
     }
@@ -641,7 +671,8 @@ bool optimizeTexel(Grid& g, int i, int j) {
 
 } // namespace
 
-void optimizeSignatures(Grid& g, BakeStats& stats, const std::function<void(const char*, double)>& progress) {
+void optimizeSignatures(Grid& g, BakeStats& stats,
+                        const std::function<void(const char*, double)>& progress) {
     const int n = g.n;
     std::vector<std::pair<int, int>> work;
     ValidationCounters counters;

@@ -92,19 +92,27 @@ uint32_t packEdgeWord(double posQ, double angleQ) {
 
 double& Grid::pos(int i, int j, int e) {
     switch (e) {
-    case 0: return hPos[ci(i, j)];
-    case 1: return vPos[ci(i + 1, j)];
-    case 2: return hPos[ci(i, j + 1)];
-    default: return vPos[ci(i, j)];
+    case 0:
+        return hPos[ci(i, j)];
+    case 1:
+        return vPos[ci(i + 1, j)];
+    case 2:
+        return hPos[ci(i, j + 1)];
+    default:
+        return vPos[ci(i, j)];
     }
 }
 
 double& Grid::ang(int i, int j, int e) {
     switch (e) {
-    case 0: return hAng[ci(i, j)];
-    case 1: return vAng[ci(i + 1, j)];
-    case 2: return hAng[ci(i, j + 1)];
-    default: return vAng[ci(i, j)];
+    case 0:
+        return hAng[ci(i, j)];
+    case 1:
+        return vAng[ci(i + 1, j)];
+    case 2:
+        return hAng[ci(i, j + 1)];
+    default:
+        return vAng[ci(i, j)];
     }
 }
 

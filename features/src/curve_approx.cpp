@@ -71,7 +71,8 @@ void pushPiece(std::vector<Segment>& out, glm::dvec2 p0, glm::dvec2 p1, glm::dve
     out.push_back(s);
 }
 
-void checkPieceCount(double n, std::size_t have, const std::string& source, const std::string& element) {
+void checkPieceCount(double n, std::size_t have, const std::string& source,
+                     const std::string& element) {
     if (!(n <= kMaxPieces) || have + std::size_t(n) > kMaxSegments) {
         throw io::InputError(source, element,
                              "approximating this curve within the tolerance needs more than " +
@@ -115,8 +116,8 @@ double resolveTolerance(const ApproxOptions& opt, double drawingSize, const std:
     if (size == 0.0) return tol > 0.0 ? tol : 1.0;
     if (tol < 1e-9 * size) {
         throw io::InputError(source, "tolerance",
-                             "tolerance " + std::to_string(tol) + " is below 1e-9 of the drawing size " +
-                                 std::to_string(size));
+                             "tolerance " + std::to_string(tol) +
+                                 " is below 1e-9 of the drawing size " + std::to_string(size));
     }
     return tol;
 }
@@ -127,7 +128,9 @@ struct CubicPiece {
     glm::dvec2 b[4];
 };
 
-double cross2(glm::dvec2 a, glm::dvec2 b) { return a.x * b.y - a.y * b.x; }
+double cross2(glm::dvec2 a, glm::dvec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 // de Casteljau split at t.
 void splitCubic(const CubicPiece& c, double t, CubicPiece& left, CubicPiece& right) {
@@ -146,15 +149,17 @@ constexpr int kElevatedDegree = 12;
 
 double g1Bound(const CubicPiece& c, glm::dvec2 q) {
     const glm::dvec2 p0 = c.b[0], p2 = c.b[3];
-    const glm::dvec2 c4[5] = {p0, 0.25 * p0 + 0.75 * c.b[1], 0.5 * (c.b[1] + c.b[2]), 0.75 * c.b[2] + 0.25 * p2, p2};
+    const glm::dvec2 c4[5] = {p0, 0.25 * p0 + 0.75 * c.b[1], 0.5 * (c.b[1] + c.b[2]),
+                              0.75 * c.b[2] + 0.25 * p2, p2};
     auto bound = [&](double m, bool elevate = false) {
         const glm::dvec2 k1 = (1.0 - m) * p0 + m * q;
         const glm::dvec2 qmm = (1.0 - m) * (1.0 - m) * p0 + 2.0 * m * (1.0 - m) * q + m * m * p2;
         const glm::dvec2 k2 = (2.0 * q + 4.0 * qmm) / 6.0;
         const glm::dvec2 k3 = (1.0 - m) * q + m * p2;
         if (!elevate) {
-            return std::sqrt(std::max({glm::dot(c4[1] - k1, c4[1] - k1), glm::dot(c4[2] - k2, c4[2] - k2),
-                                       glm::dot(c4[3] - k3, c4[3] - k3)}));
+            return std::sqrt(
+                std::max({glm::dot(c4[1] - k1, c4[1] - k1), glm::dot(c4[2] - k2, c4[2] - k2),
+                          glm::dot(c4[3] - k3, c4[3] - k3)}));
         }
         // Difference in degree-4 Bernstein form (zero at both ends), degree
         // elevated so the control polygon hugs the polynomial: the hull
@@ -194,8 +199,10 @@ double g1Bound(const CubicPiece& c, glm::dvec2 q) {
     const double g = 0.5 * (std::sqrt(5.0) - 1.0);
     for (int it = 0; it < 30; ++it) {
         const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
-        if (bound(m1) < bound(m2)) hi = m2;
-        else lo = m1;
+        if (bound(m1) < bound(m2))
+            hi = m2;
+        else
+            lo = m1;
     }
     const double mid = 0.5 * (lo + hi);
     return bound(bound(mid) < best ? mid : bestM, true);
@@ -216,8 +223,8 @@ glm::dvec2 endTangent(const CubicPiece& c) {
 
 class CubicApproximator {
 public:
-    CubicApproximator(double tolerance, int curve, std::vector<Segment>& out, const std::string& source,
-                      const std::string& element)
+    CubicApproximator(double tolerance, int curve, std::vector<Segment>& out,
+                      const std::string& source, const std::string& element)
         : tol_(tolerance), curve_(curve), out_(out), source_(source), element_(element) {}
 
     // Pieces of c (from `start` exactly to `end` exactly).
@@ -274,7 +281,8 @@ private:
         if (out_.size() >= kMaxSegments) {
             throw io::InputError(source_, element_,
                                  "approximating this curve within the tolerance needs more than " +
-                                     std::to_string(kMaxSegments) + " segments in total; raise the tolerance");
+                                     std::to_string(kMaxSegments) +
+                                     " segments in total; raise the tolerance");
         }
         pushPiece(out_, p0, q, p2, curve_);
         maxBound_ = std::max(maxBound_, bound);
@@ -388,12 +396,16 @@ double appendArcAsQuadratics(const ArcParams& arc, double tolerance, int curve,
     // Error ~ norm * h^4 / 8 with h = sweep / (2n): solve for n, then step.
     if (norm > 0.0) {
         const double nErr = std::ceil(0.5 * absSweep / std::pow(8.0 * tolerance / norm, 0.25));
-        if (std::isfinite(nErr)) nReal = std::max(nReal, std::max(1.0, nErr - 1.0));
-        else nReal = kMaxPieces + 1.0;
+        if (std::isfinite(nErr))
+            nReal = std::max(nReal, std::max(1.0, nErr - 1.0));
+        else
+            nReal = kMaxPieces + 1.0;
     }
     checkPieceCount(nReal, out.size(), source, element);
     auto n = std::size_t(nReal);
-    auto boundOf = [&](std::size_t count) { return norm * circlePieceError(0.5 * absSweep / double(count)); };
+    auto boundOf = [&](std::size_t count) {
+        return norm * circlePieceError(0.5 * absSweep / double(count));
+    };
     while (boundOf(n) > tolerance) ++n;
     checkPieceCount(double(n), out.size(), source, element);
 
@@ -421,7 +433,8 @@ void arcHullPoints(const ArcParams& arc, std::vector<glm::dvec2>& out) {
     out.push_back(arc.start);
     for (int k = 0; k < n; ++k) {
         const double mid = arc.startAngle + (k + 0.5) * step, end = arc.startAngle + (k + 1) * step;
-        out.push_back(arc.center + ctrlScale * (std::cos(mid) * arc.axisX + std::sin(mid) * arc.axisY));
+        out.push_back(arc.center +
+                      ctrlScale * (std::cos(mid) * arc.axisX + std::sin(mid) * arc.axisY));
         out.push_back(arc.center + std::cos(end) * arc.axisX + std::sin(end) * arc.axisY);
     }
     out.push_back(arc.end);

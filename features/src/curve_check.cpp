@@ -33,14 +33,17 @@ bool validCoord(glm::dvec2 p) {
 
 void checkNetwork(const CurveNetwork& net) {
     const std::string& file = net.source;
-    if (net.segments.empty()) throw io::InputError(file, "", "the curve network is empty (no segments)");
+    if (net.segments.empty())
+        throw io::InputError(file, "", "the curve network is empty (no segments)");
     if (net.segments.size() > kMaxSegments) {
-        throw io::InputError(file, "", std::to_string(net.segments.size()) + " segments; limit is " +
-                                           std::to_string(kMaxSegments));
+        throw io::InputError(file, "",
+                             std::to_string(net.segments.size()) + " segments; limit is " +
+                                 std::to_string(kMaxSegments));
     }
     if (net.curves.size() > kMaxCurves) {
-        throw io::InputError(file, "", std::to_string(net.curves.size()) + " curves; limit is " +
-                                           std::to_string(kMaxCurves));
+        throw io::InputError(file, "",
+                             std::to_string(net.curves.size()) + " curves; limit is " +
+                                 std::to_string(kMaxCurves));
     }
     std::vector<std::size_t> firstSeg(net.curves.size(), SIZE_MAX);
     std::vector<std::size_t> lastSeg(net.curves.size(), SIZE_MAX);
@@ -49,31 +52,36 @@ void checkNetwork(const CurveNetwork& net) {
         const Segment& s = net.segments[i];
         const std::string el = "segment " + std::to_string(i);
         if (s.curve < 0 || std::size_t(s.curve) >= net.curves.size()) {
-            throw io::InputError(file, el, "curve index " + std::to_string(s.curve) + " out of range");
+            throw io::InputError(file, el,
+                                 "curve index " + std::to_string(s.curve) + " out of range");
         }
         for (glm::dvec2 p : {s.p0, s.p1, s.p2}) {
             if (!validCoord(p)) {
-                throw io::InputError(file, el, "coordinate " + fmtPoint(p) +
-                                                   " is not finite or exceeds 1e12 in magnitude");
+                throw io::InputError(file, el,
+                                     "coordinate " + fmtPoint(p) +
+                                         " is not finite or exceeds 1e12 in magnitude");
             }
         }
         if (s.p0 == s.p1 && s.p1 == s.p2) {
-            throw io::InputError(file, el, "all control points coincide at " + fmtPoint(s.p0) +
-                                               " (zero-length segment)");
+            throw io::InputError(file, el,
+                                 "all control points coincide at " + fmtPoint(s.p0) +
+                                     " (zero-length segment)");
         }
         if (s.kind == Segment::Kind::Line && s.p1 != 0.5 * (s.p0 + s.p2)) {
             throw io::InputError(file, el, "line segment's p1 is not the midpoint of p0 and p2");
         }
         if (s.curve != prevCurve) {
             if (firstSeg[std::size_t(s.curve)] != SIZE_MAX) {
-                throw io::InputError(file, el, "segments of curve " + std::to_string(s.curve) +
-                                                   " are not stored consecutively");
+                throw io::InputError(file, el,
+                                     "segments of curve " + std::to_string(s.curve) +
+                                         " are not stored consecutively");
             }
             firstSeg[std::size_t(s.curve)] = i;
         } else if (net.segments[i - 1].p2 != s.p0) {
-            throw io::InputError(file, el, "starts at " + fmtPoint(s.p0) +
-                                               " but the previous segment of its curve ends at " +
-                                               fmtPoint(net.segments[i - 1].p2));
+            throw io::InputError(file, el,
+                                 "starts at " + fmtPoint(s.p0) +
+                                     " but the previous segment of its curve ends at " +
+                                     fmtPoint(net.segments[i - 1].p2));
         }
         lastSeg[std::size_t(s.curve)] = i;
         prevCurve = s.curve;
@@ -83,8 +91,9 @@ void checkNetwork(const CurveNetwork& net) {
         if (firstSeg[c] == SIZE_MAX) throw io::InputError(file, el, "has no segments");
         const bool loop = net.segments[lastSeg[c]].p2 == net.segments[firstSeg[c]].p0;
         if (loop != net.curves[c].closed) {
-            throw io::InputError(file, el, loop ? "ends where it starts but is not marked closed"
-                                                : "is marked closed but does not end where it starts");
+            throw io::InputError(file, el,
+                                 loop ? "ends where it starts but is not marked closed"
+                                      : "is marked closed but does not end where it starts");
         }
     }
 }

@@ -88,17 +88,22 @@ void evalKernelCpu(int kernel, const float* in, float* out) {
     for (int k = 0; k < kEvalOutStride; ++k) out[k] = y.v[k];
 }
 
-std::string evalKernelGpuBody() { return "#include \"sg/features/kernels.comp.glsl\"\n"; }
+std::string evalKernelGpuBody() {
+    return "#include \"sg/features/kernels.comp.glsl\"\n";
+}
 
 std::vector<std::string> evalKernelGpuDefines(int kernel) {
     return {"SG_FEAT_EVAL_KERNEL " + std::to_string(kernel)};
 }
 
-std::string sampleGpuBody() { return "#include \"sg/features/sample.comp.glsl\"\n"; }
+std::string sampleGpuBody() {
+    return "#include \"sg/features/sample.comp.glsl\"\n";
+}
 
 void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
     assert(i >= 0 && j >= 0 && i < maps.size && j < maps.size);
-    glsl::SgFeatTexel tx = glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
+    glsl::SgFeatTexel tx =
+        glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
     for (int k = 0; k < kEvalInStride; ++k) r[k] = 0.0f;
     for (int k = 0; k < 4; ++k) r[k] = tx.dist[k];
     const glsl::vec2 g[4] = {tx.grad0, tx.grad1, tx.grad2, tx.grad3};
@@ -115,7 +120,9 @@ void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, f
     r[22] = local.y;
 }
 
-std::vector<std::string> profileNames() { return {"vgroove", "crease", "ridge", "step", "seam", "table:h0,h1,..."}; }
+std::vector<std::string> profileNames() {
+    return {"vgroove", "crease", "ridge", "step", "seam", "table:h0,h1,..."};
+}
 
 glsl::SgFeatProfile makeProfile(std::string_view name, float depth, float w0, float w) {
     glsl::SgFeatProfile p{};
@@ -124,8 +131,10 @@ glsl::SgFeatProfile makeProfile(std::string_view name, float depth, float w0, fl
     p.w = w;
     p.tableCount = 0;
     for (float& v : p.table) v = 0.0f;
-    if (!std::isfinite(depth) || !std::isfinite(w0) || !std::isfinite(w) || !(w > 0.0f) || w0 < 0.0f) {
-        throw io::InputError("profile", std::string(name), "depth, w0 and w must be finite with w > 0 and w0 >= 0");
+    if (!std::isfinite(depth) || !std::isfinite(w0) || !std::isfinite(w) || !(w > 0.0f) ||
+        w0 < 0.0f) {
+        throw io::InputError("profile", std::string(name),
+                             "depth, w0 and w must be finite with w > 0 and w0 >= 0");
     }
     static const char* kNames[] = {"vgroove", "crease", "ridge", "step", "seam"};
     for (int k = 0; k < 5; ++k) {
@@ -144,17 +153,23 @@ glsl::SgFeatProfile makeProfile(std::string_view name, float depth, float w0, fl
             std::string_view tok = rest.substr(0, comma);
             float v = 0.0f;
             auto r = std::from_chars(tok.data(), tok.data() + tok.size(), v);
-            if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v) || std::fabs(v) > 1e6f) {
-                throw io::InputError("profile", std::string(name), "table value '" + std::string(tok) + "' is not a finite number");
+            if (r.ec != std::errc() || r.ptr != tok.data() + tok.size() || !std::isfinite(v) ||
+                std::fabs(v) > 1e6f) {
+                throw io::InputError("profile", std::string(name),
+                                     "table value '" + std::string(tok) +
+                                         "' is not a finite number");
             }
             if (count >= SG_FEAT_TABLE_MAX) {
-                throw io::InputError("profile", std::string(name), "more than " + std::to_string(SG_FEAT_TABLE_MAX) + " table values");
+                throw io::InputError("profile", std::string(name),
+                                     "more than " + std::to_string(SG_FEAT_TABLE_MAX) +
+                                         " table values");
             }
             p.table[count++] = v;
             if (comma == std::string_view::npos) break;
             rest = rest.substr(comma + 1);
         }
-        if (count < 2) throw io::InputError("profile", std::string(name), "a table needs at least 2 values");
+        if (count < 2)
+            throw io::InputError("profile", std::string(name), "a table needs at least 2 values");
         p.tableCount = count;
         return p;
     }

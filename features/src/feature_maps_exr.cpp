@@ -22,7 +22,8 @@ namespace sg::features {
 namespace {
 
 const char* kLayout =
-    "surfgrad feature maps: (N+1)^2 grid corners, scanline 0 = top (j = N); d,gx,gy,left per corner; "
+    "surfgrad feature maps: (N+1)^2 grid corners, scanline 0 = top (j = N); d,gx,gy,left per "
+    "corner; "
     "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
     "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
 
@@ -39,11 +40,14 @@ const char* kLayout =
 // unknown/opaque; chlist and preview are checked separately).
 int exrFixedTypeBytes(const std::string& type) {
     static const std::pair<const char*, int> kFixed[] = {
-        {"int", 4},        {"float", 4},       {"double", 8},          {"rational", 8}, {"timecode", 8},
-        {"v2i", 8},        {"v2f", 8},         {"v2d", 16},            {"v3i", 12},     {"v3f", 12},
-        {"v3d", 24},       {"box2i", 16},      {"box2f", 16},          {"m33f", 36},    {"m33d", 72},
-        {"m44f", 64},      {"m44d", 128},      {"chromaticities", 32}, {"keycode", 28}, {"tiledesc", 9},
-        {"compression", 1}, {"lineOrder", 1},  {"envmap", 1},          {"deepImageState", 1},
+        {"int", 4},       {"float", 4},    {"double", 8},
+        {"rational", 8},  {"timecode", 8}, {"v2i", 8},
+        {"v2f", 8},       {"v2d", 16},     {"v3i", 12},
+        {"v3f", 12},      {"v3d", 24},     {"box2i", 16},
+        {"box2f", 16},    {"m33f", 36},    {"m33d", 72},
+        {"m44f", 64},     {"m44d", 128},   {"chromaticities", 32},
+        {"keycode", 28},  {"tiledesc", 9}, {"compression", 1},
+        {"lineOrder", 1}, {"envmap", 1},   {"deepImageState", 1},
     };
     for (const auto& [t, n] : kFixed) {
         if (type == t) return n;
@@ -52,18 +56,23 @@ int exrFixedTypeBytes(const std::string& type) {
 }
 
 void checkExrHeader(const std::string& bytes, const std::string& name) {
-    auto fail = [&](const std::string& reason) { throw io::InputError(name, "EXR header", reason); };
+    auto fail = [&](const std::string& reason) {
+        throw io::InputError(name, "EXR header", reason);
+    };
     auto u8 = [&](size_t i) { return uint32_t(static_cast<unsigned char>(bytes[i])); };
     auto u32 = [&](size_t i) { return u8(i) | u8(i + 1) << 8 | u8(i + 2) << 16 | u8(i + 3) << 24; };
     if (bytes.size() < 8 || u32(0) != 20000630u) fail("not an OpenEXR file (magic number)");
     const uint32_t version = u32(4);
-    if ((version & 0xFFu) != 2u) fail("EXR version " + std::to_string(version & 0xFFu) + " (this reader knows 2)");
+    if ((version & 0xFFu) != 2u)
+        fail("EXR version " + std::to_string(version & 0xFFu) + " (this reader knows 2)");
     if (version & 0x1800u) fail("deep or multi-part EXR (feature maps are single-part images)");
     size_t at = 8;
     // A null-terminated name of at most 255 characters (the long-name limit).
     auto cstring = [&](const char* what) {
         const size_t end = bytes.find('\0', at);
-        if (end == std::string::npos || end - at > 255) fail(std::string("unterminated or over-long attribute ") + what + " at byte " + std::to_string(at));
+        if (end == std::string::npos || end - at > 255)
+            fail(std::string("unterminated or over-long attribute ") + what + " at byte " +
+                 std::to_string(at));
         std::string out = bytes.substr(at, end - at);
         at = end + 1;
         return out;
@@ -77,16 +86,18 @@ void checkExrHeader(const std::string& bytes, const std::string& name) {
         const uint32_t size = u32(at);
         at += 4;
         if (size > bytes.size() - at) {
-            fail("attribute '" + attr.substr(0, 64) + "' declares " + std::to_string(size) + " bytes but the file has " +
-                 std::to_string(bytes.size() - at) + " left");
+            fail("attribute '" + attr.substr(0, 64) + "' declares " + std::to_string(size) +
+                 " bytes but the file has " + std::to_string(bytes.size() - at) + " left");
         }
         // OpenEXR's readers of the known types read what the type needs, not
         // the declared size: a size that disagrees would leave its stream
         // somewhere else than this scan, reading later bytes as attributes.
         auto badSize = [&](const std::string& need) {
-            fail("attribute '" + attr.substr(0, 64) + "' of type " + type + " declares " + std::to_string(size) + " bytes; the type needs " + need);
+            fail("attribute '" + attr.substr(0, 64) + "' of type " + type + " declares " +
+                 std::to_string(size) + " bytes; the type needs " + need);
         };
-        if (const int fixed = exrFixedTypeBytes(type); fixed > 0 && size != uint32_t(fixed)) badSize(std::to_string(fixed));
+        if (const int fixed = exrFixedTypeBytes(type); fixed > 0 && size != uint32_t(fixed))
+            badSize(std::to_string(fixed));
         if (type == "chlist") {
             // Channels {name\0, int32 type, uint8 pLinear, 3 reserved, int32
             // xSampling, int32 ySampling}, ended by an empty name, exactly
@@ -95,7 +106,8 @@ void checkExrHeader(const std::string& bytes, const std::string& name) {
             const size_t end = at + size;
             for (;;) {
                 const size_t nameEnd = bytes.find('\0', p);
-                if (nameEnd == std::string::npos || nameEnd >= end) badSize("its channel list to end inside it");
+                if (nameEnd == std::string::npos || nameEnd >= end)
+                    badSize("its channel list to end inside it");
                 if (nameEnd == p) {
                     if (nameEnd + 1 != end) badSize("its channel list to end exactly at its end");
                     break;
@@ -107,16 +119,21 @@ void checkExrHeader(const std::string& bytes, const std::string& name) {
         if (type == "preview") {
             // uint32 width, uint32 height, then 4 bytes per pixel (OpenEXR
             // allocates width * height * 4 before reading them).
-            if (size < 8 || uint64_t(u32(at)) * uint64_t(u32(at + 4)) * 4u != uint64_t(size) - 8u) badSize("8 + 4 * width * height");
+            if (size < 8 || uint64_t(u32(at)) * uint64_t(u32(at + 4)) * 4u != uint64_t(size) - 8u)
+                badSize("8 + 4 * width * height");
         }
         at += size;
     }
     fail("more than " + std::to_string(kMaxAttributes) + " header attributes");
 }
 
-std::vector<std::string> channelNames() { return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"}; }
+std::vector<std::string> channelNames() {
+    return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"};
+}
 
-std::string pixelName(int i, int j) { return "corner (" + std::to_string(i) + ", " + std::to_string(j) + ")"; }
+std::string pixelName(int i, int j) {
+    return "corner (" + std::to_string(i) + ", " + std::to_string(j) + ")";
+}
 
 FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
     using io::InputError;
@@ -135,7 +152,8 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
     auto doubleAttr = [&](const char* key) {
         double v = 0;
         if (!spec.getattribute(key, OIIO::TypeDesc::DOUBLE, &v) || !std::isfinite(v)) {
-            throw InputError(name, std::string("metadata ") + key, "missing or not a finite double");
+            throw InputError(name, std::string("metadata ") + key,
+                             "missing or not a finite double");
         }
         return v;
     };
@@ -152,20 +170,28 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
                              std::to_string(kFeatureMapsVersion) + ")");
     }
     std::string mode = stringAttr("surfgrad:mode");
-    if (mode == "linear") m.mode = BakeMode::Linear;
-    else if (mode == "quadratic") m.mode = BakeMode::Quadratic;
-    else throw InputError(name, "metadata surfgrad:mode", "'" + mode + "' is neither linear nor quadratic");
+    if (mode == "linear")
+        m.mode = BakeMode::Linear;
+    else if (mode == "quadratic")
+        m.mode = BakeMode::Quadratic;
+    else
+        throw InputError(name, "metadata surfgrad:mode",
+                         "'" + mode + "' is neither linear nor quadratic");
     m.size = intAttr("surfgrad:size");
     if (m.size < 1 || m.size > kMaxFeatureMapSize) {
-        throw InputError(name, "metadata surfgrad:size", "must be 1.." + std::to_string(kMaxFeatureMapSize));
+        throw InputError(name, "metadata surfgrad:size",
+                         "must be 1.." + std::to_string(kMaxFeatureMapSize));
     }
     const int g = m.size + 1;
     if (spec.width != g || spec.height != g || spec.depth != 1 || spec.x != 0 || spec.y != 0) {
-        throw InputError(name, "image", "must be " + std::to_string(g) + " x " + std::to_string(g) +
-                                            " pixels (size + 1) at origin 0 with depth 1");
+        throw InputError(name, "image",
+                         "must be " + std::to_string(g) + " x " + std::to_string(g) +
+                             " pixels (size + 1) at origin 0 with depth 1");
     }
-    m.inputToTexel.scale = {doubleAttr("surfgrad:inputToTexelScaleX"), doubleAttr("surfgrad:inputToTexelScaleY")};
-    m.inputToTexel.offset = {doubleAttr("surfgrad:inputToTexelOffsetX"), doubleAttr("surfgrad:inputToTexelOffsetY")};
+    m.inputToTexel.scale = {doubleAttr("surfgrad:inputToTexelScaleX"),
+                            doubleAttr("surfgrad:inputToTexelScaleY")};
+    m.inputToTexel.offset = {doubleAttr("surfgrad:inputToTexelOffsetX"),
+                             doubleAttr("surfgrad:inputToTexelOffsetY")};
     if (m.inputToTexel.scale.x == 0.0 || m.inputToTexel.scale.y == 0.0) {
         throw InputError(name, "metadata surfgrad:inputToTexelScale", "scale must be non-zero");
     }
@@ -177,14 +203,16 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
     if (m.smoothIterations < 0 || m.smoothIterations > 1000) {
         throw InputError(name, "metadata surfgrad:smoothIterations", "must be 0..1000");
     }
-    if (const OIIO::ParamValue* p = spec.find_attribute("surfgrad:source", OIIO::TypeDesc::STRING)) {
+    if (const OIIO::ParamValue* p =
+            spec.find_attribute("surfgrad:source", OIIO::TypeDesc::STRING)) {
         m.source = std::string(p->get_string());
     }
 
     auto names = channelNames();
     if (spec.nchannels != int(names.size())) {
-        throw InputError(name, "channels", "expected " + std::to_string(names.size()) + " channels, found " +
-                                               std::to_string(spec.nchannels));
+        throw InputError(name, "channels",
+                         "expected " + std::to_string(names.size()) + " channels, found " +
+                             std::to_string(spec.nchannels));
     }
     std::vector<int> slot(names.size(), -1);
     for (size_t c = 0; c < names.size(); ++c) {
@@ -223,22 +251,27 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             for (size_t c = 0; c < names.size(); ++c) {
                 if (!std::isfinite(ch(c))) throw bad(names[c], "not finite");
             }
-            float d = ch(0), gx = ch(1), gy = ch(2), left = ch(3), seg = ch(4), hT = ch(5), vT = ch(6);
+            float d = ch(0), gx = ch(1), gy = ch(2), left = ch(3), seg = ch(4), hT = ch(5),
+                  vT = ch(6);
             if (d < 0.0f || d > float(m.bandTexels) * 1.0001f) throw bad("d", "outside [0, band]");
             if (gx * gx + gy * gy > 1.0002f) throw bad("gx", "gradient longer than 1");
             if (left != 0.0f && left != 1.0f) throw bad("left", "must be 0 or 1");
-            if (seg < 0.0f || seg > 4095.0f || seg != std::floor(seg)) throw bad("seg", "not an integer in 0..4095");
+            if (seg < 0.0f || seg > 4095.0f || seg != std::floor(seg))
+                throw bad("seg", "not an integer in 0..4095");
             m.dist[k] = d;
             m.gradX[k] = gx;
             m.gradY[k] = gy;
             m.left[k] = uint8_t(left);
             m.seg[k] = uint16_t(seg);
-            if ((i == m.size || j == m.size) && m.seg[k] != 0) throw bad("seg", "set outside the map (last row/column)");
+            if ((i == m.size || j == m.size) && m.seg[k] != 0)
+                throw bad("seg", "set outside the map (last row/column)");
             auto checkPos = [&](float t, bool exists, const char* chName) {
                 if (t == -1.0f) return;
                 if (!exists) throw bad(chName, "point on an edge outside the map");
-                if (!(double(t) >= margin - 1e-7 && double(t) <= 1.0 - margin + 1e-7)) throw bad(chName, "position outside [2^-10, 1 - 2^-10]");
-                if (std::fabs(double(t) - detail::quantizePos(double(t))) > 1e-6) throw bad(chName, "position not on the 16-bit grid");
+                if (!(double(t) >= margin - 1e-7 && double(t) <= 1.0 - margin + 1e-7))
+                    throw bad(chName, "position outside [2^-10, 1 - 2^-10]");
+                if (std::fabs(double(t) - detail::quantizePos(double(t))) > 1e-6)
+                    throw bad(chName, "position not on the 16-bit grid");
             };
             checkPos(hT, i < m.size, "hT");
             checkPos(vT, j < m.size, "vT");
@@ -247,7 +280,8 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             {
                 float hA = ch(7), vA = ch(8);
                 for (auto [a, t, chName] : {std::tuple{hA, hT, "hA"}, std::tuple{vA, vT, "vA"}}) {
-                    if (std::fabs(a) > float(M_PI / 2) + 1e-6f) throw bad(chName, "angle outside [-pi/2, pi/2]");
+                    if (std::fabs(a) > float(M_PI / 2) + 1e-6f)
+                        throw bad(chName, "angle outside [-pi/2, pi/2]");
                     if (t == -1.0f && a != 0.0f) throw bad(chName, "angle without a point");
                     // Compared as line directions (mod pi): -pi/2 and pi/2 are one.
                     double off = detail::wrapAngle(double(a) - detail::quantizeAngle(double(a)));
@@ -278,7 +312,10 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
     for (int j = 0; j < m.size; ++j) {
         for (int i = 0; i < m.size; ++i) {
             uint32_t w = m.seg[m.index(i, j)];
-            auto bad = [&](const std::string& why) { return InputError(name, "texel (" + std::to_string(i) + ", " + std::to_string(j) + ") seg", why); };
+            auto bad = [&](const std::string& why) {
+                return InputError(
+                    name, "texel (" + std::to_string(i) + ", " + std::to_string(j) + ") seg", why);
+            };
             int count = int(w & 3u);
             if (count > 2) throw bad("more than two segments");
             uint32_t used = (count == 0) ? 0x3u : (count == 1 ? 0x7Fu : 0xFFFu);
@@ -289,24 +326,30 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
                 bool curved = ((w >> (6 + 5 * s)) & 1u) != 0;
                 int pair = detail::pairOf(a, b);
                 if (pair < 0) throw bad("segment joins an edge to itself");
-                if (detail::kPairEdges[pair][0] != a) throw bad("segment end points not in canonical order");
+                if (detail::kPairEdges[pair][0] != a)
+                    throw bad("segment end points not in canonical order");
                 if (grid.segMask[ti] & (1u << pair)) throw bad("two identical segments");
-                if (grid.pos(i, j, a) < 0.0 || grid.pos(i, j, b) < 0.0) throw bad("segment ends on an edge without a point");
-                if (curved && m.mode != BakeMode::Quadratic) throw bad("curved segment in linear maps");
+                if (grid.pos(i, j, a) < 0.0 || grid.pos(i, j, b) < 0.0)
+                    throw bad("segment ends on an edge without a point");
+                if (curved && m.mode != BakeMode::Quadratic)
+                    throw bad("curved segment in linear maps");
                 grid.segMask[ti] |= uint8_t(1u << pair);
                 if (curved) grid.quadMask[ti] |= uint8_t(1u << pair);
             }
             if (count == 2) {
                 // Segments are stored in increasing type order (as the bake writes them).
-                int a0 = int((w >> 2) & 3u), b0 = int((w >> 4) & 3u), a1 = int((w >> 7) & 3u), b1 = int((w >> 9) & 3u);
-                if (detail::pairOf(a0, b0) > detail::pairOf(a1, b1)) throw bad("segments not in canonical order");
+                int a0 = int((w >> 2) & 3u), b0 = int((w >> 4) & 3u), a1 = int((w >> 7) & 3u),
+                    b1 = int((w >> 9) & 3u);
+                if (detail::pairOf(a0, b0) > detail::pairOf(a1, b1))
+                    throw bad("segments not in canonical order");
             }
             if (grid.quadMask[ti]) {
                 detail::LocalTexel t = detail::decodeTexel(grid, i, j);
                 double viol = detail::validateTexel(t, nullptr);
                 bool same = viol <= 0.0;
                 for (int s = 0; s < t.nseg; ++s) same = same && (t.curved[s] == t.candidate[s]);
-                if (!same) throw bad("curved segment with an invalid signature (TOG 2008 sec. 4-5)");
+                if (!same)
+                    throw bad("curved segment with an invalid signature (TOG 2008 sec. 4-5)");
             }
         }
     }
@@ -339,7 +382,9 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
     }
     io::writeAtomically(path, [&](const std::filesystem::path& tmp) {
         auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out) throw InputError(path.string(), "", "cannot create an OpenEXR writer: " + OIIO::geterror());
+        if (!out)
+            throw InputError(path.string(), "",
+                             "cannot create an OpenEXR writer: " + OIIO::geterror());
         OIIO::ImageSpec spec(g, g, int(nch), OIIO::TypeDesc::FLOAT);
         spec.channelnames = names;
         spec.alpha_channel = -1;
@@ -347,7 +392,9 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
         spec.attribute("surfgrad:featureMapsVersion", kFeatureMapsVersion);
         spec.attribute("surfgrad:mode", toString(m.mode));
         spec.attribute("surfgrad:size", m.size);
-        auto dbl = [&](const char* key, double v) { spec.attribute(key, OIIO::TypeDesc::DOUBLE, &v); };
+        auto dbl = [&](const char* key, double v) {
+            spec.attribute(key, OIIO::TypeDesc::DOUBLE, &v);
+        };
         dbl("surfgrad:inputToTexelScaleX", m.inputToTexel.scale.x);
         dbl("surfgrad:inputToTexelScaleY", m.inputToTexel.scale.y);
         dbl("surfgrad:inputToTexelOffsetX", m.inputToTexel.offset.x);
@@ -356,7 +403,8 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
         spec.attribute("surfgrad:smoothIterations", m.smoothIterations);
         spec.attribute("surfgrad:source", m.source);
         spec.attribute("surfgrad:layout", kLayout);
-        if (!out->open(tmp.string(), spec)) throw InputError(path.string(), "", "cannot open for writing: " + out->geterror());
+        if (!out->open(tmp.string(), spec))
+            throw InputError(path.string(), "", "cannot open for writing: " + out->geterror());
         if (!out->write_image(OIIO::TypeDesc::FLOAT, px.data())) {
             throw InputError(path.string(), "", "write failed: " + out->geterror());
         }
@@ -367,7 +415,9 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
 FeatureMaps load(const std::filesystem::path& path) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
-        throw io::InputError(path.string(), "", std::filesystem::exists(path, ec) ? "not a regular file" : "no such file");
+        throw io::InputError(path.string(), "",
+                             std::filesystem::exists(path, ec) ? "not a regular file"
+                                                               : "no such file");
     }
     // The largest map (kMaxFeatureMapSize, 9 float channels, uncompressed)
     // is about 600 MB; read into memory so the header is checked first.

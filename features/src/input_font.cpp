@@ -31,16 +31,20 @@ namespace {
 #undef FTERRORS_H_
 #define FT_ERRORDEF(e, v, s) {e, s},
 #define FT_ERROR_START_LIST {
-#define FT_ERROR_END_LIST {0, nullptr}};
+#define FT_ERROR_END_LIST                                                                          \
+    { 0, nullptr }                                                                                 \
+    }                                                                                              \
+    ;
 const struct {
     int code;
     const char* message;
 } kFtErrors[] =
 #include FT_ERRORS_H
 
-std::string ftMessage(FT_Error err) {
+    std::string ftMessage(FT_Error err) {
     for (const auto& e : kFtErrors) {
-        if (e.message && e.code == err) return std::string(e.message) + " (FreeType error " + std::to_string(err) + ")";
+        if (e.message && e.code == err)
+            return std::string(e.message) + " (FreeType error " + std::to_string(err) + ")";
     }
     return "FreeType error " + std::to_string(err);
 }
@@ -72,7 +76,8 @@ std::vector<std::uint32_t> decodeUtf8(std::string_view s, const std::string& sou
             len = 4;
         }
         const std::string el = "text byte " + std::to_string(i);
-        if (len == 0 || i + std::size_t(len) > s.size()) throw io::InputError(source, el, "invalid UTF-8");
+        if (len == 0 || i + std::size_t(len) > s.size())
+            throw io::InputError(source, el, "invalid UTF-8");
         for (int k = 1; k < len; ++k) {
             const auto b = static_cast<unsigned char>(s[i + std::size_t(k)]);
             if ((b & 0xC0) != 0x80) throw io::InputError(source, el, "invalid UTF-8");
@@ -80,11 +85,13 @@ std::vector<std::uint32_t> decodeUtf8(std::string_view s, const std::string& sou
         }
         static constexpr std::uint32_t kMin[5] = {0, 0, 0x80, 0x800, 0x10000};
         if (cp < kMin[len] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
-            throw io::InputError(source, el, "invalid UTF-8 (overlong, surrogate or beyond U+10FFFF)");
+            throw io::InputError(source, el,
+                                 "invalid UTF-8 (overlong, surrogate or beyond U+10FFFF)");
         }
         if (out.size() >= kMaxTextCodepoints) {
-            throw io::InputError(source, el, "text is longer than " + std::to_string(kMaxTextCodepoints) +
-                                                 " characters");
+            throw io::InputError(source, el,
+                                 "text is longer than " + std::to_string(kMaxTextCodepoints) +
+                                     " characters");
         }
         out.push_back(cp);
         i += std::size_t(len);
@@ -110,8 +117,11 @@ void walkOutline(const FT_Outline& outline, glm::dvec2 pen, const std::string& g
     int first = 0;
     for (int ci = 0; ci < outline.n_contours; ++ci) {
         const int last = outline.contours[ci];
-        if (last < first || last >= nPoints) throw io::InputError(source, el, "malformed outline (contour indices)");
-        auto P = [&](int i) { return pen + glm::dvec2(double(outline.points[i].x), double(outline.points[i].y)); };
+        if (last < first || last >= nPoints)
+            throw io::InputError(source, el, "malformed outline (contour indices)");
+        auto P = [&](int i) {
+            return pen + glm::dvec2(double(outline.points[i].x), double(outline.points[i].y));
+        };
         auto T = [&](int i) { return FT_CURVE_TAG(outline.tags[i]); };
         const int count = last - first + 1;
         CurveInfo info;
@@ -121,8 +131,9 @@ void walkOutline(const FT_Outline& outline, glm::dvec2 pen, const std::string& g
             continue; // a single point (an anchor) draws nothing
         }
         if (T(first) == FT_CURVE_TAG_CUBIC) {
-            throw io::InputError(source, el, "malformed outline (contour " + std::to_string(ci) +
-                                                 " starts with a cubic control point)");
+            throw io::InputError(source, el,
+                                 "malformed outline (contour " + std::to_string(ci) +
+                                     " starts with a cubic control point)");
         }
         glm::dvec2 start;
         int begin = first, end = last; // points still to visit: begin..end
@@ -142,10 +153,14 @@ void walkOutline(const FT_Outline& outline, glm::dvec2 pen, const std::string& g
         int nCubic = 0;
         glm::dvec2 cubic[2];
         auto onPoint = [&](glm::dvec2 p) {
-            if (haveConic) builder.quadTo(conic, p);
-            else if (nCubic == 2) builder.cubicTo(cubic[0], cubic[1], p);
-            else if (nCubic == 1) throw io::InputError(source, el, "malformed outline (a lone cubic control point)");
-            else builder.lineTo(p);
+            if (haveConic)
+                builder.quadTo(conic, p);
+            else if (nCubic == 2)
+                builder.cubicTo(cubic[0], cubic[1], p);
+            else if (nCubic == 1)
+                throw io::InputError(source, el, "malformed outline (a lone cubic control point)");
+            else
+                builder.lineTo(p);
             haveConic = false;
             nCubic = 0;
         };
@@ -156,7 +171,9 @@ void walkOutline(const FT_Outline& outline, glm::dvec2 pen, const std::string& g
                 onPoint(p);
                 break;
             case FT_CURVE_TAG_CONIC:
-                if (nCubic) throw io::InputError(source, el, "malformed outline (conic after cubic control)");
+                if (nCubic)
+                    throw io::InputError(source, el,
+                                         "malformed outline (conic after cubic control)");
                 if (haveConic) {
                     // TrueType: an on-curve point is implied halfway
                     // between consecutive conic controls.
@@ -167,7 +184,8 @@ void walkOutline(const FT_Outline& outline, glm::dvec2 pen, const std::string& g
                 break;
             default: // FT_CURVE_TAG_CUBIC
                 if (haveConic || nCubic == 2) {
-                    throw io::InputError(source, el, "malformed outline (too many consecutive control points)");
+                    throw io::InputError(source, el,
+                                         "malformed outline (too many consecutive control points)");
                 }
                 cubic[nCubic++] = p;
                 break;
@@ -186,14 +204,17 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
     if (text.empty()) throw io::InputError(source, "text", "the text is empty");
     const std::vector<std::uint32_t> cps = decodeUtf8(text, source);
     if (size > kMaxFontBytes) {
-        throw io::InputError(source, "", "font is " + std::to_string(size) + " bytes; limit is " +
-                                             std::to_string(kMaxFontBytes));
+        throw io::InputError(source, "",
+                             "font is " + std::to_string(size) + " bytes; limit is " +
+                                 std::to_string(kMaxFontBytes));
     }
     if (opt.faceIndex < 0 || opt.faceIndex > 0xFFFF) {
-        throw io::InputError(source, "face " + std::to_string(opt.faceIndex), "face index must be 0..65535");
+        throw io::InputError(source, "face " + std::to_string(opt.faceIndex),
+                             "face index must be 0..65535");
     }
     FT_Library rawLib = nullptr;
-    if (FT_Error err = FT_Init_FreeType(&rawLib)) throw io::InputError(source, "", "cannot start FreeType: " + ftMessage(err));
+    if (FT_Error err = FT_Init_FreeType(&rawLib))
+        throw io::InputError(source, "", "cannot start FreeType: " + ftMessage(err));
     LibraryPtr lib(rawLib);
 
     auto open = [&](FT_Long index) {
@@ -208,13 +229,14 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
     FacePtr face = open(0);
     if (opt.faceIndex >= face->num_faces) {
         throw io::InputError(source, "face " + std::to_string(opt.faceIndex),
-                             "face index out of range: the file has " + std::to_string(face->num_faces) +
-                                 " face(s)");
+                             "face index out of range: the file has " +
+                                 std::to_string(face->num_faces) + " face(s)");
     }
     if (opt.faceIndex > 0) face = open(opt.faceIndex);
     const std::string faceName = std::string(face->family_name ? face->family_name : "?") + " " +
                                  (face->style_name ? face->style_name : "");
-    if (!FT_IS_SCALABLE(face.get())) throw io::InputError(source, "", "font '" + faceName + "' has no outlines (bitmap only)");
+    if (!FT_IS_SCALABLE(face.get()))
+        throw io::InputError(source, "", "font '" + faceName + "' has no outlines (bitmap only)");
     if (FT_Select_Charmap(face.get(), FT_ENCODING_UNICODE)) {
         throw io::InputError(source, "", "font '" + faceName + "' has no Unicode character map");
     }
@@ -222,7 +244,8 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
     detail::PathBuilder builder(source);
     const bool kerning = FT_HAS_KERNING(face.get());
     // Line height in font units (ascender - descender + gap).
-    const double lineHeight = face->height > 0 ? double(face->height) : 1.2 * double(face->units_per_EM);
+    const double lineHeight =
+        face->height > 0 ? double(face->height) : 1.2 * double(face->units_per_EM);
     glm::dvec2 pen{0.0};
     FT_UInt prev = 0;
     for (std::uint32_t cp : cps) {
@@ -240,16 +263,22 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
         }
         const std::string el = "glyph " + codepointName(cp);
         const FT_UInt gi = FT_Get_Char_Index(face.get(), cp);
-        if (gi == 0) throw io::InputError(source, el, "not in font '" + faceName + "' (face " + std::to_string(opt.faceIndex) + ")");
+        if (gi == 0)
+            throw io::InputError(source, el,
+                                 "not in font '" + faceName + "' (face " +
+                                     std::to_string(opt.faceIndex) + ")");
         if (kerning && prev) {
             FT_Vector delta{0, 0};
-            if (!FT_Get_Kerning(face.get(), prev, gi, FT_KERNING_UNSCALED, &delta)) pen.x += double(delta.x);
+            if (!FT_Get_Kerning(face.get(), prev, gi, FT_KERNING_UNSCALED, &delta))
+                pen.x += double(delta.x);
         }
-        if (FT_Error err = FT_Load_Glyph(face.get(), gi, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP)) {
+        if (FT_Error err = FT_Load_Glyph(
+                face.get(), gi, FT_LOAD_NO_SCALE | FT_LOAD_NO_HINTING | FT_LOAD_NO_BITMAP)) {
             throw io::InputError(source, el, "cannot load the glyph: " + ftMessage(err));
         }
         const FT_GlyphSlot slot = face->glyph;
-        if (slot->format != FT_GLYPH_FORMAT_OUTLINE) throw io::InputError(source, el, "glyph is not an outline");
+        if (slot->format != FT_GLYPH_FORMAT_OUTLINE)
+            throw io::InputError(source, el, "glyph is not an outline");
         walkOutline(slot->outline, pen, glyphName, builder, source);
         pen.x += double(slot->advance.x);
         prev = gi;
@@ -257,9 +286,11 @@ CurveNetwork parseFont(const std::uint8_t* data, std::size_t size, std::string_v
     return builder.finish(opt.approx, "the text has no glyph outlines (only spaces?)");
 }
 
-CurveNetwork loadFont(const std::filesystem::path& file, std::string_view text, const FontOptions& opt) {
+CurveNetwork loadFont(const std::filesystem::path& file, std::string_view text,
+                      const FontOptions& opt) {
     const std::string bytes = io::readFile(file, kMaxFontBytes);
-    return parseFont(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), text, file.string(), opt);
+    return parseFont(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), text,
+                     file.string(), opt);
 }
 
 } // namespace sg::features

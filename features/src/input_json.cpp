@@ -59,7 +59,8 @@ public:
             for (const char* a : allowed) ok = ok || k == a;
             if (!ok) {
                 std::string list;
-                for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + "\"" + a + "\"";
+                for (const char* a : allowed)
+                    list += std::string(list.empty() ? "" : ", ") + "\"" + a + "\"";
                 fail(element.empty() ? k : element + "." + k,
                      "unknown key (expected " + list + "; keys starting with '_' are comments)");
             }
@@ -79,7 +80,8 @@ public:
     glm::dvec2 point(const json& v, const std::string& element) const {
         if (!v.is_array()) fail(element, "expected a point [x, y], got " + typeName(v));
         if (v.size() != 2) {
-            fail(element, "expected a point [x, y] with 2 numbers, got " + std::to_string(v.size()));
+            fail(element,
+                 "expected a point [x, y] with 2 numbers, got " + std::to_string(v.size()));
         }
         return {number(v[0], element + "[0]"), number(v[1], element + "[1]")};
     }
@@ -111,8 +113,10 @@ void checkDepth(std::string_view text, const std::string& source) {
     for (std::size_t i = 0; i < text.size(); ++i) {
         const char c = text[i];
         if (inString) {
-            if (c == '\\') ++i;
-            else if (c == '"') inString = false;
+            if (c == '\\')
+                ++i;
+            else if (c == '"')
+                inString = false;
         } else if (c == '"') {
             inString = true;
         } else if (c == '[' || c == '{') {
@@ -155,12 +159,14 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
             const auto at = text.find(std::string_view(what).substr(q0 + 1, q1 - q0 - 1));
             if (at != std::string_view::npos) element = lineColumn(text, at);
         }
-        throw io::InputError(source, element, "JSON number error: " +
-                                                  (close == std::string::npos ? what : what.substr(close + 2)));
+        throw io::InputError(source, element,
+                             "JSON number error: " +
+                                 (close == std::string::npos ? what : what.substr(close + 2)));
     }
 
     Reader rd(source);
-    if (!root.is_object()) rd.fail("", "expected a JSON object at the top level, got " + typeName(root));
+    if (!root.is_object())
+        rd.fail("", "expected a JSON object at the top level, got " + typeName(root));
     rd.checkKeys(root, "", {"version", "curves"});
     if (!root.contains("version")) rd.fail("version", "missing (this build reads version 1)");
     const json& version = root["version"];
@@ -168,14 +174,16 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
         rd.fail("version", "expected an integer, got " + typeName(version));
     }
     if (version.get<long long>() != 1) {
-        rd.fail("version", "unsupported version " + version.dump() + " (this build reads version 1)");
+        rd.fail("version",
+                "unsupported version " + version.dump() + " (this build reads version 1)");
     }
     if (!root.contains("curves")) rd.fail("curves", "missing (an array of curves)");
     const json& curves = root["curves"];
     if (!curves.is_array()) rd.fail("curves", "expected an array, got " + typeName(curves));
     if (curves.empty()) rd.fail("curves", "no curves: the network is empty");
     if (curves.size() > kMaxCurves) {
-        rd.fail("curves", std::to_string(curves.size()) + " curves; limit is " + std::to_string(kMaxCurves));
+        rd.fail("curves",
+                std::to_string(curves.size()) + " curves; limit is " + std::to_string(kMaxCurves));
     }
 
     CurveNetwork net;
@@ -197,26 +205,31 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
         }
         if (c.contains("profile")) {
             const json& v = c["profile"];
-            if (!v.is_string()) rd.fail(el + ".profile", "expected a profile name (string), got " + typeName(v));
+            if (!v.is_string())
+                rd.fail(el + ".profile", "expected a profile name (string), got " + typeName(v));
             info.profile = v.get<std::string>();
             if (info.profile.empty() || info.profile.size() > kMaxProfileBytes) {
-                rd.fail(el + ".profile", "profile name must have 1 to " + std::to_string(kMaxProfileBytes) +
-                                             " characters");
+                rd.fail(el + ".profile", "profile name must have 1 to " +
+                                             std::to_string(kMaxProfileBytes) + " characters");
             }
             for (char ch : info.profile) {
                 const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') ||
                                 (ch >= '0' && ch <= '9') || ch == '-' || ch == '_' || ch == '.';
-                if (!ok) rd.fail(el + ".profile", "profile name may use only letters, digits, '-', '_', '.'");
+                if (!ok)
+                    rd.fail(el + ".profile",
+                            "profile name may use only letters, digits, '-', '_', '.'");
             }
         }
         if (c.contains("width")) {
             info.width = rd.number(c["width"], el + ".width");
-            if (!(info.width > 0.0)) rd.fail(el + ".width", "must be > 0 (input units), got " + fmtNum(info.width));
+            if (!(info.width > 0.0))
+                rd.fail(el + ".width", "must be > 0 (input units), got " + fmtNum(info.width));
         }
         bool wantClosed = false;
         if (c.contains("closed")) {
             const json& v = c["closed"];
-            if (!v.is_boolean()) rd.fail(el + ".closed", "expected true or false, got " + typeName(v));
+            if (!v.is_boolean())
+                rd.fail(el + ".closed", "expected true or false, got " + typeName(v));
             wantClosed = v.get<bool>();
         }
         const bool hasPoints = c.contains("points"), hasSegments = c.contains("segments");
@@ -228,7 +241,8 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
         const std::size_t firstSeg = net.segments.size();
         auto addSegment = [&](const Segment& s, const std::string& sel) {
             if (net.segments.size() >= kMaxSegments) {
-                rd.fail(sel, "more than " + std::to_string(kMaxSegments) + " segments in the network");
+                rd.fail(sel,
+                        "more than " + std::to_string(kMaxSegments) + " segments in the network");
             }
             net.segments.push_back(s);
         };
@@ -245,9 +259,12 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
             const json& pts = c["points"];
             const std::string pel = el + ".points";
             if (!pts.is_array()) rd.fail(pel, "expected an array of points, got " + typeName(pts));
-            if (pts.size() < 2) rd.fail(pel, "a polyline needs at least 2 points, got " + std::to_string(pts.size()));
+            if (pts.size() < 2)
+                rd.fail(pel,
+                        "a polyline needs at least 2 points, got " + std::to_string(pts.size()));
             if (pts.size() - 1 > kMaxSegments) {
-                rd.fail(pel, std::to_string(pts.size()) + " points; limit is " + std::to_string(kMaxSegments));
+                rd.fail(pel, std::to_string(pts.size()) + " points; limit is " +
+                                 std::to_string(kMaxSegments));
             }
             glm::dvec2 prev = rd.point(pts[0], pel + "[0]");
             for (std::size_t i = 1; i < pts.size(); ++i) {
@@ -262,19 +279,24 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
         } else {
             const json& segs = c["segments"];
             const std::string sel0 = el + ".segments";
-            if (!segs.is_array()) rd.fail(sel0, "expected an array of segments, got " + typeName(segs));
+            if (!segs.is_array())
+                rd.fail(sel0, "expected an array of segments, got " + typeName(segs));
             if (segs.empty()) rd.fail(sel0, "a curve needs at least 1 segment");
             if (segs.size() > kMaxSegments) {
-                rd.fail(sel0, std::to_string(segs.size()) + " segments; limit is " + std::to_string(kMaxSegments));
+                rd.fail(sel0, std::to_string(segs.size()) + " segments; limit is " +
+                                  std::to_string(kMaxSegments));
             }
             for (std::size_t i = 0; i < segs.size(); ++i) {
                 const std::string sel = sel0 + "[" + std::to_string(i) + "]";
                 const json& s = segs[i];
-                if (!s.is_object()) rd.fail(sel, "expected an object {\"line\": ...} or {\"quad\": ...}, got " + typeName(s));
+                if (!s.is_object())
+                    rd.fail(sel, "expected an object {\"line\": ...} or {\"quad\": ...}, got " +
+                                     typeName(s));
                 rd.checkKeys(s, sel, {"line", "quad"});
                 const bool isLine = s.contains("line"), isQuad = s.contains("quad");
                 if (isLine == isQuad) {
-                    rd.fail(sel, isLine ? "has both \"line\" and \"quad\"" : "needs \"line\" or \"quad\"");
+                    rd.fail(sel, isLine ? "has both \"line\" and \"quad\""
+                                        : "needs \"line\" or \"quad\"");
                 }
                 const std::string key = isLine ? "line" : "quad";
                 const std::string kel = sel + "." + key;
@@ -282,13 +304,16 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
                 const std::size_t want = isLine ? 2 : 3;
                 if (!p.is_array() || p.size() != want) {
                     rd.fail(kel, "expected " + std::to_string(want) + " points, got " +
-                                     (p.is_array() ? std::to_string(p.size()) + " entries" : typeName(p)));
+                                     (p.is_array() ? std::to_string(p.size()) + " entries"
+                                                   : typeName(p)));
                 }
                 glm::dvec2 q[3];
-                for (std::size_t k = 0; k < want; ++k) q[k] = rd.point(p[k], kel + "[" + std::to_string(k) + "]");
+                for (std::size_t k = 0; k < want; ++k)
+                    q[k] = rd.point(p[k], kel + "[" + std::to_string(k) + "]");
                 Segment seg;
                 if (isLine) {
-                    if (q[0] == q[1]) rd.fail(kel, "both endpoints coincide (zero-length line segment)");
+                    if (q[0] == q[1])
+                        rd.fail(kel, "both endpoints coincide (zero-length line segment)");
                     seg = lineSeg(q[0], q[1]);
                 } else {
                     if (q[0] == q[1] && q[1] == q[2]) {
@@ -303,9 +328,11 @@ CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
                 if (i > 0 && net.segments.back().p2 != seg.p0) {
                     std::ostringstream m;
                     m.precision(17);
-                    m << "starts at (" << seg.p0.x << ", " << seg.p0.y << ") but the previous segment ends at ("
-                      << net.segments.back().p2.x << ", " << net.segments.back().p2.y
-                      << "); segments of one curve must connect exactly (put separate pieces in separate curves)";
+                    m << "starts at (" << seg.p0.x << ", " << seg.p0.y
+                      << ") but the previous segment ends at (" << net.segments.back().p2.x << ", "
+                      << net.segments.back().p2.y
+                      << "); segments of one curve must connect exactly (put separate pieces in "
+                         "separate curves)";
                     rd.fail(kel + "[0]", m.str());
                 }
                 addSegment(seg, sel);

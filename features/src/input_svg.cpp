@@ -103,7 +103,8 @@ public:
                 tag.kind = XmlTag::Kind::End;
                 tag.name = readName("element name after '</'");
                 skipSpace();
-                if (i_ >= t_.size() || t_[i_] != '>') fail(lt, "expected '>' to end </" + std::string(tag.name));
+                if (i_ >= t_.size() || t_[i_] != '>')
+                    fail(lt, "expected '>' to end </" + std::string(tag.name));
                 ++i_;
                 return;
             } else {
@@ -158,8 +159,9 @@ private:
 
     static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r'; }
     static bool isNameChar(char c) {
-        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-               c == ':' || c == '-' || c == '.' || static_cast<unsigned char>(c) >= 0x80;
+        return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+               c == '_' || c == ':' || c == '-' || c == '.' ||
+               static_cast<unsigned char>(c) >= 0x80;
     }
 
     void skipSpace() {
@@ -179,7 +181,8 @@ private:
         for (;;) {
             const std::size_t before = i_;
             skipSpace();
-            if (i_ >= t_.size()) fail(tag.offset, "unexpected end of file inside <" + std::string(tag.name) + ">");
+            if (i_ >= t_.size())
+                fail(tag.offset, "unexpected end of file inside <" + std::string(tag.name) + ">");
             if (t_[i_] == '>') {
                 ++i_;
                 return;
@@ -197,7 +200,8 @@ private:
             XmlAttr a;
             a.name = readName("attribute name");
             skipSpace();
-            if (i_ >= t_.size() || t_[i_] != '=') fail(i_, "expected '=' after attribute " + std::string(a.name));
+            if (i_ >= t_.size() || t_[i_] != '=')
+                fail(i_, "expected '=' after attribute " + std::string(a.name));
             ++i_;
             skipSpace();
             if (i_ >= t_.size() || (t_[i_] != '"' && t_[i_] != '\'')) {
@@ -205,12 +209,14 @@ private:
             }
             const char q = t_[i_];
             const std::size_t end = t_.find(q, i_ + 1);
-            if (end == std::string_view::npos) fail(at, "unterminated value of attribute " + std::string(a.name));
+            if (end == std::string_view::npos)
+                fail(at, "unterminated value of attribute " + std::string(a.name));
             a.value = decode(t_.substr(i_ + 1, end - i_ - 1), i_ + 1);
             i_ = end + 1;
             if (tag.attr(a.name)) fail(at, "duplicate attribute " + std::string(a.name));
             if (tag.attrs.size() >= kMaxAttributes) {
-                fail(at, "more than " + std::to_string(kMaxAttributes) + " attributes on one element");
+                fail(at,
+                     "more than " + std::to_string(kMaxAttributes) + " attributes on one element");
             }
             tag.attrs.push_back(std::move(a));
         }
@@ -227,20 +233,27 @@ private:
                 continue;
             }
             const std::size_t semi = raw.find(';', k);
-            if (semi == std::string_view::npos || semi - k > 12) fail(offset + k, "'&' without a reference");
+            if (semi == std::string_view::npos || semi - k > 12)
+                fail(offset + k, "'&' without a reference");
             const std::string_view ref = raw.substr(k + 1, semi - k - 1);
-            if (ref == "lt") out += '<';
-            else if (ref == "gt") out += '>';
-            else if (ref == "amp") out += '&';
-            else if (ref == "quot") out += '"';
-            else if (ref == "apos") out += '\'';
+            if (ref == "lt")
+                out += '<';
+            else if (ref == "gt")
+                out += '>';
+            else if (ref == "amp")
+                out += '&';
+            else if (ref == "quot")
+                out += '"';
+            else if (ref == "apos")
+                out += '\'';
             else if (ref.size() >= 2 && ref[0] == '#') {
                 const bool hex = ref[1] == 'x';
                 const std::string_view digits = ref.substr(hex ? 2 : 1);
                 std::uint32_t cp = 0;
-                auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), cp, hex ? 16 : 10);
-                if (digits.empty() || ec != std::errc() || p != digits.data() + digits.size() || cp == 0 ||
-                    cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
+                auto [p, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), cp,
+                                               hex ? 16 : 10);
+                if (digits.empty() || ec != std::errc() || p != digits.data() + digits.size() ||
+                    cp == 0 || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) {
                     fail(offset + k, "invalid character reference &" + std::string(ref) + ";");
                 }
                 detail::appendUtf8(out, cp);
@@ -268,14 +281,14 @@ struct Affine {
     glm::dvec2 linear(glm::dvec2 v) const { return {a * v.x + c * v.y, b * v.x + d * v.y}; }
     double det() const { return a * d - b * c; }
     bool finite() const {
-        return std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d) && std::isfinite(e) &&
-               std::isfinite(f);
+        return std::isfinite(a) && std::isfinite(b) && std::isfinite(c) && std::isfinite(d) &&
+               std::isfinite(e) && std::isfinite(f);
     }
 };
 
 // (l * r)(p) = l(r(p)).
 Affine operator*(const Affine& l, const Affine& r) {
-    return {l.a * r.a + l.c * r.b, l.b * r.a + l.d * r.b, l.a * r.c + l.c * r.d,
+    return {l.a * r.a + l.c * r.b, l.b * r.a + l.d * r.b,       l.a * r.c + l.c * r.d,
             l.b * r.c + l.d * r.d, l.a * r.e + l.c * r.f + l.e, l.b * r.e + l.d * r.f + l.f};
 }
 
@@ -286,7 +299,9 @@ class Scanner {
 public:
     explicit Scanner(std::string_view s) : s_(s) {}
 
-    static bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f'; }
+    static bool isSpace(char c) {
+        return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f';
+    }
     void skipSpace() {
         while (i_ < s_.size() && isSpace(s_[i_])) ++i_;
     }
@@ -343,7 +358,8 @@ public:
         // from_chars takes no '+'; handle the sign ourselves.
         const bool neg = s_[i_] == '-';
         double v = 0.0;
-        auto [p, ec] = std::from_chars(s_.data() + mant, s_.data() + k, v, std::chars_format::general);
+        auto [p, ec] =
+            std::from_chars(s_.data() + mant, s_.data() + k, v, std::chars_format::general);
         if (ec == std::errc::result_out_of_range) return Num::Range; // overflow or underflow
         if (ec != std::errc() || p != s_.data() + k) return Num::None;
         out = neg ? -v : v;
@@ -372,17 +388,21 @@ public:
             if (tag.kind == XmlTag::Kind::Eof) break;
             if (tag.kind == XmlTag::Kind::End) {
                 if (stack_.empty() || stack_.back().name != tag.name) {
-                    xml_.fail(tag.offset, "end tag </" + std::string(tag.name) + "> does not match " +
-                                              (stack_.empty() ? std::string("any open element")
-                                                              : "<" + std::string(stack_.back().name) + ">"));
+                    xml_.fail(tag.offset,
+                              "end tag </" + std::string(tag.name) + "> does not match " +
+                                  (stack_.empty() ? std::string("any open element")
+                                                  : "<" + std::string(stack_.back().name) + ">"));
                 }
                 stack_.pop_back();
                 if (stack_.empty()) rootDone = true;
                 continue;
             }
-            if (rootDone) xml_.fail(tag.offset, "element <" + std::string(tag.name) + "> after the root element");
+            if (rootDone)
+                xml_.fail(tag.offset,
+                          "element <" + std::string(tag.name) + "> after the root element");
             if (stack_.size() >= kMaxSvgDepth) {
-                xml_.fail(tag.offset, "elements nested deeper than " + std::to_string(kMaxSvgDepth) + " levels");
+                xml_.fail(tag.offset, "elements nested deeper than " +
+                                          std::to_string(kMaxSvgDepth) + " levels");
             }
             startElement(tag);
             if (tag.selfClosing) {
@@ -395,7 +415,8 @@ public:
                                                 "> is not closed before the end of the file");
         }
         if (!rootDone) throw io::InputError(source_, "", "no <svg> element (not an SVG file?)");
-        return builder_.finish(opt_.approx, "the drawing has no curves (no visible path or shape with length)");
+        return builder_.finish(opt_.approx,
+                               "the drawing has no curves (no visible path or shape with length)");
     }
 
 private:
@@ -457,29 +478,41 @@ private:
         if (r != Scanner::Num::Ok) fail(ael, "expected a length, got \"" + v->substr(0, 40) + "\"");
         std::string_view unit = trim(std::string_view(*v).substr(sc.pos()));
         double scale = 1.0;
-        if (unit.empty() || unit == "px") scale = 1.0;
-        else if (unit == "in") scale = 96.0;
-        else if (unit == "cm") scale = 96.0 / 2.54;
-        else if (unit == "mm") scale = 96.0 / 25.4;
-        else if (unit == "pt") scale = 96.0 / 72.0;
-        else if (unit == "pc") scale = 16.0;
-        else fail(ael, "unit '" + std::string(unit.substr(0, 10)) + "' is not supported (use px, in, cm, mm, pt, pc)");
+        if (unit.empty() || unit == "px")
+            scale = 1.0;
+        else if (unit == "in")
+            scale = 96.0;
+        else if (unit == "cm")
+            scale = 96.0 / 2.54;
+        else if (unit == "mm")
+            scale = 96.0 / 25.4;
+        else if (unit == "pt")
+            scale = 96.0 / 72.0;
+        else if (unit == "pc")
+            scale = 16.0;
+        else
+            fail(ael, "unit '" + std::string(unit.substr(0, 10)) +
+                          "' is not supported (use px, in, cm, mm, pt, pc)");
         x *= scale;
         if (std::abs(x) > kMaxAbsCoord) fail(ael, "value exceeds the coordinate limit 1e12");
         return x;
     }
 
-    std::vector<double> numberList(std::string_view s, const std::string& el, std::size_t maxCount) const {
+    std::vector<double> numberList(std::string_view s, const std::string& el,
+                                   std::size_t maxCount) const {
         std::vector<double> out;
         Scanner sc(s);
         sc.skipSpace();
         while (!sc.atEnd()) {
             double v = 0.0;
             const auto r = sc.number(v);
-            if (r == Scanner::Num::Range) fail(el, "number out of range at character " + std::to_string(sc.pos()));
-            if (r != Scanner::Num::Ok) fail(el, "expected a number at character " + std::to_string(sc.pos()));
+            if (r == Scanner::Num::Range)
+                fail(el, "number out of range at character " + std::to_string(sc.pos()));
+            if (r != Scanner::Num::Ok)
+                fail(el, "expected a number at character " + std::to_string(sc.pos()));
             if (std::abs(v) > kMaxAbsCoord) fail(el, "number exceeds the coordinate limit 1e12");
-            if (out.size() >= maxCount) fail(el, "more than " + std::to_string(maxCount) + " numbers");
+            if (out.size() >= maxCount)
+                fail(el, "more than " + std::to_string(maxCount) + " numbers");
             out.push_back(v);
             sc.skipCommaSpace();
         }
@@ -492,12 +525,14 @@ private:
         sc.skipCommaSpace();
         while (!sc.atEnd()) {
             const std::size_t b = sc.pos();
-            while (!sc.atEnd() && ((sc.peek() >= 'a' && sc.peek() <= 'z') || (sc.peek() >= 'A' && sc.peek() <= 'Z'))) {
+            while (!sc.atEnd() && ((sc.peek() >= 'a' && sc.peek() <= 'z') ||
+                                   (sc.peek() >= 'A' && sc.peek() <= 'Z'))) {
                 sc.advance();
             }
             const std::string_view fn = s.substr(b, sc.pos() - b);
             sc.skipSpace();
-            if (sc.peek() != '(') fail(el, "expected '(' after \"" + std::string(fn.substr(0, 20)) + "\"");
+            if (sc.peek() != '(')
+                fail(el, "expected '(' after \"" + std::string(fn.substr(0, 20)) + "\"");
             sc.advance();
             double args[6];
             int n = 0;
@@ -505,7 +540,8 @@ private:
             while (sc.peek() != ')') {
                 if (n == 6) fail(el, std::string(fn) + "() takes at most 6 numbers");
                 const auto r = sc.number(args[n]);
-                if (r != Scanner::Num::Ok) fail(el, "expected a number or ')' in " + std::string(fn) + "()");
+                if (r != Scanner::Num::Ok)
+                    fail(el, "expected a number or ')' in " + std::string(fn) + "()");
                 ++n;
                 sc.skipCommaSpace();
                 if (sc.atEnd()) fail(el, "missing ')' in " + std::string(fn) + "()");
@@ -514,8 +550,8 @@ private:
             auto want = [&](int lo, int hi) {
                 if (n < lo || n > hi) {
                     fail(el, std::string(fn) + "() takes " + std::to_string(lo) +
-                                 (hi > lo ? " to " + std::to_string(hi) : std::string()) + " numbers, got " +
-                                 std::to_string(n));
+                                 (hi > lo ? " to " + std::to_string(hi) : std::string()) +
+                                 " numbers, got " + std::to_string(n));
                 }
             };
             Affine t;
@@ -532,11 +568,13 @@ private:
                 t.a = args[0];
                 t.d = n > 1 ? args[1] : args[0];
             } else if (fn == "rotate") {
-                if (n != 1 && n != 3) fail(el, "rotate() takes 1 or 3 numbers, got " + std::to_string(n));
+                if (n != 1 && n != 3)
+                    fail(el, "rotate() takes 1 or 3 numbers, got " + std::to_string(n));
                 const double cs = std::cos(args[0] * deg), sn = std::sin(args[0] * deg);
                 t = {cs, sn, -sn, cs, 0, 0};
                 if (n == 3) {
-                    const Affine to{1, 0, 0, 1, args[1], args[2]}, back{1, 0, 0, 1, -args[1], -args[2]};
+                    const Affine to{1, 0, 0, 1, args[1], args[2]},
+                        back{1, 0, 0, 1, -args[1], -args[2]};
                     t = to * t * back;
                 }
             } else if (fn == "skewX") {
@@ -577,15 +615,17 @@ private:
             return;
         }
         const bool container = name == "g" || name == "a" || name == "switch";
-        const bool shape = name == "path" || name == "line" || name == "polyline" || name == "polygon" ||
-                           name == "rect" || name == "circle" || name == "ellipse";
+        const bool shape = name == "path" || name == "line" || name == "polyline" ||
+                           name == "polygon" || name == "rect" || name == "circle" ||
+                           name == "ellipse";
         if (name == "use" || name == "text") {
             fail(el, "<" + std::string(name) + "> is not supported (convert it to paths first)");
         }
         if (container || shape || name == "svg") {
             Affine local;
             if (name == "svg") local = nestedViewport(tag, el);
-            if (const std::string* tr = tag.attr("transform")) local = parseTransform(*tr, el + " transform") * local;
+            if (const std::string* tr = tag.attr("transform"))
+                local = parseTransform(*tr, el + " transform") * local;
             const Affine ctm = parent.ctm * local;
             // A singular transform makes the element invisible (SVG 1.1 7.5).
             if (ctm.det() != 0.0 && std::isfinite(ctm.det())) {
@@ -607,14 +647,17 @@ private:
         Affine flip{1, 0, 0, -1, 0, 0};
         if (const std::string* vb = tag.attr("viewBox")) {
             const auto v = numberList(*vb, el + " attribute 'viewBox'", 4);
-            if (v.size() != 4) fail(el + " attribute 'viewBox'", "expected 4 numbers: min-x min-y width height");
-            if (!(v[2] > 0.0 && v[3] > 0.0)) fail(el + " attribute 'viewBox'", "width and height must be > 0");
+            if (v.size() != 4)
+                fail(el + " attribute 'viewBox'", "expected 4 numbers: min-x min-y width height");
+            if (!(v[2] > 0.0 && v[3] > 0.0))
+                fail(el + " attribute 'viewBox'", "width and height must be > 0");
             flip.f = 2.0 * v[1] + v[3];
         } else if (auto h = length(tag, "height", el)) {
             flip.f = *h;
         }
         Affine local;
-        if (const std::string* tr = tag.attr("transform")) local = parseTransform(*tr, el + " transform");
+        if (const std::string* tr = tag.attr("transform"))
+            local = parseTransform(*tr, el + " transform");
         return flip * local;
     }
 
@@ -622,7 +665,8 @@ private:
     // preserveAspectRatio (SVG 1.1 7.8); clipping to the viewport is not
     // applied (curves are kept whole).
     Affine nestedViewport(const XmlTag& tag, const std::string& el) {
-        Affine t{1, 0, 0, 1, length(tag, "x", el).value_or(0.0), length(tag, "y", el).value_or(0.0)};
+        Affine t{
+            1, 0, 0, 1, length(tag, "x", el).value_or(0.0), length(tag, "y", el).value_or(0.0)};
         const std::string* vb = tag.attr("viewBox");
         if (!vb) return t;
         const std::string vel = el + " attribute 'viewBox'";
@@ -641,13 +685,19 @@ private:
             if (align == "none") {
                 alignX = -1.0;
             } else if (align.size() == 8 && align[0] == 'x' && align[4] == 'Y') {
-                auto pos = [&](std::string_view s) { return s == "Min" ? 0.0 : s == "Mid" ? 0.5 : s == "Max" ? 1.0 : -1.0; };
+                auto pos = [&](std::string_view s) {
+                    return s == "Min" ? 0.0 : s == "Mid" ? 0.5 : s == "Max" ? 1.0 : -1.0;
+                };
                 alignX = pos(align.substr(1, 3));
                 alignY = pos(align.substr(5, 3));
-                if (alignX < 0.0 || alignY < 0.0) fail(el + " attribute 'preserveAspectRatio'", "unknown alignment");
-                if (rest == "slice") sx = sy = std::max(sx, sy);
-                else if (rest.empty() || rest == "meet") sx = sy = std::min(sx, sy);
-                else fail(el + " attribute 'preserveAspectRatio'", "expected meet or slice");
+                if (alignX < 0.0 || alignY < 0.0)
+                    fail(el + " attribute 'preserveAspectRatio'", "unknown alignment");
+                if (rest == "slice")
+                    sx = sy = std::max(sx, sy);
+                else if (rest.empty() || rest == "meet")
+                    sx = sy = std::min(sx, sy);
+                else
+                    fail(el + " attribute 'preserveAspectRatio'", "expected meet or slice");
             } else {
                 fail(el + " attribute 'preserveAspectRatio'", "unknown alignment");
             }
@@ -671,8 +721,8 @@ private:
     }
 
     // Elliptical arc from the current point (user space `from`) to `to`.
-    void arcTo(glm::dvec2 from, double rx, double ry, double phiDeg, bool large, bool sweep, glm::dvec2 to,
-               const Affine& ctm, const std::string& el) {
+    void arcTo(glm::dvec2 from, double rx, double ry, double phiDeg, bool large, bool sweep,
+               glm::dvec2 to, const Affine& ctm, const std::string& el) {
         // F.6.2: identical endpoints omit the arc; F.6.6 step 1: zero radius
         // makes it a line.
         if (from == to) return;
@@ -692,7 +742,8 @@ private:
         // until the ellipse passes through both (the center is then the
         // midpoint).
         const double lambda = (x1 / rx) * (x1 / rx) + (y1 / ry) * (y1 / ry);
-        if (!std::isfinite(lambda)) fail(el, "arc radii are too small for its endpoints to be represented");
+        if (!std::isfinite(lambda))
+            fail(el, "arc radii are too small for its endpoints to be represented");
         if (lambda > 1.0) {
             const double s = std::sqrt(lambda);
             rx *= s;
@@ -709,7 +760,8 @@ private:
         if (large == sweep) coef = -coef;
         const double cx1 = coef * rx * y1 / ry, cy1 = -coef * ry * x1 / rx;
         // Step 3: back to user space.
-        const glm::dvec2 center{cs * cx1 - sn * cy1 + 0.5 * (from.x + to.x), sn * cx1 + cs * cy1 + 0.5 * (from.y + to.y)};
+        const glm::dvec2 center{cs * cx1 - sn * cy1 + 0.5 * (from.x + to.x),
+                                sn * cx1 + cs * cy1 + 0.5 * (from.y + to.y)};
         // Step 4: start angle and sweep.
         const double theta1 = std::atan2((y1 - cy1) / ry, (x1 - cx1) / rx);
         const double theta2 = std::atan2((-y1 - cy1) / ry, (-x1 - cx1) / rx);
@@ -723,8 +775,8 @@ private:
         arc.startAngle = theta1;
         arc.sweepAngle = dtheta;
         arc.end = toF;
-        if (!std::isfinite(arc.center.x) || !std::isfinite(arc.center.y) || !std::isfinite(dtheta) ||
-            !std::isfinite(theta1)) {
+        if (!std::isfinite(arc.center.x) || !std::isfinite(arc.center.y) ||
+            !std::isfinite(dtheta) || !std::isfinite(theta1)) {
             fail(el, "arc parameters are not finite");
         }
         builder_.arcTo(arc);
@@ -744,17 +796,23 @@ private:
             sc.skipCommaSpace();
             double v = 0.0;
             const auto r = sc.number(v);
-            if (r == Scanner::Num::Range) fail(cel, std::string(what) + " is out of range (d[" + std::to_string(sc.pos()) + "])");
+            if (r == Scanner::Num::Range)
+                fail(cel,
+                     std::string(what) + " is out of range (d[" + std::to_string(sc.pos()) + "])");
             if (r != Scanner::Num::Ok) {
-                fail(cel, std::string("expected a number (") + what + ") at d[" + std::to_string(sc.pos()) + "]");
+                fail(cel, std::string("expected a number (") + what + ") at d[" +
+                              std::to_string(sc.pos()) + "]");
             }
-            if (std::abs(v) > kMaxAbsCoord) fail(cel, std::string(what) + " exceeds the coordinate limit 1e12");
+            if (std::abs(v) > kMaxAbsCoord)
+                fail(cel, std::string(what) + " exceeds the coordinate limit 1e12");
             return v;
         };
         auto flag = [&](const char* what) {
             sc.skipCommaSpace();
             const char c = sc.peek();
-            if (c != '0' && c != '1') fail(cel, std::string("expected a flag 0 or 1 (") + what + ") at d[" + std::to_string(sc.pos()) + "]");
+            if (c != '0' && c != '1')
+                fail(cel, std::string("expected a flag 0 or 1 (") + what + ") at d[" +
+                              std::to_string(sc.pos()) + "]");
             sc.advance();
             return c == '1';
         };
@@ -776,20 +834,25 @@ private:
                 cmd = c;
                 sc.advance();
                 ++cmdIndex;
-                cel = el + " command " + std::to_string(cmdIndex) + " '" + std::string(1, cmd) + "'";
-                if (cmdIndex == 1 && cmd != 'M' && cmd != 'm') fail(cel, "path data must start with M or m");
+                cel =
+                    el + " command " + std::to_string(cmdIndex) + " '" + std::string(1, cmd) + "'";
+                if (cmdIndex == 1 && cmd != 'M' && cmd != 'm')
+                    fail(cel, "path data must start with M or m");
                 if (std::string_view("MmLlHhVvCcSsQqTtAaZz").find(cmd) == std::string_view::npos) {
                     fail(cel, "unknown path command");
                 }
             } else if (sc.atNumberStart() && cmd != 0 && cmd != 'Z' && cmd != 'z') {
                 // Implicit repetition: after a moveto, further pairs are
                 // linetos of the same relativity.
-                if (cmd == 'M') cmd = 'L';
-                else if (cmd == 'm') cmd = 'l';
+                if (cmd == 'M')
+                    cmd = 'L';
+                else if (cmd == 'm')
+                    cmd = 'l';
             } else if (cmd == 0) {
                 fail(el + " command 1", "path data must start with M or m");
             } else {
-                fail(cel, "unexpected character '" + std::string(1, c) + "' at d[" + std::to_string(sc.pos()) + "]");
+                fail(cel, "unexpected character '" + std::string(1, c) + "' at d[" +
+                              std::to_string(sc.pos()) + "]");
             }
             const bool rel = cmd >= 'a';
             switch (cmd) {
@@ -838,8 +901,10 @@ private:
             case 's': {
                 const bool smooth = cmd == 'S' || cmd == 's';
                 glm::dvec2 c1 = cur;
-                if (!smooth) c1 = point(rel);
-                else if (std::string_view("CcSs").find(prevCmd) != std::string_view::npos) c1 = 2.0 * cur - lastCtrl;
+                if (!smooth)
+                    c1 = point(rel);
+                else if (std::string_view("CcSs").find(prevCmd) != std::string_view::npos)
+                    c1 = 2.0 * cur - lastCtrl;
                 const glm::dvec2 c2 = point(rel);
                 const glm::dvec2 p = point(rel);
                 ensureSubpath();
@@ -854,8 +919,10 @@ private:
             case 't': {
                 const bool smooth = cmd == 'T' || cmd == 't';
                 glm::dvec2 c1 = cur;
-                if (!smooth) c1 = point(rel);
-                else if (std::string_view("QqTt").find(prevCmd) != std::string_view::npos) c1 = 2.0 * cur - lastCtrl;
+                if (!smooth)
+                    c1 = point(rel);
+                else if (std::string_view("QqTt").find(prevCmd) != std::string_view::npos)
+                    c1 = 2.0 * cur - lastCtrl;
                 const glm::dvec2 p = point(rel);
                 ensureSubpath();
                 builder_.quadTo(ctm.apply(c1), ctm.apply(p));
@@ -882,7 +949,8 @@ private:
         builder_.endSubpath();
     }
 
-    void emitShape(std::string_view name, const XmlTag& tag, const std::string& el, const Affine& ctm) {
+    void emitShape(std::string_view name, const XmlTag& tag, const std::string& el,
+                   const Affine& ctm) {
         if (name == "path") {
             emitPath(tag, el, ctm);
             return;
@@ -901,15 +969,21 @@ private:
             const std::string* pts = tag.attr("points");
             if (!pts) return;
             const auto v = numberList(*pts, el + " attribute 'points'", 2 * kMaxSegments);
-            if (v.size() % 2) fail(el + " attribute 'points'", "odd number of coordinates (" + std::to_string(v.size()) + ")");
+            if (v.size() % 2)
+                fail(el + " attribute 'points'",
+                     "odd number of coordinates (" + std::to_string(v.size()) + ")");
             if (v.size() < 4) return; // fewer than 2 points draw nothing
             builder_.moveTo(ctm.apply({v[0], v[1]}), ci, el);
-            for (std::size_t k = 2; k < v.size(); k += 2) builder_.lineTo(ctm.apply({v[k], v[k + 1]}));
-            if (name == "polygon") builder_.close();
-            else builder_.endSubpath();
+            for (std::size_t k = 2; k < v.size(); k += 2)
+                builder_.lineTo(ctm.apply({v[k], v[k + 1]}));
+            if (name == "polygon")
+                builder_.close();
+            else
+                builder_.endSubpath();
         } else if (name == "rect") {
             const double x = len("x"), y = len("y");
-            const double w = nonNegative("width", len("width")), h = nonNegative("height", len("height"));
+            const double w = nonNegative("width", len("width")),
+                         h = nonNegative("height", len("height"));
             if (w == 0.0 || h == 0.0) return; // disables rendering
             auto rxo = length(tag, "rx", el), ryo = length(tag, "ry", el);
             if (rxo) nonNegative("rx", *rxo);
@@ -986,8 +1060,9 @@ private:
 
 CurveNetwork parseSvg(std::string_view text, const std::string& source, const SvgOptions& opt) {
     if (text.size() > kMaxSvgBytes) {
-        throw io::InputError(source, "", "SVG is " + std::to_string(text.size()) + " bytes; limit is " +
-                                             std::to_string(kMaxSvgBytes));
+        throw io::InputError(source, "",
+                             "SVG is " + std::to_string(text.size()) + " bytes; limit is " +
+                                 std::to_string(kMaxSvgBytes));
     }
     SvgLoader loader(text, source, opt);
     return loader.run();

@@ -51,7 +51,9 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {
     writeAtomically(path, [&](const fs::path& tmp) {
         std::ofstream out(tmp, std::ios::binary);
-        if (!out) throw InputError(path.string(), "", std::string("cannot open for writing: ") + std::strerror(errno));
+        if (!out)
+            throw InputError(path.string(), "",
+                             std::string("cannot open for writing: ") + std::strerror(errno));
         out.write(bytes.data(), std::streamsize(bytes.size()));
         out.close();
         if (!out) throw InputError(path.string(), "", "write failed (disk full?)");
@@ -63,7 +65,8 @@ void checkNotInput(const fs::path& output, std::initializer_list<fs::path> input
     for (const auto& in : inputs) {
         if (in.empty()) continue;
         if (fs::exists(output, ec) && fs::exists(in, ec) && fs::equivalent(output, in, ec)) {
-            throw InputError(output.string(), "", "output would overwrite the input " + in.string());
+            throw InputError(output.string(), "",
+                             "output would overwrite the input " + in.string());
         }
     }
 }
@@ -75,11 +78,13 @@ std::string readFile(const fs::path& path, std::size_t maxBytes) {
     auto size = fs::file_size(path, ec);
     if (ec) throw InputError(path.string(), "", "cannot read size: " + ec.message());
     if (size > maxBytes) {
-        throw InputError(path.string(), "", "file is " + std::to_string(size) + " bytes; limit is " +
-                                                std::to_string(maxBytes));
+        throw InputError(path.string(), "",
+                         "file is " + std::to_string(size) + " bytes; limit is " +
+                             std::to_string(maxBytes));
     }
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string(), "", std::string("cannot open: ") + std::strerror(errno));
+    if (!in)
+        throw InputError(path.string(), "", std::string("cannot open: ") + std::strerror(errno));
     std::string data(size, '\0');
     in.read(data.data(), std::streamsize(size));
     if (std::size_t(in.gcount()) != size) throw InputError(path.string(), "", "short read");

@@ -13,7 +13,8 @@ namespace sg::features::detail {
 void PathBuilder::moveTo(glm::dvec2 p, const CurveInfo& info, const std::string& element) {
     endSubpath();
     if (curves_.size() >= kMaxCurves) {
-        throw io::InputError(source_, element, "more than " + std::to_string(kMaxCurves) + " curves");
+        throw io::InputError(source_, element,
+                             "more than " + std::to_string(kMaxCurves) + " curves");
     }
     curves_.push_back(info);
     curveElement_.push_back(element);
@@ -24,7 +25,8 @@ void PathBuilder::moveTo(glm::dvec2 p, const CurveInfo& info, const std::string&
 void PathBuilder::push(const Prim& p) {
     if (prims_.size() >= kMaxSegments) {
         throw io::InputError(source_, curveElement_.back(),
-                             "more than " + std::to_string(kMaxSegments) + " segments in the drawing");
+                             "more than " + std::to_string(kMaxSegments) +
+                                 " segments in the drawing");
     }
     prims_.push_back(p);
 }
@@ -72,7 +74,8 @@ void PathBuilder::endSubpath() {
     }
 }
 
-CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& emptyReason, double* maxError) {
+CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& emptyReason,
+                                 double* maxError) {
     endSubpath();
     if (maxError) *maxError = 0.0;
     if (prims_.empty()) throw io::InputError(source_, "", emptyReason);
@@ -82,8 +85,10 @@ CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& em
     std::vector<glm::dvec2> hull;
     for (const Prim& p : prims_) {
         hull.clear();
-        if (p.kind == Prim::Kind::Arc) arcHullPoints(p.arc, hull);
-        else hull.assign(p.p, p.p + 4);
+        if (p.kind == Prim::Kind::Arc)
+            arcHullPoints(p.arc, hull);
+        else
+            hull.assign(p.p, p.p + 4);
         for (glm::dvec2 q : hull) {
             if (!std::isfinite(q.x) || !std::isfinite(q.y) || std::abs(q.x) > kMaxAbsCoord ||
                 std::abs(q.y) > kMaxAbsCoord) {
@@ -111,7 +116,8 @@ CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& em
         switch (p.kind) {
         case Prim::Kind::Line: {
             if (net.segments.size() >= kMaxSegments) {
-                throw io::InputError(source_, el, "more than " + std::to_string(kMaxSegments) + " segments");
+                throw io::InputError(source_, el,
+                                     "more than " + std::to_string(kMaxSegments) + " segments");
             }
             Segment s;
             s.kind = Segment::Kind::Line;
@@ -124,7 +130,8 @@ CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& em
         }
         case Prim::Kind::Quad: {
             if (net.segments.size() >= kMaxSegments) {
-                throw io::InputError(source_, el, "more than " + std::to_string(kMaxSegments) + " segments");
+                throw io::InputError(source_, el,
+                                     "more than " + std::to_string(kMaxSegments) + " segments");
             }
             Segment s;
             s.kind = Segment::Kind::Quadratic;
@@ -136,8 +143,8 @@ CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& em
             break;
         }
         case Prim::Kind::Cubic: {
-            const double e = appendCubicAsQuadratics(p.p[0], p.p[1], p.p[2], p.p[3], tol, c, net.segments,
-                                                     source_, el);
+            const double e = appendCubicAsQuadratics(p.p[0], p.p[1], p.p[2], p.p[3], tol, c,
+                                                     net.segments, source_, el);
             if (maxError) *maxError = std::max(*maxError, e);
             break;
         }
@@ -170,7 +177,8 @@ CurveNetwork PathBuilder::finish(const ApproxOptions& opt, const std::string& em
     std::size_t first = 0;
     for (std::size_t i = 0; i < net.segments.size(); ++i) {
         if (i + 1 == net.segments.size() || net.segments[i + 1].curve != net.segments[i].curve) {
-            net.curves[std::size_t(net.segments[i].curve)].closed = net.segments[i].p2 == net.segments[first].p0;
+            net.curves[std::size_t(net.segments[i].curve)].closed =
+                net.segments[i].p2 == net.segments[first].p0;
             first = i + 1;
         }
     }

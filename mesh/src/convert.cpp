@@ -49,8 +49,8 @@ void computeVertexNormals(RenderMesh& mesh, std::span<const uint32_t> smoothGrou
 
 namespace detail {
 
-void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets, const uint32_t* cornerSector,
-                         RenderSplit& out) {
+void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
+                         const uint32_t* cornerSector, RenderSplit& out) {
     const size_t nC = mesh.faceVertices.size();
     const size_t nSets = mesh.uvSets.size();
     const bool useNormals = !mesh.normalIndices.empty();
@@ -110,7 +110,9 @@ RenderMesh toRenderMesh(const PolygonMesh& mesh) {
     out.uvSets.resize(mesh.uvSets.size());
     for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
         out.uvSets[s].resize(nR);
-        for (size_t r = 0; r < nR; ++r) out.uvSets[s][r] = mesh.uvSets[s].values[mesh.uvSets[s].indices[split.renderFirstCorner[r]]];
+        for (size_t r = 0; r < nR; ++r)
+            out.uvSets[s][r] =
+                mesh.uvSets[s].values[mesh.uvSets[s].indices[split.renderFirstCorner[r]]];
     }
     out.indices = std::move(split.indices);
     if (!mesh.normalIndices.empty()) {
@@ -142,11 +144,13 @@ RenderMesh toRenderMesh(const PolygonMesh& mesh) {
         MorphTarget mt;
         mt.name = t.name;
         mt.positionDeltas.resize(nR);
-        for (size_t r = 0; r < nR; ++r) mt.positionDeltas[r] = t.positionDeltas[split.renderSourceVertex[r]];
+        for (size_t r = 0; r < nR; ++r)
+            mt.positionDeltas[r] = t.positionDeltas[split.renderSourceVertex[r]];
         out.morphTargets.push_back(std::move(mt));
     }
     out.morphWeights = mesh.morphWeights;
-    if (!out.morphTargets.empty() && out.morphWeights.empty()) out.morphWeights.assign(out.morphTargets.size(), 0.0f);
+    if (!out.morphTargets.empty() && out.morphWeights.empty())
+        out.morphWeights.assign(out.morphTargets.size(), 0.0f);
     return out;
 }
 
@@ -175,7 +179,9 @@ std::vector<uint32_t> detail::coincidentVertexGroups(const RenderMesh& mesh) {
         return c != 0 ? c < 0 : a < b;
     });
     std::vector<uint32_t> rep(n);
-    for (size_t i = 0; i < n; ++i) rep[order[i]] = (i > 0 && keyCmp(order[i], order[i - 1]) == 0) ? rep[order[i - 1]] : order[i];
+    for (size_t i = 0; i < n; ++i)
+        rep[order[i]] =
+            (i > 0 && keyCmp(order[i], order[i - 1]) == 0) ? rep[order[i - 1]] : order[i];
     return rep;
 }
 
@@ -199,7 +205,8 @@ PolygonMesh toPolygonMesh(const RenderMesh& mesh) {
     for (size_t c = 0; c < cageSource.size(); ++c) out.positions[c] = mesh.positions[cageSource[c]];
     out.faceSizes.assign(mesh.indices.size() / 3, 3u);
     out.faceVertices.resize(mesh.indices.size());
-    for (size_t i = 0; i < mesh.indices.size(); ++i) out.faceVertices[i] = cageOf[rep[mesh.indices[i]]];
+    for (size_t i = 0; i < mesh.indices.size(); ++i)
+        out.faceVertices[i] = cageOf[rep[mesh.indices[i]]];
     // Face-varying channels: one value per distinct (cage vertex, value),
     // so equal UVs on both sides of a normal-only split stay connected.
     auto faceVarying = [&](auto getValue, auto& values, std::vector<uint32_t>& indices) {
@@ -227,13 +234,15 @@ PolygonMesh toPolygonMesh(const RenderMesh& mesh) {
         faceVarying([&](uint32_t r) { return mesh.uvSets[s][r]; }, ch.values, ch.indices);
         out.uvSets.push_back(std::move(ch));
     }
-    if (!mesh.normals.empty()) faceVarying([&](uint32_t r) { return mesh.normals[r]; }, out.normals, out.normalIndices);
+    if (!mesh.normals.empty())
+        faceVarying([&](uint32_t r) { return mesh.normals[r]; }, out.normals, out.normalIndices);
     for (const MorphTarget& t : mesh.morphTargets) {
         CageMorphTarget ct;
         ct.name = t.name;
         ct.positionDeltas.assign(out.positions.size(), glm::vec3(0.0f));
         if (!t.positionDeltas.empty()) {
-            for (size_t c = 0; c < cageSource.size(); ++c) ct.positionDeltas[c] = t.positionDeltas[cageSource[c]];
+            for (size_t c = 0; c < cageSource.size(); ++c)
+                ct.positionDeltas[c] = t.positionDeltas[cageSource[c]];
         }
         out.morphTargets.push_back(std::move(ct));
     }

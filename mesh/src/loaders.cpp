@@ -23,10 +23,14 @@ std::string meshFormat(const std::filesystem::path& path) {
 
 namespace {
 
-bool isGltf(const std::string& ext) { return ext == ".gltf" || ext == ".glb"; }
+bool isGltf(const std::string& ext) {
+    return ext == ".gltf" || ext == ".glb";
+}
 
 [[noreturn]] void unknownFormat(const std::filesystem::path& path, const std::string& ext) {
-    throw InputError(path.string(), "", "unknown mesh format '" + ext + "' (expected .obj, .off, .ply, .stl, .gltf or .glb)");
+    throw InputError(path.string(), "",
+                     "unknown mesh format '" + ext +
+                         "' (expected .obj, .off, .ply, .stl, .gltf or .glb)");
 }
 
 Scene readGltf(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {
@@ -51,11 +55,14 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
     if (report) {
         for (const SceneInstance& inst : scene.instances) {
             if (inst.mesh.uvSets.size() > nSets) {
-                report->notes.push_back("UV sets beyond " + std::to_string(nSets) + " dropped: not every primitive has them");
+                report->notes.push_back("UV sets beyond " + std::to_string(nSets) +
+                                        " dropped: not every primitive has them");
                 break;
             }
         }
-        if (!sameTargets) report->notes.push_back("morph targets dropped: primitives have different numbers of targets");
+        if (!sameTargets)
+            report->notes.push_back(
+                "morph targets dropped: primitives have different numbers of targets");
     }
     out.name = scene.instances.size() == 1 ? scene.instances[0].mesh.name : "scene";
     out.uvSets.resize(nSets);
@@ -72,7 +79,8 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
         float det = glm::determinant(L);
         glm::mat3 N = std::abs(det) > 0.0f ? glm::transpose(glm::inverse(L)) : L;
         uint32_t base = uint32_t(out.positions.size());
-        for (const glm::vec3& p : m.positions) out.positions.push_back(glm::vec3(M * glm::vec4(p, 1.0f)));
+        for (const glm::vec3& p : m.positions)
+            out.positions.push_back(glm::vec3(M * glm::vec4(p, 1.0f)));
         auto unit = [](glm::vec3 v, const glm::vec3& fallback) {
             float len = glm::length(v);
             return len > 0.0f && std::isfinite(len) ? v / len : fallback;
@@ -83,21 +91,30 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
         if (allTangents) {
             // A mirroring transform flips the handedness of the frame.
             float flip = det < 0.0f ? -1.0f : 1.0f;
-            for (const glm::vec4& t : m.tangents) out.tangents.push_back(glm::vec4(unit(L * glm::vec3(t), glm::vec3(t)), t.w * flip));
+            for (const glm::vec4& t : m.tangents)
+                out.tangents.push_back(glm::vec4(unit(L * glm::vec3(t), glm::vec3(t)), t.w * flip));
         }
-        for (size_t s = 0; s < nSets; ++s) out.uvSets[s].insert(out.uvSets[s].end(), m.uvSets[s].begin(), m.uvSets[s].end());
+        for (size_t s = 0; s < nSets; ++s)
+            out.uvSets[s].insert(out.uvSets[s].end(), m.uvSets[s].begin(), m.uvSets[s].end());
         for (size_t k = 0; k < m.indices.size(); k += 3) {
             // A mirroring transform turns CCW into CW: swap to keep fronts.
-            if (det < 0.0f) out.indices.insert(out.indices.end(), {base + m.indices[k], base + m.indices[k + 2], base + m.indices[k + 1]});
-            else out.indices.insert(out.indices.end(), {base + m.indices[k], base + m.indices[k + 1], base + m.indices[k + 2]});
+            if (det < 0.0f)
+                out.indices.insert(out.indices.end(), {base + m.indices[k], base + m.indices[k + 2],
+                                                       base + m.indices[k + 1]});
+            else
+                out.indices.insert(out.indices.end(), {base + m.indices[k], base + m.indices[k + 1],
+                                                       base + m.indices[k + 2]});
         }
         for (size_t t = 0; t < nTargets; ++t) {
             const MorphTarget& src = m.morphTargets[t];
             MorphTarget& dst = out.morphTargets[t];
-            auto append = [&](const std::vector<glm::vec3>& d, std::vector<glm::vec3>& o, const glm::mat3& X) {
+            auto append = [&](const std::vector<glm::vec3>& d, std::vector<glm::vec3>& o,
+                              const glm::mat3& X) {
                 o.resize(base, glm::vec3(0.0f)); // earlier instances may lack the field
-                if (d.empty()) o.resize(base + m.positions.size(), glm::vec3(0.0f));
-                else for (const glm::vec3& v : d) o.push_back(X * v);
+                if (d.empty())
+                    o.resize(base + m.positions.size(), glm::vec3(0.0f));
+                else
+                    for (const glm::vec3& v : d) o.push_back(X * v);
             };
             append(src.positionDeltas, dst.positionDeltas, L);
             if (allNormals) append(src.normalDeltas, dst.normalDeltas, N);
@@ -117,7 +134,9 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
     // Targets that are all zero in a field collapse to empty (as if absent).
     for (MorphTarget& t : out.morphTargets) {
         for (auto* d : {&t.positionDeltas, &t.normalDeltas, &t.tangentDeltas}) {
-            if (!d->empty() && std::all_of(d->begin(), d->end(), [](const glm::vec3& v) { return v == glm::vec3(0.0f); })) {
+            if (!d->empty() && std::all_of(d->begin(), d->end(), [](const glm::vec3& v) {
+                    return v == glm::vec3(0.0f);
+                })) {
                 d->clear();
             }
         }
@@ -127,7 +146,8 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
 
 // Drops triangles with a repeated index (repair) or counts them.
 void checkRenderMesh(RenderMesh& mesh, const std::string& file, bool repair, LoadReport* report) {
-    if (mesh.positions.empty() || mesh.indices.empty()) throw InputError(file, "", "empty mesh: no triangles");
+    if (mesh.positions.empty() || mesh.indices.empty())
+        throw InputError(file, "", "empty mesh: no triangles");
     size_t bad = 0, out = 0;
     for (size_t k = 0; k + 2 < mesh.indices.size(); k += 3) {
         uint32_t a = mesh.indices[k], b = mesh.indices[k + 1], c = mesh.indices[k + 2];
@@ -144,16 +164,19 @@ void checkRenderMesh(RenderMesh& mesh, const std::string& file, bool repair, Loa
             report->degenerateFacesDropped += bad;
             report->notes.push_back("dropped " + std::to_string(bad) + " degenerate triangles");
         } else {
-            report->notes.push_back(std::to_string(bad) + " degenerate triangles (kept; --repair drops them)");
+            report->notes.push_back(std::to_string(bad) +
+                                    " degenerate triangles (kept; --repair drops them)");
         }
     }
-    if (mesh.indices.empty()) throw InputError(file, "", "empty mesh: every triangle is degenerate");
+    if (mesh.indices.empty())
+        throw InputError(file, "", "empty mesh: every triangle is degenerate");
     if (mesh.normals.empty()) computeVertexNormals(mesh);
 }
 
 } // namespace
 
-PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {
+PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions& options,
+                            LoadReport* report) {
     const std::string file = path.string();
     const std::string ext = meshFormat(path);
     PolygonMesh mesh;
@@ -162,7 +185,8 @@ PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions
         std::string text = io::readFile(path, options.limits.maxFileBytes);
         mesh = detail::parseObjImpl(text, file, options.limits, report, &faceLines);
     } else if (ext == ".off" || ext == ".ply" || ext == ".stl") {
-        if (!std::filesystem::is_regular_file(path)) io::readFile(path, 0); // throws the usual "no such file"
+        if (!std::filesystem::is_regular_file(path))
+            io::readFile(path, 0); // throws the usual "no such file"
         mesh = detail::readWithOpenMesh(path, options.limits, report);
     } else if (isGltf(ext)) {
         mesh = toPolygonMesh(mergeScene(readGltf(path, options, report), report));
@@ -170,12 +194,13 @@ PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions
         unknownFormat(path, ext);
     }
     if (mesh.name.empty() || ext == ".obj") mesh.name = path.stem().string();
-    detail::validateImpl(mesh, file, options.repair, report, options.limits, options.allowNonManifold,
-                         faceLines.empty() ? nullptr : &faceLines);
+    detail::validateImpl(mesh, file, options.repair, report, options.limits,
+                         options.allowNonManifold, faceLines.empty() ? nullptr : &faceLines);
     return mesh;
 }
 
-RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {
+RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& options,
+                          LoadReport* report) {
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         RenderMesh mesh = mergeScene(readGltf(path, options, report), report);
@@ -192,7 +217,8 @@ Scene loadScene(const std::filesystem::path& path, const LoadOptions& options, L
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         Scene scene = readGltf(path, options, report);
-        for (SceneInstance& inst : scene.instances) checkRenderMesh(inst.mesh, path.string(), options.repair, report);
+        for (SceneInstance& inst : scene.instances)
+            checkRenderMesh(inst.mesh, path.string(), options.repair, report);
         return scene;
     }
     Scene scene;
@@ -208,7 +234,9 @@ std::vector<float> sampleWeights(const MorphWeightAnimation& anim, float seconds
     if (K == 0 || T == 0) return out;
     const bool cubic = anim.interpolation == AnimInterpolation::CubicSpline;
     // Value of target t at key k (cubic keys store in-tangent, value, out-tangent).
-    auto value = [&](size_t k, size_t t) { return cubic ? anim.weights[(3 * k + 1) * T + t] : anim.weights[k * T + t]; };
+    auto value = [&](size_t k, size_t t) {
+        return cubic ? anim.weights[(3 * k + 1) * T + t] : anim.weights[k * T + t];
+    };
     if (!(seconds > anim.times.front())) { // also NaN: the first key
         for (size_t t = 0; t < T; ++t) out[t] = value(0, t);
         return out;
@@ -217,15 +245,22 @@ std::vector<float> sampleWeights(const MorphWeightAnimation& anim, float seconds
         for (size_t t = 0; t < T; ++t) out[t] = value(K - 1, t);
         return out;
     }
-    size_t k = size_t(std::upper_bound(anim.times.begin(), anim.times.end(), seconds) - anim.times.begin()) - 1;
+    size_t k = size_t(std::upper_bound(anim.times.begin(), anim.times.end(), seconds) -
+                      anim.times.begin()) -
+               1;
     float t0 = anim.times[k], t1 = anim.times[k + 1], dt = t1 - t0;
     float u = (seconds - t0) / dt; // dt > 0: times are strictly increasing (checked on load)
     for (size_t t = 0; t < T; ++t) {
         switch (anim.interpolation) {
-        case AnimInterpolation::Step: out[t] = value(k, t); break;
-        case AnimInterpolation::Linear: out[t] = value(k, t) + u * (value(k + 1, t) - value(k, t)); break;
+        case AnimInterpolation::Step:
+            out[t] = value(k, t);
+            break;
+        case AnimInterpolation::Linear:
+            out[t] = value(k, t) + u * (value(k + 1, t) - value(k, t));
+            break;
         case AnimInterpolation::CubicSpline: {
-            float outTangent = anim.weights[(3 * k + 2) * T + t], inTangent = anim.weights[(3 * (k + 1)) * T + t];
+            float outTangent = anim.weights[(3 * k + 2) * T + t],
+                  inTangent = anim.weights[(3 * (k + 1)) * T + t];
             float u2 = u * u, u3 = u2 * u;
             out[t] = (2 * u3 - 3 * u2 + 1) * value(k, t) + (u3 - 2 * u2 + u) * dt * outTangent +
                      (-2 * u3 + 3 * u2) * value(k + 1, t) + (u3 - u2) * dt * inTangent;

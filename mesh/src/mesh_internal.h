@@ -23,11 +23,16 @@
 
 namespace sg::mesh::detail {
 
-inline bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-inline bool finite(const glm::vec2& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+inline bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+inline bool finite(const glm::vec2& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y);
+}
 
 inline std::string vecString(const glm::vec3& v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) +
+           ")";
 }
 
 // Union-find with path halving; indices are uint32_t.
@@ -50,8 +55,10 @@ public:
         a = find(a);
         b = find(b);
         if (a == b) return;
-        if (a < b) parent_[b] = a;
-        else parent_[a] = b;
+        if (a < b)
+            parent_[b] = a;
+        else
+            parent_[a] = b;
     }
 
 private:
@@ -73,14 +80,16 @@ inline uint64_t edgeKey(uint32_t a, uint32_t b) {
 
 // All face edges of the faces with keep[f] (or all faces when keep is
 // empty), sorted by key (ties by corner, so the order is deterministic).
-std::vector<FaceEdge> sortedFaceEdges(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets);
+std::vector<FaceEdge> sortedFaceEdges(const PolygonMesh& mesh,
+                                      const std::vector<uint32_t>& offsets);
 
 // Manifold analysis of a face-vertex mesh (no degenerate faces assumed).
 struct Topology {
     size_t edges = 0, boundaryEdges = 0, boundaryLoops = 0;
     size_t nonManifoldEdges = 0, nonManifoldVertices = 0;
     // First offenders, for messages (UINT32_MAX when none).
-    uint32_t firstBadEdgeV0 = UINT32_MAX, firstBadEdgeV1 = UINT32_MAX, firstBadEdgeFace = UINT32_MAX;
+    uint32_t firstBadEdgeV0 = UINT32_MAX, firstBadEdgeV1 = UINT32_MAX,
+             firstBadEdgeFace = UINT32_MAX;
     std::string firstBadEdgeReason;
     uint32_t firstBadVertex = UINT32_MAX;
     size_t firstBadVertexFans = 0;
@@ -109,14 +118,16 @@ std::vector<uint32_t> coincidentVertexGroups(const RenderMesh& mesh);
 
 // cornerSector: optional per-corner smooth-sector id (corners with different
 // ids never share a render vertex).
-void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets, const uint32_t* cornerSector,
-                         RenderSplit& out);
+void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
+                         const uint32_t* cornerSector, RenderSplit& out);
 
-PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits, LoadReport* report,
-                         std::vector<uint32_t>* faceLines);
+PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
+                         LoadReport* report, std::vector<uint32_t>* faceLines);
 void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadReport* report,
-                  const InputLimits& limits, bool allowNonManifold, const std::vector<uint32_t>* faceLines);
-PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimits& limits, LoadReport* report);
+                  const InputLimits& limits, bool allowNonManifold,
+                  const std::vector<uint32_t>* faceLines);
+PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimits& limits,
+                             LoadReport* report);
 
 class Stopwatch {
 public:

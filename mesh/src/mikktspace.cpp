@@ -64,9 +64,10 @@ size_t validateInput(const MikkTSpaceInput& in) {
         // (products of two coordinate differences <= 2^122; normals are
         // meant to be unit vectors). NaN fails every comparison.
         constexpr float kMaxCoord = 0x1p60f, kMaxNormal = 16.0f;
-        if (!(std::fabs(p.x) <= kMaxCoord && std::fabs(p.y) <= kMaxCoord && std::fabs(p.z) <= kMaxCoord &&
-              std::fabs(t.x) <= kMaxCoord && std::fabs(t.y) <= kMaxCoord &&
-              std::fabs(n.x) <= kMaxNormal && std::fabs(n.y) <= kMaxNormal && std::fabs(n.z) <= kMaxNormal))
+        if (!(std::fabs(p.x) <= kMaxCoord && std::fabs(p.y) <= kMaxCoord &&
+              std::fabs(p.z) <= kMaxCoord && std::fabs(t.x) <= kMaxCoord &&
+              std::fabs(t.y) <= kMaxCoord && std::fabs(n.x) <= kMaxNormal &&
+              std::fabs(n.y) <= kMaxNormal && std::fabs(n.z) <= kMaxNormal))
             throw std::invalid_argument("MikkTSpace: vertex " + std::to_string(v) +
                                         " has a non-finite or out-of-range position, normal or uv "
                                         "(|position|, |uv| <= 2^60, |normal component| <= 16)");
@@ -90,8 +91,8 @@ size_t validateInput(const MikkTSpaceInput& in) {
                                         std::to_string(cornerCount) + " corners");
     }
     if (triangles >= (size_t(1) << 28))
-        throw std::invalid_argument("MikkTSpace: too many triangles (" +
-                                    std::to_string(triangles) + ", limit 2^28)");
+        throw std::invalid_argument("MikkTSpace: too many triangles (" + std::to_string(triangles) +
+                                    ", limit 2^28)");
     for (size_t c = 0; c < cornerCount; ++c)
         if (in.cornerVertices[c] >= vertexCount)
             throw std::invalid_argument("MikkTSpace: corner " + std::to_string(c) +
@@ -102,7 +103,9 @@ size_t validateInput(const MikkTSpaceInput& in) {
 
 } // namespace mikk
 
-float mikktspaceAngleFromCos(float cosine) { return mikk::acosRoundedToFloat(cosine); }
+float mikktspaceAngleFromCos(float cosine) {
+    return mikk::acosRoundedToFloat(cosine);
+}
 
 // mikk::acosRoundedToFloat two values at a time (SSE2 doubles): the same
 // double operations in the same order per lane, then the same margin test;
@@ -139,28 +142,34 @@ __attribute__((target("avx2"))) size_t anglesFromCosAvx2(float* values, size_t n
         const __m256d z = _mm256_blendv_pd(zBig, _mm256_mul_pd(x, x), small);
         __m256d q = _mm256_set1_pd(mikk::kAcosQ[0]);
 #pragma GCC unroll 10
-        for (int k = 1; k < 10; ++k) q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(mikk::kAcosQ[k]));
+        for (int k = 1; k < 10; ++k)
+            q = _mm256_add_pd(_mm256_mul_pd(q, z), _mm256_set1_pd(mikk::kAcosQ[k]));
         const __m256d r = _mm256_blendv_pd(_mm256_sqrt_pd(zBig), x, small);
         const __m256d asinR = _mm256_add_pd(r, _mm256_mul_pd(_mm256_mul_pd(r, z), q));
         const __m256d twoAsin = _mm256_mul_pd(two, asinR);
-        const __m256d yBig =
-            _mm256_blendv_pd(_mm256_sub_pd(pi, twoAsin), twoAsin, _mm256_cmp_pd(x, zero, _CMP_GT_OQ));
+        const __m256d yBig = _mm256_blendv_pd(_mm256_sub_pd(pi, twoAsin), twoAsin,
+                                              _mm256_cmp_pd(x, zero, _CMP_GT_OQ));
         const __m256d y = _mm256_blendv_pd(yBig, _mm256_sub_pd(halfPi, asinR), small);
         const __m128 f = _mm256_cvtpd_ps(y);
         const __m128i bits = _mm_castps_si128(f);
         const __m256d fd = _mm256_cvtps_pd(f);
-        const __m256d below = _mm256_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
-        const __m256d above = _mm256_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
+        const __m256d below =
+            _mm256_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
+        const __m256d above =
+            _mm256_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
         const __m256d margin = _mm256_mul_pd(y, marginScale);
         const __m256d ok = _mm256_and_pd(
-            _mm256_cmp_pd(_mm256_sub_pd(y, _mm256_mul_pd(half, _mm256_add_pd(fd, below))), margin, _CMP_GT_OQ),
-            _mm256_cmp_pd(_mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(fd, above)), y), margin, _CMP_GT_OQ));
+            _mm256_cmp_pd(_mm256_sub_pd(y, _mm256_mul_pd(half, _mm256_add_pd(fd, below))), margin,
+                          _CMP_GT_OQ),
+            _mm256_cmp_pd(_mm256_sub_pd(_mm256_mul_pd(half, _mm256_add_pd(fd, above)), y), margin,
+                          _CMP_GT_OQ));
         const int okBits = _mm256_movemask_pd(ok);
         alignas(16) float in[4], out[4];
         _mm_store_ps(in, cf);
         _mm_store_ps(out, f);
         for (int l = 0; l < 4; ++l)
-            v[l] = (okBits >> l) & 1 ? out[l] : static_cast<float>(std::acos(static_cast<double>(in[l])));
+            v[l] = (okBits >> l) & 1 ? out[l]
+                                     : static_cast<float>(std::acos(static_cast<double>(in[l])));
     }
     return i;
 }
@@ -203,12 +212,14 @@ void mikktspaceAnglesFromCos(std::span<float> values, bool allowWideSimd) {
         const __m128 f = _mm_cvtpd_ps(y);
         const __m128i bits = _mm_castps_si128(f);
         const __m128d fd = _mm_cvtps_pd(f);
-        const __m128d below = _mm_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
-        const __m128d above = _mm_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
+        const __m128d below =
+            _mm_cvtps_pd(_mm_castsi128_ps(_mm_sub_epi32(bits, _mm_set1_epi32(1))));
+        const __m128d above =
+            _mm_cvtps_pd(_mm_castsi128_ps(_mm_add_epi32(bits, _mm_set1_epi32(1))));
         const __m128d margin = _mm_mul_pd(y, marginScale);
-        const __m128d ok =
-            _mm_and_pd(_mm_cmpgt_pd(_mm_sub_pd(y, _mm_mul_pd(half, _mm_add_pd(fd, below))), margin),
-                       _mm_cmpgt_pd(_mm_sub_pd(_mm_mul_pd(half, _mm_add_pd(fd, above)), y), margin));
+        const __m128d ok = _mm_and_pd(
+            _mm_cmpgt_pd(_mm_sub_pd(y, _mm_mul_pd(half, _mm_add_pd(fd, below))), margin),
+            _mm_cmpgt_pd(_mm_sub_pd(_mm_mul_pd(half, _mm_add_pd(fd, above)), y), margin));
         alignas(16) float out[4];
         _mm_store_ps(out, f);
         const int okBits = _mm_movemask_pd(ok);
@@ -226,12 +237,12 @@ using mikk::Vec3;
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
 
 // Triangle flags.
-constexpr uint8_t kOrient = 1;        // orientation preserving
-constexpr uint8_t kAny = 2;           // group-with-any (zero UV area or magnitude)
-constexpr uint8_t kQuadOneDegen = 4;  // quad whose other triangle is degenerate
-constexpr uint8_t kGrouped0 = 8;      // corner 0 is in a group (then 16, 32)
+constexpr uint8_t kOrient = 1;       // orientation preserving
+constexpr uint8_t kAny = 2;          // group-with-any (zero UV area or magnitude)
+constexpr uint8_t kQuadOneDegen = 4; // quad whose other triangle is degenerate
+constexpr uint8_t kGrouped0 = 8;     // corner 0 is in a group (then 16, 32)
 constexpr uint8_t kGroupedAll = 8 | 16 | 32;
-constexpr uint8_t kDegenerate = 64;   // two corners at one position (steps 3-5 only)
+constexpr uint8_t kDegenerate = 64; // two corners at one position (steps 3-5 only)
 
 // An entry of the vertex -> incident corners table.
 struct Incidence {
@@ -318,12 +329,14 @@ struct TermBatch {
     // bounds: TriDerivatives and WeldedVertex hold more after each Vec3),
     // transposed.
     static V gather(const float* a, const float* b, const float* c, const float* d) {
-        __m128 r0 = _mm_loadu_ps(a), r1 = _mm_loadu_ps(b), r2 = _mm_loadu_ps(c), r3 = _mm_loadu_ps(d);
+        __m128 r0 = _mm_loadu_ps(a), r1 = _mm_loadu_ps(b), r2 = _mm_loadu_ps(c),
+               r3 = _mm_loadu_ps(d);
         _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
         return {r0, r1, r2};
     }
     static __m128 dot4(const V& a, const V& b) {
-        return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a.x, b.x), _mm_mul_ps(a.y, b.y)), _mm_mul_ps(a.z, b.z));
+        return _mm_add_ps(_mm_add_ps(_mm_mul_ps(a.x, b.x), _mm_mul_ps(a.y, b.y)),
+                          _mm_mul_ps(a.z, b.z));
     }
     static V project4(const V& v, const V& n) {
         const __m128 d = dot4(n, v);
@@ -360,7 +373,8 @@ struct TermBatch {
         const V pn = rows([&](int l) { return &next[l]->position.x; });
         const V pos = project4(os, n), pot = project4(ot, n);
         const V e1 = project4(sub4(pp, p), n), e2 = project4(sub4(pn, p), n);
-        const __m128 c = _mm_min_ps(_mm_max_ps(dot4(e1, e2), _mm_set1_ps(-1.0f)), _mm_set1_ps(1.0f));
+        const __m128 c =
+            _mm_min_ps(_mm_max_ps(dot4(e1, e2), _mm_set1_ps(-1.0f)), _mm_set1_ps(1.0f));
         _mm_storeu_ps(out.osx + j, pos.x);
         _mm_storeu_ps(out.osy + j, pos.y);
         _mm_storeu_ps(out.osz + j, pos.z);
@@ -419,7 +433,8 @@ SG_AVX2 inline W8 gather8(const float* const* ptr) {
             _mm256_insertf128_ps(_mm256_castps128_ps256(lo.z), hi.z, 1)};
 }
 SG_AVX2 inline __m256 dot8(const W8& a, const W8& b) {
-    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)), _mm256_mul_ps(a.z, b.z));
+    return _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a.x, b.x), _mm256_mul_ps(a.y, b.y)),
+                         _mm256_mul_ps(a.z, b.z));
 }
 SG_AVX2 inline W8 sub8(const W8& a, const W8& b) {
     return {_mm256_sub_ps(a.x, b.x), _mm256_sub_ps(a.y, b.y), _mm256_sub_ps(a.z, b.z)};
@@ -453,7 +468,8 @@ SG_AVX2 void TermBatch::compute8Avx2(const Terms& out, size_t j) const {
     const W8 n = gather8(ptr[2]), p = gather8(ptr[3]);
     const W8 pos = project8(gather8(ptr[0]), n), pot = project8(gather8(ptr[1]), n);
     const W8 e1 = project8(sub8(gather8(ptr[4]), p), n), e2 = project8(sub8(gather8(ptr[5]), p), n);
-    const __m256 c = _mm256_min_ps(_mm256_max_ps(dot8(e1, e2), _mm256_set1_ps(-1.0f)), _mm256_set1_ps(1.0f));
+    const __m256 c =
+        _mm256_min_ps(_mm256_max_ps(dot8(e1, e2), _mm256_set1_ps(-1.0f)), _mm256_set1_ps(1.0f));
     _mm256_storeu_ps(out.osx + j, pos.x);
     _mm256_storeu_ps(out.osy + j, pos.y);
     _mm256_storeu_ps(out.osz + j, pos.z);
@@ -500,7 +516,8 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
     };
     auto uvs = [&](int corner, __m128& u, __m128& v) {
         auto load = [&](int lane) {
-            return _mm_castpd_ps(_mm_load_sd(reinterpret_cast<const double*>(&wv[tri[3 * lane + corner]].uv.x)));
+            return _mm_castpd_ps(
+                _mm_load_sd(reinterpret_cast<const double*>(&wv[tri[3 * lane + corner]].uv.x)));
         };
         const __m128 lo = _mm_unpacklo_ps(load(0), load(1)); // u0 u1 v0 v1
         const __m128 hi = _mm_unpacklo_ps(load(2), load(3)); // u2 u3 v2 v3
@@ -530,7 +547,8 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
     const __m128 areaOk = _mm_cmpgt_ps(absArea, tiny);
     const __m128 lenOs = _mm_sqrt_ps(TermBatch::dot4(os, os));
     const __m128 lenOt = _mm_sqrt_ps(TermBatch::dot4(ot, ot));
-    const __m128 flip = _mm_or_ps(_mm_and_ps(orient, _mm_set1_ps(1.0f)), _mm_andnot_ps(orient, _mm_set1_ps(-1.0f)));
+    const __m128 flip =
+        _mm_or_ps(_mm_and_ps(orient, _mm_set1_ps(1.0f)), _mm_andnot_ps(orient, _mm_set1_ps(-1.0f)));
     const __m128 osOk = _mm_and_ps(areaOk, _mm_cmpgt_ps(lenOs, tiny));
     const __m128 otOk = _mm_and_ps(areaOk, _mm_cmpgt_ps(lenOt, tiny));
     const __m128 sOs = _mm_div_ps(flip, lenOs), sOt = _mm_div_ps(flip, lenOt);
@@ -542,8 +560,9 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
     const __m128 mS = keep(areaOk, _mm_div_ps(lenOs, absArea));
     const __m128 mT = keep(areaOk, _mm_div_ps(lenOt, absArea));
     __m128 o4 = mS, t4 = mT; // transposed: {os, magS}, {ot, magT} per triangle
-    const __m128 good = _mm_and_ps(areaOk, _mm_and_ps(_mm_cmpgt_ps(_mm_andnot_ps(signBit, mS), tiny),
-                                                       _mm_cmpgt_ps(_mm_andnot_ps(signBit, mT), tiny)));
+    const __m128 good =
+        _mm_and_ps(areaOk, _mm_and_ps(_mm_cmpgt_ps(_mm_andnot_ps(signBit, mS), tiny),
+                                      _mm_cmpgt_ps(_mm_andnot_ps(signBit, mT), tiny)));
     _MM_TRANSPOSE4_PS(ox, oy, oz, o4);
     _MM_TRANSPOSE4_PS(tx, ty, tz, t4);
     const __m128 osLane[4] = {ox, oy, oz, o4}, otLane[4] = {tx, ty, tz, t4};
@@ -552,13 +571,16 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
         _mm_store_ps(&deriv[l].ot.x, otLane[l]);
     }
     auto same = [](const TermBatch::V& a, const TermBatch::V& b) {
-        return _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(a.x, b.x), _mm_cmpeq_ps(a.y, b.y)), _mm_cmpeq_ps(a.z, b.z));
+        return _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(a.x, b.x), _mm_cmpeq_ps(a.y, b.y)),
+                          _mm_cmpeq_ps(a.z, b.z));
     };
-    const int degenerateBits = _mm_movemask_ps(_mm_or_ps(_mm_or_ps(same(p1, p2), same(p1, p3)), same(p2, p3)));
+    const int degenerateBits =
+        _mm_movemask_ps(_mm_or_ps(_mm_or_ps(same(p1, p2), same(p1, p3)), same(p2, p3)));
     const int orientBits = _mm_movemask_ps(orient), goodBits = _mm_movemask_ps(good);
     for (int l = 0; l < 4; ++l)
-        flags[l] |= uint8_t(((orientBits >> l) & 1 ? kOrient : 0) | ((goodBits >> l) & 1 ? 0 : kAny) |
-                            ((degenerateBits >> l) & 1 ? kDegenerate : 0));
+        flags[l] |=
+            uint8_t(((orientBits >> l) & 1 ? kOrient : 0) | ((goodBits >> l) & 1 ? 0 : kAny) |
+                    ((degenerateBits >> l) & 1 ? kDegenerate : 0));
     return size_t(__builtin_popcount(unsigned(degenerateBits)));
 }
 #endif
@@ -567,9 +589,9 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
 
 struct MikkTSpaceGenerator::Scratch {
     // Triangulation (only filled when faceSizes is given).
-    std::vector<uint32_t> triVertex;  // input vertex per triangle corner
-    std::vector<uint32_t> triCorner;  // output corner per triangle corner
-    std::vector<uint32_t> triFace;    // original face per triangle
+    std::vector<uint32_t> triVertex; // input vertex per triangle corner
+    std::vector<uint32_t> triCorner; // output corner per triangle corner
+    std::vector<uint32_t> triFace;   // original face per triangle
     std::vector<uint8_t> triVertInFace;
     // Welding.
     std::vector<uint32_t> vertexClass; // input vertex -> welded id
@@ -598,7 +620,7 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<int32_t> outNbr, inNbr, component;
     std::vector<uint64_t> halfEdges;
     std::vector<uint8_t> paired;
-    std::vector<uint32_t> members;      // also the flood stack (clean vertices)
+    std::vector<uint32_t> members;             // also the flood stack (clean vertices)
     std::vector<uint32_t> stack, groupMembers; // deferred vertices
     // Vertices touching group-with-any triangles.
     std::vector<uint32_t> deferred;
@@ -609,24 +631,31 @@ struct MikkTSpaceGenerator::Scratch {
 };
 
 MikkTSpaceGenerator::MikkTSpaceGenerator() : scratch_(new Scratch) {}
-void MikkTSpaceGenerator::setWideSimd(bool enabled) { wideSimd_ = enabled; }
-MikkTSpaceGenerator::~MikkTSpaceGenerator() { delete scratch_; }
+void MikkTSpaceGenerator::setWideSimd(bool enabled) {
+    wideSimd_ = enabled;
+}
+MikkTSpaceGenerator::~MikkTSpaceGenerator() {
+    delete scratch_;
+}
 
-void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::vec4>& cornerTangents,
+void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
+                                   std::vector<glm::vec4>& cornerTangents,
                                    std::vector<MikkTSpaceFrame>* frames) {
     const size_t triCount = mikk::validateInput(in);
     Scratch& s = *scratch_;
     const size_t cornerCount = in.cornerVertices.size();
-    const bool trianglesOnly = in.faceSizes.empty() ||
-                               std::all_of(in.faceSizes.begin(), in.faceSizes.end(),
-                                           [](uint32_t n) { return n == 3; });
+    const bool trianglesOnly =
+        in.faceSizes.empty() ||
+        std::all_of(in.faceSizes.begin(), in.faceSizes.end(), [](uint32_t n) { return n == 3; });
     const bool hasQuads = !trianglesOnly;
     // Corners of faces that are neither triangles nor quads stay zero. With
     // triangles only every corner is written below (a good corner by its
     // group or the default frame, a degenerate one by step 9), so the
     // buffer needs no clearing.
-    if (trianglesOnly && !frames) cornerTangents.resize(cornerCount);
-    else cornerTangents.assign(cornerCount, glm::vec4(0.0f));
+    if (trianglesOnly && !frames)
+        cornerTangents.resize(cornerCount);
+    else
+        cornerTangents.assign(cornerCount, glm::vec4(0.0f));
     if (frames) frames->assign(cornerCount, MikkTSpaceFrame{{0, 0, 0}, 0, {0, 0, 0}, 0, 0});
     if (triCount == 0) return;
 
@@ -671,8 +700,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 diagonal02 = false;
             } else {
                 auto posDist2 = [&](int a, int b) {
-                    return mikk::lengthSquared(
-                        mikk::sub(mikk::toVec3(in.positions[fv[b]]), mikk::toVec3(in.positions[fv[a]])));
+                    return mikk::lengthSquared(mikk::sub(mikk::toVec3(in.positions[fv[b]]),
+                                                         mikk::toVec3(in.positions[fv[a]])));
                 };
                 diagonal02 = !(posDist2(1, 3) < posDist2(0, 2));
             }
@@ -747,8 +776,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 }
                 if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
                 const WeldedVertex& y = staged[uint32_t(entry)];
-                if (mikk::exactlyEqual(x.position, y.position) && mikk::exactlyEqual(x.normal, y.normal) &&
-                    x.uv.x == y.uv.x && x.uv.y == y.uv.y) {
+                if (mikk::exactlyEqual(x.position, y.position) &&
+                    mikk::exactlyEqual(x.normal, y.normal) && x.uv.x == y.uv.x &&
+                    x.uv.y == y.uv.y) {
                     id = stagedId[uint32_t(entry)];
                     break;
                 }
@@ -787,8 +817,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         size_t firstScalar = 0;
 #if defined(__SSE2__)
         for (; firstScalar + 4 <= triCount; firstScalar += 4)
-            degenerateCount += faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
-                                                s.flags.data() + firstScalar);
+            degenerateCount +=
+                faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
+                                 s.flags.data() + firstScalar);
 #endif
         for (size_t t = firstScalar; t < triCount; ++t) {
             const WeldedVertex& a = wv[tw[t * 3]];
@@ -817,7 +848,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             quadOneDegen.assign(triCount, 0);
             for (size_t t = 0; t + 1 < triCount;) {
                 if (s.triFace[t] == s.triFace[t + 1]) {
-                    if (isDegenerate(t) != isDegenerate(t + 1)) quadOneDegen[t] = quadOneDegen[t + 1] = 1;
+                    if (isDegenerate(t) != isDegenerate(t + 1))
+                        quadOneDegen[t] = quadOneDegen[t + 1] = 1;
                     t += 2;
                 } else {
                     ++t;
@@ -877,8 +909,10 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     (fb & kAny) != 0 ||
                     mikk::uvAreaTimes2(wv[wa[0]].uv, wv[wa[1]].uv, wv[wa[2]].uv) >=
                         mikk::uvAreaTimes2(wv[wb[0]].uv, wv[wb[1]].uv, wv[wb[2]].uv);
-                if (keepFirst) fb = uint8_t((fb & ~kOrient) | (fa & kOrient));
-                else fa = uint8_t((fa & ~kOrient) | (fb & kOrient));
+                if (keepFirst)
+                    fb = uint8_t((fb & ~kOrient) | (fa & kOrient));
+                else
+                    fa = uint8_t((fa & ~kOrient) | (fb & kOrient));
             }
             t += 2;
         }
@@ -946,9 +980,11 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     const Incidence* const incidenceBase = s.incidence.data();
     auto writeEntry = [&](const Incidence* entry, const mikk::FrameAccumulator& fr, bool orient) {
         if (fullSpaces)
-            mikk::writeCornerSpace(s.spaces[cornerOut(size_t(entry->tri()) * 3 + entry->corner())], fr, orient);
+            mikk::writeCornerSpace(s.spaces[cornerOut(size_t(entry->tri()) * 3 + entry->corner())],
+                                   fr, orient);
         else
-            entryOut[entry - incidenceBase] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
+            entryOut[entry - incidenceBase] =
+                glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
     };
     const float thresholdCos = mikk::defaultThresholdCos();
     const TriDerivatives* const triDeriv = s.deriv.data();
@@ -999,7 +1035,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         }
         if (filled > 0) {
             for (size_t lane = filled; lane < TermBatch::kLanes; ++lane) batch.copyLane(lane, 0);
-            batch.compute(out, first, wide); // writes up to 7 entries past the end: capacity has room
+            batch.compute(out, first,
+                          wide); // writes up to 7 entries past the end: capacity has room
             first += filled;
         }
         mikktspaceAnglesFromCos({out.angle, first}, wide);
@@ -1048,26 +1085,26 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             }
         } else
 #endif
-        for (size_t e = 0; e < k; ++e) {
-            const uint32_t x = list[e].next;
-            int32_t found = -1;
-            int dupNext = 0, dupPrev = 0;
-            for (size_t f = 0; f < k; ++f) {
-                dupNext += list[f].next == x;
-                if (list[f].prev == x) {
-                    ++dupPrev;
-                    found = int32_t(f);
+            for (size_t e = 0; e < k; ++e) {
+                const uint32_t x = list[e].next;
+                int32_t found = -1;
+                int dupNext = 0, dupPrev = 0;
+                for (size_t f = 0; f < k; ++f) {
+                    dupNext += list[f].next == x;
+                    if (list[f].prev == x) {
+                        ++dupPrev;
+                        found = int32_t(f);
+                    }
+                }
+                if (dupNext > 1 || dupPrev > 1) {
+                    simple = false;
+                    break;
+                }
+                if (found >= 0) {
+                    outNbr[e] = found;
+                    inNbr[size_t(found)] = int32_t(e);
                 }
             }
-            if (dupNext > 1 || dupPrev > 1) {
-                simple = false;
-                break;
-            }
-            if (found >= 0) {
-                outNbr[e] = found;
-                inNbr[size_t(found)] = int32_t(e);
-            }
-        }
         if (simple) return;
         // Non-manifold edges at this vertex: the general greedy. Half-edges
         // sorted by (x, entry); within a run each direction's candidate
@@ -1077,7 +1114,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
         uint64_t* h = s.halfEdges.data();
         for (size_t e = 0; e < k; ++e) {
             h[2 * e] = (uint64_t(list[e].next) << 32) | (uint64_t(e) << 1) | 1u; // out
-            h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1); // in
+            h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1);  // in
         }
         const size_t n = 2 * k;
         std::sort(h, h + n);
@@ -1106,17 +1143,19 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
     // Frames of one group (entries `members` of `list`, the incidence list
     // of vertex w, ascending) into its corners; `terms` holds the list's
     // terms from index 0. wholeVertex: the group is every entry of w.
-    auto emitGroup = [&](uint32_t w, const Incidence* list, const Terms& terms, const uint32_t* members,
-                         size_t m, bool orient, bool wholeVertex) {
+    auto emitGroup = [&](uint32_t w, const Incidence* list, const Terms& terms,
+                         const uint32_t* members, size_t m, bool orient, bool wholeVertex) {
         auto together = [&](uint32_t x, uint32_t y) {
-            return list[x].any() || list[y].any() || faceOf(list[x].tri()) == faceOf(list[y].tri()) ||
+            return list[x].any() || list[y].any() ||
+                   faceOf(list[x].tri()) == faceOf(list[y].tri()) ||
                    (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos &&
                     mikk::dot(terms.ot(x), terms.ot(y)) > thresholdCos);
         };
         auto accumulateOver = [&](mikk::FrameAccumulator& fr, uint32_t e) {
             if (list[e].any()) return; // bad triangles contribute nothing
             const uint32_t t = list[e].tri();
-            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), triDeriv[t].magS, triDeriv[t].magT);
+            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), triDeriv[t].magS,
+                          triDeriv[t].magT);
         };
         // Every pair passes the 180-degree threshold (dot products > -1)
         // when every member's unit vectors are within ~89 degrees of the
@@ -1131,7 +1170,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             accumulateOver(fr, members[0]);
             for (size_t x = 1; x < m; ++x) {
                 const uint32_t e = members[x];
-                oneSubgroup &= mikk::dot(terms.os(e), rs) >= 0.02f && mikk::dot(terms.ot(e), rt) >= 0.02f;
+                oneSubgroup &=
+                    mikk::dot(terms.os(e), rs) >= 0.02f && mikk::dot(terms.ot(e), rt) >= 0.02f;
                 accumulateOver(fr, e);
             }
         }
@@ -1198,7 +1238,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     outNbr[e] = -1;
                     inLinks[e] = -1;
                 }
-                auto load = [](const void* p) { return _mm_load_si128(static_cast<const __m128i*>(p)); };
+                auto load = [](const void* p) {
+                    return _mm_load_si128(static_cast<const __m128i*>(p));
+                };
                 auto bits8 = [](__m128i lo, __m128i hi) {
                     return unsigned(_mm_movemask_ps(_mm_castsi128_ps(lo))) |
                            unsigned(_mm_movemask_ps(_mm_castsi128_ps(hi))) << 4;
@@ -1206,16 +1248,20 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 const __m128i pk0 = load(packed), pk1 = load(packed + 4);
                 const __m128i anyBit = _mm_set1_epi32(8), orientBit = _mm_set1_epi32(4);
                 const unsigned valid = (1u << k) - 1u;
-                const unsigned anyBits = bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, anyBit), anyBit),
-                                               _mm_cmpeq_epi32(_mm_and_si128(pk1, anyBit), anyBit)) & valid;
+                const unsigned anyBits =
+                    bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, anyBit), anyBit),
+                          _mm_cmpeq_epi32(_mm_and_si128(pk1, anyBit), anyBit)) &
+                    valid;
                 if (anyBits != 0) {
                     s.deferred.push_back(w);
                     continue;
                 }
                 const unsigned orientBits =
                     bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, orientBit), orientBit),
-                          _mm_cmpeq_epi32(_mm_and_si128(pk1, orientBit), orientBit)) & valid;
-                const __m128i n0 = load(nexts), n1 = load(nexts + 4), p0 = load(prevs), p1 = load(prevs + 4);
+                          _mm_cmpeq_epi32(_mm_and_si128(pk1, orientBit), orientBit)) &
+                    valid;
+                const __m128i n0 = load(nexts), n1 = load(nexts + 4), p0 = load(prevs),
+                              p1 = load(prevs + 4);
                 bool simple = true;
                 for (uint32_t e = 0; e < 8; ++e) {
                     const __m128i x = _mm_set1_epi32(int(nexts[e]));
@@ -1232,11 +1278,15 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     // One orientation: one group iff the out-links chain all
                     // entries, from the entry without an in-link (open fan)
                     // or from entry 0 (closed fan).
-                    const unsigned noIn = bits8(_mm_cmplt_epi32(load(inLinks), _mm_setzero_si128()),
-                                                _mm_cmplt_epi32(load(inLinks + 4), _mm_setzero_si128())) & valid;
+                    const unsigned noIn =
+                        bits8(_mm_cmplt_epi32(load(inLinks), _mm_setzero_si128()),
+                              _mm_cmplt_epi32(load(inLinks + 4), _mm_setzero_si128())) &
+                        valid;
                     const int32_t start = noIn != 0 ? int32_t(__builtin_ctz(noIn)) : 0;
                     size_t reached = 1;
-                    for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
+                    for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k;
+                         e = outNbr[e])
+                        ++reached;
                     if (reached == k) {
                         for (uint32_t e = 0; e < 8; ++e) members[e] = e;
                         emitGroup(w, list, terms, members, k, orientBits != 0, true);
@@ -1273,7 +1323,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                         break;
                     }
                 size_t reached = 1;
-                for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
+                for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e])
+                    ++reached;
                 if (reached == k) {
                     for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
                     emitGroup(w, list, terms, members, k, orient0, true);
@@ -1351,7 +1402,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                     if (outNbr[e] >= 0) s.stack.push_back(uint32_t(outNbr[e]));
                 }
                 std::sort(s.groupMembers.begin(), s.groupMembers.end());
-                emitGroup(w, list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient, false);
+                emitGroup(w, list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient,
+                          false);
             }
         }
     }
@@ -1373,8 +1425,10 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
 
     // --- Step 9: degenerate triangles copy frames from good corners.
     auto copyCorner = [&](uint32_t dst, uint32_t src) {
-        if (fullSpaces) s.spaces[dst] = s.spaces[src];
-        else tangentsOut[dst] = tangentsOut[src];
+        if (fullSpaces)
+            s.spaces[dst] = s.spaces[src];
+        else
+            tangentsOut[dst] = tangentsOut[src];
     };
     if (degenerateCount > 0) {
         s.firstGoodCorner.assign(weldedCount, kNone);
@@ -1383,8 +1437,10 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
             if (s.flags[t] & kQuadOneDegen) continue;
             for (size_t i = 0; i < 3; ++i) {
                 const uint32_t j = s.firstGoodCorner[gWelded[t * 3 + i]];
-                if (j != kNone) copyCorner(cornerOut(t * 3 + i), cornerOut(j));
-                else if (!fullSpaces) tangentsOut[cornerOut(t * 3 + i)] = glm::vec4(1, 0, 0, -1);
+                if (j != kNone)
+                    copyCorner(cornerOut(t * 3 + i), cornerOut(j));
+                else if (!fullSpaces)
+                    tangentsOut[cornerOut(t * 3 + i)] = glm::vec4(1, 0, 0, -1);
             }
         }
         if (hasQuads) {
@@ -1392,7 +1448,9 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in, std::vector<glm::v
                 if (!(s.flags[t] & kQuadOneDegen)) continue;
                 const uint8_t* vf = gVertInFace + t * 3;
                 const int present = (1 << vf[0]) | (1 << vf[1]) | (1 << vf[2]);
-                const int missing = (present & 2) == 0 ? 1 : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
+                const int missing = (present & 2) == 0
+                                        ? 1
+                                        : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
                 // Face corner k of this triangle's face: output corner
                 // (first corner of the face) + k.
                 const uint32_t faceFirst = cornerOut(t * 3) - vf[0];

@@ -30,19 +30,37 @@ struct Vec3 {
 inline bool exactlyEqual(const Vec3& a, const Vec3& b) {
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
-inline Vec3 add(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline Vec3 sub(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline Vec3 scale(float s, const Vec3& v) { return {s * v.x, s * v.y, s * v.z}; }
-inline float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline float lengthSquared(const Vec3& v) { return v.x * v.x + v.y * v.y + v.z * v.z; }
-inline float length(const Vec3& v) { return std::sqrt(lengthSquared(v)); }
+inline Vec3 add(const Vec3& a, const Vec3& b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+inline Vec3 sub(const Vec3& a, const Vec3& b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+inline Vec3 scale(float s, const Vec3& v) {
+    return {s * v.x, s * v.y, s * v.z};
+}
+inline float dot(const Vec3& a, const Vec3& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+inline float lengthSquared(const Vec3& v) {
+    return v.x * v.x + v.y * v.y + v.z * v.z;
+}
+inline float length(const Vec3& v) {
+    return std::sqrt(lengthSquared(v));
+}
 
 // The reference's zero test: |x| > FLT_MIN (denormals count as zero).
-inline bool notZero(float x) { return std::fabs(x) > FLT_MIN; }
-inline bool notZero(const Vec3& v) { return notZero(v.x) || notZero(v.y) || notZero(v.z); }
+inline bool notZero(float x) {
+    return std::fabs(x) > FLT_MIN;
+}
+inline bool notZero(const Vec3& v) {
+    return notZero(v.x) || notZero(v.y) || notZero(v.z);
+}
 
 // 1/len first, then a scaling (not three divisions), as the reference.
-inline Vec3 normalize(const Vec3& v) { return scale(1.0f / length(v), v); }
+inline Vec3 normalize(const Vec3& v) {
+    return scale(1.0f / length(v), v);
+}
 
 // v minus its component along n, normalized unless it vanished.
 inline Vec3 projectToPlane(const Vec3& v, const Vec3& n) {
@@ -51,8 +69,12 @@ inline Vec3 projectToPlane(const Vec3& v, const Vec3& n) {
     return r;
 }
 
-inline Vec3 toVec3(const glm::vec3& v) { return {v.x, v.y, v.z}; }
-inline glm::vec3 toGlm(const Vec3& v) { return {v.x, v.y, v.z}; }
+inline Vec3 toVec3(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
+inline glm::vec3 toGlm(const Vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 // Per-triangle first-order derivatives, eq. 18/19 (InitTriInfo):
 //   vOs = t31y*d1 - t21y*d2,  vOt = -t31x*d1 + t21x*d2
@@ -127,8 +149,9 @@ inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::v
 // kernel (scalar here, AVX2 and SSE2 in mikktspace.cpp) evaluates them in
 // this order, so all give the same double.
 inline constexpr double kAcosQ[10] = {
-    0x1.c93a92d53b4f1p-6, -0x1.815314c864b09p-9, 0x1.00d47e7966d94p-6, 0x1.b02442413f6bap-7, 0x1.1dc2ef640046fp-6,
-    0x1.6e72146fda29ep-6, 0x1.f1c81c59ea536p-6,  0x1.6db6d8e71341bp-5, 0x1.33333335a9cd6p-4, 0x1.5555555554f05p-3,
+    0x1.c93a92d53b4f1p-6, -0x1.815314c864b09p-9, 0x1.00d47e7966d94p-6, 0x1.b02442413f6bap-7,
+    0x1.1dc2ef640046fp-6, 0x1.6e72146fda29ep-6,  0x1.f1c81c59ea536p-6, 0x1.6db6d8e71341bp-5,
+    0x1.33333335a9cd6p-4, 0x1.5555555554f05p-3,
 };
 
 inline float acosRoundedToFloat(float c) {
@@ -161,7 +184,8 @@ inline float acosRoundedToFloat(float c) {
     std::memcpy(&below, &bitsBelow, sizeof below);
     std::memcpy(&above, &bitsAbove, sizeof above);
     const double margin = y * 0x1p-36;
-    if (y - 0.5 * (double(f) + double(below)) > margin && 0.5 * (double(f) + double(above)) - y > margin)
+    if (y - 0.5 * (double(f) + double(below)) > margin &&
+        0.5 * (double(f) + double(above)) - y > margin)
         return f;
     return static_cast<float>(std::acos(x));
 }

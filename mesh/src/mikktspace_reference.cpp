@@ -31,10 +31,10 @@ using mikk::Vec3;
 
 // A triangle of the working list (STriInfo).
 struct Triangle {
-    std::array<int, 3> welded{};    // welded corner ids (representatives)
-    std::array<int, 3> vertInFace{}; // which corner of the original face (0..3)
-    int face = -1;                  // original face
-    int firstOutputCorner = 0;      // where the face's corners start in the output
+    std::array<int, 3> welded{};             // welded corner ids (representatives)
+    std::array<int, 3> vertInFace{};         // which corner of the original face (0..3)
+    int face = -1;                           // original face
+    int firstOutputCorner = 0;               // where the face's corners start in the output
     std::array<int, 3> neighbor{-1, -1, -1}; // across edge i -> i+1
     std::array<int, 3> group{-1, -1, -1};    // group of corner i
     mikk::FaceDerivatives deriv;
@@ -139,8 +139,8 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
     // Step 3. Degenerate triangles: two corners at the same position.
     for (Triangle& t : tris) {
         const Vec3 p0 = pos(t.welded[0]), p1 = pos(t.welded[1]), p2 = pos(t.welded[2]);
-        t.degenerate = mikk::exactlyEqual(p0, p1) || mikk::exactlyEqual(p0, p2) ||
-                       mikk::exactlyEqual(p1, p2);
+        t.degenerate =
+            mikk::exactlyEqual(p0, p1) || mikk::exactlyEqual(p0, p2) || mikk::exactlyEqual(p1, p2);
     }
 
     // Step 4. Quads with exactly one degenerate triangle are marked (fixed up
@@ -156,18 +156,19 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
             ++t;
         }
     }
-    std::stable_partition(tris.begin(), tris.end(), [](const Triangle& t) { return !t.degenerate; });
-    const int goodCount =
-        int(std::count_if(tris.begin(), tris.end(), [](const Triangle& t) { return !t.degenerate; }));
+    std::stable_partition(tris.begin(), tris.end(),
+                          [](const Triangle& t) { return !t.degenerate; });
+    const int goodCount = int(
+        std::count_if(tris.begin(), tris.end(), [](const Triangle& t) { return !t.degenerate; }));
 
     // Step 5. Per-triangle derivatives and orientation (eq. 18/19), then the
     // two good triangles of a quad are forced to one orientation: the one of
     // the good ("not group-with-any") triangle, else of the larger UV area.
     for (int t = 0; t < goodCount; ++t) {
         Triangle& tri = tris[size_t(t)];
-        tri.deriv = mikk::faceDerivatives(pos(tri.welded[0]), pos(tri.welded[1]),
-                                          pos(tri.welded[2]), uv(tri.welded[0]),
-                                          uv(tri.welded[1]), uv(tri.welded[2]));
+        tri.deriv =
+            mikk::faceDerivatives(pos(tri.welded[0]), pos(tri.welded[1]), pos(tri.welded[2]),
+                                  uv(tri.welded[0]), uv(tri.welded[1]), uv(tri.welded[2]));
     }
     for (int t = 0; t + 1 < goodCount;) {
         Triangle& a = tris[size_t(t)];
@@ -184,8 +185,10 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
                        mikk::uvAreaTimes2(uv(b.welded[0]), uv(b.welded[1]), uv(b.welded[2]))) {
                 keepFirst = true;
             }
-            if (keepFirst) b.deriv.orientPreserving = a.deriv.orientPreserving;
-            else a.deriv.orientPreserving = b.deriv.orientPreserving;
+            if (keepFirst)
+                b.deriv.orientPreserving = a.deriv.orientPreserving;
+            else
+                a.deriv.orientPreserving = b.deriv.orientPreserving;
         }
         t += 2;
     }
@@ -266,7 +269,8 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
                 groups[size_t(g)].triangles.push_back(f);
                 stack.clear();
                 // Pushed right first so the left one is visited first.
-                if (seed.neighbor[size_t((i + 2) % 3)] >= 0) stack.push_back(seed.neighbor[size_t((i + 2) % 3)]);
+                if (seed.neighbor[size_t((i + 2) % 3)] >= 0)
+                    stack.push_back(seed.neighbor[size_t((i + 2) % 3)]);
                 if (seed.neighbor[size_t(i)] >= 0) stack.push_back(seed.neighbor[size_t(i)]);
                 while (!stack.empty()) {
                     const int t = stack.back();
@@ -281,7 +285,8 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
                     if (tri.deriv.orientPreserving != group.orientPreserving) continue;
                     group.triangles.push_back(t);
                     tri.group[size_t(c)] = g;
-                    if (tri.neighbor[size_t((c + 2) % 3)] >= 0) stack.push_back(tri.neighbor[size_t((c + 2) % 3)]);
+                    if (tri.neighbor[size_t((c + 2) % 3)] >= 0)
+                        stack.push_back(tri.neighbor[size_t((c + 2) % 3)]);
                     if (tri.neighbor[size_t(c)] >= 0) stack.push_back(tri.neighbor[size_t(c)]);
                 }
             }
@@ -323,9 +328,8 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
                 for (const int t : members) {
                     const Triangle& tt = tris[size_t(t)];
                     if (tt.deriv.groupWithAny) continue; // bad triangles do not contribute
-                    const int c = tt.welded[0] == group.vertex
-                                      ? 0
-                                      : (tt.welded[1] == group.vertex ? 1 : 2);
+                    const int c =
+                        tt.welded[0] == group.vertex ? 0 : (tt.welded[1] == group.vertex ? 1 : 2);
                     const Vec3 nc = nrm(tt.welded[size_t(c)]);
                     const float angle = mikk::cornerAngle(pos(tt.welded[size_t((c + 2) % 3)]),
                                                           pos(tt.welded[size_t(c)]),
@@ -369,7 +373,8 @@ std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& in
             if (!tri.quadOneDegenerate) continue;
             int present = 0;
             for (int i = 0; i < 3; ++i) present |= 1 << tri.vertInFace[size_t(i)];
-            const int missing = (present & 2) == 0 ? 1 : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
+            const int missing =
+                (present & 2) == 0 ? 1 : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
             const Vec3 missingPos = faceCorner(tri.face, missing).position;
             for (int i = 0; i < 3; ++i) {
                 const int k = tri.vertInFace[size_t(i)];

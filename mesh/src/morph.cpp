@@ -10,7 +10,8 @@
 
 namespace sg::mesh {
 
-void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights, std::vector<glm::vec3>& out) {
+void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
+                        std::vector<glm::vec3>& out) {
     assert(weights.size() == cage.morphTargets.size());
     out.assign(cage.positions.begin(), cage.positions.end());
     for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
@@ -22,7 +23,8 @@ void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
     }
 }
 
-Morpher::Morpher(const RenderMesh& base, const LimitFrame* baseFrame) : base_(&base), baseFrame_(baseFrame) {
+Morpher::Morpher(const RenderMesh& base, const LimitFrame* baseFrame)
+    : base_(&base), baseFrame_(baseFrame) {
     // Smooth groups: render vertices that coincide in the base mesh and in
     // every target (exact comparison), i.e. copies split at UV seams.
     smoothGroup_ = detail::coincidentVertexGroups(base);
@@ -51,14 +53,16 @@ glm::vec3 unitOr(const glm::vec3& v, const glm::vec3& fallback) {
 
 } // namespace
 
-void Morpher::apply(std::span<const float> weights, MorphNormals normals, RenderMesh& out, LimitFrame* outFrame) const {
+void Morpher::apply(std::span<const float> weights, MorphNormals normals, RenderMesh& out,
+                    LimitFrame* outFrame) const {
     const RenderMesh& base = *base_;
     assert(weights.size() == base.morphTargets.size());
     for (float w : weights) {
         assert(std::isfinite(w));
         (void)w;
     }
-    if (out.positions.size() != base.positions.size() || out.indices.size() != base.indices.size()) out = base;
+    if (out.positions.size() != base.positions.size() || out.indices.size() != base.indices.size())
+        out = base;
     const size_t T = base.morphTargets.size();
     std::vector<const std::vector<glm::vec3>*> dP(T), dN(T), dT(T);
     for (size_t t = 0; t < T; ++t) {
@@ -94,7 +98,8 @@ void Morpher::apply(std::span<const float> weights, MorphNormals normals, Render
         bool vanished = false;
         for (size_t v = 0; v < n; ++v) {
             float len = glm::length(out.normals[v]);
-            if (len > 0.0f && std::isfinite(len)) out.normals[v] /= len;
+            if (len > 0.0f && std::isfinite(len))
+                out.normals[v] /= len;
             else {
                 out.normals[v] = glm::vec3(0.0f);
                 vanished = true;
@@ -115,7 +120,8 @@ void Morpher::apply(std::span<const float> weights, MorphNormals normals, Render
             for (size_t v = 0; v < n; ++v) xyz[v] = glm::vec3(base.tangents[v]);
             std::vector<glm::vec3> blended;
             blend(xyz, weights, dT, blended);
-            for (size_t v = 0; v < n; ++v) out.tangents[v] = glm::vec4(unitOr(blended[v], xyz[v]), base.tangents[v].w);
+            for (size_t v = 0; v < n; ++v)
+                out.tangents[v] = glm::vec4(unitOr(blended[v], xyz[v]), base.tangents[v].w);
         }
         return;
     }
@@ -124,7 +130,8 @@ void Morpher::apply(std::span<const float> weights, MorphNormals normals, Render
         out.normals.resize(n);
         for (size_t v = 0; v < n; ++v) {
             glm::vec3 nrm = glm::cross((*du)[v], (*dv)[v]);
-            out.normals[v] = unitOr(nrm, base.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : base.normals[v]);
+            out.normals[v] =
+                unitOr(nrm, base.normals.empty() ? glm::vec3(0.0f, 0.0f, 1.0f) : base.normals[v]);
         }
     } else {
         computeVertexNormals(out, smoothGroup_);

@@ -73,7 +73,9 @@ private:
     int64_t resolve(int64_t idx, size_t count, const char* what) const {
         if (idx == 0) fail(std::string(what) + " index 0 (OBJ indices start at 1)");
         if (idx < 0) {
-            if (uint64_t(-idx) > count) fail(std::string(what) + " index " + std::to_string(idx) + " reaches before the first " + what);
+            if (uint64_t(-idx) > count)
+                fail(std::string(what) + " index " + std::to_string(idx) +
+                     " reaches before the first " + what);
             return int64_t(count) + idx;
         }
         return idx - 1;
@@ -116,9 +118,11 @@ void ObjParser::texcoord(Tokenizer& t) {
     std::string_view tok;
     if (!t.next(tok)) fail("vt without coordinates");
     if (!parseFloat(tok, uv.x)) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
-    if (t.next(tok) && !parseFloat(tok, uv.y)) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
+    if (t.next(tok) && !parseFloat(tok, uv.y))
+        fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
     if (!detail::finite(uv)) fail("non-finite texture coordinate");
-    if (uvs_.size() >= limits_.maxCorners) fail("more than " + std::to_string(limits_.maxCorners) + " texture coordinates (limit)");
+    if (uvs_.size() >= limits_.maxCorners)
+        fail("more than " + std::to_string(limits_.maxCorners) + " texture coordinates (limit)");
     uvs_.push_back(uv);
 }
 
@@ -130,7 +134,8 @@ void ObjParser::normal(Tokenizer& t) {
         if (!parseFloat(tok, n[i])) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
     }
     if (!detail::finite(n)) fail("non-finite normal");
-    if (normals_.size() >= limits_.maxCorners) fail("more than " + std::to_string(limits_.maxCorners) + " normals (limit)");
+    if (normals_.size() >= limits_.maxCorners)
+        fail("more than " + std::to_string(limits_.maxCorners) + " normals (limit)");
     normals_.push_back(n);
 }
 
@@ -138,28 +143,35 @@ void ObjParser::face(Tokenizer& t) {
     std::string_view tok;
     uint32_t degree = 0;
     while (t.next(tok)) {
-        if (degree >= limits_.maxFaceDegree) fail("face with more than " + std::to_string(limits_.maxFaceDegree) + " corners (limit)");
-        if (cornerV_.size() >= limits_.maxCorners) fail("more than " + std::to_string(limits_.maxCorners) + " face corners (limit)");
+        if (degree >= limits_.maxFaceDegree)
+            fail("face with more than " + std::to_string(limits_.maxFaceDegree) +
+                 " corners (limit)");
+        if (cornerV_.size() >= limits_.maxCorners)
+            fail("more than " + std::to_string(limits_.maxCorners) + " face corners (limit)");
         // v, v/vt, v//vn, v/vt/vn
         std::string_view parts[3];
         int nParts = 0;
         size_t b = 0;
         for (size_t i = 0; i <= tok.size(); ++i) {
             if (i == tok.size() || tok[i] == '/') {
-                if (nParts == 3) fail("corner '" + std::string(tok.substr(0, 32)) + "' has more than 3 parts");
+                if (nParts == 3)
+                    fail("corner '" + std::string(tok.substr(0, 32)) + "' has more than 3 parts");
                 parts[nParts++] = tok.substr(b, i - b);
                 b = i + 1;
             }
         }
         int64_t v = 0, vt = -1, vn = -1;
-        if (!parseInt(parts[0], v)) fail("bad vertex index '" + std::string(tok.substr(0, 32)) + "'");
+        if (!parseInt(parts[0], v))
+            fail("bad vertex index '" + std::string(tok.substr(0, 32)) + "'");
         v = resolve(v, mesh_.positions.size(), "vertex");
         if (nParts > 1 && !parts[1].empty()) {
-            if (!parseInt(parts[1], vt)) fail("bad texture index '" + std::string(tok.substr(0, 32)) + "'");
+            if (!parseInt(parts[1], vt))
+                fail("bad texture index '" + std::string(tok.substr(0, 32)) + "'");
             vt = resolve(vt, uvs_.size(), "texture coordinate");
         }
         if (nParts > 2 && !parts[2].empty()) {
-            if (!parseInt(parts[2], vn)) fail("bad normal index '" + std::string(tok.substr(0, 32)) + "'");
+            if (!parseInt(parts[2], vn))
+                fail("bad normal index '" + std::string(tok.substr(0, 32)) + "'");
             vn = resolve(vn, normals_.size(), "normal");
         }
         cornerV_.push_back(v);
@@ -167,7 +179,8 @@ void ObjParser::face(Tokenizer& t) {
         cornerN_.push_back(vn);
         ++degree;
     }
-    if (mesh_.faceSizes.size() >= limits_.maxFaces) fail("more than " + std::to_string(limits_.maxFaces) + " faces (limit)");
+    if (mesh_.faceSizes.size() >= limits_.maxFaces)
+        fail("more than " + std::to_string(limits_.maxFaces) + " faces (limit)");
     // Faces with fewer than 3 corners are kept: validation names them
     // (degenerate; --repair drops them).
     mesh_.faceSizes.push_back(degree);
@@ -177,7 +190,9 @@ void ObjParser::face(Tokenizer& t) {
 void ObjParser::tag(Tokenizer& t) {
     std::string_view name, counts, tok;
     if (!t.next(name)) fail("'t' without a tag name");
-    if (!t.next(counts)) fail("tag '" + std::string(name.substr(0, 32)) + "' without counts (expected nInts/nFloats/nStrings)");
+    if (!t.next(counts))
+        fail("tag '" + std::string(name.substr(0, 32)) +
+             "' without counts (expected nInts/nFloats/nStrings)");
     int64_t n[3] = {0, 0, 0};
     {
         size_t b = 0;
@@ -185,27 +200,33 @@ void ObjParser::tag(Tokenizer& t) {
         for (size_t i = 0; i <= counts.size(); ++i) {
             if (i == counts.size() || counts[i] == '/') {
                 if (k == 3 || !parseInt(counts.substr(b, i - b), n[k]) || n[k] < 0) {
-                    fail("tag counts '" + std::string(counts.substr(0, 32)) + "' are not nInts/nFloats/nStrings");
+                    fail("tag counts '" + std::string(counts.substr(0, 32)) +
+                         "' are not nInts/nFloats/nStrings");
                 }
                 ++k;
                 b = i + 1;
             }
         }
-        if (k != 3) fail("tag counts '" + std::string(counts.substr(0, 32)) + "' are not nInts/nFloats/nStrings");
+        if (k != 3)
+            fail("tag counts '" + std::string(counts.substr(0, 32)) +
+                 "' are not nInts/nFloats/nStrings");
     }
     // Every value is one token on this line, so the counts are bounded by
     // the line length; check before reserving anything.
     if (uint64_t(n[0]) + uint64_t(n[1]) + uint64_t(n[2]) > t.line.size()) {
-        fail("tag declares " + std::to_string(n[0] + n[1] + n[2]) + " values but the line is shorter");
+        fail("tag declares " + std::to_string(n[0] + n[1] + n[2]) +
+             " values but the line is shorter");
     }
     std::vector<int64_t> ints(static_cast<size_t>(n[0]));
     std::vector<float> floats(static_cast<size_t>(n[1]));
     std::vector<std::string> strings(static_cast<size_t>(n[2]));
     for (auto& v : ints) {
-        if (!t.next(tok) || !parseInt(tok, v)) fail("tag '" + std::string(name) + "': missing or bad integer");
+        if (!t.next(tok) || !parseInt(tok, v))
+            fail("tag '" + std::string(name) + "': missing or bad integer");
     }
     for (auto& v : floats) {
-        if (!t.next(tok) || !parseFloat(tok, v)) fail("tag '" + std::string(name) + "': missing or bad number");
+        if (!t.next(tok) || !parseFloat(tok, v))
+            fail("tag '" + std::string(name) + "': missing or bad number");
         if (!std::isfinite(v)) fail("tag '" + std::string(name) + "': non-finite number");
     }
     for (auto& v : strings) {
@@ -213,7 +234,8 @@ void ObjParser::tag(Tokenizer& t) {
         v = std::string(tok);
     }
     auto index = [&](int64_t v) -> uint32_t {
-        if (v < 0 || v > int64_t(UINT32_MAX - 1)) fail("tag '" + std::string(name) + "': index " + std::to_string(v) + " out of range");
+        if (v < 0 || v > int64_t(UINT32_MAX - 1))
+            fail("tag '" + std::string(name) + "': index " + std::to_string(v) + " out of range");
         return uint32_t(v);
     };
     auto oneInt = [&]() -> int64_t {
@@ -227,14 +249,17 @@ void ObjParser::tag(Tokenizer& t) {
     if (name == "crease") {
         if (ints.size() < 2) fail("crease needs at least 2 vertices");
         if (floats.size() != 1 && floats.size() != ints.size() - 1) {
-            fail("crease with " + std::to_string(ints.size()) + " vertices needs 1 or " + std::to_string(ints.size() - 1) + " sharpness values");
+            fail("crease with " + std::to_string(ints.size()) + " vertices needs 1 or " +
+                 std::to_string(ints.size() - 1) + " sharpness values");
         }
         for (size_t i = 0; i + 1 < ints.size(); ++i) {
-            mesh_.creases.push_back({index(ints[i]), index(ints[i + 1]), floats.size() == 1 ? floats[0] : floats[i]});
+            mesh_.creases.push_back(
+                {index(ints[i]), index(ints[i + 1]), floats.size() == 1 ? floats[0] : floats[i]});
         }
     } else if (name == "corner") {
         if (ints.empty()) fail("corner needs at least 1 vertex");
-        if (floats.size() != 1 && floats.size() != ints.size()) fail("corner needs 1 sharpness or one per vertex");
+        if (floats.size() != 1 && floats.size() != ints.size())
+            fail("corner needs 1 sharpness or one per vertex");
         for (size_t i = 0; i < ints.size(); ++i) {
             mesh_.corners.push_back({index(ints[i]), floats.size() == 1 ? floats[0] : floats[i]});
         }
@@ -242,21 +267,27 @@ void ObjParser::tag(Tokenizer& t) {
         for (int64_t f : ints) mesh_.holes.push_back(index(f));
     } else if (name == "interpolateboundary") {
         int64_t k = oneInt();
-        if (k < 0 || k > 2) fail("interpolateboundary " + std::to_string(k) + " (expected 0, 1 or 2)");
-        static constexpr BoundaryInterpolation kMap[3] = {BoundaryInterpolation::None, BoundaryInterpolation::EdgeAndCorner,
+        if (k < 0 || k > 2)
+            fail("interpolateboundary " + std::to_string(k) + " (expected 0, 1 or 2)");
+        static constexpr BoundaryInterpolation kMap[3] = {BoundaryInterpolation::None,
+                                                          BoundaryInterpolation::EdgeAndCorner,
                                                           BoundaryInterpolation::EdgeOnly};
         mesh_.options.boundary = kMap[k];
         mesh_.explicitTags |= kTagBoundary;
     } else if (name == "facevaryinginterpolateboundary") {
         int64_t k = oneInt();
-        if (k < 0 || k > 5) fail("facevaryinginterpolateboundary " + std::to_string(k) + " (expected 0..5)");
+        if (k < 0 || k > 5)
+            fail("facevaryinginterpolateboundary " + std::to_string(k) + " (expected 0..5)");
         mesh_.options.fvar = FVarInterpolation(k);
         mesh_.explicitTags |= kTagFVar;
     } else if (name == "creasemethod") {
         const std::string& s = oneString();
-        if (s == "normal") mesh_.options.creaseMethod = CreaseMethod::Uniform;
-        else if (s == "chaikin") mesh_.options.creaseMethod = CreaseMethod::Chaikin;
-        else fail("creasemethod '" + s.substr(0, 32) + "' (expected normal or chaikin)");
+        if (s == "normal")
+            mesh_.options.creaseMethod = CreaseMethod::Uniform;
+        else if (s == "chaikin")
+            mesh_.options.creaseMethod = CreaseMethod::Chaikin;
+        else
+            fail("creasemethod '" + s.substr(0, 32) + "' (expected normal or chaikin)");
         mesh_.explicitTags |= kTagCreaseMethod;
     } else if (name == "smoothtriangles") {
         const std::string& s = oneString();
@@ -265,11 +296,13 @@ void ObjParser::tag(Tokenizer& t) {
         mesh_.explicitTags |= kTagTriangles;
     } else if (name == "scheme") {
         const std::string& s = oneString();
-        if (!parseScheme(s, mesh_.options.scheme)) fail("scheme '" + s.substr(0, 32) + "' (expected catmark, loop or bilinear)");
+        if (!parseScheme(s, mesh_.options.scheme))
+            fail("scheme '" + s.substr(0, 32) + "' (expected catmark, loop or bilinear)");
         mesh_.explicitTags |= kTagScheme;
     } else {
         std::string tagName(name.substr(0, 40));
-        if (std::find(unknownTags_.begin(), unknownTags_.end(), tagName) == unknownTags_.end() && unknownTags_.size() < 16) {
+        if (std::find(unknownTags_.begin(), unknownTags_.end(), tagName) == unknownTags_.end() &&
+            unknownTags_.size() < 16) {
             unknownTags_.push_back(tagName);
         }
     }
@@ -287,11 +320,16 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
         Tokenizer t{line};
         std::string_view kw;
         if (!t.next(kw) || kw.front() == '#') continue;
-        if (kw == "v") vertex(t);
-        else if (kw == "vt") texcoord(t);
-        else if (kw == "vn") normal(t);
-        else if (kw == "f") face(t);
-        else if (kw == "t") tag(t);
+        if (kw == "v")
+            vertex(t);
+        else if (kw == "vt")
+            texcoord(t);
+        else if (kw == "vn")
+            normal(t);
+        else if (kw == "f")
+            face(t);
+        else if (kw == "t")
+            tag(t);
         else {
             if (ignored_++ == 0) firstIgnored_ = std::string(kw.substr(0, 16));
         }
@@ -309,14 +347,17 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
     // Which line a corner came from, for messages.
     std::vector<uint32_t> offsets = faceOffsets(mesh_);
     auto cornerLine = [&](size_t c) {
-        size_t f = size_t(std::upper_bound(offsets.begin(), offsets.end(), uint32_t(c)) - offsets.begin()) - 1;
+        size_t f = size_t(std::upper_bound(offsets.begin(), offsets.end(), uint32_t(c)) -
+                          offsets.begin()) -
+                   1;
         return faceLine_[std::min(f, faceLine_.size() - 1)];
     };
     for (size_t c = 0; c < nC; ++c) {
         if (uint64_t(cornerV_[c]) >= mesh_.positions.size()) {
             throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                             "vertex index " + std::to_string(cornerV_[c] + 1) + " is out of range (" +
-                                 std::to_string(mesh_.positions.size()) + " vertices)");
+                             "vertex index " + std::to_string(cornerV_[c] + 1) +
+                                 " is out of range (" + std::to_string(mesh_.positions.size()) +
+                                 " vertices)");
         }
         mesh_.faceVertices[c] = uint32_t(cornerV_[c]);
     }
@@ -338,8 +379,9 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
             }
             if (uint64_t(cornerT_[c]) >= ch.values.size()) {
                 throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                                 "texture coordinate index " + std::to_string(cornerT_[c] + 1) + " is out of range (" +
-                                     std::to_string(ch.values.size()) + " vt)");
+                                 "texture coordinate index " + std::to_string(cornerT_[c] + 1) +
+                                     " is out of range (" + std::to_string(ch.values.size()) +
+                                     " vt)");
             }
             ch.indices[c] = uint32_t(cornerT_[c]);
         }
@@ -350,8 +392,9 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
         for (size_t c = 0; c < nC; ++c) {
             if (uint64_t(cornerN_[c]) >= normals_.size()) {
                 throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                                 "normal index " + std::to_string(cornerN_[c] + 1) + " is out of range (" +
-                                     std::to_string(normals_.size()) + " vn)");
+                                 "normal index " + std::to_string(cornerN_[c] + 1) +
+                                     " is out of range (" + std::to_string(normals_.size()) +
+                                     " vn)");
             }
             mesh_.normalIndices[c] = uint32_t(cornerN_[c]);
         }
@@ -359,13 +402,17 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
     }
     if (report_) {
         if (cornersWithoutUv_ && !allUv) {
-            report_->notes.push_back(std::to_string(cornersWithoutUv_) + " face corners without vt got UV (0,0)");
+            report_->notes.push_back(std::to_string(cornersWithoutUv_) +
+                                     " face corners without vt got UV (0,0)");
         }
-        if (anyN && !allN) report_->notes.push_back("vn on some corners only: normals ignored (recomputed)");
+        if (anyN && !allN)
+            report_->notes.push_back("vn on some corners only: normals ignored (recomputed)");
         if (ignored_) {
-            report_->notes.push_back("ignored " + std::to_string(ignored_) + " statements (first: '" + firstIgnored_ + "')");
+            report_->notes.push_back("ignored " + std::to_string(ignored_) +
+                                     " statements (first: '" + firstIgnored_ + "')");
         }
-        for (const std::string& tag : unknownTags_) report_->notes.push_back("ignored unknown tag '" + tag + "'");
+        for (const std::string& tag : unknownTags_)
+            report_->notes.push_back("ignored unknown tag '" + tag + "'");
     }
     if (faceLines) *faceLines = std::move(faceLine_);
     return std::move(mesh_);
@@ -374,14 +421,15 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
 } // namespace
 
 namespace detail {
-PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits, LoadReport* report,
-                         std::vector<uint32_t>* faceLines) {
+PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
+                         LoadReport* report, std::vector<uint32_t>* faceLines) {
     ObjParser parser(file, limits, report);
     return parser.parse(text, faceLines);
 }
 } // namespace detail
 
-PolygonMesh parseObj(std::string_view text, const std::string& file, const InputLimits& limits, LoadReport* report) {
+PolygonMesh parseObj(std::string_view text, const std::string& file, const InputLimits& limits,
+                     LoadReport* report) {
     return detail::parseObjImpl(text, file, limits, report, nullptr);
 }
 

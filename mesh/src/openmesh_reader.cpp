@@ -44,9 +44,12 @@ public:
         return OM::VertexHandle(int(positions.size() - 1));
     }
     OM::VertexHandle add_vertex() override { return add_vertex(OM::Vec3f(0, 0, 0)); }
-    OM::HalfedgeHandle add_edge(OM::VertexHandle, OM::VertexHandle) override { return OM::HalfedgeHandle(); }
+    OM::HalfedgeHandle add_edge(OM::VertexHandle, OM::VertexHandle) override {
+        return OM::HalfedgeHandle();
+    }
     OM::FaceHandle add_face(const VHandles& vs) override {
-        if (faceSizes.size() >= limits_.maxFaces || faceVertices.size() + vs.size() > limits_.maxCorners) {
+        if (faceSizes.size() >= limits_.maxFaces ||
+            faceVertices.size() + vs.size() > limits_.maxCorners) {
             overflow = "more faces or corners than the limits allow";
             return OM::FaceHandle();
         }
@@ -59,8 +62,14 @@ public:
         return OM::FaceHandle(int(faceSizes.size() - 1));
     }
     OM::FaceHandle add_face(OM::HalfedgeHandle) override { return OM::FaceHandle(); }
-    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec2f>&) override { ++ignoredFaceTexcoords; }
-    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle, const std::vector<OM::Vec3f>&) override { ++ignoredFaceTexcoords; }
+    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle,
+                            const std::vector<OM::Vec2f>&) override {
+        ++ignoredFaceTexcoords;
+    }
+    void add_face_texcoords(OM::FaceHandle, OM::VertexHandle,
+                            const std::vector<OM::Vec3f>&) override {
+        ++ignoredFaceTexcoords;
+    }
     void set_face_texindex(OM::FaceHandle, int) override {}
     void set_point(OM::VertexHandle v, const OM::Vec3f& p) override {
         if (valid(v)) positions[size_t(v.idx())] = glm::vec3(p[0], p[1], p[2]);
@@ -73,7 +82,9 @@ public:
         hasNormal.resize(positions.size(), 0);
         hasNormal[size_t(v.idx())] = 1;
     }
-    void set_normal(OM::VertexHandle v, const OM::Vec3d& n) override { set_normal(v, OM::Vec3f(n)); }
+    void set_normal(OM::VertexHandle v, const OM::Vec3d& n) override {
+        set_normal(v, OM::Vec3f(n));
+    }
     void set_color(OM::VertexHandle, const OM::Vec3uc&) override {}
     void set_color(OM::VertexHandle, const OM::Vec4uc&) override {}
     void set_color(OM::VertexHandle, const OM::Vec3f&) override {}
@@ -90,7 +101,9 @@ public:
     void set_face(OM::HalfedgeHandle, OM::FaceHandle) override {}
     void request_face_texcoords2D() override {}
     void set_texcoord(OM::HalfedgeHandle, const OM::Vec2f&) override { ++ignoredFaceTexcoords; }
-    void set_texcoord(OM::VertexHandle v, const OM::Vec3f& t) override { set_texcoord(v, OM::Vec2f(t[0], t[1])); }
+    void set_texcoord(OM::VertexHandle v, const OM::Vec3f& t) override {
+        set_texcoord(v, OM::Vec2f(t[0], t[1]));
+    }
     void set_texcoord(OM::HalfedgeHandle, const OM::Vec3f&) override { ++ignoredFaceTexcoords; }
     void set_status(OM::HalfedgeHandle, const OM::Attributes::StatusInfo&) override {}
     void set_color(OM::EdgeHandle, const OM::Vec3uc&) override {}
@@ -118,7 +131,9 @@ public:
     std::string overflow;
 
 private:
-    bool valid(OM::VertexHandle v) const { return v.idx() >= 0 && size_t(v.idx()) < positions.size(); }
+    bool valid(OM::VertexHandle v) const {
+        return v.idx() >= 0 && size_t(v.idx()) < positions.size();
+    }
     const InputLimits& limits_;
 };
 
@@ -149,23 +164,27 @@ struct PlyElement {
     std::vector<PlyProperty> props;
 };
 
-void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, const std::string& format,
-                  const std::vector<PlyElement>& elements, const InputLimits& limits);
+void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
+                  const std::string& format, const std::vector<PlyElement>& elements,
+                  const InputLimits& limits);
 
-void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize, const InputLimits& limits) {
+void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize,
+                    const InputLimits& limits) {
     auto fail = [&](size_t lineNo, const std::string& reason) {
         throw InputError(file, "header line " + std::to_string(lineNo), reason);
     };
     auto isType = [](const std::string& t) {
-        static const char* kTypes[] = {"char",  "uchar",  "short",  "ushort",  "int",    "uint",   "float",   "double",
-                                       "int8",  "uint8",  "int16",  "uint16",  "int32",  "uint32", "float32", "float64"};
+        static const char* kTypes[] = {"char",  "uchar",  "short",   "ushort", "int",   "uint",
+                                       "float", "double", "int8",    "uint8",  "int16", "uint16",
+                                       "int32", "uint32", "float32", "float64"};
         for (const char* k : kTypes) {
             if (t == k) return true;
         }
         return false;
     };
     std::string line;
-    if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) fail(1, "not a PLY file (first line is not 'ply')");
+    if (!std::getline(in, line) || (line != "ply" && line != "ply\r"))
+        fail(1, "not a PLY file (first line is not 'ply')");
     std::string element;
     uint64_t count = 0, props = 0;
     bool format = false;
@@ -173,8 +192,10 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
     std::vector<PlyElement> elements;
     auto checkCount = [&]() {
         if (!element.empty() && count > fileSize / std::max<uint64_t>(props, 1)) {
-            throw InputError(file, "header", "declares " + std::to_string(count) + " " + element + " elements but the file has only " +
-                                                 std::to_string(fileSize) + " bytes");
+            throw InputError(file, "header",
+                             "declares " + std::to_string(count) + " " + element +
+                                 " elements but the file has only " + std::to_string(fileSize) +
+                                 " bytes");
         }
     };
     // A header longer than this is not a mesh header (OpenMesh reads it
@@ -191,7 +212,9 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
         if (kw == "format") {
             if (format) fail(lineNo, "a second format line");
             if (!element.empty()) fail(lineNo, "format after an element");
-            if (rest.size() != 2 || (rest[0] != "ascii" && rest[0] != "binary_little_endian" && rest[0] != "binary_big_endian") ||
+            if (rest.size() != 2 ||
+                (rest[0] != "ascii" && rest[0] != "binary_little_endian" &&
+                 rest[0] != "binary_big_endian") ||
                 rest[1] != "1.0") {
                 fail(lineNo, "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
             }
@@ -211,13 +234,18 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
         } else if (kw == "property") {
             if (element.empty()) fail(lineNo, "property before any element");
             const bool list = !rest.empty() && rest[0] == "list";
-            const bool ok = list ? (rest.size() == 4 && isType(rest[1]) && isType(rest[2])) : (rest.size() == 2 && isType(rest[0]));
-            if (!ok) fail(lineNo, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME' with PLY types");
-            if (list && (rest[1] == "float" || rest[1] == "double" || rest[1] == "float32" || rest[1] == "float64")) {
+            const bool ok = list ? (rest.size() == 4 && isType(rest[1]) && isType(rest[2]))
+                                 : (rest.size() == 2 && isType(rest[0]));
+            if (!ok)
+                fail(lineNo, "expected 'property TYPE NAME' or 'property list TYPE TYPE NAME' with "
+                             "PLY types");
+            if (list && (rest[1] == "float" || rest[1] == "double" || rest[1] == "float32" ||
+                         rest[1] == "float64")) {
                 fail(lineNo, "a list count must have an integer type");
             }
             ++props;
-            elements.back().props.push_back(list ? PlyProperty{true, rest[1], rest[2]} : PlyProperty{false, "", rest[0]});
+            elements.back().props.push_back(list ? PlyProperty{true, rest[1], rest[2]}
+                                                 : PlyProperty{false, "", rest[0]});
         } else if (kw == "end_header") {
             if (!format) fail(lineNo, "no format line");
             checkCount();
@@ -227,7 +255,8 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
             fail(lineNo, "unknown header keyword '" + kw.substr(0, 32) + "'");
         }
     }
-    throw InputError(file, "header", "no end_header within " + std::to_string(kMaxHeaderLines) + " lines");
+    throw InputError(file, "header",
+                     "no end_header within " + std::to_string(kMaxHeaderLines) + " lines");
 }
 
 // PLY body, checked item by item before OpenMesh's reader sees it: that
@@ -237,8 +266,9 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
 // maxFaceDegree]; every value must be present (ASCII: each item on its
 // own line with exactly its values, numbers only; binary: the bytes fit in
 // the file). The element/property order is the header's.
-void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, const std::string& format,
-                  const std::vector<PlyElement>& elements, const InputLimits& limits) {
+void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
+                  const std::string& format, const std::vector<PlyElement>& elements,
+                  const InputLimits& limits) {
     const std::streamoff start = in.tellg();
     if (start < 0) throw InputError(file, "header", "cannot read the data after end_header");
     std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -249,35 +279,50 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, 
         size_t at = 0;
         for (const PlyElement& e : elements) {
             for (uint64_t i = 0; i < e.count; ++i) {
-                if (at >= data.size()) throw InputError(file, where(e, i), "the file ends before " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
+                if (at >= data.size())
+                    throw InputError(file, where(e, i),
+                                     "the file ends before " + e.name + " " + std::to_string(i) +
+                                         " of " + std::to_string(e.count));
                 size_t eol = data.find('\n', at);
                 if (eol == std::string::npos) eol = data.size();
                 std::string_view lineText(data.data() + at, eol - at);
                 at = eol + 1;
                 std::vector<std::string_view> tok;
                 for (size_t p = 0; p < lineText.size();) {
-                    while (p < lineText.size() && std::isspace(static_cast<unsigned char>(lineText[p]))) ++p;
+                    while (p < lineText.size() &&
+                           std::isspace(static_cast<unsigned char>(lineText[p])))
+                        ++p;
                     const size_t q = p;
-                    while (p < lineText.size() && !std::isspace(static_cast<unsigned char>(lineText[p]))) ++p;
+                    while (p < lineText.size() &&
+                           !std::isspace(static_cast<unsigned char>(lineText[p])))
+                        ++p;
                     if (p > q) tok.push_back(lineText.substr(q, p - q));
                 }
                 size_t k = 0;
                 auto number = [&](bool integerOnly, uint64_t* value) {
-                    if (k >= tok.size()) throw InputError(file, where(e, i), "too few values on its line");
+                    if (k >= tok.size())
+                        throw InputError(file, where(e, i), "too few values on its line");
                     const std::string_view t = tok[k++];
                     if (integerOnly) {
                         long long v = 0;
                         auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-                        if (ec != std::errc() || p != t.data() + t.size() || v < 0 || uint64_t(v) > maxList) {
-                            throw InputError(file, where(e, i), "list size '" + std::string(t.substr(0, 32)) + "' is not an integer in [0, " + std::to_string(maxList) + "]");
+                        if (ec != std::errc() || p != t.data() + t.size() || v < 0 ||
+                            uint64_t(v) > maxList) {
+                            throw InputError(file, where(e, i),
+                                             "list size '" + std::string(t.substr(0, 32)) +
+                                                 "' is not an integer in [0, " +
+                                                 std::to_string(maxList) + "]");
                         }
                         *value = uint64_t(v);
                         return;
                     }
                     double x = 0.0;
                     auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-                    if (p != t.data() + t.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
-                        throw InputError(file, where(e, i), "expected a number, found '" + std::string(t.substr(0, 32)) + "'");
+                    if (p != t.data() + t.size() ||
+                        (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+                        throw InputError(file, where(e, i),
+                                         "expected a number, found '" +
+                                             std::string(t.substr(0, 32)) + "'");
                     }
                 };
                 for (const PlyProperty& pr : e.props) {
@@ -285,7 +330,9 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, 
                     if (pr.list) number(true, &n);
                     for (uint64_t j = 0; j < n; ++j) number(false, nullptr);
                 }
-                if (k != tok.size()) throw InputError(file, where(e, i), "more values on its line than its properties");
+                if (k != tok.size())
+                    throw InputError(file, where(e, i),
+                                     "more values on its line than its properties");
             }
         }
         return;
@@ -298,10 +345,12 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, 
                 uint64_t n = 1;
                 if (pr.list) {
                     const int bytes = plyTypeBytes(pr.countType);
-                    if (data.size() - at < size_t(bytes)) throw InputError(file, where(e, i), "the file ends inside the item");
+                    if (data.size() - at < size_t(bytes))
+                        throw InputError(file, where(e, i), "the file ends inside the item");
                     uint64_t raw = 0;
                     for (int b = 0; b < bytes; ++b) {
-                        const uint64_t byte = static_cast<unsigned char>(data[at + size_t(bigEndian ? b : bytes - 1 - b)]);
+                        const uint64_t byte = static_cast<unsigned char>(
+                            data[at + size_t(bigEndian ? b : bytes - 1 - b)]);
                         raw = raw << 8 | byte;
                     }
                     at += size_t(bytes);
@@ -310,12 +359,15 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, 
                         throw InputError(file, where(e, i), "negative list size");
                     }
                     if (raw > maxList) {
-                        throw InputError(file, where(e, i), "list size " + std::to_string(raw) + " is above " + std::to_string(maxList));
+                        throw InputError(file, where(e, i),
+                                         "list size " + std::to_string(raw) + " is above " +
+                                             std::to_string(maxList));
                     }
                     n = raw;
                 }
                 const uint64_t bytes = n * uint64_t(plyTypeBytes(pr.itemType));
-                if (data.size() - at < bytes) throw InputError(file, where(e, i), "the file ends inside the item");
+                if (data.size() - at < bytes)
+                    throw InputError(file, where(e, i), "the file ends inside the item");
                 at += size_t(bytes);
             }
         }
@@ -334,11 +386,14 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize, 
 // vertex count k in [1, maxFaceDegree] and k integer indices (anything
 // after them on the line is left to the next token read, as OpenMesh
 // does). 4OFF/nOFF (other dimensions) and BINARY OFF are refused by name.
-void checkOff(const std::filesystem::path& path, const std::string& file, uint64_t fileSize, const InputLimits& limits) {
+void checkOff(const std::filesystem::path& path, const std::string& file, uint64_t fileSize,
+              const InputLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     size_t at = 0, line = 1;
-    auto fail = [&](const std::string& element, const std::string& reason) { throw InputError(file, element, reason); };
+    auto fail = [&](const std::string& element, const std::string& reason) {
+        throw InputError(file, element, reason);
+    };
     auto lineName = [&]() { return "line " + std::to_string(line); };
     // Next whitespace-separated token (empty at the end of the file).
     auto token = [&]() {
@@ -353,7 +408,8 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     auto skipLine = [&]() {
         while (at < text.size() && text[at] != '\n') ++at;
     };
-    auto integer = [&](std::string_view t, uint64_t maxValue, const std::string& element, const std::string& what) {
+    auto integer = [&](std::string_view t, uint64_t maxValue, const std::string& element,
+                       const std::string& what) {
         uint64_t v = 0;
         auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
         if (t.empty() || ec != std::errc() || p != t.data() + t.size() || v > maxValue) {
@@ -364,7 +420,8 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     // Keyword line.
     const std::string_view magic = token();
     const size_t offAt = magic.find("OFF");
-    if (offAt == std::string_view::npos || offAt + 3 != magic.size()) fail("header", "not an OFF file (no OFF keyword)");
+    if (offAt == std::string_view::npos || offAt + 3 != magic.size())
+        fail("header", "not an OFF file (no OFF keyword)");
     std::string_view prefix = magic.substr(0, offAt);
     bool normals = false;
     for (std::string_view known : {"ST", "C", "N"}) {
@@ -373,16 +430,22 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
             prefix.remove_prefix(known.size());
         }
     }
-    if (prefix == "4" || prefix == "n" || prefix == "4n") fail("header", "OFF of dimension other than 3 (" + std::string(magic) + ") is not supported");
-    if (!prefix.empty()) fail("header", "unknown OFF keyword '" + std::string(magic.substr(0, 32)) + "'");
+    if (prefix == "4" || prefix == "n" || prefix == "4n")
+        fail("header",
+             "OFF of dimension other than 3 (" + std::string(magic) + ") is not supported");
+    if (!prefix.empty())
+        fail("header", "unknown OFF keyword '" + std::string(magic.substr(0, 32)) + "'");
     {
         // The rest of the keyword line: nothing, or BINARY.
         const size_t eol = text.find('\n', at);
-        std::istringstream rest(text.substr(at, eol == std::string::npos ? std::string::npos : eol - at));
+        std::istringstream rest(
+            text.substr(at, eol == std::string::npos ? std::string::npos : eol - at));
         std::string word;
         if (rest >> word) {
-            if (word == "BINARY") fail("header", "binary OFF is not supported (use ASCII OFF or PLY)");
-            fail("header", "expected the OFF keyword alone on line 1, found '" + word.substr(0, 32) + "'");
+            if (word == "BINARY")
+                fail("header", "binary OFF is not supported (use ASCII OFF or PLY)");
+            fail("header",
+                 "expected the OFF keyword alone on line 1, found '" + word.substr(0, 32) + "'");
         }
         skipLine();
     }
@@ -390,18 +453,28 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     const uint64_t nF = integer(token(), UINT32_MAX, "header", "a face count");
     integer(token(), UINT32_MAX, "header", "an edge count");
     // Every vertex and face takes at least a few bytes.
-    if (nV > fileSize / 6) fail("header", "declares " + std::to_string(nV) + " vertices but the file has only " + std::to_string(fileSize) + " bytes");
-    if (nF > fileSize / 4) fail("header", "declares " + std::to_string(nF) + " faces but the file has only " + std::to_string(fileSize) + " bytes");
-    if (nV > limits.maxVertices) fail("header", std::to_string(nV) + " vertices; the limit is " + std::to_string(limits.maxVertices));
-    if (nF > limits.maxFaces) fail("header", std::to_string(nF) + " faces; the limit is " + std::to_string(limits.maxFaces));
+    if (nV > fileSize / 6)
+        fail("header", "declares " + std::to_string(nV) + " vertices but the file has only " +
+                           std::to_string(fileSize) + " bytes");
+    if (nF > fileSize / 4)
+        fail("header", "declares " + std::to_string(nF) + " faces but the file has only " +
+                           std::to_string(fileSize) + " bytes");
+    if (nV > limits.maxVertices)
+        fail("header",
+             std::to_string(nV) + " vertices; the limit is " + std::to_string(limits.maxVertices));
+    if (nF > limits.maxFaces)
+        fail("header",
+             std::to_string(nF) + " faces; the limit is " + std::to_string(limits.maxFaces));
     const int coords = normals ? 6 : 3;
     for (uint64_t v = 0; v < nV; ++v) {
         for (int k = 0; k < coords; ++k) {
             const std::string_view t = token();
             double x = 0.0;
             auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-            if (t.empty() || p != t.data() + t.size() || (ec != std::errc() && ec != std::errc::result_out_of_range)) {
-                fail("vertex " + std::to_string(v), lineName() + ": expected a number, found '" + std::string(t.substr(0, 32)) + "'");
+            if (t.empty() || p != t.data() + t.size() ||
+                (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+                fail("vertex " + std::to_string(v), lineName() + ": expected a number, found '" +
+                                                        std::string(t.substr(0, 32)) + "'");
             }
         }
         skipLine();
@@ -409,17 +482,24 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     for (uint64_t f = 0; f < nF; ++f) {
         const std::string element = "face " + std::to_string(f);
         const std::string_view t = token();
-        if (t.empty()) fail(element, "the file ends before face " + std::to_string(f) + " of " + std::to_string(nF));
+        if (t.empty())
+            fail(element,
+                 "the file ends before face " + std::to_string(f) + " of " + std::to_string(nF));
         const uint64_t k = integer(t, limits.maxFaceDegree, element,
-                                   lineName() + ": a vertex count in [1, " + std::to_string(limits.maxFaceDegree) + "]");
+                                   lineName() + ": a vertex count in [1, " +
+                                       std::to_string(limits.maxFaceDegree) + "]");
         if (k == 0) fail(element, lineName() + ": a face needs at least one vertex");
         for (uint64_t j = 0; j < k; ++j) {
             const std::string_view idx = token();
-            if (idx.empty()) fail(element, "the file ends inside the face (" + std::to_string(j) + " of " + std::to_string(k) + " indices)");
+            if (idx.empty())
+                fail(element, "the file ends inside the face (" + std::to_string(j) + " of " +
+                                  std::to_string(k) + " indices)");
             long long value = 0;
             auto [p, ec] = std::from_chars(idx.data(), idx.data() + idx.size(), value);
             if (idx.empty() || ec != std::errc() || p != idx.data() + idx.size()) {
-                fail(element, lineName() + ": expected " + std::to_string(k) + " vertex indices, found '" + std::string(idx.substr(0, 32)) + "'");
+                fail(element, lineName() + ": expected " + std::to_string(k) +
+                                  " vertex indices, found '" + std::string(idx.substr(0, 32)) +
+                                  "'");
             }
         }
     }
@@ -428,18 +508,21 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
 // Header counts against the file size: every vertex and face takes at
 // least a few bytes (3 coordinates of >= 2 characters in ASCII, 4 bytes in
 // binary; a face at least 4 numbers), so a count beyond that is a lie.
-void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize, const InputLimits& limits) {
+void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize,
+                       const InputLimits& limits) {
     std::ifstream in(path, std::ios::binary);
     std::string file = path.string();
     auto tooMany = [&](const std::string& what, uint64_t n) {
-        throw InputError(file, "header", "declares " + std::to_string(n) + " " + what + " but the file has only " +
-                                             std::to_string(fileSize) + " bytes");
+        throw InputError(file, "header",
+                         "declares " + std::to_string(n) + " " + what + " but the file has only " +
+                             std::to_string(fileSize) + " bytes");
     };
     if (ext == ".stl") {
         char header[84];
         in.read(header, 84);
         if (in.gcount() < 84) return; // short: ASCII or broken, OpenMesh decides
-        if (std::string_view(header, 5) == "solid") return; // ASCII (binary files may start so too; size check below)
+        if (std::string_view(header, 5) == "solid")
+            return; // ASCII (binary files may start so too; size check below)
         uint32_t n = 0;
         std::memcpy(&n, header + 80, 4);
         if (84 + 50 * uint64_t(n) > fileSize) tooMany("triangles", n);
@@ -458,13 +541,16 @@ void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext
 
 namespace detail {
 
-PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimits& limits, LoadReport* report) {
+PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimits& limits,
+                             LoadReport* report) {
     const std::string file = path.string();
     std::error_code ec;
     uint64_t size = std::filesystem::file_size(path, ec);
     if (ec) throw InputError(file, "", "cannot read: " + ec.message());
     if (size > limits.maxFileBytes) {
-        throw InputError(file, "", "file is " + std::to_string(size) + " bytes; the limit is " + std::to_string(limits.maxFileBytes));
+        throw InputError(file, "",
+                         "file is " + std::to_string(size) + " bytes; the limit is " +
+                             std::to_string(limits.maxFileBytes));
     }
     std::string ext = meshFormat(path);
     checkHeaderCounts(path, ext, size, limits);
@@ -479,7 +565,9 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
     if (errWasEnabled) ::omerr().enable();
     if (logWasEnabled) ::omlog().enable();
     if (!importer.overflow.empty()) throw InputError(file, "", importer.overflow);
-    if (!ok) throw InputError(file, "", "OpenMesh's " + ext.substr(1) + " reader could not parse the file");
+    if (!ok)
+        throw InputError(file, "",
+                         "OpenMesh's " + ext.substr(1) + " reader could not parse the file");
 
     PolygonMesh mesh;
     mesh.name = path.stem().string();
@@ -489,14 +577,17 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
     const size_t nV = mesh.positions.size();
     if (!importer.uvs.empty()) {
         importer.hasUv.resize(nV, 0);
-        size_t missing = size_t(std::count(importer.hasUv.begin(), importer.hasUv.end(), uint8_t(0)));
+        size_t missing =
+            size_t(std::count(importer.hasUv.begin(), importer.hasUv.end(), uint8_t(0)));
         FaceVaryingChannel ch;
         ch.name = "texcoord";
         ch.values = std::move(importer.uvs);
         ch.values.resize(nV, glm::vec2(0.0f));
         ch.indices = mesh.faceVertices; // per-vertex UVs: one value per vertex
         mesh.uvSets.push_back(std::move(ch));
-        if (missing && report) report->notes.push_back(std::to_string(missing) + " vertices without texture coordinates got (0,0)");
+        if (missing && report)
+            report->notes.push_back(std::to_string(missing) +
+                                    " vertices without texture coordinates got (0,0)");
     }
     if (!importer.normals.empty()) {
         importer.hasNormal.resize(nV, 0);
@@ -508,7 +599,8 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
         }
     }
     if (importer.ignoredFaceTexcoords && report) {
-        report->notes.push_back("ignored per-face texture coordinates (OpenMesh passes them only to a PolyMesh)");
+        report->notes.push_back(
+            "ignored per-face texture coordinates (OpenMesh passes them only to a PolyMesh)");
     }
     return mesh;
 }

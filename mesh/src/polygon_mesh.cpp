@@ -22,7 +22,7 @@ std::vector<uint32_t> faceOffsets(const PolygonMesh& mesh) {
 namespace {
 constexpr std::array<const char*, 3> kSchemeNames{"catmark", "loop", "bilinear"};
 constexpr std::array<const char*, 3> kBoundaryNames{"none", "edge-only", "edge-and-corner"};
-constexpr std::array<const char*, 6> kFVarNames{"smooth",   "corners-only", "corners-plus1",
+constexpr std::array<const char*, 6> kFVarNames{"smooth",        "corners-only", "corners-plus1",
                                                 "corners-plus2", "boundaries",   "all"};
 
 template <class E, size_t N>
@@ -37,11 +37,19 @@ bool parseName(const std::array<const char*, N>& names, const std::string& name,
 }
 } // namespace
 
-const char* toString(Scheme scheme) { return kSchemeNames[size_t(scheme)]; }
-const char* toString(BoundaryInterpolation rule) { return kBoundaryNames[size_t(rule)]; }
-const char* toString(FVarInterpolation rule) { return kFVarNames[size_t(rule)]; }
+const char* toString(Scheme scheme) {
+    return kSchemeNames[size_t(scheme)];
+}
+const char* toString(BoundaryInterpolation rule) {
+    return kBoundaryNames[size_t(rule)];
+}
+const char* toString(FVarInterpolation rule) {
+    return kFVarNames[size_t(rule)];
+}
 
-bool parseScheme(const std::string& name, Scheme& out) { return parseName(kSchemeNames, name, out); }
+bool parseScheme(const std::string& name, Scheme& out) {
+    return parseName(kSchemeNames, name, out);
+}
 bool parseFVarInterpolation(const std::string& name, FVarInterpolation& out) {
     return parseName(kFVarNames, name, out);
 }

@@ -34,7 +34,8 @@ PolyMesh toPolyMesh(const PolygonMesh& mesh, PolyMeshProperties& props, const st
     for (size_t f = 0; f < mesh.faceSizes.size(); ++f) {
         uint32_t k = mesh.faceSizes[f];
         vh.clear();
-        for (uint32_t j = 0; j < k; ++j) vh.push_back(PolyMesh::VertexHandle(int(mesh.faceVertices[c0 + j])));
+        for (uint32_t j = 0; j < k; ++j)
+            vh.push_back(PolyMesh::VertexHandle(int(mesh.faceVertices[c0 + j])));
         // OpenMesh prints "complex edge/vertex" on omerr; the error below says it instead.
         bool errOn = ::omerr().is_enabled();
         ::omerr().disable();
@@ -42,7 +43,8 @@ PolyMesh toPolyMesh(const PolygonMesh& mesh, PolyMeshProperties& props, const st
         if (errOn) ::omerr().enable();
         if (!fh.is_valid()) {
             throw InputError(file, "face " + std::to_string(f),
-                             "OpenMesh cannot insert it (complex edge or vertex: non-manifold or inconsistently oriented)");
+                             "OpenMesh cannot insert it (complex edge or vertex: non-manifold or "
+                             "inconsistently oriented)");
         }
         pm.property(props.hole, fh) = isHole[f] != 0;
         // Corner j's UV goes to the halfedge of this face pointing to vertex j.
@@ -62,10 +64,15 @@ PolyMesh toPolyMesh(const PolygonMesh& mesh, PolyMeshProperties& props, const st
     for (PolyMesh::EdgeHandle e : pm.edges()) pm.property(props.edgeSharpness, e) = 0.0f;
     for (PolyMesh::VertexHandle v : pm.vertices()) pm.property(props.cornerSharpness, v) = 0.0f;
     for (const EdgeCrease& c : mesh.creases) {
-        PolyMesh::HalfedgeHandle h = pm.find_halfedge(PolyMesh::VertexHandle(int(c.v0)), PolyMesh::VertexHandle(int(c.v1)));
-        if (!h.is_valid()) h = pm.find_halfedge(PolyMesh::VertexHandle(int(c.v1)), PolyMesh::VertexHandle(int(c.v0)));
+        PolyMesh::HalfedgeHandle h =
+            pm.find_halfedge(PolyMesh::VertexHandle(int(c.v0)), PolyMesh::VertexHandle(int(c.v1)));
+        if (!h.is_valid())
+            h = pm.find_halfedge(PolyMesh::VertexHandle(int(c.v1)),
+                                 PolyMesh::VertexHandle(int(c.v0)));
         if (!h.is_valid()) {
-            throw InputError(file, "crease (" + std::to_string(c.v0) + ", " + std::to_string(c.v1) + ")", "not an edge of the mesh");
+            throw InputError(file,
+                             "crease (" + std::to_string(c.v0) + ", " + std::to_string(c.v1) + ")",
+                             "not an edge of the mesh");
         }
         pm.property(props.edgeSharpness, pm.edge_handle(h)) = c.sharpness;
     }
@@ -83,7 +90,8 @@ PolygonMesh fromPolyMesh(const PolyMesh& pm, const PolyMeshProperties& props) {
         out.positions.push_back(glm::vec3(p[0], p[1], p[2]));
     }
     out.uvSets.resize(props.uvSets.size());
-    for (size_t s = 0; s < props.uvSets.size(); ++s) out.uvSets[s].name = pm.property(props.uvSets[s]).name();
+    for (size_t s = 0; s < props.uvSets.size(); ++s)
+        out.uvSets[s].name = pm.property(props.uvSets[s]).name();
     // Per (vertex, uv set): distinct values seen so far, for deduplication.
     std::vector<std::vector<std::map<std::pair<float, float>, uint32_t>>> seen(props.uvSets.size());
     for (auto& s : seen) s.resize(pm.n_vertices());
@@ -94,7 +102,8 @@ PolygonMesh fromPolyMesh(const PolyMesh& pm, const PolyMeshProperties& props) {
             out.faceVertices.push_back(v);
             for (size_t s = 0; s < props.uvSets.size(); ++s) {
                 const OpenMesh::Vec2f& t = pm.property(props.uvSets[s], *it);
-                auto [pos, inserted] = seen[s][v].emplace(std::make_pair(t[0], t[1]), uint32_t(out.uvSets[s].values.size()));
+                auto [pos, inserted] = seen[s][v].emplace(std::make_pair(t[0], t[1]),
+                                                          uint32_t(out.uvSets[s].values.size()));
                 if (inserted) out.uvSets[s].values.push_back(glm::vec2(t[0], t[1]));
                 out.uvSets[s].indices.push_back(pos->second);
             }
@@ -109,7 +118,8 @@ PolygonMesh fromPolyMesh(const PolyMesh& pm, const PolyMeshProperties& props) {
         float s = pm.property(props.edgeSharpness, e);
         if (s > 0.0f) {
             PolyMesh::HalfedgeHandle h = pm.halfedge_handle(e, 0);
-            out.creases.push_back({uint32_t(pm.from_vertex_handle(h).idx()), uint32_t(pm.to_vertex_handle(h).idx()), s});
+            out.creases.push_back({uint32_t(pm.from_vertex_handle(h).idx()),
+                                   uint32_t(pm.to_vertex_handle(h).idx()), s});
         }
     }
     for (PolyMesh::VertexHandle v : pm.vertices()) {

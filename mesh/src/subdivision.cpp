@@ -82,7 +82,9 @@ struct Ref {
     V* v;
     void Clear() { *v = V(0.0f); }
     template <class S>
-    void AddWithWeight(const S& src, float w) { *v += w * *src.v; }
+    void AddWithWeight(const S& src, float w) {
+        *v += w * *src.v;
+    }
 };
 template <class V>
 struct View {
@@ -100,10 +102,10 @@ struct TokenView {
     Token operator[](int i) const { return {base + uint32_t(i)}; }
 };
 struct RecordedRows {
-    uint32_t dstBase = 0;            // global index of the child level's first point
-    std::vector<uint32_t> rowOf;     // per recorded row: its child index
-    std::vector<uint32_t> rowStart;  // per recorded row: first entry
-    std::vector<uint32_t> src;       // global point indices
+    uint32_t dstBase = 0;           // global index of the child level's first point
+    std::vector<uint32_t> rowOf;    // per recorded row: its child index
+    std::vector<uint32_t> rowStart; // per recorded row: first entry
+    std::vector<uint32_t> src;      // global point indices
     std::vector<float> weight;
 };
 struct RecorderRef {
@@ -131,23 +133,30 @@ struct RecorderView {
 
 Sdc::SchemeType sdcScheme(Scheme s) {
     switch (s) {
-    case Scheme::Loop: return Sdc::SCHEME_LOOP;
-    case Scheme::Bilinear: return Sdc::SCHEME_BILINEAR;
-    default: return Sdc::SCHEME_CATMARK;
+    case Scheme::Loop:
+        return Sdc::SCHEME_LOOP;
+    case Scheme::Bilinear:
+        return Sdc::SCHEME_BILINEAR;
+    default:
+        return Sdc::SCHEME_CATMARK;
     }
 }
 
 Sdc::Options sdcOptions(const SubdivOptions& o) {
     Sdc::Options opt;
     static constexpr Sdc::Options::VtxBoundaryInterpolation kVtx[3] = {
-        Sdc::Options::VTX_BOUNDARY_NONE, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY, Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER};
+        Sdc::Options::VTX_BOUNDARY_NONE, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY,
+        Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER};
     static constexpr Sdc::Options::FVarLinearInterpolation kFVar[6] = {
-        Sdc::Options::FVAR_LINEAR_NONE,          Sdc::Options::FVAR_LINEAR_CORNERS_ONLY, Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1,
-        Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2, Sdc::Options::FVAR_LINEAR_BOUNDARIES,   Sdc::Options::FVAR_LINEAR_ALL};
+        Sdc::Options::FVAR_LINEAR_NONE,          Sdc::Options::FVAR_LINEAR_CORNERS_ONLY,
+        Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1, Sdc::Options::FVAR_LINEAR_CORNERS_PLUS2,
+        Sdc::Options::FVAR_LINEAR_BOUNDARIES,    Sdc::Options::FVAR_LINEAR_ALL};
     opt.SetVtxBoundaryInterpolation(kVtx[int(o.boundary)]);
     opt.SetFVarLinearInterpolation(kFVar[int(o.fvar)]);
-    opt.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN : Sdc::Options::CREASE_UNIFORM);
-    opt.SetTriangleSubdivision(o.triangles == TriangleRule::Smooth ? Sdc::Options::TRI_SUB_SMOOTH : Sdc::Options::TRI_SUB_CATMARK);
+    opt.SetCreasingMethod(o.creaseMethod == CreaseMethod::Chaikin ? Sdc::Options::CREASE_CHAIKIN
+                                                                  : Sdc::Options::CREASE_UNIFORM);
+    opt.SetTriangleSubdivision(o.triangles == TriangleRule::Smooth ? Sdc::Options::TRI_SUB_SMOOTH
+                                                                   : Sdc::Options::TRI_SUB_CATMARK);
     return opt;
 }
 
@@ -177,7 +186,8 @@ struct Descriptor {
         for (size_t s = 0; s < cage.uvSets.size(); ++s) {
             channels[s].numValues = int(cage.uvSets[s].values.size());
             // uint32_t and int may alias (same type, other signedness).
-            channels[s].valueIndices = reinterpret_cast<const Far::Index*>(cage.uvSets[s].indices.data());
+            channels[s].valueIndices =
+                reinterpret_cast<const Far::Index*>(cage.uvSets[s].indices.data());
         }
         desc = Far::TopologyDescriptor();
         desc.numVertices = int(cage.positions.size());
@@ -198,12 +208,17 @@ struct Descriptor {
     }
 };
 
-std::unique_ptr<Far::TopologyRefiner> createRefiner(const Descriptor& d, const SubdivOptions& o, const std::string& file) {
+std::unique_ptr<Far::TopologyRefiner> createRefiner(const Descriptor& d, const SubdivOptions& o,
+                                                    const std::string& file) {
     installFarCallbacks();
     tFarError.clear();
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d.desc, Factory::Options(sdcScheme(o.scheme), sdcOptions(o))));
-    if (!r) throw InputError(file, "topology", "OpenSubdiv rejected the mesh: " + (tFarError.empty() ? std::string("no reason given") : tFarError));
+    std::unique_ptr<Far::TopologyRefiner> r(
+        Factory::Create(d.desc, Factory::Options(sdcScheme(o.scheme), sdcOptions(o))));
+    if (!r)
+        throw InputError(file, "topology",
+                         "OpenSubdiv rejected the mesh: " +
+                             (tFarError.empty() ? std::string("no reason given") : tFarError));
     return r;
 }
 
@@ -229,18 +244,24 @@ struct FactoredStencils {
     // Records refinement step `level` (1-based) of `refiner` as a block
     // reading the previous level at srcBase and writing at dstBase.
     // fvarChannel >= 0 records InterpolateFaceVarying of that channel.
-    void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase, int fvarChannel = -1) {
-        const int nChild = fvarChannel < 0 ? refiner.GetLevel(level).GetNumVertices() : refiner.GetLevel(level).GetNumFVarValues(fvarChannel);
+    void recordLevel(const Far::TopologyRefiner& refiner, int level, uint32_t srcBase,
+                     uint32_t dstBase, int fvarChannel = -1) {
+        const int nChild = fvarChannel < 0 ? refiner.GetLevel(level).GetNumVertices()
+                                           : refiner.GetLevel(level).GetNumFVarValues(fvarChannel);
         record(uint32_t(nChild), srcBase, dstBase, [&](const TokenView& src, RecorderView& dst) {
             Far::PrimvarRefiner primvar(refiner);
-            if (fvarChannel < 0) primvar.Interpolate(level, src, dst);
-            else primvar.InterpolateFaceVarying(level, src, dst, fvarChannel);
+            if (fvarChannel < 0)
+                primvar.Interpolate(level, src, dst);
+            else
+                primvar.InterpolateFaceVarying(level, src, dst, fvarChannel);
         });
     }
     // The same from the specialised refiner (uniform_refiner.h), through
     // its writer protocol.
-    void recordLevel(const detail::UniformRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase, int fvarChannel = -1) {
-        const uint32_t nChild = fvarChannel < 0 ? refiner.level(level).numVerts : refiner.numFVarValues(level, fvarChannel);
+    void recordLevel(const detail::UniformRefiner& refiner, int level, uint32_t srcBase,
+                     uint32_t dstBase, int fvarChannel = -1) {
+        const uint32_t nChild = fvarChannel < 0 ? refiner.level(level).numVerts
+                                                : refiner.numFVarValues(level, fvarChannel);
         record(nChild, srcBase, dstBase, [&](const TokenView& src, RecorderView& dst) {
             struct Writer {
                 RecordedRows* rows;
@@ -259,8 +280,10 @@ struct FactoredStencils {
                 }
                 void end() {}
             } writer{dst.rows, src.base};
-            if (fvarChannel < 0) refiner.interpolate(level, writer);
-            else refiner.interpolateFaceVarying(level, writer, fvarChannel);
+            if (fvarChannel < 0)
+                refiner.interpolate(level, writer);
+            else
+                refiner.interpolateFaceVarying(level, writer, fvarChannel);
         });
     }
     template <class Interpolate>
@@ -349,7 +372,8 @@ struct SampleTable {
     }
     // Value weights from one patch, derivative weights from another (or the
     // same) patch.
-    void add(const Far::ConstIndexArray& cvsP, const float* p, const Far::ConstIndexArray& cvsD, const float* du, const float* dv) {
+    void add(const Far::ConstIndexArray& cvsP, const float* p, const Far::ConstIndexArray& cvsD,
+             const float* du, const float* dv) {
         const size_t first = point.size();
         for (int k = 0; k < cvsP.size(); ++k) {
             if (p[k] == 0.0f) continue;
@@ -436,7 +460,8 @@ struct Subdivider::Impl {
     LimitFrame frame;
     detail::RenderSplit split;
     std::vector<uint32_t> renderToRefined;
-    std::vector<uint32_t> smoothGroup; // per render vertex: first copy with the same (vertex, sector)
+    std::vector<uint32_t>
+        smoothGroup; // per render vertex: first copy with the same (vertex, sector)
     std::vector<uint32_t> positionRep; // per render vertex: first copy of the same refined vertex
     SubdivisionTimings timings;
 
@@ -457,9 +482,9 @@ struct Subdivider::Impl {
     // positions and every UV set, so a rebuild with new values is a few
     // sparse matrix products (see sameTopology / rebuildValues).
     std::unique_ptr<Far::TopologyRefiner> keptRefiner; // Far builds
-    detail::UniformRefiner fast;                       // specialised builds (its levels stay until the next build)
-    bool fastBuilt = false;                            // the last uniform build used `fast`
-    std::string fastDeclined;                          // why `fast` declined the last cage
+    detail::UniformRefiner fast; // specialised builds (its levels stay until the next build)
+    bool fastBuilt = false;      // the last uniform build used `fast`
+    std::string fastDeclined;    // why `fast` declined the last cage
     bool keyValid = false, stencilsRecorded = false, renderValid = false;
     PolygonMesh key; // topology, tags and value counts of the kept build (values not used)
     int keyLevel = -1;
@@ -468,9 +493,9 @@ struct Subdivider::Impl {
     std::vector<glm::vec2> uvPoints;
 
     // Animation / limit.
-    FactoredStencils uniformStencils; // cage -> every uniform level (positions, morph deltas)
-    FactoredStencils limitStencils;   // limit: cage -> adaptive points + local points
-    SampleTable samples;              // limit: per render vertex
+    FactoredStencils uniformStencils;      // cage -> every uniform level (positions, morph deltas)
+    FactoredStencils limitStencils;        // limit: cage -> adaptive points + local points
+    SampleTable samples;                   // limit: per render vertex
     mutable std::vector<glm::vec3> points; // build scratch (all stencil points)
     // update() scratch: xyz in 4 floats (4th lane 0), so
     // each weighted add of FactoredStencils::apply is one 4-lane multiply
@@ -487,8 +512,10 @@ struct Subdivider::Impl {
     void refineUniformFast(const PolygonMesh& cage);
     void collectCreases(const Far::TopologyRefiner& refiner);
     std::vector<uint32_t> sectors(const std::vector<uint32_t>& offsets) const;
-    void locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex, std::vector<glm::vec2>& cornerUV) const;
-    void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace);
+    void locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex,
+                       std::vector<glm::vec2>& cornerUV) const;
+    void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform,
+                       std::vector<uint8_t>& dropFace);
     void buildRender();
     // Copies of one vertex evaluated from different home faces differ in the
     // last bits; make them bitwise equal (no cracks): positions per refined
@@ -498,7 +525,8 @@ struct Subdivider::Impl {
     // triangles' normals, whichever diagonal splits it), summed per smooth
     // group (vertex and sector) and normalized; the same for a build and
     // every update(). `scratch` holds the sums.
-    void polygonNormals(const glm::vec3* pos, glm::vec3* nrm, std::vector<glm::vec3>& scratch) const {
+    void polygonNormals(const glm::vec3* pos, glm::vec3* nrm,
+                        std::vector<glm::vec3>& scratch) const {
         const size_t nR = smoothGroup.size();
         scratch.assign(nR, glm::vec3(0.0f));
         const uint32_t* crv = split.cornerRenderVertex.data();
@@ -507,10 +535,12 @@ struct Subdivider::Impl {
             if (crv[c] != UINT32_MAX) { // holes of refined() (limit builds) have no render vertices
                 glm::vec3 n;
                 if (k == 4) {
-                    n = glm::cross(pos[crv[c + 2]] - pos[crv[c]], pos[crv[c + 3]] - pos[crv[c + 1]]);
+                    n = glm::cross(pos[crv[c + 2]] - pos[crv[c]],
+                                   pos[crv[c + 3]] - pos[crv[c + 1]]);
                 } else {
                     n = glm::vec3(0.0f);
-                    for (uint32_t j = 0; j < k; ++j) n += glm::cross(pos[crv[c + j]], pos[crv[c + (j + 1) % k]]);
+                    for (uint32_t j = 0; j < k; ++j)
+                        n += glm::cross(pos[crv[c + j]], pos[crv[c + (j + 1) % k]]);
                 }
                 for (uint32_t j = 0; j < k; ++j) scratch[smoothGroup[crv[c + j]]] += n;
             }
@@ -521,8 +551,10 @@ struct Subdivider::Impl {
             float len = glm::length(a);
             // A vanishing sum (a fin whose faces cancel, or degenerate faces)
             // keeps the previous normal, or +z.
-            if (len > 0.0f && std::isfinite(len)) nrm[r] = a / len;
-            else if (!(glm::length(nrm[r]) > 0.5f)) nrm[r] = glm::vec3(0.0f, 0.0f, 1.0f);
+            if (len > 0.0f && std::isfinite(len))
+                nrm[r] = a / len;
+            else if (!(glm::length(nrm[r]) > 0.5f))
+                nrm[r] = glm::vec3(0.0f, 0.0f, 1.0f);
         }
     }
     mutable std::vector<glm::vec3> normalScratch;
@@ -541,9 +573,12 @@ namespace {
 long double refinedFaceEstimate(const PolygonMesh& cage, Scheme scheme, int level) {
     long double total = 0, grow = std::pow(4.0L, level);
     for (uint32_t k : cage.faceSizes) {
-        if (level == 0) total += 1;
-        else if (scheme == Scheme::Loop || k == 4) total += grow;
-        else total += (long double)k * grow / 4; // N-gon: N quads after one level
+        if (level == 0)
+            total += 1;
+        else if (scheme == Scheme::Loop || k == 4)
+            total += grow;
+        else
+            total += (long double)k * grow / 4; // N-gon: N quads after one level
     }
     return total;
 }
@@ -596,7 +631,8 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
         Far::PrimvarRefiner primvar(refiner);
         const glm::vec2* src = cage.uvSets[s].values.data();
         for (int l = 1; l <= N; ++l) {
-            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
+            std::vector<glm::vec2>& dstBuf =
+                l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
             dstBuf.resize(size_t(refiner.GetLevel(l).GetNumFVarValues(int(s))));
             View<const glm::vec2> sv{src};
             View<glm::vec2> dv{dstBuf.data()};
@@ -634,7 +670,8 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
         }
         for (size_t s = 0; s < nSets; ++s) {
             Far::ConstIndexArray fvv = last.GetFaceFVarValues(f, int(s));
-            for (int k = 0; k < fvv.size(); ++k) refined.uvSets[s].indices.push_back(uint32_t(fvv[k]));
+            for (int k = 0; k < fvv.size(); ++k)
+                refined.uvSets[s].indices.push_back(uint32_t(fvv[k]));
         }
     }
     auto compact = [&](std::vector<glm::vec3>& values) {
@@ -646,7 +683,8 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
         values.swap(bufA);
     };
     compact(refined.positions);
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) compact(refined.morphTargets[t].positionDeltas);
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t)
+        compact(refined.morphTargets[t].positionDeltas);
     refined.morphWeights = cage.morphWeights;
     timings.convertOut = sw.lap();
 }
@@ -663,16 +701,21 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
     auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
         out.resize(fast.level(N).numVerts);
         if (N == 1) {
-            fast.interpolate(1, detail::Vec4Writer<glm::vec3, glm::vec3>{control.data(), out.data()});
+            fast.interpolate(1,
+                             detail::Vec4Writer<glm::vec3, glm::vec3>{control.data(), out.data()});
             return;
         }
         levelPoints[1].resize(fast.level(1).numVerts);
-        fast.interpolate(1, detail::Vec4Writer<glm::vec3, glm::vec4>{control.data(), levelPoints[1].data()});
+        fast.interpolate(
+            1, detail::Vec4Writer<glm::vec3, glm::vec4>{control.data(), levelPoints[1].data()});
         for (int l = 2; l < N; ++l) {
             levelPoints[size_t(l)].resize(fast.level(l).numVerts);
-            fast.interpolate(l, detail::Vec4Writer<glm::vec4, glm::vec4>{levelPoints[size_t(l) - 1].data(), levelPoints[size_t(l)].data()});
+            fast.interpolate(
+                l, detail::Vec4Writer<glm::vec4, glm::vec4>{levelPoints[size_t(l) - 1].data(),
+                                                            levelPoints[size_t(l)].data()});
         }
-        fast.interpolate(N, detail::Vec4Writer<glm::vec4, glm::vec3>{levelPoints[size_t(N) - 1].data(), out.data()});
+        fast.interpolate(N, detail::Vec4Writer<glm::vec4, glm::vec3>{
+                                levelPoints[size_t(N) - 1].data(), out.data()});
     };
     refineVertexData(cage, refined, interpolateVec3);
     refined.uvSets.resize(nSets);
@@ -681,9 +724,11 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
         const glm::vec2* src = cage.uvSets[s].values.data();
         if (levelValues.size() < size_t(N)) levelValues.resize(size_t(N));
         for (int l = 1; l <= N; ++l) {
-            std::vector<glm::vec2>& dstBuf = l == N ? refined.uvSets[s].values : levelValues[size_t(l)];
+            std::vector<glm::vec2>& dstBuf =
+                l == N ? refined.uvSets[s].values : levelValues[size_t(l)];
             dstBuf.resize(fast.numFVarValues(l, int(s)));
-            fast.interpolateFaceVarying(l, detail::ArrayWriter<glm::vec2>{src, dstBuf.data(), glm::vec2(0.0f)}, int(s));
+            fast.interpolateFaceVarying(
+                l, detail::ArrayWriter<glm::vec2>{src, dstBuf.data(), glm::vec2(0.0f)}, int(s));
             src = dstBuf.data();
         }
     }
@@ -741,8 +786,10 @@ std::vector<uint32_t> Subdivider::Impl::sectors(const std::vector<uint32_t>& off
     detail::UnionFind uf(refined.faceVertices.size());
     for (size_t i = 0; i + 1 < edges.size(); ++i) {
         const detail::FaceEdge &a = edges[i], &b = edges[i + 1];
-        if (a.key != b.key || (i + 2 < edges.size() && edges[i + 2].key == a.key)) continue; // manifold pairs only
-        if (a.forward == b.forward || std::binary_search(sharp.begin(), sharp.end(), a.key)) continue;
+        if (a.key != b.key || (i + 2 < edges.size() && edges[i + 2].key == a.key))
+            continue; // manifold pairs only
+        if (a.forward == b.forward || std::binary_search(sharp.begin(), sharp.end(), a.key))
+            continue;
         uf.unite(a.corner, b.next);
         uf.unite(a.next, b.corner);
     }
@@ -750,7 +797,8 @@ std::vector<uint32_t> Subdivider::Impl::sectors(const std::vector<uint32_t>& off
     return sector;
 }
 
-void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::vector<uint32_t>& cornerPtex,
+void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner,
+                                     std::vector<uint32_t>& cornerPtex,
                                      std::vector<glm::vec2>& cornerUV) const {
     // Home location of every level-N face corner: ptex face and (u,v).
     // Level 0: a quad (or a Loop triangle) is one ptex face with corners at
@@ -792,7 +840,8 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::v
         nextFirst.assign(size_t(C.GetNumFaces()), 0);
         nextUV.assign(size_t(C.GetNumFaces()) * (loop ? 3 : 4), glm::vec2(0.0f));
         for (int f = 0; f < P.GetNumFaces(); ++f) {
-            Far::ConstIndexArray fv = P.GetFaceVertices(f), fe = P.GetFaceEdges(f), children = P.GetFaceChildFaces(f);
+            Far::ConstIndexArray fv = P.GetFaceVertices(f), fe = P.GetFaceEdges(f),
+                                 children = P.GetFaceChildFaces(f);
             const int k = fv.size();
             const bool nonQuad = l == 0 && !loop && k != 4;
             const uint32_t first = faceFirst[size_t(f)];
@@ -812,7 +861,8 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::v
                         }
                     }
                 }
-                nextPtex[size_t(c)] = nonQuad ? cornerSub[first + uint32_t(sub)] : facePtex[size_t(f)];
+                nextPtex[size_t(c)] =
+                    nonQuad ? cornerSub[first + uint32_t(sub)] : facePtex[size_t(f)];
                 nextFirst[size_t(c)] = uint32_t(c) * (loop ? 3u : 4u);
                 for (int m = 0; m < cv.size(); ++m) {
                     const int v = cv[m];
@@ -828,9 +878,12 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::v
                             }
                             if (v == P.GetEdgeChildVertex(fe[j])) {
                                 // Edge j joins corners j and j+1.
-                                // Sub-face `sub` touches edge sub (to its (1,0)) and edge sub-1 (to its (0,1)).
-                                if (nonQuad) p = j == sub ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
-                                else p = 0.5f * (uv[first + uint32_t(j)] + uv[first + uint32_t(jn)]);
+                                // Sub-face `sub` touches edge sub (to its (1,0)) and edge sub-1 (to
+                                // its (0,1)).
+                                if (nonQuad)
+                                    p = j == sub ? glm::vec2(1.0f, 0.0f) : glm::vec2(0.0f, 1.0f);
+                                else
+                                    p = 0.5f * (uv[first + uint32_t(j)] + uv[first + uint32_t(jn)]);
                                 break;
                             }
                         }
@@ -855,7 +908,8 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::v
         const int k = last.GetFaceVertices(f).size();
         if (!(anyHole && last.IsFaceHole(f))) {
             for (int m = 0; m < k; ++m) {
-                cornerPtex.push_back(N == 0 ? cornerSub[level0Corner + uint32_t(m)] : facePtex[size_t(f)]);
+                cornerPtex.push_back(N == 0 ? cornerSub[level0Corner + uint32_t(m)]
+                                            : facePtex[size_t(f)]);
                 cornerUV.push_back(uv[faceFirst[size_t(f)] + uint32_t(m)]);
             }
         }
@@ -863,7 +917,8 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner, std::v
     }
 }
 
-void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform, std::vector<uint8_t>& dropFace) {
+void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform,
+                                     std::vector<uint8_t>& dropFace) {
     detail::Stopwatch sw;
     const int N = settings.level;
     // Isolation: at least N (every level-N vertex on a patch corner, where
@@ -883,7 +938,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
     }
     const int isolation = std::clamp(std::max({N, 5, int(std::ceil(maxSharp))}), 5, 10);
-    std::unique_ptr<Far::TopologyRefiner> adaptive = createRefiner(descriptor, settings.options, file);
+    std::unique_ptr<Far::TopologyRefiner> adaptive =
+        createRefiner(descriptor, settings.options, file);
     Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
     popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     popt.useInfSharpPatch = true;
@@ -893,7 +949,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     popt.generateVaryingTables = false;
     adaptive->RefineAdaptive(popt.GetRefineAdaptiveOptions());
     std::unique_ptr<Far::PatchTable> patches(Far::PatchTableFactory::Create(*adaptive, popt));
-    if (!patches) throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
+    if (!patches)
+        throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
     Far::PatchMap patchMap(*patches);
 
     // Cage -> every adaptive point, then the patch table's local points.
@@ -901,9 +958,11 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     limitStencils.numControl = uint32_t(cage.positions.size());
     std::vector<uint32_t> levelBase(size_t(adaptive->GetNumLevels()) + 1, 0);
     for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
-        levelBase[size_t(l) + 1] = levelBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumVertices());
+        levelBase[size_t(l) + 1] =
+            levelBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumVertices());
     }
-    for (int l = 1; l < adaptive->GetNumLevels(); ++l) limitStencils.recordLevel(*adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
+    for (int l = 1; l < adaptive->GetNumLevels(); ++l)
+        limitStencils.recordLevel(*adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
     const uint32_t refinedTotal = levelBase.back();
     uint32_t localCount = 0;
     if (const Far::StencilTableReal<float>* local = patches->GetLocalPointStencilTable<float>()) {
@@ -971,7 +1030,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         glm::vec2 d = cornerUV[c] + kInward * (centre - cornerUV[c]);
         derivUV[r] = glm::vec2(clampParam(d.x), clampParam(d.y));
         derivHandle[r] = patchMap.FindPatch(int(cornerPtex[c]), derivUV[r].x, derivUV[r].y);
-        if (!derivHandle[r]) derivHandle[r] = cornerHandle[c]; // cannot happen inside a face with patches; stay safe
+        if (!derivHandle[r])
+            derivHandle[r] = cornerHandle[c]; // cannot happen inside a face with patches; stay safe
 
         const Far::PatchMap::Handle* h = cornerHandle[c];
         float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
@@ -981,17 +1041,20 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         // corners: evaluate the home face's patch at the corner itself (fewer
         // non-zero weights, no shift); end caps keep the shifted point.
         glm::vec2 at = derivUV[r];
-        if (patches->GetPatchDescriptor(*derivHandle[r]).GetType() == Far::PatchDescriptor::REGULAR) at = glm::vec2(u, v);
+        if (patches->GetPatchDescriptor(*derivHandle[r]).GetType() == Far::PatchDescriptor::REGULAR)
+            at = glm::vec2(u, v);
         patches->EvaluateBasis(*derivHandle[r], at.x, at.y, wP, wDu, wDv);
         int n = patches->GetPatchVertices(*derivHandle[r]).size();
         toPtexUnits(patches->GetPatchParam(*derivHandle[r]), n, wDu, wDv);
-        samples.add(patches->GetPatchVertices(*h), wValue, patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
+        samples.add(patches->GetPatchVertices(*h), wValue,
+                    patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
         frame.ptexFace[r] = cornerPtex[c];
         frame.ptexUV[r] = glm::vec2(u, v);
     }
     // Positions and derivatives of the cage and of every morph target.
     points.resize(limitStencils.numPoints);
-    auto evalVec3 = [&](const std::vector<glm::vec3>& control, glm::vec3* value, std::vector<glm::vec3>& du, std::vector<glm::vec3>& dv) {
+    auto evalVec3 = [&](const std::vector<glm::vec3>& control, glm::vec3* value,
+                        std::vector<glm::vec3>& du, std::vector<glm::vec3>& dv) {
         std::copy(control.begin(), control.end(), points.begin());
         limitStencils.apply(points.data());
         du.resize(nR);
@@ -1008,7 +1071,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     frame.morphDPdu.resize(cage.morphTargets.size());
     frame.morphDPdv.resize(cage.morphTargets.size());
     for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
-        evalVec3(cage.morphTargets[t].positionDeltas, render.morphTargets[t].positionDeltas.data(), frame.morphDPdu[t], frame.morphDPdv[t]);
+        evalVec3(cage.morphTargets[t].positionDeltas, render.morphTargets[t].positionDeltas.data(),
+                 frame.morphDPdu[t], frame.morphDPdv[t]);
         std::vector<glm::vec3>& d = render.morphTargets[t].positionDeltas;
         for (size_t r = 0; r < nR; ++r) d[r] = d[positionRep[r]];
     }
@@ -1020,10 +1084,13 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         const int ch = int(s);
         std::vector<uint32_t> fvBase(size_t(adaptive->GetNumLevels()) + 1, 0);
         for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
-            fvBase[size_t(l) + 1] = fvBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumFVarValues(ch));
+            fvBase[size_t(l) + 1] =
+                fvBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumFVarValues(ch));
         }
-        const Far::StencilTableReal<float>* local = patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
-        std::vector<glm::vec2> values(fvBase.back() + (local ? size_t(local->GetNumStencils()) : 0));
+        const Far::StencilTableReal<float>* local =
+            patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
+        std::vector<glm::vec2> values(fvBase.back() +
+                                      (local ? size_t(local->GetNumStencils()) : 0));
         std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
         Far::PrimvarRefiner primvar(*adaptive);
         for (int l = 1; l < adaptive->GetNumLevels(); ++l) {
@@ -1041,8 +1108,10 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         frame.dUVdv[s].resize(nR);
         for (size_t r = 0; r < nR; ++r) {
             uint32_t c = split.renderFirstCorner[r];
-            auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value, glm::vec2& du, glm::vec2& dv) {
-                patches->EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr, nullptr, ch);
+            auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value,
+                              glm::vec2& du, glm::vec2& dv) {
+                patches->EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr,
+                                                  nullptr, ch);
                 Far::ConstIndexArray cvs = patches->GetPatchFVarValues(*h, ch);
                 toPtexUnits(patches->GetPatchFVarPatchParam(*h, ch), cvs.size(), wDu, wDv);
                 value = du = dv = glm::vec2(0.0f);
@@ -1054,7 +1123,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
                 }
             };
             glm::vec2 p, du, dv, unused;
-            evalUv(cornerHandle[c], glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y)), p, unused, unused);
+            evalUv(cornerHandle[c], glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y)),
+                   p, unused, unused);
             evalUv(derivHandle[r], derivUV[r], unused, du, dv);
             outUV[r] = p;
             frame.dUVdu[s][r] = du;
@@ -1068,9 +1138,11 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         refined.positions[refined.faceVertices[c]] = render.positions[r];
         refined.normals[refined.faceVertices[c]] = render.normals[r];
         for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
-            refined.morphTargets[t].positionDeltas[refined.faceVertices[c]] = render.morphTargets[t].positionDeltas[r];
+            refined.morphTargets[t].positionDeltas[refined.faceVertices[c]] =
+                render.morphTargets[t].positionDeltas[r];
         }
-        for (size_t s = 0; s < cage.uvSets.size(); ++s) refined.uvSets[s].values[refined.uvSets[s].indices[c]] = render.uvSets[s][r];
+        for (size_t s = 0; s < cage.uvSets.size(); ++s)
+            refined.uvSets[s].values[refined.uvSets[s].indices[c]] = render.uvSets[s][r];
     }
     timings.limit += sw.lap();
 }
@@ -1089,7 +1161,9 @@ void Subdivider::Impl::buildRender() {
     render.uvSets.resize(refined.uvSets.size());
     for (size_t s = 0; s < refined.uvSets.size(); ++s) {
         render.uvSets[s].resize(nR);
-        for (size_t r = 0; r < nR; ++r) render.uvSets[s][r] = refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
+        for (size_t r = 0; r < nR; ++r)
+            render.uvSets[s][r] =
+                refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
     }
     render.indices = split.indices;
     render.tangents.clear();
@@ -1100,7 +1174,8 @@ void Subdivider::Impl::buildRender() {
         std::unordered_map<uint64_t, uint32_t> firstOfKey;
         firstOfKey.reserve(nR);
         for (uint32_t r = 0; r < nR; ++r) {
-            uint64_t key = (uint64_t(renderToRefined[r]) << 32) | (needSectors ? sector[split.renderFirstCorner[r]] : 0u);
+            uint64_t key = (uint64_t(renderToRefined[r]) << 32) |
+                           (needSectors ? sector[split.renderFirstCorner[r]] : 0u);
             smoothGroup[r] = firstOfKey.emplace(key, r).first->second;
         }
     }
@@ -1121,10 +1196,13 @@ void Subdivider::Impl::buildRender() {
         render.morphTargets[t].normalDeltas.clear();
         render.morphTargets[t].tangentDeltas.clear();
         render.morphTargets[t].positionDeltas.resize(nR);
-        for (size_t r = 0; r < nR; ++r) render.morphTargets[t].positionDeltas[r] = refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+        for (size_t r = 0; r < nR; ++r)
+            render.morphTargets[t].positionDeltas[r] =
+                refined.morphTargets[t].positionDeltas[renderToRefined[r]];
     }
     render.morphWeights = refined.morphWeights;
-    if (!render.morphTargets.empty() && render.morphWeights.empty()) render.morphWeights.assign(render.morphTargets.size(), 0.0f);
+    if (!render.morphTargets.empty() && render.morphWeights.empty())
+        render.morphWeights.assign(render.morphTargets.size(), 0.0f);
     std::vector<uint32_t> refinedToLevel(refined.positions.size(), 0);
     for (uint32_t v = 0; v < levelToRefined.size(); ++v) {
         if (levelToRefined[v] != UINT32_MAX) refinedToLevel[levelToRefined[v]] = v;
@@ -1139,42 +1217,56 @@ void Subdivider::Impl::buildRender() {
 
 bool Subdivider::Impl::sameTopology(const PolygonMesh& cage) const {
     const SubdivOptions& o = settings.options;
-    if (!keyValid || keyLevel != settings.level || keyOptions.scheme != o.scheme || keyOptions.boundary != o.boundary ||
-        keyOptions.fvar != o.fvar || keyOptions.creaseMethod != o.creaseMethod || keyOptions.triangles != o.triangles) {
+    if (!keyValid || keyLevel != settings.level || keyOptions.scheme != o.scheme ||
+        keyOptions.boundary != o.boundary || keyOptions.fvar != o.fvar ||
+        keyOptions.creaseMethod != o.creaseMethod || keyOptions.triangles != o.triangles) {
         return false;
     }
     auto sameCreases = [](const std::vector<EdgeCrease>& a, const std::vector<EdgeCrease>& b) {
-        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const EdgeCrease& x, const EdgeCrease& y) {
-                   return x.v0 == y.v0 && x.v1 == y.v1 && x.sharpness == y.sharpness;
-               });
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(),
+                                                  [](const EdgeCrease& x, const EdgeCrease& y) {
+                                                      return x.v0 == y.v0 && x.v1 == y.v1 &&
+                                                             x.sharpness == y.sharpness;
+                                                  });
     };
     auto sameCorners = [](const std::vector<VertexCorner>& a, const std::vector<VertexCorner>& b) {
-        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(), [](const VertexCorner& x, const VertexCorner& y) {
-                   return x.vertex == y.vertex && x.sharpness == y.sharpness;
-               });
+        return a.size() == b.size() && std::equal(a.begin(), a.end(), b.begin(),
+                                                  [](const VertexCorner& x, const VertexCorner& y) {
+                                                      return x.vertex == y.vertex &&
+                                                             x.sharpness == y.sharpness;
+                                                  });
     };
-    if (cage.positions.size() != key.positions.size() || cage.faceSizes != key.faceSizes || cage.faceVertices != key.faceVertices ||
-        cage.holes != key.holes || !sameCreases(cage.creases, key.creases) || !sameCorners(cage.corners, key.corners) ||
-        cage.uvSets.size() != key.uvSets.size() || cage.morphTargets.size() != key.morphTargets.size()) {
+    if (cage.positions.size() != key.positions.size() || cage.faceSizes != key.faceSizes ||
+        cage.faceVertices != key.faceVertices || cage.holes != key.holes ||
+        !sameCreases(cage.creases, key.creases) || !sameCorners(cage.corners, key.corners) ||
+        cage.uvSets.size() != key.uvSets.size() ||
+        cage.morphTargets.size() != key.morphTargets.size()) {
         return false;
     }
     for (size_t s = 0; s < cage.uvSets.size(); ++s) {
-        if (cage.uvSets[s].indices != key.uvSets[s].indices || cage.uvSets[s].values.size() != key.uvSets[s].values.size()) return false;
+        if (cage.uvSets[s].indices != key.uvSets[s].indices ||
+            cage.uvSets[s].values.size() != key.uvSets[s].values.size())
+            return false;
     }
     return true;
 }
 
-void Subdivider::Impl::recordUniformStencils(const Far::TopologyRefiner* far, const PolygonMesh& cage) {
+void Subdivider::Impl::recordUniformStencils(const Far::TopologyRefiner* far,
+                                             const PolygonMesh& cage) {
     const int N = settings.level;
-    auto numVerts = [&](int l) { return far ? uint32_t(far->GetLevel(l).GetNumVertices()) : fast.level(l).numVerts; };
+    auto numVerts = [&](int l) {
+        return far ? uint32_t(far->GetLevel(l).GetNumVertices()) : fast.level(l).numVerts;
+    };
     // Level 0 holds the cage's UV values (Far indexes them as given).
     auto numValues = [&](int l, int s) {
         if (l == 0) return uint32_t(cage.uvSets[size_t(s)].values.size());
         return far ? uint32_t(far->GetLevel(l).GetNumFVarValues(s)) : fast.numFVarValues(l, s);
     };
     auto record = [&](FactoredStencils& f, int l, uint32_t srcBase, uint32_t dstBase, int channel) {
-        if (far) f.recordLevel(*far, l, srcBase, dstBase, channel);
-        else f.recordLevel(fast, l, srcBase, dstBase, channel);
+        if (far)
+            f.recordLevel(*far, l, srcBase, dstBase, channel);
+        else
+            f.recordLevel(fast, l, srcBase, dstBase, channel);
     };
     uniformStencils = FactoredStencils();
     uniformStencils.numControl = uint32_t(cage.positions.size());
@@ -1218,7 +1310,8 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
         }
     };
     refineVec3(cage.positions, refined.positions);
-    for (size_t t = 0; t < cage.morphTargets.size(); ++t) refineVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
+    for (size_t t = 0; t < cage.morphTargets.size(); ++t)
+        refineVec3(cage.morphTargets[t].positionDeltas, refined.morphTargets[t].positionDeltas);
     for (size_t s = 0; s < cage.uvSets.size(); ++s) {
         const FactoredStencils& f = fvarStencils[s];
         uvPoints.resize(f.numPoints);
@@ -1238,12 +1331,18 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     } else {
         if (renderValid) {
             const size_t nR = renderToRefined.size();
-            for (size_t r = 0; r < nR; ++r) render.positions[r] = refined.positions[renderToRefined[r]];
+            for (size_t r = 0; r < nR; ++r)
+                render.positions[r] = refined.positions[renderToRefined[r]];
             for (size_t s = 0; s < refined.uvSets.size(); ++s) {
-                for (size_t r = 0; r < nR; ++r) render.uvSets[s][r] = refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
+                for (size_t r = 0; r < nR; ++r)
+                    render.uvSets[s][r] =
+                        refined.uvSets[s]
+                            .values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
             }
             for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
-                for (size_t r = 0; r < nR; ++r) render.morphTargets[t].positionDeltas[r] = refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+                for (size_t r = 0; r < nR; ++r)
+                    render.morphTargets[t].positionDeltas[r] =
+                        refined.morphTargets[t].positionDeltas[renderToRefined[r]];
             }
             render.morphWeights = refined.morphWeights;
             polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
@@ -1261,22 +1360,26 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     const SubdivOptions& o = settings.options;
     const int N = settings.level;
     if (N < 0 || N > kMaxSubdivisionLevel) {
-        throw InputError(file, "level", std::to_string(N) + " is outside 0.." + std::to_string(kMaxSubdivisionLevel));
+        throw InputError(file, "level",
+                         std::to_string(N) + " is outside 0.." +
+                             std::to_string(kMaxSubdivisionLevel));
     }
     if (cage.faceSizes.empty()) throw InputError(file, "", "empty mesh: no faces");
     if (o.scheme == Scheme::Loop) {
         for (size_t f = 0; f < cage.faceSizes.size(); ++f) {
             if (cage.faceSizes[f] != 3) {
-                throw InputError(file, "face " + std::to_string(f),
-                                 "has " + std::to_string(cage.faceSizes[f]) + " corners; the Loop scheme takes triangles only (use catmark or bilinear)");
+                throw InputError(
+                    file, "face " + std::to_string(f),
+                    "has " + std::to_string(cage.faceSizes[f]) +
+                        " corners; the Loop scheme takes triangles only (use catmark or bilinear)");
             }
         }
     }
     long double estimate = refinedFaceEstimate(cage, o.scheme, N);
     if (estimate > (long double)settings.maxRefinedFaces) {
         throw InputError(file, "level " + std::to_string(N),
-                         "would make about " + std::to_string((unsigned long long)estimate) + " faces; the limit is " +
-                             std::to_string(settings.maxRefinedFaces));
+                         "would make about " + std::to_string((unsigned long long)estimate) +
+                             " faces; the limit is " + std::to_string(settings.maxRefinedFaces));
     }
     cageVertices = cage.positions.size();
     if (!settings.limit && settings.reuseTopology && sameTopology(cage)) {
@@ -1315,7 +1418,9 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
         timings.topology = sw.lap();
         refineUniformFast(cage);
         sw.lap();
-        if (tags) fast.lastLevelCreases(refined.creases, refined.corners, o.boundary == BoundaryInterpolation::EdgeAndCorner);
+        if (tags)
+            fast.lastLevelCreases(refined.creases, refined.corners,
+                                  o.boundary == BoundaryInterpolation::EdgeAndCorner);
         else {
             refined.creases.clear();
             refined.corners.clear();
@@ -1329,7 +1434,8 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
         timings.topology = sw.lap();
         refineUniform(cage, *refiner);
         sw.lap();
-        if (tags) collectCreases(*refiner);
+        if (tags)
+            collectCreases(*refiner);
         else {
             refined.creases.clear();
             refined.corners.clear();
@@ -1389,45 +1495,70 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
 // ---- Public ----------------------------------------------------------------------
 
 Subdivider::Subdivider() : impl_(std::make_unique<Impl>()) {}
-Subdivider::Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file) : Subdivider() {
+Subdivider::Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings,
+                       const std::string& file)
+    : Subdivider() {
     build(cage, settings, file);
 }
 Subdivider::~Subdivider() = default;
 Subdivider::Subdivider(Subdivider&&) noexcept = default;
 Subdivider& Subdivider::operator=(Subdivider&&) noexcept = default;
 
-void Subdivider::build(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file) {
+void Subdivider::build(const PolygonMesh& cage, const SubdivisionSettings& settings,
+                       const std::string& file) {
     impl_->settings = settings;
     impl_->file = file.empty() ? (cage.name.empty() ? std::string("(mesh)") : cage.name) : file;
     impl_->build(cage);
 }
 
-const SubdivisionSettings& Subdivider::settings() const { return impl_->settings; }
-const PolygonMesh& Subdivider::refined() const { return impl_->refined; }
-const RenderMesh& Subdivider::renderMesh() const { return impl_->render; }
-const std::vector<uint32_t>& Subdivider::renderToRefinedVertex() const { return impl_->renderToRefined; }
-const LimitFrame& Subdivider::limitFrame() const { return impl_->frame; }
-const SubdivisionTimings& Subdivider::timings() const { return impl_->timings; }
-bool Subdivider::usedSpecializedRefiner() const { return impl_->fastBuilt; }
-const std::string& Subdivider::specializedRefinerDeclined() const { return impl_->fastDeclined; }
-size_t Subdivider::cageVertexCount() const { return impl_->cageVertices; }
+const SubdivisionSettings& Subdivider::settings() const {
+    return impl_->settings;
+}
+const PolygonMesh& Subdivider::refined() const {
+    return impl_->refined;
+}
+const RenderMesh& Subdivider::renderMesh() const {
+    return impl_->render;
+}
+const std::vector<uint32_t>& Subdivider::renderToRefinedVertex() const {
+    return impl_->renderToRefined;
+}
+const LimitFrame& Subdivider::limitFrame() const {
+    return impl_->frame;
+}
+const SubdivisionTimings& Subdivider::timings() const {
+    return impl_->timings;
+}
+bool Subdivider::usedSpecializedRefiner() const {
+    return impl_->fastBuilt;
+}
+const std::string& Subdivider::specializedRefinerDeclined() const {
+    return impl_->fastDeclined;
+}
+size_t Subdivider::cageVertexCount() const {
+    return impl_->cageVertices;
+}
 size_t Subdivider::stencilWeightCount() const {
     const Impl& m = *impl_;
     if (m.settings.limit) return m.limitStencils.weightCount() + m.samples.point.size();
     return m.uniformStencils.weightCount();
 }
 
-void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame, bool recomputeNormals) const {
+void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out,
+                        LimitFrame* frame, bool recomputeNormals) const {
     const Impl& m = *impl_;
     // Caller bugs, checked in release builds too: an unchecked call would
     // write past the scratch buffers.
-    if (!m.settings.animate || cagePositions.size() != m.cageVertices || out.positions.size() != m.render.positions.size()) {
-        throw std::logic_error("Subdivider::update: needs SubdivisionSettings::animate, the cage's vertex count and a copy of renderMesh()");
+    if (!m.settings.animate || cagePositions.size() != m.cageVertices ||
+        out.positions.size() != m.render.positions.size()) {
+        throw std::logic_error("Subdivider::update: needs SubdivisionSettings::animate, the cage's "
+                               "vertex count and a copy of renderMesh()");
     }
     const size_t nR = out.positions.size();
     if (m.settings.limit) {
         m.points4.resize(m.limitStencils.numPoints);
-        for (size_t v = 0; v < cagePositions.size(); ++v) m.points4[v] = glm::vec4(cagePositions[v], 0.0f);
+        for (size_t v = 0; v < cagePositions.size(); ++v)
+            m.points4[v] = glm::vec4(cagePositions[v], 0.0f);
         m.limitStencils.apply(m.points4.data());
         glm::vec3 *du, *dv;
         std::vector<glm::vec3> tmpU, tmpV;
@@ -1445,17 +1576,21 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
         m.samples.evaluate(m.points4.data(), out.positions.data(), du, dv);
         out.normals.resize(nR);
         if (recomputeNormals) {
-            for (size_t r = 0; r < nR; ++r) out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+            for (size_t r = 0; r < nR; ++r)
+                out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
         }
         m.unifyCopies(out.positions.data(), out.normals.data());
         return;
     }
     m.points4.resize(m.uniformStencils.numPoints);
-    for (size_t v = 0; v < cagePositions.size(); ++v) m.points4[v] = glm::vec4(cagePositions[v], 0.0f);
+    for (size_t v = 0; v < cagePositions.size(); ++v)
+        m.points4[v] = glm::vec4(cagePositions[v], 0.0f);
     m.uniformStencils.apply(m.points4.data());
-    const glm::vec4* levelN = m.points4.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
+    const glm::vec4* levelN =
+        m.points4.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
     for (size_t r = 0; r < nR; ++r) out.positions[r] = glm::vec3(levelN[m.renderToLevel[r]]);
-    if (recomputeNormals) m.polygonNormals(out.positions.data(), out.normals.data(), m.normalScratch);
+    if (recomputeNormals)
+        m.polygonNormals(out.positions.data(), out.normals.data(), m.normalScratch);
 }
 
 } // namespace sg::mesh

@@ -17,9 +17,12 @@ namespace sg::mesh {
 
 std::string_view tangentMethodName(TangentMethod method) {
     switch (method) {
-    case TangentMethod::MikkTSpace: return "mikktspace";
-    case TangentMethod::Limit: return "limit";
-    case TangentMethod::Pixel: return "pixel";
+    case TangentMethod::MikkTSpace:
+        return "mikktspace";
+    case TangentMethod::Limit:
+        return "limit";
+    case TangentMethod::Pixel:
+        return "pixel";
     }
     return "unknown";
 }
@@ -34,7 +37,9 @@ namespace {
 
 constexpr uint32_t kNoVariant = std::numeric_limits<uint32_t>::max();
 
-bool sameBits(const glm::vec4& a, const glm::vec4& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+bool sameBits(const glm::vec4& a, const glm::vec4& b) {
+    return std::memcmp(&a, &b, sizeof a) == 0;
+}
 
 template <typename T>
 void duplicateEntry(std::vector<T>& values, uint32_t from) {
@@ -45,14 +50,15 @@ void duplicateEntry(std::vector<T>& values, uint32_t from) {
 
 size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec4> cornerTangents) {
     if (cornerTangents.size() != mesh.indices.size())
-        throw std::invalid_argument("applyCornerTangents: " + std::to_string(cornerTangents.size()) +
-                                    " corner tangents for " + std::to_string(mesh.indices.size()) +
-                                    " corners");
+        throw std::invalid_argument(
+            "applyCornerTangents: " + std::to_string(cornerTangents.size()) +
+            " corner tangents for " + std::to_string(mesh.indices.size()) + " corners");
     const size_t vertexCount = mesh.vertexCount();
     for (const uint32_t v : mesh.indices)
         if (v >= vertexCount)
             throw std::invalid_argument("applyCornerTangents: index " + std::to_string(v) +
-                                        " out of range (" + std::to_string(vertexCount) + " vertices)");
+                                        " out of range (" + std::to_string(vertexCount) +
+                                        " vertices)");
     // Each vertex keeps a chain of the distinct tangents its corners got;
     // the first stays in the vertex, each further one becomes a copy.
     struct Variant {
@@ -70,7 +76,8 @@ size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec
         const uint32_t v = mesh.indices[c];
         const glm::vec4& t = cornerTangents[c];
         uint32_t* link = &head[v];
-        while (*link != kNoVariant && !sameBits(variants[*link].tangent, t)) link = &variants[*link].next;
+        while (*link != kNoVariant && !sameBits(variants[*link].tangent, t))
+            link = &variants[*link].next;
         if (*link != kNoVariant) {
             mesh.indices[c] = variants[*link].vertex;
             continue;
@@ -101,12 +108,13 @@ size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec
 
 void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
     if (mesh.normals.size() != mesh.positions.size())
-        throw std::invalid_argument("MikkTSpace needs vertex normals (mesh '" + mesh.name + "' has " +
-                                    std::to_string(mesh.normals.size()) + " for " +
+        throw std::invalid_argument("MikkTSpace needs vertex normals (mesh '" + mesh.name +
+                                    "' has " + std::to_string(mesh.normals.size()) + " for " +
                                     std::to_string(mesh.positions.size()) + " vertices)");
     if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
         throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
-                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) + ")");
+                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) +
+                                    ")");
     MikkTSpaceInput input;
     input.positions = mesh.positions;
     input.normals = mesh.normals;
@@ -204,7 +212,8 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
     const size_t n = mesh.vertexCount();
     if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
         throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
-                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) + ")");
+                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) +
+                                    ")");
     if (frame.dPdu.size() != n || frame.dPdv.size() != n || frame.dUVdu.size() <= size_t(uvSet) ||
         frame.dUVdv.size() <= size_t(uvSet) || frame.dUVdu[size_t(uvSet)].size() != n ||
         frame.dUVdv[size_t(uvSet)].size() != n)
@@ -253,11 +262,13 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
             }
         }
         for (size_t v = 0; v < n; ++v) {
-            if (regular[v] || (sumPos[v] == glm::dvec3(0.0) && sumNeg[v] == glm::dvec3(0.0))) continue;
+            if (regular[v] || (sumPos[v] == glm::dvec3(0.0) && sumNeg[v] == glm::dvec3(0.0)))
+                continue;
             const bool positive = votes[v] != 0 ? votes[v] > 0 : mesh.tangents[v].w > 0.0f;
             const glm::dvec3 sum = positive ? sumPos[v] : sumNeg[v];
             if (glm::length(sum) > 1e-6)
-                mesh.tangents[v] = glm::vec4(glm::vec3(sum / glm::length(sum)), positive ? 1.0f : -1.0f);
+                mesh.tangents[v] =
+                    glm::vec4(glm::vec3(sum / glm::length(sum)), positive ? 1.0f : -1.0f);
         }
     }
     for (size_t v = 0; v < n; ++v) {
@@ -272,7 +283,8 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
                 const glm::dvec3 un = nrm / nLen;
                 glm::dvec3 tt = t - glm::dot(t, un) * un;
                 if (glm::length(tt) < 1e-6) { // tangent along the normal: any orthogonal direction
-                    const glm::dvec3 axis = std::fabs(un.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+                    const glm::dvec3 axis =
+                        std::fabs(un.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
                     tt = axis - glm::dot(axis, un) * un;
                 }
                 t = tt / glm::length(tt);
@@ -284,7 +296,8 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
     return irregular;
 }
 
-size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet, const LimitFrame* frame) {
+size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
+                        const LimitFrame* frame) {
     switch (method) {
     case TangentMethod::MikkTSpace: {
         const size_t before = mesh.vertexCount();

@@ -31,7 +31,8 @@ void sized(std::vector<T>& v, size_t n) {
 
 } // namespace
 
-float* UniformRefiner::VertexHood::GetChildSharpnessPerEdge(const Crease& crease, float out[]) const {
+float* UniformRefiner::VertexHood::GetChildSharpnessPerEdge(const Crease& crease,
+                                                            float out[]) const {
     const int n = GetNumEdges();
     float parentSharpness[64];
     std::vector<float> big;
@@ -47,7 +48,8 @@ float* UniformRefiner::VertexHood::GetChildSharpnessPerEdge(const Crease& crease
 
 // ---- Level 0 -------------------------------------------------------------------
 
-bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh& cage, std::string& why) {
+bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh& cage,
+                            std::string& why) {
     levels_ = 0;
     if (base.GetSchemeType() != Sdc::SCHEME_CATMARK) {
         why = "not Catmull-Clark";
@@ -101,7 +103,8 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
     for (uint32_t e = 0; e < Z.numEdges; ++e) {
         Far::ConstIndexArray ev = L.GetEdgeVertices(int(e)), ef = L.GetEdgeFaces(int(e));
         Far::ConstLocalIndexArray eif = L.GetEdgeFaceLocalIndices(int(e));
-        if (L.IsEdgeNonManifold(int(e)) || ev[0] == ev[1] || ef.size() < 1 || ef.size() > 2 || (ef.size() == 2 && ef[0] == ef[1])) {
+        if (L.IsEdgeNonManifold(int(e)) || ev[0] == ev[1] || ef.size() < 1 || ef.size() > 2 ||
+            (ef.size() == 2 && ef[0] == ef[1])) {
             why = "non-manifold or degenerate edge " + std::to_string(e);
             return false;
         }
@@ -112,7 +115,8 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
         Z.edgeFaces[2 * e + 1] = ef.size() == 2 ? uint32_t(ef[1]) : kNone;
         Z.edgeInFace[2 * e + 1] = ef.size() == 2 ? uint16_t(eif[1]) : 0;
         Z.edgeSharpness[e] = L.GetEdgeSharpness(int(e));
-        Z.edgeTags[e] = uint8_t((L.IsEdgeBoundary(int(e)) ? kEdgeBoundary : 0) | (L.IsEdgeInfSharp(int(e)) ? kEdgeInfSharp : 0) |
+        Z.edgeTags[e] = uint8_t((L.IsEdgeBoundary(int(e)) ? kEdgeBoundary : 0) |
+                                (L.IsEdgeInfSharp(int(e)) ? kEdgeInfSharp : 0) |
                                 (L.IsEdgeSemiSharp(int(e)) ? kEdgeSemiSharp : 0));
         tagged |= Z.edgeTags[e] != 0 || Z.edgeSharpness[e] > 0.0f;
     }
@@ -129,14 +133,17 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
     sized(Z.vertRules, Z.numVerts);
     for (uint32_t v = 0; v < Z.numVerts; ++v) {
         Far::ConstIndexArray vf = L.GetVertexFaces(int(v)), ve = L.GetVertexEdges(int(v));
-        Far::ConstLocalIndexArray vif = L.GetVertexFaceLocalIndices(int(v)), vie = L.GetVertexEdgeLocalIndices(int(v));
-        if (L.IsVertexNonManifold(int(v)) || vf.size() == 0 || (ve.size() != vf.size() && ve.size() != vf.size() + 1)) {
+        Far::ConstLocalIndexArray vif = L.GetVertexFaceLocalIndices(int(v)),
+                                  vie = L.GetVertexEdgeLocalIndices(int(v));
+        if (L.IsVertexNonManifold(int(v)) || vf.size() == 0 ||
+            (ve.size() != vf.size() && ve.size() != vf.size() + 1)) {
             why = "non-manifold or isolated vertex " + std::to_string(v);
             return false;
         }
         Z.vertFaceOffsets[v] = uint32_t(Z.vertFaces.size());
         Z.vertEdgeOffsets[v] = uint32_t(Z.vertEdges.size());
-        uint8_t tag = uint8_t((L.IsVertexBoundary(int(v)) ? kVertBoundary : 0) | (L.IsVertexInfSharp(int(v)) ? kVertInfSharp : 0) |
+        uint8_t tag = uint8_t((L.IsVertexBoundary(int(v)) ? kVertBoundary : 0) |
+                              (L.IsVertexInfSharp(int(v)) ? kVertInfSharp : 0) |
                               (L.IsVertexSemiSharp(int(v)) ? kVertSemiSharp : 0));
         for (int i = 0; i < vf.size(); ++i) {
             Z.vertFaces.push_back(uint32_t(vf[i]));
@@ -175,9 +182,12 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
     RefineLevel& Z = level_[0];
     FVarLevelData& F = Z.fvar[channel];
     const Opt::FVarLinearInterpolation rule = options_.GetFVarLinearInterpolation();
-    const bool linearBoundaries = rule == Opt::FVAR_LINEAR_ALL || rule == Opt::FVAR_LINEAR_BOUNDARIES;
-    const bool dependentSharpness = rule == Opt::FVAR_LINEAR_CORNERS_PLUS1 || rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
-    const bool geomCornersSmooth = options_.GetVtxBoundaryInterpolation() != Opt::VTX_BOUNDARY_EDGE_AND_CORNER;
+    const bool linearBoundaries =
+        rule == Opt::FVAR_LINEAR_ALL || rule == Opt::FVAR_LINEAR_BOUNDARIES;
+    const bool dependentSharpness =
+        rule == Opt::FVAR_LINEAR_CORNERS_PLUS1 || rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
+    const bool geomCornersSmooth =
+        options_.GetVtxBoundaryInterpolation() != Opt::VTX_BOUNDARY_EDGE_AND_CORNER;
     const bool fvarCornersSharp = rule != Opt::FVAR_LINEAR_NONE;
     const bool makeSmoothCornersSharp = geomCornersSmooth && fvarCornersSharp;
     const bool sharpenBothIfOneCorner = rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
@@ -237,13 +247,16 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
                 unique.push_back(values[i]);
             } else {
                 auto it = std::find(unique.begin(), unique.end(), values[i]);
-                if (it == unique.end()) unique.push_back(values[i]);
-                else sibling[i] = uint16_t(it - unique.begin());
+                if (it == unique.end())
+                    unique.push_back(values[i]);
+                else
+                    sibling[i] = uint16_t(it - unique.begin());
             }
         }
         count[v] = uint32_t(unique.size());
         if (count[v] > 1) {
-            for (uint32_t i = 0; i < nf; ++i) F.cornerSibling[Z.faceOffsets[vf[i]] + vif[i]] = sibling[i];
+            for (uint32_t i = 0; i < nf; ++i)
+                F.cornerSibling[Z.faceOffsets[vf[i]] + vif[i]] = sibling[i];
         }
     }
     sized(F.valueOffsets, Z.numVerts + 1);
@@ -274,12 +287,13 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
         F.valueIndex[off] = F.faceValues[Z.faceOffsets[vf[0]] + vif[0]];
         if (!mismatch[v]) continue;
         for (uint32_t i = 1, next = 1; i < nf; ++i) {
-            if (cornerSib(i) == next) F.valueIndex[off + next++] = F.faceValues[Z.faceOffsets[vf[i]] + vif[i]];
+            if (cornerSib(i) == next)
+                F.valueIndex[off + next++] = F.faceValues[Z.faceOffsets[vf[i]] + vif[i]];
         }
         const uint8_t vtag = Z.vertTags[v];
         const bool boundary = ne > nf;
-        bool allCorners = linearBoundaries || (vtag & kVertInfSharp) || (dependentSharpness && n > 2) ||
-                          (sharpenDarts && n == 1 && !boundary);
+        bool allCorners = linearBoundaries || (vtag & kVertInfSharp) ||
+                          (dependentSharpness && n > 2) || (sharpenDarts && n == 1 && !boundary);
         if (allCorners) {
             std::fill_n(F.valueTags.begin() + off, n, kValueMismatch);
             continue;
@@ -307,15 +321,20 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
             spans[0].size = 1;
             spans[0].start = 0;
             if (!boundary && cornerSib(nf - 1) == 0) {
-                if (edgeSeam(ve[0]) || (Z.edgeTags[ve[0]] & kEdgeInfSharp)) spans[0].disjoint = 1;
-                else if (Z.edgeTags[ve[0]] & kEdgeSemiSharp) ++spans[0].semiSharp;
+                if (edgeSeam(ve[0]) || (Z.edgeTags[ve[0]] & kEdgeInfSharp))
+                    spans[0].disjoint = 1;
+                else if (Z.edgeTags[ve[0]] & kEdgeSemiSharp)
+                    ++spans[0].semiSharp;
             }
             for (uint32_t i = 1; i < nf; ++i) {
                 Span& s = spans[cornerSib(i)];
                 if (cornerSib(i) == cornerSib(i - 1)) {
-                    if (edgeSeam(ve[i])) ++s.disjoint;
-                    else if (Z.edgeTags[ve[i]] & kEdgeInfSharp) s.disjoint = 1;
-                    else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp) ++s.semiSharp;
+                    if (edgeSeam(ve[i]))
+                        ++s.disjoint;
+                    else if (Z.edgeTags[ve[i]] & kEdgeInfSharp)
+                        s.disjoint = 1;
+                    else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp)
+                        ++s.semiSharp;
                 } else {
                     if (s.size > 0) ++s.disjoint;
                     s.start = int(i);
@@ -350,7 +369,8 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
             }
             F.valueTags[off + i] = kValueMismatch | kValueCrease;
             F.creaseStart[off + i] = uint16_t(s.start);
-            F.creaseEnd[off + i] = uint16_t((i == 0 && s.start != 0) ? s.start + s.size - 1 - int(nf) : s.start + s.size - 1);
+            F.creaseEnd[off + i] = uint16_t(
+                (i == 0 && s.start != 0) ? s.start + s.size - 1 - int(nf) : s.start + s.size - 1);
         }
     }
     return true;
@@ -399,7 +419,8 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             const uint32_t* v = pfv + 4 * f;
             const uint32_t* e = pfe + 4 * f;
             const uint32_t fc = firstFace + f;
-            const uint32_t e0 = firstEdge + e[0], e1 = firstEdge + e[1], e2 = firstEdge + e[2], e3 = firstEdge + e[3];
+            const uint32_t e0 = firstEdge + e[0], e1 = firstEdge + e[1], e2 = firstEdge + e[2],
+                           e3 = firstEdge + e[3];
             uint32_t* out = cfv + 16 * f;
             // Child j keeps corner j at position j: (v_j, e_j, centre, e_j-1) rotated by j.
             out[0] = v[0], out[1] = e0, out[2] = fc, out[3] = e3;
@@ -413,7 +434,8 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t jp = j ? j - 1 : k - 1;
             uint32_t* out = cfv + 4 * (off + j);
-            const uint32_t vv = pfv[off + j], en = firstEdge + pfe[off + j], fc = firstFace + f, ep = firstEdge + pfe[off + jp];
+            const uint32_t vv = pfv[off + j], en = firstEdge + pfe[off + j], fc = firstFace + f,
+                           ep = firstEdge + pfe[off + jp];
             if (k == 4) {
                 out[j] = vv;
                 out[(j + 1) & 3] = en;
@@ -621,8 +643,10 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
                 } else {
                     const uint32_t pv = P.edgeVerts[2 * e + j];
                     around.clear();
-                    for (uint32_t i = P.vertEdgeOffsets[pv]; i < P.vertEdgeOffsets[pv + 1]; ++i) around.push_back(P.edgeSharpness[P.vertEdges[i]]);
-                    s = crease.SubdivideEdgeSharpnessAtVertex(P.edgeSharpness[e], int(around.size()), around.data());
+                    for (uint32_t i = P.vertEdgeOffsets[pv]; i < P.vertEdgeOffsets[pv + 1]; ++i)
+                        around.push_back(P.edgeSharpness[P.vertEdges[i]]);
+                    s = crease.SubdivideEdgeSharpnessAtVertex(P.edgeSharpness[e],
+                                                              int(around.size()), around.data());
                 }
                 if (!Crease::IsSharp(s)) ctag &= uint8_t(~kEdgeSemiSharp);
             }
@@ -649,10 +673,13 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
     for (uint32_t e = 0; e < nE; ++e) {
         const uint8_t etag = P.edgeTags[e];
         const uint32_t cv = firstEdge + e;
-        uint8_t tag = uint8_t(((etag & kEdgeBoundary) ? kVertBoundary : 0) | ((etag & kEdgeSemiSharp) ? kVertSemiSharpEdges : 0));
-        uint8_t rule = uint8_t((etag & (kEdgeSemiSharp | kEdgeInfSharp)) ? Crease::RULE_CREASE : Crease::RULE_SMOOTH);
+        uint8_t tag = uint8_t(((etag & kEdgeBoundary) ? kVertBoundary : 0) |
+                              ((etag & kEdgeSemiSharp) ? kVertSemiSharpEdges : 0));
+        uint8_t rule = uint8_t((etag & (kEdgeSemiSharp | kEdgeInfSharp)) ? Crease::RULE_CREASE
+                                                                         : Crease::RULE_SMOOTH);
         if (tag & kVertSemiSharpEdges) {
-            const int sharpCount = ((C.edgeTags[nC + 2 * e] & kEdgeSemiSharp) ? 1 : 0) + ((C.edgeTags[nC + 2 * e + 1] & kEdgeSemiSharp) ? 1 : 0);
+            const int sharpCount = ((C.edgeTags[nC + 2 * e] & kEdgeSemiSharp) ? 1 : 0) +
+                                   ((C.edgeTags[nC + 2 * e + 1] & kEdgeSemiSharp) ? 1 : 0);
             if (sharpCount == 0) tag &= uint8_t(~kVertSemiSharpEdges);
             rule = uint8_t(crease.DetermineVertexVertexRule(0.0f, sharpCount));
         }
@@ -671,7 +698,8 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
             infCount += (t & kEdgeInfSharp) ? 1 : 0;
             semiCount += (t & kEdgeSemiSharp) ? 1 : 0;
         }
-        ctag = uint8_t(semiCount > 0 ? (ctag | kVertSemiSharpEdges) : (ctag & ~kVertSemiSharpEdges));
+        ctag =
+            uint8_t(semiCount > 0 ? (ctag | kVertSemiSharpEdges) : (ctag & ~kVertSemiSharpEdges));
         if (!(ctag & kVertSemiSharp) && !(ctag & kVertInfSharp)) {
             C.vertRules[v] = uint8_t(crease.DetermineVertexVertexRule(0.0f, infCount + semiCount));
         }
@@ -702,14 +730,18 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
 
     if (!last) { // (the last level's value tags are never read)
         sized(CF.valueTags, total);
-        const uint8_t splitTag = fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease) : uint8_t(kValueMismatch);
+        const uint8_t splitTag = fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease)
+                                                       : uint8_t(kValueMismatch);
         for (uint32_t v = 0; v < nV; ++v) {
-            for (uint32_t s = CF.valueOffsets[v]; s < CF.valueOffsets[v + 1]; ++s) CF.valueTags[s] = PF.valueTags[PF.valueOffsets[v] + (s - CF.valueOffsets[v])];
+            for (uint32_t s = CF.valueOffsets[v]; s < CF.valueOffsets[v + 1]; ++s)
+                CF.valueTags[s] = PF.valueTags[PF.valueOffsets[v] + (s - CF.valueOffsets[v])];
         }
         for (uint32_t f = 0; f < nF; ++f) CF.valueTags[CF.valueOffsets[firstFace + f]] = 0;
         for (uint32_t e = 0; e < nE; ++e) {
             const uint8_t t = (PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear)) ? splitTag : 0;
-            for (uint32_t i = CF.valueOffsets[firstEdge + e]; i < CF.valueOffsets[firstEdge + e + 1]; ++i) CF.valueTags[i] = t;
+            for (uint32_t i = CF.valueOffsets[firstEdge + e];
+                 i < CF.valueOffsets[firstEdge + e + 1]; ++i)
+                CF.valueTags[i] = t;
         }
     }
 
@@ -727,11 +759,14 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
             const uint32_t* v = P.faceVerts.data() + 4 * f;
             const uint32_t* e = P.faceEdges.data() + 4 * f;
             uint16_t se[4]; // side of each edge's seam this face is on
-            for (uint32_t j = 0; j < 4; ++j) se[j] = ((PF.edgeTags[e[j]] & kFvEdgeMismatch) && P.edgeFaces[2 * e[j] + 1] == f) ? 1 : 0;
+            for (uint32_t j = 0; j < 4; ++j)
+                se[j] = ((PF.edgeTags[e[j]] & kFvEdgeMismatch) && P.edgeFaces[2 * e[j] + 1] == f)
+                            ? 1
+                            : 0;
             const uint16_t* sv = PF.cornerSibling.data() + 4 * f;
             const uint32_t fc = cvo[firstFace + f];
-            const uint32_t ev[4] = {cvo[firstEdge + e[0]] + se[0], cvo[firstEdge + e[1]] + se[1], cvo[firstEdge + e[2]] + se[2],
-                                    cvo[firstEdge + e[3]] + se[3]};
+            const uint32_t ev[4] = {cvo[firstEdge + e[0]] + se[0], cvo[firstEdge + e[1]] + se[1],
+                                    cvo[firstEdge + e[2]] + se[2], cvo[firstEdge + e[3]] + se[3]};
             uint32_t* out = CF.faceValues.data() + 16 * f;
             out[0] = cvo[v[0]] + sv[0], out[1] = ev[0], out[2] = fc, out[3] = ev[3];
             out[4] = ev[0], out[5] = cvo[v[1]] + sv[1], out[6] = ev[1], out[7] = fc;
@@ -752,10 +787,13 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
             const uint32_t jp = j ? j - 1 : k - 1;
             const uint32_t eNext = P.faceEdges[off + j], ePrev = P.faceEdges[off + jp];
             const uint16_t sv = PF.cornerSibling[off + j];
-            const uint16_t sn = ((PF.edgeTags[eNext] & kFvEdgeMismatch) && P.edgeFaces[2 * eNext + 1] == f) ? 1 : 0;
-            const uint16_t sp = ((PF.edgeTags[ePrev] & kFvEdgeMismatch) && P.edgeFaces[2 * ePrev + 1] == f) ? 1 : 0;
-            const uint32_t vals[4] = {CF.valueOffsets[P.faceVerts[off + j]] + sv, CF.valueOffsets[firstEdge + eNext] + sn,
-                                      CF.valueOffsets[firstFace + f], CF.valueOffsets[firstEdge + ePrev] + sp};
+            const uint16_t sn =
+                ((PF.edgeTags[eNext] & kFvEdgeMismatch) && P.edgeFaces[2 * eNext + 1] == f) ? 1 : 0;
+            const uint16_t sp =
+                ((PF.edgeTags[ePrev] & kFvEdgeMismatch) && P.edgeFaces[2 * ePrev + 1] == f) ? 1 : 0;
+            const uint32_t vals[4] = {
+                CF.valueOffsets[P.faceVerts[off + j]] + sv, CF.valueOffsets[firstEdge + eNext] + sn,
+                CF.valueOffsets[firstFace + f], CF.valueOffsets[firstEdge + ePrev] + sp};
             const uint16_t sibs[4] = {sv, sn, 0, sp};
             const uint32_t at = 4 * (off + j), rot = k == 4 ? j : 0;
             for (uint32_t m = 0; m < 4; ++m) {
@@ -767,13 +805,15 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
     if (last) return;
 
     CF.edgeTags.assign(C.numEdges, 0);
-    for (uint32_t e = 0; e < nE; ++e) CF.edgeTags[nC + 2 * e] = CF.edgeTags[nC + 2 * e + 1] = PF.edgeTags[e];
+    for (uint32_t e = 0; e < nE; ++e)
+        CF.edgeTags[nC + 2 * e] = CF.edgeTags[nC + 2 * e + 1] = PF.edgeTags[e];
     if (fvarSmoothBoundaries_) {
         CF.creaseStart.assign(total, 0);
         CF.creaseEnd.assign(total, 0);
         // Edge children on a seam: side i spans the two child faces 2i, 2i+1.
         for (uint32_t e = 0; e < nE; ++e) {
-            const uint32_t first = CF.valueOffsets[firstEdge + e], n = CF.valueOffsets[firstEdge + e + 1] - first;
+            const uint32_t first = CF.valueOffsets[firstEdge + e],
+                           n = CF.valueOffsets[firstEdge + e + 1] - first;
             if (!(CF.valueTags[first] & kValueMismatch)) continue;
             for (uint32_t i = 0; i < n; ++i) {
                 if (CF.valueTags[first + i] & kValueCrease) {
@@ -798,34 +838,44 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
 
 // ---- Masks and face-varying neighbourhoods ---------------------------------------
 
-int UniformRefiner::edgeMaskGeneric(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2], float fw[2]) const {
+int UniformRefiner::edgeMaskGeneric(const RefineLevel& P, const RefineLevel& C, uint32_t e,
+                                    float vw[2], float fw[2]) const {
     const bool creased = P.tagged && P.edgeSharpness[e] > 0.0f;
-    const Crease::Rule childRule = P.tagged ? Crease::Rule(C.vertRules[P.numVerts + P.numFaces + e]) : Crease::RULE_SMOOTH;
+    const Crease::Rule childRule =
+        P.tagged ? Crease::Rule(C.vertRules[P.numVerts + P.numFaces + e]) : Crease::RULE_SMOOTH;
     Mask m{vw, nullptr, fw};
     const EdgeHood hood{&P, e};
-    Sdc::Scheme<Sdc::SCHEME_CATMARK>(options_).ComputeEdgeVertexMask(hood, m, creased ? Crease::RULE_CREASE : Crease::RULE_SMOOTH, childRule);
+    Sdc::Scheme<Sdc::SCHEME_CATMARK>(options_).ComputeEdgeVertexMask(
+        hood, m, creased ? Crease::RULE_CREASE : Crease::RULE_SMOOTH, childRule);
     return m.nf;
 }
 
-void UniformRefiner::vertexMask(const RefineLevel& P, const RefineLevel& C, uint32_t v, Mask& mask) const {
+void UniformRefiner::vertexMask(const RefineLevel& P, const RefineLevel& C, uint32_t v,
+                                Mask& mask) const {
     const VertexHood hood{&P, &C, v};
     const Crease::Rule parentRule = P.tagged ? Crease::Rule(P.vertRules[v]) : Crease::RULE_SMOOTH;
     const Crease::Rule childRule = P.tagged ? Crease::Rule(C.vertRules[v]) : Crease::RULE_SMOOTH;
-    Sdc::Scheme<Sdc::SCHEME_CATMARK>(options_).ComputeVertexVertexMask(hood, mask, parentRule, childRule);
+    Sdc::Scheme<Sdc::SCHEME_CATMARK>(options_).ComputeVertexVertexMask(hood, mask, parentRule,
+                                                                       childRule);
 }
 
-void UniformRefiner::creaseEndValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t sibling, uint32_t out[2]) const {
+void UniformRefiner::creaseEndValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v,
+                                     uint32_t sibling, uint32_t out[2]) const {
     const uint32_t slot = F.valueOffsets[v] + sibling;
     const uint32_t base = P.vertFaceOffsets[v];
-    const uint32_t f0 = P.vertFaces[base + F.creaseStart[slot]], f1 = P.vertFaces[base + F.creaseEnd[slot]];
-    const uint32_t i0 = P.vertInFace[base + F.creaseStart[slot]], i1 = P.vertInFace[base + F.creaseEnd[slot]];
+    const uint32_t f0 = P.vertFaces[base + F.creaseStart[slot]],
+                   f1 = P.vertFaces[base + F.creaseEnd[slot]];
+    const uint32_t i0 = P.vertInFace[base + F.creaseStart[slot]],
+                   i1 = P.vertInFace[base + F.creaseEnd[slot]];
     const uint32_t o0 = P.faceOffsets[f0], k0 = P.faceOffsets[f0 + 1] - o0;
     const uint32_t o1 = P.faceOffsets[f1], k1 = P.faceOffsets[f1 + 1] - o1;
     out[0] = F.faceValues[o0 + (i0 + 1 == k0 ? 0 : i0 + 1)];
     out[1] = F.faceValues[o1 + (i1 ? i1 - 1 : k1 - 1)];
 }
 
-void UniformRefiner::lastLevelCreases(std::vector<EdgeCrease>& creases, std::vector<VertexCorner>& corners, bool skipBoundaryCorners) const {
+void UniformRefiner::lastLevelCreases(std::vector<EdgeCrease>& creases,
+                                      std::vector<VertexCorner>& corners,
+                                      bool skipBoundaryCorners) const {
     creases.clear();
     corners.clear();
     const RefineLevel& P = level_[size_t(levels_) - 1];
@@ -837,12 +887,14 @@ void UniformRefiner::lastLevelCreases(std::vector<EdgeCrease>& creases, std::vec
         for (uint32_t j = 0; j < 2; ++j) {
             const uint32_t c = P.numCorners + 2 * e + j;
             const float s = L.edgeSharpness[c];
-            if (s > 0.0f && !(L.edgeTags[c] & kEdgeBoundary)) creases.push_back({P.numVerts + P.numFaces + e, P.edgeVerts[2 * e + j], s});
+            if (s > 0.0f && !(L.edgeTags[c] & kEdgeBoundary))
+                creases.push_back({P.numVerts + P.numFaces + e, P.edgeVerts[2 * e + j], s});
         }
     }
     for (uint32_t v = 0; v < L.numVerts; ++v) {
         const float s = L.vertSharpness[v];
-        if (s > 0.0f && !(skipBoundaryCorners && (L.vertTags[v] & kVertBoundary))) corners.push_back({v, s});
+        if (s > 0.0f && !(skipBoundaryCorners && (L.vertTags[v] & kVertBoundary)))
+            corners.push_back({v, s});
     }
 }
 

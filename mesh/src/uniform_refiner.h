@@ -62,7 +62,12 @@ namespace sg::mesh::detail {
 // Per-edge tag bits (OpenSubdiv Vtr::Level::ETag).
 enum : uint8_t { kEdgeBoundary = 1, kEdgeInfSharp = 2, kEdgeSemiSharp = 4 };
 // Per-vertex tag bits (Vtr::Level::VTag); the rule is kept apart.
-enum : uint8_t { kVertBoundary = 1, kVertInfSharp = 2, kVertSemiSharp = 4, kVertSemiSharpEdges = 8 };
+enum : uint8_t {
+    kVertBoundary = 1,
+    kVertInfSharp = 2,
+    kVertSemiSharp = 4,
+    kVertSemiSharpEdges = 8
+};
 // Face-varying value tags (Vtr::FVarLevel::ValueTag): a mismatched value
 // without kValueCrease is a corner (its value is kept).
 enum : uint8_t { kValueMismatch = 1, kValueCrease = 2 };
@@ -73,13 +78,13 @@ inline constexpr uint32_t kNone = UINT32_MAX;
 
 // One face-varying channel at one level.
 struct FVarLevelData {
-    std::vector<uint32_t> valueOffsets;   // per vertex + 1: its values are [off[v], off[v+1])
-    std::vector<uint32_t> valueIndex;     // level 0 only: value slot -> cage value index
-    std::vector<uint8_t> valueTags;       // per value slot
+    std::vector<uint32_t> valueOffsets; // per vertex + 1: its values are [off[v], off[v+1])
+    std::vector<uint32_t> valueIndex;   // level 0 only: value slot -> cage value index
+    std::vector<uint8_t> valueTags;     // per value slot
     std::vector<uint16_t> creaseStart, creaseEnd; // per value slot (creases): vertex-face span
-    std::vector<uint8_t> edgeTags;        // per edge
-    std::vector<uint32_t> faceValues;     // per corner: cage index (level 0) or value slot
-    std::vector<uint16_t> cornerSibling;  // per corner: which of the vertex's values
+    std::vector<uint8_t> edgeTags;                // per edge
+    std::vector<uint32_t> faceValues;             // per corner: cage index (level 0) or value slot
+    std::vector<uint16_t> cornerSibling;          // per corner: which of the vertex's values
 };
 
 // One level's topology. The last level holds only numbers, face vertices
@@ -89,17 +94,17 @@ struct RefineLevel {
     uint32_t numVerts = 0, numFaces = 0, numEdges = 0, numCorners = 0;
     std::vector<uint32_t> faceOffsets; // numFaces + 1
     std::vector<uint32_t> faceVerts, faceEdges;
-    std::vector<uint32_t> edgeVerts;   // 2 per edge
-    std::vector<uint32_t> edgeFaces;   // 2 per edge, kNone for the missing one on a boundary
-    std::vector<uint16_t> edgeInFace;  // 2 per edge: the edge's index in that face
+    std::vector<uint32_t> edgeVerts;  // 2 per edge
+    std::vector<uint32_t> edgeFaces;  // 2 per edge, kNone for the missing one on a boundary
+    std::vector<uint16_t> edgeInFace; // 2 per edge: the edge's index in that face
     std::vector<uint32_t> vertFaceOffsets, vertEdgeOffsets; // numVerts + 1
-    std::vector<uint32_t> vertFaces, vertEdges;              // counter-clockwise around the vertex
-    std::vector<uint16_t> vertInFace, vertInEdge;            // the vertex's index in that face / edge
-    std::vector<uint32_t> vertRing;                          // per vertex edge: the edge's other vertex
+    std::vector<uint32_t> vertFaces, vertEdges;             // counter-clockwise around the vertex
+    std::vector<uint16_t> vertInFace, vertInEdge; // the vertex's index in that face / edge
+    std::vector<uint32_t> vertRing;               // per vertex edge: the edge's other vertex
     // Any sharpness > 0, boundary or non-smooth rule: tags, sharpness and
     // rules are kept (else every vertex and edge of the level is smooth).
     bool tagged = false;
-    bool triangles = false;    // any triangle (matters for the smooth-triangle rule)
+    bool triangles = false; // any triangle (matters for the smooth-triangle rule)
     std::vector<float> edgeSharpness, vertSharpness;
     std::vector<uint8_t> edgeTags, vertTags, vertRules; // rules: Sdc::Crease::Rule
     std::vector<FVarLevelData> fvar;
@@ -114,7 +119,8 @@ public:
     // refined yet) and prepares the face-varying channels of `cage` (the
     // one `base` was built from). Returns false, with `why` set, when the
     // cage is outside the domain above; then nothing else may be called.
-    bool accept(const OpenSubdiv::Far::TopologyRefiner& base, const PolygonMesh& cage, std::string& why);
+    bool accept(const OpenSubdiv::Far::TopologyRefiner& base, const PolygonMesh& cage,
+                std::string& why);
 
     // Refines the topology to `levels` >= 1 levels (after accept()).
     void refine(int levels);
@@ -122,12 +128,16 @@ public:
     int maxLevel() const { return levels_; }
     const RefineLevel& level(int l) const { return level_[size_t(l)]; }
     int numFVarChannels() const { return int(level_[0].fvar.size()); }
-    uint32_t numFVarValues(int l, int channel) const { return level_[size_t(l)].fvar[size_t(channel)].valueOffsets.back(); }
+    uint32_t numFVarValues(int l, int channel) const {
+        return level_[size_t(l)].fvar[size_t(channel)].valueOffsets.back();
+    }
 
     // Last level: face vertices (4 per face) and each channel's face
     // values. Swapped out (the caller's vectors come back as scratch, so
     // capacity moves between the refiner and its caller without copies).
-    void takeLastFaceVertices(std::vector<uint32_t>& out) { out.swap(level_[size_t(levels_)].faceVerts); }
+    void takeLastFaceVertices(std::vector<uint32_t>& out) {
+        out.swap(level_[size_t(levels_)].faceVerts);
+    }
     void takeLastFaceValues(int channel, std::vector<uint32_t>& out) {
         out.swap(level_[size_t(levels_)].fvar[size_t(channel)].faceValues);
     }
@@ -136,7 +146,8 @@ public:
     // reports them (non-boundary edges with sharpness > 0, in edge order;
     // vertices with sharpness > 0, skipping boundary vertices when
     // `skipBoundaryCorners`).
-    void lastLevelCreases(std::vector<EdgeCrease>& creases, std::vector<VertexCorner>& corners, bool skipBoundaryCorners) const;
+    void lastLevelCreases(std::vector<EdgeCrease>& creases, std::vector<VertexCorner>& corners,
+                          bool skipBoundaryCorners) const;
 
     // PrimvarRefiner::Interpolate(level, src, dst): vertex data of level
     // `level` - 1 to level `level`, through a writer (ArrayWriter below;
@@ -155,24 +166,33 @@ private:
         uint32_t edge;
         int GetNumFaces() const { return int(parent->edgeFaceCount(edge)); }
         float GetSharpness() const { return parent->edgeSharpness[edge]; }
-        void GetChildSharpnesses(const OpenSubdiv::Sdc::Crease&, float s[2]) const { s[0] = s[1] = GetSharpness() - 1.0f; }
+        void GetChildSharpnesses(const OpenSubdiv::Sdc::Crease&, float s[2]) const {
+            s[0] = s[1] = GetSharpness() - 1.0f;
+        }
         void GetNumVerticesPerFace(int counts[]) const {
-            for (uint32_t i = 0; i < parent->edgeFaceCount(edge); ++i) counts[i] = int(parent->faceSize(parent->edgeFaces[2 * edge + i]));
+            for (uint32_t i = 0; i < parent->edgeFaceCount(edge); ++i)
+                counts[i] = int(parent->faceSize(parent->edgeFaces[2 * edge + i]));
         }
     };
     struct VertexHood {
         const RefineLevel* parent;
         const RefineLevel* child;
         uint32_t vert;
-        int GetNumEdges() const { return int(parent->vertEdgeOffsets[vert + 1] - parent->vertEdgeOffsets[vert]); }
-        int GetNumFaces() const { return int(parent->vertFaceOffsets[vert + 1] - parent->vertFaceOffsets[vert]); }
+        int GetNumEdges() const {
+            return int(parent->vertEdgeOffsets[vert + 1] - parent->vertEdgeOffsets[vert]);
+        }
+        int GetNumFaces() const {
+            return int(parent->vertFaceOffsets[vert + 1] - parent->vertFaceOffsets[vert]);
+        }
         float GetSharpness() const { return parent->vertSharpness[vert]; }
         float* GetSharpnessPerEdge(float out[]) const {
             const uint32_t* e = parent->vertEdges.data() + parent->vertEdgeOffsets[vert];
             for (int i = 0; i < GetNumEdges(); ++i) out[i] = parent->edgeSharpness[e[i]];
             return out;
         }
-        float GetChildSharpness(const OpenSubdiv::Sdc::Crease&) const { return child->vertSharpness[vert]; }
+        float GetChildSharpness(const OpenSubdiv::Sdc::Crease&) const {
+            return child->vertSharpness[vert];
+        }
         float* GetChildSharpnessPerEdge(const OpenSubdiv::Sdc::Crease& crease, float out[]) const;
     };
     // PrimvarRefiner's MASK interface.
@@ -200,11 +220,14 @@ private:
     // Edge-vertex mask of parent edge e (level p -> p+1): the 2 vertex
     // weights and the face weights (one per edge face). Returns the number
     // of face weights.
-    int edgeMask(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2], float fw[2]) const;
+    int edgeMask(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2],
+                 float fw[2]) const;
     // Sdc's mask for the other cases (semi-sharp transitions, triangles).
-    int edgeMaskGeneric(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2], float fw[2]) const;
+    int edgeMaskGeneric(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2],
+                        float fw[2]) const;
     bool triangleRule_(const RefineLevel& P) const {
-        return P.triangles && options_.GetTriangleSubdivision() == OpenSubdiv::Sdc::Options::TRI_SUB_SMOOTH;
+        return P.triangles &&
+               options_.GetTriangleSubdivision() == OpenSubdiv::Sdc::Options::TRI_SUB_SMOOTH;
     }
     // Vertex-vertex mask of parent vertex v (Sdc's, for any rule); the mask's
     // buffers hold 1 + 2 * valence weights.
@@ -220,10 +243,15 @@ private:
         const uint32_t slot = F.valueOffsets[v] + sibling;
         return F.valueIndex.empty() ? slot : F.valueIndex[slot];
     }
-    uint32_t valueCount(const FVarLevelData& F, uint32_t v) const { return F.valueOffsets[v + 1] - F.valueOffsets[v]; }
-    void edgeFaceValues(const RefineLevel& P, const FVarLevelData& F, uint32_t e, uint32_t faceInEdge, uint32_t out[2]) const;
-    void vertexEdgeValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t* out) const;
-    void creaseEndValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t sibling, uint32_t out[2]) const;
+    uint32_t valueCount(const FVarLevelData& F, uint32_t v) const {
+        return F.valueOffsets[v + 1] - F.valueOffsets[v];
+    }
+    void edgeFaceValues(const RefineLevel& P, const FVarLevelData& F, uint32_t e,
+                        uint32_t faceInEdge, uint32_t out[2]) const;
+    void vertexEdgeValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v,
+                          uint32_t* out) const;
+    void creaseEndValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t sibling,
+                         uint32_t out[2]) const;
 
     bool classifyFVar(const PolygonMesh& cage, size_t channel, std::string& why);
     void refineTopology(const RefineLevel& P, RefineLevel& C, bool last);
@@ -289,24 +317,29 @@ struct Vec4Writer {
     void end() { store(dst[at], acc); }
 };
 
-inline int UniformRefiner::edgeMask(const RefineLevel& P, const RefineLevel& C, uint32_t e, float vw[2], float fw[2]) const {
+inline int UniformRefiner::edgeMask(const RefineLevel& P, const RefineLevel& C, uint32_t e,
+                                    float vw[2], float fw[2]) const {
     const bool creased = P.tagged && P.edgeSharpness[e] > 0.0f;
     if (!creased && !triangleRule_(P)) {
         // Sdc::Scheme<SCHEME_CATMARK>::assignSmoothMaskForEdge.
         const uint32_t n = P.edgeFaceCount(e);
         vw[0] = vw[1] = 0.25f;
-        if (n == 2) fw[0] = fw[1] = 0.25f;
-        else fw[0] = 0.5f / float(n);
+        if (n == 2)
+            fw[0] = fw[1] = 0.25f;
+        else
+            fw[0] = 0.5f / float(n);
         return int(n);
     }
-    if (creased && C.vertRules[P.numVerts + P.numFaces + e] == OpenSubdiv::Sdc::Crease::RULE_CREASE) {
+    if (creased &&
+        C.vertRules[P.numVerts + P.numFaces + e] == OpenSubdiv::Sdc::Crease::RULE_CREASE) {
         vw[0] = vw[1] = 0.5f; // assignCreaseMaskForEdge
         return 0;
     }
     return edgeMaskGeneric(P, C, e, vw, fw);
 }
 
-inline void UniformRefiner::edgeFaceValues(const RefineLevel& P, const FVarLevelData& F, uint32_t e, uint32_t faceInEdge, uint32_t out[2]) const {
+inline void UniformRefiner::edgeFaceValues(const RefineLevel& P, const FVarLevelData& F, uint32_t e,
+                                           uint32_t faceInEdge, uint32_t out[2]) const {
     const uint32_t v0 = P.edgeVerts[2 * e], v1 = P.edgeVerts[2 * e + 1];
     if (valueCount(F, v0) + valueCount(F, v1) > 2) {
         const uint32_t f = P.edgeFaces[2 * e + faceInEdge], eif = P.edgeInFace[2 * e + faceInEdge];
@@ -320,7 +353,8 @@ inline void UniformRefiner::edgeFaceValues(const RefineLevel& P, const FVarLevel
     }
 }
 
-inline void UniformRefiner::vertexEdgeValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t* out) const {
+inline void UniformRefiner::vertexEdgeValues(const RefineLevel& P, const FVarLevelData& F,
+                                             uint32_t v, uint32_t* out) const {
     const uint32_t* rv = P.vertRing.data() + P.vertEdgeOffsets[v];
     const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
     const uint16_t* vif = P.vertInFace.data() + P.vertFaceOffsets[v];
@@ -362,7 +396,8 @@ void UniformRefiner::interpolate(int level, Writer w) const {
         w.begin(firstEdgeChild + e);
         w.add(P.edgeVerts[2 * e], vw[0]);
         w.add(P.edgeVerts[2 * e + 1], vw[1]);
-        for (int i = 0; i < nf; ++i) w.addChild(firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)], fw[i]);
+        for (int i = 0; i < nf; ++i)
+            w.addChild(firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)], fw[i]);
         w.end();
     }
     // Vertex points: face points, then the far ends of the edges, then the
@@ -421,13 +456,16 @@ void UniformRefiner::interpolateFaceVarying(int level, Writer w, int channel) co
         const uint32_t first = childValue[firstEdgeChild + e];
         if (!(PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear))) {
             int nf = 0;
-            if (fvarLinear_) vw[0] = vw[1] = 0.5f;
-            else nf = edgeMask(P, C, e, vw, fw);
+            if (fvarLinear_)
+                vw[0] = vw[1] = 0.5f;
+            else
+                nf = edgeMask(P, C, e, vw, fw);
             edgeFaceValues(P, PF, e, 0, ends);
             w.begin(first);
             w.add(ends[0], vw[0]);
             w.add(ends[1], vw[1]);
-            for (int i = 0; i < nf; ++i) w.addChild(childValue[firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)]], fw[i]);
+            for (int i = 0; i < nf; ++i)
+                w.addChild(childValue[firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)]], fw[i]);
             w.end();
         } else {
             const uint32_t count = childValue[firstEdgeChild + e + 1] - first;
@@ -465,7 +503,8 @@ void UniformRefiner::interpolateFaceVarying(int level, Writer w, int channel) co
             vertexEdgeValues(P, PF, v, edgeValues);
             if (nf == ne && nf < uint32_t(kSmoothTable) && smoothVertex(P, v)) {
                 const float ring = smoothRingWeight_[nf];
-                for (uint32_t i = 0; i < nf; ++i) w.addChild(childValue[firstFaceChild + vf[i]], ring);
+                for (uint32_t i = 0; i < nf; ++i)
+                    w.addChild(childValue[firstFaceChild + vf[i]], ring);
                 for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], ring);
                 w.add(valueAt(PF, v, 0), smoothVertexWeight_[nf]);
                 w.end();
@@ -475,7 +514,8 @@ void UniformRefiner::interpolateFaceVarying(int level, Writer w, int channel) co
             Mask m{buffer.data(), buffer.data() + 1, buffer.data() + 1 + ne};
             vertexMask(P, C, v, m);
             if (m.nf > 0) {
-                for (uint32_t i = 0; i < nf; ++i) w.addChild(childValue[firstFaceChild + vf[i]], m.fw[i]);
+                for (uint32_t i = 0; i < nf; ++i)
+                    w.addChild(childValue[firstFaceChild + vf[i]], m.fw[i]);
             }
             if (m.ne > 0) {
                 for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], m.ew[i]);

@@ -28,7 +28,8 @@ std::vector<uint32_t> cornerFaces(const std::vector<uint32_t>& offsets) {
     return faces;
 }
 
-std::vector<FaceEdge> sortedFaceEdges(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets) {
+std::vector<FaceEdge> sortedFaceEdges(const PolygonMesh& mesh,
+                                      const std::vector<uint32_t>& offsets) {
     std::vector<FaceEdge> edges;
     edges.reserve(mesh.faceVertices.size());
     for (size_t f = 0; f + 1 < offsets.size(); ++f) {
@@ -76,8 +77,10 @@ Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& o
         } else if (n == 2) {
             const FaceEdge& b = edges[i + 1];
             if (a.forward == b.forward) {
-                badEdge("faces " + std::to_string(faceOf[a.corner]) + " and " + std::to_string(faceOf[b.corner]) +
-                        " traverse it in the same direction (inconsistent orientation or a Moebius strip)");
+                badEdge("faces " + std::to_string(faceOf[a.corner]) + " and " +
+                        std::to_string(faceOf[b.corner]) +
+                        " traverse it in the same direction (inconsistent orientation or a Moebius "
+                        "strip)");
             } else {
                 // a goes va->vb in face A, b goes vb->va in face B.
                 corners.unite(a.corner, b.next);
@@ -124,12 +127,14 @@ std::string faceName(uint32_t f, const std::vector<uint32_t>* faceLines) {
 }
 
 // Why face f is degenerate, or empty when it is not.
-std::string degenerateReason(const PolygonMesh& mesh, uint32_t begin, uint32_t count, std::vector<uint32_t>& scratch) {
+std::string degenerateReason(const PolygonMesh& mesh, uint32_t begin, uint32_t count,
+                             std::vector<uint32_t>& scratch) {
     if (count < 3) return "has " + std::to_string(count) + " corners (a face needs 3)";
     scratch.assign(mesh.faceVertices.begin() + begin, mesh.faceVertices.begin() + begin + count);
     std::sort(scratch.begin(), scratch.end());
     auto dup = std::adjacent_find(scratch.begin(), scratch.end());
-    if (dup != scratch.end()) return "uses vertex " + std::to_string(*dup) + " twice (degenerate face)";
+    if (dup != scratch.end())
+        return "uses vertex " + std::to_string(*dup) + " twice (degenerate face)";
     // Newell normal in double: the cross products of float inputs are exact,
     // so zero means the corners are exactly collinear or coincident.
     double nx = 0, ny = 0, nz = 0;
@@ -140,38 +145,48 @@ std::string degenerateReason(const PolygonMesh& mesh, uint32_t begin, uint32_t c
         ny += (double(p.z) - q.z) * (double(p.x) + q.x);
         nz += (double(p.x) - q.x) * (double(p.y) + q.y);
     }
-    if (nx == 0 && ny == 0 && nz == 0) return "has zero area (its corners are collinear or coincide)";
+    if (nx == 0 && ny == 0 && nz == 0)
+        return "has zero area (its corners are collinear or coincide)";
     return {};
 }
 
 void checkStructure(const PolygonMesh& mesh, const std::string& file, const InputLimits& limits,
                     const std::vector<uint32_t>* faceLines) {
-    const size_t nV = mesh.positions.size(), nF = mesh.faceSizes.size(), nC = mesh.faceVertices.size();
+    const size_t nV = mesh.positions.size(), nF = mesh.faceSizes.size(),
+                 nC = mesh.faceVertices.size();
     if (nV > limits.maxVertices) {
-        throw InputError(file, "vertices", std::to_string(nV) + " vertices; the limit is " + std::to_string(limits.maxVertices));
+        throw InputError(file, "vertices",
+                         std::to_string(nV) + " vertices; the limit is " +
+                             std::to_string(limits.maxVertices));
     }
     if (nF > limits.maxFaces) {
-        throw InputError(file, "faces", std::to_string(nF) + " faces; the limit is " + std::to_string(limits.maxFaces));
+        throw InputError(file, "faces",
+                         std::to_string(nF) + " faces; the limit is " +
+                             std::to_string(limits.maxFaces));
     }
     if (nC > limits.maxCorners) {
-        throw InputError(file, "faces", std::to_string(nC) + " face corners; the limit is " + std::to_string(limits.maxCorners));
+        throw InputError(file, "faces",
+                         std::to_string(nC) + " face corners; the limit is " +
+                             std::to_string(limits.maxCorners));
     }
     uint64_t sum = 0;
     for (size_t f = 0; f < nF; ++f) {
         if (mesh.faceSizes[f] > limits.maxFaceDegree) {
             throw InputError(file, faceName(uint32_t(f), faceLines),
-                             "has " + std::to_string(mesh.faceSizes[f]) + " corners; the limit is " +
-                                 std::to_string(limits.maxFaceDegree));
+                             "has " + std::to_string(mesh.faceSizes[f]) +
+                                 " corners; the limit is " + std::to_string(limits.maxFaceDegree));
         }
         sum += mesh.faceSizes[f];
     }
     if (sum != nC) {
-        throw InputError(file, "faces", "face sizes add up to " + std::to_string(sum) + " corners but " +
-                                            std::to_string(nC) + " are given");
+        throw InputError(file, "faces",
+                         "face sizes add up to " + std::to_string(sum) + " corners but " +
+                             std::to_string(nC) + " are given");
     }
     for (size_t v = 0; v < nV; ++v) {
         if (!detail::finite(mesh.positions[v])) {
-            throw InputError(file, "vertex " + std::to_string(v), "non-finite coordinate " + detail::vecString(mesh.positions[v]));
+            throw InputError(file, "vertex " + std::to_string(v),
+                             "non-finite coordinate " + detail::vecString(mesh.positions[v]));
         }
     }
     {
@@ -180,83 +195,108 @@ void checkStructure(const PolygonMesh& mesh, const std::string& file, const Inpu
             while (c >= end) end += mesh.faceSizes[++f];
             if (mesh.faceVertices[c] >= nV) {
                 throw InputError(file, faceName(f, faceLines),
-                                 "vertex index " + std::to_string(mesh.faceVertices[c]) + " is out of range (" +
-                                     std::to_string(nV) + " vertices)");
+                                 "vertex index " + std::to_string(mesh.faceVertices[c]) +
+                                     " is out of range (" + std::to_string(nV) + " vertices)");
             }
         }
     }
     if (mesh.uvSets.size() > limits.maxUvSets) {
-        throw InputError(file, "uv sets", std::to_string(mesh.uvSets.size()) + " UV sets; the limit is " +
-                                              std::to_string(limits.maxUvSets));
+        throw InputError(file, "uv sets",
+                         std::to_string(mesh.uvSets.size()) + " UV sets; the limit is " +
+                             std::to_string(limits.maxUvSets));
     }
     for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
         const FaceVaryingChannel& ch = mesh.uvSets[s];
         std::string el = "uv set " + std::to_string(s);
         if (ch.indices.size() != nC) {
-            throw InputError(file, el, std::to_string(ch.indices.size()) + " corner indices for " + std::to_string(nC) + " corners");
+            throw InputError(file, el,
+                             std::to_string(ch.indices.size()) + " corner indices for " +
+                                 std::to_string(nC) + " corners");
         }
         for (size_t i = 0; i < ch.values.size(); ++i) {
-            if (!detail::finite(ch.values[i])) throw InputError(file, el + " value " + std::to_string(i), "non-finite UV");
+            if (!detail::finite(ch.values[i]))
+                throw InputError(file, el + " value " + std::to_string(i), "non-finite UV");
         }
         for (size_t c = 0; c < nC; ++c) {
             if (ch.indices[c] >= ch.values.size()) {
                 throw InputError(file, el + " corner " + std::to_string(c),
-                                 "UV index " + std::to_string(ch.indices[c]) + " is out of range (" +
-                                     std::to_string(ch.values.size()) + " UVs)");
+                                 "UV index " + std::to_string(ch.indices[c]) +
+                                     " is out of range (" + std::to_string(ch.values.size()) +
+                                     " UVs)");
             }
         }
     }
     if (!mesh.normalIndices.empty() && mesh.normalIndices.size() != nC) {
-        throw InputError(file, "normals", std::to_string(mesh.normalIndices.size()) + " corner indices for " +
-                                              std::to_string(nC) + " corners");
+        throw InputError(file, "normals",
+                         std::to_string(mesh.normalIndices.size()) + " corner indices for " +
+                             std::to_string(nC) + " corners");
     }
     for (size_t i = 0; i < mesh.normals.size(); ++i) {
-        if (!detail::finite(mesh.normals[i])) throw InputError(file, "normal " + std::to_string(i), "non-finite normal");
+        if (!detail::finite(mesh.normals[i]))
+            throw InputError(file, "normal " + std::to_string(i), "non-finite normal");
     }
     for (size_t c = 0; c < mesh.normalIndices.size(); ++c) {
         if (mesh.normalIndices[c] >= mesh.normals.size()) {
             throw InputError(file, "corner " + std::to_string(c),
-                             "normal index " + std::to_string(mesh.normalIndices[c]) + " is out of range (" +
-                                 std::to_string(mesh.normals.size()) + " normals)");
+                             "normal index " + std::to_string(mesh.normalIndices[c]) +
+                                 " is out of range (" + std::to_string(mesh.normals.size()) +
+                                 " normals)");
         }
     }
     for (size_t i = 0; i < mesh.creases.size(); ++i) {
         const EdgeCrease& e = mesh.creases[i];
-        std::string el = "crease " + std::to_string(i) + " (" + std::to_string(e.v0) + ", " + std::to_string(e.v1) + ")";
-        if (e.v0 >= nV || e.v1 >= nV) throw InputError(file, el, "vertex index out of range (" + std::to_string(nV) + " vertices)");
+        std::string el = "crease " + std::to_string(i) + " (" + std::to_string(e.v0) + ", " +
+                         std::to_string(e.v1) + ")";
+        if (e.v0 >= nV || e.v1 >= nV)
+            throw InputError(file, el,
+                             "vertex index out of range (" + std::to_string(nV) + " vertices)");
         if (e.v0 == e.v1) throw InputError(file, el, "both ends are the same vertex");
         if (!std::isfinite(e.sharpness) || e.sharpness < 0) {
-            throw InputError(file, el, "sharpness " + std::to_string(e.sharpness) + " is not a finite value >= 0");
+            throw InputError(file, el,
+                             "sharpness " + std::to_string(e.sharpness) +
+                                 " is not a finite value >= 0");
         }
     }
     for (size_t i = 0; i < mesh.corners.size(); ++i) {
         const VertexCorner& k = mesh.corners[i];
-        std::string el = "corner tag " + std::to_string(i) + " (vertex " + std::to_string(k.vertex) + ")";
-        if (k.vertex >= nV) throw InputError(file, el, "vertex index out of range (" + std::to_string(nV) + " vertices)");
+        std::string el =
+            "corner tag " + std::to_string(i) + " (vertex " + std::to_string(k.vertex) + ")";
+        if (k.vertex >= nV)
+            throw InputError(file, el,
+                             "vertex index out of range (" + std::to_string(nV) + " vertices)");
         if (!std::isfinite(k.sharpness) || k.sharpness < 0) {
-            throw InputError(file, el, "sharpness " + std::to_string(k.sharpness) + " is not a finite value >= 0");
+            throw InputError(file, el,
+                             "sharpness " + std::to_string(k.sharpness) +
+                                 " is not a finite value >= 0");
         }
     }
     for (uint32_t h : mesh.holes) {
-        if (h >= nF) throw InputError(file, "hole tag (face " + std::to_string(h) + ")", "face index out of range (" + std::to_string(nF) + " faces)");
+        if (h >= nF)
+            throw InputError(file, "hole tag (face " + std::to_string(h) + ")",
+                             "face index out of range (" + std::to_string(nF) + " faces)");
     }
     if (mesh.morphTargets.size() > limits.maxMorphTargets) {
-        throw InputError(file, "morph targets", std::to_string(mesh.morphTargets.size()) + " targets; the limit is " +
-                                                    std::to_string(limits.maxMorphTargets));
+        throw InputError(file, "morph targets",
+                         std::to_string(mesh.morphTargets.size()) + " targets; the limit is " +
+                             std::to_string(limits.maxMorphTargets));
     }
     for (size_t t = 0; t < mesh.morphTargets.size(); ++t) {
         const CageMorphTarget& mt = mesh.morphTargets[t];
         std::string el = "morph target " + std::to_string(t);
         if (mt.positionDeltas.size() != nV) {
-            throw InputError(file, el, std::to_string(mt.positionDeltas.size()) + " deltas for " + std::to_string(nV) + " vertices");
+            throw InputError(file, el,
+                             std::to_string(mt.positionDeltas.size()) + " deltas for " +
+                                 std::to_string(nV) + " vertices");
         }
         for (size_t v = 0; v < nV; ++v) {
-            if (!detail::finite(mt.positionDeltas[v])) throw InputError(file, el + " vertex " + std::to_string(v), "non-finite delta");
+            if (!detail::finite(mt.positionDeltas[v]))
+                throw InputError(file, el + " vertex " + std::to_string(v), "non-finite delta");
         }
     }
     if (!mesh.morphWeights.empty() && mesh.morphWeights.size() != mesh.morphTargets.size()) {
-        throw InputError(file, "morph weights", std::to_string(mesh.morphWeights.size()) + " weights for " +
-                                                    std::to_string(mesh.morphTargets.size()) + " targets");
+        throw InputError(file, "morph weights",
+                         std::to_string(mesh.morphWeights.size()) + " weights for " +
+                             std::to_string(mesh.morphTargets.size()) + " targets");
     }
     for (float w : mesh.morphWeights) {
         if (!std::isfinite(w)) throw InputError(file, "morph weights", "non-finite weight");
@@ -319,14 +359,17 @@ size_t weldDuplicates(PolygonMesh& mesh, LoadReport* report) {
     for (EdgeCrease e : mesh.creases) {
         e.v0 = newIndex[e.v0];
         e.v1 = newIndex[e.v1];
-        if (e.v0 != e.v1) creases.push_back(e);
-        else if (report) report->notes.push_back("crease between two welded vertices dropped");
+        if (e.v0 != e.v1)
+            creases.push_back(e);
+        else if (report)
+            report->notes.push_back("crease between two welded vertices dropped");
     }
     mesh.creases.swap(creases);
     for (VertexCorner& k : mesh.corners) k.vertex = newIndex[k.vertex];
     if (report) {
         report->duplicateVerticesWelded += welded;
-        report->notes.push_back("welded " + std::to_string(welded) + " vertices with exactly equal positions");
+        report->notes.push_back("welded " + std::to_string(welded) +
+                                " vertices with exactly equal positions");
     }
     return welded;
 }
@@ -362,7 +405,8 @@ void dropFaces(PolygonMesh& mesh, const std::vector<uint8_t>& drop) {
 namespace detail {
 
 void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadReport* report,
-                  const InputLimits& limits, bool allowNonManifold, const std::vector<uint32_t>* faceLines) {
+                  const InputLimits& limits, bool allowNonManifold,
+                  const std::vector<uint32_t>* faceLines) {
     checkStructure(mesh, file, limits, faceLines);
     std::sort(mesh.holes.begin(), mesh.holes.end());
     mesh.holes.erase(std::unique(mesh.holes.begin(), mesh.holes.end()), mesh.holes.end());
@@ -378,7 +422,8 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         for (uint32_t f = 0; f < mesh.faceSizes.size(); ++f) {
             std::string why = degenerateReason(mesh, offsets[f], mesh.faceSizes[f], scratch);
             if (why.empty()) continue;
-            if (!repair) throw InputError(file, faceName(f, faceLines), why + " (--repair drops it)");
+            if (!repair)
+                throw InputError(file, faceName(f, faceLines), why + " (--repair drops it)");
             drop[f] = 1;
             ++dropped;
         }
@@ -391,25 +436,29 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         }
     }
     if (mesh.positions.empty() || mesh.faceSizes.empty()) {
-        throw InputError(file, "", mesh.positions.empty() ? "empty mesh: no vertices" : "empty mesh: no faces");
+        throw InputError(
+            file, "", mesh.positions.empty() ? "empty mesh: no vertices" : "empty mesh: no faces");
     }
     std::vector<uint32_t> offsets = faceOffsets(mesh);
     if (!allowNonManifold) {
         detail::Topology topo = detail::analyzeTopology(mesh, offsets);
         if (topo.nonManifoldEdges) {
             throw InputError(file,
-                             "edge (" + std::to_string(topo.firstBadEdgeV0) + ", " + std::to_string(topo.firstBadEdgeV1) + ")",
-                             topo.firstBadEdgeReason + (topo.nonManifoldEdges > 1
-                                                            ? "; " + std::to_string(topo.nonManifoldEdges) + " such edges"
-                                                            : ""));
+                             "edge (" + std::to_string(topo.firstBadEdgeV0) + ", " +
+                                 std::to_string(topo.firstBadEdgeV1) + ")",
+                             topo.firstBadEdgeReason +
+                                 (topo.nonManifoldEdges > 1
+                                      ? "; " + std::to_string(topo.nonManifoldEdges) + " such edges"
+                                      : ""));
         }
         if (topo.nonManifoldVertices) {
-            throw InputError(file, "vertex " + std::to_string(topo.firstBadVertex),
-                             "the faces around it form " + std::to_string(topo.firstBadVertexFans) +
-                                 " separate fans (non-manifold vertex)" +
-                                 (topo.nonManifoldVertices > 1
-                                      ? "; " + std::to_string(topo.nonManifoldVertices) + " such vertices"
-                                      : ""));
+            throw InputError(
+                file, "vertex " + std::to_string(topo.firstBadVertex),
+                "the faces around it form " + std::to_string(topo.firstBadVertexFans) +
+                    " separate fans (non-manifold vertex)" +
+                    (topo.nonManifoldVertices > 1
+                         ? "; " + std::to_string(topo.nonManifoldVertices) + " such vertices"
+                         : ""));
         }
     }
     // Crease tags must name edges.
@@ -426,7 +475,9 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         for (size_t i = 0; i < mesh.creases.size(); ++i) {
             const EdgeCrease& e = mesh.creases[i];
             if (!std::binary_search(keys.begin(), keys.end(), edgeKey(e.v0, e.v1))) {
-                throw InputError(file, "crease " + std::to_string(i) + " (" + std::to_string(e.v0) + ", " + std::to_string(e.v1) + ")",
+                throw InputError(file,
+                                 "crease " + std::to_string(i) + " (" + std::to_string(e.v0) +
+                                     ", " + std::to_string(e.v1) + ")",
                                  "no face has an edge between these vertices");
             }
         }
@@ -436,7 +487,9 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         for (uint32_t v : mesh.faceVertices) used[v] = 1;
         size_t isolated = size_t(std::count(used.begin(), used.end(), uint8_t(0)));
         report->isolatedVertices = isolated;
-        if (isolated) report->notes.push_back(std::to_string(isolated) + " isolated vertices (no face uses them; kept)");
+        if (isolated)
+            report->notes.push_back(std::to_string(isolated) +
+                                    " isolated vertices (no face uses them; kept)");
     }
 }
 
@@ -468,10 +521,12 @@ MeshInfo describe(const PolygonMesh& mesh) {
     info.nonManifoldVertices = topo.nonManifoldVertices;
     info.manifold = topo.nonManifoldEdges == 0 && topo.nonManifoldVertices == 0;
     info.creases = mesh.creases.size();
-    for (const EdgeCrease& e : mesh.creases) info.infiniteCreases += e.sharpness >= kInfiniteSharpness;
+    for (const EdgeCrease& e : mesh.creases)
+        info.infiniteCreases += e.sharpness >= kInfiniteSharpness;
     info.cornerTags = mesh.corners.size();
     info.holes = mesh.holes.size();
-    info.eulerCharacteristic = int(info.vertices - info.isolatedVertices) - int(info.edges) + int(info.faces);
+    info.eulerCharacteristic =
+        int(info.vertices - info.isolatedVertices) - int(info.edges) + int(info.faces);
     return info;
 }
 

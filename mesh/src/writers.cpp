@@ -29,12 +29,14 @@ void appendFloat(std::string& out, float v) {
 }
 
 std::string base64(const std::string& bytes) {
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char* kAlphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     out.reserve((bytes.size() + 2) / 3 * 4);
     size_t i = 0;
     for (; i + 2 < bytes.size(); i += 3) {
-        uint32_t n = (uint32_t(uint8_t(bytes[i])) << 16) | (uint32_t(uint8_t(bytes[i + 1])) << 8) | uint8_t(bytes[i + 2]);
+        uint32_t n = (uint32_t(uint8_t(bytes[i])) << 16) | (uint32_t(uint8_t(bytes[i + 1])) << 8) |
+                     uint8_t(bytes[i + 2]);
         for (int k = 3; k >= 0; --k) out += kAlphabet[(n >> (6 * k)) & 63];
     }
     if (i < bytes.size()) {
@@ -51,8 +53,8 @@ std::string base64(const std::string& bytes) {
 class GltfBuilder {
 public:
     // Appends data as a new bufferView + accessor; returns the accessor index.
-    int accessor(const void* data, size_t count, int comps, int componentType, int target, bool minMax = false,
-                 const float* values = nullptr) {
+    int accessor(const void* data, size_t count, int comps, int componentType, int target,
+                 bool minMax = false, const float* values = nullptr) {
         size_t compBytes = componentType == 5123 ? 2 : 4;
         size_t bytes = count * size_t(comps) * compBytes;
         while (bin.size() % 4) bin.push_back('\0');
@@ -61,9 +63,13 @@ public:
         bin.append(static_cast<const char*>(data), bytes);
         views.push_back(view);
         static const char* kTypes[] = {"", "SCALAR", "VEC2", "VEC3", "VEC4"};
-        json acc = {{"bufferView", views.size() - 1}, {"componentType", componentType}, {"count", count}, {"type", kTypes[comps]}};
+        json acc = {{"bufferView", views.size() - 1},
+                    {"componentType", componentType},
+                    {"count", count},
+                    {"type", kTypes[comps]}};
         if (minMax && count > 0) {
-            std::vector<float> lo(size_t(comps), std::numeric_limits<float>::max()), hi(size_t(comps), -std::numeric_limits<float>::max());
+            std::vector<float> lo(size_t(comps), std::numeric_limits<float>::max()),
+                hi(size_t(comps), -std::numeric_limits<float>::max());
             for (size_t i = 0; i < count; ++i) {
                 for (int c = 0; c < comps; ++c) {
                     lo[size_t(c)] = std::min(lo[size_t(c)], values[i * size_t(comps) + size_t(c)]);
@@ -77,7 +83,8 @@ public:
         return int(accessors.size() - 1);
     }
     int vec3(const std::vector<glm::vec3>& v, bool minMax) {
-        return accessor(v.data(), v.size(), 3, 5126, 34962, minMax, reinterpret_cast<const float*>(v.data()));
+        return accessor(v.data(), v.size(), 3, 5126, 34962, minMax,
+                        reinterpret_cast<const float*>(v.data()));
     }
     std::string bin;
     json views = json::array(), accessors = json::array();
@@ -91,13 +98,16 @@ std::string relativeUri(const std::string& texture, const std::filesystem::path&
     std::string s = (ec ? std::filesystem::path(texture) : rel).generic_string();
     std::string uri;
     for (char c : s) {
-        if (c == ' ') uri += "%20";
-        else uri += c;
+        if (c == ' ')
+            uri += "%20";
+        else
+            uri += c;
     }
     return uri;
 }
 
-std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh, const WriteOptions& options, bool binary) {
+std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
+                      const WriteOptions& options, bool binary) {
     GltfBuilder b;
     const size_t nV = mesh.positions.size();
     json attributes;
@@ -108,8 +118,10 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
     }
     for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
         std::vector<glm::vec2> uv(mesh.uvSets[s].size());
-        for (size_t i = 0; i < uv.size(); ++i) uv[i] = glm::vec2(mesh.uvSets[s][i].x, 1.0f - mesh.uvSets[s][i].y);
-        attributes["TEXCOORD_" + std::to_string(s)] = b.accessor(uv.data(), uv.size(), 2, 5126, 34962);
+        for (size_t i = 0; i < uv.size(); ++i)
+            uv[i] = glm::vec2(mesh.uvSets[s][i].x, 1.0f - mesh.uvSets[s][i].y);
+        attributes["TEXCOORD_" + std::to_string(s)] =
+            b.accessor(uv.data(), uv.size(), 2, 5126, 34962);
     }
     json prim = {{"attributes", attributes}, {"mode", 4}};
     if (nV <= 65535) {
@@ -124,9 +136,13 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
         for (const MorphTarget& t : mesh.morphTargets) {
             json jt = json::object();
             if (!t.positionDeltas.empty()) jt["POSITION"] = b.vec3(t.positionDeltas, true);
-            if (!t.normalDeltas.empty() && !mesh.normals.empty()) jt["NORMAL"] = b.vec3(t.normalDeltas, false);
-            if (!t.tangentDeltas.empty() && !mesh.tangents.empty()) jt["TANGENT"] = b.vec3(t.tangentDeltas, false);
-            if (jt.empty()) jt["POSITION"] = b.vec3(std::vector<glm::vec3>(nV, glm::vec3(0.0f)), true); // a target needs one attribute
+            if (!t.normalDeltas.empty() && !mesh.normals.empty())
+                jt["NORMAL"] = b.vec3(t.normalDeltas, false);
+            if (!t.tangentDeltas.empty() && !mesh.tangents.empty())
+                jt["TANGENT"] = b.vec3(t.tangentDeltas, false);
+            if (jt.empty())
+                jt["POSITION"] = b.vec3(std::vector<glm::vec3>(nV, glm::vec3(0.0f)),
+                                        true); // a target needs one attribute
             targets.push_back(jt);
             names.push_back(t.name);
         }
@@ -136,7 +152,9 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
         jmesh["weights"] = w;
         jmesh["extras"] = {{"targetNames", names}};
     }
-    json doc = {{"asset", {{"version", "2.0"}, {"generator", "surfgrad"}}}, {"scene", 0}, {"scenes", json::array({{{"nodes", {0}}}})},
+    json doc = {{"asset", {{"version", "2.0"}, {"generator", "surfgrad"}}},
+                {"scene", 0},
+                {"scenes", json::array({{{"nodes", {0}}}})},
                 {"nodes", json::array({{{"mesh", 0}}})}};
     if (const Material* mat = options.material) {
         json images = json::array(), textures = json::array();
@@ -146,8 +164,11 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
             return json{{"index", textures.size() - 1}, {"texCoord", texCoord}};
         };
         json jm = {{"name", mat->name.empty() ? "material" : mat->name}};
-        json pbr = {{"baseColorFactor", {mat->baseColorFactor.x, mat->baseColorFactor.y, mat->baseColorFactor.z, mat->baseColorFactor.w}}};
-        if (!mat->baseColorTexture.empty()) pbr["baseColorTexture"] = texture(mat->baseColorTexture, mat->baseColorTexCoord);
+        json pbr = {{"baseColorFactor",
+                     {mat->baseColorFactor.x, mat->baseColorFactor.y, mat->baseColorFactor.z,
+                      mat->baseColorFactor.w}}};
+        if (!mat->baseColorTexture.empty())
+            pbr["baseColorTexture"] = texture(mat->baseColorTexture, mat->baseColorTexCoord);
         jm["pbrMetallicRoughness"] = pbr;
         if (!mat->normalTexture.empty()) {
             json nt = texture(mat->normalTexture, mat->normalTexCoord);
@@ -175,7 +196,8 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
     std::string out;
     auto u32 = [&](uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
     uint64_t total = 12 + 8 + js.size() + 8 + b.bin.size();
-    if (total > UINT32_MAX) throw InputError(path.string(), "", "mesh too large for a GLB file (4 GiB)");
+    if (total > UINT32_MAX)
+        throw InputError(path.string(), "", "mesh too large for a GLB file (4 GiB)");
     u32(0x46546C67u); // "glTF"
     u32(2);
     u32(uint32_t(total));
@@ -222,8 +244,11 @@ std::string objBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
         }
         out += '\n';
     }
-    if (mesh.uvSets.size() > 1) notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) + " dropped");
-    if (!mesh.tangents.empty()) notes.push_back("OBJ has no tangents: dropped (write .gltf/.glb to keep them)");
+    if (mesh.uvSets.size() > 1)
+        notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) +
+                        " dropped");
+    if (!mesh.tangents.empty())
+        notes.push_back("OBJ has no tangents: dropped (write .gltf/.glb to keep them)");
     if (!mesh.morphTargets.empty()) notes.push_back("OBJ has no morph targets: dropped");
     return out;
 }
@@ -263,7 +288,9 @@ std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
         out += 'f';
         for (uint32_t j = 0; j < k; ++j, ++c) {
             out += ' ' + std::to_string(mesh.faceVertices[c] + 1);
-            if (hasUv || hasN) out += '/' + (hasUv ? std::to_string(mesh.uvSets[0].indices[c] + 1) : std::string());
+            if (hasUv || hasN)
+                out +=
+                    '/' + (hasUv ? std::to_string(mesh.uvSets[0].indices[c] + 1) : std::string());
             if (hasN) out += '/' + std::to_string(mesh.normalIndices[c] + 1);
         }
         out += '\n';
@@ -271,9 +298,12 @@ std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
     // Tags: every option explicitly, so a round trip is exact.
     static const int kBoundaryTag[3] = {0, 2, 1}; // None, EdgeOnly, EdgeAndCorner
     out += "t scheme 0/0/1 " + std::string(toString(mesh.options.scheme)) + "\n";
-    out += "t interpolateboundary 1/0/0 " + std::to_string(kBoundaryTag[int(mesh.options.boundary)]) + "\n";
-    out += "t facevaryinginterpolateboundary 1/0/0 " + std::to_string(int(mesh.options.fvar)) + "\n";
-    out += std::string("t creasemethod 0/0/1 ") + (mesh.options.creaseMethod == CreaseMethod::Chaikin ? "chaikin" : "normal") + "\n";
+    out += "t interpolateboundary 1/0/0 " +
+           std::to_string(kBoundaryTag[int(mesh.options.boundary)]) + "\n";
+    out +=
+        "t facevaryinginterpolateboundary 1/0/0 " + std::to_string(int(mesh.options.fvar)) + "\n";
+    out += std::string("t creasemethod 0/0/1 ") +
+           (mesh.options.creaseMethod == CreaseMethod::Chaikin ? "chaikin" : "normal") + "\n";
     if (mesh.options.triangles == TriangleRule::Smooth) out += "t smoothtriangles 0/0/1 catmark\n";
     for (const EdgeCrease& e : mesh.creases) {
         out += "t crease 2/1/0 " + std::to_string(e.v0) + " " + std::to_string(e.v1) + " ";
@@ -290,13 +320,16 @@ std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
         for (uint32_t h : mesh.holes) out += " " + std::to_string(h);
         out += '\n';
     }
-    if (mesh.uvSets.size() > 1) notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) + " dropped");
+    if (mesh.uvSets.size() > 1)
+        notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) +
+                        " dropped");
     if (!mesh.morphTargets.empty()) notes.push_back("OBJ has no morph targets: dropped");
     return out;
 }
 
 struct PlyBuilder {
-    std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by surfgrad\n", body;
+    std::string header = "ply\nformat binary_little_endian 1.0\ncomment written by surfgrad\n",
+                body;
     template <class T>
     void put(T v) {
         body.append(reinterpret_cast<const char*>(&v), sizeof v);
@@ -306,13 +339,16 @@ struct PlyBuilder {
 std::string plyBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
     PlyBuilder b;
     const size_t nV = mesh.positions.size();
-    b.header += "element vertex " + std::to_string(nV) + "\nproperty float x\nproperty float y\nproperty float z\n";
-    if (!mesh.normals.empty()) b.header += "property float nx\nproperty float ny\nproperty float nz\n";
+    b.header += "element vertex " + std::to_string(nV) +
+                "\nproperty float x\nproperty float y\nproperty float z\n";
+    if (!mesh.normals.empty())
+        b.header += "property float nx\nproperty float ny\nproperty float nz\n";
     for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
         std::string suffix = s == 0 ? "" : std::to_string(s);
         b.header += "property float s" + suffix + "\nproperty float t" + suffix + "\n";
     }
-    b.header += "element face " + std::to_string(mesh.triangleCount()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    b.header += "element face " + std::to_string(mesh.triangleCount()) +
+                "\nproperty list uchar int vertex_indices\nend_header\n";
     for (size_t v = 0; v < nV; ++v) {
         for (int i = 0; i < 3; ++i) b.put(mesh.positions[v][i]);
         if (!mesh.normals.empty()) {
@@ -327,7 +363,8 @@ std::string plyBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
         b.put(uint8_t(3));
         for (int j = 0; j < 3; ++j) b.put(int32_t(mesh.indices[k + size_t(j)]));
     }
-    if (!mesh.tangents.empty()) notes.push_back("PLY output has no tangents: dropped (write .gltf/.glb to keep them)");
+    if (!mesh.tangents.empty())
+        notes.push_back("PLY output has no tangents: dropped (write .gltf/.glb to keep them)");
     if (!mesh.morphTargets.empty()) notes.push_back("PLY has no morph targets: dropped");
     return b.header + b.body;
 }
@@ -335,7 +372,8 @@ std::string plyBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
 // Per-vertex values of a face-varying channel when every vertex has one
 // value (no seams); empty otherwise.
 template <class V>
-std::vector<V> perVertex(const PolygonMesh& mesh, const std::vector<V>& values, const std::vector<uint32_t>& indices) {
+std::vector<V> perVertex(const PolygonMesh& mesh, const std::vector<V>& values,
+                         const std::vector<uint32_t>& indices) {
     std::vector<V> out(mesh.positions.size(), V(0.0f));
     std::vector<uint32_t> seen(mesh.positions.size(), UINT32_MAX);
     for (size_t c = 0; c < indices.size(); ++c) {
@@ -353,29 +391,34 @@ std::vector<V> perVertex(const PolygonMesh& mesh, const std::vector<V>& values, 
 // Polygons with per-vertex attributes only: OpenMesh's PLY reader (and
 // most others) do not read per-corner lists, so a UV set with seams cannot
 // be written here (noted; .obj keeps it).
-std::string plyBytes(const std::filesystem::path& path, const PolygonMesh& mesh, std::vector<std::string>& notes) {
+std::string plyBytes(const std::filesystem::path& path, const PolygonMesh& mesh,
+                     std::vector<std::string>& notes) {
     PlyBuilder b;
     std::vector<glm::vec3> normals;
     if (!mesh.normalIndices.empty()) {
         normals = perVertex(mesh, mesh.normals, mesh.normalIndices);
-        if (normals.empty()) notes.push_back("PLY holds per-vertex normals; these are per corner: dropped");
+        if (normals.empty())
+            notes.push_back("PLY holds per-vertex normals; these are per corner: dropped");
     }
     std::vector<std::vector<glm::vec2>> uvs;
     for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
         std::vector<glm::vec2> uv = perVertex(mesh, mesh.uvSets[s].values, mesh.uvSets[s].indices);
         if (uv.empty()) {
-            notes.push_back("PLY holds per-vertex UVs; UV set " + std::to_string(s) + " has seams: dropped (write .obj to keep it)");
+            notes.push_back("PLY holds per-vertex UVs; UV set " + std::to_string(s) +
+                            " has seams: dropped (write .obj to keep it)");
             break; // later sets would shift names
         }
         uvs.push_back(std::move(uv));
     }
-    b.header += "element vertex " + std::to_string(mesh.positions.size()) + "\nproperty float x\nproperty float y\nproperty float z\n";
+    b.header += "element vertex " + std::to_string(mesh.positions.size()) +
+                "\nproperty float x\nproperty float y\nproperty float z\n";
     if (!normals.empty()) b.header += "property float nx\nproperty float ny\nproperty float nz\n";
     for (size_t s = 0; s < uvs.size(); ++s) {
         std::string suffix = s == 0 ? "" : std::to_string(s);
         b.header += "property float s" + suffix + "\nproperty float t" + suffix + "\n";
     }
-    b.header += "element face " + std::to_string(mesh.faceSizes.size()) + "\nproperty list uchar int vertex_indices\nend_header\n";
+    b.header += "element face " + std::to_string(mesh.faceSizes.size()) +
+                "\nproperty list uchar int vertex_indices\nend_header\n";
     for (size_t v = 0; v < mesh.positions.size(); ++v) {
         for (int i = 0; i < 3; ++i) b.put(mesh.positions[v][i]);
         if (!normals.empty()) {
@@ -389,7 +432,9 @@ std::string plyBytes(const std::filesystem::path& path, const PolygonMesh& mesh,
     size_t c0 = 0;
     for (uint32_t k : mesh.faceSizes) {
         if (k > 255) {
-            throw InputError(path.string(), "", "a face has " + std::to_string(k) + " corners; PLY lists hold at most 255");
+            throw InputError(path.string(), "",
+                             "a face has " + std::to_string(k) +
+                                 " corners; PLY lists hold at most 255");
         }
         b.put(uint8_t(k));
         for (uint32_t j = 0; j < k; ++j) b.put(int32_t(mesh.faceVertices[c0 + j]));
@@ -408,28 +453,41 @@ void checkOutput(const std::filesystem::path& path, const WriteOptions& options)
 
 } // namespace
 
-std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, const RenderMesh& mesh, const WriteOptions& options) {
+std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, const RenderMesh& mesh,
+                                         const WriteOptions& options) {
     checkOutput(path, options);
     std::vector<std::string> notes;
     const std::string ext = meshFormat(path);
     std::string bytes;
-    if (ext == ".gltf" || ext == ".glb") bytes = gltfBytes(path, mesh, options, ext == ".glb");
-    else if (ext == ".obj") bytes = objBytes(mesh, notes);
-    else if (ext == ".ply") bytes = plyBytes(mesh, notes);
-    else throw InputError(path.string(), "", "unknown output format '" + ext + "' (expected .gltf, .glb, .obj or .ply)");
+    if (ext == ".gltf" || ext == ".glb")
+        bytes = gltfBytes(path, mesh, options, ext == ".glb");
+    else if (ext == ".obj")
+        bytes = objBytes(mesh, notes);
+    else if (ext == ".ply")
+        bytes = plyBytes(mesh, notes);
+    else
+        throw InputError(path.string(), "",
+                         "unknown output format '" + ext +
+                             "' (expected .gltf, .glb, .obj or .ply)");
     io::writeFileAtomically(path, bytes);
     return notes;
 }
 
-std::vector<std::string> writePolygonMesh(const std::filesystem::path& path, const PolygonMesh& mesh, const WriteOptions& options) {
+std::vector<std::string> writePolygonMesh(const std::filesystem::path& path,
+                                          const PolygonMesh& mesh, const WriteOptions& options) {
     checkOutput(path, options);
     const std::string ext = meshFormat(path);
     if (ext == ".gltf" || ext == ".glb") return writeRenderMesh(path, toRenderMesh(mesh), options);
     std::vector<std::string> notes;
     std::string bytes;
-    if (ext == ".obj") bytes = objBytes(mesh, notes);
-    else if (ext == ".ply") bytes = plyBytes(path, mesh, notes);
-    else throw InputError(path.string(), "", "unknown output format '" + ext + "' (expected .gltf, .glb, .obj or .ply)");
+    if (ext == ".obj")
+        bytes = objBytes(mesh, notes);
+    else if (ext == ".ply")
+        bytes = plyBytes(path, mesh, notes);
+    else
+        throw InputError(path.string(), "",
+                         "unknown output format '" + ext +
+                             "' (expected .gltf, .glb, .obj or .ply)");
     io::writeFileAtomically(path, bytes);
     return notes;
 }

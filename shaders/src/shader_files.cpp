@@ -64,8 +64,8 @@ struct Expander {
                     }
                     included.insert(path);
                     expand(src, path, depth + 1);
-                    out.text += "#line " + std::to_string(lineNo + 1) + " " +
-                                std::to_string(self) + "\n";
+                    out.text +=
+                        "#line " + std::to_string(lineNo + 1) + " " + std::to_string(self) + "\n";
                 } else {
                     out.text += "\n";
                 }

@@ -37,8 +37,8 @@ CliRun surfgrad(const std::string& args, const std::string& stdinText) {
         std::ofstream f(in);
         f << stdinText;
     }
-    const std::string cmd = std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args + " < '" +
-                            in.string() + "' 2> '" + err.string() + "'";
+    const std::string cmd = std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args +
+                            " < '" + in.string() + "' 2> '" + err.string() + "'";
     std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
     std::string out;
     std::array<char, 4096> buf;
@@ -58,9 +58,9 @@ std::vector<nlohmann::json> lines(const std::string& out) {
 }
 
 TEST(CliEval, GoodLinesGiveKnownAnswers) {
-    const CliRun r = surfgrad("eval resolve",
-                          "{\"n\":[0,0,1],\"sg\":[0.5,0,0]}\n"
-                          "{\"n\":[0,0,2],\"sg\":[0,0.75,0],\"resolve_sign\":-1}\n");
+    const CliRun r =
+        surfgrad("eval resolve", "{\"n\":[0,0,1],\"sg\":[0.5,0,0]}\n"
+                                 "{\"n\":[0,0,2],\"sg\":[0,0.75,0],\"resolve_sign\":-1}\n");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const auto v = lines(r.out);
     ASSERT_EQ(v.size(), 2u);
@@ -71,7 +71,8 @@ TEST(CliEval, GoodLinesGiveKnownAnswers) {
     EXPECT_NEAR(v[1]["n"][1].get<double>(), 0.6, 1e-6);
     EXPECT_NEAR(v[1]["n"][2].get<double>(), 0.8, 1e-6);
 
-    const CliRun t = surfgrad("eval tspace-to-deriv", "{\"m\":[0.6,0]}\n{\"m\":[0,0.6],\"flip_v\":true}\n");
+    const CliRun t =
+        surfgrad("eval tspace-to-deriv", "{\"m\":[0.6,0]}\n{\"m\":[0,0.6],\"flip_v\":true}\n");
     ASSERT_EQ(t.exitCode, 0) << t.err;
     const auto d = lines(t.out);
     EXPECT_NEAR(d[0]["d"][0].get<double>(), -0.75, 1e-6); // -m.x / m.z, m.z = 0.8
@@ -79,23 +80,23 @@ TEST(CliEval, GoodLinesGiveKnownAnswers) {
 }
 
 TEST(CliEval, BadLinesGetErrorLinesAndExitOne) {
-    const std::string input =
-        "{\"n\":[0,0,1],\"sg\":[0,0,0]}\n"  // 1 good
-        "{\"n\":[0,0,1],\"sg\":[0,0]}\n"    // 2 wrong length
-        "not json\n"                        // 3
-        "{\"n\":[0,0,1]}\n"                 // 4 missing sg
-        "{\"n\":[0,0,1],\"sg\":[0,0,0],\"x\":1}\n" // 5 unknown key
-        "{\"n\":[0,0,1e19],\"sg\":[0,0,0]}\n"      // 6 outside the domain
-        "[1,2,3]\n"                                // 7 not an object
-        "\n"                                       // blank: skipped
-        "{\"n\":[1,0,0],\"sg\":[0,0,0]}\n";        // 9 good
+    const std::string input = "{\"n\":[0,0,1],\"sg\":[0,0,0]}\n"         // 1 good
+                              "{\"n\":[0,0,1],\"sg\":[0,0]}\n"           // 2 wrong length
+                              "not json\n"                               // 3
+                              "{\"n\":[0,0,1]}\n"                        // 4 missing sg
+                              "{\"n\":[0,0,1],\"sg\":[0,0,0],\"x\":1}\n" // 5 unknown key
+                              "{\"n\":[0,0,1e19],\"sg\":[0,0,0]}\n"      // 6 outside the domain
+                              "[1,2,3]\n"                                // 7 not an object
+                              "\n"                                       // blank: skipped
+                              "{\"n\":[1,0,0],\"sg\":[0,0,0]}\n";        // 9 good
     const CliRun r = surfgrad("eval resolve", input);
     EXPECT_EQ(r.exitCode, 1);
     const auto v = lines(r.out);
     ASSERT_EQ(v.size(), 8u);
     EXPECT_TRUE(v[0].contains("n"));
-    const char* expect[] = {"line 2: key 'sg'", "line 3: invalid JSON", "line 4: missing key 'sg'",
-                            "line 5: unknown key 'x'", "line 6: key 'n'", "line 7: expected a JSON object"};
+    const char* expect[] = {"line 2: key 'sg'",         "line 3: invalid JSON",
+                            "line 4: missing key 'sg'", "line 5: unknown key 'x'",
+                            "line 6: key 'n'",          "line 7: expected a JSON object"};
     for (int i = 0; i < 6; ++i) {
         ASSERT_TRUE(v[size_t(i + 1)].contains("error")) << v[size_t(i + 1)].dump();
         EXPECT_NE(v[size_t(i + 1)]["error"].get<std::string>().find(expect[i]), std::string::npos)
@@ -103,7 +104,8 @@ TEST(CliEval, BadLinesGetErrorLinesAndExitOne) {
     }
     EXPECT_NEAR(v[7]["n"][0].get<double>(), 1.0, 1e-7);
 
-    const CliRun p = surfgrad("eval prologue", "{\"n\":[0,0,1],\"dpdx\":[1,0,0],\"dpdy\":[0,1,0],\"bface_mode\":3}\n");
+    const CliRun p = surfgrad(
+        "eval prologue", "{\"n\":[0,0,1],\"dpdx\":[1,0,0],\"dpdy\":[0,1,0],\"bface_mode\":3}\n");
     EXPECT_EQ(p.exitCode, 1);
     EXPECT_NE(p.out.find("bface_mode"), std::string::npos);
 
@@ -130,7 +132,8 @@ TEST(CliEval, GpuAgreesWithCpu) {
         for (const char* k : {"t", "b"}) {
             for (int j = 0; j < 3; ++j) {
                 // Well-conditioned unit vectors: the basis tolerance (1e-5).
-                EXPECT_NEAR(vc[i][k][size_t(j)].get<double>(), vg[i][k][size_t(j)].get<double>(), 1e-5)
+                EXPECT_NEAR(vc[i][k][size_t(j)].get<double>(), vg[i][k][size_t(j)].get<double>(),
+                            1e-5)
                     << "line " << i + 1 << " " << k;
             }
         }
@@ -150,13 +153,15 @@ TEST(CliEval, ListNamesEveryEntry) {
 
 TEST(EvalLine, ParserAcceptsAndRejects) {
     const auto& e = *sg::eval::findEntry("triplanar");
-    const auto rec = sg::eval::parseLine(e, R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"upper_left":true})");
-    EXPECT_EQ(rec[3], 3.0f);   // k defaults to 3
-    EXPECT_EQ(rec[8], 5.0f);   // dz.x
-    EXPECT_EQ(rec[11], 1.0f);  // upper_left
-    for (const char* bad : {R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4]})", R"({"n":[0,0,"x"],"dx":[1,2],"dy":[3,4],"dz":[5,6]})",
-                            R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"upper_left":1})", "{", "",
-                            R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"k":1e300})"}) {
+    const auto rec = sg::eval::parseLine(
+        e, R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"upper_left":true})");
+    EXPECT_EQ(rec[3], 3.0f);  // k defaults to 3
+    EXPECT_EQ(rec[8], 5.0f);  // dz.x
+    EXPECT_EQ(rec[11], 1.0f); // upper_left
+    for (const char* bad : {R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4]})",
+                            R"({"n":[0,0,"x"],"dx":[1,2],"dy":[3,4],"dz":[5,6]})",
+                            R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"upper_left":1})", "{",
+                            "", R"({"n":[0,0,1],"dx":[1,2],"dy":[3,4],"dz":[5,6],"k":1e300})"}) {
         EXPECT_THROW(sg::eval::parseLine(e, bad), sg::eval::LineError) << bad;
     }
 }

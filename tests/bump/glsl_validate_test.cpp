@@ -34,7 +34,8 @@ struct RunResult {
 // Writes `source` to a temporary file with the stage's extension and runs
 // glslangValidator on it.
 RunResult validate(const std::string& source, const std::string& stage, const std::string& tag) {
-    const fs::path dir = fs::temp_directory_path() / ("surfgrad_glslang_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("surfgrad_glslang_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::string safe = tag;
     for (char& c : safe) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
@@ -57,7 +58,8 @@ RunResult validate(const std::string& source, const std::string& stage, const st
 std::string stageOf(const std::string& path) {
     auto ends = [&](const char* s) {
         const std::string suf(s);
-        return path.size() >= suf.size() && path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
+        return path.size() >= suf.size() &&
+               path.compare(path.size() - suf.size(), suf.size(), suf) == 0;
     };
     if (ends(".comp.glsl")) return "comp";
     if (ends("_vs.glsl") || ends(".vert.glsl")) return "vert";
@@ -119,12 +121,15 @@ TEST_P(GlslFile, CompilesStandalone) {
                              << sg::shaders::annotateLog(r.output, src.files);
 }
 
-std::vector<std::string> shaderFiles() { return sg::shaders::list(); }
+std::vector<std::string> shaderFiles() {
+    return sg::shaders::list();
+}
 
 INSTANTIATE_TEST_SUITE_P(AllShaders, GlslFile, ::testing::ValuesIn(shaderFiles()),
                          [](const auto& p) {
                              std::string n = p.param;
-                             for (char& c : n) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             for (char& c : n)
+                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
                              return n;
                          });
 

@@ -33,9 +33,15 @@ namespace g = sg::glsl;
 using dvec2 = glm::dvec2;
 using dvec3 = glm::dvec3;
 
-g::vec3 f3(const dvec3& v) { return g::vec3(float(v.x), float(v.y), float(v.z)); }
-g::vec2 f2(const dvec2& v) { return g::vec2(float(v.x), float(v.y)); }
-dvec3 d3(const g::vec3& v) { return dvec3(v.x, v.y, v.z); }
+g::vec3 f3(const dvec3& v) {
+    return g::vec3(float(v.x), float(v.y), float(v.z));
+}
+g::vec2 f2(const dvec2& v) {
+    return g::vec2(float(v.x), float(v.y));
+}
+dvec3 d3(const g::vec3& v) {
+    return dvec3(v.x, v.y, v.z);
+}
 
 // Angle between two directions in radians (robust for tiny angles).
 double angle(const dvec3& a, const dvec3& b) {
@@ -100,8 +106,8 @@ g::vec3 frameworkSurfgrad2D(const SurfacePoint& s, const dvec2& hGrad, const glm
                             const dvec2& uvPeriod, const dvec2& texDim, g::SgFrame* outFrame) {
     const dvec3 dPdx = s.pu * J[0][0] + s.pv * J[0][1];
     const dvec3 dPdy = s.pu * J[1][0] + s.pv * J[1][1];
-    g::SgFrame f = g::sgPrologue(f3(glm::cross(s.pu, s.pv)), f3(dPdx), f3(dPdy), true,
-                                 SG_BFACE_NONE);
+    g::SgFrame f =
+        g::sgPrologue(f3(glm::cross(s.pu, s.pv)), f3(dPdx), f3(dPdy), true, SG_BFACE_NONE);
     // st = uv / period: dST/dx = J col 0 / period; dH/d(texel) = dH/du * period / texDim.
     const dvec2 dSTdx = dvec2(J[0][0], J[0][1]) / uvPeriod;
     const dvec2 dSTdy = dvec2(J[1][0], J[1][1]) / uvPeriod;
@@ -140,7 +146,9 @@ TEST(KnownAnswers, ResolvedNormalEqualsBlinnOnPlaneSphereTorus) {
 
 TEST(KnownAnswers, VolumeAndTwoDBumpGiveTheSameSurfaceGradient) {
     // H(x, y, z) on the sphere; the 2D map is its restriction h = H o P.
-    auto H = [](const dvec3& p) { return 0.4 * std::sin(1.3 * p.x) * std::cos(0.7 * p.y) + 0.2 * p.z * p.z; };
+    auto H = [](const dvec3& p) {
+        return 0.4 * std::sin(1.3 * p.x) * std::cos(0.7 * p.y) + 0.2 * p.z * p.z;
+    };
     auto gradH = [](const dvec3& p) {
         return dvec3(0.4 * 1.3 * std::cos(1.3 * p.x) * std::cos(0.7 * p.y),
                      -0.4 * 0.7 * std::sin(1.3 * p.x) * std::sin(0.7 * p.y), 0.4 * p.z);
@@ -179,17 +187,19 @@ TEST(KnownAnswers, ParametrizationIndependenceScaleDependent) {
         const SurfacePoint s = torus(u, v);
         const Height hgt{0.5, 2.0, 3.0, 0.3};
         const dvec2 hg = hgt.grad(u, v);
-        glm::dmat2 A(1.5 + 0.3 * U(rng), 0.4 * U(rng), 0.4 * U(rng), -0.7 + 0.2 * U(rng)); // mirrored
+        glm::dmat2 A(1.5 + 0.3 * U(rng), 0.4 * U(rng), 0.4 * U(rng),
+                     -0.7 + 0.2 * U(rng)); // mirrored
         // Layout 2: P2(u2, v2) = P(A^-1 (u2 - c)): P2_u2 = [P_u P_v] A^-1 columns, and the
         // height gradient transforms with A^-T.
         const glm::dmat2 Ai = glm::inverse(A);
         SurfacePoint s2{s.p, s.pu * Ai[0][0] + s.pv * Ai[0][1], s.pu * Ai[1][0] + s.pv * Ai[1][1]};
         const dvec2 hg2 = glm::transpose(Ai) * hg;
         const glm::dmat2 J(0.01, 0.002, -0.003, 0.012); // d(u,v)/d(x,y)
-        const glm::dmat2 J2 = A * J;                     // d(u2,v2)/d(x,y)
+        const glm::dmat2 J2 = A * J;                    // d(u2,v2)/d(x,y)
         g::SgFrame f1, f2f;
         const g::vec3 sg1 = frameworkSurfgrad2D(s, hg, J, dvec2(1.0, 2.0), dvec2(256, 512), &f1);
-        const g::vec3 sg2 = frameworkSurfgrad2D(s2, hg2, J2, dvec2(3.0, 0.5), dvec2(2048, 64), &f2f);
+        const g::vec3 sg2 =
+            frameworkSurfgrad2D(s2, hg2, J2, dvec2(3.0, 0.5), dvec2(2048, 64), &f2f);
         // Layout 2 is mirrored: its geometric normal flips, so resolve both
         // against the same base normal (the surface's).
         const dvec3 n1 = d3(g::sgResolve(f1, sg1));
@@ -214,7 +224,8 @@ TEST(KnownAnswers, ParametrizationIndependenceGenBasisTB) {
         const double pa = U(rng) * 4, pb = U(rng) * 4;
         const dvec2 hg = hgt.grad(pa, pb); // dh/d(a, b)
         // Screen Jacobian d(a, b)/d(x, y).
-        const glm::dmat2 J(0.01 + 0.005 * U(rng), 0.004 * U(rng), 0.004 * U(rng), 0.01 + 0.005 * U(rng));
+        const glm::dmat2 J(0.01 + 0.005 * U(rng), 0.004 * U(rng), 0.004 * U(rng),
+                           0.01 + 0.005 * U(rng));
         const dvec3 dPdx = e1 * J[0][0] + e2 * J[0][1], dPdy = e1 * J[1][0] + e2 * J[1][1];
         g::SgFrame f = g::sgPrologue(f3(n), f3(dPdx), f3(dPdy), true, SG_BFACE_NONE);
         dvec3 normals[2];
@@ -252,8 +263,8 @@ TEST(KnownAnswers, LayersAddLikeHeights) {
             const double scale = 1.5 * U(rng);
             const dvec2 gk = hk.grad(u, v);
             sumGrad += scale * gk;
-            sum += g::sgBumpScale(float(scale), frameworkSurfgrad2D(s, gk, J, dvec2(1, 1),
-                                                                   dvec2(256, 256), &f));
+            sum += g::sgBumpScale(float(scale),
+                                  frameworkSurfgrad2D(s, gk, J, dvec2(1, 1), dvec2(256, 256), &f));
         }
         ASSERT_LT(angle(d3(g::sgResolve(f, sum)), blinnNormal(s, sumGrad)), kAngleTol) << i;
     }
@@ -286,7 +297,7 @@ TEST(KnownAnswers, MikktspaceCompliantTbnEqualsClassicTbn) {
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> U(-1, 1);
     for (int i = 0; i < 5000; ++i) {
-        const dvec3 n = dvec3(U(rng), U(rng), U(rng)) + dvec3(0, 0, 2); // |n| in ~[1, 3.5]
+        const dvec3 n = dvec3(U(rng), U(rng), U(rng)) + dvec3(0, 0, 2);         // |n| in ~[1, 3.5]
         const dvec3 t = glm::cross(n, dvec3(U(rng), U(rng), U(rng))) + 0.2 * n; // not orthogonal
         const double w = U(rng) < 0 ? -1.0 : 1.0;
         const dvec2 m(0.7 * U(rng), 0.7 * U(rng));
@@ -355,7 +366,8 @@ TEST(KnownAnswers, AnalyticScreenDerivativesMatchFiniteDifferences) {
         const double w = 1280, h = 720;
         const dvec3 fwd = glm::normalize(dvec3(U(rng), U(rng), U(rng)));
         const glm::dmat4 view = glm::lookAt(dvec3(0), fwd, dvec3(0, 0, 1));
-        const glm::dmat4 proj = glm::perspective(glm::radians(30.0 + 60.0 * std::abs(U(rng))), w / h, 0.1, 100.0);
+        const glm::dmat4 proj =
+            glm::perspective(glm::radians(30.0 + 60.0 * std::abs(U(rng))), w / h, 0.1, 100.0);
         glm::dmat4 vp(1.0);
         vp[0][0] = w / 2;
         vp[1][1] = h / 2;
@@ -397,7 +409,9 @@ TEST(KnownAnswers, AnalyticScreenDerivativesMatchFiniteDifferences) {
 // ---- Loviscach 2008, "Feeding" ------------------------------------------------
 
 // The unit normal of a height field with derivative d (double oracle).
-dvec3 heightNormal(const dvec2& d) { return glm::normalize(dvec3(-d.x, -d.y, 1)); }
+dvec3 heightNormal(const dvec2& d) {
+    return glm::normalize(dvec3(-d.x, -d.y, 1));
+}
 
 TEST(KnownAnswers, LoviscachScaleInvertsAndNeverTurnsInward) {
     std::mt19937_64 rng(10);
@@ -425,7 +439,9 @@ TEST(KnownAnswers, LoviscachScaleInvertsAndNeverTurnsInward) {
 }
 
 TEST(KnownAnswers, LoviscachModulateCurveDeformMatchFiniteDifferences) {
-    auto h1 = [](double u, double v) { return 0.3 * std::sin(2 * u + 0.1) * std::cos(3 * v) + 0.5; };
+    auto h1 = [](double u, double v) {
+        return 0.3 * std::sin(2 * u + 0.1) * std::cos(3 * v) + 0.5;
+    };
     auto h2 = [](double u, double v) { return 0.2 * std::cos(1.5 * u - v) + 0.7; };
     auto grad = [](auto&& h, double u, double v) {
         const double e = 1e-5;
@@ -452,7 +468,8 @@ TEST(KnownAnswers, LoviscachModulateCurveDeformMatchFiniteDifferences) {
         const double fdSlope = (f(hh + 1e-6) - f(hh - 1e-6)) / 2e-6;
         const float slope = g::sgCurveBoostSlope(float(hh), float(P), float(Hc));
         ASSERT_LT(std::abs(slope - fdSlope), 1e-5 * std::max(1.0, std::abs(fdSlope))) << i;
-        ASSERT_LT(std::abs(g::sgCurveBoostValue(float(hh), float(P), float(Hc)) - f(hh)), 1e-6) << i;
+        ASSERT_LT(std::abs(g::sgCurveBoostValue(float(hh), float(P), float(Hc)) - f(hh)), 1e-6)
+            << i;
         const dvec2 fdCurved = grad([&](double a, double b) { return f(h1(a, b)); }, u, v);
         const g::vec2 curved = g::sgDerivCurve(f2(d1), slope);
         ASSERT_LT(glm::length(dvec2(curved.x, curved.y) - fdCurved), tol) << i;
@@ -461,16 +478,20 @@ TEST(KnownAnswers, LoviscachModulateCurveDeformMatchFiniteDifferences) {
         const double A = 0.05 * U(rng), B = 10 * U(rng);
         auto warped = [&](double a, double b) { return h2(a, b + A * std::sin(B * a)); };
         const dvec2 dAt = grad(h2, u, v + A * std::sin(B * u));
-        const g::vec2 def = g::sgDerivDeform(f2(dAt), g::sgSineWarpJacobian(float(u), float(A), float(B)));
+        const g::vec2 def =
+            g::sgDerivDeform(f2(dAt), g::sgSineWarpJacobian(float(u), float(A), float(B)));
         ASSERT_LT(glm::length(dvec2(def.x, def.y) - grad(warped, u, v)), tol) << i;
         // A general warp with an analytic Jacobian.
         auto sw = [](double a, double b) { return dvec2(a + 0.3 * b * b, b - 0.2 * std::sin(a)); };
         const glm::dmat2 Jw(1, -0.2 * std::cos(u), 0.6 * v, 1); // columns d/du, d/dv
-        auto warped2 = [&](double a, double b) { dvec2 st = sw(a, b); return h1(st.x, st.y); };
+        auto warped2 = [&](double a, double b) {
+            dvec2 st = sw(a, b);
+            return h1(st.x, st.y);
+        };
         const dvec2 st = sw(u, v);
-        const g::vec2 def2 = g::sgDerivDeform(f2(grad(h1, st.x, st.y)),
-                                              g::mat2(float(Jw[0][0]), float(Jw[0][1]),
-                                                      float(Jw[1][0]), float(Jw[1][1])));
+        const g::vec2 def2 =
+            g::sgDerivDeform(f2(grad(h1, st.x, st.y)), g::mat2(float(Jw[0][0]), float(Jw[0][1]),
+                                                               float(Jw[1][0]), float(Jw[1][1])));
         ASSERT_LT(glm::length(dvec2(def2.x, def2.y) - grad(warped2, u, v)), 1e-5) << i;
     }
 }

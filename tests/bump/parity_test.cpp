@@ -60,12 +60,11 @@ TEST_P(Parity, CpuMatchesGpuWithinStatedTolerance) {
     EXPECT_GT(row.records - row.illConditioned - row.backwardExplained, 40000u);
 }
 
-INSTANTIATE_TEST_SUITE_P(AllEntries, Parity, ::testing::ValuesIn(entryNames()),
-                         [](const auto& p) {
-                             std::string n = p.param;
-                             for (char& c : n) c = (c == '-') ? '_' : c;
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(AllEntries, Parity, ::testing::ValuesIn(entryNames()), [](const auto& p) {
+    std::string n = p.param;
+    for (char& c : n) c = (c == '-') ? '_' : c;
+    return n;
+});
 
 // Hand-written hard cases for every entry: every input slot set to each of
 // zero, +-SG_BIG (1e18), +-1e-30, a denormal, and mixtures; CPU and GPU
@@ -95,9 +94,11 @@ TEST_P(Parity, HardCasesKeepTheContract) {
         const std::string c = parity::checkInvariants(e, x, &cpu[r * size_t(nout)]);
         const std::string g = parity::checkInvariants(e, x, &gpu[r * size_t(nout)]);
         ASSERT_TRUE(c.empty()) << "cpu: " << c << "\n"
-                               << parity::describeRecord(e, x, &cpu[r * size_t(nout)], nullptr, nullptr);
+                               << parity::describeRecord(e, x, &cpu[r * size_t(nout)], nullptr,
+                                                         nullptr);
         ASSERT_TRUE(g.empty()) << "gpu: " << g << "\n"
-                               << parity::describeRecord(e, x, nullptr, &gpu[r * size_t(nout)], nullptr);
+                               << parity::describeRecord(e, x, nullptr, &gpu[r * size_t(nout)],
+                                                         nullptr);
     }
 }
 

@@ -32,13 +32,16 @@ const fs::path kSourceDir = SURFGRAD_SOURCE_DIR;
 const std::string kCli = SG_SURFGRAD_BIN;
 
 // A scene showing one copy of `meshFile` with the example's material.
-std::string sceneJson(const fs::path& meshFile, const std::string& tangents, const std::string& morph) {
+std::string sceneJson(const fs::path& meshFile, const std::string& tangents,
+                      const std::string& morph) {
     return R"({
   "output": { "width": 320, "height": 320 },
   "camera": { "position": [0.0, 0.9, 3.6], "target": [0.0, 0.0, 0.0], "fov_deg": 40 },
   "materials": [ { "name": "wicker", "layers": [
     { "type": "uv_normal", "uv_set": 0, "map": "data:textures/wicker_normal.png", "green": "gl", "strength": 1.0 } ] } ],
-  "meshes": [ { "file": ")" + meshFile.string() + R"(", "tangents": ")" + tangents + "\"" + morph + R"(, "material": 0 } ]
+  "meshes": [ { "file": ")" +
+           meshFile.string() + R"(", "tangents": ")" + tangents + "\"" + morph +
+           R"(, "material": 0 } ]
 })";
 }
 
@@ -52,11 +55,13 @@ Diff compare(const Image& a, const Image& b) {
     std::vector<double> ang;
     for (int y = 0; y < a.height; ++y) {
         for (int x = 0; x < a.width; ++x) {
-            glm::vec3 u(a.at(x, y, 0), a.at(x, y, 1), a.at(x, y, 2)), v(b.at(x, y, 0), b.at(x, y, 1), b.at(x, y, 2));
+            glm::vec3 u(a.at(x, y, 0), a.at(x, y, 1), a.at(x, y, 2)),
+                v(b.at(x, y, 0), b.at(x, y, 1), b.at(x, y, 2));
             bool ca = glm::dot(u, u) > 0.0f, cb = glm::dot(v, v) > 0.0f;
             if (ca != cb) ++d.coverageMismatch;
             if (!ca || !cb) continue;
-            double c = std::clamp(double(glm::dot(glm::normalize(u), glm::normalize(v))), -1.0, 1.0);
+            double c =
+                std::clamp(double(glm::dot(glm::normalize(u), glm::normalize(v))), -1.0, 1.0);
             ang.push_back(std::acos(c) * 180.0 / 3.141592653589793);
         }
     }
@@ -71,7 +76,8 @@ Diff compare(const Image& a, const Image& b) {
 Image renderNormals(const fs::path& dir, const std::string& name, const std::string& json) {
     fs::path scene = dir / (name + ".json"), out = dir / (name + ".exr");
     std::ofstream(scene) << json;
-    RunResult r = run(quote(kCli) + " render " + quote(scene) + " -o " + quote(out) + " --aov normal");
+    RunResult r =
+        run(quote(kCli) + " render " + quote(scene) + " -o " + quote(out) + " --aov normal");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     return readImage(out);
 }
@@ -80,13 +86,16 @@ struct Pose {
     float squash, lobes;
 };
 // For ctest's test names.
-void PrintTo(const Pose& p, std::ostream* os) { *os << "(" << p.squash << ", " << p.lobes << ")"; }
+void PrintTo(const Pose& p, std::ostream* os) {
+    *os << "(" << p.squash << ", " << p.lobes << ")";
+}
 
 class BlendshapeFrames : public ::testing::TestWithParam<Pose> {};
 
 TEST_P(BlendshapeFrames, PixelFramesMatchTangentsOfTheMorphedShape) {
     const Pose pose = GetParam();
-    fs::path dir = scratchDir("blend_" + std::to_string(int(pose.squash * 100)) + "_" + std::to_string(int(pose.lobes * 100)));
+    fs::path dir = scratchDir("blend_" + std::to_string(int(pose.squash * 100)) + "_" +
+                              std::to_string(int(pose.lobes * 100)));
     const fs::path model = kSourceDir / "examples/data/morph_blob.gltf";
 
     // The reference shape: glTF's morph rule (positions += w * delta,
@@ -107,7 +116,8 @@ TEST_P(BlendshapeFrames, PixelFramesMatchTangentsOfTheMorphedShape) {
     sg::mesh::writeRenderMesh(baked, m);
 
     char weights[96];
-    std::snprintf(weights, sizeof weights, ", \"morph\": { \"weights\": [%g, %g] }", double(w[0]), double(w[1]));
+    std::snprintf(weights, sizeof weights, ", \"morph\": { \"weights\": [%g, %g] }", double(w[0]),
+                  double(w[1]));
     Image reference = renderNormals(dir, "reference", sceneJson(baked, "mikktspace", ""));
     Image pixel = renderNormals(dir, "pixel", sceneJson(model, "pixel", weights));
     Image stale = renderNormals(dir, "stale", sceneJson(model, "mikktspace", weights));
@@ -116,9 +126,11 @@ TEST_P(BlendshapeFrames, PixelFramesMatchTangentsOfTheMorphedShape) {
     ASSERT_EQ(stale.width, 320);
 
     Diff dp = compare(pixel, reference), ds = compare(stale, reference);
-    std::printf("weights (%.2f, %.2f): %zu pixels; angle to the reference: per-pixel frames mean %.3f p95 %.3f deg, "
+    std::printf("weights (%.2f, %.2f): %zu pixels; angle to the reference: per-pixel frames mean "
+                "%.3f p95 %.3f deg, "
                 "rest-pose tangents mean %.3f p95 %.3f deg\n",
-                double(w[0]), double(w[1]), dp.compared, dp.meanDeg, dp.p95Deg, ds.meanDeg, ds.p95Deg);
+                double(w[0]), double(w[1]), dp.compared, dp.meanDeg, dp.p95Deg, ds.meanDeg,
+                ds.p95Deg);
     // Same triangles, same camera: the coverage is identical (a few pixels
     // of slack for rasterisation ties on the silhouette).
     EXPECT_LE(dp.coverageMismatch, 8u);
@@ -141,8 +153,8 @@ TEST_P(BlendshapeFrames, PixelFramesMatchTangentsOfTheMorphedShape) {
 INSTANTIATE_TEST_SUITE_P(Poses, BlendshapeFrames,
                          ::testing::Values(Pose{0.0f, 0.0f}, Pose{1.0f, 0.0f}, Pose{0.6f, 1.0f}),
                          [](const ::testing::TestParamInfo<Pose>& p) {
-                             return "squash" + std::to_string(int(p.param.squash * 100)) + "_lobes" +
-                                    std::to_string(int(p.param.lobes * 100));
+                             return "squash" + std::to_string(int(p.param.squash * 100)) +
+                                    "_lobes" + std::to_string(int(p.param.lobes * 100));
                          });
 
 } // namespace

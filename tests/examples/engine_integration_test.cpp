@@ -45,7 +45,8 @@ struct Expected {
 Expected expectedAt(int x, int y, bool useUv, bool useDecal) {
     Expected e;
     float tanHalf = std::tan(glm::radians(kFovYDeg) * 0.5f);
-    float ndcX = 2.0f * (float(x) + 0.5f) / kSize - 1.0f, ndcY = 1.0f - 2.0f * (float(y) + 0.5f) / kSize;
+    float ndcX = 2.0f * (float(x) + 0.5f) / kSize - 1.0f,
+          ndcY = 1.0f - 2.0f * (float(y) + 0.5f) / kSize;
     glm::vec3 origin(0.0f, 0.0f, kCameraDistance);
     glm::vec3 dir = glm::normalize(glm::vec3(ndcX * tanHalf, ndcY * tanHalf, -1.0f));
     // |origin + t dir| = 1, nearest root.
@@ -68,9 +69,11 @@ Expected expectedAt(int x, int y, bool useUv, bool useDecal) {
         glm::vec3 ax, ay, az;
         decalAxes(ax, ay, az);
         glm::vec3 r = p - decalCenter();
-        glm::vec3 l(glm::dot(r, ax) / kDecalHalfSize, glm::dot(r, ay) / kDecalHalfSize, glm::dot(r, az) / kDecalHalfDepth);
+        glm::vec3 l(glm::dot(r, ax) / kDecalHalfSize, glm::dot(r, ay) / kDecalHalfSize,
+                    glm::dot(r, az) / kDecalHalfDepth);
         if (std::abs(l.x) <= 1.0f && std::abs(l.y) <= 1.0f && std::abs(l.z) <= 1.0f) {
-            float fade = std::clamp((glm::dot(n, az) - kDecalCosEnd) / (kDecalCosStart - kDecalCosEnd), 0.0f, 1.0f);
+            float fade = std::clamp(
+                (glm::dot(n, az) - kDecalCosEnd) / (kDecalCosStart - kDecalCosEnd), 0.0f, 1.0f);
             glm::vec2 d = decalDeriv(0.5f * glm::vec2(l.x, l.y) + 0.5f);
             glm::vec3 g = d.x * ax + d.y * ay;
             glm::vec3 sg = fade * kDecalStrength * (g - glm::dot(n, g) * n);
@@ -96,7 +99,8 @@ Stats compareNormals(const Image& img, bool useUv, bool useDecal) {
         for (int x = 0; x < img.width; ++x) {
             Expected e = expectedAt(x, y, useUv, useDecal);
             if (!e.valid) continue;
-            glm::vec3 got(2.0f * img.at(x, y, 0) - 1.0f, 2.0f * img.at(x, y, 1) - 1.0f, 2.0f * img.at(x, y, 2) - 1.0f);
+            glm::vec3 got(2.0f * img.at(x, y, 0) - 1.0f, 2.0f * img.at(x, y, 1) - 1.0f,
+                          2.0f * img.at(x, y, 2) - 1.0f);
             double cosA = std::clamp(double(glm::dot(glm::normalize(got), e.normal)), -1.0, 1.0);
             double deg = std::acos(cosA) * 180.0 / 3.141592653589793;
             angles.push_back(deg);
@@ -116,10 +120,11 @@ Stats compareNormals(const Image& img, bool useUv, bool useDecal) {
 
 // Renders with the sample; returns the image (empty on failure, with the
 // program's output in `log`).
-Image render(const fs::path& dir, const std::string& name, const std::string& args, std::string& log) {
+Image render(const fs::path& dir, const std::string& name, const std::string& args,
+             std::string& log) {
     fs::path out = dir / (name + ".png");
-    RunResult r = run(quote(kProgram) + " -o " + quote(out) + " --size " + std::to_string(kSize) + "x" +
-                      std::to_string(kSize) + " " + args);
+    RunResult r = run(quote(kProgram) + " -o " + quote(out) + " --size " + std::to_string(kSize) +
+                      "x" + std::to_string(kSize) + " " + args);
     log = r.output;
     if (r.exitCode != 0) return {};
     return readImage(out);
@@ -143,7 +148,8 @@ TEST(EngineIntegration, ColorImageIsValidAndNotConstant) {
     int n = 0;
     for (int y = kSize / 4; y < 3 * kSize / 4; ++y) {
         for (int x = kSize / 4; x < 3 * kSize / 4; ++x) {
-            double l = 0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
+            double l =
+                0.2126 * img.at(x, y, 0) + 0.7152 * img.at(x, y, 1) + 0.0722 * img.at(x, y, 2);
             sum += l;
             sumSq += l * l;
             ++n;
@@ -160,18 +166,24 @@ struct LayerCase {
 };
 
 // For ctest's test names.
-void PrintTo(const LayerCase& c, std::ostream* os) { *os << c.layers << " / " << c.derivs; }
+void PrintTo(const LayerCase& c, std::ostream* os) {
+    *os << c.layers << " / " << c.derivs;
+}
 
 class EngineIntegrationNormals : public ::testing::TestWithParam<LayerCase> {};
 
 TEST_P(EngineIntegrationNormals, MatchAnalyticComposition) {
     const LayerCase& c = GetParam();
-    fs::path dir = scratchDir(std::string("ei_normals_") + (c.useUv ? "u" : "") + (c.useDecal ? "d" : "") + c.derivs);
+    fs::path dir = scratchDir(std::string("ei_normals_") + (c.useUv ? "u" : "") +
+                              (c.useDecal ? "d" : "") + c.derivs);
     std::string log;
-    Image img = render(dir, "normal", std::string("--aov normal --layers ") + c.layers + " --derivs " + c.derivs, log);
+    Image img =
+        render(dir, "normal",
+               std::string("--aov normal --layers ") + c.layers + " --derivs " + c.derivs, log);
     ASSERT_EQ(img.width, kSize) << log;
     Stats s = compareNormals(img, c.useUv, c.useDecal);
-    std::printf("layers %s, derivs %s: %d pixels (%d in the decal), angle to the analytic normal: mean %.3f "
+    std::printf("layers %s, derivs %s: %d pixels (%d in the decal), angle to the analytic normal: "
+                "mean %.3f "
                 "p99 %.3f max %.3f deg\n",
                 c.layers, c.derivs, s.checked, s.decalPixels, s.meanDeg, s.p99Deg, s.maxDeg);
     // The checked region covers most of the sphere's front.
@@ -216,7 +228,8 @@ TEST(EngineIntegration, AssembledShaderValidates) {
         RunResult src = run(quote(kProgram) + " --print-shader --derivs " + derivs);
         ASSERT_EQ(src.exitCode, 0) << src.output;
         ASSERT_NE(src.output.find("#version 450"), std::string::npos);
-        ASSERT_NE(src.output.find("sgResolve"), std::string::npos) << "the library was not included";
+        ASSERT_NE(src.output.find("sgResolve"), std::string::npos)
+            << "the library was not included";
         fs::path f = dir / (std::string("bumped_") + derivs + ".frag");
         std::ofstream(f) << src.output;
         RunResult v = run("glslangValidator " + quote(f));
@@ -226,7 +239,8 @@ TEST(EngineIntegration, AssembledShaderValidates) {
 
 TEST(EngineIntegration, BadArgumentsFailWithAMessage) {
     fs::path dir = scratchDir("ei_bad");
-    for (const char* args : {"--size 0x5", "--layers bumps", "--aov depth", "--frobnicate", "--shader-dir /nonexistent"}) {
+    for (const char* args : {"--size 0x5", "--layers bumps", "--aov depth", "--frobnicate",
+                             "--shader-dir /nonexistent"}) {
         RunResult r = run(quote(kProgram) + " -o " + quote(dir / "x.png") + " " + args);
         EXPECT_NE(r.exitCode, 0) << args;
         EXPECT_NE(r.output.find("error"), std::string::npos) << args << ": " << r.output;

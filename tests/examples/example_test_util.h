@@ -33,11 +33,14 @@ inline RunResult run(const std::string& cmd) {
     return r;
 }
 
-inline std::string quote(const fs::path& p) { return "'" + p.string() + "'"; }
+inline std::string quote(const fs::path& p) {
+    return "'" + p.string() + "'";
+}
 
 // A fresh per-process scratch directory for one test.
 inline fs::path scratchDir(const std::string& name) {
-    fs::path d = fs::temp_directory_path() / ("surfgrad_examples_" + std::to_string(::getpid())) / name;
+    fs::path d =
+        fs::temp_directory_path() / ("surfgrad_examples_" + std::to_string(::getpid())) / name;
     fs::remove_all(d);
     fs::create_directories(d);
     return d;
@@ -62,7 +65,8 @@ inline Image readImage(const fs::path& path) {
     img.height = spec.height;
     img.channels = spec.nchannels;
     img.pixels.resize(size_t(img.width) * size_t(img.height) * size_t(img.channels));
-    if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data())) img.width = 0;
+    if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
+        img.width = 0;
     in->close();
     return img;
 }

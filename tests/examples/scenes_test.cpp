@@ -47,7 +47,8 @@ std::string readText(const fs::path& p) {
 
 TEST(Examples, TheDocumentedExamplesExist) {
     std::vector<std::string> names = sceneExamples();
-    for (const char* required : {"tessellated-asset", "blendshape-asset", "terrain", "feature-curves"}) {
+    for (const char* required :
+         {"tessellated-asset", "blendshape-asset", "terrain", "feature-curves"}) {
         EXPECT_NE(std::find(names.begin(), names.end(), required), names.end()) << required;
     }
 }
@@ -113,7 +114,8 @@ TEST_P(SceneExample, RendersFiniteImagesFromTheCli) {
                 notUnit += std::abs(std::sqrt(len2) - 1.0f) > 1e-3f;
             }
         }
-        EXPECT_GT(covered, size_t(160 * 96 / 10)) << "frame " << f << ": the scene should fill part of the view";
+        EXPECT_GT(covered, size_t(160 * 96 / 10))
+            << "frame " << f << ": the scene should fill part of the view";
         EXPECT_EQ(notUnit, 0u) << "frame " << f;
     }
 }
@@ -145,7 +147,8 @@ TEST_P(SceneExample, EveryAssembledShaderPassesGlslang) {
     RunResult r = run(quote(kCli) + " shader " + quote(scene()) + " --vertex");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::vector<Program> progs = splitPrograms(r.output);
-    ASSERT_GE(progs.size(), 2u) << "expected at least one fragment and one vertex program:\n" << r.output.substr(0, 2000);
+    ASSERT_GE(progs.size(), 2u) << "expected at least one fragment and one vertex program:\n"
+                                << r.output.substr(0, 2000);
     std::set<std::string> stages;
     for (size_t i = 0; i < progs.size(); ++i) {
         const Program& p = progs[i];
@@ -165,7 +168,8 @@ TEST_P(SceneExample, HasAReadmeAndARenderedImage) {
     std::string text = readText(readme);
     const std::string image = "docs/images/examples/" + GetParam() + ".png";
     EXPECT_NE(text.find(image), std::string::npos) << "README should show " << image;
-    EXPECT_NE(text.find("surfgrad render examples/" + GetParam() + "/scene.json"), std::string::npos)
+    EXPECT_NE(text.find("surfgrad render examples/" + GetParam() + "/scene.json"),
+              std::string::npos)
         << "README should give the render command";
     Image img = readImage(kSourceDir / image);
     EXPECT_GT(img.width, 0) << image << " missing or unreadable";
@@ -177,8 +181,8 @@ TEST_P(SceneExample, HasAReadmeAndARenderedImage) {
 TEST_P(SceneExample, OpensInTheViewerUnderXvfb) {
     fs::path dir = scratchDir("view_" + GetParam());
     fs::path shot = dir / "shot.png";
-    RunResult r = run("xvfb-run -a -s '-screen 0 1280x1024x24' " + quote(kCli) + " view " + quote(scene()) +
-                      " --frames 3 --size 400x300 --screenshot " + quote(shot));
+    RunResult r = run("xvfb-run -a -s '-screen 0 1280x1024x24' " + quote(kCli) + " view " +
+                      quote(scene()) + " --frames 3 --size 400x300 --screenshot " + quote(shot));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     Image img = readImage(shot);
     ASSERT_EQ(img.width, 400) << r.output;
@@ -187,8 +191,8 @@ TEST_P(SceneExample, OpensInTheViewerUnderXvfb) {
     std::set<int> colours;
     for (int y = 0; y < img.height; y += 2) {
         for (int x = 0; x < img.width; x += 2) {
-            colours.insert(int(img.at(x, y, 0) * 255.0f) << 16 | int(img.at(x, y, 1) * 255.0f) << 8 |
-                           int(img.at(x, y, 2) * 255.0f));
+            colours.insert(int(img.at(x, y, 0) * 255.0f) << 16 |
+                           int(img.at(x, y, 1) * 255.0f) << 8 | int(img.at(x, y, 2) * 255.0f));
         }
     }
     EXPECT_GT(colours.size(), 100u);

@@ -23,7 +23,8 @@ void expectChained(const std::vector<Segment>& segs, glm::dvec2 first, glm::dvec
     ASSERT_FALSE(segs.empty());
     EXPECT_EQ(segs.front().p0, first);
     EXPECT_EQ(segs.back().p2, last);
-    for (std::size_t i = 1; i < segs.size(); ++i) EXPECT_EQ(segs[i - 1].p2, segs[i].p0) << "piece " << i;
+    for (std::size_t i = 1; i < segs.size(); ++i)
+        EXPECT_EQ(segs[i - 1].p2, segs[i].p0) << "piece " << i;
 }
 
 TEST(InputApprox, CubicWithinToleranceBySampling) {
@@ -38,7 +39,9 @@ TEST(InputApprox, CubicWithinToleranceBySampling) {
         {{{0, 0}, {100, 100}, {0, 100}, {100, 0.0}}}, // cusp-like
     };
     for (int i = 0; i < 16; ++i) {
-        cubics.push_back({{{coord(rng), coord(rng)}, {coord(rng), coord(rng)}, {coord(rng), coord(rng)},
+        cubics.push_back({{{coord(rng), coord(rng)},
+                           {coord(rng), coord(rng)},
+                           {coord(rng), coord(rng)},
                            {coord(rng), coord(rng)}}});
     }
     double worstRatio = 0.0;
@@ -61,20 +64,24 @@ TEST(InputApprox, CubicWithinToleranceBySampling) {
             // to the midpoint construction, which only straight runs or
             // cusps need.
             for (std::size_t i = 1; i < segs.size(); ++i) {
-                const glm::dvec2 tin = segs[i - 1].p2 - segs[i - 1].p1, tout = segs[i].p1 - segs[i].p0;
+                const glm::dvec2 tin = segs[i - 1].p2 - segs[i - 1].p1,
+                                 tout = segs[i].p1 - segs[i].p0;
                 if (glm::length(tin) == 0.0 || glm::length(tout) == 0.0) continue;
-                const double sinKink = (tin.x * tout.y - tin.y * tout.x) / (glm::length(tin) * glm::length(tout));
+                const double sinKink =
+                    (tin.x * tout.y - tin.y * tout.x) / (glm::length(tin) * glm::length(tout));
                 if (std::abs(sinKink) > 1e-6 || glm::dot(tin, tout) < 0.0) ++kinks;
             }
             pieces += segs.size();
             // Piece count of the uniform midpoint construction, for comparison.
             const double d = glm::length(c[3] - 3.0 * c[2] + 3.0 * c[1] - c[0]);
-            midpointPieces += std::size_t(std::max(1.0, std::ceil(std::cbrt(std::sqrt(3.0) / 36.0 * d / tol))));
+            midpointPieces +=
+                std::size_t(std::max(1.0, std::ceil(std::cbrt(std::sqrt(3.0) / 36.0 * d / tol))));
         }
     }
-    std::printf("cubic: max measured Hausdorff / tolerance = %.4f; %zu pieces (uniform midpoint: %zu), "
-                "%zu joints not G1\n",
-                worstRatio, pieces, midpointPieces, kinks);
+    std::printf(
+        "cubic: max measured Hausdorff / tolerance = %.4f; %zu pieces (uniform midpoint: %zu), "
+        "%zu joints not G1\n",
+        worstRatio, pieces, midpointPieces, kinks);
     // Only pieces that fall back to the midpoint construction (parallel end
     // tangents, cusps) may leave kinks: 4 of 1013 joints on this set.
     EXPECT_LE(kinks, 6u);
@@ -85,8 +92,8 @@ TEST(InputApprox, QuadraticInCubicFormIsExact) {
     // control point is the quadratic's.
     const glm::dvec2 q0{0, 0}, q1{30, 30}, q2{60, 0};
     std::vector<Segment> segs;
-    const double bound = appendCubicAsQuadratics(q0, q0 + 2.0 / 3.0 * (q1 - q0), q2 + 2.0 / 3.0 * (q1 - q2), q2,
-                                                 1e-9, 0, segs);
+    const double bound = appendCubicAsQuadratics(q0, q0 + 2.0 / 3.0 * (q1 - q0),
+                                                 q2 + 2.0 / 3.0 * (q1 - q2), q2, 1e-9, 0, segs);
     ASSERT_EQ(segs.size(), 1u);
     EXPECT_NEAR(segs[0].p1.x, 30.0, 1e-12);
     EXPECT_NEAR(segs[0].p1.y, 30.0, 1e-12);
@@ -99,12 +106,12 @@ TEST(InputApprox, ArcWithinToleranceBySampling) {
         double start, sweep;
     };
     const std::vector<Case> cases = {
-        {{0, 0}, {1, 0}, {0, 1}, 0.0, 0.5 * kPi},                   // unit quarter circle
-        {{5, -3}, {40, 0}, {0, 40}, 0.3, 2.0 * kPi},                // full circle
-        {{0, 0}, {30, 0}, {0, 10}, -1.0, -4.0},                     // ellipse, negative sweep
+        {{0, 0}, {1, 0}, {0, 1}, 0.0, 0.5 * kPi},                      // unit quarter circle
+        {{5, -3}, {40, 0}, {0, 40}, 0.3, 2.0 * kPi},                   // full circle
+        {{0, 0}, {30, 0}, {0, 10}, -1.0, -4.0},                        // ellipse, negative sweep
         {{0, 0}, {30 * 0.8, 30 * 0.6}, {-8 * 0.6, 8 * 0.8}, 2.0, 5.5}, // rotated ellipse
-        {{10, 10}, {20, 0}, {15, 10}, 0.0, kPi},                    // sheared (skewX) circle
-        {{0, 0}, {50, 0}, {0, 50}, 1.0, 1e-3},                      // tiny sweep
+        {{10, 10}, {20, 0}, {15, 10}, 0.0, kPi},                       // sheared (skewX) circle
+        {{0, 0}, {50, 0}, {0, 50}, 1.0, 1e-3},                         // tiny sweep
     };
     double worstRatio = 0.0;
     for (double tol : {1e-1, 1e-3, 1e-5}) {
@@ -169,7 +176,12 @@ TEST(InputApprox, ToleranceResolution) {
 
 TEST(InputApprox, TooManyPiecesIsAnError) {
     std::vector<Segment> segs;
-    expectThrowsWith([&] { appendCubicAsQuadratics({0, 0}, {1e9, 1e9}, {-1e9, 1e9}, {1, 0}, 1e-12, 0, segs, "f.svg", "path #1"); }, "raise the tolerance");
+    expectThrowsWith(
+        [&] {
+            appendCubicAsQuadratics({0, 0}, {1e9, 1e9}, {-1e9, 1e9}, {1, 0}, 1e-12, 0, segs,
+                                    "f.svg", "path #1");
+        },
+        "raise the tolerance");
 }
 
 CurveNetwork star(int arms) {

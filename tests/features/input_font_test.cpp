@@ -12,8 +12,12 @@ namespace {
 
 using V = glm::dvec2;
 
-std::string tinyTT() { return sourceDir() + "/tests/features/data/tiny-tt.ttf"; }
-std::string tinyCFF() { return sourceDir() + "/tests/features/data/tiny-cff.otf"; }
+std::string tinyTT() {
+    return sourceDir() + "/tests/features/data/tiny-tt.ttf";
+}
+std::string tinyCFF() {
+    return sourceDir() + "/tests/features/data/tiny-cff.otf";
+}
 const char* kDejaVu = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 const char* kWqy = "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc";
 const char* kInconsolata = "/usr/share/fonts/truetype/inconsolata/Inconsolata.otf";
@@ -103,7 +107,8 @@ TEST(InputFont, CffCubicsWithinTolerance) {
     for (double tol : {0.0, 1e-3, 1.0}) {
         FontOptions opt;
         opt.approx.tolerance = tol;
-        const double effTol = tol > 0.0 ? tol : 1e-4 * 600.0; // default: 1e-4 of the 600-unit drawing
+        const double effTol =
+            tol > 0.0 ? tol : 1e-4 * 600.0; // default: 1e-4 of the 600-unit drawing
         const CurveNetwork net = loadFont(tinyCFF(), "O", opt);
         ASSERT_EQ(net.curves.size(), 1u);
         EXPECT_TRUE(net.curves[0].closed);
@@ -199,11 +204,13 @@ TEST(InputFont, Errors) {
     expectError(font, "   ", "", "no glyph outlines");
     expectError(font, "A", "face 1", "face index out of range: the file has 1 face(s)", 1);
     expectError(font, "A", "face -1", "face index must be 0..65535", -1);
-    expectError(sourceDir() + "/tests/features/input_font_test.cpp", "A", "", "not a usable font file");
+    expectError(sourceDir() + "/tests/features/input_font_test.cpp", "A", "",
+                "not a usable font file");
     expectError("/nonexistent.ttf", "A", "", "no such file");
     try {
         const std::string bytes = "OTTO junk";
-        parseFont(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), "A", "mem.otf");
+        parseFont(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), "A",
+                  "mem.otf");
         ADD_FAILURE();
     } catch (const io::InputError& e) {
         EXPECT_EQ(e.file(), "mem.otf");

@@ -20,7 +20,9 @@ constexpr double kPi = std::numbers::pi;
 std::string doc(const std::string& body) {
     return R"~(<svg xmlns="http://www.w3.org/2000/svg" viewBox="0 0 100 100">)~" + body + "</svg>";
 }
-std::string path(const std::string& d) { return doc("<path d=\"" + d + "\"/>"); }
+std::string path(const std::string& d) {
+    return doc("<path d=\"" + d + "\"/>");
+}
 
 CurveNetwork svg(const std::string& text, double tol = 0.0) {
     SvgOptions opt;
@@ -29,7 +31,9 @@ CurveNetwork svg(const std::string& text, double tol = 0.0) {
 }
 
 // Flipped point of user-space (x, y).
-V F(double x, double y) { return {x, 100.0 - y}; }
+V F(double x, double y) {
+    return {x, 100.0 - y};
+}
 
 void expectLine(const Segment& s, V a, V b) {
     EXPECT_EQ(s.kind, Segment::Kind::Line);
@@ -143,9 +147,14 @@ TEST(InputSvg, CubicAndSmoothCubicKnownAnswers) {
 TEST(InputSvg, CubicThroughLoaderWithinTolerance) {
     // A skewed cubic: the bound holds in output units after the transform.
     const double tol = 1e-3;
-    const auto net = svg(doc(R"~(<g transform="skewX(30) scale(1.5 0.5)"><path d="M10 80 C 90 -40 0 130 70 20"/></g>)~"), tol);
+    const auto net = svg(
+        doc(R"~(<g transform="skewX(30) scale(1.5 0.5)"><path d="M10 80 C 90 -40 0 130 70 20"/></g>)~"),
+        tol);
     const double k = std::tan(kPi / 6);
-    auto T = [&](V p) { V s{1.5 * p.x, 0.5 * p.y}; return F(s.x + k * s.y, s.y); };
+    auto T = [&](V p) {
+        V s{1.5 * p.x, 0.5 * p.y};
+        return F(s.x + k * s.y, s.y);
+    };
     const V c[4] = {T({10, 80}), T({90, -40}), T({0, 130}), T({70, 20})};
     const double h = hausdorff([&](double t) { return evalCubic(c, t); }, net.segments);
     EXPECT_LE(h, tol + 1e-11);
@@ -175,10 +184,12 @@ TEST(InputSvg, ArcFlagsSelectCenterAndDirection) {
         const V centerF = F(c.center.x, c.center.y);
         for (const Segment& seg : net.segments) {
             for (int j = 0; j <= 16; ++j) {
-                EXPECT_NEAR(glm::length(evalSegment(seg, j / 16.0) - centerF), 20.0, tol + 1e-9) << c.flags;
+                EXPECT_NEAR(glm::length(evalSegment(seg, j / 16.0) - centerF), 20.0, tol + 1e-9)
+                    << c.flags;
             }
         }
-        EXPECT_LE(distToSegments(F(c.midpoint.x, c.midpoint.y), net.segments), tol + 1e-9) << c.flags;
+        EXPECT_LE(distToSegments(F(c.midpoint.x, c.midpoint.y), net.segments), tol + 1e-9)
+            << c.flags;
         EXPECT_GT(distToSegments(F(c.avoided.x, c.avoided.y), net.segments), 1.0) << c.flags;
         EXPECT_EQ(net.segments.front().p0, F(40, 50));
         EXPECT_EQ(net.segments.back().p2, F(60, 50));
@@ -191,14 +202,16 @@ TEST(InputSvg, ArcOutOfRangeRadii) {
     // (F.6.6): a half circle of radius 10 about (50, 50).
     auto net = svg(path("M40 50 A5 5 0 0 1 60 50"), tol);
     for (const Segment& seg : net.segments) {
-        for (int j = 0; j <= 8; ++j) EXPECT_NEAR(glm::length(evalSegment(seg, j / 8.0) - F(50, 50)), 10.0, tol + 1e-9);
+        for (int j = 0; j <= 8; ++j)
+            EXPECT_NEAR(glm::length(evalSegment(seg, j / 8.0) - F(50, 50)), 10.0, tol + 1e-9);
     }
     // sweep = 1 in y-down user space goes through (50, 40).
     EXPECT_LE(distToSegments(F(50, 40), net.segments), tol + 1e-9);
     // Negative radii: absolute values.
     const auto neg = svg(path("M40 50 A-5 -5 0 0 1 60 50"), tol);
     ASSERT_EQ(neg.segments.size(), net.segments.size());
-    for (std::size_t i = 0; i < neg.segments.size(); ++i) EXPECT_EQ(neg.segments[i].p1, net.segments[i].p1);
+    for (std::size_t i = 0; i < neg.segments.size(); ++i)
+        EXPECT_EQ(neg.segments[i].p1, net.segments[i].p1);
     // A zero radius is a straight line.
     net = svg(path("M10 10 A0 5 0 0 1 20 20"));
     ASSERT_EQ(net.segments.size(), 1u);
@@ -222,7 +235,12 @@ TEST(InputSvg, RotatedEllipticalArcWithinTolerance) {
     char d[256];
     std::snprintf(d, sizeof d, "M%.17g %.17g A30 10 30 0 1 %.17g %.17g", a.x, a.y, b.x, b.y);
     const auto net = svg(path(d), tol);
-    const double h = hausdorff([&](double t) { const V p = E(0.2 + t * 2.3); return F(p.x, p.y); }, net.segments);
+    const double h = hausdorff(
+        [&](double t) {
+            const V p = E(0.2 + t * 2.3);
+            return F(p.x, p.y);
+        },
+        net.segments);
     EXPECT_LE(h, tol + 1e-9); // endpoints printed to 17 digits: ~1e-14 off
     // Arc flags need no separators: "1010 0" is flags 1, 0 then x = 10.
     const auto packed = svg(path("M10 10a5 5 0 1010 0"));
@@ -261,12 +279,14 @@ TEST(InputSvg, PathErrors) {
     expectError(path("10 10"), "path #1 command 1", "must start with M or m");
     expectError(path("M10"), "path #1 command 1 'M'", "expected a number (y)");
     expectError(path("M10 10 X 5"), "path #1 command 2 'X'", "unknown path command");
-    expectError(path("M10 10 A5 5 0 2 0 20 20"), "path #1 command 2 'A'", "expected a flag 0 or 1 (large-arc-flag)");
+    expectError(path("M10 10 A5 5 0 2 0 20 20"), "path #1 command 2 'A'",
+                "expected a flag 0 or 1 (large-arc-flag)");
     expectError(path("M1e999 0"), "path #1 command 1 'M'", "out of range");
     expectError(path("M1e13 0"), "path #1 command 1 'M'", "exceeds the coordinate limit");
     expectError(path("M0 0 L1 1 Z 5"), "path #1 command 3 'Z'", "unexpected character '5'");
     expectError(path("M0 0 L1 1 # 2"), "path #1 command 2 'L'", "unexpected character '#'");
-    expectError(doc(R"~(<path d="M0 0 L1 1"/><path d="M0 0 C"/>)~"), "path #2 command 2 'C'", "expected a number (x)");
+    expectError(doc(R"~(<path d="M0 0 L1 1"/><path d="M0 0 C"/>)~"), "path #2 command 2 'C'",
+                "expected a number (x)");
 }
 
 TEST(InputSvg, BasicShapes) {
@@ -275,7 +295,8 @@ TEST(InputSvg, BasicShapes) {
     expectLine(net.segments[0], F(1, 2), F(3, 4));
     EXPECT_EQ(net.curves[0].name, "line #1");
 
-    net = svg(doc(R"~(<polyline points="0,0 10,0 10,10"/><polygon id="tri" points="20 20, 30 20 25 30"/>)~"));
+    net = svg(doc(
+        R"~(<polyline points="0,0 10,0 10,10"/><polygon id="tri" points="20 20, 30 20 25 30"/>)~"));
     ASSERT_EQ(net.curves.size(), 2u);
     EXPECT_FALSE(net.curves[0].closed);
     EXPECT_TRUE(net.curves[1].closed);
@@ -291,8 +312,10 @@ TEST(InputSvg, BasicShapes) {
 
     // Zero width/height/radius disables rendering; an empty drawing is an error.
     expectError(doc(R"~(<rect width="0" height="5"/><circle r="0"/>)~"), "", "no curves");
-    expectError(doc(R"~(<rect width="-1" height="5"/>)~"), "rect #1 attribute 'width'", "must not be negative");
-    expectError(doc(R"~(<polyline points="0 0 1"/>)~"), "polyline #1 attribute 'points'", "odd number");
+    expectError(doc(R"~(<rect width="-1" height="5"/>)~"), "rect #1 attribute 'width'",
+                "must not be negative");
+    expectError(doc(R"~(<polyline points="0 0 1"/>)~"), "polyline #1 attribute 'points'",
+                "odd number");
 }
 
 TEST(InputSvg, RoundedRect) {
@@ -310,7 +333,8 @@ TEST(InputSvg, RoundedRect) {
     for (const Segment& s : net.segments) {
         if (s.kind != Segment::Kind::Quadratic) continue;
         ++arcPieces;
-        const V c = s.p0.x > 25 ? (s.p0.y > 50 ? F(35, 25) : F(35, 55)) : (s.p0.y > 50 ? F(15, 25) : F(15, 55));
+        const V c = s.p0.x > 25 ? (s.p0.y > 50 ? F(35, 25) : F(35, 55))
+                                : (s.p0.y > 50 ? F(15, 25) : F(15, 55));
         EXPECT_NEAR(glm::length(evalSegment(s, 0.5) - c), 5.0, tol + 1e-9);
     }
     EXPECT_GE(arcPieces, 4);
@@ -328,14 +352,19 @@ TEST(InputSvg, CircleAndEllipse) {
     ASSERT_EQ(net.curves.size(), 1u);
     EXPECT_TRUE(net.curves[0].closed);
     EXPECT_EQ(net.segments.front().p0, F(70, 40));
-    const double h = hausdorff([&](double t) { return F(50 + 20 * std::cos(2 * kPi * t), 40 + 20 * std::sin(2 * kPi * t)); },
-                               net.segments);
+    const double h = hausdorff(
+        [&](double t) {
+            return F(50 + 20 * std::cos(2 * kPi * t), 40 + 20 * std::sin(2 * kPi * t));
+        },
+        net.segments);
     EXPECT_LE(h, tol + 1e-11);
-    net = svg(doc(R"~(<ellipse cx="50" cy="40" rx="30" ry="10" transform="rotate(90 50 40)"/>)~"), tol);
+    net = svg(doc(R"~(<ellipse cx="50" cy="40" rx="30" ry="10" transform="rotate(90 50 40)"/>)~"),
+              tol);
     const double he = hausdorff(
         [&](double t) {
             const double a = 2 * kPi * t;
-            return F(50 - 10 * std::sin(a), 40 + 30 * std::cos(a)); // rotated by 90 degrees about the centre
+            return F(50 - 10 * std::sin(a),
+                     40 + 30 * std::cos(a)); // rotated by 90 degrees about the centre
         },
         net.segments);
     EXPECT_LE(he, tol + 1e-11);
@@ -357,7 +386,8 @@ TEST(InputSvg, Transforms) {
     s = first(R"~(<line x1="1" y1="2" x2="3" y2="4" transform="translate(10,0) scale(2)"/>)~");
     expectLine(s, F(12, 4), F(16, 8));
     // Groups compose with the element's own transform.
-    s = first(R"~(<g transform="translate(10 0)"><g transform="scale(2)"><line x1="1" y1="2" x2="3" y2="4"/></g></g>)~");
+    s = first(
+        R"~(<g transform="translate(10 0)"><g transform="scale(2)"><line x1="1" y1="2" x2="3" y2="4"/></g></g>)~");
     expectLine(s, F(12, 4), F(16, 8));
     // rotate about a point, skews.
     s = first(R"~(<line x1="20" y1="10" x2="10" y2="10" transform="rotate(90 10 10)"/>)~");
@@ -368,10 +398,13 @@ TEST(InputSvg, Transforms) {
     s = first(R"~(<line x1="10" y1="0" x2="10" y2="1" transform="skewY(45)"/>)~");
     EXPECT_NEAR(s.p0.y, 100 - 10, 1e-12);
     // Singular transforms hide the element (SVG 1.1 7.5).
-    const auto net = svg(doc(R"~(<line x1="0" y1="0" x2="1" y2="1" transform="scale(0)"/><line x1="0" y1="0" x2="1" y2="1"/>)~"));
+    const auto net = svg(doc(
+        R"~(<line x1="0" y1="0" x2="1" y2="1" transform="scale(0)"/><line x1="0" y1="0" x2="1" y2="1"/>)~"));
     EXPECT_EQ(net.segments.size(), 1u);
-    expectError(doc(R"~(<line x2="1" transform="rotate(1 2)"/>)~"), "line #1 transform", "rotate() takes 1 or 3 numbers, got 2");
-    expectError(doc(R"~(<line x2="1" transform="spin(3)"/>)~"), "line #1 transform", "unknown transform function");
+    expectError(doc(R"~(<line x2="1" transform="rotate(1 2)"/>)~"), "line #1 transform",
+                "rotate() takes 1 or 3 numbers, got 2");
+    expectError(doc(R"~(<line x2="1" transform="spin(3)"/>)~"), "line #1 transform",
+                "unknown transform function");
     expectError(doc(R"~(<line x2="1" transform="scale(2"/>)~"), "line #1 transform", "missing ')'");
 }
 
@@ -383,7 +416,8 @@ TEST(InputSvg, YFlipFollowsTheViewBox) {
     net = svg(R"~(<svg height="1in"><line x1="0" y1="0" x2="5" y2="6"/></svg>)~");
     expectLine(net.segments[0], V(0, 96), V(5, 90));
     // Nested svg: viewBox 0 0 10 10 into a 50x50 viewport at (20, 0).
-    net = svg(doc(R"~(<svg x="20" width="50" height="50" viewBox="0 0 10 10"><line x1="1" y1="1" x2="2" y2="1"/></svg>)~"));
+    net = svg(doc(
+        R"~(<svg x="20" width="50" height="50" viewBox="0 0 10 10"><line x1="1" y1="1" x2="2" y2="1"/></svg>)~"));
     expectLine(net.segments[0], F(25, 5), F(30, 5));
 }
 
@@ -402,8 +436,10 @@ TEST(InputSvg, IgnoredAndHiddenContent) {
 TEST(InputSvg, HostileXml) {
     // Comments, CDATA, PIs and a DOCTYPE with entity declarations are
     // skipped; declared entities are never expanded.
-    const std::string prolog = "<?xml version=\"1.0\"?>\n<!DOCTYPE svg [ <!ENTITY a \"&b;&b;\"> <!-- ] > --> ]>\n";
-    auto net = svg(prolog + doc("<!-- <line x2='99'/> --><![CDATA[ <line x2='98'/> ]]><path d=\"M0 0&#32;L&#x31;0 10\"/>"));
+    const std::string prolog =
+        "<?xml version=\"1.0\"?>\n<!DOCTYPE svg [ <!ENTITY a \"&b;&b;\"> <!-- ] > --> ]>\n";
+    auto net = svg(prolog + doc("<!-- <line x2='99'/> --><![CDATA[ <line x2='98'/> ]]><path d=\"M0 "
+                                "0&#32;L&#x31;0 10\"/>"));
     ASSERT_EQ(net.segments.size(), 1u);
     expectLine(net.segments[0], F(0, 0), F(10, 10));
     expectError(prolog + doc("<path d=\"M0 0 L&a;\"/>"), "line 3", "entity &a; is not supported");
@@ -421,7 +457,8 @@ TEST(InputSvg, HostileXml) {
     expectError(deep, "line 1", "nested deeper than 256");
     // A huge attribute is read in linear time.
     std::string d = "M0 0";
-    for (int i = 0; i < 200000; ++i) d += " L" + std::to_string(i % 50) + " " + std::to_string((i * 7) % 50);
+    for (int i = 0; i < 200000; ++i)
+        d += " L" + std::to_string(i % 50) + " " + std::to_string((i * 7) % 50);
     net = svg(path(d));
     EXPECT_GT(net.segments.size(), 150000u);
 }
@@ -437,8 +474,10 @@ TEST(InputSvg, EveryLucideIconLoads) {
     // subpath returns exactly to its start, with or without Z; see
     // ../shared/data/svg/README.md); lucide draws inside 24 x 24.
     const Icon icons[] = {
-        {"carrot.svg", 3, 1},       {"chart-spline.svg", 2, 0}, {"flag.svg", 1, 0},     {"flame.svg", 1, 1},
-        {"infinity.svg", 1, 1},     {"line-squiggle.svg", 1, 0}, {"mountain.svg", 1, 1}, {"paw-print.svg", 4, 4},
+        {"carrot.svg", 3, 1},      {"chart-spline.svg", 2, 0},
+        {"flag.svg", 1, 0},        {"flame.svg", 1, 1},
+        {"infinity.svg", 1, 1},    {"line-squiggle.svg", 1, 0},
+        {"mountain.svg", 1, 1},    {"paw-print.svg", 4, 4},
         {"trending-up.svg", 2, 0}, {"waves-horizontal.svg", 3, 0},
     };
     std::size_t loaded = 0;
@@ -463,7 +502,8 @@ TEST(InputSvg, EveryLucideIconLoads) {
         EXPECT_LE(hi.y, 24.0);
         EXPECT_GT(std::max(hi.x - lo.x, hi.y - lo.y), 10.0);
         EXPECT_NO_THROW(checkNetwork(net));
-        std::printf("%-22s curves %zu segments %zu\n", icon.file, net.curves.size(), net.segments.size());
+        std::printf("%-22s curves %zu segments %zu\n", icon.file, net.curves.size(),
+                    net.segments.size());
     }
 }
 
@@ -472,7 +512,8 @@ TEST(InputSvg, LucideFlameKnownSegments) {
     const CurveNetwork net = loadSvg(dataDir() + "/svg/flame.svg");
     ASSERT_GE(net.segments.size(), 2u);
     expectQuad(net.segments[0], V(12, 21), V(13, 17), V(16, 14.5));
-    expectQuad(net.segments[1], V(16, 14.5), V(19, 12), V(19, 9)); // T reflects (13,7) about (16,9.5)
+    expectQuad(net.segments[1], V(16, 14.5), V(19, 12),
+               V(19, 9)); // T reflects (13,7) about (16,9.5)
 }
 
 } // namespace

@@ -38,7 +38,8 @@ inline glm::dvec2 evalCubic(const glm::dvec2 c[4], double t) {
 // distance: asserting "<= bound" on it is sound.
 inline double distToCurve(glm::dvec2 p, const CurveFn& f, double t0, double t1, int samples = 64) {
     std::vector<double> d(std::size_t(samples) + 1);
-    for (int i = 0; i <= samples; ++i) d[std::size_t(i)] = glm::length(f(t0 + (t1 - t0) * i / samples) - p);
+    for (int i = 0; i <= samples; ++i)
+        d[std::size_t(i)] = glm::length(f(t0 + (t1 - t0) * i / samples) - p);
     double best = *std::min_element(d.begin(), d.end());
     const double g = (std::sqrt(5.0) - 1.0) / 2.0;
     for (int i = 0; i <= samples; ++i) {
@@ -48,8 +49,10 @@ inline double distToCurve(glm::dvec2 p, const CurveFn& f, double t0, double t1, 
         double b = t0 + (t1 - t0) * std::min(samples, i + 1) / samples;
         for (int it = 0; it < 60; ++it) {
             const double m1 = b - g * (b - a), m2 = a + g * (b - a);
-            if (glm::length(f(m1) - p) < glm::length(f(m2) - p)) b = m2;
-            else a = m1;
+            if (glm::length(f(m1) - p) < glm::length(f(m2) - p))
+                b = m2;
+            else
+                a = m1;
         }
         best = std::min(best, glm::length(f(0.5 * (a + b)) - p));
     }
@@ -60,10 +63,12 @@ inline double distToSegments(glm::dvec2 p, const std::vector<Segment>& segs) {
     double best = INFINITY;
     for (const Segment& s : segs) {
         // Cheap reject: the segment lies in its control points' hull.
-        glm::dvec2 lo = glm::min(s.p0, glm::min(s.p1, s.p2)), hi = glm::max(s.p0, glm::max(s.p1, s.p2));
+        glm::dvec2 lo = glm::min(s.p0, glm::min(s.p1, s.p2)),
+                   hi = glm::max(s.p0, glm::max(s.p1, s.p2));
         const glm::dvec2 q = glm::clamp(p, lo, hi);
         if (glm::length(q - p) >= best) continue;
-        best = std::min(best, distToCurve(p, [&](double t) { return evalSegment(s, t); }, 0.0, 1.0));
+        best = std::min(best, distToCurve(
+                                  p, [&](double t) { return evalSegment(s, t); }, 0.0, 1.0));
     }
     return best;
 }
@@ -74,7 +79,8 @@ inline double distToSegments(glm::dvec2 p, const std::vector<Segment>& segs) {
 // negligible at these densities against the tolerances tested.
 inline double hausdorff(const CurveFn& f, const std::vector<Segment>& segs, int samples = 1000) {
     double h = 0.0;
-    for (int i = 0; i <= samples; ++i) h = std::max(h, distToSegments(f(double(i) / samples), segs));
+    for (int i = 0; i <= samples; ++i)
+        h = std::max(h, distToSegments(f(double(i) / samples), segs));
     for (const Segment& s : segs) {
         for (int j = 0; j <= 64; ++j) {
             h = std::max(h, distToCurve(evalSegment(s, j / 64.0), f, 0.0, 1.0, 400));
@@ -113,7 +119,9 @@ inline std::string dataDir() {
     return env && *env ? env : SURFGRAD_DATA_DIR;
 }
 
-inline std::string sourceDir() { return SURFGRAD_SOURCE_DIR; }
+inline std::string sourceDir() {
+    return SURFGRAD_SOURCE_DIR;
+}
 
 // System font installed by scripts/setup-deps; the test fails (never skips)
 // when it is missing.

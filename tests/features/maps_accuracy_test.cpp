@@ -15,12 +15,12 @@ using namespace sgtest;
 namespace {
 
 struct Accuracy {
-    double onCurve = 0;      // max reconstructed d at points on the input curves
-    double err[4] = {0};     // max |d - exact| at the offsets below
-    double angleDeg[4] = {0};// max angle between reconstructed and exact gradient
-    int wrongSide[4] = {0};  // gradient pointing back across the curve
-    int samples = 0;         // distance samples
-    int gradSamples = 0;     // gradient samples (clear of the medial axis)
+    double onCurve = 0;       // max reconstructed d at points on the input curves
+    double err[4] = {0};      // max |d - exact| at the offsets below
+    double angleDeg[4] = {0}; // max angle between reconstructed and exact gradient
+    int wrongSide[4] = {0};   // gradient pointing back across the curve
+    int samples = 0;          // distance samples
+    int gradSamples = 0;      // gradient samples (clear of the medial axis)
 };
 constexpr double kOffsets[4] = {0.01, 0.05, 0.2, 0.5};
 
@@ -38,7 +38,8 @@ Accuracy measure(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, 
         // (crossings, merged points): not an exact-reproduction case.
         if (otherCurveClearance(net, q, net.segments[seg].curve, 0.0) >= 0.75) {
             double dq = sample(g, glm::vec2(q)).dist;
-            if (std::getenv("SG_TEST_VERBOSE") && dq > 1e-4) std::printf("  on-curve %.4f %.4f: %.2e\n", q.x, q.y, dq);
+            if (std::getenv("SG_TEST_VERBOSE") && dq > 1e-4)
+                std::printf("  on-curve %.4f %.4f: %.2e\n", q.x, q.y, dq);
             a.onCurve = std::max(a.onCurve, dq);
         }
         dvec2 nrm(-tan.y, tan.x);
@@ -47,8 +48,10 @@ Accuracy measure(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, 
                 dvec2 p = q + sd * kOffsets[k] * nrm;
                 if (p.x < 0 || p.y < 0 || p.x > n || p.y > n) continue;
                 Closest c = closest(net, p);
-                if (c.dist < kOffsets[k] * (1.0 - 1e-6) || distToSpecialPoint(net, c.point) < skip) continue;
-                double clearance = otherCurveClearance(net, p, net.segments[c.segment].curve, c.dist);
+                if (c.dist < kOffsets[k] * (1.0 - 1e-6) || distToSpecialPoint(net, c.point) < skip)
+                    continue;
+                double clearance =
+                    otherCurveClearance(net, p, net.segments[c.segment].curve, c.dist);
                 if (clearance < 0.75) continue; // a crossing or another curve within ~1.5 texels
                 auto r = sample(g, glm::vec2(p));
                 ++a.samples;
@@ -56,11 +59,14 @@ Accuracy measure(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, 
                 if (clearance < 2.0) continue; // gradient smoothed across the medial axis
                 ++a.gradSamples;
                 dvec2 exactGrad = (p - c.point) / c.dist;
-                double cosA = std::clamp(exactGrad.x * r.grad.x + exactGrad.y * r.grad.y, -1.0, 1.0);
+                double cosA =
+                    std::clamp(exactGrad.x * r.grad.x + exactGrad.y * r.grad.y, -1.0, 1.0);
                 a.angleDeg[k] = std::max(a.angleDeg[k], std::acos(cosA) * 180.0 / M_PI);
                 if (cosA <= 0.0) ++a.wrongSide[k];
-                if (std::getenv("SG_TEST_VERBOSE") && (cosA <= 0.0 || std::fabs(double(r.dist) - c.dist) > 0.05))
-                    std::printf("  p %.4f %.4f off %.2f side %+.0f: d %.4f exact %.4f cos %.3f\n", p.x, p.y, kOffsets[k], sd, r.dist, c.dist, cosA);
+                if (std::getenv("SG_TEST_VERBOSE") &&
+                    (cosA <= 0.0 || std::fabs(double(r.dist) - c.dist) > 0.05))
+                    std::printf("  p %.4f %.4f off %.2f side %+.0f: d %.4f exact %.4f cos %.3f\n",
+                                p.x, p.y, kOffsets[k], sd, r.dist, c.dist, cosA);
             }
         }
     });
@@ -68,10 +74,12 @@ Accuracy measure(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, 
 }
 
 void report(const char* name, const Accuracy& a) {
-    std::printf("%s: %d (%d) samples, on-curve d <= %.2e, |d err| at 0.01/0.05/0.2/0.5: %.4f %.4f %.4f %.4f, "
+    std::printf("%s: %d (%d) samples, on-curve d <= %.2e, |d err| at 0.01/0.05/0.2/0.5: %.4f %.4f "
+                "%.4f %.4f, "
                 "gradient deg: %.2f %.2f %.2f %.2f, wrong side %d %d %d %d\n",
-                name, a.samples, a.gradSamples, a.onCurve, a.err[0], a.err[1], a.err[2], a.err[3], a.angleDeg[0], a.angleDeg[1],
-                a.angleDeg[2], a.angleDeg[3], a.wrongSide[0], a.wrongSide[1], a.wrongSide[2], a.wrongSide[3]);
+                name, a.samples, a.gradSamples, a.onCurve, a.err[0], a.err[1], a.err[2], a.err[3],
+                a.angleDeg[0], a.angleDeg[1], a.angleDeg[2], a.angleDeg[3], a.wrongSide[0],
+                a.wrongSide[1], a.wrongSide[2], a.wrongSide[3]);
 }
 
 CurveNetwork randomPolylines(int size, int count, unsigned seed) {
@@ -198,26 +206,32 @@ TEST(FeatureMapsAccuracy, ContinuousAcrossTexelEdges) {
             for (int k = 0; k < 64 * 16; ++k) {
                 float t = (float(k) + 0.5f) / 16.0f;
                 for (int dir = 0; dir < 2; ++dir) {
-                    glm::vec2 a = dir ? glm::vec2(float(e) - 1e-4f, t) : glm::vec2(t, float(e) - 1e-4f);
-                    glm::vec2 b = dir ? glm::vec2(float(e) + 1e-4f, t) : glm::vec2(t, float(e) + 1e-4f);
+                    glm::vec2 a =
+                        dir ? glm::vec2(float(e) - 1e-4f, t) : glm::vec2(t, float(e) - 1e-4f);
+                    glm::vec2 b =
+                        dir ? glm::vec2(float(e) + 1e-4f, t) : glm::vec2(t, float(e) + 1e-4f);
                     if (distToSpecialPoint(net, dvec2(a)) < 1.5) continue;
                     auto ra = sample(g, a), rb = sample(g, b);
                     // Next to a curve the two sides may straddle it; beyond the
                     // band (no curve within 16 texels) there is no gradient.
-                    if (std::min(ra.dist, rb.dist) < 2e-3f || std::max(ra.dist, rb.dist) >= 15.0f) continue;
+                    if (std::min(ra.dist, rb.dist) < 2e-3f || std::max(ra.dist, rb.dist) >= 15.0f)
+                        continue;
                     ++checked;
                     worstD = std::max(worstD, double(std::fabs(ra.dist - rb.dist)));
-                    double cosA = std::clamp(double(ra.grad.x * rb.grad.x + ra.grad.y * rb.grad.y), -1.0, 1.0);
+                    double cosA = std::clamp(double(ra.grad.x * rb.grad.x + ra.grad.y * rb.grad.y),
+                                             -1.0, 1.0);
                     double ang = std::acos(cosA) * 180.0 / M_PI;
                     if (std::getenv("SG_TEST_VERBOSE") && ang > 0.5)
-                        std::printf("  jump %.2f deg at %.4f %.4f: d %.4f %.4f grad (%.3f %.3f) (%.3f %.3f)\n", ang, a.x, a.y,
-                                    ra.dist, rb.dist, ra.grad.x, ra.grad.y, rb.grad.x, rb.grad.y);
+                        std::printf("  jump %.2f deg at %.4f %.4f: d %.4f %.4f grad (%.3f %.3f) "
+                                    "(%.3f %.3f)\n",
+                                    ang, a.x, a.y, ra.dist, rb.dist, ra.grad.x, ra.grad.y,
+                                    rb.grad.x, rb.grad.y);
                     worstAngle = std::max(worstAngle, ang);
                 }
             }
         }
-        std::printf("%s: %d edge samples, max |d jump| %.2e, max gradient jump %.3f deg\n", toString(mode), checked,
-                    worstD, worstAngle);
+        std::printf("%s: %d edge samples, max |d jump| %.2e, max gradient jump %.3f deg\n",
+                    toString(mode), checked, worstD, worstAngle);
         EXPECT_GT(checked, 100000);
         // The 2e-4 texel step between the two samples times |grad d| <= 1,
         // plus binary32 rounding.

@@ -18,7 +18,8 @@ TEST(FeatureMapsBake, TransformationTable) {
     auto cover = [](unsigned m) {
         unsigned e = 0;
         for (int p = 0; p < detail::kPairCount; ++p) {
-            if (m & (1u << p)) e |= (1u << detail::kPairEdges[p][0]) | (1u << detail::kPairEdges[p][1]);
+            if (m & (1u << p))
+                e |= (1u << detail::kPairEdges[p][0]) | (1u << detail::kPairEdges[p][1]);
         }
         return std::popcount(e);
     };
@@ -40,7 +41,8 @@ TEST(FeatureMapsBake, TransformationTable) {
     }
     EXPECT_EQ(valid, 22); // 1 empty + 6 single + 15 pairs
     // Each segment type joins two different edges.
-    for (int p = 0; p < detail::kPairCount; ++p) EXPECT_NE(detail::kPairEdges[p][0], detail::kPairEdges[p][1]);
+    for (int p = 0; p < detail::kPairCount; ++p)
+        EXPECT_NE(detail::kPairEdges[p][0], detail::kPairEdges[p][1]);
 }
 
 TEST(FeatureMapsBake, FitTransform) {

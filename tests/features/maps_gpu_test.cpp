@@ -43,7 +43,8 @@ std::vector<FeatureMaps> testMaps() {
     a.polyline({{2.0, 2.0}, {30.0, 30.0}});
     a.polyline({{1.5, 20.0}, {30.5, 20.0}});
     dvec2 c(20.37, 8.61);
-    for (int k = 0; k < 8; ++k) a.polyline({c, c + 6.0 * dvec2(std::cos(0.3 + 0.785 * k), std::sin(0.3 + 0.785 * k))});
+    for (int k = 0; k < 8; ++k)
+        a.polyline({c, c + 6.0 * dvec2(std::cos(0.3 + 0.785 * k), std::sin(0.3 + 0.785 * k))});
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (int k = 0; k < 12; ++k) {
@@ -80,12 +81,14 @@ void compare(const float* cpu, const float* gpu, int stride, size_t n, Diff& d) 
             ++d.nonFinite;
             continue;
         }
-        d.maxDist = std::max(d.maxDist, double(std::fabs(a[0] - b[0])) / std::max(1.0, double(std::fabs(a[0]))));
+        d.maxDist = std::max(d.maxDist, double(std::fabs(a[0] - b[0])) /
+                                            std::max(1.0, double(std::fabs(a[0]))));
         if (a[0] < 1e-3f) continue;
         ++d.compared;
         double cosA = double(a[1]) * b[1] + double(a[2]) * b[2];
         double la = std::hypot(a[1], a[2]), lb = std::hypot(b[1], b[2]);
-        if (la > 0.5 && lb > 0.5) d.maxAngle = std::max(d.maxAngle, std::acos(std::clamp(cosA / (la * lb), -1.0, 1.0)));
+        if (la > 0.5 && lb > 0.5)
+            d.maxAngle = std::max(d.maxAngle, std::acos(std::clamp(cosA / (la * lb), -1.0, 1.0)));
         if (a[3] != b[3]) ++d.sideMismatch;
     }
 }
@@ -110,7 +113,8 @@ TEST_F(FeatureMapsGpu, EvalKernelParity) {
                 bool feat = (m.configWord(i, j) & 0xFFFFu) != 0;
                 if (!feat && (i + j) % 7) continue;
                 for (int s = 0; s < (feat ? 49 : 4); ++s) {
-                    glm::vec2 p = s < 9 ? glm::vec2(float(s % 3) * 0.5f, float(s / 3) * 0.5f) : glm::vec2(u(rng), u(rng));
+                    glm::vec2 p = s < 9 ? glm::vec2(float(s % 3) * 0.5f, float(s / 3) * 0.5f)
+                                        : glm::vec2(u(rng), u(rng));
                     packEvalRecord(g, i, j, p, rec.data());
                     in.insert(in.end(), rec.begin(), rec.end());
                 }
@@ -118,25 +122,29 @@ TEST_F(FeatureMapsGpu, EvalKernelParity) {
         }
         size_t n = in.size() / size_t(kEvalInStride);
         std::vector<float> cpu(n * size_t(kEvalOutStride));
-        for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+        for (size_t k = 0; k < n; ++k)
+            evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)],
+                          &cpu[k * size_t(kEvalOutStride)]);
         for (int variant = 0; variant < (m.mode == BakeMode::Linear ? 2 : 1); ++variant) {
-        std::vector<float> gpu = sg::gl::runCompute(variant ? progLinear : prog, in, kEvalInStride, kEvalOutStride, n);
-        Diff d;
-        compare(cpu.data(), gpu.data(), kEvalOutStride, n, d);
-        std::printf("%s maps%s: %zu records, max |d| diff %.2e (relative to max(1, d)), max gradient angle %.2e rad, "
-                    "%zu side mismatches of %zu\n",
-                    toString(m.mode), variant ? " (SG_FEAT_CURVED 0)" : "", d.records, d.maxDist, d.maxAngle,
-                    d.sideMismatch, d.compared);
-        EXPECT_EQ(d.nonFinite, 0u);
-        // Both builds evaluate the same expressions in binary32; differences
-        // come from FMA contraction and library functions (cos, sin, sqrt,
-        // inversesqrt: llvmpipe is within a few ulps). Measured 1e-6; the
-        // bounds leave a factor of 10-50.
-        EXPECT_LT(d.maxDist, 5e-5);
-        EXPECT_LT(d.maxAngle, 1e-3);
-        // A side mismatch away from the curves would be a different triangle
-        // or region: none is allowed.
-        EXPECT_EQ(d.sideMismatch, 0u);
+            std::vector<float> gpu = sg::gl::runCompute(variant ? progLinear : prog, in,
+                                                        kEvalInStride, kEvalOutStride, n);
+            Diff d;
+            compare(cpu.data(), gpu.data(), kEvalOutStride, n, d);
+            std::printf("%s maps%s: %zu records, max |d| diff %.2e (relative to max(1, d)), max "
+                        "gradient angle %.2e rad, "
+                        "%zu side mismatches of %zu\n",
+                        toString(m.mode), variant ? " (SG_FEAT_CURVED 0)" : "", d.records,
+                        d.maxDist, d.maxAngle, d.sideMismatch, d.compared);
+            EXPECT_EQ(d.nonFinite, 0u);
+            // Both builds evaluate the same expressions in binary32; differences
+            // come from FMA contraction and library functions (cos, sin, sqrt,
+            // inversesqrt: llvmpipe is within a few ulps). Measured 1e-6; the
+            // bounds leave a factor of 10-50.
+            EXPECT_LT(d.maxDist, 5e-5);
+            EXPECT_LT(d.maxAngle, 1e-3);
+            // A side mismatch away from the curves would be a different triangle
+            // or region: none is allowed.
+            EXPECT_EQ(d.sideMismatch, 0u);
         }
     }
 }
@@ -156,7 +164,8 @@ TEST_F(FeatureMapsGpu, EvalKernelFiniteOnArbitraryData) {
         float* r = &in[k * size_t(kEvalInStride)];
         float scale = std::pow(10.0f, float(int(bits(rng) % 13) - 6)); // 1e-6 .. 1e6
         for (int i = 0; i < 4; ++i) r[i] = u(rng) * scale;
-        for (int i = 4; i < 12; ++i) r[i] = (2.0f * u(rng) - 1.0f) * (bits(rng) % 5 == 0 ? 0.0f : 1.0f);
+        for (int i = 4; i < 12; ++i)
+            r[i] = (2.0f * u(rng) - 1.0f) * (bits(rng) % 5 == 0 ? 0.0f : 1.0f);
         uint32_t cfg = bits(rng) & 0x1FFFFFu;
         if ((cfg & 3u) == 3u) cfg &= ~1u; // 3 segments does not exist
         r[12] = float(cfg);
@@ -165,10 +174,13 @@ TEST_F(FeatureMapsGpu, EvalKernelFiniteOnArbitraryData) {
         r[22] = u(rng);
     }
     std::vector<float> cpu(n * size_t(kEvalOutStride));
-    for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+    for (size_t k = 0; k < n; ++k)
+        evalKernelCpu(SG_FEAT_K_EVAL, &in[k * size_t(kEvalInStride)],
+                      &cpu[k * size_t(kEvalOutStride)]);
     std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
     size_t bad = 0;
-    for (size_t k = 0; k < n * size_t(kEvalOutStride); ++k) bad += !std::isfinite(cpu[k]) || !std::isfinite(gpu[k]);
+    for (size_t k = 0; k < n * size_t(kEvalOutStride); ++k)
+        bad += !std::isfinite(cpu[k]) || !std::isfinite(gpu[k]);
     EXPECT_EQ(bad, 0u);
 }
 
@@ -182,10 +194,11 @@ TEST_F(FeatureMapsGpu, TexturePathParity) {
         GLuint tex[2];
         glCreateTextures(GL_TEXTURE_2D, 2, tex);
         glTextureStorage2D(tex[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
-        glTextureSubImage2D(tex[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(), GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                            g.cornerPairs.data());
+        glTextureSubImage2D(tex[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(),
+                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.cornerPairs.data());
         glTextureStorage2D(tex[1], 1, GL_RGBA32UI, g.size, g.size);
-        glTextureSubImage2D(tex[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
+        glTextureSubImage2D(tex[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                            g.edges.data());
         for (GLuint t : tex) {
             glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -216,7 +229,8 @@ TEST_F(FeatureMapsGpu, TexturePathParity) {
         sg::gl::checkError("texture path");
         Diff d;
         compare(cpu.data(), gpu.data(), 4, n, d);
-        std::printf("%s maps, texture path: %zu points, max |d| diff %.2e, max angle %.2e rad, %zu side mismatches\n",
+        std::printf("%s maps, texture path: %zu points, max |d| diff %.2e, max angle %.2e rad, %zu "
+                    "side mismatches\n",
                     toString(m.mode), d.records, d.maxDist, d.maxAngle, d.sideMismatch);
         EXPECT_EQ(d.nonFinite, 0u);
         EXPECT_LT(d.maxDist, 5e-5); // as in EvalKernelParity
@@ -255,12 +269,15 @@ TEST_F(FeatureMapsGpu, ProfileKernelParity) {
         r[29] = nb.z;
     }
     std::vector<float> cpu(n * size_t(kEvalOutStride));
-    for (size_t k = 0; k < n; ++k) evalKernelCpu(SG_FEAT_K_PROFILE, &in[k * size_t(kEvalInStride)], &cpu[k * size_t(kEvalOutStride)]);
+    for (size_t k = 0; k < n; ++k)
+        evalKernelCpu(SG_FEAT_K_PROFILE, &in[k * size_t(kEvalInStride)],
+                      &cpu[k * size_t(kEvalOutStride)]);
     std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
     double worst = 0;
     for (size_t k = 0; k < n * size_t(kEvalOutStride); ++k) {
         ASSERT_TRUE(std::isfinite(cpu[k]) && std::isfinite(gpu[k]));
-        worst = std::max(worst, double(std::fabs(cpu[k] - gpu[k])) / std::max(1.0, double(std::fabs(cpu[k]))));
+        worst = std::max(worst, double(std::fabs(cpu[k] - gpu[k])) /
+                                    std::max(1.0, double(std::fabs(cpu[k]))));
     }
     std::printf("profiles: %zu records, max difference %.2e\n", n, worst);
     // Polynomials, sin/cos and one sqrt/normalize in binary32: a few ulps of

@@ -21,13 +21,16 @@ const BakeMode kModes[] = {BakeMode::Linear, BakeMode::Quadratic};
 // `skip` of a special point.
 // Points where another curve passes within 2 * clearance texels are skipped
 // too (curves sharing texels merge).
-double maxOnCurve(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, int per = 40, double clearance = 0.0) {
+double maxOnCurve(const CurveNetwork& net, const GpuFeatureMaps& g, double skip, int per = 40,
+                  double clearance = 0.0) {
     double m = 0;
     forCurvePoints(net, per, [&](dvec2 q, dvec2, size_t s) {
         if (distToSpecialPoint(net, q) < skip) return;
-        if (clearance > 0 && otherCurveClearance(net, q, net.segments[s].curve, 0.0) < clearance) return;
+        if (clearance > 0 && otherCurveClearance(net, q, net.segments[s].curve, 0.0) < clearance)
+            return;
         double d = sample(g, glm::vec2(q)).dist;
-        if (std::getenv("SG_TEST_VERBOSE") && d > 1e-3) std::printf("  on-curve %.4f %.4f seg %zu: %.2e\n", q.x, q.y, s, d);
+        if (std::getenv("SG_TEST_VERBOSE") && d > 1e-3)
+            std::printf("  on-curve %.4f %.4f seg %zu: %.2e\n", q.x, q.y, s, d);
         m = std::max(m, d);
     });
     return m;
@@ -36,7 +39,8 @@ double maxOnCurve(const CurveNetwork& net, const GpuFeatureMaps& g, double skip,
 // The gradient at offset `off` on both sides of the curves points away from
 // the curve (values never come from the other side); returns the number of
 // violations.
-int wrongSides(const CurveNetwork& net, const GpuFeatureMaps& g, double off, double skip, int per = 40) {
+int wrongSides(const CurveNetwork& net, const GpuFeatureMaps& g, double off, double skip,
+               int per = 40) {
     int bad = 0;
     forCurvePoints(net, per, [&](dvec2 q, dvec2 tan, size_t) {
         if (distToSpecialPoint(net, q) < skip) return;
@@ -46,7 +50,8 @@ int wrongSides(const CurveNetwork& net, const GpuFeatureMaps& g, double off, dou
             auto r = sample(g, glm::vec2(p));
             if (sd * (nrm.x * r.grad.x + nrm.y * r.grad.y) <= 0.0) {
                 ++bad;
-                if (std::getenv("SG_TEST_VERBOSE")) std::printf("  wrong side at %.4f %.4f (d %.4f)\n", p.x, p.y, r.dist);
+                if (std::getenv("SG_TEST_VERBOSE"))
+                    std::printf("  wrong side at %.4f %.4f (d %.4f)\n", p.x, p.y, r.dist);
             }
         }
     });
@@ -81,7 +86,8 @@ TEST(FeatureMapsHardCases, StarOfEight) {
         // most a merged edge point moves a ray).
         forCurvePoints(b.net, 80, [&](dvec2 q, dvec2, size_t) {
             if (glm::length(q - c) > 2.5) return;
-            EXPECT_LT(sample(g, glm::vec2(q)).dist, 0.75) << toString(mode) << " at " << q.x << "," << q.y;
+            EXPECT_LT(sample(g, glm::vec2(q)).dist, 0.75)
+                << toString(mode) << " at " << q.x << "," << q.y;
         });
         EXPECT_EQ(wrongSides(b.net, g, 0.05, 2.5), 0) << toString(mode);
     }
@@ -138,7 +144,7 @@ TEST(FeatureMapsHardCases, TangentialContact) {
         NetBuilder b;
         b.circle({16.2, 12.3}, 5.0, 12);
         b.polyline({{3.0, 17.3}, {29.0, 17.3}}); // tangent at the top
-        b.circle({26.2, 12.3}, 5.0, 12, 0.3);   // touches the first at (21.2, 12.3)
+        b.circle({26.2, 12.3}, 5.0, 12, 0.3);    // touches the first at (21.2, 12.3)
         FeatureMaps m = bake(b.net, texelSpace(32, mode));
         GpuFeatureMaps g = m.packGpu();
         expectAllFinite(g);
@@ -231,7 +237,8 @@ TEST(FeatureMapsHardCases, Eq7HighlyCurved) {
         double r = 0.3 + 1.2 * u(rng), a0 = 2 * M_PI * u(rng), sweep = 0.6 + 1.8 * u(rng);
         dvec2 p0 = c + r * dvec2(std::cos(a0), std::sin(a0));
         dvec2 p2 = c + r * dvec2(std::cos(a0 + sweep), std::sin(a0 + sweep));
-        dvec2 p1 = c + r / std::cos(sweep / 2) * dvec2(std::cos(a0 + sweep / 2), std::sin(a0 + sweep / 2));
+        dvec2 p1 =
+            c + r / std::cos(sweep / 2) * dvec2(std::cos(a0 + sweep / 2), std::sin(a0 + sweep / 2));
         b.begin();
         b.quad(p0, p1, p2);
     }
@@ -254,7 +261,10 @@ TEST(FeatureMapsHardCases, Eq7HighlyCurved) {
     // to both sides of its midpoint: the gradient must point away from it.
     int checked = 0, bad = 0;
     auto edgeData = [&](int i, int j, int e, dvec2& q, double& theta) {
-        size_t k = e == 0 ? m.index(i, j) : e == 1 ? m.index(i + 1, j) : e == 2 ? m.index(i, j + 1) : m.index(i, j);
+        size_t k = e == 0   ? m.index(i, j)
+                   : e == 1 ? m.index(i + 1, j)
+                   : e == 2 ? m.index(i, j + 1)
+                            : m.index(i, j);
         bool h = e == 0 || e == 2;
         double t = h ? m.hPos[k] : m.vPos[k];
         theta = h ? m.hAngle[k] : m.vAngle[k];
@@ -295,10 +305,10 @@ TEST(FeatureMapsHardCases, Eq7HighlyCurved) {
 TEST(FeatureMapsHardCases, CurvesLeavingTheMap) {
     for (BakeMode mode : kModes) {
         NetBuilder b;
-        b.circle({0.3, 8.2}, 5.0, 12);          // half outside on the left
+        b.circle({0.3, 8.2}, 5.0, 12);            // half outside on the left
         b.polyline({{-40.0, 3.7}, {60.0, 13.1}}); // crosses the whole map
         b.polyline({{-9.0, -9.0}, {-3.0, -2.0}}); // entirely outside
-        b.circle({16.0, 16.0}, 1e5, 12);         // huge, far outside the map
+        b.circle({16.0, 16.0}, 1e5, 12);          // huge, far outside the map
         FeatureMaps m = bake(b.net, texelSpace(16, mode));
         GpuFeatureMaps g = m.packGpu();
         expectAllFinite(g);
@@ -309,7 +319,8 @@ TEST(FeatureMapsHardCases, CurvesLeavingTheMap) {
             // The line passes 0.2 texels from the circle: they share texels.
             if (otherCurveClearance(b.net, q, b.net.segments[s].curve, 0.0) < 0.75) return;
             double d = sample(g, glm::vec2(q)).dist;
-            if (std::getenv("SG_TEST_VERBOSE") && d > 5e-3) std::printf("  on-curve %.4f %.4f: %.2e\n", q.x, q.y, d);
+            if (std::getenv("SG_TEST_VERBOSE") && d > 5e-3)
+                std::printf("  on-curve %.4f %.4f: %.2e\n", q.x, q.y, d);
             worst = std::max(worst, d);
         });
         // Chords of a radius-5 circle (linear mode) deviate by up to the

@@ -18,7 +18,8 @@ SgFeatResult at(float d, float side = 1.0f, float angle = 0.3f) {
     return r;
 }
 
-const char* kNames[] = {"vgroove", "crease", "ridge", "step", "seam", "table:0,-0.2,-0.9,-1,-0.5,0.3"};
+const char* kNames[] = {"vgroove", "crease", "ridge",
+                        "step",    "seam",   "table:0,-0.2,-0.9,-1,-0.5,0.3"};
 
 } // namespace
 
@@ -36,9 +37,11 @@ TEST(FeatureProfiles, SlopeIsDerivativeOfHeight) {
                     float d = w * (float(k) + 0.37f) / 40.5f;
                     if (std::fabs(d - w) < 0.01f) continue;
                     float h = 1e-3f;
-                    float fd = (sgFeatProfileHeightSlope(p, d + h, side).x - sgFeatProfileHeightSlope(p, d - h, side).x) /
+                    float fd = (sgFeatProfileHeightSlope(p, d + h, side).x -
+                                sgFeatProfileHeightSlope(p, d - h, side).x) /
                                (2.0f * h);
-                    EXPECT_NEAR(sgFeatProfileHeightSlope(p, d, side).y, fd, 2e-3f) << name << " d " << d;
+                    EXPECT_NEAR(sgFeatProfileHeightSlope(p, d, side).y, fd, 2e-3f)
+                        << name << " d " << d;
                 }
                 // Flat beyond the width.
                 EXPECT_EQ(sgFeatProfileHeightSlope(p, 1.01f * w, side).y, 0.0f) << name;
@@ -53,7 +56,7 @@ TEST(FeatureProfiles, ShapesAndSides) {
     EXPECT_FLOAT_EQ(sgFeatProfileHeightSlope(v, 0.0f, 1.0f).x, -2.0f);
     EXPECT_FLOAT_EQ(sgFeatProfileHeightSlope(v, 2.0f, 1.0f).y, 0.5f);
     SgFeatProfile st = makeProfile("step", 2.0f, 0.0f, 4.0f);
-    EXPECT_EQ(sgFeatProfileHeightSlope(st, 1.0f, -1.0f).x, 0.0f); // right side stays flat
+    EXPECT_EQ(sgFeatProfileHeightSlope(st, 1.0f, -1.0f).x, 0.0f);      // right side stays flat
     EXPECT_FLOAT_EQ(sgFeatProfileHeightSlope(st, 4.0f, 1.0f).x, 2.0f); // left side rises to depth
     SgFeatProfile t = makeProfile("table:0,-0.5,-1,-0.5,0", 2.0f, 0.0f, 4.0f);
     for (int i = 0; i < 5; ++i) {
@@ -61,8 +64,8 @@ TEST(FeatureProfiles, ShapesAndSides) {
         EXPECT_NEAR(sgFeatProfileHeightSlope(t, float(i), 1.0f).x, 2.0f * t.table[i], 1e-6f);
     }
     // Slope continuous across a table node (Catmull-Rom is C1).
-    EXPECT_NEAR(sgFeatProfileHeightSlope(t, 2.0f - 1e-4f, 1.0f).y, sgFeatProfileHeightSlope(t, 2.0f + 1e-4f, 1.0f).y,
-                1e-3f);
+    EXPECT_NEAR(sgFeatProfileHeightSlope(t, 2.0f - 1e-4f, 1.0f).y,
+                sgFeatProfileHeightSlope(t, 2.0f + 1e-4f, 1.0f).y, 1e-3f);
 }
 
 TEST(FeatureProfiles, Blend) {
@@ -99,16 +102,19 @@ TEST(FeatureProfiles, CompositionsAgreeOutsideTheBlendBand) {
                     for (float side : {-1.0f, 1.0f}) {
                         vec3 paper = sgFeatNormalPaper(at(d, side), p, base);
                         vec3 sg = sgFeatNormalFromDeriv(sgFeatDeriv(at(d, side), p, baseDeriv));
-                        double ang = std::acos(std::clamp(double(dot(paper, sg)), -1.0, 1.0)) * 180.0 / M_PI;
+                        double ang =
+                            std::acos(std::clamp(double(dot(paper, sg)), -1.0, 1.0)) * 180.0 / M_PI;
                         bool band = d > p.w0 && d < p.w;
-                        (band ? maxInside : maxOutside) = std::max(band ? maxInside : maxOutside, ang);
+                        (band ? maxInside : maxOutside) =
+                            std::max(band ? maxInside : maxOutside, ang);
                     }
                 }
             }
         }
     }
-    std::printf("paper vs surfgrad composition: max %.4f deg outside the blend band, %.2f deg inside\n", maxOutside,
-                maxInside);
+    std::printf(
+        "paper vs surfgrad composition: max %.4f deg outside the blend band, %.2f deg inside\n",
+        maxOutside, maxInside);
     // Outside the band both are the same unit vector up to binary32 (a few
     // 1e-3 degrees from acos near 1).
     EXPECT_LT(maxOutside, 0.05);
@@ -120,14 +126,16 @@ TEST(FeatureProfiles, CompositionsAgreeOutsideTheBlendBand) {
 }
 
 TEST(FeatureProfiles, NamesAndErrors) {
-    for (const auto& n : {"vgroove", "crease", "ridge", "step", "seam"}) EXPECT_NO_THROW(makeProfile(n, 1, 0, 2));
+    for (const auto& n : {"vgroove", "crease", "ridge", "step", "seam"})
+        EXPECT_NO_THROW(makeProfile(n, 1, 0, 2));
     EXPECT_THROW(makeProfile("bevel", 1, 0, 2), sg::io::InputError);
     EXPECT_THROW(makeProfile("vgroove", 1, 0, 0), sg::io::InputError);
     EXPECT_THROW(makeProfile("vgroove", 1, -1, 2), sg::io::InputError);
     EXPECT_THROW(makeProfile("vgroove", std::nanf(""), 0, 2), sg::io::InputError);
     EXPECT_THROW(makeProfile("table:1", 1, 0, 2), sg::io::InputError);
     EXPECT_THROW(makeProfile("table:1,x", 1, 0, 2), sg::io::InputError);
-    EXPECT_THROW(makeProfile("table:1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17", 1, 0, 2), sg::io::InputError);
+    EXPECT_THROW(makeProfile("table:1,2,3,4,5,6,7,8,9,10,11,12,13,14,15,16,17", 1, 0, 2),
+                 sg::io::InputError);
     EXPECT_THROW(makeProfile("table:1,inf", 1, 0, 2), sg::io::InputError);
     EXPECT_EQ(makeProfile("table:0,1,0", 1, 0, 2).tableCount, 3);
 }

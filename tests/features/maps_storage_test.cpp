@@ -127,7 +127,9 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
         forged.replace(sizeAt, 4, reinterpret_cast<const char*>(big), 4);
         sg::io::writeFileAtomically(dir.path / "hugeattr.exr", forged);
         const std::string e = loadError(dir.path / "hugeattr.exr");
-        EXPECT_NE(e.find("attribute '" + firstAttr + "' declares 2147483647 bytes"), std::string::npos) << e;
+        EXPECT_NE(e.find("attribute '" + firstAttr + "' declares 2147483647 bytes"),
+                  std::string::npos)
+            << e;
         // A chlist whose records do not end exactly at its declared size:
         // OpenEXR reads channel records up to the empty name whatever the
         // size says, so the two would disagree on where the next attribute
@@ -135,11 +137,14 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
         const size_t chAt = bytes.find(std::string("channels\0chlist\0", 16));
         ASSERT_NE(chAt, std::string::npos);
         std::string shortList = bytes;
-        shortList[chAt + 16] = char(static_cast<unsigned char>(shortList[chAt + 16]) - 1); // size - 1 (low byte)
+        shortList[chAt + 16] =
+            char(static_cast<unsigned char>(shortList[chAt + 16]) - 1); // size - 1 (low byte)
         sg::io::writeFileAtomically(dir.path / "chlist.exr", shortList);
-        EXPECT_NE(loadError(dir.path / "chlist.exr").find("type chlist declares"), std::string::npos);
+        EXPECT_NE(loadError(dir.path / "chlist.exr").find("type chlist declares"),
+                  std::string::npos);
         std::string multi = bytes;
-        multi[5] = char(static_cast<unsigned char>(multi[5]) | 0x10); // version bit 0x1000: multi-part
+        multi[5] =
+            char(static_cast<unsigned char>(multi[5]) | 0x10); // version bit 0x1000: multi-part
         sg::io::writeFileAtomically(dir.path / "multipart.exr", multi);
         EXPECT_NE(loadError(dir.path / "multipart.exr").find("multi-part"), std::string::npos);
     }
@@ -167,41 +172,59 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
     };
     const int nc = spec.nchannels;
     // Metadata.
-    EXPECT_NE(forge("version", [](auto& s, auto&) { s.attribute("surfgrad:featureMapsVersion", 99); })
-                  .find("featureMapsVersion"), std::string::npos);
-    EXPECT_NE(forge("mode", [](auto& s, auto&) { s.attribute("surfgrad:mode", "cubic"); }).find("surfgrad:mode"),
+    EXPECT_NE(
+        forge("version", [](auto& s, auto&) { s.attribute("surfgrad:featureMapsVersion", 99); })
+            .find("featureMapsVersion"),
+        std::string::npos);
+    EXPECT_NE(forge("mode", [](auto& s, auto&) { s.attribute("surfgrad:mode", "cubic"); })
+                  .find("surfgrad:mode"),
               std::string::npos);
-    EXPECT_NE(forge("size", [](auto& s, auto&) { s.attribute("surfgrad:size", 15); }).find("pixels"), std::string::npos);
-    EXPECT_NE(forge("nosize", [](auto& s, auto&) { s.erase_attribute("surfgrad:size"); }).find("surfgrad:size"),
+    EXPECT_NE(
+        forge("size", [](auto& s, auto&) { s.attribute("surfgrad:size", 15); }).find("pixels"),
+        std::string::npos);
+    EXPECT_NE(forge("nosize", [](auto& s, auto&) { s.erase_attribute("surfgrad:size"); })
+                  .find("surfgrad:size"),
               std::string::npos);
-    EXPECT_NE(forge("scale", [](auto& s, auto&) {
-                  double z = 0.0;
-                  s.attribute("surfgrad:inputToTexelScaleX", OIIO::TypeDesc::DOUBLE, &z);
-              }).find("Scale"),
+    EXPECT_NE(forge("scale",
+                    [](auto& s, auto&) {
+                        double z = 0.0;
+                        s.attribute("surfgrad:inputToTexelScaleX", OIIO::TypeDesc::DOUBLE, &z);
+                    })
+                  .find("Scale"),
               std::string::npos);
-    EXPECT_NE(forge("band", [](auto& s, auto&) {
-                  double b = 1e9;
-                  s.attribute("surfgrad:bandTexels", OIIO::TypeDesc::DOUBLE, &b);
-              }).find("band"),
+    EXPECT_NE(forge("band",
+                    [](auto& s, auto&) {
+                        double b = 1e9;
+                        s.attribute("surfgrad:bandTexels", OIIO::TypeDesc::DOUBLE, &b);
+                    })
+                  .find("band"),
               std::string::npos);
     // Channels.
-    EXPECT_NE(forge("chname", [](auto& s, auto&) { s.channelnames[0] = "Z"; }).find("channel d"), std::string::npos);
+    EXPECT_NE(forge("chname", [](auto& s, auto&) { s.channelnames[0] = "Z"; }).find("channel d"),
+              std::string::npos);
     // Values.
-    EXPECT_NE(forge("nan", [&](auto&, auto& p) { p[size_t(chan("gx"))] = std::nanf(""); }).find("not finite"),
+    EXPECT_NE(forge("nan", [&](auto&, auto& p) { p[size_t(chan("gx"))] = std::nanf(""); })
+                  .find("not finite"),
               std::string::npos);
-    EXPECT_NE(forge("negd", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find("channel d"),
-              std::string::npos);
-    EXPECT_NE(forge("longgrad", [&](auto&, auto& p) { p[size_t(chan("gx"))] = 3.0f; }).find("gradient"),
-              std::string::npos);
+    EXPECT_NE(
+        forge("negd", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find("channel d"),
+        std::string::npos);
+    EXPECT_NE(
+        forge("longgrad", [&](auto&, auto& p) { p[size_t(chan("gx"))] = 3.0f; }).find("gradient"),
+        std::string::npos);
     EXPECT_NE(forge("left", [&](auto&, auto& p) { p[size_t(chan("left"))] = 0.5f; }).find("left"),
               std::string::npos);
-    EXPECT_NE(forge("seg", [&](auto&, auto& p) { p[size_t(chan("seg"))] = 3.0f; }).find("seg"), std::string::npos);
+    EXPECT_NE(forge("seg", [&](auto&, auto& p) { p[size_t(chan("seg"))] = 3.0f; }).find("seg"),
+              std::string::npos);
     EXPECT_NE(forge("segfrac", [&](auto&, auto& p) { p[size_t(chan("seg"))] = 1.5f; }).find("seg"),
               std::string::npos);
-    EXPECT_NE(forge("pos", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.0f; }).find("hT"), std::string::npos);
-    EXPECT_NE(forge("grid", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.5f + 1e-5f; }).find("grid"),
+    EXPECT_NE(forge("pos", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.0f; }).find("hT"),
               std::string::npos);
-    EXPECT_NE(forge("angle", [&](auto&, auto& p) { p[size_t(chan("hA"))] = 2.0f; }).find("hA"), std::string::npos);
+    EXPECT_NE(
+        forge("grid", [&](auto&, auto& p) { p[size_t(chan("hT"))] = 0.5f + 1e-5f; }).find("grid"),
+        std::string::npos);
+    EXPECT_NE(forge("angle", [&](auto&, auto& p) { p[size_t(chan("hA"))] = 2.0f; }).find("hA"),
+              std::string::npos);
     // A segment ending on an edge without a point: find a texel with one
     // and remove its S/N/E/W point.
     EXPECT_NE(forge("segpoint",
@@ -218,7 +241,8 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
                             // N edge: hT one row up; E edge: vT one to the right.
                             size_t idx = e == 0 ? k : e == 3 ? k : e == 2 ? k - size_t(g) : k + 1;
                             (void)row;
-                            p[idx * size_t(nc) + size_t(chan(e == 0 || e == 2 ? "hT" : "vT"))] = -1.0f;
+                            p[idx * size_t(nc) + size_t(chan(e == 0 || e == 2 ? "hT" : "vT"))] =
+                                -1.0f;
                             return;
                         }
                     })
@@ -247,6 +271,7 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
     });
     EXPECT_NE(curvedErr.find("invalid signature"), std::string::npos) << curvedErr;
     // The message format: "<file>: <element>: <reason>".
-    EXPECT_NE(forge("msg", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find(".exr: corner ("),
-              std::string::npos);
+    EXPECT_NE(
+        forge("msg", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find(".exr: corner ("),
+        std::string::npos);
 }

@@ -64,7 +64,8 @@ struct NetBuilder {
     void circle(dvec2 c, double r, int n = 12, double phase = 0.1) {
         begin(true);
         for (int k = 0; k < n; ++k) {
-            double a0 = phase + 2 * M_PI * k / n, a1 = phase + 2 * M_PI * (k + 1) / n, am = 0.5 * (a0 + a1);
+            double a0 = phase + 2 * M_PI * k / n, a1 = phase + 2 * M_PI * (k + 1) / n,
+                   am = 0.5 * (a0 + a1);
             dvec2 p0 = c + r * dvec2(std::cos(a0), std::sin(a0));
             dvec2 p2 = c + r * dvec2(std::cos(a1), std::sin(a1));
             if (k + 1 == n) p2 = c + r * dvec2(std::cos(phase), std::sin(phase));
@@ -84,7 +85,8 @@ inline double segDistance(const Segment& s, dvec2 p, double* tOut = nullptr) {
     }
     double best = 1e300, bestT = 0;
     for (int i = 0; i <= n; ++i) {
-        bool localMin = (i == 0 || d2[size_t(i)] <= d2[size_t(i - 1)]) && (i == n || d2[size_t(i)] <= d2[size_t(i + 1)]);
+        bool localMin = (i == 0 || d2[size_t(i)] <= d2[size_t(i - 1)]) &&
+                        (i == n || d2[size_t(i)] <= d2[size_t(i + 1)]);
         if (!localMin) continue;
         double a = std::max(0.0, double(i - 1) / n), b = std::min(1.0, double(i + 1) / n);
         const double g = 0.5 * (std::sqrt(5.0) - 1.0);
@@ -168,7 +170,8 @@ inline sg::features::BakeOptions texelSpace(int size, sg::features::BakeMode mod
 }
 
 inline bool finite(const sg::glsl::SgFeatResult& r) {
-    return std::isfinite(r.dist) && std::isfinite(r.grad.x) && std::isfinite(r.grad.y) && std::isfinite(r.side);
+    return std::isfinite(r.dist) && std::isfinite(r.grad.x) && std::isfinite(r.grad.y) &&
+           std::isfinite(r.side);
 }
 
 // Samples the whole map on a grid (including texel borders, corners and a
@@ -185,7 +188,8 @@ inline void expectAllFinite(const sg::features::GpuFeatureMaps& g, int perTexel 
             // Unit gradient up to binary32 normalization (a few ulps), or 0.
             bool ok = finite(r) && r.dist >= 0.0f && (gl == 0.0f || std::fabs(gl - 1.0f) < 1e-5f) &&
                       (r.side == 1.0f || r.side == -1.0f);
-            if (!ok && bad++ < 5) ADD_FAILURE() << "bad sample at " << p.x << ", " << p.y << ": d " << r.dist;
+            if (!ok && bad++ < 5)
+                ADD_FAILURE() << "bad sample at " << p.x << ", " << p.y << ": d " << r.dist;
         }
     }
     EXPECT_EQ(bad, 0);

@@ -11,8 +11,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
-        const auto net = sg::features::parseSvg(std::string_view(reinterpret_cast<const char*>(data), size),
-                                                "fuzz.svg");
+        const auto net = sg::features::parseSvg(
+            std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.svg");
         sg::features::checkNetwork(net);
         if (sg::features::findJunctions(net).empty()) std::abort();
     } catch (const sg::io::InputError&) {

@@ -33,8 +33,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (const auto& f : e.outputs) {
         for (int i = f.slot; i < f.slot + f.width; ++i) {
             if (!std::isfinite(out[size_t(i)])) {
-                std::fprintf(stderr, "fuzz_eval_line: %s output '%s' is not finite\n", e.name.c_str(),
-                             f.key.c_str());
+                std::fprintf(stderr, "fuzz_eval_line: %s output '%s' is not finite\n",
+                             e.name.c_str(), f.key.c_str());
                 std::abort();
             }
         }

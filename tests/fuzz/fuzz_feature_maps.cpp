@@ -20,7 +20,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (int j = -1; j <= g.size * per + 1; ++j) {
             for (int i = -1; i <= g.size * per + 1; ++i) {
                 auto r = sg::features::sample(g, glm::vec2(float(i) / per, float(j) / per));
-                if (!std::isfinite(r.dist) || !std::isfinite(r.grad.x) || !std::isfinite(r.grad.y) || r.dist < 0.0f) {
+                if (!std::isfinite(r.dist) || !std::isfinite(r.grad.x) ||
+                    !std::isfinite(r.grad.y) || r.dist < 0.0f) {
                     std::abort();
                 }
             }

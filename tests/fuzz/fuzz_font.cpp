@@ -11,11 +11,13 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
-    static const char* const kTexts[4] = {"AOg", "g", "A O\nAg", "\xE4\xB8\xAD\x41"}; // last: U+4E2D then A
+    static const char* const kTexts[4] = {"AOg", "g", "A O\nAg",
+                                          "\xE4\xB8\xAD\x41"}; // last: U+4E2D then A
     sg::features::FontOptions opt;
     opt.faceIndex = (data[0] >> 2) & 1;
     try {
-        const auto net = sg::features::parseFont(data + 1, size - 1, kTexts[data[0] & 3], "fuzz.ttf", opt);
+        const auto net =
+            sg::features::parseFont(data + 1, size - 1, kTexts[data[0] & 3], "fuzz.ttf", opt);
         sg::features::checkNetwork(net);
         if (sg::features::findJunctions(net).empty()) std::abort();
     } catch (const sg::io::InputError&) {

@@ -17,7 +17,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     limits.maxCorners = 1 << 18;
     limits.maxFileBytes = 1 << 20;
     try {
-        Scene scene = parseGltf(std::string_view(reinterpret_cast<const char*>(data), size), "fuzz.gltf", {}, limits);
+        Scene scene = parseGltf(std::string_view(reinterpret_cast<const char*>(data), size),
+                                "fuzz.gltf", {}, limits);
         for (const SceneInstance& inst : scene.instances) {
             const RenderMesh& m = inst.mesh;
             for (uint32_t i : m.indices) {
@@ -30,7 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 if (set.size() != m.vertexCount()) std::abort();
             }
             for (const auto& t : m.morphTargets) {
-                if (!t.positionDeltas.empty() && t.positionDeltas.size() != m.vertexCount()) std::abort();
+                if (!t.positionDeltas.empty() && t.positionDeltas.size() != m.vertexCount())
+                    std::abort();
             }
             PolygonMesh cage = toPolygonMesh(m);
             validate(cage, "fuzz.gltf", true, nullptr, limits);

@@ -41,8 +41,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     namespace fs = std::filesystem;
     using namespace sg::mesh;
     const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-    const fs::path path =
-        fs::temp_directory_path() / ("surfgrad_fuzz_" + std::to_string(::getpid()) + extensionFor(bytes));
+    const fs::path path = fs::temp_directory_path() /
+                          ("surfgrad_fuzz_" + std::to_string(::getpid()) + extensionFor(bytes));
     {
         std::ofstream out(path, std::ios::binary | std::ios::trunc);
         out.write(bytes.data(), std::streamsize(bytes.size()));
@@ -58,7 +58,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         PolygonMesh mesh = loadPolygonMesh(path, options);
         for (const auto& p : mesh.positions) {
-            if (!std::isfinite(p.x + p.y + p.z)) std::abort(); // validation promised finite positions
+            if (!std::isfinite(p.x + p.y + p.z))
+                std::abort(); // validation promised finite positions
         }
         if (!describe(mesh).manifold) std::abort(); // validation promised manifold topology
     } catch (const sg::io::InputError&) {

@@ -23,7 +23,9 @@ void check(bool ok, const char* what) {
     }
 }
 
-bool finite3(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 void checkLayer(const sg::render::Layer& L) {
     using namespace sg::render;
@@ -31,11 +33,13 @@ void checkLayer(const sg::render::Layer& L) {
     check(L.uvSet >= 0 && L.uvSet < kMaxUvSets, "uv set in range");
     check(L.modifiers.size() <= size_t(kMaxModifiers), "modifier count");
     if (L.kind == LayerKind::Decal) {
-        check(finite3(L.decalAxisX) && finite3(L.decalAxisY) && finite3(L.decalAxisZ), "finite decal axes");
+        check(finite3(L.decalAxisX) && finite3(L.decalAxisY) && finite3(L.decalAxisZ),
+              "finite decal axes");
         check(std::abs(glm::length(L.decalAxisX) - 1.0f) < 1e-3f, "unit decal x");
         check(std::abs(glm::length(L.decalAxisZ) - 1.0f) < 1e-3f, "unit decal z");
         check(std::abs(glm::dot(L.decalAxisX, L.decalAxisZ)) < 1e-3f, "orthogonal decal frame");
-        check(L.decalHalfSize.x > 0 && L.decalHalfSize.y > 0 && L.decalHalfSize.z > 0, "positive decal size");
+        check(L.decalHalfSize.x > 0 && L.decalHalfSize.y > 0 && L.decalHalfSize.z > 0,
+              "positive decal size");
     }
     if (L.kind == LayerKind::Noise) {
         check(L.noiseFrequency > 0 && std::isfinite(L.noiseFrequency), "noise frequency");
@@ -46,7 +50,8 @@ void checkLayer(const sg::render::Layer& L) {
         check(L.maps.size() == 1 || L.maps.size() == 3, "triplanar maps");
         check(L.triScale > 0 && L.triSharpness > 0, "triplanar scale/sharpness");
     }
-    if (L.kind == LayerKind::Feature) check(L.featWidth > L.featW0 && L.feature.has_value(), "feature widths");
+    if (L.kind == LayerKind::Feature)
+        check(L.featWidth > L.featW0 && L.feature.has_value(), "feature widths");
     if (L.kind == LayerKind::PostResolve) {
         for (const auto& c : L.children) {
             check(c.kind != LayerKind::PostResolve, "no nested groups");
@@ -71,7 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     check(!s.materials.empty(), "at least one material");
     check(s.lights.size() <= size_t(sg::render::kMaxLights), "light count");
     for (const auto& m : s.meshes) {
-        check(m.material >= 0 && size_t(m.material) < s.materials.size(), "material index in range");
+        check(m.material >= 0 && size_t(m.material) < s.materials.size(),
+              "material index in range");
         check(m.procedural.has_value() != !m.file.empty(), "exactly one geometry source");
         check(std::abs(glm::determinant(glm::mat3(m.transform))) > 0.0f, "invertible transform");
     }
@@ -83,7 +89,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             total += 1 + L.children.size();
         }
     }
-    check(s.output.width >= 1 && s.output.height >= 1 && s.output.width <= sg::render::kMaxImageSize &&
+    check(s.output.width >= 1 && s.output.height >= 1 &&
+              s.output.width <= sg::render::kMaxImageSize &&
               s.output.height <= sg::render::kMaxImageSize,
           "output size");
     check(s.fps > 0 && std::isfinite(s.fps), "fps");

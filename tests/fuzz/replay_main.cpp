@@ -47,10 +47,18 @@ int main(int argc, char** argv) {
         int edits = 1 + int(rnd(8));
         for (int e = 0; e < edits; ++e) {
             switch (rnd(5)) {
-            case 0: if (!d.empty()) d[rnd(d.size())] = uint8_t(rng()); break;
-            case 1: d.insert(d.begin() + long(rnd(d.size() + 1)), uint8_t(rng())); break;
-            case 2: if (!d.empty()) d.erase(d.begin() + long(rnd(d.size()))); break;
-            case 3: d.resize(rnd(d.size() + 1)); break;
+            case 0:
+                if (!d.empty()) d[rnd(d.size())] = uint8_t(rng());
+                break;
+            case 1:
+                d.insert(d.begin() + long(rnd(d.size() + 1)), uint8_t(rng()));
+                break;
+            case 2:
+                if (!d.empty()) d.erase(d.begin() + long(rnd(d.size())));
+                break;
+            case 3:
+                d.resize(rnd(d.size() + 1));
+                break;
             default: {
                 const auto& o = corpus[rnd(corpus.size())];
                 if (!o.empty()) {

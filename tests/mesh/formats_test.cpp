@@ -17,8 +17,9 @@ using sg::test::expectInputError;
 using sg::test::TempDir;
 using sg::test::writeText;
 
-const char* kCubeOff = "OFF\n8 6 12\n-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
-                       "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
+const char* kCubeOff =
+    "OFF\n8 6 12\n-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n-1 1 1\n"
+    "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 1 2 6 5\n4 2 3 7 6\n4 3 0 4 7\n";
 
 TEST(Formats, OffThroughOpenMesh) {
     TempDir dir;
@@ -34,7 +35,8 @@ TEST(Formats, NonManifoldOffIsNamedNotDropped) {
     // OpenMesh's own importer would drop the third face on edge (0,1)
     // ("complex edge"); the recording importer keeps it for validation.
     TempDir dir;
-    writeText(dir / "fin.off", "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
+    writeText(dir / "fin.off",
+              "OFF\n5 3 0\n0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n3 0 1 4\n");
     expectInputError([&] { loadPolygonMesh(dir / "fin.off"); }, "edge (0, 1)", "shared by 3 faces");
     LoadOptions o;
     o.allowNonManifold = true;
@@ -42,13 +44,16 @@ TEST(Formats, NonManifoldOffIsNamedNotDropped) {
     EXPECT_EQ(m.faceCount(), 3u);
     // The OpenMesh view refuses it too, by name.
     PolyMeshProperties props;
-    expectInputError([&] { toPolyMesh(m, props, "fin.off"); }, "face 2", "OpenMesh cannot insert it");
+    expectInputError([&] { toPolyMesh(m, props, "fin.off"); }, "face 2",
+                     "OpenMesh cannot insert it");
 }
 
 TEST(Formats, PlyWithUvsThroughOpenMesh) {
     TempDir dir;
-    writeText(dir / "quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                                "property float u\nproperty float v\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+    writeText(dir / "quad.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float "
+                                "x\nproperty float y\nproperty float z\n"
+                                "property float u\nproperty float v\nelement face 1\nproperty list "
+                                "uchar int vertex_indices\nend_header\n"
                                 "0 0 0 0 0\n1 0 0 1 0\n1 1 0 1 1\n0 1 0 0 1\n4 0 1 2 3\n");
     PolygonMesh m = loadPolygonMesh(dir / "quad.ply");
     ASSERT_EQ(m.faceCount(), 1u);
@@ -58,17 +63,23 @@ TEST(Formats, PlyWithUvsThroughOpenMesh) {
 
 TEST(Formats, LyingHeadersAreRefused) {
     TempDir dir;
-    writeText(dir / "big.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\n"
-                               "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n");
-    expectInputError([&] { loadPolygonMesh(dir / "big.ply"); }, "header", "declares 4000000000 vertex elements");
+    writeText(
+        dir / "big.ply",
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float "
+        "x\nproperty float y\n"
+        "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n");
+    expectInputError([&] { loadPolygonMesh(dir / "big.ply"); }, "header",
+                     "declares 4000000000 vertex elements");
     writeText(dir / "big.off", "OFF\n900000000 1 0\n0 0 0\n");
-    expectInputError([&] { loadPolygonMesh(dir / "big.off"); }, "header", "declares 900000000 vertices");
+    expectInputError([&] { loadPolygonMesh(dir / "big.off"); }, "header",
+                     "declares 900000000 vertices");
     // Binary STL: 80-byte header, triangle count, 50 bytes per triangle.
     std::string stl(84, '\0');
     uint32_t n = 1000000;
     std::memcpy(stl.data() + 80, &n, 4);
     writeText(dir / "big.stl", stl);
-    expectInputError([&] { loadPolygonMesh(dir / "big.stl"); }, "header", "declares 1000000 triangles");
+    expectInputError([&] { loadPolygonMesh(dir / "big.stl"); }, "header",
+                     "declares 1000000 triangles");
 }
 
 // PLY headers are parsed in full before OpenMesh's reader sees them: its
@@ -84,15 +95,20 @@ TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
     };
     const std::string props = "property float x\nproperty float y\nproperty float z\n";
     const Case cases[] = {
-        {"ply\nformat ascii 1.0\neement vertex 4\nproperty float x\nend_header\n", "header line 3", "unknown header keyword 'eement'"},
-        {"ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\nend_header\n", "header line 3", "property before any element"},
+        {"ply\nformat ascii 1.0\neement vertex 4\nproperty float x\nend_header\n", "header line 3",
+         "unknown header keyword 'eement'"},
+        {"ply\nformat ascii 1.0\nproperty float x\nelement vertex 1\nend_header\n", "header line 3",
+         "property before any element"},
         {"ply\nelement vertex 1\nend_header\n", "header line 2", "element before the format line"},
         {"ply\nformat ascii 2.0\nend_header\n", "header line 2", "expected 'format ascii"},
-        {"ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", "header line 3", "non-negative integer count"},
-        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", "header line 4", "PLY types"},
-        {"ply\nformat ascii 1.0\nelement face 1\nproperty list uchar vertex_indices\nend_header\n", "header line 4",
-         "property list TYPE TYPE NAME"},
-        {"ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", "header line 3", "a second format line"},
+        {"ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", "header line 3",
+         "non-negative integer count"},
+        {"ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n", "header line 4",
+         "PLY types"},
+        {"ply\nformat ascii 1.0\nelement face 1\nproperty list uchar vertex_indices\nend_header\n",
+         "header line 4", "property list TYPE TYPE NAME"},
+        {"ply\nformat ascii 1.0\nformat ascii 1.0\nend_header\n", "header line 3",
+         "a second format line"},
         {"ply\nformat ascii 1.0\nelement vertex 1\n", "header", "no end_header"},
         {"plyx\nformat ascii 1.0\nend_header\n", "header line 1", "not a PLY file"},
     };
@@ -120,8 +136,9 @@ TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
     }
     // Binary: a signed list size below zero, and one that runs past the end.
     auto binary = [&](int8_t count, int indices, const char* countType = "char") {
-        std::string b = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + props + "element face 1\nproperty list " +
-                        countType + " int vertex_indices\nend_header\n";
+        std::string b = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n" + props +
+                        "element face 1\nproperty list " + countType +
+                        " int vertex_indices\nend_header\n";
         const float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
         b.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
         b.push_back(char(count));
@@ -131,13 +148,18 @@ TEST(Formats, MalformedPlyHeadersAreNamedByLine) {
     writeText(dir / "negbin.ply", binary(-3, 3));
     expectInputError([&] { loadPolygonMesh(dir / "negbin.ply"); }, "face 0", "negative list size");
     writeText(dir / "shortbin.ply", binary(3, 2));
-    expectInputError([&] { loadPolygonMesh(dir / "shortbin.ply"); }, "face 0", "the file ends inside the item");
+    expectInputError([&] { loadPolygonMesh(dir / "shortbin.ply"); }, "face 0",
+                     "the file ends inside the item");
     writeText(dir / "okbin.ply", binary(3, 3, "uchar"));
     EXPECT_EQ(loadPolygonMesh(dir / "okbin.ply").faceCount(), 1u);
 
     // Comments, obj_info, CRLF line ends and both list forms are accepted.
-    writeText(dir / "ok.ply", "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement vertex 3\r\n" + props +
-                                  "element face 1\r\nproperty list uint8 int32 vertex_indices\r\nend_header\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
+    writeText(
+        dir / "ok.ply",
+        "ply\r\nformat ascii 1.0\r\ncomment made by hand\r\nobj_info x\r\nelement vertex 3\r\n" +
+            props +
+            "element face 1\r\nproperty list uint8 int32 vertex_indices\r\nend_header\r\n0 0 "
+            "0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2\r\n");
     EXPECT_EQ(loadPolygonMesh(dir / "ok.ply").faceCount(), 1u);
 }
 
@@ -153,11 +175,16 @@ TEST(Formats, MalformedOffIsNamedBeforeOpenMeshReadsIt) {
         const char* reason;
     };
     const Case cases[] = {
-        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-10 0 1 2\n", "face 0", "line 6: a vertex count in [1, "},
-        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "face 0", "the file ends inside the face (2 of 3 indices)"},
-        {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "face 1", "the file ends before face 1 of 2"},
-        {"OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n", "vertex 1", "line 4: expected a number, found 'x'"},
-        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "face 0", "expected 3 vertex indices, found '1.5'"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n-10 0 1 2\n", "face 0",
+         "line 6: a vertex count in [1, "},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1\n", "face 0",
+         "the file ends inside the face (2 of 3 indices)"},
+        {"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "face 1",
+         "the file ends before face 1 of 2"},
+        {"OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n", "vertex 1",
+         "line 4: expected a number, found 'x'"},
+        {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1.5 2\n", "face 0",
+         "expected 3 vertex indices, found '1.5'"},
         {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n0\n", "face 0", "at least one vertex"},
         {"OFF BINARY\n", "header", "binary OFF is not supported"},
         {"4OFF\n1 0 0\n0 0 0 1\n", "header", "dimension other than 3"},
@@ -173,7 +200,8 @@ TEST(Formats, MalformedOffIsNamedBeforeOpenMeshReadsIt) {
     }
     // Normals (NOFF: 6 numbers per vertex), colours after the coordinates
     // (skipped with the rest of the line) and CRLF line ends are accepted.
-    writeText(dir / "ok.off", "NOFF\r\n3 1 0\r\n0 0 0 0 0 1\r\n1 0 0 0 0 1 255 0 0\r\n0 1 0 0 0 1\r\n3 0 1 2\r\n");
+    writeText(dir / "ok.off",
+              "NOFF\r\n3 1 0\r\n0 0 0 0 0 1\r\n1 0 0 0 0 1 255 0 0\r\n0 1 0 0 0 1\r\n3 0 1 2\r\n");
     EXPECT_EQ(loadPolygonMesh(dir / "ok.off").faceCount(), 1u);
 }
 
@@ -200,8 +228,9 @@ TEST(Formats, BinaryStlIsWeldedByOpenMesh) {
 
 TEST(Formats, ObjRoundTripKeepsTagsAndUvs) {
     TempDir dir;
-    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) + "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\nt hole 1/0/0 2\n"
-                                                               "t facevaryinginterpolateboundary 1/0/0 4\n",
+    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) +
+                                 "t crease 2/1/0 0 1 2.5\nt corner 1/1/0 6 10\nt hole 1/0/0 2\n"
+                                 "t facevaryinginterpolateboundary 1/0/0 4\n",
                              "c.obj");
     validate(m, "c.obj");
     auto notes = writePolygonMesh(dir / "out.obj", m);
@@ -266,17 +295,23 @@ TEST(Formats, WritersRefuseInputsAndUnknownFormats) {
     PolygonMesh m = loadPolygonMesh(dir / "in.obj");
     WriteOptions o;
     o.inputs = {dir / "in.obj"};
-    expectInputError([&] { writePolygonMesh(dir / "in.obj", m, o); }, "", "would overwrite the input");
-    expectInputError([&] { writePolygonMesh(dir / "out.fbx", m, o); }, "", "unknown output format '.fbx'");
-    expectInputError([&] { writePolygonMesh(dir / "no_such_dir" / "out.obj", m, o); }, "", "does not exist");
+    expectInputError([&] { writePolygonMesh(dir / "in.obj", m, o); }, "",
+                     "would overwrite the input");
+    expectInputError([&] { writePolygonMesh(dir / "out.fbx", m, o); }, "",
+                     "unknown output format '.fbx'");
+    expectInputError([&] { writePolygonMesh(dir / "no_such_dir" / "out.obj", m, o); }, "",
+                     "does not exist");
     // Nothing half-written is left behind.
     size_t files = 0;
-    for (const auto& e : std::filesystem::directory_iterator(dir.path())) files += e.is_regular_file();
+    for (const auto& e : std::filesystem::directory_iterator(dir.path()))
+        files += e.is_regular_file();
     EXPECT_EQ(files, 1u);
 }
 
 TEST(Formats, PolyMeshViewRoundTrip) {
-    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) + "t crease 2/1/0 0 1 3\nt corner 1/1/0 7 2\nt hole 1/0/0 4\n", "c.obj");
+    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) +
+                                 "t crease 2/1/0 0 1 3\nt corner 1/1/0 7 2\nt hole 1/0/0 4\n",
+                             "c.obj");
     validate(m, "c.obj");
     PolyMeshProperties props;
     PolyMesh pm = toPolyMesh(m, props, "c.obj");
@@ -298,7 +333,8 @@ TEST(Formats, PolyMeshViewRoundTrip) {
             glm::vec2 uv = back.uvSets[0].values[back.uvSets[0].indices[4 * f + k]];
             bool found = false;
             for (uint32_t j = 0; j < 4; ++j) {
-                found |= m.faceVertices[4 * f + j] == v && m.uvSets[0].values[m.uvSets[0].indices[4 * f + j]] == uv;
+                found |= m.faceVertices[4 * f + j] == v &&
+                         m.uvSets[0].values[m.uvSets[0].indices[4 * f + j]] == uv;
             }
             EXPECT_TRUE(found) << "face " << f << " corner " << k;
         }

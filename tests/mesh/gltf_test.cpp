@@ -19,9 +19,9 @@
 namespace {
 
 using namespace sg::mesh;
+using nlohmann::json;
 using sg::test::dataPath;
 using sg::test::expectInputError;
-using nlohmann::json;
 
 std::string readBytes(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
@@ -36,7 +36,9 @@ std::vector<float> rawFloats(const tinygltf::Model& m, int acc) {
     int comps = tinygltf::GetNumComponentsInType(uint32_t(a.type));
     size_t stride = v.byteStride ? v.byteStride : size_t(comps) * 4;
     std::vector<float> out(a.count * size_t(comps));
-    for (size_t i = 0; i < a.count; ++i) std::memcpy(&out[i * size_t(comps)], &b.data[v.byteOffset + a.byteOffset + i * stride], size_t(comps) * 4);
+    for (size_t i = 0; i < a.count; ++i)
+        std::memcpy(&out[i * size_t(comps)], &b.data[v.byteOffset + a.byteOffset + i * stride],
+                    size_t(comps) * 4);
     return out;
 }
 
@@ -44,7 +46,8 @@ tinygltf::Model rawModel(const std::filesystem::path& p) {
     tinygltf::TinyGLTF loader;
     tinygltf::Model m;
     std::string err, warn;
-    loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; },
+    loader.SetImageLoader([](tinygltf::Image*, const int, std::string*, std::string*, int, int,
+                             const unsigned char*, int, void*) { return true; },
                           nullptr);
     EXPECT_TRUE(p.extension() == ".glb" ? loader.LoadBinaryFromFile(&m, &err, &warn, p.string())
                                         : loader.LoadASCIIFromFile(&m, &err, &warn, p.string()))
@@ -53,7 +56,8 @@ tinygltf::Model rawModel(const std::filesystem::path& p) {
 }
 
 TEST(Gltf, MultiUvTestHasTwoFlippedUvSets) {
-    for (const char* file : {"gltf/MultiUVTest/glTF/MultiUVTest.gltf", "gltf/MultiUVTest/glTF-Binary/MultiUVTest.glb"}) {
+    for (const char* file : {"gltf/MultiUVTest/glTF/MultiUVTest.gltf",
+                             "gltf/MultiUVTest/glTF-Binary/MultiUVTest.glb"}) {
         Scene scene = loadScene(dataPath(file));
         ASSERT_EQ(scene.instances.size(), 1u) << file;
         const RenderMesh& m = scene.instances[0].mesh;
@@ -72,28 +76,35 @@ TEST(Gltf, MultiUvTestHasTwoFlippedUvSets) {
         for (const auto& t : m.tangents) EXPECT_TRUE(t.w == 1.0f || t.w == -1.0f);
         ASSERT_EQ(scene.materials.size(), 1u);
         // .gltf names the image file; .glb embeds it (no path).
-        if (std::string(file).ends_with(".gltf")) EXPECT_TRUE(scene.materials[0].baseColorTexture.ends_with("uv0.png"));
-        else EXPECT_TRUE(scene.materials[0].baseColorTexture.empty());
-        EXPECT_EQ(scene.instances[0].objectToWorld, glm::mat4(1.0f)); // the mesh node is a root without transform
+        if (std::string(file).ends_with(".gltf"))
+            EXPECT_TRUE(scene.materials[0].baseColorTexture.ends_with("uv0.png"));
+        else
+            EXPECT_TRUE(scene.materials[0].baseColorTexture.empty());
+        EXPECT_EQ(scene.instances[0].objectToWorld,
+                  glm::mat4(1.0f)); // the mesh node is a root without transform
     }
 }
 
 TEST(Gltf, MirroredTangentsKeepTheirSign) {
-    RenderMesh m = loadRenderMesh(dataPath("gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf"));
+    RenderMesh m =
+        loadRenderMesh(dataPath("gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf"));
     size_t neg = 0, pos = 0;
     for (const auto& t : m.tangents) (t.w < 0 ? neg : pos)++;
     EXPECT_GT(neg, 0u);
     EXPECT_GT(pos, 0u);
     for (const auto& n : m.normals) EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f);
-    Scene scene = loadScene(dataPath("gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf"));
+    Scene scene =
+        loadScene(dataPath("gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf"));
     ASSERT_EQ(scene.materials.size(), 1u);
-    EXPECT_NE(scene.materials[0].normalTexture.find("NormalTangentTest_Normal.png"), std::string::npos);
+    EXPECT_NE(scene.materials[0].normalTexture.find("NormalTangentTest_Normal.png"),
+              std::string::npos);
     EXPECT_EQ(scene.materials[0].normalTexCoord, 0);
     EXPECT_EQ(scene.materials[0].normalScale, 1.0f);
 }
 
 TEST(Gltf, MorphPrimitivesTest) {
-    for (const char* file : {"gltf/MorphPrimitivesTest/glTF/MorphPrimitivesTest.gltf", "gltf/MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb"}) {
+    for (const char* file : {"gltf/MorphPrimitivesTest/glTF/MorphPrimitivesTest.gltf",
+                             "gltf/MorphPrimitivesTest/glTF-Binary/MorphPrimitivesTest.glb"}) {
         Scene scene = loadScene(dataPath(file));
         ASSERT_EQ(scene.instances.size(), 2u) << file;
         ASSERT_EQ(scene.materials.size(), 2u);
@@ -108,7 +119,8 @@ TEST(Gltf, MorphPrimitivesTest) {
         // As one cage: both primitives, welded, with the target carried.
         PolygonMesh cage = loadPolygonMesh(dataPath(file));
         ASSERT_EQ(cage.morphTargets.size(), 1u);
-        EXPECT_LT(cage.vertexCount(), scene.instances[0].mesh.vertexCount() + scene.instances[1].mesh.vertexCount());
+        EXPECT_LT(cage.vertexCount(),
+                  scene.instances[0].mesh.vertexCount() + scene.instances[1].mesh.vertexCount());
     }
 }
 
@@ -155,7 +167,8 @@ TEST(Gltf, AnimatedMorphSphere) {
 }
 
 TEST(Gltf, TextureCoordinateTestMergesInWorldSpace) {
-    std::filesystem::path p = dataPath("gltf/TextureCoordinateTest/glTF/TextureCoordinateTest.gltf");
+    std::filesystem::path p =
+        dataPath("gltf/TextureCoordinateTest/glTF/TextureCoordinateTest.gltf");
     Scene scene = loadScene(p);
     EXPECT_EQ(scene.instances.size(), 5u);
     LoadReport report;
@@ -165,7 +178,8 @@ TEST(Gltf, TextureCoordinateTestMergesInWorldSpace) {
     EXPECT_EQ(merged.vertexCount(), total);
     EXPECT_TRUE(merged.uvSets.empty()); // the back plane has no TEXCOORD_0
     bool noted = false;
-    for (const auto& n : report.notes) noted |= n.find("UV sets beyond 0 dropped") != std::string::npos;
+    for (const auto& n : report.notes)
+        noted |= n.find("UV sets beyond 0 dropped") != std::string::npos;
     EXPECT_TRUE(noted);
 }
 
@@ -181,7 +195,9 @@ json triangleGltf() {
     return json::parse(readBytes(dir / "t.gltf"));
 }
 
-Scene parse(const json& j, const InputLimits& limits = {}) { return parseGltf(j.dump(), "t.gltf", {}, limits); }
+Scene parse(const json& j, const InputLimits& limits = {}) {
+    return parseGltf(j.dump(), "t.gltf", {}, limits);
+}
 
 TEST(Gltf, HostileFilesAreNamed) {
     json ok = triangleGltf();
@@ -224,7 +240,8 @@ TEST(Gltf, HostileFilesAreNamed) {
     json weights = ok;
     weights["meshes"][0]["weights"] = {0.5, 0.5};
     weights["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", 0}}});
-    expectInputError([&] { parse(weights); }, "mesh 0 primitive 0", "2 default weights for 1 morph targets");
+    expectInputError([&] { parse(weights); }, "mesh 0 primitive 0",
+                     "2 default weights for 1 morph targets");
     expectInputError([&] { parseGltf("{not json", "t.gltf", {}); }, "", "glTF parse error");
     expectInputError([&] { parseGltf("", "t.gltf", {}); }, "", "");
 }
@@ -243,14 +260,18 @@ TEST(Gltf, NanPositionsAreRefused) {
     size_t bin = 20 + jsonLen + 8;
     float nan = std::nanf("");
     std::memcpy(glb.data() + bin + (2 * 3 + 1) * 4, &nan, 4); // vertex 2, y
-    expectInputError([&] { parseGltf(glb, "nan.glb", {}); }, "POSITION (accessor 0)", "element 2 is not finite");
+    expectInputError([&] { parseGltf(glb, "nan.glb", {}); }, "POSITION (accessor 0)",
+                     "element 2 is not finite");
 }
 
 TEST(Gltf, TruncatedGlb) {
     std::string glb = readBytes(dataPath("gltf/MultiUVTest/glTF-Binary/MultiUVTest.glb"));
     ASSERT_GT(glb.size(), 100u);
-    expectInputError([&] { parseGltf(std::string_view(glb).substr(0, glb.size() - 10), "m.glb", {}); }, "GLB header", "truncated");
-    expectInputError([&] { parseGltf(std::string_view(glb).substr(0, 12), "m.glb", {}); }, "GLB header", "truncated");
+    expectInputError(
+        [&] { parseGltf(std::string_view(glb).substr(0, glb.size() - 10), "m.glb", {}); },
+        "GLB header", "truncated");
+    expectInputError([&] { parseGltf(std::string_view(glb).substr(0, 12), "m.glb", {}); },
+                     "GLB header", "truncated");
     std::string badChunk = glb;
     uint32_t huge = 0x7fffffff;
     std::memcpy(badChunk.data() + 12, &huge, 4);

@@ -16,7 +16,9 @@ inline std::filesystem::path dataDir() {
     const char* env = std::getenv("SURFGRAD_DATA_DIR");
     return env && *env ? std::filesystem::path(env) : std::filesystem::path(SURFGRAD_DATA_DIR);
 }
-inline std::filesystem::path dataPath(const std::string& rel) { return dataDir() / rel; }
+inline std::filesystem::path dataPath(const std::string& rel) {
+    return dataDir() / rel;
+}
 
 // A scratch directory per test, removed at the end.
 class TempDir {
@@ -24,7 +26,8 @@ public:
     TempDir() {
         const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
         path_ = std::filesystem::temp_directory_path() /
-                ("surfgrad_mesh_" + std::string(info->test_suite_name()) + "_" + info->name() + "_" + std::to_string(::getpid()));
+                ("surfgrad_mesh_" + std::string(info->test_suite_name()) + "_" + info->name() +
+                 "_" + std::to_string(::getpid()));
         std::filesystem::create_directories(path_);
     }
     ~TempDir() {
@@ -38,7 +41,9 @@ private:
     std::filesystem::path path_;
 };
 
-inline void writeText(const std::filesystem::path& p, const std::string& text) { sg::io::writeFileAtomically(p, text); }
+inline void writeText(const std::filesystem::path& p, const std::string& text) {
+    sg::io::writeFileAtomically(p, text);
+}
 
 // Unit cube, 6 quads, outward CCW faces, one UV per corner (a cross layout).
 inline const char* kCubeObj = R"(v -1 -1 -1

@@ -37,18 +37,18 @@ TEST(Obj, ParsesPositionsUvsNormalsAndFaces) {
 }
 
 TEST(Obj, ReadsOpenSubdivTags) {
-    PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) +
-                                 "t crease 2/1/0 0 1 2.5\n"
-                                 "t crease 3/2/0 4 5 6 1.0 10\n"
-                                 "t corner 2/1/0 2 3 4.0\n"
-                                 "t hole 1/0/0 5\n"
-                                 "t interpolateboundary 1/0/0 1\n"
-                                 "t facevaryinginterpolateboundary 1/0/0 5\n"
-                                 "t creasemethod 0/0/1 chaikin\n"
-                                 "t smoothtriangles 0/0/1 catmark\n"
-                                 "t scheme 0/0/1 bilinear\n"
-                                 "#t crease 2/1/0 0 1 99\n",
-                             "tags.obj");
+    PolygonMesh m =
+        parseObj(std::string(sg::test::kCubeObj) + "t crease 2/1/0 0 1 2.5\n"
+                                                   "t crease 3/2/0 4 5 6 1.0 10\n"
+                                                   "t corner 2/1/0 2 3 4.0\n"
+                                                   "t hole 1/0/0 5\n"
+                                                   "t interpolateboundary 1/0/0 1\n"
+                                                   "t facevaryinginterpolateboundary 1/0/0 5\n"
+                                                   "t creasemethod 0/0/1 chaikin\n"
+                                                   "t smoothtriangles 0/0/1 catmark\n"
+                                                   "t scheme 0/0/1 bilinear\n"
+                                                   "#t crease 2/1/0 0 1 99\n",
+                 "tags.obj");
     ASSERT_EQ(m.creases.size(), 3u);
     EXPECT_EQ(m.creases[0].v0, 0u);
     EXPECT_EQ(m.creases[0].v1, 1u);
@@ -69,43 +69,57 @@ TEST(Obj, ReadsOpenSubdivTags) {
     EXPECT_EQ(m.options.creaseMethod, CreaseMethod::Chaikin);
     EXPECT_EQ(m.options.triangles, TriangleRule::Smooth);
     EXPECT_EQ(m.options.scheme, Scheme::Bilinear);
-    EXPECT_EQ(m.explicitTags, kTagScheme | kTagBoundary | kTagFVar | kTagCreaseMethod | kTagTriangles);
+    EXPECT_EQ(m.explicitTags,
+              kTagScheme | kTagBoundary | kTagFVar | kTagCreaseMethod | kTagTriangles);
     // Creases on existing edges: validation passes.
     validate(m, "tags.obj");
 }
 
 TEST(Obj, ErrorsNameTheLine) {
-    expectInputError([] { parseObj("v 0 0 0\nv 1 0\n", "a.obj"); }, "line 2", "fewer than 3 coordinates");
+    expectInputError([] { parseObj("v 0 0 0\nv 1 0\n", "a.obj"); }, "line 2",
+                     "fewer than 3 coordinates");
     expectInputError([] { parseObj("v 0 0 nan\n", "a.obj"); }, "line 1", "non-finite");
     expectInputError([] { parseObj("v 0 0 1e39\n", "a.obj"); }, "line 1", "bad number");
     expectInputError([] { parseObj("v 0 0 0\nf 1 2 0\n", "a.obj"); }, "line 2", "index 0");
-    expectInputError([] { parseObj("v 0 0 0\nf 1 2 -5\n", "a.obj"); }, "line 2", "before the first");
+    expectInputError([] { parseObj("v 0 0 0\nf 1 2 -5\n", "a.obj"); }, "line 2",
+                     "before the first");
     expectInputError([] { parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 4\n", "a.obj"); }, "line 5",
                      "vertex index 4 is out of range (3 vertices)");
-    expectInputError([] { parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "a.obj"); }, "line 5",
-                     "texture coordinate index 2 is out of range");
+    expectInputError(
+        [] { parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "a.obj"); }, "line 5",
+        "texture coordinate index 2 is out of range");
     expectInputError([] { parseObj("f 1/2/3/4\n", "a.obj"); }, "line 1", "more than 3 parts");
-    expectInputError([] { parseObj("t crease 2/1/0 0\n", "a.obj"); }, "line 1", "missing or bad integer");
-    expectInputError([] { parseObj("t crease 2/2/0 0 1 1 2\n", "a.obj"); }, "line 1", "1 or 1 sharpness");
-    expectInputError([] { parseObj("t crease 99999999/0/0\n", "a.obj"); }, "line 1", "line is shorter");
-    expectInputError([] { parseObj("t crease x/1/0 0 1 1\n", "a.obj"); }, "line 1", "nInts/nFloats/nStrings");
+    expectInputError([] { parseObj("t crease 2/1/0 0\n", "a.obj"); }, "line 1",
+                     "missing or bad integer");
+    expectInputError([] { parseObj("t crease 2/2/0 0 1 1 2\n", "a.obj"); }, "line 1",
+                     "1 or 1 sharpness");
+    expectInputError([] { parseObj("t crease 99999999/0/0\n", "a.obj"); }, "line 1",
+                     "line is shorter");
+    expectInputError([] { parseObj("t crease x/1/0 0 1 1\n", "a.obj"); }, "line 1",
+                     "nInts/nFloats/nStrings");
     expectInputError([] { parseObj("t corner 1/1/0 -3 1\n", "a.obj"); }, "line 1", "out of range");
-    expectInputError([] { parseObj("t interpolateboundary 1/0/0 7\n", "a.obj"); }, "line 1", "expected 0, 1 or 2");
-    expectInputError([] { parseObj("t creasemethod 0/0/1 wobbly\n", "a.obj"); }, "line 1", "expected normal or chaikin");
+    expectInputError([] { parseObj("t interpolateboundary 1/0/0 7\n", "a.obj"); }, "line 1",
+                     "expected 0, 1 or 2");
+    expectInputError([] { parseObj("t creasemethod 0/0/1 wobbly\n", "a.obj"); }, "line 1",
+                     "expected normal or chaikin");
 }
 
 TEST(Obj, LimitsAreCheckedWhileReading) {
     InputLimits limits;
     limits.maxVertices = 2;
-    expectInputError([&] { parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\n", "a.obj", limits); }, "line 3", "more than 2 vertices");
+    expectInputError([&] { parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\n", "a.obj", limits); }, "line 3",
+                     "more than 2 vertices");
     limits = InputLimits();
     limits.maxFaceDegree = 4;
-    expectInputError([&] { parseObj("f 1 2 3 4 5\n", "a.obj", limits); }, "line 1", "more than 4 corners");
+    expectInputError([&] { parseObj("f 1 2 3 4 5\n", "a.obj", limits); }, "line 1",
+                     "more than 4 corners");
 }
 
 TEST(Obj, MixedUvCornersGetAFallbackValue) {
     LoadReport report;
-    PolygonMesh m = parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0.5 0.5\nf 1/1 2/1 3/1\nf 2 4 3\n", "mixed.obj", {}, &report);
+    PolygonMesh m =
+        parseObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0.5 0.5\nf 1/1 2/1 3/1\nf 2 4 3\n",
+                 "mixed.obj", {}, &report);
     ASSERT_EQ(m.uvSets.size(), 1u);
     EXPECT_EQ(m.uvSets[0].values.size(), 2u);
     EXPECT_EQ(m.uvSets[0].values[1], glm::vec2(0.0f));
@@ -117,7 +131,8 @@ TEST(Obj, MixedUvCornersGetAFallbackValue) {
 
 TEST(Obj, LoadNamesTheFileAndTheFaceLine) {
     sg::test::TempDir dir;
-    sg::test::writeText(dir / "bad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 3\nf 1 1 2\n");
+    sg::test::writeText(dir / "bad.obj",
+                        "v 0 0 0\nv 1 0 0\nv 0 1 0\n# a comment\nf 1 2 3\nf 1 1 2\n");
     std::string file = (dir / "bad.obj").string();
     try {
         loadPolygonMesh(dir / "bad.obj");
@@ -125,7 +140,8 @@ TEST(Obj, LoadNamesTheFileAndTheFaceLine) {
     } catch (const sg::io::InputError& e) {
         EXPECT_EQ(e.file(), file);
         EXPECT_EQ(e.element(), "face 1 (line 6)");
-        EXPECT_NE(e.reason().find("uses vertex 0 twice"), std::string::npos); // indices in messages are 0-based
+        EXPECT_NE(e.reason().find("uses vertex 0 twice"),
+                  std::string::npos); // indices in messages are 0-based
     }
     // --repair drops it and says so.
     LoadOptions o;

@@ -29,7 +29,8 @@ bool finite(const RenderMesh& m) {
         if (!std::isfinite(p.x + p.y + p.z)) return false;
     }
     for (const auto& n : m.normals) {
-        if (!std::isfinite(n.x + n.y + n.z) || std::abs(glm::length(n) - 1.0f) > 1e-4f) return false;
+        if (!std::isfinite(n.x + n.y + n.z) || std::abs(glm::length(n) - 1.0f) > 1e-4f)
+            return false;
     }
     return true;
 }
@@ -40,7 +41,8 @@ TEST(OsdShapes, EveryShapeIsProcessedOrRejectedWithAReason) {
 #include "osd_shapes_expected.inc"
     };
     size_t processed = 0, rejected = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(sg::test::dataPath("osd-shapes"))) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(sg::test::dataPath("osd-shapes"))) {
         if (entry.path().extension() != ".obj") continue;
         const std::string name = entry.path().stem().string();
         SCOPED_TRACE(name);
@@ -57,7 +59,8 @@ TEST(OsdShapes, EveryShapeIsProcessedOrRejectedWithAReason) {
                 EXPECT_TRUE(finite(sub.renderMesh())) << (limit ? "limit" : "refined");
                 EXPECT_GT(sub.renderMesh().triangleCount(), 0u);
                 if (limit) {
-                    for (const auto& d : sub.limitFrame().dPdu) EXPECT_TRUE(std::isfinite(d.x + d.y + d.z));
+                    for (const auto& d : sub.limitFrame().dPdu)
+                        EXPECT_TRUE(std::isfinite(d.x + d.y + d.z));
                 }
             }
             EXPECT_TRUE(it == kRejected.end()) << "expected a rejection: " << it->second.second;
@@ -86,8 +89,12 @@ TEST(OsdShapes, RepairDropsDegenerateFacesButNotNonManifoldTopology) {
         LoadOptions o;
         o.repair = true;
         LoadReport report;
-        sg::test::expectInputError([&] { loadPolygonMesh(sg::test::dataPath(std::string("osd-shapes/") + name + ".obj"), o, &report); },
-                                   "edge (", "non-manifold edge");
+        sg::test::expectInputError(
+            [&] {
+                loadPolygonMesh(sg::test::dataPath(std::string("osd-shapes/") + name + ".obj"), o,
+                                &report);
+            },
+            "edge (", "non-manifold edge");
         EXPECT_GT(report.degenerateFacesDropped, 0u);
     }
 }

@@ -25,7 +25,9 @@ using namespace sg::mesh;
 using sg::test::dataPath;
 namespace Far = OpenSubdiv::Far;
 
-PolygonMesh spot() { return loadPolygonMesh(dataPath("meshes/spot/spot_control_mesh.obj")); }
+PolygonMesh spot() {
+    return loadPolygonMesh(dataPath("meshes/spot/spot_control_mesh.obj"));
+}
 
 PolygonMesh cubeWith(const std::string& tags) {
     PolygonMesh m = parseObj(std::string(sg::test::kCubeObj) + tags, "cube.obj");
@@ -61,7 +63,9 @@ struct Ref {
     V* v;
     void Clear() { *v = V(0.0f); }
     template <class S>
-    void AddWithWeight(const S& s, float w) { *v += w * *s.v; }
+    void AddWithWeight(const S& s, float w) {
+        *v += w * *s.v;
+    }
 };
 template <class V>
 struct View {
@@ -101,10 +105,12 @@ FarLimit farLimit(const PolygonMesh& cage, int level, const SubdivOptions& o) {
     d.creaseWeights = sharp.data();
     OpenSubdiv::Sdc::Options so;
     so.SetVtxBoundaryInterpolation(OpenSubdiv::Sdc::Options::VTX_BOUNDARY_EDGE_ONLY);
-    so.SetFVarLinearInterpolation(o.fvar == FVarInterpolation::CornersPlus1 ? OpenSubdiv::Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1
-                                                                            : OpenSubdiv::Sdc::Options::FVAR_LINEAR_NONE);
+    so.SetFVarLinearInterpolation(o.fvar == FVarInterpolation::CornersPlus1
+                                      ? OpenSubdiv::Sdc::Options::FVAR_LINEAR_CORNERS_PLUS1
+                                      : OpenSubdiv::Sdc::Options::FVAR_LINEAR_NONE);
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
-    std::unique_ptr<Far::TopologyRefiner> r(Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, so)));
+    std::unique_ptr<Far::TopologyRefiner> r(
+        Factory::Create(d, Factory::Options(OpenSubdiv::Sdc::SCHEME_CATMARK, so)));
     Far::TopologyRefiner::UniformOptions uo(level);
     uo.fullTopologyInLastLevel = true; // Limit needs vertex neighbourhoods
     r->RefineUniform(uo);
@@ -201,8 +207,10 @@ TEST(Subdivision, LimitAgreesWithOpenSubdivLimitMasks) {
             float worst = 0, worstUv = 0;
             for (size_t r = 0; r < rm.vertexCount(); ++r) {
                 float best = 1e9f, bestUv = 1e9f;
-                for (const auto& p : ref.pos) best = std::min(best, glm::length(rm.positions[r] - p));
-                for (const auto& t : ref.uv[0]) bestUv = std::min(bestUv, glm::length(rm.uvSets[0][r] - t));
+                for (const auto& p : ref.pos)
+                    best = std::min(best, glm::length(rm.positions[r] - p));
+                for (const auto& t : ref.uv[0])
+                    bestUv = std::min(bestUv, glm::length(rm.uvSets[0][r] - t));
                 worst = std::max(worst, best);
                 worstUv = std::max(worstUv, bestUv);
             }
@@ -214,7 +222,8 @@ TEST(Subdivision, LimitAgreesWithOpenSubdivLimitMasks) {
         for (size_t r = 0; r < rm.vertexCount(); ++r) {
             uint32_t v = sub.renderToRefinedVertex()[r];
             maxPos = std::max(maxPos, glm::length(rm.positions[r] - ref.pos[v]));
-            glm::dvec3 nRef = glm::normalize(glm::cross(glm::dvec3(ref.tan1[v]), glm::dvec3(ref.tan2[v])));
+            glm::dvec3 nRef =
+                glm::normalize(glm::cross(glm::dvec3(ref.tan1[v]), glm::dvec3(ref.tan2[v])));
             glm::dvec3 n = glm::dvec3(rm.normals[r]);
             // atan2(|a x b|, a.b): accurate for small angles (acos is not).
             float angle = float(std::atan2(glm::length(glm::cross(nRef, n)), glm::dot(nRef, n)));
@@ -247,7 +256,8 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
         float u = t - std::floor(t);
         float b0 = (1 - u) * (1 - u) * (1 - u) / 6, b1 = (3 * u * u * u - 6 * u * u + 4) / 6,
               b2 = (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, b3 = u * u * u / 6;
-        return b0 * ctrl[(i + 3) % 4] + b1 * ctrl[i] + b2 * ctrl[(i + 1) % 4] + b3 * ctrl[(i + 2) % 4];
+        return b0 * ctrl[(i + 3) % 4] + b1 * ctrl[i] + b2 * ctrl[(i + 1) % 4] +
+               b3 * ctrl[(i + 2) % 4];
     };
     for (int level = 1; level <= 4; ++level) {
         SubdivisionSettings s;
@@ -270,9 +280,11 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
         for (uint32_t v : onCrease) {
             glm::vec3 p = ref.positions[v];
             float best = 1e9f;
-            for (int k = 0; k < n; ++k) best = std::min(best, glm::length(p - bspline(4.0f * float(k) / float(n))));
+            for (int k = 0; k < n; ++k)
+                best = std::min(best, glm::length(p - bspline(4.0f * float(k) / float(n))));
             // Float evaluation of patches vs the closed form: 2e-6 on unit coordinates.
-            EXPECT_LT(best, 2e-6f) << "level " << level << " vertex " << v << " at " << p.x << "," << p.y << "," << p.z;
+            EXPECT_LT(best, 2e-6f) << "level " << level << " vertex " << v << " at " << p.x << ","
+                                   << p.y << "," << p.z;
         }
         // At the cage corners the limit is (P[i-1] + 4 P[i] + P[i+1]) / 6.
         int found = 0;
@@ -291,8 +303,10 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
             if (std::abs(rm.positions[r].z - ctrl[0].z) > 1e-6f) continue;
             uint32_t v = sub.renderToRefinedVertex()[r];
             if (!std::binary_search(onCrease.begin(), onCrease.end(), v)) continue;
-            if (rm.normals[r].z > 0.99f) ++upward;
-            else ++sideways;
+            if (rm.normals[r].z > 0.99f)
+                ++upward;
+            else
+                ++sideways;
         }
         EXPECT_EQ(upward, onCrease.size());
         EXPECT_GE(sideways, onCrease.size());
@@ -310,7 +324,8 @@ TEST(Subdivision, DerivativesMatchFiniteDifferences) {
     const RenderMesh& rm = sub.renderMesh();
     const LimitFrame& lf = sub.limitFrame();
     std::map<std::tuple<uint32_t, float, float>, uint32_t> at;
-    for (uint32_t r = 0; r < rm.vertexCount(); ++r) at[{lf.ptexFace[r], lf.ptexUV[r].x, lf.ptexUV[r].y}] = r;
+    for (uint32_t r = 0; r < rm.vertexCount(); ++r)
+        at[{lf.ptexFace[r], lf.ptexUV[r].x, lf.ptexUV[r].y}] = r;
     std::vector<double> errP, errUv;
     for (const auto& [key, r] : at) {
         auto [f, u, v] = key;
@@ -371,7 +386,8 @@ TEST(Subdivision, StencilUpdateMatchesRebuild) {
         for (size_t r = 0; r < out.vertexCount(); ++r) {
             maxP = std::max(maxP, glm::length(out.positions[r] - want.positions[r]));
             maxN = std::max(maxN, glm::length(out.normals[r] - want.normals[r]));
-            if (limit) maxD = std::max(maxD, glm::length(frame.dPdu[r] - fresh.limitFrame().dPdu[r]));
+            if (limit)
+                maxD = std::max(maxD, glm::length(frame.dPdu[r] - fresh.limitFrame().dPdu[r]));
         }
         // Same weights applied in a different order (factored levels vs
         // PrimvarRefiner): float rounding only.
@@ -385,7 +401,8 @@ TEST(Subdivision, RebuildOfTheSameTopologyMatchesAFreshBuild) {
     // The second build with the same topology takes the kept refiner and
     // factored stencils (positions, UVs, morph deltas); the result must be
     // the fresh build's.
-    PolygonMesh cage = loadPolygonMesh(sg::test::dataPath("gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"));
+    PolygonMesh cage = loadPolygonMesh(
+        sg::test::dataPath("gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"));
     ASSERT_EQ(cage.morphTargets.size(), 2u);
     cage.uvSets.push_back({"planar", {}, {}}); // a UV set with seams: every corner its own value
     for (size_t c = 0; c < cage.cornerCount(); ++c) {
@@ -412,7 +429,8 @@ TEST(Subdivision, RebuildOfTheSameTopologyMatchesAFreshBuild) {
         dp = std::max(dp, glm::length(a.positions[r] - b.positions[r]));
         dn = std::max(dn, glm::length(a.normals[r] - b.normals[r]));
         du = std::max(du, glm::length(a.uvSets[0][r] - b.uvSets[0][r]));
-        dd = std::max(dd, glm::length(a.morphTargets[1].positionDeltas[r] - b.morphTargets[1].positionDeltas[r]));
+        dd = std::max(dd, glm::length(a.morphTargets[1].positionDeltas[r] -
+                                      b.morphTargets[1].positionDeltas[r]));
     }
     // Same weights, summed in another order: float rounding on coordinates
     // of size ~1 (the sphere has radius 1).
@@ -437,7 +455,8 @@ TEST(Subdivision, HolesAreLeftOut) {
         Subdivider sub(cage, s);
         size_t expect = 0;
         for (size_t f = 0; f < cage.faceCount(); ++f) {
-            if (!std::binary_search(cage.holes.begin(), cage.holes.end(), uint32_t(f))) expect += cage.faceSizes[f] == 4 ? 16 : cage.faceSizes[f] * 4;
+            if (!std::binary_search(cage.holes.begin(), cage.holes.end(), uint32_t(f)))
+                expect += cage.faceSizes[f] == 4 ? 16 : cage.faceSizes[f] * 4;
         }
         EXPECT_EQ(sub.refined().faceCount(), expect);
         EXPECT_TRUE(allFinite(sub.renderMesh()));
@@ -460,7 +479,8 @@ TEST(Subdivision, UvSeamsSplitRenderVertices) {
         // Copies of one refined vertex share the position and the normal (no
         // sharp edges) but not the UV.
         std::map<uint32_t, std::vector<uint32_t>> copies;
-        for (uint32_t r = 0; r < rm.vertexCount(); ++r) copies[sub.renderToRefinedVertex()[r]].push_back(r);
+        for (uint32_t r = 0; r < rm.vertexCount(); ++r)
+            copies[sub.renderToRefinedVertex()[r]].push_back(r);
         size_t seamVertices = 0;
         for (const auto& [v, rs] : copies) {
             for (uint32_t r : rs) {
@@ -526,7 +546,8 @@ TEST(Subdivision, RejectsWhatOpenSubdivCannotTake) {
     PolygonMesh cube = cubeWith("");
     SubdivisionSettings s;
     s.options.scheme = Scheme::Loop;
-    sg::test::expectInputError([&] { Subdivider sub(cube, s); }, "face 0", "Loop scheme takes triangles");
+    sg::test::expectInputError([&] { Subdivider sub(cube, s); }, "face 0",
+                               "Loop scheme takes triangles");
     s.options.scheme = Scheme::Catmark;
     s.level = kMaxSubdivisionLevel + 1;
     sg::test::expectInputError([&] { Subdivider sub(cube, s); }, "level", "outside");
@@ -566,7 +587,9 @@ TEST(Subdivision, SpotWithUvsThroughLevel4) {
         size_t c0 = 0;
         for (uint32_t k : ref.faceSizes) {
             glm::vec3 fn(0.0f);
-            for (uint32_t j = 0; j < k; ++j) fn += glm::cross(ref.positions[ref.faceVertices[c0 + j]], ref.positions[ref.faceVertices[c0 + (j + 1) % k]]);
+            for (uint32_t j = 0; j < k; ++j)
+                fn += glm::cross(ref.positions[ref.faceVertices[c0 + j]],
+                                 ref.positions[ref.faceVertices[c0 + (j + 1) % k]]);
             for (uint32_t j = 0; j < k; ++j) {
                 disagree += glm::dot(fn, ref.normals[ref.faceVertices[c0 + j]]) < 0.0f;
                 ++cornersSeen;

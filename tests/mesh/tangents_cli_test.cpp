@@ -34,9 +34,10 @@ struct CliRun {
 };
 
 CliRun surfgrad(const std::string& args) {
-    const fs::path err = fs::temp_directory_path() / ("surfgrad_tangents_err_" + std::to_string(::getpid()));
-    const std::string cmd =
-        std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args + " 2> '" + err.string() + "'";
+    const fs::path err =
+        fs::temp_directory_path() / ("surfgrad_tangents_err_" + std::to_string(::getpid()));
+    const std::string cmd = std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args +
+                            " 2> '" + err.string() + "'";
     std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
     std::string out;
     std::array<char, 4096> buf;
@@ -111,7 +112,8 @@ double angleDeg(glm::vec3 a, glm::vec3 b) {
 }
 
 TEST_F(TangentsCli, MikkTSpaceGlbMatchesTheSampleTangents) {
-    const std::string in = kData + "/gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf";
+    const std::string in =
+        kData + "/gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf";
     const CliRun r = surfgrad("mesh tangents '" + in + "' -o '" + path("out.glb") + "' --json");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("\"method\":\"mikktspace\""), std::string::npos) << r.out;
@@ -123,11 +125,13 @@ TEST_F(TangentsCli, MikkTSpaceGlbMatchesTheSampleTangents) {
     const sg::test::GltfPrimitive ref = sg::test::readGltfPrimitive(in);
     std::map<std::array<float, 5>, size_t> byValue;
     for (size_t v = 0; v < ref.positions.size(); ++v)
-        byValue[{ref.positions[v].x, ref.positions[v].y, ref.positions[v].z, ref.uvs[v].x, ref.uvs[v].y}] = v;
+        byValue[{ref.positions[v].x, ref.positions[v].y, ref.positions[v].z, ref.uvs[v].x,
+                 ref.uvs[v].y}] = v;
     size_t matched = 0, signAgree = 0;
     double maxAngle = 0.0;
     for (size_t v = 0; v < w.positions.size(); ++v) {
-        auto it = byValue.find({w.positions[v].x, w.positions[v].y, w.positions[v].z, w.uvs[v].x, w.uvs[v].y});
+        auto it = byValue.find(
+            {w.positions[v].x, w.positions[v].y, w.positions[v].z, w.uvs[v].x, w.uvs[v].y});
         if (it == byValue.end()) continue;
         const glm::vec4 file = ref.tangents[it->second];
         maxAngle = std::max(maxAngle, angleDeg(glm::vec3(w.tangents[v]), glm::vec3(file)));
@@ -146,7 +150,8 @@ TEST_F(TangentsCli, MikkTSpaceGlbMatchesTheSampleTangents) {
 
 TEST_F(TangentsCli, LimitFramesAreUnitAndOrthogonalToTheNormal) {
     const std::string in = kData + "/meshes/spot/spot_control_mesh.obj";
-    const CliRun r = surfgrad("mesh tangents '" + in + "' --method limit --level 2 -o '" + path("spot.glb") + "'");
+    const CliRun r = surfgrad("mesh tangents '" + in + "' --method limit --level 2 -o '" +
+                              path("spot.glb") + "'");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_NE(r.out.find("limit tangents"), std::string::npos) << r.out;
     const Written w = readGlb(path("spot.glb"));
@@ -169,8 +174,10 @@ TEST_F(TangentsCli, BadArgumentsFailWithoutOutput) {
     const std::vector<Case> cases = {
         {"mesh tangents '" + in + "' --uv-set 2 -o '" + path("a.glb") + "'", "UV set"},
         {"mesh tangents '" + in + "' -o '" + path("a.obj") + "'", "glTF output"},
-        {"mesh tangents '" + in + "' --method pixel -o '" + path("a.glb") + "'", "built by the shader"},
-        {"mesh tangents '" + in + "' --method nope -o '" + path("a.glb") + "'", "expected mikktspace or limit"},
+        {"mesh tangents '" + in + "' --method pixel -o '" + path("a.glb") + "'",
+         "built by the shader"},
+        {"mesh tangents '" + in + "' --method nope -o '" + path("a.glb") + "'",
+         "expected mikktspace or limit"},
         {"mesh tangents '" + in + "' --level 99 -o '" + path("a.glb") + "'", "--level"},
         {"mesh tangents '" + path("missing.obj") + "' -o '" + path("a.glb") + "'", "missing.obj"},
         {"mesh tangents '" + in + "' -o '" + in + "'", ""}, // never over the input

@@ -22,8 +22,8 @@
 
 namespace {
 
-using sg::mesh::LimitTangentCase;
 using sg::mesh::limitTangent;
+using sg::mesh::LimitTangentCase;
 
 double angleDeg(glm::vec3 a, glm::vec3 b) {
     const glm::dvec3 da(a), db(b);
@@ -70,11 +70,13 @@ TEST(LimitTangent, RandomChartsSatisfyTheChainRule) {
         ASSERT_EQ(k, LimitTangentCase::Regular);
         const glm::vec3 nn = glm::normalize(n), tt(t);
         // dP/ds and dP/dt by the inverse Jacobian, in double.
-        const glm::dvec3 dPds = (double(sdv.y) * glm::dvec3(du) - double(sdu.y) * glm::dvec3(dv)) / det;
-        const glm::dvec3 dPdt = (-double(sdv.x) * glm::dvec3(du) + double(sdu.x) * glm::dvec3(dv)) / det;
-        EXPECT_NEAR(glm::length(tt), 1.0f, 1e-6f);                 // float normalization
-        EXPECT_NEAR(glm::dot(tt, nn), 0.0f, 1e-5f);                // float rounding of T and N
-        EXPECT_LT(angleDeg(tt, glm::vec3(dPds)), 1e-3);            // float rounding of T
+        const glm::dvec3 dPds =
+            (double(sdv.y) * glm::dvec3(du) - double(sdu.y) * glm::dvec3(dv)) / det;
+        const glm::dvec3 dPdt =
+            (-double(sdv.x) * glm::dvec3(du) + double(sdu.x) * glm::dvec3(dv)) / det;
+        EXPECT_NEAR(glm::length(tt), 1.0f, 1e-6f);      // float normalization
+        EXPECT_NEAR(glm::dot(tt, nn), 0.0f, 1e-5f);     // float rounding of T and N
+        EXPECT_LT(angleDeg(tt, glm::vec3(dPds)), 1e-3); // float rounding of T
         EXPECT_EQ(t.w, det > 0.0 ? 1.0f : -1.0f);
         EXPECT_GT(glm::dot(glm::dvec3(t.w * glm::cross(nn, tt)), dPdt), 0.0);
     }
@@ -160,8 +162,9 @@ LimitMesh limitMesh(const sg::mesh::PolygonMesh& cage, int level) {
 TEST(LimitTangents, AffinePlaneGivesTheExactConstantTangent) {
     // P = (x, y, 0), (s, t) = A (x, y) + b  =>  dP/ds = first column of
     // A^-1 (in xy), the same at every limit point, w = sign(det A).
-    const glm::mat2 charts[] = {glm::mat2(0.5f, 0.2f, -0.1f, 0.7f),  // columns: A = [[.5 -.1] [.2 .7]]
-                                glm::mat2(-0.4f, 0.0f, 0.3f, 0.25f)}; // mirrored (det < 0)
+    const glm::mat2 charts[] = {
+        glm::mat2(0.5f, 0.2f, -0.1f, 0.7f),   // columns: A = [[.5 -.1] [.2 .7]]
+        glm::mat2(-0.4f, 0.0f, 0.3f, 0.25f)}; // mirrored (det < 0)
     for (const auto scheme : {sg::mesh::Scheme::Bilinear, sg::mesh::Scheme::Catmark}) {
         for (const glm::mat2& a : charts) {
             const LimitMesh lm = limitMesh(planeCage(4, 3, a, {0.1f, 0.2f}, scheme), 2);
@@ -203,7 +206,8 @@ sg::mesh::PolygonMesh cylinderCage(int ring, int rows) {
             cage.positions.push_back({std::cos(a), std::sin(a), float(r)});
         }
     for (int r = 0; r <= rows; ++r)
-        for (int i = 0; i <= ring; ++i) uv.values.push_back({float(i) / float(ring), float(r) / float(rows)});
+        for (int i = 0; i <= ring; ++i)
+            uv.values.push_back({float(i) / float(ring), float(r) / float(rows)});
     auto vid = [&](int i, int r) { return uint32_t(r * ring + (i % ring)); };
     auto tid = [&](int i, int r) { return uint32_t(r * (ring + 1) + i); };
     for (int r = 0; r < rows; ++r)
@@ -251,7 +255,8 @@ TEST(LimitTangents, CylinderTangentsAreCircumferentialOnMirrorPlanes) {
         EXPECT_EQ(t.w, 1.0f) << "vertex " << v;
         ++checked;
     }
-    std::printf("cylinder L%d: %zu mirror-plane points, max angle to circumferential %.2e deg, max |t.n| %.2e\n",
+    std::printf("cylinder L%d: %zu mirror-plane points, max angle to circumferential %.2e deg, max "
+                "|t.n| %.2e\n",
                 level, checked, worst, worstOrtho);
     EXPECT_GT(checked, 50u);
     // Measured 7.5e-4 deg (1.3e-5 rad): derivatives evaluated in float
@@ -271,7 +276,8 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
     // while positions are smooth across it, so UV(P) is exactly affine only
     // beyond the seam faces' support: directions are checked from two cage
     // faces away on.
-    sg::mesh::PolygonMesh cage = planeCage(8, 2, glm::mat2(1.0f), {0, 0}, sg::mesh::Scheme::Catmark);
+    sg::mesh::PolygonMesh cage =
+        planeCage(8, 2, glm::mat2(1.0f), {0, 0}, sg::mesh::Scheme::Catmark);
     sg::mesh::FaceVaryingChannel& uv = cage.uvSets[0];
     const std::vector<uint32_t> offsets = sg::mesh::faceOffsets(cage);
     std::vector<uint32_t> mirroredValue(cage.vertexCount(), UINT32_MAX); // one per vertex
@@ -301,7 +307,8 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
         if (std::fabs(x - 4.0f) >= 2.0f) {
             // Float limit evaluation, as in the affine test (the plane's
             // smooth corners are included here too).
-            EXPECT_LT(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}), 1e-2) << "vertex " << v;
+            EXPECT_LT(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}), 1e-2)
+                << "vertex " << v;
             ++(isLeft ? left : right);
         }
     }
@@ -312,7 +319,8 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
 TEST(LimitTangents, ZeroAreaUvsFallBackWithoutNaN) {
     // Every UV of the middle faces collapsed to one point: their limit UV
     // Jacobian vanishes at points inside them.
-    sg::mesh::PolygonMesh cage = planeCage(4, 4, glm::mat2(0.25f), {0, 0}, sg::mesh::Scheme::Catmark);
+    sg::mesh::PolygonMesh cage =
+        planeCage(4, 4, glm::mat2(0.25f), {0, 0}, sg::mesh::Scheme::Catmark);
     sg::mesh::FaceVaryingChannel& uv = cage.uvSets[0];
     const std::vector<uint32_t> offsets = sg::mesh::faceOffsets(cage);
     const uint32_t point = uint32_t(uv.values.size());
@@ -337,8 +345,8 @@ TEST(LimitTangents, MikkTSpaceOnRefinedMeshesApproachesTheLimitFrame) {
     // mesh (limit positions, limit normals, limit UVs). MikkTSpace averages
     // face derivatives, so it differs by O(edge length) and converges as
     // the mesh is refined; the median angle must shrink by level.
-    const sg::mesh::PolygonMesh cage =
-        sg::mesh::loadPolygonMesh(std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj");
+    const sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(
+        std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj");
     double previousMedian = 1e9;
     for (int level : {1, 2, 3}) {
         const LimitMesh lm = limitMesh(cage, level);
@@ -378,11 +386,13 @@ TEST(LimitTangents, DispatchAndErrors) {
     m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     m.uvSets = {{{0, 0}, {1, 0}, {0, 1}}};
     m.indices = {0, 1, 2};
-    EXPECT_THROW(sg::mesh::generateTangents(m, sg::mesh::TangentMethod::Limit, 0), std::invalid_argument);
+    EXPECT_THROW(sg::mesh::generateTangents(m, sg::mesh::TangentMethod::Limit, 0),
+                 std::invalid_argument);
     sg::mesh::LimitFrame frame;
     frame.dPdu = {{1, 0, 0}};
     frame.dPdv = {{0, 1, 0}};
-    EXPECT_THROW(sg::mesh::generateLimitTangents(m, frame, 0), std::invalid_argument); // size mismatch
+    EXPECT_THROW(sg::mesh::generateLimitTangents(m, frame, 0),
+                 std::invalid_argument); // size mismatch
     sg::mesh::generateTangents(m, sg::mesh::TangentMethod::MikkTSpace, 0);
     EXPECT_EQ(m.tangents.size(), 3u);
     EXPECT_EQ(sg::mesh::generateTangents(m, sg::mesh::TangentMethod::Pixel, 0), 0u);

@@ -60,7 +60,9 @@ double angleDeg(glm::vec3 a, glm::vec3 b) {
     return std::atan2(glm::length(glm::cross(da, db)), glm::dot(da, db)) * 180.0 / M_PI;
 }
 
-bool sameBits(const void* a, const void* b, size_t n) { return std::memcmp(a, b, n) == 0; }
+bool sameBits(const void* a, const void* b, size_t n) {
+    return std::memcmp(a, b, n) == 0;
+}
 
 // Same handedness and direction within `deg` degrees. The exact-looking
 // answers below (tangent (1,0,0)) pass through sums of angles and one
@@ -217,7 +219,8 @@ TEST(MikkTSpace, FastEqualsOracleOnAdversarialMeshes) {
         heavy.quadFraction = 0.5f;
         cases.push_back({"mostly degenerate quads", heavy});
         sg::test::SoupOptions clean;
-        clean.mirrorFraction = clean.seamFraction = clean.degenerateFraction = clean.zeroUvFraction = 0;
+        clean.mirrorFraction = clean.seamFraction = clean.degenerateFraction =
+            clean.zeroUvFraction = 0;
         clean.quantize = 1024;
         clean.gridX = 30;
         clean.gridY = 20;
@@ -226,7 +229,8 @@ TEST(MikkTSpace, FastEqualsOracleOnAdversarialMeshes) {
     size_t meshes = 0;
     for (const Case& c : cases) {
         for (uint32_t seed = 1; seed <= 40; ++seed) {
-            const sg::test::SoupMesh m = sg::test::randomSoup(seed * 7919u + uint32_t(meshes), c.options);
+            const sg::test::SoupMesh m =
+                sg::test::randomSoup(seed * 7919u + uint32_t(meshes), c.options);
             EXPECT_EQ(countOracleMismatches(inputOf(m)), 0u) << c.name << ", seed " << seed;
             ++meshes;
         }
@@ -270,8 +274,8 @@ TEST(MikkTSpace, FastEqualsOracleOnHighValenceFans) {
             m.positions.push_back({std::cos(a), std::sin(a), 0.0f});
             m.normals.push_back(glm::normalize(glm::vec3(std::cos(a), std::sin(a), 1.0f)));
             glm::vec2 uv(0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a));
-            if (i % 5 == 3) uv.x = 1.0f - uv.x;   // mirrored sector boundary
-            if (i % 11 == 4) uv = {0.5f, 0.5f};   // zero UV area next to it
+            if (i % 5 == 3) uv.x = 1.0f - uv.x; // mirrored sector boundary
+            if (i % 11 == 4) uv = {0.5f, 0.5f}; // zero UV area next to it
             m.uvs.push_back(uv);
         }
         for (int i = 0; i < n; ++i) {
@@ -368,11 +372,13 @@ TEST(MikkTSpace, UvSeamSidesAreComputedSeparately) {
     const uint32_t b1 = s.add({2, 0.5f, 0}, {6, 0}), b2 = s.add({2, 1.5f, 0}, {6, 2});
     s.corners = {a0, a1, a2, a0, a2, a3, c1, b1, b2, c1, b2, c2};
     const auto t = fastTangents(s.input());
-    for (size_t c = 0; c < 6; ++c) EXPECT_TRUE(frameNear(t[c], glm::vec4(1, 0, 0, 1))) << "left corner " << c;
+    for (size_t c = 0; c < 6; ++c)
+        EXPECT_TRUE(frameNear(t[c], glm::vec4(1, 0, 0, 1))) << "left corner " << c;
     // Right: P = (x, y + (x-1)/2) with s = x + 4 -> dP/ds = (1, 0.5, 0).
     const glm::vec3 expected = glm::normalize(glm::vec3(1, 0.5f, 0));
     for (size_t c = 6; c < 12; ++c) {
-        EXPECT_LT(angleDeg(glm::vec3(t[c]), expected), 1e-4) << "right corner " << c; // float rounding
+        EXPECT_LT(angleDeg(glm::vec3(t[c]), expected), 1e-4)
+            << "right corner " << c; // float rounding
         EXPECT_EQ(t[c].w, 1.0f);
     }
 }
@@ -416,8 +422,8 @@ TEST(MikkTSpace, DegenerateTrianglesCopyFromGoodCorners) {
     const MikkTSpaceInput in = s.input();
     ASSERT_EQ(countOracleMismatches(in), 0u);
     const auto t = fastTangents(in);
-    EXPECT_EQ(t[6], t[2]); // a2: copies the first good corner at a2
-    EXPECT_EQ(t[8], t[5]); // a3
+    EXPECT_EQ(t[6], t[2]);                   // a2: copies the first good corner at a2
+    EXPECT_EQ(t[8], t[5]);                   // a3
     EXPECT_EQ(t[7], glm::vec4(1, 0, 0, -1)); // d welds with nothing good
     for (size_t c = 9; c < 12; ++c) EXPECT_EQ(t[c], glm::vec4(1, 0, 0, -1));
 }
@@ -440,7 +446,8 @@ TEST(MikkTSpace, QuadsSplitAlongTheShorterUvDiagonal) {
     ASSERT_EQ(countOracleMismatches(in), 0u);
     const auto t = fastTangents(in);
     auto dPds = [&](int i0, int i1, int i2) {
-        const glm::vec3 d1 = pos[size_t(i1)] - pos[size_t(i0)], d2 = pos[size_t(i2)] - pos[size_t(i0)];
+        const glm::vec3 d1 = pos[size_t(i1)] - pos[size_t(i0)],
+                        d2 = pos[size_t(i2)] - pos[size_t(i0)];
         const glm::vec2 e1 = uv[size_t(i1)] - uv[size_t(i0)], e2 = uv[size_t(i2)] - uv[size_t(i0)];
         return glm::normalize(e2.y * d1 - e1.y * d2);
     };
@@ -544,9 +551,11 @@ TEST(MikkTSpace, RejectsInvalidInput) {
         rm.positions = s.positions;
         rm.uvSets = {s.uvs};
         rm.indices = s.corners;
-        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 0), std::invalid_argument); // no normals
+        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 0),
+                     std::invalid_argument); // no normals
         rm.normals = s.normals;
-        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 1), std::invalid_argument); // no set 1
+        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 1),
+                     std::invalid_argument); // no set 1
     }
     // Empty input is valid: nothing to do.
     MikkTSpaceInput empty;

@@ -50,8 +50,7 @@ inline GltfPrimitive readGltfPrimitive(const std::string& path, int mesh = 0, in
     std::string err, warn;
     if (!loader.LoadASCIIFromFile(&model, &err, &warn, path))
         throw std::runtime_error(path + ": " + err);
-    const tinygltf::Primitive& p =
-        model.meshes.at(size_t(mesh)).primitives.at(size_t(primitive));
+    const tinygltf::Primitive& p = model.meshes.at(size_t(mesh)).primitives.at(size_t(primitive));
     GltfPrimitive out;
     auto attr = [&](const char* name) {
         auto it = p.attributes.find(name);
@@ -75,9 +74,14 @@ inline GltfPrimitive readGltfPrimitive(const std::string& path, int mesh = 0, in
             out.indices[i] = v;
             break;
         }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: std::memcpy(&out.indices[i], base + 4 * i, 4); break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out.indices[i] = base[i]; break;
-        default: throw std::runtime_error("unsupported index type");
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+            std::memcpy(&out.indices[i], base + 4 * i, 4);
+            break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+            out.indices[i] = base[i];
+            break;
+        default:
+            throw std::runtime_error("unsupported index type");
         }
     }
     return out;
@@ -119,8 +123,8 @@ inline SoupMesh randomSoup(uint32_t seed, const SoupOptions& o) {
     for (int y = 0; y < ny; ++y)
         for (int x = 0; x < nx; ++x) {
             m.positions.push_back({float(x), float(y), q(u01(rng) * 0.75f)});
-            const glm::vec3 n =
-                glm::normalize(glm::vec3(q(u01(rng) - 0.5f) * 0.5f, q(u01(rng) - 0.5f) * 0.5f, 1.0f));
+            const glm::vec3 n = glm::normalize(
+                glm::vec3(q(u01(rng) - 0.5f) * 0.5f, q(u01(rng) - 0.5f) * 0.5f, 1.0f));
             m.normals.push_back(n);
             m.uvs.push_back({q(float(x) * 0.25f), q(float(y) * 0.25f)});
         }

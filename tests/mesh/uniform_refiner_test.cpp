@@ -25,7 +25,8 @@ using namespace sg::mesh;
 
 template <class T>
 bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
-    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 // Exact equality of everything refined() holds.
@@ -53,13 +54,16 @@ void expectSameRefined(const PolygonMesh& want, const PolygonMesh& got, const st
     }
     ASSERT_EQ(want.morphTargets.size(), got.morphTargets.size());
     for (size_t t = 0; t < want.morphTargets.size(); ++t) {
-        EXPECT_TRUE(sameBits(want.morphTargets[t].positionDeltas, got.morphTargets[t].positionDeltas)) << "morph target " << t;
+        EXPECT_TRUE(
+            sameBits(want.morphTargets[t].positionDeltas, got.morphTargets[t].positionDeltas))
+            << "morph target " << t;
     }
 }
 
 // Builds `cage` both ways; returns whether the specialised refiner took it
 // (and then checks the results are identical).
-bool compareBuilds(const PolygonMesh& cage, SubdivisionSettings s, const std::string& what, std::string* declined = nullptr) {
+bool compareBuilds(const PolygonMesh& cage, SubdivisionSettings s, const std::string& what,
+                   std::string* declined = nullptr) {
     s.specializedRefiner = false;
     Subdivider far(cage, s);
     EXPECT_FALSE(far.usedSpecializedRefiner());
@@ -73,15 +77,20 @@ bool compareBuilds(const PolygonMesh& cage, SubdivisionSettings s, const std::st
         EXPECT_EQ(a.indices, b.indices) << what;
         EXPECT_TRUE(sameBits(a.positions, b.positions)) << what;
         EXPECT_TRUE(sameBits(a.normals, b.normals)) << what;
-        for (size_t k = 0; k < a.uvSets.size(); ++k) EXPECT_TRUE(sameBits(a.uvSets[k], b.uvSets[k])) << what;
+        for (size_t k = 0; k < a.uvSets.size(); ++k)
+            EXPECT_TRUE(sameBits(a.uvSets[k], b.uvSets[k])) << what;
     }
     return true;
 }
 
-PolygonMesh spot() { return loadPolygonMesh(sg::test::dataPath("meshes/spot/spot_control_mesh.obj")); }
+PolygonMesh spot() {
+    return loadPolygonMesh(sg::test::dataPath("meshes/spot/spot_control_mesh.obj"));
+}
 
 // Scheme from the file name, as OpenSubdiv's regression suite does.
-bool isCatmark(const std::string& name) { return name.rfind("catmark_", 0) == 0; }
+bool isCatmark(const std::string& name) {
+    return name.rfind("catmark_", 0) == 0;
+}
 
 TEST(UniformRefiner, MatchesOpenSubdivOnEveryAcceptedOsdShape) {
     // Shapes the refiner leaves to Far, and why (a fragment of the reason).
@@ -101,7 +110,8 @@ TEST(UniformRefiner, MatchesOpenSubdivOnEveryAcceptedOsdShape) {
         {"catmark_cubes_semisharp", "semi-sharp"},
     };
     size_t accepted = 0, declinedCount = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(sg::test::dataPath("osd-shapes"))) {
+    for (const auto& entry :
+         std::filesystem::directory_iterator(sg::test::dataPath("osd-shapes"))) {
         const std::string name = entry.path().stem().string();
         if (entry.path().extension() != ".obj" || !isCatmark(name)) continue;
         PolygonMesh cage;
@@ -133,7 +143,9 @@ TEST(UniformRefiner, MatchesOpenSubdivOnEveryAcceptedOsdShape) {
                 s.level = 2;
                 s.options.boundary = BoundaryInterpolation(boundary);
                 s.options.fvar = FVarInterpolation(fvar);
-                compareBuilds(cage, s, name + " boundary " + std::to_string(boundary) + " fvar " + std::to_string(fvar));
+                compareBuilds(cage, s,
+                              name + " boundary " + std::to_string(boundary) + " fvar " +
+                                  std::to_string(fvar));
             }
         }
         (took ? accepted : declinedCount) += 1;
@@ -153,7 +165,8 @@ TEST(UniformRefiner, SpotWithUvsUnderEveryRuleThroughLevel4) {
             s.level = level;
             s.options.fvar = FVarInterpolation(fvar);
             s.buildRenderMesh = level == 4;
-            EXPECT_TRUE(compareBuilds(cage, s, "spot fvar " + std::to_string(fvar) + " L" + std::to_string(level)));
+            EXPECT_TRUE(compareBuilds(
+                cage, s, "spot fvar " + std::to_string(fvar) + " L" + std::to_string(level)));
         }
     }
     // The smooth-triangle rule (spot has triangles) and the boundary rules
@@ -176,7 +189,8 @@ PolygonMesh creasedSpot(uint32_t seed, bool withUvs) {
         float s = (f % 9 == 0) ? kInfiniteSharpness : sharp(rng);
         cage.creases.push_back({a, b, s});
     }
-    for (uint32_t v = 0; v < cage.vertexCount(); v += 17) cage.corners.push_back({v, v % 34 == 0 ? kInfiniteSharpness : sharp(rng)});
+    for (uint32_t v = 0; v < cage.vertexCount(); v += 17)
+        cage.corners.push_back({v, v % 34 == 0 ? kInfiniteSharpness : sharp(rng)});
     return cage;
 }
 
@@ -189,7 +203,9 @@ TEST(UniformRefiner, CreasesAndCornersWithBothCreasingMethods) {
                 s.level = level;
                 s.options.creaseMethod = method;
                 s.buildRenderMesh = level == 3; // sectors at infinitely sharp edges
-                EXPECT_TRUE(compareBuilds(cage, s, "creased spot " + std::to_string(seed) + " L" + std::to_string(level)));
+                EXPECT_TRUE(compareBuilds(cage, s,
+                                          "creased spot " + std::to_string(seed) + " L" +
+                                              std::to_string(level)));
             }
         }
     }
@@ -208,7 +224,8 @@ TEST(UniformRefiner, CreasesAndCornersWithBothCreasingMethods) {
 }
 
 TEST(UniformRefiner, MorphDeltasAndStencilUpdatesMatch) {
-    PolygonMesh cage = loadPolygonMesh(sg::test::dataPath("gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"));
+    PolygonMesh cage = loadPolygonMesh(
+        sg::test::dataPath("gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf"));
     ASSERT_EQ(cage.morphTargets.size(), 2u);
     SubdivisionSettings s;
     s.level = 3;
@@ -257,7 +274,8 @@ TEST(UniformRefiner, SameTopologyRebuildAndBufferReuseAcrossCages) {
             EXPECT_EQ(reused.timings().topology, 0.0);
             float d = 0;
             for (size_t v = 0; v < far.refined().positions.size(); ++v) {
-                d = std::max(d, glm::length(far.refined().positions[v] - reused.refined().positions[v]));
+                d = std::max(
+                    d, glm::length(far.refined().positions[v] - reused.refined().positions[v]));
             }
             EXPECT_LT(d, 1e-5f);
             EXPECT_EQ(far.refined().faceVertices, reused.refined().faceVertices);

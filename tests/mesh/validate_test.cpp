@@ -13,7 +13,9 @@ namespace {
 using namespace sg::mesh;
 using sg::test::expectInputError;
 
-PolygonMesh fromObj(const std::string& text) { return parseObj(text, "t.obj"); }
+PolygonMesh fromObj(const std::string& text) {
+    return parseObj(text, "t.obj");
+}
 
 TEST(Validate, AcceptsAClosedCube) {
     PolygonMesh m = fromObj(sg::test::kCubeObj);
@@ -30,13 +32,15 @@ TEST(Validate, AcceptsAClosedCube) {
 
 TEST(Validate, NonManifoldEdge) {
     // Three triangles on the edge (0,1).
-    PolygonMesh m = fromObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
+    PolygonMesh m =
+        fromObj("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n");
     MeshInfo info = describe(m);
     EXPECT_FALSE(info.manifold);
     EXPECT_EQ(info.nonManifoldEdges, 1u);
     expectInputError([&] { validate(m, "t.obj"); }, "edge (0, 1)", "shared by 3 faces");
     LoadReport r;
-    expectInputError([&] { validate(m, "t.obj", true, &r); }, "edge (0, 1)", "non-manifold edge"); // no repair for it
+    expectInputError([&] { validate(m, "t.obj", true, &r); }, "edge (0, 1)",
+                     "non-manifold edge"); // no repair for it
 }
 
 TEST(Validate, InconsistentOrientation) {
@@ -77,10 +81,12 @@ TEST(Validate, BadValuesAndIndices) {
     expectInputError([&] { validate(inf, "t.obj"); }, "uv set 0 value 1", "non-finite UV");
     PolygonMesh range = m;
     range.faceVertices[5] = 99;
-    expectInputError([&] { validate(range, "t.obj"); }, "face 1", "vertex index 99 is out of range (8 vertices)");
+    expectInputError([&] { validate(range, "t.obj"); }, "face 1",
+                     "vertex index 99 is out of range (8 vertices)");
     PolygonMesh uvRange = m;
     uvRange.uvSets[0].indices[2] = 40;
-    expectInputError([&] { validate(uvRange, "t.obj"); }, "uv set 0 corner 2", "out of range (4 UVs)");
+    expectInputError([&] { validate(uvRange, "t.obj"); }, "uv set 0 corner 2",
+                     "out of range (4 UVs)");
     PolygonMesh sizes = m;
     sizes.faceSizes[0] = 5;
     expectInputError([&] { validate(sizes, "t.obj"); }, "faces", "add up to 25");
@@ -95,7 +101,8 @@ TEST(Validate, BadValuesAndIndices) {
     expectInputError([&] { validate(hole, "t.obj"); }, "hole tag (face 6)", "out of range");
     PolygonMesh morph = m;
     morph.morphTargets.push_back({"t", std::vector<glm::vec3>(3)});
-    expectInputError([&] { validate(morph, "t.obj"); }, "morph target 0", "3 deltas for 8 vertices");
+    expectInputError([&] { validate(morph, "t.obj"); }, "morph target 0",
+                     "3 deltas for 8 vertices");
     PolygonMesh empty;
     expectInputError([&] { validate(empty, "t.obj"); }, "", "empty mesh");
     PolygonMesh noFaces = fromObj("v 0 0 0\n");
@@ -106,7 +113,8 @@ TEST(Validate, AbsurdSizesAreRefusedBeforeWork) {
     PolygonMesh m = fromObj(sg::test::kCubeObj);
     InputLimits limits;
     limits.maxVertices = 4;
-    expectInputError([&] { validate(m, "t.obj", false, nullptr, limits); }, "vertices", "limit is 4");
+    expectInputError([&] { validate(m, "t.obj", false, nullptr, limits); }, "vertices",
+                     "limit is 4");
     limits = InputLimits();
     limits.maxFaceDegree = 3;
     expectInputError([&] { validate(m, "t.obj", false, nullptr, limits); }, "face 0", "limit is 3");
@@ -115,7 +123,8 @@ TEST(Validate, AbsurdSizesAreRefusedBeforeWork) {
 TEST(Validate, RepairWeldsExactDuplicates) {
     // A quad split into two triangles whose shared edge uses duplicated
     // vertices (a "triangle soup" seam): welding makes it one surface.
-    PolygonMesh m = fromObj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\nt crease 2/1/0 0 1 3\n");
+    PolygonMesh m = fromObj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 4 5 "
+                            "6\nt crease 2/1/0 0 1 3\n");
     MeshInfo before = describe(m);
     EXPECT_EQ(before.boundaryLoops, 2u);
     LoadReport r;
@@ -125,7 +134,8 @@ TEST(Validate, RepairWeldsExactDuplicates) {
     EXPECT_EQ(describe(m).boundaryLoops, 1u);
     ASSERT_EQ(m.creases.size(), 1u);
     // Without repair the duplicates stay (they are not an error by themselves).
-    PolygonMesh k = fromObj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n");
+    PolygonMesh k =
+        fromObj("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 4 5 6\n");
     validate(k, "t.obj");
     EXPECT_EQ(k.vertexCount(), 6u);
 }
@@ -142,7 +152,8 @@ TEST(Validate, RepairDropsFacesThatWeldingCollapses) {
 
 TEST(Validate, DescribeCountsBoundaryLoopsAndIsolatedVertices) {
     // A 2x1 strip of quads plus one unused vertex: one boundary loop.
-    PolygonMesh m = fromObj("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 9 9 9\nf 1 2 5 4\nf 2 3 6 5\n");
+    PolygonMesh m = fromObj(
+        "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\nv 9 9 9\nf 1 2 5 4\nf 2 3 6 5\n");
     LoadReport r;
     validate(m, "t.obj", false, &r);
     EXPECT_EQ(r.isolatedVertices, 1u);

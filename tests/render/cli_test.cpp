@@ -24,8 +24,8 @@ struct CmdResult {
 CmdResult run(const std::string& args, const fs::path& cwd) {
     fs::create_directories(cwd);
     fs::path log = cwd / "cmd.log";
-    std::string cmd = "cd '" + cwd.string() + "' && " + std::string(SURFGRAD_BINARY_DIR) + "/bin/surfgrad " + args +
-                      " > '" + log.string() + "' 2>&1";
+    std::string cmd = "cd '" + cwd.string() + "' && " + std::string(SURFGRAD_BINARY_DIR) +
+                      "/bin/surfgrad " + args + " > '" + log.string() + "' 2>&1";
     int rc = std::system(cmd.c_str());
     CmdResult r;
     r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
@@ -47,7 +47,8 @@ fs::path scratch(const std::string& name) {
 size_t distinctColours(const Image& img) {
     std::set<uint32_t> s;
     for (const auto& p : img.pixels) {
-        s.insert(uint32_t(p.x * 255.0f + 0.5f) << 16 | uint32_t(p.y * 255.0f + 0.5f) << 8 | uint32_t(p.z * 255.0f + 0.5f));
+        s.insert(uint32_t(p.x * 255.0f + 0.5f) << 16 | uint32_t(p.y * 255.0f + 0.5f) << 8 |
+                 uint32_t(p.z * 255.0f + 0.5f));
         if (s.size() > 1000) break;
     }
     return s.size();
@@ -69,8 +70,9 @@ TEST(Cli, BadInputFailsWithTheFieldAndNoOutput) {
         "materials": [{"layers": [{"type": "noise", "octaves": 40}]}]})";
     CmdResult r = run("render bad.json -o bad.png", dir);
     EXPECT_EQ(r.status, 1);
-    EXPECT_NE(r.output.find("bad.json: materials[0].layers[0].octaves: expected an integer in [1, 12]"),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find("bad.json: materials[0].layers[0].octaves: expected an integer in [1, 12]"),
+        std::string::npos)
         << r.output;
     EXPECT_FALSE(fs::exists(dir / "bad.png"));
     // Same for `shader`, an unknown AOV, a bad size, an unsupported format,
@@ -114,9 +116,10 @@ TEST(Cli, ExrOutputKeepsRawAovValues) {
 
 TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
     fs::path dir = scratch("viewer");
-    std::string cmd = "cd '" + dir.string() + "' && xvfb-run -a -s '-screen 0 1280x1024x24' " +
-                      std::string(SURFGRAD_BINARY_DIR) +
-                      "/bin/surfgrad view --frames 3 --size 400x300 --screenshot shot.png > view.log 2>&1";
+    std::string cmd =
+        "cd '" + dir.string() + "' && xvfb-run -a -s '-screen 0 1280x1024x24' " +
+        std::string(SURFGRAD_BINARY_DIR) +
+        "/bin/surfgrad view --frames 3 --size 400x300 --screenshot shot.png > view.log 2>&1";
     int rc = std::system(cmd.c_str());
     std::ifstream logIn(dir / "view.log");
     std::stringstream log;

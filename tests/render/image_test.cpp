@@ -31,7 +31,9 @@ struct LayerCase {
     std::string json; // the whole scene
 };
 
-std::ostream& operator<<(std::ostream& o, const LayerCase& c) { return o << c.name; }
+std::ostream& operator<<(std::ostream& o, const LayerCase& c) {
+    return o << c.name;
+}
 
 std::string sphereScene(const std::string& layers, const std::string& extra = "") {
     return oneMaterialScene(layers, kSphere, extra);
@@ -43,68 +45,92 @@ std::vector<LayerCase> layerCases() {
     return {
         {"uv_normal", sphereScene(R"({"type": "uv_normal", "map": )" + bricks + "}")},
         {"uv_normal_second_set_dx_green",
-         sphereScene(R"({"type": "uv_normal", "uv_set": 1, "green": "dx", "strength": 0.7, "map": )" + tiles + "}")},
+         sphereScene(
+             R"({"type": "uv_normal", "uv_set": 1, "green": "dx", "strength": 0.7, "map": )" +
+             tiles + "}")},
         {"object_normal",
-         sphereScene(R"({"type": "object_normal", "strength": 0.3, "map": {"procedural": "bumps", "size": 64}})")},
-        {"height", sphereScene(R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 256}})")},
-        {"deriv_map_tbn", sphereScene(R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
+         sphereScene(
+             R"({"type": "object_normal", "strength": 0.3, "map": {"procedural": "bumps", "size": 64}})")},
+        {"height",
+         sphereScene(
+             R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 256}})")},
+        {"deriv_map_tbn",
+         sphereScene(
+             R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
         {"deriv_map_texel",
-         sphereScene(R"({"type": "deriv_map", "space": "texel", "strength": 0.02, "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
-        {"triplanar_world", sphereScene(R"({"type": "triplanar", "space": "world", "scale": 2, "map": )" + tiles + "}")},
+         sphereScene(
+             R"({"type": "deriv_map", "space": "texel", "strength": 0.02, "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
+        {"triplanar_world",
+         sphereScene(R"({"type": "triplanar", "space": "world", "scale": 2, "map": )" + tiles +
+                     "}")},
         {"triplanar_object_three_maps_left",
-         sphereScene(R"({"type": "triplanar", "space": "object", "handedness": "left", "maps": [)" + tiles + ", " +
-                     bricks + R"(, {"procedural": "weave", "size": 128}]})")},
+         sphereScene(R"({"type": "triplanar", "space": "object", "handedness": "left", "maps": [)" +
+                     tiles + ", " + bricks + R"(, {"procedural": "weave", "size": 128}]})")},
         {"decal",
-         sphereScene(R"({"type": "decal", "position": [0, 0, 0.9], "direction": [0, 0, -1], "size": [1.2, 1.2, 1], "strength": 2, "map": )" +
-                     bricks + "}")},
-        {"noise_perlin", sphereScene(R"({"type": "noise", "noise": "perlin", "amplitude": 0.05, "frequency": 4})")},
+         sphereScene(
+             R"({"type": "decal", "position": [0, 0, 0.9], "direction": [0, 0, -1], "size": [1.2, 1.2, 1], "strength": 2, "map": )" +
+             bricks + "}")},
+        {"noise_perlin",
+         sphereScene(R"({"type": "noise", "noise": "perlin", "amplitude": 0.05, "frequency": 4})")},
         {"noise_turbulence_dented",
-         sphereScene(R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "exponent": 3})")},
-        {"noise_fbm_world", sphereScene(R"({"type": "noise", "noise": "fbm", "space": "world", "amplitude": 0.01, "frequency": 5})")},
+         sphereScene(
+             R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "exponent": 3})")},
+        {"noise_fbm_world",
+         sphereScene(
+             R"({"type": "noise", "noise": "fbm", "space": "world", "amplitude": 0.01, "frequency": 5})")},
         {"modifiers_scale_curve",
-         sphereScene(R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}, "height": {"channel": "a", "scale": 1},
+         sphereScene(
+             R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}, "height": {"channel": "a", "scale": 1},
                     "modifiers": [{"type": "curve", "boost": 4000, "center": 0.02}, {"type": "scale", "alpha": -1.5}]})")},
-        {"modifiers_deform_modulate",
-         sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(, "height": {"channel": "a", "scale": 1},
+        {"modifiers_deform_modulate", sphereScene(R"({"type": "uv_normal", "map": )" + bricks +
+                                                  R"(, "height": {"channel": "a", "scale": 1},
                     "modifiers": [{"type": "deform", "amplitude": 0.03, "frequency": 25},
                                   {"type": "modulate", "mask": {"procedural": "tiles", "output": "height", "size": 64}, "gain": 1}]})")},
         {"deriv_map_modifiers",
-         sphereScene(R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128},
+         sphereScene(
+             R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128},
                     "modifiers": [{"type": "scale", "alpha": 0.5}]})")},
         {"feature_curves_surfgrad",
-         sphereScene(R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
-                     R"(/svg/flame.svg", "size": 128}, "profile": "vgroove", "depth": 1.5, "width": 3})")},
+         sphereScene(
+             R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+             R"(/svg/flame.svg", "size": 128}, "profile": "vgroove", "depth": 1.5, "width": 3})")},
         {"feature_curves_paper_with_base",
-         sphereScene(R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
-                     R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
-                        "mode": "paper", "tiling": 2, "base_map": )" + tiles + "}")},
+         sphereScene(
+             R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+             R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
+                        "mode": "paper", "tiling": 2, "base_map": )" +
+             tiles + "}")},
         {"spot_subdivided_mikktspace_tangents",
-         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + "}",
-                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
-                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2}, "tangents": ["mikktspace"]})")},
+         oneMaterialScene(
+             R"({"type": "uv_normal", "map": )" + bricks + "}",
+             R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                 R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2}, "tangents": ["mikktspace"]})")},
         {"spot_limit_surface_tangents",
-         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + "}",
-                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
-                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true}, "tangents": ["limit"]})")},
+         oneMaterialScene(
+             R"({"type": "uv_normal", "map": )" + bricks + "}",
+             R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                 R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true}, "tangents": ["limit"]})")},
         // Two UV sets, two vertex-tangent sources: limit tangents on the
         // unwrap, MikkTSpace on a derived tiling set (tangent_sets_test.cpp
         // checks the tangents themselves).
         {"spot_two_uv_sets_limit_and_mikktspace_tangents",
-         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks +
-                              R"(}, {"type": "uv_normal", "uv_set": 1, "strength": 0.6, "map": )" + tiles + "}",
-                          R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
-                              R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true},
+         oneMaterialScene(
+             R"({"type": "uv_normal", "map": )" + bricks +
+                 R"(}, {"type": "uv_normal", "uv_set": 1, "strength": 0.6, "map": )" + tiles + "}",
+             R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
+                 R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true},
                               "uv_sets": [{"from": 0, "scale": [3, 3], "rotate_deg": 30}], "tangents": ["limit", "mikktspace"]})")},
-        {"post_resolve",
-         sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
+        {"post_resolve", sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
                     {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2},
-                                                       {"type": "triplanar", "strength": 0.5, "map": )" + tiles + "}]}")},
+                                                       {"type": "triplanar", "strength": 0.5, "map": )" +
+                                     tiles + "}]}")},
         {"everything_double_sided_flip",
-         oneMaterialScene(R"({"type": "uv_normal", "map": )" + bricks + R"(}, {"type": "noise", "noise": "fbm"},
+         oneMaterialScene(
+             R"({"type": "uv_normal", "map": )" + bricks + R"(}, {"type": "noise", "noise": "fbm"},
                     {"type": "decal", "position": [0, 0.5, 0], "direction": [0, -1, 0], "up": [0, 0, -1], "size": [1, 1, 1], "map": )" +
-                              tiles + "}",
-                          R"({"procedural": {"type": "plane", "segments": 4}})", R"("double_sided": "flip",)", 200, 150,
-                          R"(, "camera": {"position": [0.3, -1.2, 0.8], "target": [0, 0, 0]})")},
+                 tiles + "}",
+             R"({"procedural": {"type": "plane", "segments": 4}})", R"("double_sided": "flip",)",
+             200, 150, R"(, "camera": {"position": [0.3, -1.2, 0.8], "target": [0, 0, 0]})")},
     };
 }
 
@@ -124,16 +150,18 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     EXPECT_EQ(countNonFinite(p.cpuNormal), 0u);
     EXPECT_EQ(p.diff.nonFinite, 0u);
     EXPECT_LE(double(p.diff.coverageMismatch), 0.01 * double(covered));
-    EXPECT_LE(p.diff.maxDeg, 0.05) << "parity max at (" << p.diff.maxX << ", " << p.diff.maxY << ")";
+    EXPECT_LE(p.diff.maxDeg, 0.05)
+        << "parity max at (" << p.diff.maxX << ", " << p.diff.maxY << ")";
 
     NormalRenders r = renderNormalsBoth(s, a, CpuOptions{});
     EXPECT_EQ(r.diff.nonFinite, 0u);
     EXPECT_LE(r.diff.p50Deg, 0.3);
     EXPECT_LE(r.diff.p99Deg, 4.0);
-    std::printf("[%s] parity: max %.5f deg | reference: p50 %.4f p90 %.4f p99 %.4f max %.3f deg, %zu px, "
-                "%zu coverage mismatches\n",
-                GetParam().name, p.diff.maxDeg, r.diff.p50Deg, r.diff.p90Deg, r.diff.p99Deg, r.diff.maxDeg,
-                r.diff.compared, r.diff.coverageMismatch);
+    std::printf(
+        "[%s] parity: max %.5f deg | reference: p50 %.4f p90 %.4f p99 %.4f max %.3f deg, %zu px, "
+        "%zu coverage mismatches\n",
+        GetParam().name, p.diff.maxDeg, r.diff.p50Deg, r.diff.p90Deg, r.diff.p99Deg, r.diff.maxDeg,
+        r.diff.compared, r.diff.coverageMismatch);
 
     // The bumps are really there: the perturbed normal differs from the
     // base normal somewhere (a test of a no-op layer would pass the above).
@@ -143,7 +171,8 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     for (size_t i = 0; i < base.pixels.size(); ++i) {
         if (p.gpuPrim.pixels[i].x <= 0.0f) continue;
         glm::vec3 n(p.gpuNormal.pixels[i]), b(base.pixels[i]);
-        maxTilt = std::max(maxTilt, double(glm::degrees(std::acos(std::clamp(glm::dot(n, b), -1.0f, 1.0f)))));
+        maxTilt = std::max(
+            maxTilt, double(glm::degrees(std::acos(std::clamp(glm::dot(n, b), -1.0f, 1.0f)))));
     }
     EXPECT_GT(maxTilt, 2.0) << "the layer did not perturb the normal";
 }
@@ -155,7 +184,8 @@ INSTANTIATE_TEST_SUITE_P(Kinds, LayerImage, ::testing::ValuesIn(layerCases()),
 // re-uploaded (SceneAssets::meshVersion) and both renderers see the same
 // shape. Same bounds as the layer cases.
 TEST(Morph, AnimatedMorphSphereMidAnimation) {
-    Scene s = sceneForModel(std::string(SURFGRAD_DATA_DIR) + "/gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf");
+    Scene s = sceneForModel(std::string(SURFGRAD_DATA_DIR) +
+                            "/gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf");
     s.output.width = 200;
     s.output.height = 150;
     ASSERT_FALSE(s.meshes[0].morphKeys.empty()) << "the glTF weight animation becomes morph keys";
@@ -177,7 +207,8 @@ TEST(Morph, AnimatedMorphSphereMidAnimation) {
     for (size_t i = 0; i < at0.pixels.size(); ++i) {
         if (p.gpuPrim.pixels[i].x <= 0.0f || glm::length(glm::vec3(at0.pixels[i])) < 0.5f) continue;
         float c = glm::dot(glm::vec3(at0.pixels[i]), glm::vec3(p.gpuNormal.pixels[i]));
-        maxChange = std::max(maxChange, double(glm::degrees(std::acos(std::clamp(c, -1.0f, 1.0f)))));
+        maxChange =
+            std::max(maxChange, double(glm::degrees(std::acos(std::clamp(c, -1.0f, 1.0f)))));
     }
     EXPECT_GT(maxChange, 5.0);
 }
@@ -192,8 +223,9 @@ TEST(DoubleSided, BackFaceModesFollowSection210) {
     auto render = [](const char* mode) {
         Scene s = sceneFromJson(oneMaterialScene(
             R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 128}}, {"type": "noise", "amplitude": 0.01})",
-            R"({"procedural": {"type": "plane", "segments": 2}})", std::string(R"("double_sided": ")") + mode + "\",", 120,
-            90, R"(, "camera": {"position": [0.2, -1.5, 0.6], "target": [0, 0, 0]})"));
+            R"({"procedural": {"type": "plane", "segments": 2}})",
+            std::string(R"("double_sided": ")") + mode + "\",", 120, 90,
+            R"(, "camera": {"position": [0.2, -1.5, 0.6], "target": [0, 0, 0]})"));
         SceneAssets a = loadAssets(s);
         View v = makeView(s, a, 0, 0, Aov::Normal);
         return std::make_pair(gpu().render(s, a, v), renderCpu(s, a, v));
@@ -224,8 +256,9 @@ TEST(DoubleSided, BackFaceModesFollowSection210) {
 }
 
 TEST(DoubleSided, OffCullsBackFaces) {
-    Scene s = sceneFromJson(oneMaterialScene("", R"({"procedural": {"type": "plane"}})", "", 64, 48,
-                                             R"(, "camera": {"position": [0, -2, 0.5], "target": [0, 0, 0]})"));
+    Scene s = sceneFromJson(
+        oneMaterialScene("", R"({"procedural": {"type": "plane"}})", "", 64, 48,
+                         R"(, "camera": {"position": [0, -2, 0.5], "target": [0, 0, 0]})"));
     SceneAssets a = loadAssets(s);
     View v = makeView(s, a, 0, 0, Aov::PrimId);
     EXPECT_EQ(countCovered(gpu().render(s, a, v)), 0u);
@@ -247,13 +280,15 @@ TEST(DoubleSided, GltfModelsFollowTheirMaterialsDoubleSidedFlag) {
         const char* name;
         bool doubleSided;
     };
-    for (const Case& c : {Case{"MorphPrimitivesTest", false}, Case{"BoxTextured", false}, Case{"NormalTangentTest", true}}) {
+    for (const Case& c : {Case{"MorphPrimitivesTest", false}, Case{"BoxTextured", false},
+                          Case{"NormalTangentTest", true}}) {
         SCOPED_TRACE(c.name);
         sg::mesh::Scene file = sg::mesh::loadScene(model(c.name));
         ASSERT_FALSE(file.materials.empty());
         for (const auto& m : file.materials) EXPECT_EQ(m.doubleSided, c.doubleSided);
         Scene s = sceneForModel(model(c.name));
-        for (const auto& m : s.materials) EXPECT_EQ(m.doubleSided, c.doubleSided ? DoubleSided::Mirror : DoubleSided::Off);
+        for (const auto& m : s.materials)
+            EXPECT_EQ(m.doubleSided, c.doubleSided ? DoubleSided::Mirror : DoubleSided::Off);
     }
     auto coverage = [](Scene s, bool fromBehind) {
         s.output.width = 96;
@@ -264,7 +299,8 @@ TEST(DoubleSided, GltfModelsFollowTheirMaterialsDoubleSidedFlag) {
         }
         SceneAssets a = loadAssets(s);
         View v = makeView(s, a, 0, 0, Aov::PrimId);
-        return std::make_pair(countCovered(gpu().render(s, a, v)), countCovered(renderCpu(s, a, v)));
+        return std::make_pair(countCovered(gpu().render(s, a, v)),
+                              countCovered(renderCpu(s, a, v)));
     };
     Scene single = sceneForModel(model("MorphPrimitivesTest"));
     auto front = coverage(single, false), back = coverage(single, true);
@@ -274,8 +310,10 @@ TEST(DoubleSided, GltfModelsFollowTheirMaterialsDoubleSidedFlag) {
     for (auto& m : forced.materials) m.doubleSided = DoubleSided::Mirror;
     auto backMirror = coverage(forced, true);
     EXPECT_GT(backMirror.first, 500u);
-    EXPECT_LT(double(back.first), 0.05 * double(backMirror.first)) << "single-sided: back faces culled (GPU)";
-    EXPECT_LT(double(back.second), 0.05 * double(backMirror.second)) << "single-sided: back faces culled (CPU)";
+    EXPECT_LT(double(back.first), 0.05 * double(backMirror.first))
+        << "single-sided: back faces culled (GPU)";
+    EXPECT_LT(double(back.second), 0.05 * double(backMirror.second))
+        << "single-sided: back faces culled (CPU)";
     Scene twoSided = sceneForModel(model("NormalTangentTest"));
     auto twoBack = coverage(twoSided, true);
     EXPECT_GT(twoBack.first, 500u);
@@ -293,7 +331,8 @@ TEST(DoubleSided, GltfModelsFollowTheirMaterialsDoubleSidedFlag) {
 // interpolation and rounding: p99 <= 0.5 degrees, max <= 2 (measured 0.06
 // and 0.11). A larger difference means a wrong frame or green convention.
 void compareTangentFrames(const char* model) {
-    std::string path = std::string(SURFGRAD_DATA_DIR) + "/gltf/" + model + "/glTF/" + model + ".gltf";
+    std::string path =
+        std::string(SURFGRAD_DATA_DIR) + "/gltf/" + model + "/glTF/" + model + ".gltf";
     Scene s = sceneForModel(path);
     s.output.width = 256;
     s.output.height = 256;
@@ -318,18 +357,25 @@ void compareTangentFrames(const char* model) {
     size_t over1 = 0, over5 = 0;
     for (size_t i = 0; i < np.pixels.size(); ++i) {
         if (pp.pixels[i].x <= 0 || pp.pixels[i].x != pm.pixels[i].x) continue;
-        float ang = glm::degrees(std::acos(std::clamp(glm::dot(glm::vec3(np.pixels[i]), glm::vec3(nm.pixels[i])), -1.0f, 1.0f)));
+        float ang = glm::degrees(std::acos(
+            std::clamp(glm::dot(glm::vec3(np.pixels[i]), glm::vec3(nm.pixels[i])), -1.0f, 1.0f)));
         over1 += ang > 1.0f;
         over5 += ang > 5.0f;
     }
-    std::printf("[%s] pixel vs mikktspace frames (normal AOV, %zu px): mean %.3f p50 %.3f p90 %.3f p99 %.3f max %.2f deg "
+    std::printf("[%s] pixel vs mikktspace frames (normal AOV, %zu px): mean %.3f p50 %.3f p90 %.3f "
+                "p99 %.3f max %.2f deg "
                 "at (%d, %d); %.2f%% of pixels > 1 deg, %.2f%% > 5 deg\n",
-                model, d.compared, d.meanDeg, d.p50Deg, d.p90Deg, d.p99Deg, d.maxDeg, d.maxX, d.maxY,
-                100.0 * double(over1) / double(d.compared), 100.0 * double(over5) / double(d.compared));
+                model, d.compared, d.meanDeg, d.p50Deg, d.p90Deg, d.p99Deg, d.maxDeg, d.maxX,
+                d.maxY, 100.0 * double(over1) / double(d.compared),
+                100.0 * double(over5) / double(d.compared));
 }
 
-TEST(TangentFrames, NormalTangentTestPixelVsMikkTSpace) { compareTangentFrames("NormalTangentTest"); }
-TEST(TangentFrames, NormalTangentMirrorTestPixelVsMikkTSpace) { compareTangentFrames("NormalTangentMirrorTest"); }
+TEST(TangentFrames, NormalTangentTestPixelVsMikkTSpace) {
+    compareTangentFrames("NormalTangentTest");
+}
+TEST(TangentFrames, NormalTangentMirrorTestPixelVsMikkTSpace) {
+    compareTangentFrames("NormalTangentMirrorTest");
+}
 
 // The three tangent sources on a curved, subdivided mesh (spot's cage at
 // level 2, its own UVs, a bricks normal map): per-pixel frame (listing 6),
@@ -341,10 +387,11 @@ TEST(TangentFrames, NormalTangentMirrorTestPixelVsMikkTSpace) { compareTangentFr
 TEST(TangentFrames, SpotPixelVsMikkTSpaceVsLimit) {
     std::string spot = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
     auto scene = [&](const char* tangents, bool limit) {
-        return sceneFromJson(oneMaterialScene(R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 512}})",
-                                              R"({"file": ")" + spot + R"(", "subdivision": {"level": 2, "limit": )" +
-                                                  (limit ? "true" : "false") + R"(}, "tangents": [")" + tangents + "\"]}",
-                                              "", 320, 240));
+        return sceneFromJson(oneMaterialScene(
+            R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 512}})",
+            R"({"file": ")" + spot + R"(", "subdivision": {"level": 2, "limit": )" +
+                (limit ? "true" : "false") + R"(}, "tangents": [")" + tangents + "\"]}",
+            "", 320, 240));
     };
     Scene sp = scene("pixel", true), sm = scene("mikktspace", true), sl = scene("limit", true);
     SceneAssets ap = loadAssets(sp), am = loadAssets(sm), al = loadAssets(sl);
@@ -354,8 +401,8 @@ TEST(TangentFrames, SpotPixelVsMikkTSpaceVsLimit) {
     Image nm = gpu().render(sm, am, v), pm = gpu().render(sm, am, pv);
     Image nl = gpu().render(sl, al, v), pl = gpu().render(sl, al, pv);
     auto report = [](const char* what, const VectorImageDiff& d) {
-        std::printf("[spot L2] %s: %zu px, mean %.3f p50 %.3f p90 %.3f p99 %.3f max %.2f deg\n", what, d.compared,
-                    d.meanDeg, d.p50Deg, d.p90Deg, d.p99Deg, d.maxDeg);
+        std::printf("[spot L2] %s: %zu px, mean %.3f p50 %.3f p90 %.3f p99 %.3f max %.2f deg\n",
+                    what, d.compared, d.meanDeg, d.p50Deg, d.p90Deg, d.p99Deg, d.maxDeg);
         EXPECT_GT(d.compared, 5000u);
         EXPECT_LE(d.p50Deg, 3.0);
         EXPECT_LE(d.p99Deg, 25.0);
@@ -379,7 +426,8 @@ TEST(DefaultScene, RendersWithoutNaNAndMatchesTheCpuReference) {
     // 1% on average (measured 0.2%).
     double sum = 0;
     for (size_t i = 0; i < g.pixels.size(); ++i) {
-        glm::vec3 dg = sg::glsl::sgToneMap(glm::vec3(g.pixels[i]), 1.0f), dc = sg::glsl::sgToneMap(glm::vec3(c.pixels[i]), 1.0f);
+        glm::vec3 dg = sg::glsl::sgToneMap(glm::vec3(g.pixels[i]), 1.0f),
+                  dc = sg::glsl::sgToneMap(glm::vec3(c.pixels[i]), 1.0f);
         sum += double(std::abs(dg.x - dc.x) + std::abs(dg.y - dc.y) + std::abs(dg.z - dc.z)) / 3.0;
     }
     EXPECT_LT(sum / double(g.pixels.size()), 0.01);

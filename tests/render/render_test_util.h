@@ -43,8 +43,8 @@ struct NormalRenders {
     VectorImageDiff diff;
 };
 
-inline NormalRenders renderNormalsBoth(const Scene& scene, const SceneAssets& assets, const CpuOptions& cpu,
-                                       Aov aov = Aov::Normal) {
+inline NormalRenders renderNormalsBoth(const Scene& scene, const SceneAssets& assets,
+                                       const CpuOptions& cpu, Aov aov = Aov::Normal) {
     NormalRenders r;
     View v = makeView(scene, assets, 0, 0, aov);
     View p = v;

@@ -27,22 +27,41 @@ struct KindMarker {
 std::vector<KindMarker> kinds() {
     const std::string map = R"("map": {"procedural": "bumps", "size": 16})";
     return {
-        {"uv_normal", R"({"type": "uv_normal", )" + map + "}", {"SG_RENDER_LAYER_UV_NORMAL_GLSL", "sgLayerUvNormal("}},
-        {"object_normal", R"({"type": "object_normal", )" + map + "}",
-         {"SG_RENDER_LAYER_OBJECT_NORMAL_GLSL", "sgLayerObjectNormal", "sgSurfgradFromPerturbedNormal"}},
-        {"height", R"({"type": "height", )" + map + "}",
+        {"uv_normal",
+         R"({"type": "uv_normal", )" + map + "}",
+         {"SG_RENDER_LAYER_UV_NORMAL_GLSL", "sgLayerUvNormal("}},
+        {"object_normal",
+         R"({"type": "object_normal", )" + map + "}",
+         {"SG_RENDER_LAYER_OBJECT_NORMAL_GLSL", "sgLayerObjectNormal",
+          "sgSurfgradFromPerturbedNormal"}},
+        {"height",
+         R"({"type": "height", )" + map + "}",
          {"SG_RENDER_LAYER_HEIGHT_GLSL", "sgLayerHeight", "sgHeightDeriv3Tap"}},
-        {"deriv_map", R"({"type": "deriv_map", )" + map + "}", {"SG_RENDER_LAYER_DERIV_MAP_GLSL", "sgLayerDerivMap"}},
-        {"triplanar", R"({"type": "triplanar", )" + map + "}",
-         {"SG_RENDER_LAYER_TRIPLANAR_GLSL", "sgLayerTriplanar", "sgTriplanarWeights", "sgTriplanarVolumeGradient"}},
-        {"decal", R"({"type": "decal", )" + map + "}",
-         {"SG_RENDER_LAYER_DECAL_GLSL", "sgLayerDecal", "sgDecalVolumeGradient", "sgSurfgradFromDecal"}},
-        {"noise", R"({"type": "noise"})", {"SG_RENDER_LAYER_NOISE_GLSL", "sgLayerNoise", "sgPerlinNoise", "sgNoiseHash"}},
-        {"modifiers", R"({"type": "uv_normal", )" + map + R"(, "modifiers": [{"type": "scale", "alpha": 2}]})",
+        {"deriv_map",
+         R"({"type": "deriv_map", )" + map + "}",
+         {"SG_RENDER_LAYER_DERIV_MAP_GLSL", "sgLayerDerivMap"}},
+        {"triplanar",
+         R"({"type": "triplanar", )" + map + "}",
+         {"SG_RENDER_LAYER_TRIPLANAR_GLSL", "sgLayerTriplanar", "sgTriplanarWeights",
+          "sgTriplanarVolumeGradient"}},
+        {"decal",
+         R"({"type": "decal", )" + map + "}",
+         {"SG_RENDER_LAYER_DECAL_GLSL", "sgLayerDecal", "sgDecalVolumeGradient",
+          "sgSurfgradFromDecal"}},
+        {"noise",
+         R"({"type": "noise"})",
+         {"SG_RENDER_LAYER_NOISE_GLSL", "sgLayerNoise", "sgPerlinNoise", "sgNoiseHash"}},
+        {"modifiers",
+         R"({"type": "uv_normal", )" + map + R"(, "modifiers": [{"type": "scale", "alpha": 2}]})",
          {"SG_RENDER_DERIV_MODS_GLSL", "sgModScale", "sgSampleUvNormalHD"}},
-        {"feature", R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) + R"(/svg/flame.svg", "size": 32}})",
-         {"SG_RENDER_LAYER_FEATURE_GLSL", "sgLayerFeature", "sgFeatSample", "sgFeatDeriv", "usampler2D"}},
-        {"post_resolve", R"({"type": "post_resolve", "layers": [{"type": "noise"}]})", {"sgReprologue"}},
+        {"feature",
+         R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+             R"(/svg/flame.svg", "size": 32}})",
+         {"SG_RENDER_LAYER_FEATURE_GLSL", "sgLayerFeature", "sgFeatSample", "sgFeatDeriv",
+          "usampler2D"}},
+        {"post_resolve",
+         R"({"type": "post_resolve", "layers": [{"type": "noise"}]})",
+         {"sgReprologue"}},
     };
 }
 
@@ -86,7 +105,8 @@ TEST(EffectsOnDemand, AProgramHoldsOnlyTheLayerKindsItUses) {
         }
         if (std::string(all[k].name) != "post_resolve") {
             // A post-resolve group whose layer is of another kind.
-            std::string child = std::string(all[k].name) == "noise" ? all[2].layerJson : all[6].layerJson;
+            std::string child =
+                std::string(all[k].name) == "noise" ? all[2].layerJson : all[6].layerJson;
             others += R"(, {"type": "post_resolve", "layers": [)" + child + "]}";
         }
         std::string without = programFor(others);
@@ -94,19 +114,22 @@ TEST(EffectsOnDemand, AProgramHoldsOnlyTheLayerKindsItUses) {
         for (const auto& m : all[k].markers) {
             bool sharedWithOthers = false;
             // uv_normal's file is part of the modifiers variant too.
-            if (std::string(all[k].name) == "uv_normal" && m == "SG_RENDER_LAYER_UV_NORMAL_GLSL") sharedWithOthers = true;
+            if (std::string(all[k].name) == "uv_normal" && m == "SG_RENDER_LAYER_UV_NORMAL_GLSL")
+                sharedWithOthers = true;
             if (!sharedWithOthers) {
-                EXPECT_EQ(without.find(m), std::string::npos) << m << " found in a program without " << all[k].name;
+                EXPECT_EQ(without.find(m), std::string::npos)
+                    << m << " found in a program without " << all[k].name;
             }
-            EXPECT_NE(with.find(m), std::string::npos) << m << " missing from a program with " << all[k].name;
+            EXPECT_NE(with.find(m), std::string::npos)
+                << m << " missing from a program with " << all[k].name;
         }
     }
 }
 
 TEST(EffectsOnDemand, NoLayersMeansNoBumpCode) {
     std::string p = programFor("");
-    for (const char* m : {"sgLayer", "sgTspaceNormalToDeriv", "sgPerlinNoise", "sgTriplanar", "sgReprologue",
-                          "textureGrad", "sampler2D"}) {
+    for (const char* m : {"sgLayer", "sgTspaceNormalToDeriv", "sgPerlinNoise", "sgTriplanar",
+                          "sgReprologue", "textureGrad", "sampler2D"}) {
         EXPECT_EQ(p.find(m), std::string::npos) << m;
     }
     // The prologue and the resolve are always there (listing 16, listing 1).
@@ -120,7 +143,8 @@ int glslang(const ProgramSource& src, const std::string& tag) {
     std::string vs = dir + "/glslang_" + tag + ".vert", fs = dir + "/glslang_" + tag + ".frag";
     std::ofstream(vs) << src.vertex;
     std::ofstream(fs) << src.fragment;
-    std::string cmd = std::string(SURFGRAD_GLSLANG) + " -l " + vs + " " + fs + " > " + dir + "/glslang_" + tag + ".log 2>&1";
+    std::string cmd = std::string(SURFGRAD_GLSLANG) + " -l " + vs + " " + fs + " > " + dir +
+                      "/glslang_" + tag + ".log 2>&1";
     int rc = std::system(cmd.c_str());
     return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
 }
@@ -131,15 +155,20 @@ TEST(EffectsOnDemand, EveryVariantPassesGlslangValidator) {
     for (const auto& k : all) {
         Scene s = sceneFromJson(oneMaterialScene(k.layerJson, kSphere));
         SceneAssets a = loadAssets(s);
-        EXPECT_EQ(glslang(assembleProgram(planMaterial(s, a, 0, 0)), "kind" + std::to_string(i++)), 0) << k.name;
+        EXPECT_EQ(glslang(assembleProgram(planMaterial(s, a, 0, 0)), "kind" + std::to_string(i++)),
+                  0)
+            << k.name;
     }
     // The default scene and an uber-shader (every kind compiled in).
     Scene d = defaultScene();
     SceneAssets da = loadAssets(d);
     for (size_t m = 0; m < d.meshes.size(); ++m) {
-        EXPECT_EQ(glslang(assembleProgram(planMaterial(d, da, int(m), d.meshes[m].material)), "default" + std::to_string(m)), 0);
+        EXPECT_EQ(glslang(assembleProgram(planMaterial(d, da, int(m), d.meshes[m].material)),
+                          "default" + std::to_string(m)),
+                  0);
     }
-    EXPECT_EQ(glslang(assembleProgram(planUberMaterial(d, da, 0, d.meshes[0].material)), "uber"), 0);
+    EXPECT_EQ(glslang(assembleProgram(planUberMaterial(d, da, 0, d.meshes[0].material)), "uber"),
+              0);
     // The check can fail: a program with an undefined function.
     ProgramSource bad = assembleProgram(planMaterial(d, da, 0, d.meshes[0].material));
     bad.fragment.replace(bad.fragment.find("sgResolve(frame, surfGrad)"), 9, "sgNoSuchFn");
@@ -167,7 +196,8 @@ TEST(EffectsOnDemand, ProgramsAreCachedByEffectSignature) {
     EXPECT_EQ(planMaterial(s, a, 0, 0).signature, p0.signature);
     s.materials[0].layers[0].enabled = false; // a disabled layer is not compiled in
     EXPECT_NE(planMaterial(s, a, 0, 0).signature, p0.signature);
-    EXPECT_EQ(assembleProgram(planMaterial(s, a, 0, 0)).fragment.find("sgLayerNoise"), std::string::npos);
+    EXPECT_EQ(assembleProgram(planMaterial(s, a, 0, 0)).fragment.find("sgLayerNoise"),
+              std::string::npos);
 }
 
 TEST(EffectsOnDemand, TexturesOfUnusedLayersAreNotLoaded) {
@@ -187,7 +217,8 @@ TEST(EffectsOnDemand, MeshesAreRefinedExactlyAsAsked) {
     // catmark_cube: 6 quads. Level L has 6 * 4^L quads = 12 * 4^L triangles.
     std::string cube = std::string(SURFGRAD_DATA_DIR) + "/osd-shapes/catmark_cube.obj";
     for (int level : {0, 1, 2}) {
-        std::string sub = level == 0 ? "" : R"(, "subdivision": {"level": )" + std::to_string(level) + "}";
+        std::string sub =
+            level == 0 ? "" : R"(, "subdivision": {"level": )" + std::to_string(level) + "}";
         Scene s = sceneFromJson(R"({"meshes": [{"file": ")" + cube + "\"" + sub + "}]}");
         SceneAssets a = loadAssets(s);
         EXPECT_EQ(a.meshes[0].mesh.triangleCount(), size_t(12) << (2 * level)) << "level " << level;

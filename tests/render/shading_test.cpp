@@ -51,7 +51,8 @@ TEST(Noise, PerlinIsZeroOnTheLatticeAndBounded) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(-1000.0f, 1000.0f);
     float m = 0.0f;
-    for (int i = 0; i < 20000; ++i) m = std::max(m, std::abs(G::sgPerlinNoise(glm::vec3(u(rng), u(rng), u(rng))).x));
+    for (int i = 0; i < 20000; ++i)
+        m = std::max(m, std::abs(G::sgPerlinNoise(glm::vec3(u(rng), u(rng), u(rng))).x));
     // Improved noise with edge gradients stays within about [-1, 1].
     EXPECT_LT(m, 1.1f);
     EXPECT_GT(m, 0.5f); // and is not degenerate
@@ -62,7 +63,9 @@ TEST(Noise, FbmAndCompositeGradientsAreDerivatives) {
     std::uniform_real_distribution<float> u(-5.0f, 5.0f);
     for (int i = 0; i < 500; ++i) {
         glm::vec3 p(u(rng), u(rng), u(rng));
-        auto fbm = [](glm::vec3 q) { return G::sgNoiseOctaves(SG_NOISE_FBM, q, 4, 2.0f, 0.5f, 0.0f); };
+        auto fbm = [](glm::vec3 q) {
+            return G::sgNoiseOctaves(SG_NOISE_FBM, q, 4, 2.0f, 0.5f, 0.0f);
+        };
         glm::vec4 n = fbm(p);
         glm::dvec3 fd = finiteGradient([&](glm::vec3 q) { return fbm(q).x; }, p, 2e-4f);
         // Four octaves: the finest (frequency 8) has third derivatives 8^3
@@ -72,7 +75,8 @@ TEST(Noise, FbmAndCompositeGradientsAreDerivatives) {
         EXPECT_LT(glm::length(fd - glm::dvec3(n.y, n.z, n.w)), 2e-2) << i;
         // Gritz composite g = sign(f)|f|^3: chain rule.
         glm::vec4 g = G::sgNoisePowerComposite(n, 3.0f);
-        glm::dvec3 fdg = finiteGradient([&](glm::vec3 q) { return G::sgNoisePowerComposite(fbm(q), 3.0f).x; }, p, 2e-4f);
+        glm::dvec3 fdg = finiteGradient(
+            [&](glm::vec3 q) { return G::sgNoisePowerComposite(fbm(q), 3.0f).x; }, p, 2e-4f);
         EXPECT_LT(glm::length(fdg - glm::dvec3(g.y, g.z, g.w)), 2e-2) << i;
     }
 }
@@ -108,7 +112,8 @@ TEST(Noise, FrequencyClampFadesOctavesFinerThanTwoPixels) {
 TextureImage ramp(int w, int h, Wrap wrap) {
     std::vector<glm::vec4> t(size_t(w) * size_t(h));
     for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) t[size_t(y) * size_t(w) + size_t(x)] = glm::vec4(float(x), float(y), 1.0f, 0.5f);
+        for (int x = 0; x < w; ++x)
+            t[size_t(y) * size_t(w) + size_t(x)] = glm::vec4(float(x), float(y), 1.0f, 0.5f);
     return makeTexture(w, h, std::move(t), wrap);
 }
 
@@ -131,11 +136,15 @@ TEST(TextureEmulation, FollowsTheGlFilteringRules) {
     // Two texels per pixel: lambda = 1, level 1 exactly; 2^1.5: the mean of levels 1 and 2.
     glm::vec4 l1 = G::textureLod(s, glm::vec2(0.4f, 0.6f), 1.0f);
     glm::vec4 l2 = G::textureLod(s, glm::vec2(0.4f, 0.6f), 2.0f);
-    EXPECT_NEAR(glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), 2.0f * dx, 2.0f * dy) - l1), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), 2.0f * dx, 2.0f * dy) - l1),
+                0.0f, 1e-5f);
     float r = std::pow(2.0f, 1.5f);
-    EXPECT_NEAR(glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), r * dx, r * dy) - 0.5f * (l1 + l2)), 0.0f, 1e-4f);
+    EXPECT_NEAR(
+        glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), r * dx, r * dy) - 0.5f * (l1 + l2)),
+        0.0f, 1e-4f);
     // The longer of the two derivative vectors decides (isotropic filtering).
-    EXPECT_NEAR(glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), 2.0f * dx, 0.1f * dy) - l1), 0.0f, 1e-5f);
+    EXPECT_NEAR(glm::length(G::textureGrad(s, glm::vec2(0.4f, 0.6f), 2.0f * dx, 0.1f * dy) - l1),
+                0.0f, 1e-5f);
     // Repeat wrap: one period apart is the same texel.
     TextureImage rep = ramp(8, 4, Wrap::Repeat);
     G::sampler2D sr{&rep};
@@ -156,7 +165,9 @@ TEST(TextureEmulation, FastLog2LodMatchesLlvmpipesApproximation) {
     // At powers of two both rules agree...
     for (float k : {1.0f, 2.0f, 4.0f, 8.0f}) {
         glm::vec2 dx(k / 64, 0.0f);
-        EXPECT_NEAR(glm::length(G::textureGrad(exact, st, dx, dy) - G::textureGrad(fast, st, dx, dy)), 0.0f, 1e-4f);
+        EXPECT_NEAR(
+            glm::length(G::textureGrad(exact, st, dx, dy) - G::textureGrad(fast, st, dx, dy)), 0.0f,
+            1e-4f);
     }
     // ...in between, fastlog2(rho^2)/2 = e + m - 1 for rho^2 = 2^e m: at
     // rho = sqrt(3), rho^2 = 3 = 2^1 * 1.5 -> lambda = 0.75, not 0.792.
@@ -168,7 +179,8 @@ TEST(TextureEmulation, FastLog2LodMatchesLlvmpipesApproximation) {
 // A flat frame: the plane y = 0 seen from above, screen x along +x, screen y
 // along -z, `pix` world units per pixel.
 G::SgFrame flatFrame(float pix) {
-    return G::sgPrologue(glm::vec3(0, 1, 0), glm::vec3(pix, 0, 0), glm::vec3(0, 0, -pix), true, SG_BFACE_NONE);
+    return G::sgPrologue(glm::vec3(0, 1, 0), glm::vec3(pix, 0, 0), glm::vec3(0, 0, -pix), true,
+                         SG_BFACE_NONE);
 }
 
 TEST(Layers, HeightMapSurfaceGradientIsTheSlopeOfTheDisplacement) {
@@ -194,10 +206,14 @@ TEST(Layers, FlatNormalMapsAddNothing) {
     TextureImage img = makeTexture(16, 16, flat, Wrap::Repeat);
     G::sampler2D s{&img};
     G::SgFrame f = flatFrame(0.01f);
-    G::SgUvFrame uv = G::sgUvFramePixel(f, glm::vec2(0.2f), glm::vec2(0.01f, 0), glm::vec2(0, 0.01f));
-    EXPECT_EQ(G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 0, -1), glm::vec4(0)), s), glm::vec3(0.0f));
-    G::SgVolumeSpace vs = G::sgVolumeSpace(f, glm::vec3(0.3f, 0.0f, 0.2f), glm::mat3(1.0f), glm::mat3(1.0f));
-    glm::vec3 tri = G::sgLayerTriplanar(f, vs, G::sgUnpackTriplanar(glm::vec4(1, 1, 4, 1), glm::vec4(0)), s, s, s);
+    G::SgUvFrame uv =
+        G::sgUvFramePixel(f, glm::vec2(0.2f), glm::vec2(0.01f, 0), glm::vec2(0, 0.01f));
+    EXPECT_EQ(G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 0, -1), glm::vec4(0)), s),
+              glm::vec3(0.0f));
+    G::SgVolumeSpace vs =
+        G::sgVolumeSpace(f, glm::vec3(0.3f, 0.0f, 0.2f), glm::mat3(1.0f), glm::mat3(1.0f));
+    glm::vec3 tri = G::sgLayerTriplanar(
+        f, vs, G::sgUnpackTriplanar(glm::vec4(1, 1, 4, 1), glm::vec4(0)), s, s, s);
     EXPECT_LT(glm::length(tri), 1e-6f);
 }
 
@@ -210,15 +226,19 @@ TEST(Layers, UvNormalTiltResolvesToTheMapsNormal) {
     TextureImage img = makeTexture(4, 4, tex, Wrap::Repeat);
     G::sampler2D s{&img};
     G::SgFrame f = flatFrame(0.01f);
-    G::SgUvFrame uv = G::sgUvFramePixel(f, glm::vec2(0.5f), glm::vec2(0.01f, 0), glm::vec2(0, 0.01f));
+    G::SgUvFrame uv =
+        G::sgUvFramePixel(f, glm::vec2(0.5f), glm::vec2(0.01f, 0), glm::vec2(0, 0.01f));
     EXPECT_NEAR(glm::length(uv.vT - glm::vec3(1, 0, 0)), 0.0f, 1e-6f);
     EXPECT_NEAR(glm::length(uv.vB - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
-    glm::vec3 g = G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 0, -1), glm::vec4(0)), s);
+    glm::vec3 g =
+        G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 0, -1), glm::vec4(0)), s);
     glm::vec3 n = G::sgResolve(f, g);
-    glm::vec3 expect = glm::normalize(m.x * glm::vec3(1, 0, 0) + m.y * glm::vec3(0, 0, -1) + m.z * glm::vec3(0, 1, 0));
+    glm::vec3 expect = glm::normalize(m.x * glm::vec3(1, 0, 0) + m.y * glm::vec3(0, 0, -1) +
+                                      m.z * glm::vec3(0, 1, 0));
     EXPECT_NEAR(glm::length(n - expect), 0.0f, 1e-5f);
     // DirectX green: the t component flips.
-    glm::vec3 gdx = G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 1, -1), glm::vec4(0)), s);
+    glm::vec3 gdx =
+        G::sgLayerUvNormal(uv, G::sgUnpackUvNormal(glm::vec4(1, 0, 1, -1), glm::vec4(0)), s);
     glm::vec3 ndx = G::sgResolve(f, gdx);
     EXPECT_NEAR(ndx.z, -expect.z, 1e-5f);
     EXPECT_NEAR(ndx.x, expect.x, 1e-5f);
@@ -228,8 +248,8 @@ TEST(Layers, NoiseSurfaceGradientIsTheTangentialVolumeGradient) {
     G::SgFrame f = flatFrame(1e-4f);
     glm::vec3 p(0.3f, 0.0f, -0.7f);
     G::SgVolumeSpace vs = G::sgVolumeSpace(f, p, glm::mat3(1.0f), glm::mat3(1.0f));
-    G::SgNoiseParams np = G::sgUnpackNoise(glm::vec4(0.05f, 3.0f, SG_NOISE_PERLIN, 1), glm::vec4(2, 0.5f, 1, 0),
-                                           glm::vec4(0.0f));
+    G::SgNoiseParams np = G::sgUnpackNoise(glm::vec4(0.05f, 3.0f, SG_NOISE_PERLIN, 1),
+                                           glm::vec4(2, 0.5f, 1, 0), glm::vec4(0.0f));
     glm::vec3 g = G::sgLayerNoise(f, vs, np);
     auto H = [&](glm::vec3 q) { return 0.05f * G::sgPerlinNoise(3.0f * q).x; };
     glm::dvec3 fd = finiteGradient(H, p, 1e-3f);
@@ -239,8 +259,9 @@ TEST(Layers, NoiseSurfaceGradientIsTheTangentialVolumeGradient) {
 }
 
 TEST(Layers, DecalFadesOutsideItsBox) {
-    G::SgDecalParams p = G::sgUnpackDecal(glm::vec4(0, 0, 0, 1), glm::vec4(1, 0, 0, 0.5f), glm::vec4(0, 0, -1, 0.5f),
-                                          glm::vec4(0, 1, 0, 0.5f), glm::vec4(0.25f, 0.5f, 0.17f, 0), glm::vec4(0));
+    G::SgDecalParams p =
+        G::sgUnpackDecal(glm::vec4(0, 0, 0, 1), glm::vec4(1, 0, 0, 0.5f), glm::vec4(0, 0, -1, 0.5f),
+                         glm::vec4(0, 1, 0, 0.5f), glm::vec4(0.25f, 0.5f, 0.17f, 0), glm::vec4(0));
     glm::vec3 up(0, 1, 0);
     EXPECT_EQ(G::sgDecalFade(p, glm::vec3(0.2f, 0.3f, 0.0f), up), 1.0f);
     EXPECT_EQ(G::sgDecalFade(p, glm::vec3(1.2f, 0.3f, 0.0f), up), 0.0f);

@@ -43,9 +43,9 @@ fs::path scratch(const std::string& name) {
 // subject, not the maps).
 std::string uvLayer(int set, bool enabled = true) {
     static const char* maps[] = {"bricks", "tiles", "weave", "bumps"};
-    return std::string(R"({"type": "uv_normal", "uv_set": )") + std::to_string(set) + R"(, "enabled": )" +
-           (enabled ? "true" : "false") + R"(, "strength": 0.8, "map": {"procedural": ")" + maps[set] +
-           R"(", "size": 64}})";
+    return std::string(R"({"type": "uv_normal", "uv_set": )") + std::to_string(set) +
+           R"(, "enabled": )" + (enabled ? "true" : "false") +
+           R"(, "strength": 0.8, "map": {"procedural": ")" + maps[set] + R"(", "size": 64}})";
 }
 
 // Expected derived set: R(deg) (scale * st) + offset, in double.
@@ -60,8 +60,9 @@ glm::vec2 affine(glm::vec2 st, glm::vec2 scale, double deg, glm::vec2 offset) {
 TEST(TangentSets, LimitAndMikkTSpaceOnTwoSetsMatchTheMeshModule) {
     const glm::vec2 scale(8.0f, 6.0f), offset(0.25f, -0.5f);
     const double deg = 30.0;
-    Scene s = sceneFromJson(oneMaterialScene(uvLayer(0) + ", " + uvLayer(1),
-                                             R"({"file": ")" + kSpot + R"(", "subdivision": {"level": 2, "limit": true},
+    Scene s = sceneFromJson(
+        oneMaterialScene(uvLayer(0) + ", " + uvLayer(1),
+                         R"({"file": ")" + kSpot + R"(", "subdivision": {"level": 2, "limit": true},
                                                  "uv_sets": [{"from": 0, "scale": [8, 6], "rotate_deg": 30, "offset": [0.25, -0.5]}],
                                                  "tangents": ["limit", "mikktspace"]})"));
     SceneAssets a = loadAssets(s);
@@ -89,7 +90,8 @@ TEST(TangentSets, LimitAndMikkTSpaceOnTwoSetsMatchTheMeshModule) {
     // on that set alone.
     sm::RenderMesh mk = ref;
     mk.uvSets.resize(2, std::vector<glm::vec2>(ref.vertexCount()));
-    for (size_t c = 0; c < ref.indices.size(); ++c) mk.uvSets[1][ref.indices[c]] = got.mesh.uvSets[1][got.mesh.indices[c]];
+    for (size_t c = 0; c < ref.indices.size(); ++c)
+        mk.uvSets[1][ref.indices[c]] = got.mesh.uvSets[1][got.mesh.indices[c]];
     sm::generateMikkTSpaceTangents(mk, 1);
 
     size_t badUv = 0, badLimit = 0, badMikk = 0, badPos = 0;
@@ -121,8 +123,8 @@ TEST(TangentSets, LimitAndMikkTSpaceOnTwoSetsMatchTheMeshModule) {
 // (mapped here in double) must give the renderer's set 1; and they are not
 // set 0's (the derived chart is rotated and mirrored).
 TEST(TangentSets, LimitTangentsOnADerivedSetUseTheMappedUvDerivatives) {
-    Scene s = sceneFromJson(oneMaterialScene(uvLayer(1),
-                                             R"({"file": ")" + kSpot + R"(", "subdivision": {"level": 1, "limit": true},
+    Scene s = sceneFromJson(oneMaterialScene(
+        uvLayer(1), R"({"file": ")" + kSpot + R"(", "subdivision": {"level": 1, "limit": true},
                                                  "uv_sets": [{"scale": [4, -2], "rotate_deg": 75}],
                                                  "tangents": ["pixel", "limit"]})"));
     SceneAssets a = loadAssets(s);
@@ -141,7 +143,8 @@ TEST(TangentSets, LimitTangentsOnADerivedSetUseTheMappedUvDerivatives) {
     // The map's linear part, independently: rotation by 75 degrees after a
     // (4, -2) scale.
     double ang = 75.0 * 3.14159265358979323846 / 180.0;
-    glm::dmat2 lin = glm::dmat2(std::cos(ang), std::sin(ang), -std::sin(ang), std::cos(ang)) * glm::dmat2(4.0, 0.0, 0.0, -2.0);
+    glm::dmat2 lin = glm::dmat2(std::cos(ang), std::sin(ang), -std::sin(ang), std::cos(ang)) *
+                     glm::dmat2(4.0, 0.0, 0.0, -2.0);
     auto map = [&](const std::vector<glm::vec2>& v) {
         std::vector<glm::vec2> out(v.size());
         for (size_t i = 0; i < v.size(); ++i) out[i] = glm::vec2(lin * glm::dvec2(v[i]));
@@ -158,7 +161,8 @@ TEST(TangentSets, LimitTangentsOnADerivedSetUseTheMappedUvDerivatives) {
     // handedness exactly (the map mirrors: det < 0 flips w everywhere).
     size_t far = 0, signs = 0;
     for (size_t v = 0; v < ref.vertexCount(); ++v) {
-        far += glm::length(glm::vec3(got.vertexTangents[1][v]) - glm::vec3(ref.tangents[v])) > 1e-3f;
+        far +=
+            glm::length(glm::vec3(got.vertexTangents[1][v]) - glm::vec3(ref.tangents[v])) > 1e-3f;
         signs += got.vertexTangents[1][v].w != ref.tangents[v].w;
     }
     EXPECT_LE(far, ref.vertexCount() / 1000) << "of " << ref.vertexCount();
@@ -168,7 +172,8 @@ TEST(TangentSets, LimitTangentsOnADerivedSetUseTheMappedUvDerivatives) {
     sm::generateLimitTangents(base, sub.limitFrame(), 0);
     size_t rotated = 0;
     for (size_t v = 0; v < base.vertexCount(); ++v) {
-        rotated += glm::dot(glm::vec3(base.tangents[v]), glm::vec3(got.vertexTangents[1][v])) < 0.9f;
+        rotated +=
+            glm::dot(glm::vec3(base.tangents[v]), glm::vec3(got.vertexTangents[1][v])) < 0.9f;
     }
     EXPECT_GT(rotated, base.vertexCount() / 2);
 }
@@ -186,7 +191,8 @@ fs::path writeFoldedGrid(const fs::path& dir) {
         for (int i = 0; i <= n; ++i) {
             float u = float(i) / float(n), v = float(j) / float(n);
             // A gentle bump so normals vary.
-            m.positions.emplace_back(u - 0.5f, 0.1f * std::sin(3.0f * u) * std::cos(2.0f * v), 0.5f - v);
+            m.positions.emplace_back(u - 0.5f, 0.1f * std::sin(3.0f * u) * std::cos(2.0f * v),
+                                     0.5f - v);
             m.uvSets[0].emplace_back(u, v);
             m.uvSets[1].emplace_back(0.5f - std::abs(u - 0.5f), v);
             m.uvSets[2].emplace_back(u, 0.5f - std::abs(v - 0.5f));
@@ -204,15 +210,17 @@ fs::path writeFoldedGrid(const fs::path& dir) {
 
 TEST(TangentSets, MikkTSpaceOnThreeSetsSplitsVerticesForEachAndKeepsTheOthers) {
     fs::path file = writeFoldedGrid(scratch("folded"));
-    Scene s = sceneFromJson(oneMaterialScene(uvLayer(0) + ", " + uvLayer(1) + ", " + uvLayer(2),
-                                             R"({"file": ")" + file.string() +
-                                                 R"(", "tangents": ["mikktspace", "mikktspace", "mikktspace"]})",
-                                             R"("double_sided": "mirror",)", 160, 120,
-                                             R"(, "camera": {"position": [0.3, 1.2, 0.9], "target": [0, 0, 0]})"));
+    Scene s = sceneFromJson(
+        oneMaterialScene(uvLayer(0) + ", " + uvLayer(1) + ", " + uvLayer(2),
+                         R"({"file": ")" + file.string() +
+                             R"(", "tangents": ["mikktspace", "mikktspace", "mikktspace"]})",
+                         R"("double_sided": "mirror",)", 160, 120,
+                         R"(, "camera": {"position": [0.3, 1.2, 0.9], "target": [0, 0, 0]})"));
     SceneAssets a = loadAssets(s);
     const MeshAsset& got = a.meshes[0];
     sm::RenderMesh ref = sm::loadRenderMesh(file);
-    EXPECT_GT(got.mesh.vertexCount(), ref.vertexCount() + 8) << "the folds of sets 1 and 2 split vertices";
+    EXPECT_GT(got.mesh.vertexCount(), ref.vertexCount() + 8)
+        << "the folds of sets 1 and 2 split vertices";
     for (int k = 0; k < 3; ++k) {
         SCOPED_TRACE("UV set " + std::to_string(k));
         sm::RenderMesh one = ref;
@@ -223,9 +231,11 @@ TEST(TangentSets, MikkTSpaceOnThreeSetsSplitsVerticesForEachAndKeepsTheOthers) {
             const uint32_t g = got.mesh.indices[c];
             bad += got.vertexTangents[size_t(k)][g] != one.tangents[one.indices[c]];
             bad += got.mesh.positions[g] != ref.positions[ref.indices[c]];
-            for (size_t u = 0; u < 3; ++u) bad += got.mesh.uvSets[u][g] != ref.uvSets[u][ref.indices[c]];
+            for (size_t u = 0; u < 3; ++u)
+                bad += got.mesh.uvSets[u][g] != ref.uvSets[u][ref.indices[c]];
         }
-        EXPECT_EQ(bad, 0u) << "every corner keeps its attributes and gets this set's own MikkTSpace tangent";
+        EXPECT_EQ(bad, 0u)
+            << "every corner keeps its attributes and gets this set's own MikkTSpace tangent";
     }
     // Both renderers read the three tangent attributes alike.
     CpuOptions parity;
@@ -244,7 +254,8 @@ std::string preprocessed(const std::string& text, const std::string& tag, const 
     fs::path dir = scratch("pre_" + tag);
     fs::path in = dir / (std::string("p.") + stage), out = dir / "out.txt";
     std::ofstream(in) << text;
-    std::string cmd = std::string(SURFGRAD_GLSLANG) + " -E " + in.string() + " > " + out.string() + " 2>&1";
+    std::string cmd =
+        std::string(SURFGRAD_GLSLANG) + " -E " + in.string() + " > " + out.string() + " 2>&1";
     int rc = std::system(cmd.c_str());
     EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << cmd;
     std::ifstream f(out);
@@ -263,7 +274,8 @@ Stages programStages(const Scene& s, const SceneAssets& a, const std::string& ta
 }
 
 TEST(TangentSets, OnlyTheSetsThatNeedVertexTangentsGetThem) {
-    const std::string sphere2 = R"({"procedural": {"type": "sphere", "segments": 24, "uv_sets": 3}})";
+    const std::string sphere2 =
+        R"({"procedural": {"type": "sphere", "segments": 24, "uv_sets": 3}})";
     auto meshWith = [&](const std::string& tangents) {
         return sphere2.substr(0, sphere2.size() - 1) + R"(, "tangents": )" + tangents + "}";
     };
@@ -276,7 +288,8 @@ TEST(TangentSets, OnlyTheSetsThatNeedVertexTangentsGetThem) {
         SceneAssets a = loadAssets(s);
         for (const auto& t : a.meshes[0].vertexTangents) EXPECT_TRUE(t.empty());
         Stages st = programStages(s, a, "pixel");
-        ASSERT_NE(st.fragment.find("sgUvFramePixel"), std::string::npos) << "preprocessed text expected";
+        ASSERT_NE(st.fragment.find("sgUvFramePixel"), std::string::npos)
+            << "preprocessed text expected";
         for (const char* m : tangentCode) {
             EXPECT_EQ(st.vertex.find(m), std::string::npos) << m << " in the vertex stage";
             EXPECT_EQ(st.fragment.find(m), std::string::npos) << m << " in the fragment stage";
@@ -285,8 +298,9 @@ TEST(TangentSets, OnlyTheSetsThatNeedVertexTangentsGetThem) {
     // Sets 0 and 2 ask for MikkTSpace; set 2's only layer is disabled and
     // set 1 (pixel) has a layer: only set 0 gets tangents and an attribute.
     {
-        Scene s = sceneFromJson(oneMaterialScene(uvLayer(0) + ", " + uvLayer(1) + ", " + uvLayer(2, false),
-                                                 meshWith(R"(["mikktspace", "pixel", "mikktspace"])")));
+        Scene s = sceneFromJson(
+            oneMaterialScene(uvLayer(0) + ", " + uvLayer(1) + ", " + uvLayer(2, false),
+                             meshWith(R"(["mikktspace", "pixel", "mikktspace"])")));
         SceneAssets a = loadAssets(s);
         EXPECT_FALSE(a.meshes[0].vertexTangents[0].empty());
         EXPECT_TRUE(a.meshes[0].vertexTangents[1].empty());
@@ -333,8 +347,10 @@ TEST(TangentSets, OnlyTheSetsThatNeedVertexTangentsGetThem) {
         std::string layers =
             R"({"type": "deriv_map", "uv_set": 0, "space": "texel", "map": {"procedural": "weave", "output": "derivative", "size": 32}},
                {"type": "height", "uv_set": 1, "map": {"procedural": "bumps", "output": "height", "size": 32}},
-               {"type": "post_resolve", "layers": [)" + uvLayer(2) + "]}";
-        Scene s = sceneFromJson(oneMaterialScene(layers, meshWith(R"(["mikktspace", "mikktspace", "mikktspace"])")));
+               {"type": "post_resolve", "layers": [)" +
+            uvLayer(2) + "]}";
+        Scene s = sceneFromJson(
+            oneMaterialScene(layers, meshWith(R"(["mikktspace", "mikktspace", "mikktspace"])")));
         EXPECT_EQ(tangentBasisUvSets(s.materials[0]), 0u);
         SceneAssets a = loadAssets(s);
         for (const auto& t : a.meshes[0].vertexTangents) EXPECT_TRUE(t.empty());

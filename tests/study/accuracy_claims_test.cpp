@@ -70,7 +70,8 @@ TEST(StudyBlend, SurfaceGradientSumIsExactAndOrderIndependent) {
     std::vector<double> errs[STUDY_BLEND_COUNT];
     for (int k = 0; k < 4000; ++k) {
         const glm::dvec2 ga(slope(rng), slope(rng)), gb(slope(rng), slope(rng));
-        const glm::dvec3 na = glm::normalize(glm::dvec3(-ga, 1.0)), nb = glm::normalize(glm::dvec3(-gb, 1.0));
+        const glm::dvec3 na = glm::normalize(glm::dvec3(-ga, 1.0)),
+                         nb = glm::normalize(glm::dvec3(-gb, 1.0));
         const glm::dvec3 truth = glm::normalize(glm::dvec3(-(ga + gb), 1.0));
         for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
             const vec3 r = studyBlend(m, f, t, b, vec3(na), vec3(nb));
@@ -129,11 +130,13 @@ TEST_F(StudyFrames, VertexFramesConvergeQuadraticallyPixelFramesLinearly) {
 
 TEST(StudyHalf, RoundsToNearestEvenWithSubnormalsAndOverflow) {
     EXPECT_EQ(roundToHalf(1.0f), 1.0f);
-    EXPECT_EQ(roundToHalf(1.0f + std::ldexp(1.0f, -11)), 1.0f);                          // tie -> even
-    EXPECT_EQ(roundToHalf(1.0f + 3.0f * std::ldexp(1.0f, -11)), 1.0f + std::ldexp(1.0f, -9)); // tie -> even
-    EXPECT_EQ(roundToHalf(-1.0f - std::ldexp(1.0f, -10)), -1.0f - std::ldexp(1.0f, -10));  // representable
-    EXPECT_EQ(roundToHalf(65504.0f), 65504.0f);  // largest finite
-    EXPECT_EQ(roundToHalf(65519.0f), 65504.0f);  // below the halfway point to 65536
+    EXPECT_EQ(roundToHalf(1.0f + std::ldexp(1.0f, -11)), 1.0f); // tie -> even
+    EXPECT_EQ(roundToHalf(1.0f + 3.0f * std::ldexp(1.0f, -11)),
+              1.0f + std::ldexp(1.0f, -9)); // tie -> even
+    EXPECT_EQ(roundToHalf(-1.0f - std::ldexp(1.0f, -10)),
+              -1.0f - std::ldexp(1.0f, -10));   // representable
+    EXPECT_EQ(roundToHalf(65504.0f), 65504.0f); // largest finite
+    EXPECT_EQ(roundToHalf(65519.0f), 65504.0f); // below the halfway point to 65536
     EXPECT_TRUE(std::isinf(roundToHalf(65520.0f)));
     EXPECT_EQ(roundToHalf(std::ldexp(1.0f, -24)), std::ldexp(1.0f, -24)); // smallest subnormal
     EXPECT_EQ(roundToHalf(std::ldexp(1.0f, -25)), 0.0f);                  // tie -> even (0)

@@ -13,17 +13,28 @@ namespace sg::gl {
 namespace {
 const char* eglErrorName(EGLint e) {
     switch (e) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    default: return "EGL error";
+    case EGL_SUCCESS:
+        return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+        return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+        return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+        return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+        return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+        return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+        return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+        return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+        return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+        return "EGL_BAD_PARAMETER";
+    default:
+        return "EGL error";
     }
 }
 [[noreturn]] void eglFail(const std::string& what) {
@@ -43,8 +54,8 @@ HeadlessContext::HeadlessContext() : impl_(std::make_unique<Impl>()) {
         throw GlError("headless OpenGL: EGL has no surfaceless platform "
                       "(EGL_MESA_platform_surfaceless); install libegl-mesa0");
     }
-    impl_->display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA,
-                                              EGL_DEFAULT_DISPLAY, nullptr);
+    impl_->display =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (impl_->display == EGL_NO_DISPLAY) eglFail("eglGetPlatformDisplayEXT(surfaceless)");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(impl_->display, &major, &minor)) eglFail("eglInitialize");
@@ -54,8 +65,7 @@ HeadlessContext::HeadlessContext() : impl_(std::make_unique<Impl>()) {
                                  EGL_PBUFFER_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint numConfigs = 0;
-    if (!eglChooseConfig(impl_->display, cfgAttribs, &config, 1, &numConfigs) ||
-        numConfigs < 1) {
+    if (!eglChooseConfig(impl_->display, cfgAttribs, &config, 1, &numConfigs) || numConfigs < 1) {
         config = nullptr; // EGL_KHR_no_config_context
     }
     const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -105,23 +115,35 @@ void checkError(const char* what) {
 namespace {
 GLenum stageEnum(Stage s) {
     switch (s) {
-    case Stage::Vertex: return GL_VERTEX_SHADER;
-    case Stage::Fragment: return GL_FRAGMENT_SHADER;
-    case Stage::Compute: return GL_COMPUTE_SHADER;
-    case Stage::Geometry: return GL_GEOMETRY_SHADER;
-    case Stage::TessControl: return GL_TESS_CONTROL_SHADER;
-    case Stage::TessEvaluation: return GL_TESS_EVALUATION_SHADER;
+    case Stage::Vertex:
+        return GL_VERTEX_SHADER;
+    case Stage::Fragment:
+        return GL_FRAGMENT_SHADER;
+    case Stage::Compute:
+        return GL_COMPUTE_SHADER;
+    case Stage::Geometry:
+        return GL_GEOMETRY_SHADER;
+    case Stage::TessControl:
+        return GL_TESS_CONTROL_SHADER;
+    case Stage::TessEvaluation:
+        return GL_TESS_EVALUATION_SHADER;
     }
     return GL_VERTEX_SHADER;
 }
 const char* stageName(Stage s) {
     switch (s) {
-    case Stage::Vertex: return "vertex";
-    case Stage::Fragment: return "fragment";
-    case Stage::Compute: return "compute";
-    case Stage::Geometry: return "geometry";
-    case Stage::TessControl: return "tessellation control";
-    case Stage::TessEvaluation: return "tessellation evaluation";
+    case Stage::Vertex:
+        return "vertex";
+    case Stage::Fragment:
+        return "fragment";
+    case Stage::Compute:
+        return "compute";
+    case Stage::Geometry:
+        return "geometry";
+    case Stage::TessControl:
+        return "tessellation control";
+    case Stage::TessEvaluation:
+        return "tessellation evaluation";
     }
     return "?";
 }
@@ -150,8 +172,8 @@ Program::Program(const std::vector<std::pair<Stage, shaders::Assembled>>& stages
             glDeleteProgram(id_);
             id_ = 0;
             throw GlError(std::string(stageName(stage)) + " shader (" +
-                          (src.files.empty() ? "?" : src.files.front()) +
-                          ") failed to compile:\n" + shaders::annotateLog(log, src.files));
+                          (src.files.empty() ? "?" : src.files.front()) + ") failed to compile:\n" +
+                          shaders::annotateLog(log, src.files));
         }
         glAttachShader(id_, sh);
     }
@@ -173,7 +195,9 @@ Program::Program(const std::vector<std::pair<Stage, shaders::Assembled>>& stages
 Program::~Program() {
     if (id_) glDeleteProgram(id_);
 }
-Program::Program(Program&& o) noexcept : id_(o.id_) { o.id_ = 0; }
+Program::Program(Program&& o) noexcept : id_(o.id_) {
+    o.id_ = 0;
+}
 Program& Program::operator=(Program&& o) noexcept {
     if (this != &o) {
         if (id_) glDeleteProgram(id_);
@@ -182,10 +206,12 @@ Program& Program::operator=(Program&& o) noexcept {
     }
     return *this;
 }
-int Program::uniform(const char* name) const { return glGetUniformLocation(id_, name); }
+int Program::uniform(const char* name) const {
+    return glGetUniformLocation(id_, name);
+}
 
-std::vector<float> runCompute(const Program& program, const std::vector<float>& input,
-                              int inStride, int outStride, size_t count) {
+std::vector<float> runCompute(const Program& program, const std::vector<float>& input, int inStride,
+                              int outStride, size_t count) {
     if (inStride <= 0 || outStride <= 0) throw GlError("runCompute: strides must be positive");
     if (input.size() < count * size_t(inStride)) {
         throw GlError("runCompute: input holds fewer than count * inStride floats");
@@ -200,8 +226,8 @@ std::vector<float> runCompute(const Program& program, const std::vector<float>& 
     // Records per dispatch: bounded by the group-count limit and by the
     // largest SSBO binding the implementation allows.
     size_t perDispatch = size_t(maxGroups) * kComputeGroupSize;
-    perDispatch = std::min(perDispatch,
-                           size_t(maxSsbo) / (sizeof(float) * size_t(std::max(inStride, outStride))));
+    perDispatch = std::min(
+        perDispatch, size_t(maxSsbo) / (sizeof(float) * size_t(std::max(inStride, outStride))));
     perDispatch = std::max<size_t>(perDispatch / kComputeGroupSize, 1) * kComputeGroupSize;
 
     GLuint bufs[2];

@@ -58,7 +58,8 @@ void addGrid(sg::mesh::RenderMesh& m, int nu, int nv, F&& f) {
         }
     for (int j = 0; j < nv; ++j)
         for (int i = 0; i < nu; ++i) {
-            uint32_t a = base + uint32_t(j * (nu + 1) + i), b = a + 1, c = a + uint32_t(nu + 1), d = c + 1;
+            uint32_t a = base + uint32_t(j * (nu + 1) + i), b = a + 1, c = a + uint32_t(nu + 1),
+                     d = c + 1;
             for (uint32_t x : {a, b, d, a, d, c}) m.indices.push_back(x);
         }
 }
@@ -66,7 +67,8 @@ void addGrid(sg::mesh::RenderMesh& m, int nu, int nv, F&& f) {
 // Height of the procedural terrain over (x, z) in units of its edge:
 // fBm (the shared noise, CPU build) with its analytic gradient.
 glm::vec3 terrainHeight(float x, float z, float relief) {
-    glm::vec4 n = sg::glsl::sgNoiseOctaves(SG_NOISE_FBM, glm::vec3(x * 3.0f, 0.37f, z * 3.0f), 6, 2.0f, 0.5f, 0.0f);
+    glm::vec4 n = sg::glsl::sgNoiseOctaves(SG_NOISE_FBM, glm::vec3(x * 3.0f, 0.37f, z * 3.0f), 6,
+                                           2.0f, 0.5f, 0.0f);
     // n = (value, d/dx, d/dy, d/dz) w.r.t. the scaled argument.
     return glm::vec3(relief * n.x, relief * 3.0f * n.y, relief * 3.0f * n.w);
 }
@@ -80,12 +82,14 @@ sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p) {
     const int seg = p.segments;
     if (p.type == "sphere") {
         float r = p.size;
-        addGrid(m, seg, std::max(2, seg / 2), [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
-            float phi = 2.0f * kPi * u, theta = kPi * v; // theta from the south pole
-            n = glm::vec3(std::sin(theta) * std::cos(phi), -std::cos(theta), -std::sin(theta) * std::sin(phi));
-            pos = r * n;
-            uv = glm::vec2(u, v);
-        });
+        addGrid(m, seg, std::max(2, seg / 2),
+                [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+                    float phi = 2.0f * kPi * u, theta = kPi * v; // theta from the south pole
+                    n = glm::vec3(std::sin(theta) * std::cos(phi), -std::cos(theta),
+                                  -std::sin(theta) * std::sin(phi));
+                    pos = r * n;
+                    uv = glm::vec2(u, v);
+                });
         // Pole rows are degenerate (zero-area triangles): drop them.
         std::vector<uint32_t> keep;
         for (size_t t = 0; t < m.indices.size(); t += 3) {
@@ -114,13 +118,14 @@ sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p) {
         });
     } else if (p.type == "torus") {
         float R = p.size, r = p.minorRadius;
-        addGrid(m, seg, std::max(3, seg / 2), [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
-            float a = 2.0f * kPi * u, b = 2.0f * kPi * v;
-            glm::vec3 ring(std::cos(a), 0.0f, -std::sin(a));
-            n = std::cos(b) * ring + glm::vec3(0.0f, std::sin(b), 0.0f);
-            pos = R * ring + r * n;
-            uv = glm::vec2(u, v);
-        });
+        addGrid(m, seg, std::max(3, seg / 2),
+                [&](float u, float v, glm::vec3& pos, glm::vec3& n, glm::vec2& uv) {
+                    float a = 2.0f * kPi * u, b = 2.0f * kPi * v;
+                    glm::vec3 ring(std::cos(a), 0.0f, -std::sin(a));
+                    n = std::cos(b) * ring + glm::vec3(0.0f, std::sin(b), 0.0f);
+                    pos = R * ring + r * n;
+                    uv = glm::vec2(u, v);
+                });
     } else { // cube
         float h = 0.5f * p.size;
         int n = std::max(1, seg / 8);
@@ -168,8 +173,10 @@ void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, g
 // ---------------------------------------------------------------------------
 // Textures
 
-std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const std::string& sceneName) {
-    if (!src.procedural.empty()) return std::make_shared<TextureImage>(detail::makeProceduralTexture(src));
+std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
+                                                const std::string& sceneName) {
+    if (!src.procedural.empty())
+        return std::make_shared<TextureImage>(detail::makeProceduralTexture(src));
     const std::string name = src.file.string();
     std::error_code ec;
     if (!fs::is_regular_file(src.file, ec)) {
@@ -177,16 +184,18 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const 
     }
     auto in = OIIO::ImageInput::open(name);
     if (!in) {
-        throw io::InputError(name, "", "cannot read image (" + OIIO::geterror() + ") [" + src.fieldPath + "]");
+        throw io::InputError(
+            name, "", "cannot read image (" + OIIO::geterror() + ") [" + src.fieldPath + "]");
     }
     const OIIO::ImageSpec& spec = in->spec();
     constexpr int kMaxTexSize = 16384;
-    if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTexSize || spec.height > kMaxTexSize ||
-        spec.nchannels < 1 || spec.nchannels > 64) {
-        throw io::InputError(name, "", "unsupported image size " + std::to_string(spec.width) + "x" +
-                                           std::to_string(spec.height) + " with " +
-                                           std::to_string(spec.nchannels) + " channels (at most " +
-                                           std::to_string(kMaxTexSize) + " per side)");
+    if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTexSize ||
+        spec.height > kMaxTexSize || spec.nchannels < 1 || spec.nchannels > 64) {
+        throw io::InputError(name, "",
+                             "unsupported image size " + std::to_string(spec.width) + "x" +
+                                 std::to_string(spec.height) + " with " +
+                                 std::to_string(spec.nchannels) + " channels (at most " +
+                                 std::to_string(kMaxTexSize) + " per side)");
     }
     const int w = spec.width, h = spec.height, nc = spec.nchannels;
     std::vector<float> raw(size_t(w) * size_t(h) * size_t(nc));
@@ -208,7 +217,9 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const 
             }
             for (int c = 0; c < 4; ++c) {
                 if (!std::isfinite(t[c])) {
-                    throw io::InputError(name, "pixel (" + std::to_string(x) + ", " + std::to_string(h - 1 - y) + ")",
+                    throw io::InputError(name,
+                                         "pixel (" + std::to_string(x) + ", " +
+                                             std::to_string(h - 1 - y) + ")",
                                          "non-finite texel value");
                 }
             }
@@ -235,14 +246,16 @@ void collectFeatures(const Layer& L, std::vector<const Layer*>& out) {
 
 // Loads or bakes a feature layer's maps (features are not baked unless an
 // enabled layer uses them).
-std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f, const std::string& sceneName) {
+std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
+                                                        const std::string& sceneName) {
     namespace sf = sg::features;
     static std::atomic<uint64_t> nextUid{1};
     sf::FeatureMaps maps;
     if (!f.mapsFile.empty()) {
         std::error_code ec;
         if (!fs::is_regular_file(f.mapsFile, ec)) {
-            throw io::InputError(sceneName, f.fieldPath, "feature maps file " + f.mapsFile.string() + " does not exist");
+            throw io::InputError(sceneName, f.fieldPath,
+                                 "feature maps file " + f.mapsFile.string() + " does not exist");
         }
         maps = sf::load(f.mapsFile);
     } else {
@@ -283,7 +296,9 @@ struct FileCache {
     }
 };
 
-std::string elementOf(const MeshInstance& mi, const std::string& sub) { return mi.fieldPath + "." + sub; }
+std::string elementOf(const MeshInstance& mi, const std::string& sub) {
+    return mi.fieldPath + "." + sub;
+}
 
 // Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o) to
 // the built mesh, and their limit derivatives (the linear part R S times
@@ -293,7 +308,8 @@ std::string elementOf(const MeshInstance& mi, const std::string& sub) { return m
 // refining the mapped set; it also costs no extra face-varying channel.
 // Vertices are already split wherever the source set has seams, and a
 // derived set is a function of its source, so it needs no further splits.
-void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh& mesh, sm::LimitFrame& limit) {
+void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh& mesh,
+                      sm::LimitFrame& limit) {
     for (const DerivedUvSet& d : mi.derivedUvSets) {
         const size_t count = mesh.uvSets.size();
         if (size_t(d.from) >= count) {
@@ -304,12 +320,13 @@ void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh
         }
         if (count >= size_t(kMaxUvSets)) {
             throw io::InputError(scene.sourceName, d.fieldPath,
-                                 "a mesh can have at most " + std::to_string(kMaxUvSets) + " UV sets (it has " +
-                                     std::to_string(count) + " already)");
+                                 "a mesh can have at most " + std::to_string(kMaxUvSets) +
+                                     " UV sets (it has " + std::to_string(count) + " already)");
         }
         const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
         // Column-major: R = [[c, s], [-s, c]] as columns, then scale per axis.
-        const glm::mat2 lin = glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+        const glm::mat2 lin =
+            glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
         std::vector<glm::vec2> uv(mesh.uvSets[size_t(d.from)]);
         for (auto& st : uv) st = lin * st + d.offset;
         mesh.uvSets.push_back(std::move(uv));
@@ -332,25 +349,30 @@ void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh
 // through the index buffer (corner c pointed at the original before and
 // at the copy after). MikkTSpace welds corners by value, so a split made
 // for one set does not change another set's tangents.
-void generateVertexTangents(const Scene& scene, const MeshInstance& mi, uint32_t wanted, const sm::LimitFrame& limit,
-                            MeshAsset& a) {
+void generateVertexTangents(const Scene& scene, const MeshInstance& mi, uint32_t wanted,
+                            const sm::LimitFrame& limit, MeshAsset& a) {
     a.vertexTangents.assign(a.mesh.uvSets.size(), {});
-    auto source = [&](size_t k) { return k < mi.tangents.size() ? mi.tangents[k] : TangentSource::Pixel; };
+    auto source = [&](size_t k) {
+        return k < mi.tangents.size() ? mi.tangents[k] : TangentSource::Pixel;
+    };
     auto element = [&](size_t k) { return elementOf(mi, "tangents[" + std::to_string(k) + "]"); };
     for (size_t k = 0; k < mi.tangents.size(); ++k) {
         if (mi.tangents[k] != TangentSource::Pixel && k >= a.mesh.uvSets.size()) {
-            throw io::InputError(scene.sourceName, element(k), "the mesh has no UV set " + std::to_string(k));
+            throw io::InputError(scene.sourceName, element(k),
+                                 "the mesh has no UV set " + std::to_string(k));
         }
     }
     for (size_t k = 0; k < a.mesh.uvSets.size(); ++k) {
         if (!(wanted >> k & 1u) || source(k) != TangentSource::Limit) continue;
         if (limit.empty()) {
-            throw io::InputError(scene.sourceName, element(k), "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+            throw io::InputError(scene.sourceName, element(k),
+                                 "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
         }
         try {
             sm::generateLimitTangents(a.mesh, limit, int(k));
         } catch (const std::invalid_argument& e) {
-            throw io::InputError(scene.sourceName, element(k), std::string("limit tangents failed: ") + e.what());
+            throw io::InputError(scene.sourceName, element(k),
+                                 std::string("limit tangents failed: ") + e.what());
         }
         a.vertexTangents[k] = std::move(a.mesh.tangents);
     }
@@ -361,13 +383,15 @@ void generateVertexTangents(const Scene& scene, const MeshInstance& mi, uint32_t
         try {
             sm::generateMikkTSpaceTangents(a.mesh, int(k));
         } catch (const std::invalid_argument& e) {
-            throw io::InputError(scene.sourceName, element(k), std::string("MikkTSpace failed: ") + e.what());
+            throw io::InputError(scene.sourceName, element(k),
+                                 std::string("MikkTSpace failed: ") + e.what());
         }
         const size_t countAfter = a.mesh.vertexCount();
         if (countAfter > countBefore) {
             std::vector<uint32_t> original(countAfter);
             for (size_t v = 0; v < countBefore; ++v) original[v] = uint32_t(v);
-            for (size_t c = 0; c < cornersBefore.size(); ++c) original[a.mesh.indices[c]] = cornersBefore[c];
+            for (size_t c = 0; c < cornersBefore.size(); ++c)
+                original[a.mesh.indices[c]] = cornersBefore[c];
             for (auto& t : a.vertexTangents) {
                 if (t.empty()) continue;
                 t.resize(countAfter);
@@ -406,7 +430,8 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
             const sm::Scene& fs = files.scene(mi.file);
             if (size_t(mi.fileInstance) >= fs.instances.size()) {
                 throw io::InputError(scene.sourceName, elementOf(mi, "file"),
-                                     "the file has no mesh instance " + std::to_string(mi.fileInstance));
+                                     "the file has no mesh instance " +
+                                         std::to_string(mi.fileInstance));
             }
             a.mesh = fs.instances[size_t(mi.fileInstance)].mesh;
         } else {
@@ -420,7 +445,8 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
         st.level = mi.subdivLevel;
         st.options = cage.options;
         if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, st.options.scheme)) {
-            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"), "unknown scheme");
+            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
+                                 "unknown scheme");
         }
         st.limit = mi.subdivLimit;
         sm::Subdivider sub(cage, st, mi.file.string());
@@ -457,7 +483,8 @@ void applyWeights(MeshAsset& a, const std::vector<float>& w) {
     a.vertexTangents = a.baseTangents;
     for (size_t t = 0; t < a.mesh.morphTargets.size() && t < w.size(); ++t) {
         const auto& mt = a.mesh.morphTargets[t];
-        for (size_t v = 0; v < mt.positionDeltas.size(); ++v) a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
+        for (size_t v = 0; v < mt.positionDeltas.size(); ++v)
+            a.mesh.positions[v] += w[t] * mt.positionDeltas[v];
         for (size_t v = 0; v < mt.normalDeltas.size() && v < a.mesh.normals.size(); ++v) {
             a.mesh.normals[v] += w[t] * mt.normalDeltas[v];
         }
@@ -494,8 +521,9 @@ SceneAssets loadAssets(const Scene& scene) {
         assets.meshes.push_back(loadMeshAsset(scene, mi, files));
         const auto& m = assets.meshes.back().mesh;
         assets.log.push_back("mesh " + (mi.name.empty() ? mi.fieldPath : mi.name) + ": " +
-                             std::to_string(m.vertexCount()) + " vertices, " + std::to_string(m.triangleCount()) +
-                             " triangles, " + std::to_string(m.uvSets.size()) + " UV sets");
+                             std::to_string(m.vertexCount()) + " vertices, " +
+                             std::to_string(m.triangleCount()) + " triangles, " +
+                             std::to_string(m.uvSets.size()) + " UV sets");
     }
     loadMissingAssets(scene, assets);
     applyFrame(scene, assets, 0.0f);
@@ -519,15 +547,16 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
         std::string key = L->feature->key();
         if (!assets.featureMaps.count(key)) {
             assets.featureMaps[key] = loadFeatureMaps(*L->feature, scene.sourceName);
-            assets.log.push_back("feature maps " + key + ": " + std::to_string(assets.featureMaps[key]->gpu.size) +
-                                 "^2 texels");
+            assets.log.push_back("feature maps " + key + ": " +
+                                 std::to_string(assets.featureMaps[key]->gpu.size) + "^2 texels");
         }
         // The profile must fit the band where distances are exact.
         double band = assets.featureMaps[key]->bandTexels;
         if (double(L->featWidth) > band - 1.5) {
             throw io::InputError(scene.sourceName, L->fieldPath + ".width",
                                  "the profile width must be at most " + std::to_string(band - 1.5) +
-                                     " texels (the maps hold exact distances up to " + std::to_string(band) + ")");
+                                     " texels (the maps hold exact distances up to " +
+                                     std::to_string(band) + ")");
         }
     }
     // Meshes whose enabled layers now read the basis of a UV set they ask
@@ -546,7 +575,8 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
         a = loadMeshAsset(scene, scene.meshes[i], files);
         if (!weights.empty()) applyWeights(a, weights);
         ++assets.meshVersion;
-        assets.log.push_back("mesh " + scene.meshes[i].fieldPath + ": rebuilt with vertex tangents for newly enabled layers");
+        assets.log.push_back("mesh " + scene.meshes[i].fieldPath +
+                             ": rebuilt with vertex tangents for newly enabled layers");
     }
     for (const TextureSource* src : sources) {
         std::string key = src->key();
@@ -554,7 +584,8 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
         assets.textures[key] = loadTexture(*src, scene.sourceName);
         const auto& t = assets.textures[key];
         assets.log.push_back("texture " + key + ": " + std::to_string(t->width()) + "x" +
-                             std::to_string(t->height()) + ", " + std::to_string(t->levels.size()) + " levels");
+                             std::to_string(t->height()) + ", " + std::to_string(t->levels.size()) +
+                             " levels");
     }
 }
 
@@ -571,7 +602,8 @@ std::vector<float> weightsAt(const MeshInstance& mi, const sg::mesh::RenderMesh&
         while (i < k.size() && k[i].time < t) ++i;
         float a = (t - k[i - 1].time) / (k[i].time - k[i - 1].time);
         std::vector<float> w(k[i].weights.size());
-        for (size_t j = 0; j < w.size(); ++j) w[j] = (1.0f - a) * k[i - 1].weights[j] + a * k[i].weights[j];
+        for (size_t j = 0; j < w.size(); ++j)
+            w[j] = (1.0f - a) * k[i - 1].weights[j] + a * k[i].weights[j];
         return w;
     }
     if (!mi.morphWeights.empty()) return mi.morphWeights;
@@ -659,7 +691,8 @@ Scene sceneForModel(const fs::path& model) {
             } else {
                 float t0 = anim.times.front(), t1 = anim.times.back();
                 int n = std::clamp(int((t1 - t0) * 30.0f) + 1, 2, 4096);
-                for (int k = 0; k < n; ++k) times.push_back(t0 + (t1 - t0) * float(k) / float(n - 1));
+                for (int k = 0; k < n; ++k)
+                    times.push_back(t0 + (t1 - t0) * float(k) / float(n - 1));
             }
             for (float t : times) mi.morphKeys.push_back(MorphKey{t, sm::sampleWeights(anim, t)});
             mi.morphLoop = true;
@@ -670,12 +703,14 @@ Scene sceneForModel(const fs::path& model) {
         if (inst.material >= 0 && size_t(inst.material) < s.materials.size()) {
             mi.material = inst.material;
         } else {
-            if (s.materials.empty() || s.materials.back().name != "default") s.materials.push_back(fallback);
+            if (s.materials.empty() || s.materials.back().name != "default")
+                s.materials.push_back(fallback);
             mi.material = int(s.materials.size()) - 1;
         }
         s.meshes.push_back(std::move(mi));
     }
-    if (s.meshes.empty()) throw io::InputError(model.string(), "", "the file has no triangle meshes");
+    if (s.meshes.empty())
+        throw io::InputError(model.string(), "", "the file has no triangle meshes");
     s.lights.push_back(Light{});
     Light fill;
     fill.direction = glm::vec3(0.6f, -0.2f, 0.5f);
@@ -690,8 +725,8 @@ Scene sceneForModel(const fs::path& model) {
 
 namespace {
 
-View finishView(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float fovDeg, float nearP, float farP, int w,
-                int h, Aov aov) {
+View finishView(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float fovDeg, float nearP,
+                float farP, int w, int h, Aov aov) {
     View v;
     v.width = w;
     v.height = h;
@@ -727,17 +762,18 @@ View makeView(const Scene& scene, const SceneAssets& assets, int width, int heig
         eye = center + dir * dist;
     }
     float dist = glm::length(eye - center);
-    float nearP = c.nearPlane > 0 ? c.nearPlane : std::max(dist - 2.0f * radius, std::max(dist, radius) * 1e-3f);
+    float nearP = c.nearPlane > 0 ? c.nearPlane
+                                  : std::max(dist - 2.0f * radius, std::max(dist, radius) * 1e-3f);
     float farP = c.farPlane > 0 ? c.farPlane : dist + 3.0f * radius;
     return finishView(eye, target, c.up, c.fovDeg, nearP, farP, w, h, aov);
 }
 
-View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg, float fovDeg,
-                   float nearPlane, float farPlane, int width, int height, Aov aov) {
+View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg,
+                   float fovDeg, float nearPlane, float farPlane, int width, int height, Aov aov) {
     float az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
     glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-    return finishView(target + distance * dir, target, glm::vec3(0, 1, 0), fovDeg, nearPlane, farPlane, width,
-                      height, aov);
+    return finishView(target + distance * dir, target, glm::vec3(0, 1, 0), fovDeg, nearPlane,
+                      farPlane, width, height, aov);
 }
 
 } // namespace sg::render

@@ -7,10 +7,11 @@
 
 namespace sg::render {
 
-VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image& primA, const Image& primB) {
+VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image& primA,
+                                    const Image& primB) {
     VectorImageDiff d;
-    if (a.width != b.width || a.height != b.height || primA.width != a.width || primB.width != a.width ||
-        primA.height != a.height || primB.height != a.height) {
+    if (a.width != b.width || a.height != b.height || primA.width != a.width ||
+        primB.width != a.width || primA.height != a.height || primB.height != a.height) {
         d.coverageMismatch = size_t(-1);
         return d;
     }
@@ -26,7 +27,8 @@ VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image&
             if (pa <= 0.0f) continue; // background in both
             glm::dvec3 va(a.at(x, y)), vb(b.at(x, y));
             bool finite = true;
-            for (int c = 0; c < 3; ++c) finite = finite && std::isfinite(va[c]) && std::isfinite(vb[c]);
+            for (int c = 0; c < 3; ++c)
+                finite = finite && std::isfinite(va[c]) && std::isfinite(vb[c]);
             ++d.compared;
             if (!finite) {
                 ++d.nonFinite;
@@ -36,7 +38,8 @@ VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image&
             double ang = 0.0;
             if (la > 0 && lb > 0) {
                 // atan2 of |cross| and dot: accurate for tiny angles too.
-                ang = std::atan2(glm::length(glm::cross(va, vb)), glm::dot(va, vb)) * 180.0 / 3.14159265358979;
+                ang = std::atan2(glm::length(glm::cross(va, vb)), glm::dot(va, vb)) * 180.0 /
+                      3.14159265358979;
             } else if (la != lb) {
                 ang = 180.0; // one vector vanished
             }
@@ -52,7 +55,9 @@ VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image&
     for (double x : angles) sum += x;
     d.meanDeg = sum / double(angles.size());
     std::sort(angles.begin(), angles.end());
-    auto pct = [&](double p) { return angles[std::min(angles.size() - 1, size_t(p * double(angles.size())))]; };
+    auto pct = [&](double p) {
+        return angles[std::min(angles.size() - 1, size_t(p * double(angles.size())))];
+    };
     d.p50Deg = pct(0.5);
     d.p90Deg = pct(0.9);
     d.p99Deg = pct(0.99);

@@ -36,12 +36,12 @@ struct ClipVert {
 // A screen-space triangle after clipping.
 struct ScreenTri {
     int mesh = 0;
-    uint32_t prim = 0;     // original triangle index (gl_PrimitiveID)
-    uint32_t vtx[3] = {};  // original triangle's vertex indices
-    glm::dvec2 win[3];     // window coordinates
-    double invW[3] = {};   // 1 / clip w
-    glm::vec3 bary[3];     // clipped vertex -> original barycentrics
-    double area = 0.0;     // signed area (twice), window space
+    uint32_t prim = 0;    // original triangle index (gl_PrimitiveID)
+    uint32_t vtx[3] = {}; // original triangle's vertex indices
+    glm::dvec2 win[3];    // window coordinates
+    double invW[3] = {};  // 1 / clip w
+    glm::vec3 bary[3];    // clipped vertex -> original barycentrics
+    double area = 0.0;    // signed area (twice), window space
     bool front = true;
 };
 
@@ -72,12 +72,14 @@ bool topLeft(glm::dvec2 a, glm::dvec2 b) {
 
 } // namespace
 
-Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view, const CpuOptions& options) {
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
+                const CpuOptions& options) {
     const int W = view.width, H = view.height;
     Image img;
     img.width = W;
     img.height = H;
-    glm::vec4 bg = view.aov == Aov::Color ? glm::vec4(scene.output.background, 1.0f) : glm::vec4(0.0f);
+    glm::vec4 bg =
+        view.aov == Aov::Color ? glm::vec4(scene.output.background, 1.0f) : glm::vec4(0.0f);
     img.pixels.assign(size_t(W) * size_t(H), bg);
     std::vector<float> depth(size_t(W) * size_t(H), 1.0f);
     std::vector<int32_t> visible(size_t(W) * size_t(H), -1);
@@ -124,7 +126,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
         const bool cull = scene.materials[size_t(inst.material)].doubleSided == DoubleSided::Off;
         for (size_t t = 0; t < m.triangleCount(); ++t) {
             uint32_t idx[3] = {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]};
-            std::vector<ClipVert> poly = {{clip[idx[0]], {1, 0, 0}}, {clip[idx[1]], {0, 1, 0}}, {clip[idx[2]], {0, 0, 1}}};
+            std::vector<ClipVert> poly = {
+                {clip[idx[0]], {1, 0, 0}}, {clip[idx[1]], {0, 1, 0}}, {clip[idx[2]], {0, 0, 1}}};
             poly = clipNear(poly);
             for (size_t f = 1; f + 1 < poly.size(); ++f) {
                 const ClipVert* cv[3] = {&poly[0], &poly[f], &poly[f + 1]};
@@ -138,13 +141,15 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                     glm::dvec4 c(cv[i]->clip);
                     if (!(c.w > 0.0)) ok = false;
                     st.invW[i] = 1.0 / c.w;
-                    st.win[i] = glm::dvec2((c.x * st.invW[i] * 0.5 + 0.5) * W, (c.y * st.invW[i] * 0.5 + 0.5) * H);
+                    st.win[i] = glm::dvec2((c.x * st.invW[i] * 0.5 + 0.5) * W,
+                                           (c.y * st.invW[i] * 0.5 + 0.5) * H);
                     zw[i] = c.z * st.invW[i] * 0.5 + 0.5;
                     st.bary[i] = cv[i]->bary;
                 }
                 if (!ok) continue;
                 const auto& p = st.win;
-                st.area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+                st.area =
+                    (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
                 if (st.area == 0.0 || !std::isfinite(st.area)) continue;
                 st.front = (st.area > 0.0) == (detSign > 0.0f);
                 if (cull && !st.front) continue;
@@ -164,7 +169,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                         bool inside = true;
                         for (int i = 0; i < 3 && inside; ++i) {
                             glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
-                            double e = s * ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x));
+                            double e =
+                                s * ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x));
                             b[i] = e;
                             glm::dvec2 from = s > 0 ? a0 : a1, to = s > 0 ? a1 : a0;
                             inside = e > 0.0 || (e == 0.0 && topLeft(from, to));
@@ -172,7 +178,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                         if (!inside) continue;
                         double sum = b[0] + b[1] + b[2];
                         double z = (b[0] * zw[0] + b[1] * zw[1] + b[2] * zw[2]) / sum;
-                        if (!(z <= 1.0) || !(z >= 0.0)) continue; // outside the depth range (far plane)
+                        if (!(z <= 1.0) || !(z >= 0.0))
+                            continue; // outside the depth range (far plane)
                         size_t pix = size_t(y) * size_t(W) + size_t(x);
                         if (!(float(z) < depth[pix])) continue;
                         depth[pix] = float(z);
@@ -193,7 +200,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     float primBase = 0.0f;
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         plans.push_back(planMaterial(scene, assets, int(mi), scene.meshes[mi].material));
-        uniforms.push_back(detail::drawUniforms(scene, assets, plans.back(), view, int(mi), primBase));
+        uniforms.push_back(
+            detail::drawUniforms(scene, assets, plans.back(), view, int(mi), primBase));
         featureSamplers.push_back(detail::planFeatureSamplers(plans.back(), assets));
         samplers.push_back(detail::planSamplers(plans.back(), assets, options.textureLod));
         primBase += float(assets.meshes[mi].mesh.triangleCount());
@@ -252,7 +260,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             }
             auto interp = [&](const auto& arr, glm::dvec3 w) {
                 using T = std::decay_t<decltype(arr[0])>;
-                return T(float(w.x) * arr[st.vtx[0]] + float(w.y) * arr[st.vtx[1]] + float(w.z) * arr[st.vtx[2]]);
+                return T(float(w.x) * arr[st.vtx[0]] + float(w.y) * arr[st.vtx[1]] +
+                         float(w.z) * arr[st.vtx[2]]);
             };
             detail::PixelInputs in;
             in.relPos = interp(d.rel, mu);
@@ -269,8 +278,9 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             }
             in.frontFacing = st.front;
             in.primId = float(st.prim);
-            img.pixels[pix] = detail::shadePixelCpu(plans[size_t(st.mesh)], uniforms[size_t(st.mesh)],
-                                                    samplers[size_t(st.mesh)], featureSamplers[size_t(st.mesh)], in);
+            img.pixels[pix] = detail::shadePixelCpu(
+                plans[size_t(st.mesh)], uniforms[size_t(st.mesh)], samplers[size_t(st.mesh)],
+                featureSamplers[size_t(st.mesh)], in);
         }
     });
     return img;

@@ -127,16 +127,18 @@ struct GlRenderer::Impl {
             // Tangents move with morphing; UVs and indices never change.
             for (int k = 0; k < kMaxUvSets; ++k) {
                 size_t kk = size_t(k);
-                uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k), kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
+                uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k),
+                             kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
             }
             if (fresh || g.layoutId != a.layoutId) {
                 for (int k = 0; k < kMaxUvSets; ++k) {
                     size_t kk = size_t(k);
-                    uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k), kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
+                    uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k),
+                                 kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
                 }
                 if (!g.ebo) glCreateBuffers(1, &g.ebo);
-                glNamedBufferData(g.ebo, GLsizeiptr(a.mesh.indices.size() * sizeof(uint32_t)), a.mesh.indices.data(),
-                                  GL_STATIC_DRAW);
+                glNamedBufferData(g.ebo, GLsizeiptr(a.mesh.indices.size() * sizeof(uint32_t)),
+                                  a.mesh.indices.data(), GL_STATIC_DRAW);
                 glVertexArrayElementBuffer(g.vao, g.ebo);
                 g.indexCount = GLsizei(a.mesh.indices.size());
                 g.layoutId = a.layoutId;
@@ -155,7 +157,8 @@ struct GlRenderer::Impl {
         // The exact mip chain the CPU reference filters (no glGenerateMipmap).
         for (size_t l = 0; l < img->levels.size(); ++l) {
             const auto& L = img->levels[l];
-            glTextureSubImage2D(t, GLint(l), 0, 0, L.width, L.height, GL_RGBA, GL_FLOAT, L.texels.data());
+            glTextureSubImage2D(t, GLint(l), 0, 0, L.width, L.height, GL_RGBA, GL_FLOAT,
+                                L.texels.data());
         }
         glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -177,10 +180,11 @@ struct GlRenderer::Impl {
             GLuint t[2];
             glCreateTextures(GL_TEXTURE_2D, 2, t);
             glTextureStorage2D(t[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
-            glTextureSubImage2D(t[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(), GL_RGBA_INTEGER,
-                                GL_UNSIGNED_INT, g.cornerPairs.data());
+            glTextureSubImage2D(t[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(),
+                                GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.cornerPairs.data());
             glTextureStorage2D(t[1], 1, GL_RGBA32UI, g.size, g.size);
-            glTextureSubImage2D(t[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.edges.data());
+            glTextureSubImage2D(t[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                                g.edges.data());
             for (GLuint x : t) {
                 glTextureParameteri(x, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
                 glTextureParameteri(x, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -197,8 +201,10 @@ struct GlRenderer::Impl {
         if (it != programs.end()) return it->second;
         ProgramSource src = assembleProgram(plan);
         std::vector<std::pair<sg::gl::Stage, sg::shaders::Assembled>> stages;
-        stages.push_back({sg::gl::Stage::Vertex, sg::shaders::Assembled{src.vertex, src.vertexFiles}});
-        stages.push_back({sg::gl::Stage::Fragment, sg::shaders::Assembled{src.fragment, src.fragmentFiles}});
+        stages.push_back(
+            {sg::gl::Stage::Vertex, sg::shaders::Assembled{src.vertex, src.vertexFiles}});
+        stages.push_back(
+            {sg::gl::Stage::Fragment, sg::shaders::Assembled{src.fragment, src.fragmentFiles}});
         GpuProgram gp;
         gp.program = sg::gl::Program(stages);
         ++stats.programsCompiled;
@@ -209,10 +215,15 @@ struct GlRenderer::Impl {
 GlRenderer::GlRenderer() : impl_(std::make_unique<Impl>()) {}
 GlRenderer::~GlRenderer() = default;
 
-void GlRenderer::invalidateMeshes() { impl_->meshesDirty = true; }
-size_t GlRenderer::cachedPrograms() const { return impl_->programs.size(); }
+void GlRenderer::invalidateMeshes() {
+    impl_->meshesDirty = true;
+}
+size_t GlRenderer::cachedPrograms() const {
+    return impl_->programs.size();
+}
 
-unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& assets, const View& view) {
+unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& assets,
+                                     const View& view) {
     Impl& I = *impl_;
     stats_ = RenderStats{};
     I.ensureFramebuffer(view.width, view.height);
@@ -253,7 +264,8 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
         glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
         glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
         glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
-        if (plan.uber) glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()), u.uberFlags.data());
+        if (plan.uber)
+            glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()), u.uberFlags.data());
         for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
             auto it = assets.textures.find(plan.textureKeys[s]);
             GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;

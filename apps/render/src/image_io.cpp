@@ -17,7 +17,8 @@ namespace {
 
 std::string lowerExt(const fs::path& p) {
     std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(e.begin(), e.end(), e.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     return e;
 }
 
@@ -25,8 +26,10 @@ std::string lowerExt(const fs::path& p) {
 glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
     if (int(aov) < 0) return glm::vec3(v);
     switch (aov) {
-    case Aov::Color: return sg::glsl::sgToneMap(glm::vec3(v), exposure);
-    case Aov::Uv: return glm::vec3(v.x - std::floor(v.x), v.y - std::floor(v.y), 0.0f);
+    case Aov::Color:
+        return sg::glsl::sgToneMap(glm::vec3(v), exposure);
+    case Aov::Uv:
+        return glm::vec3(v.x - std::floor(v.x), v.y - std::floor(v.y), 0.0f);
     case Aov::PrimId: {
         if (v.x <= 0.0f) return glm::vec3(0.0f);
         uint32_t h = uint32_t(v.x) * 0x9e3779b1u;
@@ -35,7 +38,8 @@ glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
         h ^= h >> 13;
         return glm::vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0f;
     }
-    default: return 0.5f * glm::vec3(v) + glm::vec3(0.5f); // unit vectors to [0,1]
+    default:
+        return 0.5f * glm::vec3(v) + glm::vec3(0.5f); // unit vectors to [0,1]
     }
 }
 
@@ -51,7 +55,8 @@ void writeDisplayImage(const fs::path& path, const Image& image) {
 void writeImage(const fs::path& path, const Image& image, Aov aov, float exposure) {
     const std::string ext = lowerExt(path);
     if (ext != ".png" && ext != ".exr") {
-        throw io::InputError(path.string(), "", "unsupported image format \"" + ext + "\" (expected .png or .exr)");
+        throw io::InputError(path.string(), "",
+                             "unsupported image format \"" + ext + "\" (expected .png or .exr)");
     }
     const int W = image.width, H = image.height;
     const bool exr = ext == ".exr";
@@ -66,13 +71,16 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
                 for (int c = 0; c < 4; ++c) o[c] = v[c];
             } else {
                 glm::vec3 d = displayValue(v, aov, exposure);
-                for (int c = 0; c < 3; ++c) o[c] = std::isfinite(d[c]) ? std::clamp(d[c], 0.0f, 1.0f) : 0.0f;
+                for (int c = 0; c < 3; ++c)
+                    o[c] = std::isfinite(d[c]) ? std::clamp(d[c], 0.0f, 1.0f) : 0.0f;
             }
         }
     }
     io::writeAtomically(path, [&](const fs::path& tmp) {
         auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out) throw io::InputError(path.string(), "", "cannot create image writer: " + OIIO::geterror());
+        if (!out)
+            throw io::InputError(path.string(), "",
+                                 "cannot create image writer: " + OIIO::geterror());
         OIIO::ImageSpec spec(W, H, nc, exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
         if (exr) {
             spec.channelnames = {"R", "G", "B", "A"};
@@ -80,7 +88,8 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
             spec.attribute("compression", "zip");
         }
         spec.attribute("surfgrad:aov", int(aov) < 0 ? "display" : aovName(aov));
-        if (!out->open(tmp.string(), spec) || !out->write_image(OIIO::TypeDesc::FLOAT, buf.data()) || !out->close()) {
+        if (!out->open(tmp.string(), spec) ||
+            !out->write_image(OIIO::TypeDesc::FLOAT, buf.data()) || !out->close()) {
             throw io::InputError(path.string(), "", "cannot write image: " + out->geterror());
         }
     });
@@ -90,8 +99,8 @@ Image readImage(const fs::path& path) {
     auto in = OIIO::ImageInput::open(path.string());
     if (!in) throw io::InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
     const auto& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.width > 65536 || spec.height > 65536 || spec.nchannels < 1 ||
-        spec.nchannels > 64) {
+    if (spec.width < 1 || spec.height < 1 || spec.width > 65536 || spec.height > 65536 ||
+        spec.nchannels < 1 || spec.nchannels > 64) {
         throw io::InputError(path.string(), "", "unsupported image size");
     }
     Image img;
@@ -105,7 +114,8 @@ Image readImage(const fs::path& path) {
     img.pixels.resize(size_t(img.width) * size_t(img.height));
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
-            const float* p = &raw[(size_t(img.height - 1 - y) * size_t(img.width) + size_t(x)) * size_t(nc)];
+            const float* p =
+                &raw[(size_t(img.height - 1 - y) * size_t(img.width) + size_t(x)) * size_t(nc)];
             glm::vec4 v(0, 0, 0, 1);
             for (int c = 0; c < std::min(nc, 4); ++c) v[c] = p[c];
             if (nc == 1) v = glm::vec4(p[0], p[0], p[0], 1);

@@ -31,15 +31,24 @@ namespace {
 // Records (vec4 uniforms) each layer kind reads.
 int recordCountOf(LayerKind k) {
     switch (k) {
-    case LayerKind::UvNormal: return 2;
-    case LayerKind::ObjectNormal: return 1;
-    case LayerKind::Height: return 1;
-    case LayerKind::DerivMap: return 2;
-    case LayerKind::Triplanar: return 2;
-    case LayerKind::Decal: return 6;
-    case LayerKind::Noise: return 3;
-    case LayerKind::Feature: return 9;
-    case LayerKind::PostResolve: return 0;
+    case LayerKind::UvNormal:
+        return 2;
+    case LayerKind::ObjectNormal:
+        return 1;
+    case LayerKind::Height:
+        return 1;
+    case LayerKind::DerivMap:
+        return 2;
+    case LayerKind::Triplanar:
+        return 2;
+    case LayerKind::Decal:
+        return 6;
+    case LayerKind::Noise:
+        return 3;
+    case LayerKind::Feature:
+        return 9;
+    case LayerKind::PostResolve:
+        return 0;
     }
     return 0;
 }
@@ -61,15 +70,22 @@ const char* layerFile(LayerKind k, bool mods) {
     switch (k) {
     case LayerKind::UvNormal:
         return mods ? "sg/render/layer_uv_normal_mods.glsl" : "sg/render/layer_uv_normal.glsl";
-    case LayerKind::ObjectNormal: return "sg/render/layer_object_normal.glsl";
-    case LayerKind::Height: return "sg/render/layer_height.glsl";
+    case LayerKind::ObjectNormal:
+        return "sg/render/layer_object_normal.glsl";
+    case LayerKind::Height:
+        return "sg/render/layer_height.glsl";
     case LayerKind::DerivMap:
         return mods ? "sg/render/layer_deriv_map_mods.glsl" : "sg/render/layer_deriv_map.glsl";
-    case LayerKind::Triplanar: return "sg/render/layer_triplanar.glsl";
-    case LayerKind::Decal: return "sg/render/layer_decal.glsl";
-    case LayerKind::Noise: return "sg/render/layer_noise.glsl";
-    case LayerKind::Feature: return "sg/render/layer_feature.glsl";
-    case LayerKind::PostResolve: return "";
+    case LayerKind::Triplanar:
+        return "sg/render/layer_triplanar.glsl";
+    case LayerKind::Decal:
+        return "sg/render/layer_decal.glsl";
+    case LayerKind::Noise:
+        return "sg/render/layer_noise.glsl";
+    case LayerKind::Feature:
+        return "sg/render/layer_feature.glsl";
+    case LayerKind::PostResolve:
+        return "";
     }
     return "";
 }
@@ -79,18 +95,37 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     const Layer& L = *pl.layer;
     std::string s;
     switch (L.kind) {
-    case LayerKind::UvNormal: s = "uvn"; break;
-    case LayerKind::ObjectNormal: s = "osn"; break;
-    case LayerKind::Height: s = "hgt"; break;
-    case LayerKind::DerivMap: s = "drv"; break;
-    case LayerKind::Triplanar: s = "tri"; break;
-    case LayerKind::Decal: s = "dec"; break;
-    case LayerKind::Noise: s = "noi"; break;
-    case LayerKind::Feature: s = "fea"; break;
-    case LayerKind::PostResolve: s = "grp"; break;
+    case LayerKind::UvNormal:
+        s = "uvn";
+        break;
+    case LayerKind::ObjectNormal:
+        s = "osn";
+        break;
+    case LayerKind::Height:
+        s = "hgt";
+        break;
+    case LayerKind::DerivMap:
+        s = "drv";
+        break;
+    case LayerKind::Triplanar:
+        s = "tri";
+        break;
+    case LayerKind::Decal:
+        s = "dec";
+        break;
+    case LayerKind::Noise:
+        s = "noi";
+        break;
+    case LayerKind::Feature:
+        s = "fea";
+        break;
+    case LayerKind::PostResolve:
+        s = "grp";
+        break;
     }
     if (usesUv(L.kind)) {
-        s += "@uv" + std::to_string(L.uvSet) + ((plan.vertexTangentMask >> L.uvSet) & 1u ? "v" : "p");
+        s += "@uv" + std::to_string(L.uvSet) +
+             ((plan.vertexTangentMask >> L.uvSet) & 1u ? "v" : "p");
     }
     if (L.kind == LayerKind::Triplanar || L.kind == LayerKind::Noise) {
         s += L.space == Space::World ? "@w" : "@o";
@@ -193,8 +228,8 @@ struct Planner {
                 const MeshInstance& mi = scene.meshes[size_t(meshIndex)];
                 throw io::InputError(scene.sourceName, L.fieldPath + ".uv_set",
                                      "UV set " + std::to_string(L.uvSet) + " is used, but mesh " +
-                                         (mi.name.empty() ? mi.fieldPath : "\"" + mi.name + "\"") + " has " +
-                                         std::to_string(plan.uvCount) + " UV set(s)");
+                                         (mi.name.empty() ? mi.fieldPath : "\"" + mi.name + "\"") +
+                                         " has " + std::to_string(plan.uvCount) + " UV set(s)");
             }
             plan.uvUsedMask |= 1u << L.uvSet;
         }
@@ -262,8 +297,10 @@ struct Planner {
             for (const auto& pl : plan.groups[g]) sig << sigCode(pl, plan) << ";";
             sig << "]";
         }
-        if (plan.baseColorTex >= 0) sig << "|bc@uv" << plan.baseColorUvSet << ":t" << plan.baseColorTex;
-        if (plan.featureLayerCount > 0) sig << (plan.featureCurved ? "|featcurved" : "|featstraight");
+        if (plan.baseColorTex >= 0)
+            sig << "|bc@uv" << plan.baseColorUvSet << ":t" << plan.baseColorTex;
+        if (plan.featureLayerCount > 0)
+            sig << (plan.featureCurved ? "|featcurved" : "|featstraight");
         sig << "|tex" << plan.textureKeys.size();
         plan.signature = sig.str();
     }
@@ -276,15 +313,16 @@ uint32_t tangentBasisUvSets(const Material& material) {
     // Group 0 only: post_resolve groups re-derive every UV basis per pixel
     // from the resolved normal (section 2.11), so they never read vertex tangents.
     for (const Layer& L : material.layers) {
-        if (L.enabled && readsTangentBasis(L) && L.uvSet >= 0 && L.uvSet < kMaxUvSets) sets |= 1u << L.uvSet;
+        if (L.enabled && readsTangentBasis(L) && L.uvSet >= 0 && L.uvSet < kMaxUvSets)
+            sets |= 1u << L.uvSet;
     }
     return sets;
 }
 
 namespace {
 
-MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshIndex, int materialIndex,
-                      bool uber) {
+MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshIndex,
+                      int materialIndex, bool uber) {
     assert(meshIndex >= 0 && size_t(meshIndex) < scene.meshes.size());
     assert(materialIndex >= 0 && size_t(materialIndex) < scene.materials.size());
     Planner p{scene, assets, meshIndex, {}, {}};
@@ -296,7 +334,8 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
     // basis (a mesh may keep tangents of a set whose layers were switched off).
     const uint32_t basisSets = tangentBasisUvSets(scene.materials[size_t(materialIndex)]);
     for (int k = 0; k < p.plan.uvCount && k < int(ma.vertexTangents.size()); ++k) {
-        if (!ma.vertexTangents[size_t(k)].empty() && (basisSets >> k & 1u)) p.plan.vertexTangentMask |= 1u << k;
+        if (!ma.vertexTangents[size_t(k)].empty() && (basisSets >> k & 1u))
+            p.plan.vertexTangentMask |= 1u << k;
     }
     p.plan.lightCount = std::max(1, int(scene.lights.size()));
     p.plan.groups.emplace_back();
@@ -315,7 +354,8 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
 
 } // namespace
 
-MaterialPlan planMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex, int materialIndex) {
+MaterialPlan planMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,
+                          int materialIndex) {
     return makePlan(scene, assets, meshIndex, materialIndex, false);
 }
 
@@ -343,7 +383,9 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
             case LayerKind::ObjectNormal:
                 o[0] = {L.strength, enc, b(L.space == Space::Object), 0};
                 break;
-            case LayerKind::Height: o[0] = {L.heightWorld, float(L.channel), 0, 0}; break;
+            case LayerKind::Height:
+                o[0] = {L.heightWorld, float(L.channel), 0, 0};
+                break;
             case LayerKind::DerivMap:
                 o[0] = {L.strength, b(L.derivSigned), L.derivRange, b(L.derivTexelSpace)};
                 o[1] = {b(L.flipV), float(L.heightChannel), L.heightScale, 0};
@@ -361,7 +403,8 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
                 o[5] = {b(L.flipV), 0, 0, 0};
                 break;
             case LayerKind::Noise:
-                o[0] = {L.noiseAmplitude, L.noiseFrequency, float(int(L.noiseType)), float(L.noiseOctaves)};
+                o[0] = {L.noiseAmplitude, L.noiseFrequency, float(int(L.noiseType)),
+                        float(L.noiseOctaves)};
                 o[1] = {L.noiseLacunarity, L.noiseGain, L.noiseExponent, b(L.noiseAntialias)};
                 o[2] = glm::vec4(L.noiseOffset, 0.0f);
                 break;
@@ -371,15 +414,18 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
                 o[0] = {L.strength, b(L.featPaperMode), 0.0f, L.featTiling};
                 o[1] = {L.featOffset.x, L.featOffset.y, b(!L.maps.empty()), enc};
                 o[2] = {b(L.flipV), 0, 0, 0};
-                sg::glsl::SgFeatProfile pr = sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
+                sg::glsl::SgFeatProfile pr =
+                    sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
                 o[3] = {float(pr.kind), pr.depth, pr.w0, pr.w};
                 o[4] = {float(pr.tableCount), 0, 0, 0};
                 for (int t = 0; t < 4; ++t) {
-                    o[5 + t] = {pr.table[4 * t], pr.table[4 * t + 1], pr.table[4 * t + 2], pr.table[4 * t + 3]};
+                    o[5 + t] = {pr.table[4 * t], pr.table[4 * t + 1], pr.table[4 * t + 2],
+                                pr.table[4 * t + 3]};
                 }
                 break;
             }
-            case LayerKind::PostResolve: break;
+            case LayerKind::PostResolve:
+                break;
             }
             if (pl.hasModifiers) {
                 glm::vec4* m = &r[size_t(pl.modRecord)];
@@ -417,14 +463,18 @@ std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view) {
 
 namespace detail {
 
-glm::mat3 normalMatrix(const glm::mat4& model) { return glm::transpose(glm::inverse(glm::mat3(model))); }
+glm::mat3 normalMatrix(const glm::mat4& model) {
+    return glm::transpose(glm::inverse(glm::mat3(model)));
+}
 
-DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan, const View& view,
-                          int meshIndex, float primBase) {
+DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan,
+                          const View& view, int meshIndex, float primBase) {
     DrawUniforms u;
     const Material& mat = scene.materials[size_t(plan.materialIndex)];
     const MeshInstance& mi = scene.meshes[size_t(meshIndex)];
-    u.bfaceMode = mat.doubleSided == DoubleSided::Mirror ? 1 : mat.doubleSided == DoubleSided::Flip ? 2 : 0;
+    u.bfaceMode = mat.doubleSided == DoubleSided::Mirror ? 1
+                  : mat.doubleSided == DoubleSided::Flip ? 2
+                                                         : 0;
     u.aov = int(view.aov);
     u.primBase = primBase;
     u.baseColor = mat.baseColor;
@@ -441,7 +491,8 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
         for (const auto& pl : g) {
             if (pl.featureSlot < 0) continue;
             auto it = assets.featureMaps.find(plan.featureKeys[size_t(pl.featureSlot)]);
-            if (it != assets.featureMaps.end()) u.records[size_t(pl.record)].z = float(it->second->gpu.size);
+            if (it != assets.featureMaps.end())
+                u.records[size_t(pl.record)].z = float(it->second->gpu.size);
         }
     if (plan.uber) {
         u.uberFlags.assign(size_t(std::max(plan.uberFlagCount, 1)), 0.0f);
@@ -462,7 +513,8 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
     return u;
 }
 
-std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan, const SceneAssets& assets) {
+std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
+                                                 const SceneAssets& assets) {
     std::vector<FeatureSamplers> s(plan.featureKeys.size());
     for (size_t i = 0; i < s.size(); ++i) {
         auto it = assets.featureMaps.find(plan.featureKeys[i]);
@@ -491,14 +543,20 @@ std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const Sc
 
 namespace {
 
-std::string rec(int i) { return "uLayerData[" + std::to_string(i) + "]"; }
+std::string rec(int i) {
+    return "uLayerData[" + std::to_string(i) + "]";
+}
 std::string recs(int first, int count) {
     std::string s;
     for (int i = 0; i < count; ++i) s += (i ? ", " : "") + rec(first + i);
     return s;
 }
-std::string tex(int slot) { return "uTex" + std::to_string(slot); }
-std::string uvVar(int set) { return "uv" + std::to_string(set); }
+std::string tex(int slot) {
+    return "uTex" + std::to_string(slot);
+}
+std::string uvVar(int set) {
+    return "uv" + std::to_string(set);
+}
 
 // The GLSL expression of a layer's surface gradient.
 std::string layerCall(const PlanLayer& pl) {
@@ -507,24 +565,29 @@ std::string layerCall(const PlanLayer& pl) {
     std::string vol = L.space == Space::World ? "volWorld" : "volObject";
     switch (L.kind) {
     case LayerKind::UvNormal:
-        return "sgLayerUvNormal(" + uv + ", sgUnpackUvNormal(" + recs(pl.record, 2) + "), " + tex(pl.tex[0]) + ")";
+        return "sgLayerUvNormal(" + uv + ", sgUnpackUvNormal(" + recs(pl.record, 2) + "), " +
+               tex(pl.tex[0]) + ")";
     case LayerKind::ObjectNormal:
         return "sgLayerObjectNormal(frame, " + uv + ", sgUnpackObjectNormal(" + recs(pl.record, 1) +
                "), uNormalMat, " + tex(pl.tex[0]) + ")";
     case LayerKind::Height:
-        return "sgLayerHeight(frame, " + uv + ", sgUnpackHeight(" + recs(pl.record, 1) + "), " + tex(pl.tex[0]) + ")";
+        return "sgLayerHeight(frame, " + uv + ", sgUnpackHeight(" + recs(pl.record, 1) + "), " +
+               tex(pl.tex[0]) + ")";
     case LayerKind::DerivMap:
         return "sgLayerDerivMap(frame, " + uv + ", sgUnpackDerivMap(" + recs(pl.record, 2) + "), " +
                tex(pl.tex[0]) + ")";
     case LayerKind::Triplanar:
-        return "sgLayerTriplanar(frame, " + vol + ", sgUnpackTriplanar(" + recs(pl.record, 2) + "), " +
-               tex(pl.tex[0]) + ", " + tex(pl.tex[1]) + ", " + tex(pl.tex[2]) + ")";
+        return "sgLayerTriplanar(frame, " + vol + ", sgUnpackTriplanar(" + recs(pl.record, 2) +
+               "), " + tex(pl.tex[0]) + ", " + tex(pl.tex[1]) + ", " + tex(pl.tex[2]) + ")";
     case LayerKind::Decal:
-        return "sgLayerDecal(frame, vRelPos, sgUnpackDecal(" + recs(pl.record, 6) + "), " + tex(pl.tex[0]) + ")";
+        return "sgLayerDecal(frame, vRelPos, sgUnpackDecal(" + recs(pl.record, 6) + "), " +
+               tex(pl.tex[0]) + ")";
     case LayerKind::Noise:
         return "sgLayerNoise(frame, " + vol + ", sgUnpackNoise(" + recs(pl.record, 3) + "))";
-    case LayerKind::Feature: break; // emitted as a loop per group (fragmentBody)
-    case LayerKind::PostResolve: break;
+    case LayerKind::Feature:
+        break; // emitted as a loop per group (fragmentBody)
+    case LayerKind::PostResolve:
+        break;
     }
     return "vec3(0.0)";
 }
@@ -539,31 +602,43 @@ std::string modifierBlock(const PlanLayer& pl, const std::string& indent) {
     bool uvn = L.kind == LayerKind::UvNormal;
     bool deform = !L.modifiers.empty() && L.modifiers[0].kind == ModifierKind::Deform;
     std::string o = "{\n";
-    o += in + (uvn ? "SgUvNormalParams p = sgUnpackUvNormal(" : "SgDerivMapParams p = sgUnpackDerivMap(") +
+    o += in +
+         (uvn ? "SgUvNormalParams p = sgUnpackUvNormal("
+              : "SgDerivMapParams p = sgUnpackDerivMap(") +
          recs(pl.record, 2) + ");\n";
     if (deform) {
         o += in + "mat2 jac;\n";
         o += in + "vec2 st = sgModWarp(" + rec(pl.modRecord) + ", " + uv + ".st, jac);\n";
-        o += in + "vec2 dx = jac * " + uv + ".dSTdx;\n" + in + "vec2 dy = jac * " + uv + ".dSTdy;\n";
+        o +=
+            in + "vec2 dx = jac * " + uv + ".dSTdx;\n" + in + "vec2 dy = jac * " + uv + ".dSTdy;\n";
     } else {
-        o += in + "vec2 st = " + uv + ".st;\n" + in + "vec2 dx = " + uv + ".dSTdx;\n" + in + "vec2 dy = " + uv +
-             ".dSTdy;\n";
+        o += in + "vec2 st = " + uv + ".st;\n" + in + "vec2 dx = " + uv + ".dSTdx;\n" + in +
+             "vec2 dy = " + uv + ".dSTdy;\n";
     }
-    o += in + "SgHeightDeriv hd = " + (uvn ? "sgSampleUvNormalHD(" : "sgSampleDerivMapHD(") + tex(pl.tex[0]) +
-         ", st, dx, dy, p);\n";
+    o += in + "SgHeightDeriv hd = " + (uvn ? "sgSampleUvNormalHD(" : "sgSampleDerivMapHD(") +
+         tex(pl.tex[0]) + ", st, dx, dy, p);\n";
     for (size_t i = 0; i < L.modifiers.size(); ++i) {
         std::string op = rec(pl.modRecord + int(i));
         switch (L.modifiers[i].kind) {
-        case ModifierKind::Deform: o += in + "hd = sgModDeform(hd, jac);\n"; break;
-        case ModifierKind::Scale: o += in + "hd = sgModScale(hd, " + op + ");\n"; break;
-        case ModifierKind::Curve: o += in + "hd = sgModCurve(hd, " + op + ");\n"; break;
+        case ModifierKind::Deform:
+            o += in + "hd = sgModDeform(hd, jac);\n";
+            break;
+        case ModifierKind::Scale:
+            o += in + "hd = sgModScale(hd, " + op + ");\n";
+            break;
+        case ModifierKind::Curve:
+            o += in + "hd = sgModCurve(hd, " + op + ");\n";
+            break;
         case ModifierKind::Modulate:
-            o += in + "hd = sgModModulate(hd, " + op + ", " + tex(pl.modTex[i]) + ", st, dx, dy);\n";
+            o +=
+                in + "hd = sgModModulate(hd, " + op + ", " + tex(pl.modTex[i]) + ", st, dx, dy);\n";
             break;
         }
     }
     o += in + "surfGrad += " +
-         (uvn ? "sgUvNormalSurfgrad(" + uv + ", p, hd)" : "sgDerivMapSurfgrad(frame, " + uv + ", p, hd.d, vec2(textureSize(" + tex(pl.tex[0]) + ", 0)))") +
+         (uvn ? "sgUvNormalSurfgrad(" + uv + ", p, hd)"
+              : "sgDerivMapSurfgrad(frame, " + uv + ", p, hd.d, vec2(textureSize(" +
+                    tex(pl.tex[0]) + ", 0)))") +
          ";\n";
     return o + indent + "}\n";
 }
@@ -592,8 +667,8 @@ std::string fragmentBody(const MaterialPlan& plan) {
         }
     for (const auto& f : files) o << "#include \"" << f << "\"\n";
     for (size_t i = 0; i < plan.textureKeys.size(); ++i) {
-        o << "uniform sampler2D uTex" << i << "; // " << (plan.textureKeys[i].empty() ? "(none)" : plan.textureKeys[i])
-          << "\n";
+        o << "uniform sampler2D uTex" << i << "; // "
+          << (plan.textureKeys[i].empty() ? "(none)" : plan.textureKeys[i]) << "\n";
     }
     if (plan.featureLayerCount > 0) {
         // Feature layers run in one loop per group (below), so the large
@@ -625,7 +700,8 @@ std::string fragmentBody(const MaterialPlan& plan) {
     }
     if (plan.uber) o << "uniform float uLayerOn[" << std::max(plan.uberFlagCount, 1) << "];\n";
     o << "\nvoid main() {\n"
-      << "    // Prologue (Mikkelsen 2019, listing 16): derivatives of the camera-relative position.\n"
+      << "    // Prologue (Mikkelsen 2019, listing 16): derivatives of the camera-relative "
+         "position.\n"
       << "    vec3 dPdx = dFdxFine(vRelPos);\n"
       << "    vec3 dPdy = dFdyFine(vRelPos);\n"
       << "    SgFrame frame = sgPrologue(vNormal, dPdx, dPdy, gl_FrontFacing, uBfaceMode);\n"
@@ -638,15 +714,16 @@ std::string fragmentBody(const MaterialPlan& plan) {
         o << "    vec2 dUv" << k << "dx = dFdxFine(" << v << ");\n"
           << "    vec2 dUv" << k << "dy = dFdyFine(" << v << ");\n";
         if (plan.vertexTangentMask >> k & 1u) {
-            o << "    SgUvFrame uv" << k << " = sgUvFrameVertex(" << v << ", dUv" << k << "dx, dUv" << k
-              << "dy, vNormal, vTangent" << k << ");\n";
+            o << "    SgUvFrame uv" << k << " = sgUvFrameVertex(" << v << ", dUv" << k << "dx, dUv"
+              << k << "dy, vNormal, vTangent" << k << ");\n";
         } else {
-            o << "    SgUvFrame uv" << k << " = sgUvFramePixel(frame, " << v << ", dUv" << k << "dx, dUv" << k
-              << "dy);\n";
+            o << "    SgUvFrame uv" << k << " = sgUvFramePixel(frame, " << v << ", dUv" << k
+              << "dx, dUv" << k << "dy);\n";
         }
     }
     if (plan.usesWorldVolume) {
-        o << "    SgVolumeSpace volWorld = sgVolumeSpace(frame, vWorldPos, mat3(1.0), mat3(1.0));\n";
+        o << "    SgVolumeSpace volWorld = sgVolumeSpace(frame, vWorldPos, mat3(1.0), "
+             "mat3(1.0));\n";
     }
     if (plan.usesObjectVolume) {
         o << "    SgVolumeSpace volObject = sgVolumeSpace(frame, vObjPos, uModel3, uModelInv3);\n";
@@ -654,14 +731,15 @@ std::string fragmentBody(const MaterialPlan& plan) {
     o << "    vec3 baseColor = uBaseColor;\n";
     if (plan.baseColorTex >= 0) {
         std::string uv = uvVar(plan.baseColorUvSet);
-        o << "    baseColor *= textureGrad(" << tex(plan.baseColorTex) << ", " << uv << ".st, " << uv << ".dSTdx, " << uv
-          << ".dSTdy).xyz; // base colour map (linear)\n";
+        o << "    baseColor *= textureGrad(" << tex(plan.baseColorTex) << ", " << uv << ".st, "
+          << uv << ".dSTdx, " << uv << ".dSTdy).xyz; // base colour map (linear)\n";
     }
     o << "    vec3 surfGrad = vec3(0.0);\n";
     for (size_t g = 0; g < plan.groups.size(); ++g) {
         std::string indent = "    ";
         if (g > 0) {
-            o << "    // Post-resolve group " << g << " (section 3): the resolved normal is the new base.\n";
+            o << "    // Post-resolve group " << g
+              << " (section 3): the resolved normal is the new base.\n";
             if (plan.uber) {
                 o << "    if (uLayerOn[" << plan.groupUberIndex[g] << "] > 0.5) {\n";
                 indent = "        ";
@@ -685,7 +763,8 @@ std::string fragmentBody(const MaterialPlan& plan) {
                 featUvMask |= 1u << pl.layer->uvSet;
                 continue;
             }
-            o << indent << "// " << layerKindName(pl.layer->kind) << " (" << pl.layer->fieldPath << ")\n";
+            o << indent << "// " << layerKindName(pl.layer->kind) << " (" << pl.layer->fieldPath
+              << ")\n";
             if (plan.uber) {
                 o << indent << "if (uLayerOn[" << pl.uberIndex << "] > 0.5) ";
             } else {
@@ -700,7 +779,8 @@ std::string fragmentBody(const MaterialPlan& plan) {
         if (featCount > 0) {
             o << indent << "// feature layers " << featFirst << ".." << featFirst + featCount - 1
               << " (one loop: the evaluator is compiled once)\n"
-              << indent << "for (int fi = " << featFirst << "; fi < " << featFirst + featCount << "; ++fi) {\n";
+              << indent << "for (int fi = " << featFirst << "; fi < " << featFirst + featCount
+              << "; ++fi) {\n";
             if (plan.uber) o << indent << "    if (!(uLayerOn[kFeatFlag[fi]] > 0.5)) continue;\n";
             o << indent << "    int r = kFeatRecord[fi];\n";
             int firstUv = -1;
@@ -713,10 +793,14 @@ std::string fragmentBody(const MaterialPlan& plan) {
                     o << indent << "    if (kFeatUvSet[fi] == " << k << ") fuv = uv" << k << ";\n";
                 }
             }
-            o << indent << "    surfGrad += sgLayerFeature(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + 1], "
-                           "uLayerData[r + 2]),\n"
-              << indent << "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
-                           "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n"
+            o << indent
+              << "    surfGrad += sgLayerFeature(fuv, sgUnpackFeatureLayer(uLayerData[r], "
+                 "uLayerData[r + 1], "
+                 "uLayerData[r + 2]),\n"
+              << indent
+              << "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + "
+                 "5], "
+                 "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n"
               << indent << "        uFeatCorners[fi], uFeatEdges[fi], uFeatBase[fi]);\n"
               << indent << "}\n";
         }
@@ -730,12 +814,15 @@ std::string fragmentBody(const MaterialPlan& plan) {
     }
     o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
-      << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], baseColor, uRoughness);\n"
+      << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], "
+         "baseColor, uRoughness);\n"
       << "    }\n";
     if (hasUv0) {
-        o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, uv0.vT, uv0.vB, baseNormal, vUv0,\n";
+        o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, uv0.vT, uv0.vB, baseNormal, "
+             "vUv0,\n";
     } else {
-        o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, vec3(0.0), vec3(0.0), baseNormal, vec2(0.0),\n";
+        o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, vec3(0.0), vec3(0.0), "
+             "baseNormal, vec2(0.0),\n";
     }
     o << "                          float(gl_PrimitiveID) + 1.0 + uPrimBase);\n"
       << "}\n";
@@ -744,8 +831,12 @@ std::string fragmentBody(const MaterialPlan& plan) {
 
 namespace {
 
-bool isIdentStart(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
-bool isIdent(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+bool isIdentStart(char c) {
+    return std::isalpha(static_cast<unsigned char>(c)) || c == '_';
+}
+bool isIdent(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+}
 
 // Effects on demand, at the level of functions: the shared library files
 // hold whole families of functions (e.g. every listing of the paper in
@@ -863,7 +954,8 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     std::vector<std::string> fdefs = defs;
     fdefs.push_back("SG_LIGHT_COUNT " + std::to_string(plan.lightCount));
     fdefs.push_back("SG_LAYER_RECORDS " + std::to_string(std::max(plan.recordCount, 1)));
-    if (plan.featureLayerCount > 0) fdefs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
+    if (plan.featureLayerCount > 0)
+        fdefs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
     const char* vs = sg::shaders::find("sg/render/surface_vs.glsl");
     assert(vs);
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);
@@ -881,10 +973,9 @@ namespace {
 namespace G = sg::glsl;
 
 glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector<G::sampler2D>& smp,
-                   const std::vector<FeatureSamplers>& fsmp,
-                   const G::SgFrame& frame, const std::array<G::SgUvFrame, kMaxUvSets>& uv,
-                   const G::SgVolumeSpace& volWorld, const G::SgVolumeSpace& volObject,
-                   const PixelInputs& in) {
+                   const std::vector<FeatureSamplers>& fsmp, const G::SgFrame& frame,
+                   const std::array<G::SgUvFrame, kMaxUvSets>& uv, const G::SgVolumeSpace& volWorld,
+                   const G::SgVolumeSpace& volObject, const PixelInputs& in) {
     const Layer& L = *pl.layer;
     const glm::vec4* r = &u.records[size_t(pl.record)];
     auto t = [&](int slot) { return slot >= 0 ? smp[size_t(slot)] : G::sampler2D{}; };
@@ -908,38 +999,52 @@ glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector
                                   : G::sgSampleDerivMapHD(t(pl.tex[0]), st, dx, dy, pd);
         for (size_t i = 0; i < L.modifiers.size(); ++i) {
             switch (L.modifiers[i].kind) {
-            case ModifierKind::Deform: hd = G::sgModDeform(hd, jac); break;
-            case ModifierKind::Scale: hd = G::sgModScale(hd, m[i]); break;
-            case ModifierKind::Curve: hd = G::sgModCurve(hd, m[i]); break;
-            case ModifierKind::Modulate: hd = G::sgModModulate(hd, m[i], t(pl.modTex[i]), st, dx, dy); break;
+            case ModifierKind::Deform:
+                hd = G::sgModDeform(hd, jac);
+                break;
+            case ModifierKind::Scale:
+                hd = G::sgModScale(hd, m[i]);
+                break;
+            case ModifierKind::Curve:
+                hd = G::sgModCurve(hd, m[i]);
+                break;
+            case ModifierKind::Modulate:
+                hd = G::sgModModulate(hd, m[i], t(pl.modTex[i]), st, dx, dy);
+                break;
             }
         }
         return uvn ? G::sgUvNormalSurfgrad(f, pu, hd)
-                   : G::sgDerivMapSurfgrad(frame, f, pd, hd.d, glm::vec2(G::textureSize(t(pl.tex[0]), 0)));
+                   : G::sgDerivMapSurfgrad(frame, f, pd, hd.d,
+                                           glm::vec2(G::textureSize(t(pl.tex[0]), 0)));
     }
     switch (L.kind) {
     case LayerKind::UvNormal:
         return G::sgLayerUvNormal(f, G::sgUnpackUvNormal(r[0], r[1]), t(pl.tex[0]));
     case LayerKind::ObjectNormal:
-        return G::sgLayerObjectNormal(frame, f, G::sgUnpackObjectNormal(r[0]), u.normalMat, t(pl.tex[0]));
-    case LayerKind::Height: return G::sgLayerHeight(frame, f, G::sgUnpackHeight(r[0]), t(pl.tex[0]));
+        return G::sgLayerObjectNormal(frame, f, G::sgUnpackObjectNormal(r[0]), u.normalMat,
+                                      t(pl.tex[0]));
+    case LayerKind::Height:
+        return G::sgLayerHeight(frame, f, G::sgUnpackHeight(r[0]), t(pl.tex[0]));
     case LayerKind::DerivMap:
         return G::sgLayerDerivMap(frame, f, G::sgUnpackDerivMap(r[0], r[1]), t(pl.tex[0]));
     case LayerKind::Triplanar:
-        return G::sgLayerTriplanar(frame, vol, G::sgUnpackTriplanar(r[0], r[1]), t(pl.tex[0]), t(pl.tex[1]),
-                                   t(pl.tex[2]));
+        return G::sgLayerTriplanar(frame, vol, G::sgUnpackTriplanar(r[0], r[1]), t(pl.tex[0]),
+                                   t(pl.tex[1]), t(pl.tex[2]));
     case LayerKind::Decal:
-        return G::sgLayerDecal(frame, in.relPos, G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]),
-                               t(pl.tex[0]));
-    case LayerKind::Noise: return G::sgLayerNoise(frame, vol, G::sgUnpackNoise(r[0], r[1], r[2]));
+        return G::sgLayerDecal(frame, in.relPos,
+                               G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]), t(pl.tex[0]));
+    case LayerKind::Noise:
+        return G::sgLayerNoise(frame, vol, G::sgUnpackNoise(r[0], r[1], r[2]));
     case LayerKind::Feature: {
-        if (pl.featureSlot < 0 || !fsmp[size_t(pl.featureSlot)].corners.rgba) return glm::vec3(0.0f);
+        if (pl.featureSlot < 0 || !fsmp[size_t(pl.featureSlot)].corners.rgba)
+            return glm::vec3(0.0f);
         const FeatureSamplers& fs = fsmp[size_t(pl.featureSlot)];
         return G::sgLayerFeature(f, G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
-                                 G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]), fs.corners, fs.edges,
-                                 t(pl.tex[0]));
+                                 G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
+                                 fs.corners, fs.edges, t(pl.tex[0]));
     }
-    case LayerKind::PostResolve: break;
+    case LayerKind::PostResolve:
+        break;
     }
     return glm::vec3(0.0f);
 }
@@ -950,7 +1055,8 @@ bool layerOn(const PlanLayer& pl, const MaterialPlan& plan, const DrawUniforms& 
 
 } // namespace
 
-glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const std::vector<G::sampler2D>& smp,
+glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
+                        const std::vector<G::sampler2D>& smp,
                         const std::vector<FeatureSamplers>& fsmp, const PixelInputs& in) {
     G::SgFrame frame = G::sgPrologue(in.normal, in.dPdx, in.dPdy, in.frontFacing, u.bfaceMode);
     glm::vec3 baseNormal = frame.nrmBase;
@@ -961,23 +1067,28 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
         if (!((uvMask0 | plan.uvUsedMask) >> k & 1u)) continue;
         size_t kk = size_t(k);
         uv[kk] = (plan.vertexTangentMask >> k & 1u)
-                     ? G::sgUvFrameVertex(in.uv[kk], in.dUVdx[kk], in.dUVdy[kk], in.normal, in.tangent[kk])
+                     ? G::sgUvFrameVertex(in.uv[kk], in.dUVdx[kk], in.dUVdy[kk], in.normal,
+                                          in.tangent[kk])
                      : G::sgUvFramePixel(frame, in.uv[kk], in.dUVdx[kk], in.dUVdy[kk]);
     }
     G::SgVolumeSpace volWorld{}, volObject{};
-    if (plan.usesWorldVolume) volWorld = G::sgVolumeSpace(frame, in.worldPos, glm::mat3(1.0f), glm::mat3(1.0f));
-    if (plan.usesObjectVolume) volObject = G::sgVolumeSpace(frame, in.objPos, u.model3, u.modelInv3);
+    if (plan.usesWorldVolume)
+        volWorld = G::sgVolumeSpace(frame, in.worldPos, glm::mat3(1.0f), glm::mat3(1.0f));
+    if (plan.usesObjectVolume)
+        volObject = G::sgVolumeSpace(frame, in.objPos, u.model3, u.modelInv3);
     glm::vec3 baseColor = u.baseColor;
     if (plan.baseColorTex >= 0) {
         const G::SgUvFrame& f = uv[size_t(plan.baseColorUvSet)];
-        baseColor *= glm::vec3(G::textureGrad(smp[size_t(plan.baseColorTex)], f.st, f.dSTdx, f.dSTdy));
+        baseColor *=
+            glm::vec3(G::textureGrad(smp[size_t(plan.baseColorTex)], f.st, f.dSTdx, f.dSTdy));
     }
     glm::vec3 surfGrad(0.0f);
     // Same order as the GLSL: other layers first, then the feature loop.
     for (int pass = 0; pass < 2; ++pass)
         for (const auto& pl : plan.groups[0]) {
             if ((pl.featureIndex >= 0) != (pass == 1)) continue;
-            if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
+            if (layerOn(pl, plan, u))
+                surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
         }
     glm::vec3 nrm = G::sgResolve(frame, surfGrad);
     glm::vec3 surfGradOut = surfGrad;
@@ -988,20 +1099,22 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u, const s
         uint32_t m = groupUvMask(plan.groups[g]);
         for (int k = 0; k < plan.uvCount; ++k) {
             size_t kk = size_t(k);
-            if (m >> k & 1u) uv[kk] = G::sgUvFramePixel(frame, uv[kk].st, uv[kk].dSTdx, uv[kk].dSTdy);
+            if (m >> k & 1u)
+                uv[kk] = G::sgUvFramePixel(frame, uv[kk].st, uv[kk].dSTdx, uv[kk].dSTdy);
         }
         surfGrad = glm::vec3(0.0f);
         for (int pass = 0; pass < 2; ++pass)
             for (const auto& pl : plan.groups[g]) {
                 if ((pl.featureIndex >= 0) != (pass == 1)) continue;
-                if (layerOn(pl, plan, u)) surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
+                if (layerOn(pl, plan, u))
+                    surfGrad += layerCpu(pl, u, smp, fsmp, frame, uv, volWorld, volObject, in);
             }
         nrm = G::sgResolve(frame, surfGrad);
     }
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
     for (int i = 0; i < plan.lightCount; ++i) {
-        color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], baseColor,
-                                 u.roughness);
+        color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)],
+                                 u.lights[size_t(2 * i + 1)], baseColor, u.roughness);
     }
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);
     return G::sgAovValue(u.aov, color, nrm, surfGradOut, tangentOut, bitangentOut, baseNormal,

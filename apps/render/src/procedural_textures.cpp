@@ -19,7 +19,9 @@ namespace sg::render::detail {
 
 namespace {
 
-float fract(float x) { return x - std::floor(x); }
+float fract(float x) {
+    return x - std::floor(x);
+}
 float smooth(float e0, float e1, float x) {
     float t = std::clamp((x - e0) / (e1 - e0), 0.0f, 1.0f);
     return t * t * (3.0f - 2.0f * t);
@@ -32,7 +34,9 @@ uint32_t hash(uint32_t x) {
     x ^= x >> 16;
     return x;
 }
-float rand01(uint32_t x) { return float(hash(x) & 0xffffffu) / float(0x1000000); }
+float rand01(uint32_t x) {
+    return float(hash(x) & 0xffffffu) / float(0x1000000);
+}
 
 // Bricks: 8 rows of 4, alternate rows shifted by half a brick; bevelled
 // edges, slight per-brick tilt.
@@ -125,8 +129,12 @@ TextureImage makeProceduralTexture(const TextureSource& src) {
     if (src.procedural == "scratches") fn = scratches;
     std::vector<float> h(size_t(n) * size_t(n));
     for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) h[size_t(y) * size_t(n) + size_t(x)] = fn((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
-    auto at = [&](int x, int y) { return h[size_t((y + n) % n) * size_t(n) + size_t((x + n) % n)]; };
+        for (int x = 0; x < n; ++x)
+            h[size_t(y) * size_t(n) + size_t(x)] =
+                fn((float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n));
+    auto at = [&](int x, int y) {
+        return h[size_t((y + n) % n) * size_t(n) + size_t((x + n) % n)];
+    };
     std::vector<glm::vec4> texels(h.size());
     const float H = src.bumpHeight;
     for (int y = 0; y < n; ++y)

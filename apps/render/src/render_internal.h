@@ -51,8 +51,8 @@ struct DrawUniforms {
     std::vector<glm::vec4> records; // packLayerRecords
     std::vector<float> uberFlags;   // uber plans: 1 enabled, 0 disabled
 };
-DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan, const View& view,
-                          int meshIndex, float primBase);
+DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const MaterialPlan& plan,
+                          const View& view, int meshIndex, float primBase);
 
 // What the fragment program reads at one pixel, computed by the CPU
 // rasteriser: interpolated varyings (same names as sg/render/surface_fs.glsl)
@@ -71,7 +71,8 @@ struct FeatureSamplers {
     sg::glsl::SgFeatCornerSampler corners;
     sg::glsl::SgFeatEdgeSampler edges;
 };
-std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan, const SceneAssets& assets);
+std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
+                                                 const SceneAssets& assets);
 
 // Runs the plan's shading on the CPU with the same shared functions, in the
 // same order, as the GLSL main() that fragmentBody(plan) generates.

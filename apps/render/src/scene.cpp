@@ -28,29 +28,46 @@ using json = nlohmann::json;
 
 const char* layerKindName(LayerKind k) {
     switch (k) {
-    case LayerKind::UvNormal: return "uv_normal";
-    case LayerKind::ObjectNormal: return "object_normal";
-    case LayerKind::Height: return "height";
-    case LayerKind::DerivMap: return "deriv_map";
-    case LayerKind::Triplanar: return "triplanar";
-    case LayerKind::Decal: return "decal";
-    case LayerKind::Noise: return "noise";
-    case LayerKind::Feature: return "feature";
-    case LayerKind::PostResolve: return "post_resolve";
+    case LayerKind::UvNormal:
+        return "uv_normal";
+    case LayerKind::ObjectNormal:
+        return "object_normal";
+    case LayerKind::Height:
+        return "height";
+    case LayerKind::DerivMap:
+        return "deriv_map";
+    case LayerKind::Triplanar:
+        return "triplanar";
+    case LayerKind::Decal:
+        return "decal";
+    case LayerKind::Noise:
+        return "noise";
+    case LayerKind::Feature:
+        return "feature";
+    case LayerKind::PostResolve:
+        return "post_resolve";
     }
     return "?";
 }
 
 const char* aovName(Aov a) {
     switch (a) {
-    case Aov::Color: return "color";
-    case Aov::Normal: return "normal";
-    case Aov::SurfGrad: return "surfgrad";
-    case Aov::Tangent: return "tangent";
-    case Aov::Bitangent: return "bitangent";
-    case Aov::BaseNormal: return "basenormal";
-    case Aov::Uv: return "uv";
-    case Aov::PrimId: return "primid";
+    case Aov::Color:
+        return "color";
+    case Aov::Normal:
+        return "normal";
+    case Aov::SurfGrad:
+        return "surfgrad";
+    case Aov::Tangent:
+        return "tangent";
+    case Aov::Bitangent:
+        return "bitangent";
+    case Aov::BaseNormal:
+        return "basenormal";
+    case Aov::Uv:
+        return "uv";
+    case Aov::PrimId:
+        return "primid";
     }
     return "?";
 }
@@ -70,7 +87,8 @@ fs::path dataDirectory() {
 std::string FeatureSource::key() const {
     if (!mapsFile.empty()) return "maps:" + mapsFile.lexically_normal().string();
     return "bake:" + curvesKind + ":" + curvesFile.lexically_normal().string() + ":" + text + ":" +
-           std::to_string(size) + (quadratic ? ":quadratic:" : ":linear:") + std::to_string(marginTexels);
+           std::to_string(size) + (quadratic ? ":quadratic:" : ":linear:") +
+           std::to_string(marginTexels);
 }
 
 std::string TextureSource::key() const {
@@ -78,8 +96,8 @@ std::string TextureSource::key() const {
         return "proc:" + procedural + ":" + output + ":" + std::to_string(size) + ":" +
                std::to_string(bumpHeight) + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");
     }
-    return "file:" + file.lexically_normal().string() + (wrap == Wrap::Clamp ? ":clamp" : ":repeat") +
-           (srgb ? ":srgb" : "");
+    return "file:" + file.lexically_normal().string() +
+           (wrap == Wrap::Clamp ? ":clamp" : ":repeat") + (srgb ? ":srgb" : "");
 }
 
 namespace {
@@ -87,7 +105,8 @@ namespace {
 // A JSON value with its field path, reading typed, range-checked fields.
 class Node {
 public:
-    Node(const json& j, std::string path, const std::string& file) : j_(j), path_(std::move(path)), file_(file) {}
+    Node(const json& j, std::string path, const std::string& file)
+        : j_(j), path_(std::move(path)), file_(file) {}
 
     const json& value() const { return j_; }
     const std::string& path() const { return path_; }
@@ -98,7 +117,9 @@ public:
     [[noreturn]] void failField(const std::string& key, const std::string& reason) const {
         throw io::InputError(file_, sub(key), reason);
     }
-    std::string sub(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+    std::string sub(const std::string& key) const {
+        return path_.empty() ? key : path_ + "." + key;
+    }
 
     void requireObject() const {
         if (!j_.is_object()) fail("expected an object");
@@ -118,7 +139,9 @@ public:
     }
     bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
     Node child(const char* key) const { return Node(j_.at(key), sub(key), file_); }
-    Node item(size_t i) const { return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", file_); }
+    Node item(size_t i) const {
+        return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", file_);
+    }
 
     // A finite number in [lo, hi] ((lo, hi] when loOpen). Bounds at or
     // beyond +-kHuge (1e6) mean "no bound" in messages.
@@ -131,7 +154,8 @@ public:
         double x = v.get<double>();
         if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
             bool tooBig = (x > hi && hugeHi) || (x < lo && hugeLo);
-            failField(key, "expected a number" + range + (tooBig ? " of magnitude at most 1e6" : ""));
+            failField(key,
+                      "expected a number" + range + (tooBig ? " of magnitude at most 1e6" : ""));
         }
         return x;
     }
@@ -142,7 +166,8 @@ public:
         if (!has(key)) return def;
         const json& v = j_.at(key);
         std::string range = " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-        if (!v.is_number_integer() && !(v.is_number() && std::floor(v.get<double>()) == v.get<double>())) {
+        if (!v.is_number_integer() &&
+            !(v.is_number() && std::floor(v.get<double>()) == v.get<double>())) {
             failField(key, "expected an integer" + range);
         }
         double x = v.get<double>();
@@ -164,7 +189,8 @@ public:
         if (!has(key)) return def;
         const json& v = j_.at(key);
         std::string list;
-        for (const char* c : choices) list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
+        for (const char* c : choices)
+            list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
         if (!v.is_string()) failField(key, "expected one of " + list);
         int i = 0;
         for (const char* c : choices) {
@@ -219,7 +245,8 @@ private:
     }
     static std::string rangeText(double lo, double hi, bool loOpen) {
         bool hasLo = lo > -1e8, hasHi = hi < 1e8;
-        if (hasLo && hasHi) return std::string(" in ") + (loOpen ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]";
+        if (hasLo && hasHi)
+            return std::string(" in ") + (loOpen ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]";
         if (hasLo) return std::string(loOpen ? " > " : " >= ") + fmt(lo);
         if (hasHi) return " <= " + fmt(hi);
         return "";
@@ -253,11 +280,13 @@ struct Parser {
         }
         if (!n.value().is_object()) n.fail("expected a file path or a texture object");
         n.allowOnly({"file", "procedural", "output", "size", "bump_height", "wrap"});
-        if (n.has("file") == n.has("procedural")) n.fail("expected exactly one of \"file\" or \"procedural\"");
+        if (n.has("file") == n.has("procedural"))
+            n.fail("expected exactly one of \"file\" or \"procedural\"");
         if (n.has("file")) {
             t.file = resolvePath(n.child("file"), n.string("file", ""));
             if (n.has("output") || n.has("size") || n.has("bump_height")) {
-                n.fail("\"output\", \"size\" and \"bump_height\" apply to procedural textures only");
+                n.fail(
+                    "\"output\", \"size\" and \"bump_height\" apply to procedural textures only");
             }
         } else {
             static const char* kinds[] = {"bricks", "tiles", "bumps", "weave", "scratches"};
@@ -279,7 +308,9 @@ struct Parser {
                           const char* what = "an array of 2 numbers") {
         if (!n.has(key)) return def;
         const json& v = n.value().at(key);
-        auto bad = [&] { n.failField(key, std::string("expected ") + what + " of magnitude at most 1e6"); };
+        auto bad = [&] {
+            n.failField(key, std::string("expected ") + what + " of magnitude at most 1e6");
+        };
         if (!v.is_array() || v.size() != 2) bad();
         glm::vec2 r;
         for (int i = 0; i < 2; ++i) {
@@ -345,7 +376,8 @@ struct Parser {
     static NormalEncoding encoding(const Node& n, bool allowTwoChannel) {
         int e = n.choice("encoding", 0, {"rgb", "rg", "ag", "float"});
         if (!allowTwoChannel && (e == 1 || e == 2)) {
-            n.failField("encoding", "this layer needs all three components: expected \"rgb\" or \"float\"");
+            n.failField("encoding",
+                        "this layer needs all three components: expected \"rgb\" or \"float\"");
         }
         return NormalEncoding(e);
     }
@@ -369,8 +401,8 @@ struct Parser {
         };
         switch (L.kind) {
         case LayerKind::UvNormal:
-            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "green", "strength", "height",
-                         "modifiers"});
+            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "green", "strength",
+                         "height", "modifiers"});
             requireMap("map", Wrap::Repeat);
             L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
             L.encoding = encoding(n, true);
@@ -408,8 +440,8 @@ struct Parser {
             modifiers(n, L);
             break;
         case LayerKind::Triplanar: {
-            n.allowOnly({"type", "enabled", "map", "maps", "scale", "sharpness", "handedness", "space",
-                         "encoding", "green", "strength"});
+            n.allowOnly({"type", "enabled", "map", "maps", "scale", "sharpness", "handedness",
+                         "space", "encoding", "green", "strength"});
             if (n.has("map") == n.has("maps")) {
                 n.fail("expected exactly one of \"map\" (one map for all planes) or \"maps\" "
                        "([x, y, z] plane maps)");
@@ -442,7 +474,8 @@ struct Parser {
             if (glm::length(dir) < 1e-6f) n.failField("direction", "expected a non-zero vector");
             glm::vec3 z = -glm::normalize(dir);
             glm::vec3 x = glm::cross(up, z);
-            if (glm::length(x) < 1e-6f * std::max(glm::length(up), 1e-30f) || glm::length(up) < 1e-6f) {
+            if (glm::length(x) < 1e-6f * std::max(glm::length(up), 1e-30f) ||
+                glm::length(up) < 1e-6f) {
                 n.failField("up", "expected a non-zero vector not parallel to \"direction\"");
             }
             x = glm::normalize(x);
@@ -458,7 +491,8 @@ struct Parser {
             std::vector<float> ang = n.floats("angle_fade_deg", 0.0, 180.0, 2);
             if (n.has("angle_fade_deg")) {
                 if (ang.size() != 2 || !(ang[0] <= ang[1])) {
-                    n.failField("angle_fade_deg", "expected [start, end] in degrees with start <= end");
+                    n.failField("angle_fade_deg",
+                                "expected [start, end] in degrees with start <= end");
                 }
                 L.decalCosStart = std::cos(glm::radians(ang[0]));
                 L.decalCosEnd = std::cos(glm::radians(ang[1]));
@@ -469,8 +503,8 @@ struct Parser {
             break;
         }
         case LayerKind::Noise:
-            n.allowOnly({"type", "enabled", "noise", "amplitude", "frequency", "octaves", "lacunarity",
-                         "gain", "exponent", "offset", "space", "antialias"});
+            n.allowOnly({"type", "enabled", "noise", "amplitude", "frequency", "octaves",
+                         "lacunarity", "gain", "exponent", "offset", "space", "antialias"});
             L.noiseType = NoiseType(n.choice("noise", 1, {"perlin", "turbulence", "fbm"}));
             L.noiseAmplitude = n.num("amplitude", 0.02, -kHuge, kHuge);
             L.noiseFrequency = n.num("frequency", 4.0, 0.0, kHuge, true);
@@ -483,10 +517,12 @@ struct Parser {
             L.noiseAntialias = n.boolean("antialias", true);
             break;
         case LayerKind::Feature: {
-            n.allowOnly({"type", "enabled", "maps", "curves", "uv_set", "tiling", "offset", "profile", "depth",
-                         "width", "w0", "mode", "strength", "base_map", "encoding", "green"});
+            n.allowOnly({"type", "enabled", "maps", "curves", "uv_set", "tiling", "offset",
+                         "profile", "depth", "width", "w0", "mode", "strength", "base_map",
+                         "encoding", "green"});
             if (n.has("maps") == n.has("curves")) {
-                n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features bake`) or "
+                n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features "
+                       "bake`) or "
                        "\"curves\" (baked when the scene loads)");
             }
             FeatureSource fsrc;
@@ -499,10 +535,13 @@ struct Parser {
                 int kinds = int(c.has("svg")) + int(c.has("json")) + int(c.has("font"));
                 if (kinds != 1) c.fail("expected exactly one of \"svg\", \"json\" or \"font\"");
                 fsrc.curvesKind = c.has("svg") ? "svg" : c.has("json") ? "json" : "font";
-                fsrc.curvesFile = resolvePath(c.child(fsrc.curvesKind.c_str()), c.string(fsrc.curvesKind.c_str(), ""));
+                fsrc.curvesFile = resolvePath(c.child(fsrc.curvesKind.c_str()),
+                                              c.string(fsrc.curvesKind.c_str(), ""));
                 if (fsrc.curvesKind == "font") {
                     fsrc.text = c.string("text", "");
-                    if (fsrc.text.empty()) c.failField("text", "expected the characters to lay out (a non-empty string)");
+                    if (fsrc.text.empty())
+                        c.failField("text",
+                                    "expected the characters to lay out (a non-empty string)");
                 } else if (c.has("text")) {
                     c.failField("text", "applies to fonts only");
                 }
@@ -537,11 +576,13 @@ struct Parser {
         }
         case LayerKind::PostResolve: {
             n.allowOnly({"type", "enabled", "layers"});
-            if (nested) n.fail("post_resolve groups cannot be nested (list them one after another)");
+            if (nested)
+                n.fail("post_resolve groups cannot be nested (list them one after another)");
             if (!n.has("layers")) n.fail("missing \"layers\"");
             n.requireArray("layers", size_t(kMaxLayers));
             Node arr = n.child("layers");
-            for (size_t i = 0; i < arr.value().size(); ++i) L.children.push_back(layer(arr.item(i), true));
+            for (size_t i = 0; i < arr.value().size(); ++i)
+                L.children.push_back(layer(arr.item(i), true));
             break;
         }
         }
@@ -549,7 +590,8 @@ struct Parser {
     }
 
     Material material(const Node& n) const {
-        n.allowOnly({"name", "base_color", "base_color_map", "roughness", "double_sided", "layers"});
+        n.allowOnly(
+            {"name", "base_color", "base_color_map", "roughness", "double_sided", "layers"});
         Material m;
         m.fieldPath = n.path();
         m.name = n.string("name", "");
@@ -580,7 +622,8 @@ struct Parser {
                 sawGroup = sawGroup || isGroup;
             }
             if (total > size_t(kMaxLayers)) {
-                n.failField("layers", "too many layers in total (at most " + std::to_string(kMaxLayers) + ")");
+                n.failField("layers", "too many layers in total (at most " +
+                                          std::to_string(kMaxLayers) + ")");
             }
         }
         return m;
@@ -597,7 +640,8 @@ struct Parser {
             glm::mat4 r;
             for (int c = 0; c < 4; ++c)
                 for (int k = 0; k < 4; ++k) r[c][k] = m[size_t(c * 4 + k)];
-            if (std::abs(glm::determinant(glm::mat3(r))) < 1e-12f) n.failField("matrix", "is singular");
+            if (std::abs(glm::determinant(glm::mat3(r))) < 1e-12f)
+                n.failField("matrix", "is singular");
             return r;
         }
         glm::vec3 t = n.vec3("translate", glm::vec3(0.0f), -kHuge, kHuge);
@@ -608,7 +652,8 @@ struct Parser {
                 s = glm::vec3(n.num("scale", 1.0, 0.0, kHuge, true));
             } else {
                 s = n.vec3("scale", s, -kHuge, kHuge);
-                if (std::abs(s.x * s.y * s.z) < 1e-12f) n.failField("scale", "expected non-zero scales");
+                if (std::abs(s.x * s.y * s.z) < 1e-12f)
+                    n.failField("scale", "expected non-zero scales");
             }
         }
         glm::mat4 m = glm::translate(glm::mat4(1.0f), t);
@@ -619,12 +664,13 @@ struct Parser {
     }
 
     MeshInstance mesh(const Node& n, const std::vector<Material>& materials) const {
-        n.allowOnly({"name", "file", "procedural", "subdivision", "uv_sets", "tangents", "morph", "transform",
-                     "material"});
+        n.allowOnly({"name", "file", "procedural", "subdivision", "uv_sets", "tangents", "morph",
+                     "transform", "material"});
         MeshInstance m;
         m.fieldPath = n.path();
         m.name = n.string("name", "");
-        if (n.has("file") == n.has("procedural")) n.fail("expected exactly one of \"file\" or \"procedural\"");
+        if (n.has("file") == n.has("procedural"))
+            n.fail("expected exactly one of \"file\" or \"procedural\"");
         if (n.has("file")) {
             m.file = resolvePath(n.child("file"), n.string("file", ""));
         } else {
@@ -646,10 +692,13 @@ struct Parser {
             s.allowOnly({"scheme", "level", "limit"});
             static const char* schemes[] = {"catmark", "loop", "bilinear"};
             m.subdivide = true;
-            if (s.has("scheme")) m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
+            if (s.has("scheme"))
+                m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
             m.subdivLevel = s.integer("level", 2, 0, 6);
             m.subdivLimit = s.boolean("limit", false);
-            if (m.procedural) n.failField("subdivision", "applies to mesh files only (procedural meshes take \"segments\")");
+            if (m.procedural)
+                n.failField("subdivision",
+                            "applies to mesh files only (procedural meshes take \"segments\")");
         }
         if (n.has("uv_sets")) {
             // Derived sets (DerivedUvSet); whether `from` exists and the
@@ -666,7 +715,8 @@ struct Parser {
                 if (d.has("scale") && d.value().at("scale").is_number()) {
                     u.scale = glm::vec2(d.num("scale", 1.0, -kHuge, kHuge));
                 } else {
-                    u.scale = vec2(d, "scale", glm::vec2(1.0f), -kHuge, kHuge, "a number or an array of 2 numbers");
+                    u.scale = vec2(d, "scale", glm::vec2(1.0f), -kHuge, kHuge,
+                                   "a number or an array of 2 numbers");
                 }
                 // A zero scale collapses the set (no tangent basis anywhere).
                 if (std::abs(u.scale.x) < 1e-6f || std::abs(u.scale.y) < 1e-6f) {
@@ -680,25 +730,33 @@ struct Parser {
         if (n.has("tangents")) {
             const json& t = n.value().at("tangents");
             auto parseOne = [&](const json& v, const std::string& path) {
-                if (!v.is_string()) throw io::InputError(file, path, "expected \"pixel\", \"mikktspace\" or \"limit\"");
+                if (!v.is_string())
+                    throw io::InputError(file, path,
+                                         "expected \"pixel\", \"mikktspace\" or \"limit\"");
                 std::string s = v.get<std::string>();
                 if (s == "pixel") return TangentSource::Pixel;
                 if (s == "mikktspace") return TangentSource::MikkTSpace;
                 if (s == "limit") return TangentSource::Limit;
-                throw io::InputError(file, path, "expected \"pixel\", \"mikktspace\" or \"limit\", got \"" + s + "\"");
+                throw io::InputError(file, path,
+                                     "expected \"pixel\", \"mikktspace\" or \"limit\", got \"" + s +
+                                         "\"");
             };
             if (t.is_string()) {
                 m.tangents.assign(1, parseOne(t, n.sub("tangents")));
             } else if (t.is_array() && t.size() <= size_t(kMaxUvSets)) {
                 for (size_t i = 0; i < t.size(); ++i) {
-                    m.tangents.push_back(parseOne(t[i], n.sub("tangents") + "[" + std::to_string(i) + "]"));
+                    m.tangents.push_back(
+                        parseOne(t[i], n.sub("tangents") + "[" + std::to_string(i) + "]"));
                 }
             } else {
-                n.failField("tangents", "expected a tangent source or an array of them, one per UV set (at most 4)");
+                n.failField(
+                    "tangents",
+                    "expected a tangent source or an array of them, one per UV set (at most 4)");
             }
             for (auto s : m.tangents) {
                 if (s == TangentSource::Limit && !m.subdivLimit) {
-                    n.failField("tangents", "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+                    n.failField("tangents",
+                                "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
                 }
             }
         }
@@ -723,7 +781,8 @@ struct Parser {
                     if (!m.morphKeys.empty() && !(key.time > m.morphKeys.back().time)) {
                         k.failField("time", "key times must increase");
                     }
-                    if (!m.morphKeys.empty() && key.weights.size() != m.morphKeys[0].weights.size()) {
+                    if (!m.morphKeys.empty() &&
+                        key.weights.size() != m.morphKeys[0].weights.size()) {
                         k.failField("weights", "every key needs the same number of weights");
                     }
                     m.morphKeys.push_back(std::move(key));
@@ -736,13 +795,15 @@ struct Parser {
             if (mv.is_number_integer()) {
                 long long i = mv.get<long long>();
                 if (i < 0 || i >= (long long)materials.size()) {
-                    n.failField("material", "no material with index " + std::to_string(i) + " (there are " +
-                                                std::to_string(materials.size()) + ")");
+                    n.failField("material", "no material with index " + std::to_string(i) +
+                                                " (there are " + std::to_string(materials.size()) +
+                                                ")");
                 }
                 m.material = int(i);
             } else if (mv.is_string()) {
-                auto it = std::find_if(materials.begin(), materials.end(),
-                                       [&](const Material& x) { return x.name == mv.get<std::string>(); });
+                auto it = std::find_if(materials.begin(), materials.end(), [&](const Material& x) {
+                    return x.name == mv.get<std::string>();
+                });
                 if (it == materials.end()) {
                     n.failField("material", "no material named \"" + mv.get<std::string>() + "\"");
                 }
@@ -765,7 +826,8 @@ struct Parser {
         } else {
             n.allowOnly({"type", "direction", "color", "intensity"});
             l.direction = n.vec3("direction", l.direction, -kHuge, kHuge);
-            if (glm::length(l.direction) < 1e-6f) n.failField("direction", "expected a non-zero vector");
+            if (glm::length(l.direction) < 1e-6f)
+                n.failField("direction", "expected a non-zero vector");
             l.direction = glm::normalize(l.direction);
         }
         l.color = n.vec3("color", glm::vec3(1.0f), 0.0, kHuge);
@@ -774,13 +836,15 @@ struct Parser {
     }
 
     Camera camera(const Node& n) const {
-        n.allowOnly({"position", "target", "up", "fov_deg", "near", "far", "azimuth_deg", "elevation_deg",
-                     "distance_scale"});
+        n.allowOnly({"position", "target", "up", "fov_deg", "near", "far", "azimuth_deg",
+                     "elevation_deg", "distance_scale"});
         Camera c;
         c.automatic = !n.has("position");
         if (c.automatic && n.has("target")) n.failField("target", "needs \"position\" as well");
-        if (!c.automatic && (n.has("azimuth_deg") || n.has("elevation_deg") || n.has("distance_scale"))) {
-            n.fail("azimuth_deg/elevation_deg/distance_scale apply to the automatic camera (no \"position\")");
+        if (!c.automatic &&
+            (n.has("azimuth_deg") || n.has("elevation_deg") || n.has("distance_scale"))) {
+            n.fail("azimuth_deg/elevation_deg/distance_scale apply to the automatic camera (no "
+                   "\"position\")");
         }
         c.position = n.vec3("position", c.position, -kHuge, kHuge);
         c.target = n.vec3("target", c.target, -kHuge, kHuge);
@@ -788,7 +852,8 @@ struct Parser {
         if (!c.automatic) {
             glm::vec3 fwd = c.target - c.position;
             if (glm::length(fwd) < 1e-9f) n.failField("target", "must differ from \"position\"");
-            if (glm::length(glm::cross(fwd, c.up)) < 1e-9f * glm::length(fwd) || glm::length(c.up) < 1e-9f) {
+            if (glm::length(glm::cross(fwd, c.up)) < 1e-9f * glm::length(fwd) ||
+                glm::length(c.up) < 1e-9f) {
                 n.failField("up", "expected a non-zero vector not parallel to the view direction");
             }
         }
@@ -813,7 +878,8 @@ struct Parser {
         if (n.has("materials")) {
             n.requireArray("materials", 256);
             Node arr = n.child("materials");
-            for (size_t i = 0; i < arr.value().size(); ++i) s.materials.push_back(material(arr.item(i)));
+            for (size_t i = 0; i < arr.value().size(); ++i)
+                s.materials.push_back(material(arr.item(i)));
         }
         if (s.materials.empty()) {
             Material def;
@@ -825,7 +891,8 @@ struct Parser {
         n.requireArray("meshes", 1024);
         Node meshes = n.child("meshes");
         if (meshes.value().empty()) meshes.fail("expected at least one mesh");
-        for (size_t i = 0; i < meshes.value().size(); ++i) s.meshes.push_back(mesh(meshes.item(i), s.materials));
+        for (size_t i = 0; i < meshes.value().size(); ++i)
+            s.meshes.push_back(mesh(meshes.item(i), s.materials));
         if (n.has("lights")) {
             n.requireArray("lights", size_t(kMaxLights));
             Node arr = n.child("lights");
@@ -855,7 +922,8 @@ struct Parser {
 
 } // namespace
 
-Scene parseScene(const std::string& jsonText, const std::string& sourceName, const fs::path& baseDir) {
+Scene parseScene(const std::string& jsonText, const std::string& sourceName,
+                 const fs::path& baseDir) {
     json root;
     try {
         root = json::parse(jsonText);
@@ -864,7 +932,9 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName, con
         // out_of_range (a number too large for a double, e.g. 1e999).
         std::string what = e.what();
         auto p = what.find("] ");
-        throw io::InputError(sourceName, "", "invalid JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
+        throw io::InputError(sourceName, "",
+                             "invalid JSON: " +
+                                 (p == std::string::npos ? what : what.substr(p + 2)));
     }
     Parser p{sourceName, baseDir};
     return p.scene(root);

@@ -78,7 +78,8 @@ vec4 bilinear(const sg::render::TextureLevel& L, vec2 st, sg::render::Wrap wrap)
     float a = u - fu, b = v - fv;
     vec4 t00 = fetch(L, i0, j0, wrap), t10 = fetch(L, i0 + 1, j0, wrap);
     vec4 t01 = fetch(L, i0, j0 + 1, wrap), t11 = fetch(L, i0 + 1, j0 + 1, wrap);
-    return (1.0f - a) * (1.0f - b) * t00 + a * (1.0f - b) * t10 + (1.0f - a) * b * t01 + a * b * t11;
+    return (1.0f - a) * (1.0f - b) * t00 + a * (1.0f - b) * t10 + (1.0f - a) * b * t01 +
+           a * b * t11;
 }
 
 vec4 sampleLod(const sg::render::TextureImage& img, vec2 st, float lambda) {

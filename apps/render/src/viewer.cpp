@@ -78,14 +78,17 @@ Orbit orbitFromScene(const Scene& scene, const SceneAssets& assets, int w, int h
 View orbitView(const Orbit& o, int w, int h, Aov aov) {
     float nearP = std::max(o.distance - 2.0f * o.radius, o.distance * 1e-3f);
     float farP = o.distance + 3.0f * o.radius;
-    return makeOrbitView(o.target, o.distance, o.azimuthDeg, o.elevationDeg, o.fovDeg, nearP, farP, w, h, aov);
+    return makeOrbitView(o.target, o.distance, o.azimuthDeg, o.elevationDeg, o.fovDeg, nearP, farP,
+                         w, h, aov);
 }
 
 struct Glfw {
     GLFWwindow* window = nullptr;
     Glfw(int w, int h, const std::string& title) {
-        glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "glfw %d: %s\n", code, msg); });
-        if (!glfwInit()) throw sg::gl::GlError("viewer: glfwInit failed (no X display? use xvfb-run)");
+        glfwSetErrorCallback(
+            [](int code, const char* msg) { std::fprintf(stderr, "glfw %d: %s\n", code, msg); });
+        if (!glfwInit())
+            throw sg::gl::GlError("viewer: glfwInit failed (no X display? use xvfb-run)");
         glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
         glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
         glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -175,12 +178,14 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
     float time = 0.0f;
     bool morphOverride = false;
     std::vector<std::vector<float>> morphWeights(scene.meshes.size());
-    for (size_t i = 0; i < scene.meshes.size(); ++i) morphWeights[i] = assets.meshes[i].appliedWeights;
+    for (size_t i = 0; i < scene.meshes.size(); ++i)
+        morphWeights[i] = assets.meshes[i].appliedWeights;
     std::string status;
     double frameMs = 0.0;
     auto last = std::chrono::steady_clock::now();
     bool screenshotNow = false;
-    std::filesystem::path screenshotPath = opt.screenshot.empty() ? std::filesystem::path("out/view.png") : opt.screenshot;
+    std::filesystem::path screenshotPath =
+        opt.screenshot.empty() ? std::filesystem::path("out/view.png") : opt.screenshot;
 
     for (int frame = 0; !glfwWindowShouldClose(glfw.window); ++frame) {
         if (opt.maxFrames > 0 && frame >= opt.maxFrames) break;
@@ -197,24 +202,29 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         if (!io.WantCaptureMouse) {
             if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
                 orbit.azimuthDeg -= 0.3f * io.MouseDelta.x;
-                orbit.elevationDeg = std::clamp(orbit.elevationDeg + 0.3f * io.MouseDelta.y, -89.0f, 89.0f);
+                orbit.elevationDeg =
+                    std::clamp(orbit.elevationDeg + 0.3f * io.MouseDelta.y, -89.0f, 89.0f);
             }
-            if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) orbit.distance *= std::exp(0.01f * io.MouseDelta.y);
+            if (ImGui::IsMouseDragging(ImGuiMouseButton_Right))
+                orbit.distance *= std::exp(0.01f * io.MouseDelta.y);
             if (io.MouseWheel != 0.0f) orbit.distance *= std::exp(-0.1f * io.MouseWheel);
             if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
                 View v = orbitView(orbit, fbw, fbh, Aov::Color);
-                glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]), up(v.view[0][1], v.view[1][1], v.view[2][1]);
+                glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]),
+                    up(v.view[0][1], v.view[1][1], v.view[2][1]);
                 float k = orbit.distance * 0.002f;
                 orbit.target += k * (-io.MouseDelta.x * right + io.MouseDelta.y * up);
             }
-            orbit.distance = std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
+            orbit.distance =
+                std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
         }
 
         // Animation.
         if (playing) time += dt;
         if (!morphOverride) {
             applyFrame(scene, assets, time);
-            for (size_t i = 0; i < scene.meshes.size(); ++i) morphWeights[i] = assets.meshes[i].appliedWeights;
+            for (size_t i = 0; i < scene.meshes.size(); ++i)
+                morphWeights[i] = assets.meshes[i].appliedWeights;
         }
 
         View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
@@ -257,14 +267,18 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         ImGui_ImplGlfw_NewFrame();
         ImGui::NewFrame();
         ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))), ImGuiCond_FirstUseEver);
+        ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))),
+                                 ImGuiCond_FirstUseEver);
         ImGui::Begin("surfgrad");
         ImGui::Text("%s", scene.sourceName.c_str());
-        ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", frameMs, gpuMs, renderer.stats().drawCalls);
+        ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", frameMs, gpuMs,
+                    renderer.stats().drawCalls);
         ImGui::Text("%zu programs cached", renderer.cachedPrograms());
-        static const char* aovs[] = {"color", "normal", "surfgrad", "tangent", "bitangent", "basenormal", "uv", "primid"};
+        static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
+                                     "bitangent", "basenormal", "uv",       "primid"};
         ImGui::Combo("AOV", &aovIndex, aovs, IM_ARRAYSIZE(aovs));
-        ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic);
         if (ImGui::Button("reset camera")) orbit = home;
         ImGui::SameLine();
         if (ImGui::Button("screenshot")) screenshotNow = true;
@@ -272,10 +286,12 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         for (size_t m = 0; m < scene.materials.size(); ++m) {
             Material& mat = scene.materials[m];
             ImGui::PushID(int(m));
-            if (ImGui::CollapsingHeader(("material " + mat.name).c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
+            if (ImGui::CollapsingHeader(("material " + mat.name).c_str(),
+                                        ImGuiTreeNodeFlags_DefaultOpen)) {
                 int ds = int(mat.doubleSided);
                 static const char* modes[] = {"off (cull)", "none", "mirror", "flip"};
-                if (ImGui::Combo("double-sided", &ds, modes, IM_ARRAYSIZE(modes))) mat.doubleSided = DoubleSided(ds);
+                if (ImGui::Combo("double-sided", &ds, modes, IM_ARRAYSIZE(modes)))
+                    mat.doubleSided = DoubleSided(ds);
                 ImGui::ColorEdit3("base colour", &mat.baseColor[0]);
                 ImGui::SliderFloat("roughness", &mat.roughness, 0.02f, 1.0f);
                 toggled |= layerControls(mat.layers, "L");
@@ -288,13 +304,15 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
             ImGui::Checkbox("play", &playing);
             ImGui::SameLine();
             ImGui::SetNextItemWidth(160);
-            ImGui::SliderFloat("time (s)", &time, 0.0f, std::max(1.0f, float(scene.frameCount) / scene.fps));
+            ImGui::SliderFloat("time (s)", &time, 0.0f,
+                               std::max(1.0f, float(scene.frameCount) / scene.fps));
             ImGui::Checkbox("set weights by hand", &morphOverride);
             for (size_t i = 0; i < scene.meshes.size(); ++i) {
                 auto& w = morphWeights[i];
                 for (size_t t = 0; t < w.size(); ++t) {
                     ImGui::PushID(int(i * 1000 + t));
-                    std::string label = scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
+                    std::string label =
+                        scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
                     if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && morphOverride) {
                         scene.meshes[i].morphKeys.clear();
                         scene.meshes[i].morphWeights = w;
@@ -335,7 +353,8 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
         if (fbw > 0 && fbh > 0) {
             View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
-            writeImage(opt.screenshot, renderer.render(scene, assets, view), view.aov, scene.output.exposure);
+            writeImage(opt.screenshot, renderer.render(scene, assets, view), view.aov,
+                       scene.output.exposure);
         }
     }
     glDeleteVertexArrays(1, &emptyVao);

@@ -23,13 +23,13 @@ enum class FieldKind {
 };
 
 struct Field {
-    std::string key;  // JSON key
-    int width;        // number of floats (1, 2, 3, 4 or 16 for a mat4)
-    int slot;         // first float in the record
+    std::string key; // JSON key
+    int width;       // number of floats (1, 2, 3, 4 or 16 for a mat4)
+    int slot;        // first float in the record
     FieldKind kind;
-    bool optional;    // may be omitted on input (then defaultValue)
+    bool optional; // may be omitted on input (then defaultValue)
     float defaultValue;
-    std::string doc;  // one line: meaning, space, units
+    std::string doc; // one line: meaning, space, units
 };
 
 struct Entry {

@@ -66,13 +66,13 @@ struct CurveNetwork {
 // ---------------------------------------------------------------------------
 // Limits on untrusted input (every loader enforces them before allocating).
 
-inline constexpr std::size_t kMaxSegments = 4'000'000;       // per network, after approximation
-inline constexpr std::size_t kMaxCurves = 1'000'000;         // per network
-inline constexpr double kMaxAbsCoord = 1e12;                 // |x|, |y| in input units (after transforms)
+inline constexpr std::size_t kMaxSegments = 4'000'000; // per network, after approximation
+inline constexpr std::size_t kMaxCurves = 1'000'000;   // per network
+inline constexpr double kMaxAbsCoord = 1e12;           // |x|, |y| in input units (after transforms)
 inline constexpr std::size_t kMaxJsonBytes = std::size_t(256) << 20; // JSON file size
 inline constexpr std::size_t kMaxSvgBytes = std::size_t(64) << 20;   // SVG file size
 inline constexpr std::size_t kMaxFontBytes = std::size_t(256) << 20; // font file size
-inline constexpr std::size_t kMaxTextCodepoints = 10'000;    // characters of font text
+inline constexpr std::size_t kMaxTextCodepoints = 10'000;            // characters of font text
 
 // ---------------------------------------------------------------------------
 // Approximation of cubics and arcs by quadratics.
@@ -152,8 +152,9 @@ void arcHullPoints(const ArcParams& arc, std::vector<glm::dvec2>& out);
 
 // JSON curve network (schema: docs/features-input.md):
 //   {"version": 1, "curves": [{"points": [[x, y], ...]} |
-//                             {"segments": [{"line": [[x,y],[x,y]]} | {"quad": [[x,y],[x,y],[x,y]]}, ...]},
-//                             optional "name", "profile", "width", "closed"]}
+//                             {"segments": [{"line": [[x,y],[x,y]]} | {"quad":
+//                             [[x,y],[x,y],[x,y]]}, ...]}, optional "name", "profile", "width",
+//                             "closed"]}
 // Errors name the element as "curves[4].points[2]" (or "line L column C" for
 // syntax errors).
 CurveNetwork parseCurvesJson(std::string_view text, const std::string& source);
@@ -172,8 +173,7 @@ struct SvgOptions {
 // viewBox maps onto itself), or y' = height - y without a viewBox (height
 // attribute, else 0). Errors name the element as "path #3 command 7 'A'"
 // (elements numbered per tag, 1-based, in document order) or "line 12".
-CurveNetwork parseSvg(std::string_view text, const std::string& source,
-                      const SvgOptions& opt = {});
+CurveNetwork parseSvg(std::string_view text, const std::string& source, const SvgOptions& opt = {});
 CurveNetwork loadSvg(const std::filesystem::path& file, const SvgOptions& opt = {});
 
 struct FontOptions {

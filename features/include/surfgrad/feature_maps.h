@@ -97,7 +97,9 @@ inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }
-inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) { return ivec2(s.width, s.height); }
+inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) {
+    return ivec2(s.width, s.height);
+}
 #include "sg/features/fetch.glsl"
 #include "sg/features/profile.glsl"
 #include "sg/features/kernels.glsl"
@@ -149,7 +151,7 @@ struct BakeOptions {
 struct BakeStats {
     int size = 0;
     TexelTransform inputToTexel;
-    int texelsWithFeatures = 0;   // texels with a segment or an edge point
+    int texelsWithFeatures = 0; // texels with a segment or an edge point
     int texelsWithSegments = 0;
     int segmentsKept = 0;         // discontinuity segments stored
     int segmentsDropped = 0;      // removed by the transformation table (rule 2)
@@ -162,8 +164,8 @@ struct BakeStats {
     int invalidTexels = 0;        // texels whose signature needed the optimisation
     int optimizedTexels = 0;      // ... and were made valid by it
     int fallbackTexels = 0;       // ... and were made valid by straightening instead
-    double seconds = 0.0;    // wall-clock time of the whole bake
-    double cpuSeconds = 0.0; // CPU time of the calling thread (the bake is single-threaded)
+    double seconds = 0.0;         // wall-clock time of the whole bake
+    double cpuSeconds = 0.0;      // CPU time of the calling thread (the bake is single-threaded)
     // CPU time of the phases: scan conversion and configurations, signature
     // optimisation (quadratic mode), distances, smoothing.
     double secondsScan = 0.0, secondsOptimize = 0.0, secondsDistance = 0.0, secondsSmooth = 0.0;

@@ -51,6 +51,7 @@ void checkNotInput(const std::filesystem::path& output,
 
 // Reads a whole file. Throws InputError when it is missing, unreadable, not
 // a regular file, or larger than maxBytes.
-std::string readFile(const std::filesystem::path& path, std::size_t maxBytes = std::size_t(1) << 30);
+std::string readFile(const std::filesystem::path& path, std::size_t maxBytes = std::size_t(1)
+                                                                               << 30);
 
 } // namespace sg::io

@@ -45,11 +45,11 @@ namespace sg::mesh {
 // Upper bounds checked before allocating (a file that declares more is
 // refused with InputError, not truncated).
 struct InputLimits {
-    size_t maxFileBytes = size_t(1) << 30;   // 1 GiB (also per glTF buffer)
-    size_t maxVertices = size_t(1) << 25;    // 33.5 M
+    size_t maxFileBytes = size_t(1) << 30; // 1 GiB (also per glTF buffer)
+    size_t maxVertices = size_t(1) << 25;  // 33.5 M
     size_t maxFaces = size_t(1) << 25;
-    size_t maxCorners = size_t(1) << 27;     // face-vertex entries
-    uint32_t maxFaceDegree = 256;            // corners of one polygon
+    size_t maxCorners = size_t(1) << 27; // face-vertex entries
+    uint32_t maxFaceDegree = 256;        // corners of one polygon
     size_t maxUvSets = 8;
     size_t maxMorphTargets = 64;
 };
@@ -57,10 +57,10 @@ struct InputLimits {
 // What a loader (or validate with repair) did besides the obvious. Nothing
 // is dropped or changed silently: every change is counted here.
 struct LoadReport {
-    std::vector<std::string> notes;      // one human-readable line each
-    size_t degenerateFacesDropped = 0;   // repair only
-    size_t duplicateVerticesWelded = 0;  // repair only (bitwise-equal positions)
-    size_t isolatedVertices = 0;         // vertices no face uses (kept)
+    std::vector<std::string> notes;     // one human-readable line each
+    size_t degenerateFacesDropped = 0;  // repair only
+    size_t duplicateVerticesWelded = 0; // repair only (bitwise-equal positions)
+    size_t isolatedVertices = 0;        // vertices no face uses (kept)
     bool changed() const { return degenerateFacesDropped + duplicateVerticesWelded > 0; }
 };
 
@@ -104,11 +104,11 @@ struct MeshInfo {
     size_t vertices = 0, faces = 0, corners = 0, isolatedVertices = 0;
     std::vector<size_t> faceDegreeHistogram; // [k] = faces with k corners (size maxDegree+1)
     size_t edges = 0, boundaryEdges = 0, boundaryLoops = 0;
-    size_t nonManifoldEdges = 0;   // 3+ faces, or one direction used twice
+    size_t nonManifoldEdges = 0;    // 3+ faces, or one direction used twice
     size_t nonManifoldVertices = 0; // faces around it form 2+ fans
     size_t creases = 0, infiniteCreases = 0, cornerTags = 0, holes = 0;
-    bool manifold = true;           // no non-manifold edge or vertex
-    int eulerCharacteristic = 0;    // V - E + F (isolated vertices excluded)
+    bool manifold = true;        // no non-manifold edge or vertex
+    int eulerCharacteristic = 0; // V - E + F (isolated vertices excluded)
 };
 MeshInfo describe(const PolygonMesh& mesh);
 
@@ -140,7 +140,7 @@ struct Material {
     std::string name;
     glm::vec4 baseColorFactor{1.0f};
     std::string baseColorTexture;
-    int baseColorTexCoord = 0;       // TEXCOORD_n index = RenderMesh::uvSets index
+    int baseColorTexCoord = 0; // TEXCOORD_n index = RenderMesh::uvSets index
     std::string normalTexture;
     int normalTexCoord = 0;
     float normalScale = 1.0f;
@@ -156,10 +156,10 @@ enum class AnimInterpolation : uint8_t { Linear, Step, CubicSpline };
 // weight of the node's mesh.
 struct MorphWeightAnimation {
     std::string name;
-    int node = -1;                   // glTF node index the channel targets
+    int node = -1; // glTF node index the channel targets
     size_t targetCount = 0;
     AnimInterpolation interpolation = AnimInterpolation::Linear;
-    std::vector<float> times;        // seconds, strictly increasing, finite
+    std::vector<float> times; // seconds, strictly increasing, finite
     // times.size() * targetCount values; CubicSpline: 3 * that
     // (in-tangent, value, out-tangent per key, as glTF stores them).
     std::vector<float> weights;
@@ -170,10 +170,10 @@ struct MorphWeightAnimation {
 std::vector<float> sampleWeights(const MorphWeightAnimation& anim, float seconds);
 
 struct SceneInstance {
-    RenderMesh mesh;                 // object space
-    glm::mat4 objectToWorld{1.0f};   // the node's world matrix (column-major, glm)
+    RenderMesh mesh;                               // object space
+    glm::mat4 objectToWorld{1.0f};                 // the node's world matrix (column-major, glm)
     int node = -1, meshIndex = -1, primitive = -1; // glTF indices (-1 for other formats)
-    int material = -1;               // index into Scene::materials
+    int material = -1;                             // index into Scene::materials
 };
 
 struct Scene {
@@ -193,8 +193,9 @@ Scene loadScene(const std::filesystem::path& path, const LoadOptions& options = 
 // external URIs are resolved against baseDir (empty: refused).
 PolygonMesh parseObj(std::string_view text, const std::string& file, const InputLimits& limits = {},
                      LoadReport* report = nullptr);
-Scene parseGltf(std::string_view bytes, const std::string& file, const std::filesystem::path& baseDir,
-                const InputLimits& limits = {}, LoadReport* report = nullptr);
+Scene parseGltf(std::string_view bytes, const std::string& file,
+                const std::filesystem::path& baseDir, const InputLimits& limits = {},
+                LoadReport* report = nullptr);
 
 // ---- Conversions -----------------------------------------------------------
 
@@ -220,8 +221,8 @@ struct WriteOptions {
 // .gltf (one file, buffer embedded as a base64 data URI), .glb, .obj (UV set
 // 0 as vt; OBJ holds one set), .ply (binary little-endian; per-vertex normals
 // and UV sets as s/t, s1/t1, ...). Returns one note per kind of data the
-// format cannot hold (empty when nothing was lost). glTF gets POSITION (with min/max), NORMAL, TANGENT (when present),
-// TEXCOORD_n (t flipped back to glTF's v), morph targets and weights.
+// format cannot hold (empty when nothing was lost). glTF gets POSITION (with min/max), NORMAL,
+// TANGENT (when present), TEXCOORD_n (t flipped back to glTF's v), morph targets and weights.
 std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, const RenderMesh& mesh,
                                          const WriteOptions& options = {});
 
@@ -231,7 +232,8 @@ std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, cons
 // and UV sets as s/t, s1/t1, ... when they have no seams (per-corner data is
 // dropped, noted: OpenMesh's PLY reader cannot read face lists of UVs);
 // .gltf/.glb go through toRenderMesh.
-std::vector<std::string> writePolygonMesh(const std::filesystem::path& path, const PolygonMesh& mesh,
+std::vector<std::string> writePolygonMesh(const std::filesystem::path& path,
+                                          const PolygonMesh& mesh,
                                           const WriteOptions& options = {});
 
 // Lower-case extension with the dot (".obj"); the loaders' and writers' switch.

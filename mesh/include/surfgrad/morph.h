@@ -34,7 +34,8 @@ enum class MorphNormals : uint8_t {
 // out = cage.positions + sum_i weights[i] * cage.morphTargets[i].positionDeltas.
 // weights.size() must equal cage.morphTargets.size() (asserted; callers
 // check user input first). `out` is resized and reused.
-void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights, std::vector<glm::vec3>& out);
+void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
+                        std::vector<glm::vec3>& out);
 
 // Per-frame morphing of a RenderMesh with reused buffers.
 class Morpher {

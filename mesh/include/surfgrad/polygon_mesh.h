@@ -56,8 +56,8 @@ enum class FVarInterpolation : uint8_t {
     All = 5,          // linear everywhere (UVs are not smoothed at all)
 };
 
-enum class CreaseMethod : uint8_t { Uniform, Chaikin };    // "t creasemethod normal|chaikin"
-enum class TriangleRule : uint8_t { Catmark, Smooth };      // "t smoothtriangles catmark" = Smooth
+enum class CreaseMethod : uint8_t { Uniform, Chaikin }; // "t creasemethod normal|chaikin"
+enum class TriangleRule : uint8_t { Catmark, Smooth };  // "t smoothtriangles catmark" = Smooth
 
 struct SubdivOptions {
     Scheme scheme = Scheme::Catmark;
@@ -80,9 +80,9 @@ enum SubdivTagBits : uint32_t {
 // One UV set: values plus one value index per face corner, so a vertex may
 // carry different UVs in different faces (UV seams).
 struct FaceVaryingChannel {
-    std::string name;                // "TEXCOORD_0", "vt", ...
-    std::vector<glm::vec2> values;   // (s,t), t up
-    std::vector<uint32_t> indices;   // faceVertices.size() entries, each < values.size()
+    std::string name;              // "TEXCOORD_0", "vt", ...
+    std::vector<glm::vec2> values; // (s,t), t up
+    std::vector<uint32_t> indices; // faceVertices.size() entries, each < values.size()
 };
 
 // Edge between two vertices (order irrelevant); sharpness in Sdc units
@@ -135,9 +135,9 @@ struct PolygonMesh {
 // entries, the last one == cornerCount()).
 std::vector<uint32_t> faceOffsets(const PolygonMesh& mesh);
 
-const char* toString(Scheme scheme);                 // "catmark" | "loop" | "bilinear"
-const char* toString(BoundaryInterpolation rule);    // "none" | "edge-only" | "edge-and-corner"
-const char* toString(FVarInterpolation rule);        // "smooth" | "corners-only" | ... | "all"
+const char* toString(Scheme scheme);              // "catmark" | "loop" | "bilinear"
+const char* toString(BoundaryInterpolation rule); // "none" | "edge-only" | "edge-and-corner"
+const char* toString(FVarInterpolation rule);     // "smooth" | "corners-only" | ... | "all"
 // Parse the same names; return false for an unknown name.
 bool parseScheme(const std::string& name, Scheme& out);
 bool parseFVarInterpolation(const std::string& name, FVarInterpolation& out);

@@ -38,7 +38,8 @@ struct PolyMeshProperties {
 // silently): this throws InputError naming the first refused face and why,
 // so pass a validated mesh. Morph targets and face-varying normals are not
 // carried.
-PolyMesh toPolyMesh(const PolygonMesh& mesh, PolyMeshProperties& props, const std::string& file = {});
+PolyMesh toPolyMesh(const PolygonMesh& mesh, PolyMeshProperties& props,
+                    const std::string& file = {});
 
 // The reverse: vertex order and face order are kept; UVs are deduplicated
 // per vertex (corners of one vertex with equal UVs share a value).

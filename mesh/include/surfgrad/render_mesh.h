@@ -38,13 +38,13 @@ struct MorphTarget {
 struct RenderMesh {
     std::string name;
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;              // empty or positions.size()
-    std::vector<std::vector<glm::vec2>> uvSets;  // each positions.size()
-    std::vector<glm::vec4> tangents;             // empty or positions.size()
-    int tangentUvSet = -1;                       // UV set the tangents belong to
-    std::vector<uint32_t> indices;               // 3 per triangle
+    std::vector<glm::vec3> normals;             // empty or positions.size()
+    std::vector<std::vector<glm::vec2>> uvSets; // each positions.size()
+    std::vector<glm::vec4> tangents;            // empty or positions.size()
+    int tangentUvSet = -1;                      // UV set the tangents belong to
+    std::vector<uint32_t> indices;              // 3 per triangle
     std::vector<MorphTarget> morphTargets;
-    std::vector<float> morphWeights;             // default weights, one per target
+    std::vector<float> morphWeights; // default weights, one per target
 
     size_t vertexCount() const { return positions.size(); }
     size_t triangleCount() const { return indices.size() / 3; }

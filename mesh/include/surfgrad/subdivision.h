@@ -29,8 +29,8 @@ namespace sg::mesh {
 inline constexpr int kMaxSubdivisionLevel = 8;
 
 struct SubdivisionSettings {
-    int level = 2;            // uniform refinement level, 0..kMaxSubdivisionLevel
-    SubdivOptions options;    // scheme and rules (start from cage.options, apply flags)
+    int level = 2;         // uniform refinement level, 0..kMaxSubdivisionLevel
+    SubdivOptions options; // scheme and rules (start from cage.options, apply flags)
     // Evaluate the limit surface at the refined vertices: refined() and
     // renderMesh() then hold limit positions, limit normals and limit UVs,
     // and limitFrame() the derivatives (see LimitFrame in render_mesh.h).
@@ -73,7 +73,8 @@ class Subdivider {
 public:
     Subdivider();
     // Same as build(cage, settings, file).
-    Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file = {});
+    Subdivider(const PolygonMesh& cage, const SubdivisionSettings& settings,
+               const std::string& file = {});
     ~Subdivider();
     Subdivider(Subdivider&&) noexcept;
     Subdivider& operator=(Subdivider&&) noexcept;
@@ -86,7 +87,8 @@ public:
     // the cage: Loop with a non-triangle face, a level outside
     // 0..kMaxSubdivisionLevel, a refined size above maxRefinedFaces. Holes:
     // hole faces and their descendants are left out of every output.
-    void build(const PolygonMesh& cage, const SubdivisionSettings& settings, const std::string& file = {});
+    void build(const PolygonMesh& cage, const SubdivisionSettings& settings,
+               const std::string& file = {});
 
     const SubdivisionSettings& settings() const;
 
@@ -121,8 +123,8 @@ public:
     // recomputeNormals = false leaves out.normals alone (callers that
     // morph or shade without them). Not safe to call concurrently on one
     // Subdivider (it keeps scratch buffers).
-    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* frame = nullptr,
-                bool recomputeNormals = true) const;
+    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out,
+                LimitFrame* frame = nullptr, bool recomputeNormals = true) const;
 
     const SubdivisionTimings& timings() const;
     // Whether the last build refined with the specialised refiner (see

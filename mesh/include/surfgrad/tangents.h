@@ -72,9 +72,9 @@ std::optional<TangentMethod> parseTangentMethod(std::string_view name);
 // (dP/ds beyond 1e19) a tangent can collapse to 0 and magnitudes to +inf,
 // exactly as in the reference.
 struct MikkTSpaceInput {
-    std::span<const glm::vec3> positions;   // per vertex, object space
-    std::span<const glm::vec3> normals;     // per vertex, unit, object space
-    std::span<const glm::vec2> uvs;         // per vertex, the UV set (s, t)
+    std::span<const glm::vec3> positions;     // per vertex, object space
+    std::span<const glm::vec3> normals;       // per vertex, unit, object space
+    std::span<const glm::vec2> uvs;           // per vertex, the UV set (s, t)
     std::span<const uint32_t> cornerVertices; // per face corner: vertex index
     // Per face: number of corners. Faces with other than 3 or 4 corners are
     // ignored, as by the reference: their corners get vec4(0) (triangulate

@@ -72,8 +72,8 @@ private:
 // outStride floats. Large inputs are split into dispatches that fit the
 // implementation's limits.
 inline constexpr int kComputeGroupSize = 64;
-std::vector<float> runCompute(const Program& program, const std::vector<float>& input,
-                              int inStride, int outStride, size_t count);
+std::vector<float> runCompute(const Program& program, const std::vector<float>& input, int inStride,
+                              int outStride, size_t count);
 
 // Throws GlError naming `what` if glGetError reports an error.
 void checkError(const char* what);

@@ -65,22 +65,22 @@ enum class LayerKind {
 };
 const char* layerKindName(LayerKind k); // the schema's "type" string
 enum class Space { World, Object };
-enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 }; // SG_ENC_*
-enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 };     // SG_NOISE_*
+enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 };           // SG_ENC_*
+enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 };               // SG_NOISE_*
 enum class ModifierKind { Scale = 1, Curve = 2, Modulate = 3, Deform = 4 }; // SG_MOD_*
 
 // Where a texture's texels come from: a file (PNG, EXR, ... through
 // OpenImageIO) or a built-in procedural pattern (tileable over [0,1]^2).
 struct TextureSource {
-    std::filesystem::path file;  // resolved path; empty for procedural
-    std::string procedural;      // "bricks", "tiles", "bumps", "weave", "scratches"
+    std::filesystem::path file;    // resolved path; empty for procedural
+    std::string procedural;        // "bricks", "tiles", "bumps", "weave", "scratches"
     std::string output = "normal"; // procedural: "normal" | "height" | "derivative"
-    int size = 256;              // procedural resolution
-    float bumpHeight = 0.04f;    // procedural: height per unit st (slope scale)
+    int size = 256;                // procedural resolution
+    float bumpHeight = 0.04f;      // procedural: height per unit st (slope scale)
     Wrap wrap = Wrap::Repeat;
-    bool srgb = false;           // colour texture: sRGB-decoded to linear on load
-    std::string fieldPath;       // for messages, e.g. "materials[0].layers[1].map"
-    std::string key() const;     // identity: equal keys share one texture
+    bool srgb = false;       // colour texture: sRGB-decoded to linear on load
+    std::string fieldPath;   // for messages, e.g. "materials[0].layers[1].map"
+    std::string key() const; // identity: equal keys share one texture
 };
 
 // Where a feature-curve layer's maps come from: a file written by
@@ -90,9 +90,9 @@ struct FeatureSource {
     std::filesystem::path mapsFile; // .exr feature maps, or empty
     std::string curvesKind;         // "svg", "json" or "font" (bake at load)
     std::filesystem::path curvesFile;
-    std::string text;               // font: the characters
-    int size = 256;                 // bake: texels per side
-    bool quadratic = false;         // bake: quadratic (TOG 2008) or linear (TR2005)
+    std::string text;       // font: the characters
+    int size = 256;         // bake: texels per side
+    bool quadratic = false; // bake: quadratic (TOG 2008) or linear (TR2005)
     double marginTexels = 8.0;
     std::string fieldPath;
     std::string key() const;
@@ -100,8 +100,8 @@ struct FeatureSource {
 
 struct Modifier {
     ModifierKind kind = ModifierKind::Scale;
-    float a = 1.0f; // scale: alpha; curve: P; deform: amplitude A; modulate: gain
-    float b = 0.0f; // curve: centre H; deform: frequency B
+    float a = 1.0f;  // scale: alpha; curve: P; deform: amplitude A; modulate: gain
+    float b = 0.0f;  // curve: centre H; deform: frequency B
     int channel = 0; // modulate: mask channel
     std::optional<TextureSource> mask; // modulate
 };
@@ -117,37 +117,38 @@ struct Layer {
     std::vector<TextureSource> maps;
     int uvSet = 0;
     NormalEncoding encoding = NormalEncoding::Rgb;
-    bool flipV = false;        // green convention "dx"
-    int heightChannel = -1;    // uv_normal/deriv_map height channel for modifiers
-    float heightScale = 1.0f;  // height channel -> height per st unit
+    bool flipV = false;       // green convention "dx"
+    int heightChannel = -1;   // uv_normal/deriv_map height channel for modifiers
+    float heightScale = 1.0f; // height channel -> height per st unit
     std::vector<Modifier> modifiers;
 
-    Space space = Space::Object;   // object_normal, triplanar, noise
-    int channel = 0;               // height: channel of the height
-    float heightWorld = 0.05f;     // height: world units per unit of the channel
-    bool derivSigned = true;       // deriv_map: float texels (else unorm * range)
+    Space space = Space::Object; // object_normal, triplanar, noise
+    int channel = 0;             // height: channel of the height
+    float heightWorld = 0.05f;   // height: world units per unit of the channel
+    bool derivSigned = true;     // deriv_map: float texels (else unorm * range)
     float derivRange = 1.0f;
-    bool derivTexelSpace = false;  // deriv_map: texel-space (scale dependent)
+    bool derivTexelSpace = false; // deriv_map: texel-space (scale dependent)
 
-    float triScale = 1.0f;         // triplanar: repeats per domain unit
-    float triSharpness = 4.0f;     // listing 14's k
+    float triScale = 1.0f;     // triplanar: repeats per domain unit
+    float triSharpness = 4.0f; // listing 14's k
     bool triRightHanded = true;
 
     glm::vec3 decalPosition{0.0f}; // decal centre (world)
-    glm::vec3 decalAxisX{1, 0, 0}, decalAxisY{0, 1, 0}, decalAxisZ{0, 0, 1}; // z toward the surface it lands on
+    glm::vec3 decalAxisX{1, 0, 0}, decalAxisY{0, 1, 0},
+        decalAxisZ{0, 0, 1}; // z toward the surface it lands on
     glm::vec3 decalHalfSize{0.5f};
     float decalFade = 0.25f;
     float decalCosStart = 0.5f, decalCosEnd = 0.17f;
 
     NoiseType noiseType = NoiseType::Turbulence;
-    float noiseAmplitude = 0.02f, noiseFrequency = 4.0f, noiseLacunarity = 2.0f,
-          noiseGain = 0.5f, noiseExponent = 1.0f;
+    float noiseAmplitude = 0.02f, noiseFrequency = 4.0f, noiseLacunarity = 2.0f, noiseGain = 0.5f,
+          noiseExponent = 1.0f;
     int noiseOctaves = 5;
     glm::vec3 noiseOffset{0.0f};
     bool noiseAntialias = true;
 
     std::optional<FeatureSource> feature; // feature: the maps (maps[0] is the optional base map)
-    std::string featProfile = "crease";  // sg::features::makeProfile name
+    std::string featProfile = "crease";   // sg::features::makeProfile name
     float featDepth = 1.0f, featW0 = 0.0f, featWidth = 3.0f; // texels
     bool featPaperMode = false;
     float featTiling = 1.0f;
@@ -178,7 +179,7 @@ struct Procedural {
     float minorRadius = 0.35f; // torus
     int segments = 64;         // tessellation
     float terrainHeight = 0.25f; // terrain relief (world units)
-    int uvSets = 2;            // UV sets generated (set 1 = set 0 * 4: a tiling detail set)
+    int uvSets = 2;              // UV sets generated (set 1 = set 0 * 4: a tiling detail set)
 };
 
 // A UV set derived from an existing one by an affine map of the texture
@@ -199,17 +200,17 @@ struct DerivedUvSet {
 struct MeshInstance {
     std::string name;
     std::string fieldPath;
-    std::filesystem::path file;        // OBJ/PLY/OFF/glTF (via the mesh module), or empty
-    int fileInstance = -1;             // glTF: one instance of the file's scene (-1: all, merged)
+    std::filesystem::path file; // OBJ/PLY/OFF/glTF (via the mesh module), or empty
+    int fileInstance = -1;      // glTF: one instance of the file's scene (-1: all, merged)
     std::optional<Procedural> procedural;
-    bool subdivide = false;            // "subdivision" given: refine with OpenSubdiv
-    std::string subdivScheme;          // "" (the file's tags, else catmark), "catmark", "loop", "bilinear"
+    bool subdivide = false;   // "subdivision" given: refine with OpenSubdiv
+    std::string subdivScheme; // "" (the file's tags, else catmark), "catmark", "loop", "bilinear"
     int subdivLevel = 0;
     bool subdivLimit = false;
     std::vector<DerivedUvSet> derivedUvSets; // appended after the mesh's own UV sets
-    std::vector<TangentSource> tangents; // per UV set; missing = pixel
-    std::vector<float> morphWeights;     // empty: the file's defaults
-    std::vector<MorphKey> morphKeys;     // weight animation (linear between keys)
+    std::vector<TangentSource> tangents;     // per UV set; missing = pixel
+    std::vector<float> morphWeights;         // empty: the file's defaults
+    std::vector<MorphKey> morphKeys;         // weight animation (linear between keys)
     bool morphLoop = true;
     glm::mat4 transform{1.0f};
     int material = 0;
@@ -220,11 +221,11 @@ struct Light {
     glm::vec3 direction{-0.4f, -0.7f, -0.6f}; // directional: direction light travels
     glm::vec3 position{0.0f};                 // point: world position
     glm::vec3 color{1.0f};
-    float intensity = 3.0f;                   // point: radiant intensity (1/d^2 falloff)
+    float intensity = 3.0f; // point: radiant intensity (1/d^2 falloff)
 };
 
 struct Camera {
-    bool automatic = true;        // frame the scene's bounds
+    bool automatic = true; // frame the scene's bounds
     float azimuthDeg = 30.0f, elevationDeg = 20.0f, distanceScale = 1.0f; // automatic
     glm::vec3 position{0.0f, 0.0f, 5.0f};
     glm::vec3 target{0.0f};
@@ -282,7 +283,7 @@ std::filesystem::path dataDirectory();
 struct FeatureMapsAsset;
 
 struct MeshAsset {
-    sg::mesh::RenderMesh mesh;        // object space; morph targets kept
+    sg::mesh::RenderMesh mesh; // object space; morph targets kept
     // Vertex tangents per UV set (empty = that set uses per-pixel frames),
     // aligned with mesh's vertices. Generated for a set only when the mesh
     // asks for vertex tangents on it AND an enabled layer reads its basis
@@ -303,8 +304,8 @@ struct MeshAsset {
 uint32_t tangentBasisUvSets(const Material& material);
 
 struct SceneAssets {
-    uint64_t uid = 0;         // unique per loadAssets() call (GPU caches key on it)
-    uint64_t meshVersion = 0; // bumped by applyFrame() when vertex data changed
+    uint64_t uid = 0;              // unique per loadAssets() call (GPU caches key on it)
+    uint64_t meshVersion = 0;      // bumped by applyFrame() when vertex data changed
     std::vector<MeshAsset> meshes; // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
     // Feature maps in their GPU layout, by FeatureSource::key().
@@ -322,7 +323,8 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets);
 // (positions and normals; pixel frames need nothing else).
 void applyFrame(const Scene& scene, SceneAssets& assets, float seconds);
 // Loads or generates one texture (also used by tests).
-std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src, const std::string& sceneName);
+std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
+                                                const std::string& sceneName);
 
 // ---------------------------------------------------------------------------
 // Views
@@ -352,36 +354,36 @@ View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float ele
 // uniforms and do not change the program.
 struct PlanLayer {
     const Layer* layer = nullptr;
-    int record = 0;      // first vec4 record in the material's uLayerData
+    int record = 0; // first vec4 record in the material's uLayerData
     int recordCount = 0;
     int tex[3] = {-1, -1, -1}; // texture slots
     int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
     int featureIndex = -1;     // feature layers: index among the plan's feature layers
     int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
     bool hasModifiers = false;
-    int modRecord = -1;        // first modifier record (one per modifier)
-    int uberIndex = -1;        // uber-shader enable flag
+    int modRecord = -1; // first modifier record (one per modifier)
+    int uberIndex = -1; // uber-shader enable flag
 };
 
 struct MaterialPlan {
-    std::string signature;          // effect signature: the program cache key
+    std::string signature; // effect signature: the program cache key
     int materialIndex = 0;
     int uvCount = 0;                // UV sets the mesh provides (vertex attributes)
     uint32_t vertexTangentMask = 0; // bit k: UV set k uses vertex tangents
     int lightCount = 1;
-    bool uber = false;              // every kind compiled in, enabled by uniforms
+    bool uber = false;                          // every kind compiled in, enabled by uniforms
     std::vector<std::vector<PlanLayer>> groups; // [0] base layers, then post-resolve groups
-    std::vector<const Layer*> groupLayers;      // the post_resolve layer of each group (nullptr for 0)
-    std::vector<int> groupUberIndex;            // uber plans: flag of each group (-1 for 0)
-    std::vector<std::string> textureKeys;       // slot -> TextureSource::key()
+    std::vector<const Layer*> groupLayers; // the post_resolve layer of each group (nullptr for 0)
+    std::vector<int> groupUberIndex;       // uber plans: flag of each group (-1 for 0)
+    std::vector<std::string> textureKeys;  // slot -> TextureSource::key()
     std::vector<const TextureSource*> textureSources; // slot -> source
     std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
     int featureLayerCount = 0;                        // feature layers (all groups)
-    bool featureCurved = false;                       // some feature map has curved segments (SG_FEAT_CURVED)
+    bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
     int recordCount = 0;
     int uberFlagCount = 0;
-    uint32_t uvUsedMask = 0;        // UV sets read by some layer (or the base colour map)
-    int baseColorTex = -1;          // texture slot of the base colour map (-1: none)
+    uint32_t uvUsedMask = 0; // UV sets read by some layer (or the base colour map)
+    int baseColorTex = -1;   // texture slot of the base colour map (-1: none)
     int baseColorUvSet = 0;
     bool usesWorldVolume = false, usesObjectVolume = false;
     // Uber plans: the disabled stand-in layers (shared so copies of the
@@ -401,7 +403,7 @@ MaterialPlan planUberMaterial(const Scene& scene, const SceneAssets& assets, int
                               int materialIndex);
 
 struct ProgramSource {
-    std::string vertex;    // complete GLSL (includes expanded)
+    std::string vertex; // complete GLSL (includes expanded)
     std::string fragment;
     std::vector<std::string> vertexFiles, fragmentFiles; // #line source-string names
 };
@@ -422,7 +424,9 @@ struct Image {
     int width = 0, height = 0;
     std::vector<glm::vec4> pixels; // bottom row first
     glm::vec4& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
-    const glm::vec4& at(int x, int y) const { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
+    const glm::vec4& at(int x, int y) const {
+        return pixels[size_t(y) * size_t(width) + size_t(x)];
+    }
 };
 
 // Writes an image atomically (sg::io::writeAtomically). ".exr": linear RGBA
@@ -446,9 +450,10 @@ struct VectorImageDiff {
     size_t coverageMismatch = 0; // pixels covered in one image only, or by different primitives
     size_t nonFinite = 0;        // compared pixels with a NaN/Inf component in either image
     double meanDeg = 0, p50Deg = 0, p90Deg = 0, p99Deg = 0, p999Deg = 0, maxDeg = 0;
-    int maxX = -1, maxY = -1;    // where the largest angle is
+    int maxX = -1, maxY = -1; // where the largest angle is
 };
-VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image& primA, const Image& primB);
+VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image& primA,
+                                    const Image& primB);
 
 // ---------------------------------------------------------------------------
 // Renderers
@@ -513,6 +518,7 @@ struct CpuOptions {
     // piecewise-linear approximation (sg::glsl::LodRule::FastLog2).
     sg::glsl::LodRule textureLod = sg::glsl::LodRule::Exact;
 };
-Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view, const CpuOptions& options = {});
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
+                const CpuOptions& options = {});
 
 } // namespace sg::render
