@@ -1,7 +1,7 @@
 // Renderer benchmarks on llvmpipe (bench/README.md, "Renderer"): frame
 // times at 1280x720, medians over several frames, each frame finished with
 // glFinish (llvmpipe skips draws a later opaque draw covers, so unfinished
-// frames under-report: ../shared/STACK.md). Ratios are to a baseline
+// frames under-report: docs/platform.md). Ratios are to a baseline
 // measured in the same run.
 //  1. Effects on demand: a one-layer scene through its assembled program vs
 //     the same scene through an uber-shader with every layer kind compiled

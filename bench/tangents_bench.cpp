@@ -1,6 +1,6 @@
 // Benchmark: MikkTSpace-compatible vertex tangents (surfgrad/tangents.h) on
 // a >= 1M-triangle mesh, one core. Input: blub (Keenan Crane,
-// ../shared/data/meshes/blub) with area-weighted vertex normals, split
+// data/meshes/blub) with area-weighted vertex normals, split
 // 1-to-4 at edge midpoints (positions, normals and UVs interpolated, normals
 // renormalized) until it has >= 900k triangles (3 splits: 909,312).
 // Loaded with sg::mesh::loadRenderMesh (normals: area-weighted, smooth across
@@ -10,8 +10,8 @@
 // generator constructed per call (cold buffers: page faults included), the
 // step-by-step oracle (the baseline, same run); every row's output is
 // compared bit for bit with the oracle's. The C reference (mmikk/MikkTSpace)
-// is not built here; its figure from ../shared/STACK.md (0.5 Mtri/s on this
-// kind of machine) is printed as an anchor only.
+// is not built here; its figure (0.5 Mtri/s, measured once separately on
+// this kind of machine, single core, -O2) is printed as an anchor only.
 //
 //   bench/tangents_bench [--runs N] [--oracle-runs N] [--splits N] [--obj FILE]
 //   bench/tangents_bench --check-acos

@@ -1,6 +1,6 @@
 # All third-party packages, found once. Installed on Debian 12 by
 # scripts/setup-deps (see README). Quirks handled here are documented in
-# ../shared/STACK.md.
+# docs/platform.md.
 find_package(glm REQUIRED)
 find_package(nlohmann_json REQUIRED)
 find_package(CLI11 REQUIRED)

@@ -3,7 +3,7 @@
 // OpenGL toolkit every GPU table uses (float render targets with read-back,
 // mesh upload, a full-screen pass, and the frame timer).
 //
-// Timing method (../shared/STACK.md, "Timing trap"): llvmpipe skips draws
+// Timing method (docs/platform.md, "Timing on llvmpipe"): llvmpipe skips draws
 // that a later opaque draw covers, so each timed frame is exactly one
 // clear + draw + glFinish, measured on the wall clock. Variants of one table
 // are interleaved frame by frame (A, B, C, A, B, C, ...) so drift from other

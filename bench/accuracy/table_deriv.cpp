@@ -6,7 +6,7 @@
 //
 //  position/UV derivatives (height derivative analytic, chain rule):
 //    dFdxFine / dFdyFine of position and UV (the prologue, listing 16);
-//    dFdxCoarse / dFdyCoarse (on llvmpipe the same values: ../shared/STACK.md);
+//    dFdxCoarse / dFdyCoarse (on llvmpipe the same values: docs/platform.md);
 //    analytic dPdx/dPdy of listing 17 (sgScreenDerivOfPos) with the UV
 //      derivatives still from dFdxFine;
 //    listing 17 plus analytic UV derivatives (the UV Jacobian of the sphere's

@@ -1,10 +1,9 @@
 #!/bin/sh
-# Regenerates the baked normal maps of examples/data/ from the shared data
-# (SURFGRAD_DATA_DIR, default ../shared/data beside the repository) with
-# oiiotool and examples/tools/height_to_normal.py. See README.md here.
+# Regenerates the baked normal maps of examples/data/ from the repository's
+# data/ (or $SURFGRAD_DATA_DIR) with oiiotool and examples/tools/height_to_normal.py. See README.md here.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
-data=${SURFGRAD_DATA_DIR:-$here/../../../shared/data}
+data=${SURFGRAD_DATA_DIR:-$here/../../data}
 bake="python3 $here/../tools/height_to_normal.py"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

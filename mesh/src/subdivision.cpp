@@ -28,7 +28,7 @@
 // weights per point: ~3x fewer than Far's flattened StencilTable at level 4
 // on spot, and no 50 ms StencilTableFactory build), applied level by level
 // with plain loops (Osd's CpuEvaluator takes a slow path for stride-3 data,
-// ../shared/STACK.md).
+// docs/platform.md).
 #include "surfgrad/subdivision.h"
 
 #include <opensubdiv/far/error.h>
@@ -418,7 +418,7 @@ struct SampleTable {
     }
 };
 
-// The patch-table hang (../shared/STACK.md): PatchTable::EvaluateBasis
+// The patch-table hang (docs/platform.md): PatchTable::EvaluateBasis
 // spins forever for parameters outside [0,1]. Every evaluation goes through
 // here.
 inline float clampParam(float x) {

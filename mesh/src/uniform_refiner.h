@@ -10,7 +10,7 @@
 // masks come from OpenSubdiv's own Sdc::Scheme<SCHEME_CATMARK>, fed by the
 // neighbourhoods below) applied in the same order. tests/mesh/
 // uniform_refiner_test.cpp compares both on every accepted shape of
-// ../shared/data/osd-shapes and on spot under every boundary, face-varying
+// data/osd-shapes and on spot under every boundary, face-varying
 // and crease option.
 //
 // Why it is faster than Far (3-4x on spot at level 4, bench/README.md

@@ -1,7 +1,7 @@
 // SVG input (input_svg.cpp): every path command absolute and relative
 // against hand-computed segments, number syntax, arcs (flags, out-of-range
 // radii), basic shapes, transforms, the y flip, hostile XML, and every
-// lucide icon of the shared data.
+// lucide icon in data/svg.
 //
 // All drawings use viewBox "0 0 100 100", so the y flip is y' = 100 - y.
 #include "input_test_util.h"
@@ -472,7 +472,7 @@ struct Icon {
 TEST(InputSvg, EveryLucideIconLoads) {
     // Curve counts and closed curves read off the files (closed = the
     // subpath returns exactly to its start, with or without Z; see
-    // ../shared/data/svg/README.md); lucide draws inside 24 x 24.
+    // data/svg/README.md); lucide draws inside 24 x 24.
     const Icon icons[] = {
         {"carrot.svg", 3, 1},      {"chart-spline.svg", 2, 0},
         {"flag.svg", 1, 0},        {"flame.svg", 1, 1},

@@ -5,7 +5,7 @@
 // non-finite output is a bug.
 //
 // Seed corpus (corpus/mesh_obj): five OpenSubdiv regression shapes copied
-// from ../shared/data/osd-shapes (modified Apache 2.0, see its LICENSE.txt)
+// from data/osd-shapes (modified Apache 2.0, see its LICENSE.txt)
 // and one hand-written file with negative indices and every tag kind.
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-// Every OpenSubdiv regression shape (../shared/data/osd-shapes) is either
+// Every OpenSubdiv regression shape (data/osd-shapes) is either
 // processed (refined, and evaluated on the limit surface, finite) or
 // rejected with a clear reason; the rejected ones and their reasons are
 // listed here and asserted.

@@ -1,5 +1,5 @@
 // Headless EGL context, program compilation and the compute harness.
-// EGL surfaceless on Mesa: see ../shared/STACK.md ("Headless OpenGL").
+// EGL surfaceless on Mesa: see docs/platform.md ("Headless OpenGL").
 #include "surfgrad/gl.h"
 
 #include <epoxy/egl.h>

@@ -7,7 +7,7 @@
 //
 // Tag semantics follow OpenSubdiv's Sdc (docs: "Subdivision Surfaces",
 // "Sharpness and creases") and its regression shapes' OBJ "t" lines
-// (regression/common/far_utils.h; ../shared/data/osd-shapes/README.md).
+// (regression/common/far_utils.h; data/osd-shapes/README.md).
 //
 // Conventions (shared with surfgrad/render_mesh.h):
 //  - positions in object space, right-handed, units of the source file;

@@ -12,7 +12,7 @@
 //
 // Every (u,v) handed to OpenSubdiv's patch evaluation is finite and clamped
 // to [0,1] first: PatchTable::EvaluateBasis spins forever outside the
-// domain (../shared/STACK.md).
+// domain (docs/platform.md).
 #pragma once
 
 #include <cstddef>

@@ -272,7 +272,7 @@ Scene defaultScene();
 // light, using the model's own materials' normal maps (needs the mesh module).
 Scene sceneForModel(const std::filesystem::path& model);
 // Directory "data:" paths resolve against: $SURFGRAD_DATA_DIR, else the
-// shared data directory this build was configured with.
+// data directory this build was configured with (the source tree's data/).
 std::filesystem::path dataDirectory();
 
 // ---------------------------------------------------------------------------
