@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "commands.h"
-#include "parity.h"
+#include "surfgrad/parity.h"
 #include "surfgrad/eval_kernels.h"
 #include "surfgrad/eval_line.h"
 #include "surfgrad/gl.h"

@@ -11,8 +11,8 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "parity.h"
-#include "parity_tolerances.h"
+#include "surfgrad/parity.h"
+#include "surfgrad/parity_tolerances.h"
 
 namespace sg::cli {
 

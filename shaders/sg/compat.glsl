@@ -2,7 +2,7 @@
 //
 // Every file under shaders/sg/ is compiled twice from this one source: by the
 // GL driver as GLSL 4.50, and by the C++ compiler through GLM (the C++ side of
-// these macros is bump/include/surfgrad/glsl_cpp.h, which defines SG_CPP).
+// these macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP).
 // The subset (checked by the build in both languages):
 //   - float literals carry an f suffix (1.0f): GLM does not mix float/double;
 //   - no swizzles (write vec2(v.x, v.y)), no array constructors, no globals:

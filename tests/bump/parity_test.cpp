@@ -1,8 +1,8 @@
 // CPU/GPU parity of every shared shader function (issue 2, "Parity"): the
 // C++ (GLM) build against the GLSL build on llvmpipe, >= 100,000 random and
 // adversarial records per function, with the per-function tolerances of
-// apps/surfgrad/parity_tolerances.h (each explained there) and the
-// conditioning classification of apps/surfgrad/parity.h. Also the hard-case
+// surfgrad/parity_tolerances.h (each explained there) and the
+// conditioning classification of surfgrad/parity.h. Also the hard-case
 // contract (finite outputs, resolve unit length, ...) on CPU and GPU.
 #include <gtest/gtest.h>
 
@@ -10,8 +10,8 @@
 #include <limits>
 #include <random>
 
-#include "parity.h"
-#include "parity_tolerances.h"
+#include "surfgrad/parity.h"
+#include "surfgrad/parity_tolerances.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // CPU/GPU parity harness (see parity.h).
-#include "parity.h"
+#include "surfgrad/parity.h"
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>

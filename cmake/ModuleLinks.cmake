@@ -1,0 +1,27 @@
+# surfgrad_write_module_links(OUTPUT file): at generate time, writes one line
+# per target of the project, "<target>|<its LINK_LIBRARIES>" (the direct
+# links, PUBLIC and PRIVATE, generator expressions evaluated). The ctest
+# module_links (cmake/CheckModuleLinks.cmake) reads it to enforce the
+# module dependency rules and to compare the graph with docs/architecture.md.
+function(_surfgrad_collect_targets dir out)
+    get_property(_targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
+    get_property(_subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
+    foreach(_sub IN LISTS _subdirs)
+        _surfgrad_collect_targets("${_sub}" _more)
+        list(APPEND _targets ${_more})
+    endforeach()
+    set(${out} ${_targets} PARENT_SCOPE)
+endfunction()
+
+function(surfgrad_write_module_links)
+    cmake_parse_arguments(M "" "OUTPUT" "" ${ARGN})
+    _surfgrad_collect_targets("${PROJECT_SOURCE_DIR}" _all)
+    set(_content "")
+    foreach(_t IN LISTS _all)
+        get_target_property(_type ${_t} TYPE)
+        if(_type MATCHES "^(STATIC_LIBRARY|SHARED_LIBRARY|MODULE_LIBRARY|OBJECT_LIBRARY|EXECUTABLE)$")
+            string(APPEND _content "${_t}|$<JOIN:$<TARGET_PROPERTY:${_t},LINK_LIBRARIES>,;>\n")
+        endif()
+    endforeach()
+    file(GENERATE OUTPUT "${M_OUTPUT}" CONTENT "${_content}")
+endfunction()
