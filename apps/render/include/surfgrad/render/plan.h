@@ -1,0 +1,96 @@
+// Material plans and shader assembly (effects on demand): which layer kinds,
+// UV sets, textures and vertex tangents one material on one mesh uses, the
+// GLSL program assembled from only those (shaders/sg/render/*.glsl), and
+// the uniform records the program reads.
+//
+// Contract: `scene` is validated and `assets` was loaded from it;
+// meshIndex and materialIndex index scene.meshes and scene.materials
+// (caller bugs otherwise: contract checks). A layer that reads a UV set the
+// mesh does not have is an sg::io::InputError (scene input). The plan
+// points into the Scene, which must outlive it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "surfgrad/render/assets.h"
+#include "surfgrad/render/scene.h"
+#include "surfgrad/render/view.h"
+
+namespace sg::render {
+
+// What a program depends on: the material's enabled layers in order (kinds,
+// UV sets, modifier presence, volume spaces, texture slot sharing), the
+// mesh's vertex layout (UV set count, which sets carry vertex tangents) and
+// the light count. Parameters (strengths, colours, decal frames, ...) are
+// uniforms and do not change the program.
+struct PlanLayer {
+    const Layer* layer = nullptr;
+    int record = 0; // first vec4 record in the material's uLayerData
+    int recordCount = 0;
+    int tex[3] = {-1, -1, -1}; // texture slots
+    int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
+    int featureIndex = -1;     // feature layers: index among the plan's feature layers
+    int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
+    bool hasModifiers = false;
+    int modRecord = -1; // first modifier record (one per modifier)
+    int uberIndex = -1; // uber-shader enable flag
+};
+
+struct MaterialPlan {
+    std::string signature; // effect signature: the program cache key
+    int materialIndex = 0;
+    int uvCount = 0;                // UV sets the mesh provides (vertex attributes)
+    uint32_t vertexTangentMask = 0; // bit k: UV set k uses vertex tangents
+    int lightCount = 1;
+    bool uber = false;                          // every kind compiled in, enabled by uniforms
+    std::vector<std::vector<PlanLayer>> groups; // [0] base layers, then post-resolve groups
+    std::vector<const Layer*> groupLayers; // the post_resolve layer of each group (nullptr for 0)
+    std::vector<int> groupUberIndex;       // uber plans: flag of each group (-1 for 0)
+    std::vector<std::string> textureKeys;  // slot -> TextureSource::key()
+    std::vector<const TextureSource*> textureSources; // slot -> source
+    std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
+    int featureLayerCount = 0;                        // feature layers (all groups)
+    bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
+    int recordCount = 0;
+    int uberFlagCount = 0;
+    uint32_t uvUsedMask = 0; // UV sets read by some layer (or the base colour map)
+    int baseColorTex = -1;   // texture slot of the base colour map (-1: none)
+    int baseColorUvSet = 0;
+    bool usesWorldVolume = false, usesObjectVolume = false;
+    // Uber plans: the disabled stand-in layers (shared so copies of the
+    // plan stay valid). Other layer and texture pointers point into the Scene,
+    // which must outlive the plan.
+    std::shared_ptr<const std::vector<Layer>> ownedLayers;
+};
+
+// Plans the program for material `materialIndex` on mesh `meshIndex`.
+// Throws InputError if a layer reads a UV set the mesh does not have.
+MaterialPlan planMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,
+                          int materialIndex);
+// The same material with every layer kind compiled in (one stand-in layer of
+// each kind the material lacks), each enabled by a uniform flag: the
+// "uber-shader" baseline of bench/render_bench.
+MaterialPlan planUberMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,
+                              int materialIndex);
+
+struct ProgramSource {
+    std::string vertex; // complete GLSL (includes expanded)
+    std::string fragment;
+    std::vector<std::string> vertexFiles, fragmentFiles; // #line source-string names
+};
+ProgramSource assembleProgram(const MaterialPlan& plan);
+// The generated fragment body before include expansion (readable).
+std::string fragmentBody(const MaterialPlan& plan);
+
+// Packed uniform records of a plan's layers for a view (decal origins are
+// stored relative to the camera).
+std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& view);
+// Light records uLights for a view (2 per light).
+std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view);
+
+} // namespace sg::render

@@ -1,0 +1,86 @@
+// The two renderers: the OpenGL 4.5 renderer and the CPU reference
+// renderer, which run the same shared layer functions
+// (shaders/sg/render/*.glsl; the CPU through surfgrad/render_shaders.h) in
+// the same order.
+//
+// Contract: a validated Scene, its SceneAssets and a View of at least 1x1
+// pixels. The GL renderer needs a current GL 4.5 core context on the
+// calling thread (GL failures throw sg::gl::GlError). Images are bottom row
+// first, one AOV (View::aov).
+#pragma once
+
+#include <cstddef>
+#include <memory>
+
+#include "surfgrad/glsl_texture.h"
+#include "surfgrad/render/assets.h"
+#include "surfgrad/render/image.h"
+#include "surfgrad/render/scene.h"
+#include "surfgrad/render/view.h"
+
+namespace sg::render {
+
+struct RenderStats {
+    // GPU time of the draws (GL_TIME_ELAPSED). Meaningful on hardware; on
+    // llvmpipe rasterisation happens at the flush, outside the query, so it
+    // reads near 0 (bench/render_bench times render + glFinish instead).
+    double gpuMs = 0.0;
+    int programsCompiled = 0; // programs compiled by this call (cache misses)
+    int drawCalls = 0;
+};
+
+// The OpenGL 4.5 renderer. Needs a current GL 4.5 core context (from
+// sg::gl::HeadlessContext or a GLFW window); all calls on that thread.
+// Programs are cached by effect signature; meshes and textures are uploaded
+// once per SceneAssets and re-uploaded when applyFrame changed positions.
+class GlRenderer {
+public:
+    GlRenderer();
+    ~GlRenderer();
+    GlRenderer(const GlRenderer&) = delete;
+    GlRenderer& operator=(const GlRenderer&) = delete;
+
+    // Renders into an internal RGBA32F framebuffer of the view's size and
+    // reads it back.
+    Image render(const Scene& scene, const SceneAssets& assets, const View& view);
+    // Renders into the internal framebuffer without reading back (viewer,
+    // benchmarks); returns its GL texture name.
+    unsigned renderToTexture(const Scene& scene, const SceneAssets& assets, const View& view);
+    // While set, every material renders through its uber-shader plan
+    // (planUberMaterial; the bench baseline).
+    void setUber(bool uber) { uber_ = uber; }
+    // Meshes are re-uploaded when SceneAssets::uid or meshVersion changes
+    // (applyFrame bumps it); this forces it otherwise.
+    void invalidateMeshes();
+    const RenderStats& stats() const { return stats_; }
+    size_t cachedPrograms() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+    RenderStats stats_;
+    bool uber_ = false;
+};
+
+// The CPU reference renderer: rasterises the same triangles (GL coverage
+// at pixel centres, near-plane clipping, depth test), interpolates the same
+// attributes perspective-correctly, computes screen-space derivatives
+// ANALYTICALLY (exact derivatives of the perspective-correct interpolants;
+// the GPU uses 2x2-quad differences, dFdxFine) and runs the same shared
+// layer functions in the same order as the assembled GLSL program.
+//   CpuDerivatives::Analytic - the reference: exact derivatives;
+//   CpuDerivatives::Quad     - emulates dFdxFine/dFdyFine (differences
+//                              across the pixel's 2x2 quad), so a comparison
+//                              with the GPU isolates the driver's arithmetic
+//                              (texture LOD, filtering, float rounding).
+enum class CpuDerivatives { Analytic, Quad };
+struct CpuOptions {
+    CpuDerivatives derivatives = CpuDerivatives::Analytic;
+    // Texture LOD: the GL specification's log2 (reference), or llvmpipe's
+    // piecewise-linear approximation (sg::glsl::LodRule::FastLog2).
+    sg::glsl::LodRule textureLod = sg::glsl::LodRule::Exact;
+};
+Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
+                const CpuOptions& options = {});
+
+} // namespace sg::render
