@@ -1,7 +1,13 @@
-# surfgrad_defaults(target): warnings, sanitizers and the C++ standard for
-# every first-party target. SURFGRAD_WERROR turns warnings into errors (CI).
+# surfgrad_defaults(target): warnings, sanitizers, contract checks and the
+# C++ standard for every first-party target. SURFGRAD_WERROR turns warnings
+# into errors (CI); SURFGRAD_CONTRACTS turns the contract checks of
+# surfgrad/contract.h on (the same on every target, so inline functions
+# agree across translation units).
 function(surfgrad_defaults tgt)
     target_compile_features(${tgt} PUBLIC cxx_std_20)
+    if(SURFGRAD_CONTRACTS)
+        target_compile_definitions(${tgt} PRIVATE SURFGRAD_CONTRACTS=1)
+    endif()
     if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
         target_compile_options(${tgt} PRIVATE -Wall -Wextra -Wpedantic
                                -Wno-missing-field-initializers)

@@ -1,8 +1,8 @@
 // `surfgrad mesh tangents FILE [--method mikktspace|limit] [--uv-set K]
 //  [--level N] [--scheme catmark|loop|bilinear] -o OUT.gltf|.glb [--json]`:
 // writes a glTF whose TANGENT (xyz + handedness w) belongs to UV set K
-// (TEXCOORD_K), computed by one of the tangent-frame methods of issue 5
-// (surfgrad/tangents.h):
+// (TEXCOORD_K), computed by one of the tangent-frame methods of
+// surfgrad/tangents.h:
 //  - mikktspace: MikkTSpace-compatible vertex tangents of the file's
 //    triangle mesh (or of its level-N uniform refinement with --level);
 //    vertices whose corners get different tangents are split;
@@ -40,6 +40,14 @@ struct TangentsOptions {
     bool json = false;
 };
 
+// The mesh comes from an untrusted file: what the tangent generators take
+// as preconditions (values in MikkTSpace's range, ...) is checked here.
+void checkTangentInput(const std::string& file, const mesh::RenderMesh& m,
+                       mesh::TangentMethod method, int uvSet, const mesh::LimitFrame* frame) {
+    const std::string why = mesh::tangentInputProblem(m, method, uvSet, frame);
+    if (!why.empty()) throw io::InputError(file, "", why);
+}
+
 void runTangents(const TangentsOptions& o, int& status) {
     const auto t0 = std::chrono::steady_clock::now();
     const std::optional<mesh::TangentMethod> method = mesh::parseTangentMethod(o.method);
@@ -73,8 +81,9 @@ void runTangents(const TangentsOptions& o, int& status) {
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
                                  "the mesh has " + std::to_string(result.uvSets.size()) +
                                      " UV set(s)");
-        changed = mesh::generateTangents(result, *method, o.uvSet,
-                                         settings.limit ? &subdivider.limitFrame() : nullptr);
+        const mesh::LimitFrame* frame = settings.limit ? &subdivider.limitFrame() : nullptr;
+        checkTangentInput(o.input, result, *method, o.uvSet, frame);
+        changed = mesh::generateTangents(result, *method, o.uvSet, frame);
     } else {
         if (!o.scheme.empty()) throw CliError("--scheme needs --level N > 0 (or --method limit)");
         result = mesh::loadRenderMesh(o.input);
@@ -82,6 +91,7 @@ void runTangents(const TangentsOptions& o, int& status) {
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
                                  "the mesh has " + std::to_string(result.uvSets.size()) +
                                      " UV set(s)");
+        checkTangentInput(o.input, result, *method, o.uvSet, nullptr);
         changed = mesh::generateTangents(result, *method, o.uvSet);
     }
 

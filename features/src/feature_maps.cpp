@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "bake_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/io.h"
 
 namespace sg::features {
 
 uint32_t FeatureMaps::configWord(int i, int j) const {
-    assert(i >= 0 && j >= 0 && i < size && j < size);
+    SG_EXPECTS(i >= 0 && j >= 0 && i < size && j < size, "texel (i, j) inside the map");
     uint32_t w = seg[index(i, j)] & 0x0FFFu;
     // Edge flags: S, E, N, W.
     if (hPos[index(i, j)] >= 0.0f) w |= 1u << 12;
@@ -101,7 +102,7 @@ std::string sampleGpuBody() {
 }
 
 void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
-    assert(i >= 0 && j >= 0 && i < maps.size && j < maps.size);
+    SG_EXPECTS(i >= 0 && j >= 0 && i < maps.size && j < maps.size, "texel (i, j) inside the map");
     glsl::SgFeatTexel tx =
         glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
     for (int k = 0; k < kEvalInStride; ++k) r[k] = 0.0f;

@@ -7,10 +7,10 @@
 // normal index, smooth sector) over the face corners; render vertices are
 // numbered in order of first appearance, so the output is deterministic and
 // roughly follows the input's memory order.
-#include <cassert>
 #include <cstring>
 
 #include "mesh_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
 
@@ -18,7 +18,8 @@ namespace sg::mesh {
 
 void computeVertexNormals(RenderMesh& mesh, std::span<const uint32_t> smoothGroup) {
     const size_t nV = mesh.positions.size();
-    assert(smoothGroup.empty() || smoothGroup.size() == nV);
+    SG_EXPECTS(smoothGroup.empty() || smoothGroup.size() == nV,
+               "smoothGroup is empty or has one entry per vertex");
     std::vector<glm::vec3> acc(nV, glm::vec3(0.0f));
     std::vector<glm::vec3> firstFace(nV, glm::vec3(0.0f));
     auto group = [&](uint32_t v) { return smoothGroup.empty() ? v : smoothGroup[v]; };

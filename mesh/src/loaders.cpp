@@ -2,7 +2,6 @@
 // read with the size limit, parse, validate; merging of glTF scenes into
 // one world-space mesh; morph-weight animation sampling (glTF 2.0 sec. 3.11
 // and Appendix C, cubic Hermite splines).
-#include <cassert>
 
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>

@@ -48,15 +48,12 @@
 
 namespace sg::mesh {
 
-namespace mikk {
-
-size_t validateInput(const MikkTSpaceInput& in) {
+std::string mikktspaceInputProblem(const MikkTSpaceInput& in) {
     const size_t vertexCount = in.positions.size();
     if (in.normals.size() != vertexCount || in.uvs.size() != vertexCount)
-        throw std::invalid_argument("MikkTSpace: positions (" + std::to_string(vertexCount) +
-                                    "), normals (" + std::to_string(in.normals.size()) +
-                                    ") and uvs (" + std::to_string(in.uvs.size()) +
-                                    ") must have the same length");
+        return "MikkTSpace: positions (" + std::to_string(vertexCount) + "), normals (" +
+               std::to_string(in.normals.size()) + ") and uvs (" + std::to_string(in.uvs.size()) +
+               ") must have the same length";
     for (size_t v = 0; v < vertexCount; ++v) {
         const glm::vec3 p = in.positions[v], n = in.normals[v];
         const glm::vec2 t = in.uvs[v];
@@ -68,37 +65,49 @@ size_t validateInput(const MikkTSpaceInput& in) {
               std::fabs(p.z) <= kMaxCoord && std::fabs(t.x) <= kMaxCoord &&
               std::fabs(t.y) <= kMaxCoord && std::fabs(n.x) <= kMaxNormal &&
               std::fabs(n.y) <= kMaxNormal && std::fabs(n.z) <= kMaxNormal))
-            throw std::invalid_argument("MikkTSpace: vertex " + std::to_string(v) +
-                                        " has a non-finite or out-of-range position, normal or uv "
-                                        "(|position|, |uv| <= 2^60, |normal component| <= 16)");
+            return "MikkTSpace: vertex " + std::to_string(v) +
+                   " has a non-finite or out-of-range position, normal or uv "
+                   "(|position|, |uv| <= 2^60, |normal component| <= 16)";
     }
     const size_t cornerCount = in.cornerVertices.size();
-    size_t triangles = 0;
     if (in.faceSizes.empty()) {
         if (cornerCount % 3 != 0)
-            throw std::invalid_argument("MikkTSpace: " + std::to_string(cornerCount) +
-                                        " corners is not a multiple of 3 (no face sizes given)");
-        triangles = cornerCount / 3;
+            return "MikkTSpace: " + std::to_string(cornerCount) +
+                   " corners is not a multiple of 3 (no face sizes given)";
     } else {
         size_t sum = 0;
         for (const uint32_t n : in.faceSizes) {
             sum += n;
-            triangles += n == 3 ? 1 : (n == 4 ? 2 : 0);
             if (sum > cornerCount) break;
         }
         if (sum != cornerCount)
-            throw std::invalid_argument("MikkTSpace: face sizes do not sum to the " +
-                                        std::to_string(cornerCount) + " corners");
+            return "MikkTSpace: face sizes do not sum to the " + std::to_string(cornerCount) +
+                   " corners";
     }
+    const size_t triangles = mikk::triangleCount(in);
     if (triangles >= (size_t(1) << 28))
-        throw std::invalid_argument("MikkTSpace: too many triangles (" + std::to_string(triangles) +
-                                    ", limit 2^28)");
+        return "MikkTSpace: too many triangles (" + std::to_string(triangles) + ", limit 2^28)";
     for (size_t c = 0; c < cornerCount; ++c)
         if (in.cornerVertices[c] >= vertexCount)
-            throw std::invalid_argument("MikkTSpace: corner " + std::to_string(c) +
-                                        " names vertex " + std::to_string(in.cornerVertices[c]) +
-                                        " of " + std::to_string(vertexCount));
+            return "MikkTSpace: corner " + std::to_string(c) + " names vertex " +
+                   std::to_string(in.cornerVertices[c]) + " of " + std::to_string(vertexCount);
+    return {};
+}
+
+namespace mikk {
+
+size_t triangleCount(const MikkTSpaceInput& in) {
+    if (in.faceSizes.empty()) return in.cornerVertices.size() / 3;
+    size_t triangles = 0;
+    for (const uint32_t n : in.faceSizes) triangles += n == 3 ? 1 : (n == 4 ? 2 : 0);
     return triangles;
+}
+
+size_t validateInput(const MikkTSpaceInput& in) {
+    SG_EXPECTS(mikktspaceInputProblem(in).empty(),
+               "MikkTSpaceInput preconditions (surfgrad/tangents.h); untrusted meshes are "
+               "checked with mikktspaceInputProblem() first");
+    return triangleCount(in);
 }
 
 } // namespace mikk

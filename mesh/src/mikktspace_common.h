@@ -16,9 +16,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <stdexcept>
 #include <string>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/tangents.h"
 
 namespace sg::mesh::mikk {
@@ -300,8 +300,10 @@ inline float defaultThresholdCos() {
     return static_cast<float>(std::cos(static_cast<double>((180.0f * 3.14159265358979f) / 180.0f)));
 }
 
-// Checks MikkTSpaceInput's preconditions; returns the number of triangles
-// (quads count 2) and throws std::invalid_argument on violations.
+// The number of triangles of an input (quads count 2; other faces 0).
+size_t triangleCount(const MikkTSpaceInput& input);
+// MikkTSpaceInput's preconditions as a contract check (abort in checked
+// builds when mikktspaceInputProblem() names one); returns triangleCount().
 size_t validateInput(const MikkTSpaceInput& input);
 
 // Bit-level key of a float for hashing/ordering where -0 and +0 must be the

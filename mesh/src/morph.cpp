@@ -3,20 +3,21 @@
 // the geometry or from the blended limit derivatives) or blended.
 #include "surfgrad/morph.h"
 
-#include <cassert>
+#include <cmath>
 
 #include "mesh_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/subdivision.h"
 
 namespace sg::mesh {
 
 void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
                         std::vector<glm::vec3>& out) {
-    assert(weights.size() == cage.morphTargets.size());
+    SG_EXPECTS(weights.size() == cage.morphTargets.size(), "one weight per morph target");
     out.assign(cage.positions.begin(), cage.positions.end());
     for (size_t t = 0; t < cage.morphTargets.size(); ++t) {
         const float w = weights[t];
-        assert(std::isfinite(w));
+        SG_EXPECTS(std::isfinite(w), "morph weights are finite");
         if (w == 0.0f) continue;
         const glm::vec3* d = cage.morphTargets[t].positionDeltas.data();
         for (size_t v = 0; v < out.size(); ++v) out[v] += w * d[v];
@@ -56,11 +57,8 @@ glm::vec3 unitOr(const glm::vec3& v, const glm::vec3& fallback) {
 void Morpher::apply(std::span<const float> weights, MorphNormals normals, RenderMesh& out,
                     LimitFrame* outFrame) const {
     const RenderMesh& base = *base_;
-    assert(weights.size() == base.morphTargets.size());
-    for (float w : weights) {
-        assert(std::isfinite(w));
-        (void)w;
-    }
+    SG_EXPECTS(weights.size() == base.morphTargets.size(), "one weight per morph target");
+    for (float w : weights) SG_EXPECTS(std::isfinite(w), "morph weights are finite");
     if (out.positions.size() != base.positions.size() || out.indices.size() != base.indices.size())
         out = base;
     const size_t T = base.morphTargets.size();

@@ -41,13 +41,13 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
-#include <cassert>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
 #include <unordered_map>
 
 #include "mesh_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "uniform_refiner.h"
 
@@ -422,7 +422,7 @@ struct SampleTable {
 // spins forever for parameters outside [0,1]. Every evaluation goes through
 // here.
 inline float clampParam(float x) {
-    assert(std::isfinite(x));
+    SG_ASSERT(std::isfinite(x), "patch parameters are finite");
     return std::isfinite(x) ? std::clamp(x, 0.0f, 1.0f) : 0.0f;
 }
 
@@ -1547,13 +1547,10 @@ size_t Subdivider::stencilWeightCount() const {
 void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& out,
                         LimitFrame* frame, bool recomputeNormals) const {
     const Impl& m = *impl_;
-    // Caller bugs, checked in release builds too: an unchecked call would
-    // write past the scratch buffers.
-    if (!m.settings.animate || cagePositions.size() != m.cageVertices ||
-        out.positions.size() != m.render.positions.size()) {
-        throw std::logic_error("Subdivider::update: needs SubdivisionSettings::animate, the cage's "
-                               "vertex count and a copy of renderMesh()");
-    }
+    SG_EXPECTS(m.settings.animate, "the Subdivider was built with SubdivisionSettings::animate");
+    SG_EXPECTS(cagePositions.size() == m.cageVertices, "one position per cage vertex");
+    SG_EXPECTS(out.positions.size() == m.render.positions.size(),
+               "`out` starts as a copy of renderMesh()");
     const size_t nR = out.positions.size();
     if (m.settings.limit) {
         m.points4.resize(m.limitStencils.numPoints);

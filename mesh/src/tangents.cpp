@@ -8,10 +8,11 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <stdexcept>
 #include <string>
 
 #include <glm/geometric.hpp>
+
+#include "surfgrad/contract.h"
 
 namespace sg::mesh {
 
@@ -49,16 +50,9 @@ void duplicateEntry(std::vector<T>& values, uint32_t from) {
 } // namespace
 
 size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec4> cornerTangents) {
-    if (cornerTangents.size() != mesh.indices.size())
-        throw std::invalid_argument(
-            "applyCornerTangents: " + std::to_string(cornerTangents.size()) +
-            " corner tangents for " + std::to_string(mesh.indices.size()) + " corners");
+    SG_EXPECTS(cornerTangents.size() == mesh.indices.size(), "one tangent per mesh corner");
     const size_t vertexCount = mesh.vertexCount();
-    for (const uint32_t v : mesh.indices)
-        if (v >= vertexCount)
-            throw std::invalid_argument("applyCornerTangents: index " + std::to_string(v) +
-                                        " out of range (" + std::to_string(vertexCount) +
-                                        " vertices)");
+    for (const uint32_t v : mesh.indices) SG_EXPECTS(v < vertexCount, "mesh indices in range");
     // Each vertex keeps a chain of the distinct tangents its corners got;
     // the first stays in the vertex, each further one becomes a copy.
     struct Variant {
@@ -106,20 +100,61 @@ size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec
     return added;
 }
 
-void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
-    if (mesh.normals.size() != mesh.positions.size())
-        throw std::invalid_argument("MikkTSpace needs vertex normals (mesh '" + mesh.name +
-                                    "' has " + std::to_string(mesh.normals.size()) + " for " +
-                                    std::to_string(mesh.positions.size()) + " vertices)");
-    if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
-        throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
-                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) +
-                                    ")");
+namespace {
+
+MikkTSpaceInput mikktspaceInputOf(const RenderMesh& mesh, int uvSet) {
     MikkTSpaceInput input;
     input.positions = mesh.positions;
     input.normals = mesh.normals;
     input.uvs = mesh.uvSets[size_t(uvSet)];
     input.cornerVertices = mesh.indices;
+    return input;
+}
+
+std::string uvSetProblem(const RenderMesh& mesh, int uvSet) {
+    if (uvSet >= 0 && size_t(uvSet) < mesh.uvSets.size()) return {};
+    return "UV set " + std::to_string(uvSet) + " does not exist (mesh '" + mesh.name + "' has " +
+           std::to_string(mesh.uvSets.size()) + ")";
+}
+
+std::string limitFrameProblem(const RenderMesh& mesh, const LimitFrame& frame, int uvSet) {
+    const size_t n = mesh.vertexCount();
+    if (frame.dPdu.size() != n || frame.dPdv.size() != n || frame.dUVdu.size() <= size_t(uvSet) ||
+        frame.dUVdv.size() <= size_t(uvSet) || frame.dUVdu[size_t(uvSet)].size() != n ||
+        frame.dUVdv[size_t(uvSet)].size() != n)
+        return "limit frame does not match mesh '" + mesh.name + "' (" + std::to_string(n) +
+               " vertices, " + std::to_string(frame.dPdu.size()) + " limit derivatives)";
+    return {};
+}
+
+} // namespace
+
+std::string tangentInputProblem(const RenderMesh& mesh, TangentMethod method, int uvSet,
+                                const LimitFrame* frame) {
+    switch (method) {
+    case TangentMethod::MikkTSpace:
+        if (mesh.normals.size() != mesh.positions.size())
+            return "MikkTSpace needs vertex normals (mesh '" + mesh.name + "' has " +
+                   std::to_string(mesh.normals.size()) + " for " +
+                   std::to_string(mesh.positions.size()) + " vertices)";
+        if (std::string why = uvSetProblem(mesh, uvSet); !why.empty()) return why;
+        return mikktspaceInputProblem(mikktspaceInputOf(mesh, uvSet));
+    case TangentMethod::Limit:
+        if (!frame || frame->empty())
+            return "limit tangents need the subdivider's limit frame (subdivide with limit "
+                   "evaluation first)";
+        if (std::string why = uvSetProblem(mesh, uvSet); !why.empty()) return why;
+        return limitFrameProblem(mesh, *frame, uvSet);
+    case TangentMethod::Pixel:
+        return {};
+    }
+    return {};
+}
+
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
+    SG_EXPECTS(mesh.normals.size() == mesh.positions.size(), "the mesh has vertex normals");
+    SG_EXPECTS(uvSetProblem(mesh, uvSet).empty(), "uvSet indexes mesh.uvSets");
+    const MikkTSpaceInput input = mikktspaceInputOf(mesh, uvSet);
     std::vector<glm::vec4> cornerTangents;
     MikkTSpaceGenerator generator;
     generator.generate(input, cornerTangents);
@@ -197,8 +232,8 @@ size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3>
                      std::span<const glm::vec2> dSTdu, std::span<const glm::vec2> dSTdv,
                      std::span<glm::vec4> out) {
     const size_t n = dPdu.size();
-    if (dPdv.size() != n || dSTdu.size() != n || dSTdv.size() != n || out.size() != n)
-        throw std::invalid_argument("limitTangents: arrays of different lengths");
+    SG_EXPECTS(dPdv.size() == n && dSTdu.size() == n && dSTdv.size() == n && out.size() == n,
+               "arrays of equal length");
     size_t irregular = 0;
     for (size_t i = 0; i < n; ++i) {
         LimitTangentCase k;
@@ -210,16 +245,9 @@ size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3>
 
 size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSet) {
     const size_t n = mesh.vertexCount();
-    if (uvSet < 0 || size_t(uvSet) >= mesh.uvSets.size())
-        throw std::invalid_argument("UV set " + std::to_string(uvSet) + " does not exist (mesh '" +
-                                    mesh.name + "' has " + std::to_string(mesh.uvSets.size()) +
-                                    ")");
-    if (frame.dPdu.size() != n || frame.dPdv.size() != n || frame.dUVdu.size() <= size_t(uvSet) ||
-        frame.dUVdv.size() <= size_t(uvSet) || frame.dUVdu[size_t(uvSet)].size() != n ||
-        frame.dUVdv[size_t(uvSet)].size() != n)
-        throw std::invalid_argument("limit frame does not match mesh '" + mesh.name + "' (" +
-                                    std::to_string(n) + " vertices, " +
-                                    std::to_string(frame.dPdu.size()) + " limit derivatives)");
+    SG_EXPECTS(uvSetProblem(mesh, uvSet).empty(), "uvSet indexes mesh.uvSets");
+    SG_EXPECTS(limitFrameProblem(mesh, frame, uvSet).empty(),
+               "the frame is the limit frame of this mesh, with uvSet's UV derivatives");
     const bool haveNormals = mesh.normals.size() == n;
     mesh.tangents.resize(n);
     std::vector<uint8_t> regular(n, 0);
@@ -305,9 +333,7 @@ size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
         return mesh.vertexCount() - before;
     }
     case TangentMethod::Limit:
-        if (!frame || frame->empty())
-            throw std::invalid_argument("limit tangents need the subdivider's limit frame "
-                                        "(subdivide with limit evaluation first)");
+        SG_EXPECTS(frame && !frame->empty(), "Limit needs the subdivider's limit frame");
         return generateLimitTangents(mesh, *frame, uvSet);
     case TangentMethod::Pixel:
         mesh.tangents.clear();

@@ -9,10 +9,11 @@
 // documented in OpenSubdiv's "Face-Varying Interpolation" options.
 #include "uniform_refiner.h"
 
+#include "surfgrad/contract.h"
+
 #include <opensubdiv/far/topologyLevel.h>
 
 #include <algorithm>
-#include <cassert>
 
 namespace sg::mesh::detail {
 
@@ -379,7 +380,7 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
 // ---- Refinement ------------------------------------------------------------------
 
 void UniformRefiner::refine(int levels) {
-    assert(levels >= 1);
+    SG_EXPECTS(levels >= 1, "at least one level");
     levels_ = levels;
     if (level_.size() < size_t(levels) + 1) level_.resize(size_t(levels) + 1);
     const size_t channels = level_[0].fvar.size();

@@ -8,18 +8,15 @@
 
 #include <tiny_gltf.h>
 
-#include <array>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <memory>
 #include <unistd.h>
-#include <sys/wait.h>
 
 #include <glm/geometric.hpp>
 
+#include "cli.h"
 #include "tangents_test_util.h"
 
 namespace {
@@ -28,25 +25,10 @@ namespace fs = std::filesystem;
 
 const std::string kData = SURFGRAD_DATA_DIR;
 
-struct CliRun {
-    int exitCode;
-    std::string out, err;
-};
+using CliRun = sg::test::CommandResult;
 
 CliRun surfgrad(const std::string& args) {
-    const fs::path err =
-        fs::temp_directory_path() / ("surfgrad_tangents_err_" + std::to_string(::getpid()));
-    const std::string cmd = std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args +
-                            " 2> '" + err.string() + "'";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) out.append(buf.data(), n);
-    const int status = pclose(pipe.release());
-    std::ifstream ef(err);
-    std::string errText((std::istreambuf_iterator<char>(ef)), std::istreambuf_iterator<char>());
-    fs::remove(err);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, errText};
+    return sg::test::runSurfgrad(args);
 }
 
 class TangentsCli : public ::testing::Test {
@@ -189,6 +171,20 @@ TEST_F(TangentsCli, BadArgumentsFailWithoutOutput) {
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
         EXPECT_FALSE(fs::exists(path("a.glb"))) << c.args;
     }
+}
+
+// A mesh file whose values MikkTSpace cannot take (a coordinate beyond
+// 2^60: products of differences could overflow to NaN) is bad input: an
+// InputError naming the file and the vertex, exit status 1, no output.
+TEST_F(TangentsCli, ValuesMikkTSpaceCannotTakeFailNamingTheFile) {
+    const std::string in = path("huge.obj");
+    std::ofstream(in) << "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                         "f 1/1 2/2 3/3\n";
+    const CliRun r = surfgrad("mesh tangents '" + in + "' -o '" + path("a.glb") + "'");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("surfgrad: error: " + in + ": MikkTSpace: vertex 1"), std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(path("a.glb")));
 }
 
 } // namespace

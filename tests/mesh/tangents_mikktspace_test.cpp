@@ -508,57 +508,67 @@ TEST(MikkTSpace, RandomSmoothMeshesGiveUnitOrthogonalTangents) {
     }
 }
 
+// Invalid inputs are named by mikktspaceInputProblem() (what callers with
+// untrusted meshes check); passing one to the generators is a caller bug,
+// caught by their contract checks (tests/mesh/contract_test.cpp).
 TEST(MikkTSpace, RejectsInvalidInput) {
+    using sg::mesh::mikktspaceInputProblem;
     Strip s;
     s.add({0, 0, 0}, {0, 0});
     s.add({1, 0, 0}, {1, 0});
     s.add({1, 1, 0}, {1, 1});
     s.corners = {0, 1, 2};
-    MikkTSpaceGenerator g;
-    std::vector<glm::vec4> out;
+    EXPECT_EQ(mikktspaceInputProblem(s.input()), "");
     {
         Strip bad = s;
         bad.positions[1].y = std::nanf("");
-        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
-        EXPECT_THROW(sg::mesh::mikktspaceReferenceFrames(bad.input()), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(bad.input()).find("vertex 1"), std::string::npos);
     }
     {
         Strip bad = s;
         bad.positions[2].x = 1e30f; // beyond 2^60: products could overflow to NaN
-        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(bad.input()).find("vertex 2"), std::string::npos);
         bad = s;
         bad.normals[0] = {0, 0, 1e5f}; // not a unit normal
-        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(bad.input()).find("vertex 0"), std::string::npos);
     }
     {
         Strip bad = s;
         bad.corners = {0, 1, 3};
-        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(bad.input()).find("corner 2"), std::string::npos);
     }
     {
         Strip bad = s;
         bad.corners = {0, 1};
-        EXPECT_THROW(g.generate(bad.input(), out), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(bad.input()).find("multiple of 3"), std::string::npos);
     }
     {
         MikkTSpaceInput in = s.input();
         const std::vector<uint32_t> sizes{4};
         in.faceSizes = sizes;
-        EXPECT_THROW(g.generate(in, out), std::invalid_argument);
+        EXPECT_NE(mikktspaceInputProblem(in).find("face sizes"), std::string::npos);
     }
     {
+        using sg::mesh::TangentMethod;
         sg::mesh::RenderMesh rm;
         rm.positions = s.positions;
         rm.uvSets = {s.uvs};
         rm.indices = s.corners;
-        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 0),
-                     std::invalid_argument); // no normals
+        EXPECT_NE(sg::mesh::tangentInputProblem(rm, TangentMethod::MikkTSpace, 0).find("normals"),
+                  std::string::npos);
         rm.normals = s.normals;
-        EXPECT_THROW(sg::mesh::generateMikkTSpaceTangents(rm, 1),
-                     std::invalid_argument); // no set 1
+        EXPECT_EQ(sg::mesh::tangentInputProblem(rm, TangentMethod::MikkTSpace, 0), "");
+        EXPECT_NE(sg::mesh::tangentInputProblem(rm, TangentMethod::MikkTSpace, 1).find("UV set 1"),
+                  std::string::npos);
+        rm.positions[2].x = 1e30f;
+        EXPECT_NE(sg::mesh::tangentInputProblem(rm, TangentMethod::MikkTSpace, 0).find("vertex 2"),
+                  std::string::npos);
     }
     // Empty input is valid: nothing to do.
+    MikkTSpaceGenerator g;
+    std::vector<glm::vec4> out;
     MikkTSpaceInput empty;
+    EXPECT_EQ(mikktspaceInputProblem(empty), "");
     g.generate(empty, out);
     EXPECT_TRUE(out.empty());
 }

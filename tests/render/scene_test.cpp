@@ -3,6 +3,9 @@
 // (the built-in default included) parse into what they say.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
+
 #include "render_test_util.h"
 #include "surfgrad/io.h"
 
@@ -246,6 +249,16 @@ TEST(SceneValidation, ErrorsFoundWhenLoadingAssetsNameTheField) {
     // A mesh file that does not exist is reported by the mesh loader with the path.
     Scene s3 = sceneFromJson(R"({"meshes": [{"file": "no/such/mesh.obj"}]})");
     EXPECT_THROW(loadAssets(s3), io::InputError);
+    // A mesh file whose values MikkTSpace cannot take (a coordinate beyond
+    // 2^60), asked for MikkTSpace tangents a layer reads: the tangents field.
+    const std::filesystem::path huge =
+        std::filesystem::path(SURFGRAD_BINARY_DIR) / "tests/render/huge_coordinate.obj";
+    std::filesystem::create_directories(huge.parent_path());
+    std::ofstream(huge) << "v 0 0 0\nv 1e30 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
+                           "f 1/1 2/2 3/3\n";
+    loadError(R"({"meshes": [{"file": ")" + huge.string() + R"(", "tangents": ["mikktspace"]}],
+        "materials": [{"layers": [{"type": "uv_normal", "map": {"procedural": "bumps"}}]}]})",
+              "meshes[0].tangents[0]", "MikkTSpace failed: MikkTSpace: vertex 1");
 }
 
 TEST(SceneValidation, ValidSceneParsesAsWritten) {

@@ -368,24 +368,22 @@ void generateVertexTangents(const Scene& scene, const MeshInstance& mi, uint32_t
             throw io::InputError(scene.sourceName, element(k),
                                  "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
         }
-        try {
-            sm::generateLimitTangents(a.mesh, limit, int(k));
-        } catch (const std::invalid_argument& e) {
-            throw io::InputError(scene.sourceName, element(k),
-                                 std::string("limit tangents failed: ") + e.what());
-        }
+        const std::string why =
+            sm::tangentInputProblem(a.mesh, sm::TangentMethod::Limit, int(k), &limit);
+        if (!why.empty())
+            throw io::InputError(scene.sourceName, element(k), "limit tangents failed: " + why);
+        sm::generateLimitTangents(a.mesh, limit, int(k));
         a.vertexTangents[k] = std::move(a.mesh.tangents);
     }
     for (size_t k = 0; k < a.mesh.uvSets.size(); ++k) {
         if (!(wanted >> k & 1u) || source(k) != TangentSource::MikkTSpace) continue;
         const std::vector<uint32_t> cornersBefore = a.mesh.indices;
         const size_t countBefore = a.mesh.vertexCount();
-        try {
-            sm::generateMikkTSpaceTangents(a.mesh, int(k));
-        } catch (const std::invalid_argument& e) {
-            throw io::InputError(scene.sourceName, element(k),
-                                 std::string("MikkTSpace failed: ") + e.what());
-        }
+        const std::string why =
+            sm::tangentInputProblem(a.mesh, sm::TangentMethod::MikkTSpace, int(k));
+        if (!why.empty())
+            throw io::InputError(scene.sourceName, element(k), "MikkTSpace failed: " + why);
+        sm::generateMikkTSpaceTangents(a.mesh, int(k));
         const size_t countAfter = a.mesh.vertexCount();
         if (countAfter > countBefore) {
             std::vector<uint32_t> original(countAfter);

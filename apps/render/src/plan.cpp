@@ -13,13 +13,13 @@
 // The two are written side by side below, layer kind by layer kind, so a
 // change to one is visibly a change to the other.
 #include <algorithm>
-#include <cassert>
 #include <map>
 #include <cctype>
 #include <set>
 #include <sstream>
 
 #include "render_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render_shaders.h"
 #include "surfgrad/shader_files.h"
@@ -323,8 +323,11 @@ namespace {
 
 MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshIndex,
                       int materialIndex, bool uber) {
-    assert(meshIndex >= 0 && size_t(meshIndex) < scene.meshes.size());
-    assert(materialIndex >= 0 && size_t(materialIndex) < scene.materials.size());
+    SG_EXPECTS(meshIndex >= 0 && size_t(meshIndex) < scene.meshes.size(),
+               "meshIndex indexes scene.meshes");
+    SG_EXPECTS(materialIndex >= 0 && size_t(materialIndex) < scene.materials.size(),
+               "materialIndex indexes scene.materials");
+    SG_EXPECTS(assets.meshes.size() == scene.meshes.size(), "assets loaded from this scene");
     Planner p{scene, assets, meshIndex, {}, {}};
     const MeshAsset& ma = assets.meshes[size_t(meshIndex)];
     p.plan.materialIndex = materialIndex;
@@ -957,7 +960,7 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     if (plan.featureLayerCount > 0)
         fdefs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
     const char* vs = sg::shaders::find("sg/render/surface_vs.glsl");
-    assert(vs);
+    SG_ASSERT(vs, "the vertex stage is embedded");
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);
     auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
     return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files};

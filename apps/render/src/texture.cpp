@@ -3,15 +3,16 @@
 // (GL_LINEAR_MIPMAP_LINEAR) and 8.14.1 (bilinear filtering, wrap modes).
 #include <algorithm>
 #include <atomic>
-#include <cassert>
 #include <cmath>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/glsl_texture.h"
 
 namespace sg::render {
 
 TextureImage makeTexture(int width, int height, std::vector<glm::vec4> texels, Wrap wrap) {
-    assert(width >= 1 && height >= 1 && texels.size() == size_t(width) * size_t(height));
+    SG_EXPECTS(width >= 1 && height >= 1, "a texture has at least one texel");
+    SG_EXPECTS(texels.size() == size_t(width) * size_t(height), "width * height texels");
     static std::atomic<uint64_t> nextUid{1};
     TextureImage img;
     img.wrap = wrap;

@@ -3,7 +3,7 @@
 // atomic output.
 //
 // Policy (see docs/architecture.md, "Errors"):
-//  - assert() for caller bugs;
+//  - contract checks (surfgrad/contract.h) for caller bugs;
 //  - sg::io::InputError for bad untrusted input: the message names the file,
 //    the element (line, key, face index, ...) and the reason;
 //  - never a crash, a hang or a silent NaN;

@@ -59,7 +59,6 @@
 // surfgrad:layout (a one-line description). Loading checks all of it.
 #pragma once
 
-#include <cassert>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -70,6 +69,7 @@
 #include <glm/gtc/packing.hpp>
 #include <glm/vec2.hpp>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/curves.h"
 #include "surfgrad/glsl_cpp.h"
 
@@ -88,12 +88,12 @@ struct SgFeatEdgeSampler {
     int height = 0;
 };
 inline uvec4 texelFetch(const SgFeatCornerSampler& s, ivec2 p, int /*lod*/) {
-    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the map");
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }
 inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
-    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the map");
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }

@@ -32,8 +32,9 @@ enum class MorphNormals : uint8_t {
 };
 
 // out = cage.positions + sum_i weights[i] * cage.morphTargets[i].positionDeltas.
-// weights.size() must equal cage.morphTargets.size() (asserted; callers
-// check user input first). `out` is resized and reused.
+// Preconditions (contract checks, surfgrad/contract.h): weights.size() ==
+// cage.morphTargets.size() and every weight finite (callers check user
+// input first). `out` is resized and reused.
 void morphCagePositions(const PolygonMesh& cage, std::span<const float> weights,
                         std::vector<glm::vec3>& out);
 
@@ -46,9 +47,9 @@ public:
 
     // Writes the morphed positions and normals (and tangents, and with a
     // frame dPdu/dPdv) into `out`; on the first call `out` becomes a copy of
-    // base, later calls overwrite only the arrays that change. weights.size()
-    // must equal base.morphTargets.size() (asserted). Non-finite weights are
-    // a caller bug (asserted).
+    // base, later calls overwrite only the arrays that change. Preconditions
+    // (contract checks): weights.size() == base.morphTargets.size() and every
+    // weight finite.
     void apply(std::span<const float> weights, MorphNormals normals, RenderMesh& out,
                LimitFrame* outFrame = nullptr) const;
 

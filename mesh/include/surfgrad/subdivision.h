@@ -118,8 +118,9 @@ public:
     // (cage.vertexCount() entries, object space) by applying stencil tables;
     // nothing else is touched and nothing is allocated once `out` has been
     // filled once. `out` must have renderMesh()'s vertex count (start from a
-    // copy of renderMesh()). Positions must be finite. Throws
-    // std::logic_error (a caller bug) without animate or with mismatched sizes.
+    // copy of renderMesh()). Positions must be finite. Preconditions
+    // (contract checks, surfgrad/contract.h): settings.animate, and the two
+    // sizes above.
     // recomputeNormals = false leaves out.normals alone (callers that
     // morph or shade without them). Not safe to call concurrently on one
     // Subdivider (it keeps scratch buffers).
@@ -147,6 +148,8 @@ private:
 // render vertices that share `smoothGroup[v]` (pass an empty span to treat
 // every render vertex on its own). A vertex whose accumulated normal
 // vanishes gets the normal of its first non-degenerate triangle, else +z.
+// Precondition (contract check): smoothGroup is empty or has one entry per
+// vertex.
 void computeVertexNormals(RenderMesh& mesh, std::span<const uint32_t> smoothGroup = {});
 
 } // namespace sg::mesh

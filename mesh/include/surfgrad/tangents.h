@@ -1,5 +1,4 @@
-// Tangent frames for normal/bump mapping, one of three sources per UV set
-// (issue 5, "Tangent frames"):
+// Tangent frames for normal/bump mapping, one of three sources per UV set:
 //
 //  - TangentMethod::MikkTSpace: per-vertex tangents bit-compatible with
 //    Morten S. Mikkelsen's MikkTSpace (Mikkelsen 2008, "Simulation of
@@ -24,11 +23,18 @@
 //    bitangent = w * cross(normal, xyz). w = +1 where the UV chart is
 //    orientation preserving (ds x dt has the same sense as the normal), -1
 //    where it is mirrored.
+//
+// Errors: the preconditions below are contracts (surfgrad/contract.h: abort
+// in checked builds, undefined behaviour otherwise). A mesh read from an
+// untrusted file may violate them (a coordinate beyond 2^60, a UV set it
+// lacks): callers holding one check it first with tangentInputProblem() or
+// mikktspaceInputProblem() and raise sg::io::InputError with the reason.
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -61,7 +67,8 @@ std::optional<TangentMethod> parseTangentMethod(std::string_view name);
 // of (position, normal, uv), so how the caller split its vertices makes no
 // difference (as in the reference).
 //
-// Preconditions (checked: std::invalid_argument otherwise): every value
+// Preconditions (contract checks; mikktspaceInputProblem() names the first
+// one an input violates): every value
 // finite, |position and uv coordinates| <= 2^60, |normal components| <= 16
 // (so no intermediate can become NaN); every index < positions.size();
 // normals.size() == uvs.size() == positions.size(); faceSizes either empty
@@ -101,6 +108,10 @@ struct MikkTSpaceFrame {
 // compatibility; it is finite but need not be orthogonal to the normal.
 inline constexpr MikkTSpaceFrame kMikkTSpaceDefaultFrame{};
 
+// The first precondition of MikkTSpaceInput that `input` violates, as a
+// sentence naming the vertex or corner; empty when it satisfies them all.
+std::string mikktspaceInputProblem(const MikkTSpaceInput& input);
+
 // The fast implementation: output identical (bit for bit) to
 // mikktspaceReferenceFrames(). Keeps its scratch buffers between calls, so
 // reuse one generator for many meshes or frames. Not thread-safe (one
@@ -114,8 +125,7 @@ public:
 
     // Fills cornerTangents (resized to cornerVertices.size()) with
     // vec4(frame.tangent, frame.sign) per face corner and, when `frames` is
-    // not null, the complete frames. Throws std::invalid_argument when a
-    // precondition of MikkTSpaceInput fails (nothing is written then).
+    // not null, the complete frames. Preconditions: MikkTSpaceInput's.
     void generate(const MikkTSpaceInput& input, std::vector<glm::vec4>& cornerTangents,
                   std::vector<MikkTSpaceFrame>* frames = nullptr);
 
@@ -134,7 +144,7 @@ private:
 // The oracle: a plain, step-by-step implementation of the published
 // algorithm (see docs/tangents.md for the steps). Slow (std::map welding,
 // per-group allocations) but simple; used by the tests and the benchmark to
-// check the fast path. Same preconditions and errors.
+// check the fast path. Same preconditions.
 std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& input);
 
 // The reference's rounding of a corner angle, (float)acos((double)cosine),
@@ -154,14 +164,16 @@ void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles, bool allowWideSim
 // keeps apart, degenerate triangles) is split: the extra copies duplicate
 // every per-vertex attribute (normals, all UV sets, morph-target deltas)
 // and the index buffer is rewritten; vertices no triangle uses get the
-// default frame. Throws std::invalid_argument when the mesh has no normals,
-// uvSet is out of range or a MikkTSpaceInput precondition fails.
+// default frame. Preconditions: the mesh has normals, uvSet indexes
+// mesh.uvSets, and MikkTSpaceInput's hold for that set
+// (tangentInputProblem(mesh, TangentMethod::MikkTSpace, uvSet) is empty).
 void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet);
 
 // Stores per-corner tangents (one per entry of mesh.indices) into
 // mesh.tangents, splitting vertices whose corners disagree (bitwise) as
 // described above. Corners that agree share one vertex. Returns the number
-// of vertices added.
+// of vertices added. Preconditions: cornerTangents.size() ==
+// mesh.indices.size(), every index < mesh.vertexCount().
 size_t applyCornerTangents(RenderMesh& mesh, int uvSet, std::span<const glm::vec4> cornerTangents);
 
 // ---------------------------------------------------------------------------
@@ -207,8 +219,8 @@ glm::vec4 limitTangent(const glm::vec3& dPdu, const glm::vec3& dPdv, const glm::
                        const glm::vec2& dSTdv, LimitTangentCase* resolved = nullptr);
 
 // limitTangent() over arrays of equal length (one entry per limit point);
-// `out` must have the same length. Returns the number of points that were
-// not LimitTangentCase::Regular.
+// `out` must have the same length (precondition). Returns the number of
+// points that were not LimitTangentCase::Regular.
 size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3> dPdv,
                      std::span<const glm::vec2> dSTdu, std::span<const glm::vec2> dSTdv,
                      std::span<glm::vec4> out);
@@ -225,9 +237,9 @@ size_t limitTangents(std::span<const glm::vec3> dPdu, std::span<const glm::vec3>
 // parallel to it, any unit vector orthogonal to it). No vertex is split:
 // each vertex already has one home location and one UV chart.
 // Stores mesh.tangents, mesh.tangentUvSet = uvSet; returns the number of
-// vertices that were not LimitTangentCase::Regular. Throws
-// std::invalid_argument when the frame does not match the mesh or uvSet is
-// out of range.
+// vertices that were not LimitTangentCase::Regular. Preconditions: uvSet
+// indexes mesh.uvSets and `frame` matches the mesh (one entry per vertex,
+// UV derivatives for uvSet).
 size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSet);
 
 // One entry point for the three methods: MikkTSpace
@@ -235,7 +247,19 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
 // be the subdivider's limit frame), Pixel (tangents cleared,
 // tangentUvSet = -1: the shader builds the frame). Returns the number of
 // vertices added (MikkTSpace) or irregular (Limit); 0 for Pixel.
+// Preconditions: those of the method's function (tangentInputProblem() is
+// empty).
 size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
                         const LimitFrame* frame = nullptr);
+
+// Why generateTangents(mesh, method, uvSet, frame) would violate its
+// preconditions, as a sentence (MikkTSpace: no vertex normals, no UV set
+// uvSet, or a value or index MikkTSpaceInput does not allow; Limit: no limit
+// frame, no UV set uvSet, or a frame that does not match the mesh); empty
+// when it would not (always for Pixel). Meshes read from files are checked
+// with this and rejected with sg::io::InputError (`surfgrad mesh tangents`,
+// the renderer's assets).
+std::string tangentInputProblem(const RenderMesh& mesh, TangentMethod method, int uvSet,
+                                const LimitFrame* frame = nullptr);
 
 } // namespace sg::mesh

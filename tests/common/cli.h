@@ -1,0 +1,84 @@
+// Running programs from tests: the built `surfgrad` CLI (or any command)
+// through the shell, with optional stdin text and working directory,
+// capturing stdout, stderr and the exit status. Every test that runs a
+// program uses these (tests/CMakeLists.txt puts tests/common on the include
+// path of every test).
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <string>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace sg::test {
+
+struct CommandResult {
+    int exitCode = -1; // the program's exit status; -1 if it did not exit normally
+    std::string out;   // stdout
+    std::string err;   // stderr
+    // Both streams (stdout first), for messages that may go to either.
+    std::string output() const { return out + err; }
+};
+
+struct CommandOptions {
+    std::string stdinText;     // written to the program's stdin (empty: /dev/null)
+    std::filesystem::path cwd; // working directory (empty: the test's own)
+};
+
+// Single-quotes a path or argument for the shell.
+inline std::string shellQuote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+inline std::string shellQuote(const std::filesystem::path& p) {
+    return shellQuote(p.string());
+}
+
+// The CLI this build produced.
+inline std::filesystem::path surfgradBinary() {
+    return std::filesystem::path(SURFGRAD_BINARY_DIR) / "bin" / "surfgrad";
+}
+
+// Runs `command` with /bin/sh (so it may hold redirections and pipes).
+inline CommandResult runCommand(const std::string& command, const CommandOptions& options = {}) {
+    namespace fs = std::filesystem;
+    static std::atomic<unsigned> counter{0};
+    const fs::path dir =
+        fs::temp_directory_path() /
+        ("surfgrad_test_cmd_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::create_directories(dir);
+    const fs::path in = dir / "stdin", err = dir / "stderr";
+    std::ofstream(in) << options.stdinText;
+    std::string cmd = "{ " + command + " ; } < " + shellQuote(in) + " 2> " + shellQuote(err);
+    if (!options.cwd.empty()) cmd = "cd " + shellQuote(options.cwd) + " && " + cmd;
+    CommandResult r;
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
+    if (!pipe) {
+        r.err = "popen failed";
+    } else {
+        std::array<char, 4096> buf;
+        while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) r.out.append(buf.data(), n);
+        const int status = pclose(pipe.release());
+        r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::ifstream ef(err);
+        r.err.assign(std::istreambuf_iterator<char>(ef), std::istreambuf_iterator<char>());
+    }
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+    return r;
+}
+
+// Runs the built `surfgrad` with `args` (already shell-quoted where needed).
+inline CommandResult runSurfgrad(const std::string& args, const CommandOptions& options = {}) {
+    return runCommand(shellQuote(surfgradBinary()) + " " + args, options);
+}
+
+} // namespace sg::test

@@ -1,0 +1,34 @@
+// The documented preconditions of features/ (contract checks,
+// surfgrad/contract.h): texel coordinates inside the maps, for the C++
+// emulation of the evaluator's texelFetch and for the packing helpers.
+#include <array>
+#include <vector>
+
+#include "contract_death.h"
+#include "surfgrad/feature_maps.h"
+
+namespace {
+
+using ContractDeath = sg::test::ContractDeath;
+
+TEST_F(ContractDeath, TexelFetchInsideTheMap) {
+    const std::vector<uint32_t> texels(2 * 3 * 4, 0u); // 2 x 3 texels, 4 words each
+    const sg::glsl::SgFeatCornerSampler corners{texels.data(), 2, 3};
+    const sg::glsl::SgFeatEdgeSampler edges{texels.data(), 2, 3};
+    EXPECT_EQ(sg::glsl::texelFetch(corners, sg::glsl::ivec2(1, 2), 0).x, 0u);
+    SG_EXPECT_CONTRACT_DEATH(sg::glsl::texelFetch(corners, sg::glsl::ivec2(2, 0), 0),
+                             "texel inside the map");
+    SG_EXPECT_CONTRACT_DEATH(sg::glsl::texelFetch(edges, sg::glsl::ivec2(0, -1), 0),
+                             "texel inside the map");
+}
+
+TEST_F(ContractDeath, PackingHelpersTakeTexelsInsideTheMap) {
+    sg::features::FeatureMaps maps; // size 0: no texel at all
+    SG_EXPECT_CONTRACT_DEATH(maps.configWord(0, 0), "inside the map");
+    sg::features::GpuFeatureMaps gpu;
+    std::array<float, 64> record{};
+    SG_EXPECT_CONTRACT_DEATH(
+        sg::features::packEvalRecord(gpu, 0, 0, glm::vec2(0.5f), record.data()), "inside the map");
+}
+
+} // namespace
