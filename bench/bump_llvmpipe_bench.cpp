@@ -6,10 +6,10 @@
 // viewport), same 512x512 RG8 normal map, same output (the resolved normal
 // written to an RGBA8 target); only the frame differs. Each frame is one
 // draw followed by glFinish (llvmpipe skips draws fully covered by a later
-// draw, so batching frames before one finish under-reports; STACK.md).
+// draw, so batching frames before one finish under-reports; docs/platform.md).
 // Reports, per variant, the median frame time over several runs and the
-// ratio to the vertex-tangent baseline measured in the same run (goal of
-// issue 2: <= 1.15x). Also checks both variants produce nearly the same
+// ratio to the vertex-tangent baseline measured in the same run (goal:
+// <= 1.15x). Also checks both variants produce nearly the same
 // image (they differ only by the frame's construction).
 // Run: LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
 //      build/bin/bench_bump_llvmpipe [--runs N] [--frames N] [--size N]

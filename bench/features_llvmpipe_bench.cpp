@@ -1,7 +1,7 @@
 // features_llvmpipe_bench: per-pixel cost of the feature-map evaluator
 // (shaders/sg/features: sgFeatSample + sgFeatDeriv) in a fragment pass on
 // Mesa llvmpipe, against a plain bilinear normal-map fetch measured in the
-// same run. Goals (issue 3): <= 3x the baseline for linear maps, <= 6x for
+// same run. Goals: <= 3x the baseline for linear maps, <= 6x for
 // quadratic maps, at full feature coverage.
 //
 // Every variant draws one full-screen triangle into a 1024x1024 RGBA8
@@ -15,7 +15,7 @@
 // viewed window has a discontinuity (feature coverage ratio, FCR, ~100%: the
 // paper's worst case); "glyph" is a CJK glyph seen whole (FCR a few %).
 // Each frame is one draw + glFinish (llvmpipe skips draws covered by a
-// later one; STACK.md); the table shows medians over runs of 20 frames.
+// later one; docs/platform.md); the table shows medians over runs of 20 frames.
 // Run: LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
 //      build/bin/features_llvmpipe_bench [--runs N] [--frames N] [--size N]
 #include <epoxy/gl.h>

@@ -49,6 +49,7 @@
 #include <vector>
 
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/osd_primvar.h"
 #include "surfgrad/polymesh.h"
 #include "surfgrad/subdivision.h"
 
@@ -99,21 +100,6 @@ void row(const char* what, const char* input, double ms, double baselineMs, cons
                 baseline);
 }
 
-template <class V>
-struct Ref {
-    V* v;
-    void Clear() { *v = V(0.0f); }
-    template <class S>
-    void AddWithWeight(const S& s, float w) {
-        *v += w * *s.v;
-    }
-};
-template <class V>
-struct View {
-    V* b;
-    Ref<V> operator[](int i) const { return {b + i}; }
-};
-
 // Plain Far, the way a one-off user writes it.
 void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos,
               std::vector<glm::vec2>& outUv) {
@@ -139,11 +125,11 @@ void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos
     std::vector<glm::vec2> usrc = cage.uvSets[0].values, udst;
     for (int l = 1; l <= level; ++l) {
         dst.assign(size_t(r->GetLevel(l).GetNumVertices()), glm::vec3(0.0f));
-        View<glm::vec3> s{src.data()}, t{dst.data()};
+        PrimvarView<glm::vec3> s{src.data()}, t{dst.data()};
         pr.Interpolate(l, s, t);
         src.swap(dst);
         udst.assign(size_t(r->GetLevel(l).GetNumFVarValues(0)), glm::vec2(0.0f));
-        View<glm::vec2> us{usrc.data()}, ut{udst.data()};
+        PrimvarView<glm::vec2> us{usrc.data()}, ut{udst.data()};
         pr.InterpolateFaceVarying(l, us, ut, 0);
         usrc.swap(udst);
     }
@@ -355,16 +341,16 @@ int main(int argc, char** argv) {
                    },
                    [&] {
                        const auto& f = frames[frame % frames.size()];
-                       View<const glm::vec3> src{f.data()};
-                       View<glm::vec3> dst{farOut.data()};
+                       PrimvarView<const glm::vec3> src{f.data()};
+                       PrimvarView<glm::vec3> dst{farOut.data()};
                        table->UpdateValues(src, dst);
                    },
                    [&] { anim.update(frames[frame % frames.size()], out, nullptr, false); },
                    [&] { anim.update(frames[frame % frames.size()], out, nullptr, true); }});
         const double far = med[0], rebuild = med[1], rebuildPositions = med[2], farStencil = med[3],
                      update = med[4], updateN = med[5];
-        // Baseline: OpenSubdiv's full re-refinement (the issue's "full
-        // re-refinement, measured 2.4 ms" anchor is Far's).
+        // Baseline: OpenSubdiv's full re-refinement (the "full
+        // re-refinement, measured 2.4 ms" anchor of the goal is Far's).
         row("full re-refinement: plain Far (pos+UV)", in, far, far, "Far re-refine");
         row("full re-refinement: ours (pos+UV)", in, rebuild, far, "Far re-refine");
         row("full re-refinement: ours, positions only", in, rebuildPositions, far, "Far re-refine");

@@ -253,6 +253,6 @@ int main(int argc, char** argv) {
     row("fast, SSE2 kernels only (no AVX2)", narrowT, identical(narrow) ? "yes" : "NO");
     row("fast, new generator per call (cold buffers)", coldT, identical(cold) ? "yes" : "NO");
     std::printf("%-44s %3s %9s %9s %8.2f %15s %9s\n", "anchor: C reference mmikk/MikkTSpace", "-",
-                "-", "-", 0.5, "-", "(STACK.md)");
+                "-", "-", 0.5, "-", "(docs/tangents.md)");
     return identical(warm) && identical(narrow) && identical(cold) ? 0 : 1;
 }

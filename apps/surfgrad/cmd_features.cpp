@@ -342,7 +342,7 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     auto* bakeCmd =
         features->add_subcommand("bake", "Bake a curve network into feature maps (OpenEXR)");
     // --json F names a JSON input; a bare --json (anywhere) asks for the
-    // statistics as JSON, as the command line in the issue spells both.
+    // statistics as JSON (both spellings are documented uses).
     auto jsonArgs = std::make_shared<std::vector<std::string>>();
     auto* jsonOpt = bakeCmd
                         ->add_option("--json", *jsonArgs,

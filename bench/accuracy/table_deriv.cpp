@@ -374,9 +374,9 @@ void tableDerivatives(const Options& o) {
         fmt(errorStats(tilt).p50, 1) + ", max " + fmt(errorStats(tilt).max, 1) +
         " degrees). Maps at the view centre: " + fmt(1.0 / (dsPerPixel * mapW[1]), 2) + " and " +
         fmt(1.0 / (dsPerPixel * mapW[2]), 2) + " pixels per texel.");
-    t.notes.push_back("dFdxCoarse vs dFdxFine on this driver: largest normal difference " +
-                      fmtErr(coarseVsFine) +
-                      " degrees (llvmpipe computes coarse derivatives like fine ones: STACK.md).");
+    t.notes.push_back(
+        "dFdxCoarse vs dFdxFine on this driver: largest normal difference " + fmtErr(coarseVsFine) +
+        " degrees (llvmpipe computes coarse derivatives like fine ones: docs/platform.md).");
     t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer +
                       " (ray-sphere in every "
                       "variant), " +

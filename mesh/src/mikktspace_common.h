@@ -137,9 +137,9 @@ inline float uvAreaTimes2(const glm::vec2& t1, const glm::vec2& t2, const glm::v
 // asin(sqrt(z))/sqrt(z) = 1 + z Q(z), z in [0, 1/4] (z = c^2 for |c| <= 1/2,
 // z = (1 - |c|)/2 otherwise; acos = pi/2 - asin(c), resp. 2 asin(sqrt z) or
 // pi - 2 asin(sqrt z)), Q a degree-9 Chebyshev interpolant (absolute error
-// of z Q(z) < 2^-45, bench/tangents_acos_check.py prints the fit). The float
-// rounding of that value is final unless it lies within 2^-36 (relative)
-// of a midpoint between two floats, where libm decides (~0.05% of inputs).
+// of z Q(z) < 2^-45). The float rounding of that value is final unless it
+// lies within 2^-36 (relative) of a midpoint between two floats, where libm
+// decides (~0.05% of inputs).
 // Since any libm acos is within an ulp of the true value (2^-52), the
 // result equals (float)std::acos(c) for every float c; an exhaustive check
 // over all 2^31 floats in [-1, 1] is in the benchmark

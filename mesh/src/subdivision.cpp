@@ -49,6 +49,7 @@
 #include "mesh_internal.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/osd_primvar.h"
 #include "uniform_refiner.h"
 
 namespace sg::mesh {
@@ -75,22 +76,6 @@ void installFarCallbacks() {
         Far::SetWarningCallback(&farWarning);
     });
 }
-
-// PrimvarRefiner element views over glm arrays.
-template <class V>
-struct Ref {
-    V* v;
-    void Clear() { *v = V(0.0f); }
-    template <class S>
-    void AddWithWeight(const S& src, float w) {
-        *v += w * *src.v;
-    }
-};
-template <class V>
-struct View {
-    V* base;
-    Ref<V> operator[](int i) const { return {base + i}; }
-};
 
 // Records PrimvarRefiner's weights: each child's Clear() starts a row, the
 // AddWithWeight calls that follow fill it.
@@ -615,8 +600,8 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
         for (int l = 1; l <= N; ++l) {
             std::vector<glm::vec3>& dstBuf = l == N ? out : (l % 2 ? bufA : bufB);
             dstBuf.resize(size_t(refiner.GetLevel(l).GetNumVertices()));
-            View<const glm::vec3> s{src};
-            View<glm::vec3> d{dstBuf.data()};
+            PrimvarView<const glm::vec3> s{src};
+            PrimvarView<glm::vec3> d{dstBuf.data()};
             primvar.Interpolate(l, s, d);
             src = dstBuf.data();
         }
@@ -634,8 +619,8 @@ void Subdivider::Impl::refineUniform(const PolygonMesh& cage, Far::TopologyRefin
             std::vector<glm::vec2>& dstBuf =
                 l == N ? refined.uvSets[s].values : (l % 2 ? uvA : uvB);
             dstBuf.resize(size_t(refiner.GetLevel(l).GetNumFVarValues(int(s))));
-            View<const glm::vec2> sv{src};
-            View<glm::vec2> dv{dstBuf.data()};
+            PrimvarView<const glm::vec2> sv{src};
+            PrimvarView<glm::vec2> dv{dstBuf.data()};
             primvar.InterpolateFaceVarying(l, sv, dv, int(s));
             src = dstBuf.data();
         }
@@ -1094,8 +1079,8 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
         Far::PrimvarRefiner primvar(*adaptive);
         for (int l = 1; l < adaptive->GetNumLevels(); ++l) {
-            View<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
-            View<glm::vec2> dst{values.data() + fvBase[size_t(l)]};
+            PrimvarView<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
+            PrimvarView<glm::vec2> dst{values.data() + fvBase[size_t(l)]};
             primvar.InterpolateFaceVarying(l, src, dst, ch);
         }
         if (local) {

@@ -7,46 +7,18 @@
 
 #include <nlohmann/json.hpp>
 
-#include <array>
 #include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <memory>
 #include <sstream>
-#include <unistd.h>
-#include <sys/wait.h>
 
+#include "cli.h"
 #include "surfgrad/eval_line.h"
 
 namespace {
 
-namespace fs = std::filesystem;
-
-struct CliRun {
-    int exitCode;
-    std::string out;
-    std::string err;
-};
+using CliRun = sg::test::CommandResult;
 
 CliRun surfgrad(const std::string& args, const std::string& stdinText) {
-    const fs::path dir = fs::temp_directory_path() / ("surfgrad_cli_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
-    const fs::path in = dir / "in.jsonl", err = dir / "err.txt";
-    {
-        std::ofstream f(in);
-        f << stdinText;
-    }
-    const std::string cmd = std::string("'") + SURFGRAD_BINARY_DIR + "/bin/surfgrad' " + args +
-                            " < '" + in.string() + "' 2> '" + err.string() + "'";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    std::string out;
-    std::array<char, 4096> buf;
-    while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) out.append(buf.data(), n);
-    const int status = pclose(pipe.release());
-    std::ifstream ef(err);
-    std::string errText((std::istreambuf_iterator<char>(ef)), std::istreambuf_iterator<char>());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out, errText};
+    return sg::test::runSurfgrad(args, {.stdinText = stdinText});
 }
 
 std::vector<nlohmann::json> lines(const std::string& out) {

@@ -9,27 +9,21 @@
 // The last test proves the check can fail: a broken snippet is rejected.
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 #include <regex>
 #include <set>
 #include <sstream>
-#include <sys/wait.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "surfgrad/shader_files.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode;
-    std::string output;
-};
+using RunResult = sg::test::CommandResult;
 
 // Writes `source` to a temporary file with the stage's extension and runs
 // glslangValidator on it.
@@ -44,15 +38,9 @@ RunResult validate(const std::string& source, const std::string& stage, const st
         std::ofstream out(file);
         out << source;
     }
-    const std::string cmd = "glslangValidator '" + file.string() + "' 2>&1";
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(cmd.c_str(), "r"), pclose);
-    if (!pipe) return {-1, "popen failed"};
-    std::string output;
-    std::array<char, 4096> buf;
-    while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) output.append(buf.data(), n);
-    int status = pclose(pipe.release());
+    RunResult r = sg::test::runCommand("glslangValidator " + sg::test::shellQuote(file));
     fs::remove(file);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+    return r;
 }
 
 std::string stageOf(const std::string& path) {
@@ -89,7 +77,7 @@ std::vector<std::string> definesOf(const std::string& text) {
 
 TEST(GlslValidate, ToolIsAvailable) {
     const RunResult r = validate("#version 450\nvoid main() {}\n", "frag", "trivial");
-    ASSERT_EQ(r.exitCode, 0) << r.output;
+    ASSERT_EQ(r.exitCode, 0) << r.output();
 }
 
 TEST(GlslValidate, EmbeddedListIsEveryShaderFileInTheSourceTree) {
@@ -118,7 +106,7 @@ TEST_P(GlslFile, CompilesStandalone) {
     const auto src = sg::shaders::assemble(body, "validate[" + path + "]", defines);
     const RunResult r = validate(src.text, stage, path);
     EXPECT_EQ(r.exitCode, 0) << path << " (" << stage << "):\n"
-                             << sg::shaders::annotateLog(r.output, src.files);
+                             << sg::shaders::annotateLog(r.output(), src.files);
 }
 
 std::vector<std::string> shaderFiles() {
@@ -148,7 +136,7 @@ TEST(GlslValidate, BrokenSnippetsAreRejected) {
                                                "broken");
         const RunResult r = validate(src.text, "frag", "broken");
         EXPECT_NE(r.exitCode, 0) << snippet;
-        EXPECT_NE(r.output.find("ERROR"), std::string::npos) << r.output;
+        EXPECT_NE(r.output().find("ERROR"), std::string::npos) << r.output();
     }
 }
 

@@ -1,4 +1,4 @@
-// CPU/GPU parity of every shared shader function (issue 2, "Parity"): the
+// CPU/GPU parity of every shared shader function: the
 // C++ (GLM) build against the GLSL build on llvmpipe, >= 100,000 random and
 // adversarial records per function, with the per-function tolerances of
 // surfgrad/parity_tolerances.h (each explained there) and the

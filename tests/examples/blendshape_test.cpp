@@ -76,9 +76,9 @@ Diff compare(const Image& a, const Image& b) {
 Image renderNormals(const fs::path& dir, const std::string& name, const std::string& json) {
     fs::path scene = dir / (name + ".json"), out = dir / (name + ".exr");
     std::ofstream(scene) << json;
-    RunResult r =
-        run(quote(kCli) + " render " + quote(scene) + " -o " + quote(out) + " --aov normal");
-    EXPECT_EQ(r.exitCode, 0) << r.output;
+    CommandResult r = runCommand(shellQuote(kCli) + " render " + shellQuote(scene) + " -o " +
+                                 shellQuote(out) + " --aov normal");
+    EXPECT_EQ(r.exitCode, 0) << r.output();
     return readImage(out);
 }
 

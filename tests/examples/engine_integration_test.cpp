@@ -123,9 +123,9 @@ Stats compareNormals(const Image& img, bool useUv, bool useDecal) {
 Image render(const fs::path& dir, const std::string& name, const std::string& args,
              std::string& log) {
     fs::path out = dir / (name + ".png");
-    RunResult r = run(quote(kProgram) + " -o " + quote(out) + " --size " + std::to_string(kSize) +
-                      "x" + std::to_string(kSize) + " " + args);
-    log = r.output;
+    CommandResult r = runCommand(shellQuote(kProgram) + " -o " + shellQuote(out) + " --size " +
+                                 std::to_string(kSize) + "x" + std::to_string(kSize) + " " + args);
+    log = r.output();
     if (r.exitCode != 0) return {};
     return readImage(out);
 }
@@ -225,15 +225,15 @@ INSTANTIATE_TEST_SUITE_P(Layers, EngineIntegrationNormals,
 TEST(EngineIntegration, AssembledShaderValidates) {
     fs::path dir = scratchDir("ei_glslang");
     for (const char* derivs : {"fine", "analytic"}) {
-        RunResult src = run(quote(kProgram) + " --print-shader --derivs " + derivs);
-        ASSERT_EQ(src.exitCode, 0) << src.output;
-        ASSERT_NE(src.output.find("#version 450"), std::string::npos);
-        ASSERT_NE(src.output.find("sgResolve"), std::string::npos)
+        CommandResult src = runCommand(shellQuote(kProgram) + " --print-shader --derivs " + derivs);
+        ASSERT_EQ(src.exitCode, 0) << src.output();
+        ASSERT_NE(src.output().find("#version 450"), std::string::npos);
+        ASSERT_NE(src.output().find("sgResolve"), std::string::npos)
             << "the library was not included";
         fs::path f = dir / (std::string("bumped_") + derivs + ".frag");
-        std::ofstream(f) << src.output;
-        RunResult v = run("glslangValidator " + quote(f));
-        EXPECT_EQ(v.exitCode, 0) << derivs << ":\n" << v.output;
+        std::ofstream(f) << src.output();
+        CommandResult v = runCommand("glslangValidator " + shellQuote(f));
+        EXPECT_EQ(v.exitCode, 0) << derivs << ":\n" << v.output();
     }
 }
 
@@ -241,9 +241,10 @@ TEST(EngineIntegration, BadArgumentsFailWithAMessage) {
     fs::path dir = scratchDir("ei_bad");
     for (const char* args : {"--size 0x5", "--layers bumps", "--aov depth", "--frobnicate",
                              "--shader-dir /nonexistent"}) {
-        RunResult r = run(quote(kProgram) + " -o " + quote(dir / "x.png") + " " + args);
+        CommandResult r =
+            runCommand(shellQuote(kProgram) + " -o " + shellQuote(dir / "x.png") + " " + args);
         EXPECT_NE(r.exitCode, 0) << args;
-        EXPECT_NE(r.output.find("error"), std::string::npos) << args << ": " << r.output;
+        EXPECT_NE(r.output().find("error"), std::string::npos) << args << ": " << r.output();
         EXPECT_FALSE(fs::exists(dir / "x.png")) << args;
     }
 }

@@ -1,41 +1,23 @@
-// Helpers of the example tests: run a built program, read its images.
+// Helpers of the example tests: read the images a built program wrote
+// (programs run through tests/common/cli.h).
 #pragma once
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
+
+#include "cli.h"
 
 namespace sg::examples_test {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string output; // stdout and stderr
-};
-
-// Runs `cmd` through the shell, stderr merged into the captured output.
-inline RunResult run(const std::string& cmd) {
-    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen((cmd + " 2>&1").c_str(), "r"), pclose);
-    if (!pipe) return {-1, "popen failed"};
-    RunResult r;
-    std::array<char, 4096> buf;
-    while (size_t n = fread(buf.data(), 1, buf.size(), pipe.get())) r.output.append(buf.data(), n);
-    int status = pclose(pipe.release());
-    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return r;
-}
-
-inline std::string quote(const fs::path& p) {
-    return "'" + p.string() + "'";
-}
+using sg::test::CommandResult;
+using sg::test::runCommand;
+using sg::test::shellQuote;
 
 // A fresh per-process scratch directory for one test.
 inline fs::path scratchDir(const std::string& name) {

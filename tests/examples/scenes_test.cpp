@@ -72,12 +72,13 @@ TEST_P(SceneExample, RendersFiniteImagesFromTheCli) {
         const std::string f = std::to_string(frame);
         fs::path color = dir / ("color_" + f + ".exr"), normal = dir / ("normal_" + f + ".exr");
         // 160x96: every layer and mesh of the scene still runs; seconds per example.
-        RunResult rc = run(quote(kCli) + " render " + quote(scene()) + " -o " + quote(color) +
-                           " --size 160x96 --frame " + f);
-        ASSERT_EQ(rc.exitCode, 0) << rc.output;
-        RunResult rn = run(quote(kCli) + " render " + quote(scene()) + " -o " + quote(normal) +
-                           " --size 160x96 --aov normal --frame " + f);
-        ASSERT_EQ(rn.exitCode, 0) << rn.output;
+        CommandResult rc = runCommand(shellQuote(kCli) + " render " + shellQuote(scene()) + " -o " +
+                                      shellQuote(color) + " --size 160x96 --frame " + f);
+        ASSERT_EQ(rc.exitCode, 0) << rc.output();
+        CommandResult rn =
+            runCommand(shellQuote(kCli) + " render " + shellQuote(scene()) + " -o " +
+                       shellQuote(normal) + " --size 160x96 --aov normal --frame " + f);
+        ASSERT_EQ(rn.exitCode, 0) << rn.output();
 
         Image c = readImage(color), n = readImage(normal);
         ASSERT_EQ(c.width, 160) << "frame " << f;
@@ -144,11 +145,11 @@ std::vector<Program> splitPrograms(const std::string& text) {
 
 TEST_P(SceneExample, EveryAssembledShaderPassesGlslang) {
     fs::path dir = scratchDir("glslang_" + GetParam());
-    RunResult r = run(quote(kCli) + " shader " + quote(scene()) + " --vertex");
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    std::vector<Program> progs = splitPrograms(r.output);
+    CommandResult r = runCommand(shellQuote(kCli) + " shader " + shellQuote(scene()) + " --vertex");
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    std::vector<Program> progs = splitPrograms(r.output());
     ASSERT_GE(progs.size(), 2u) << "expected at least one fragment and one vertex program:\n"
-                                << r.output.substr(0, 2000);
+                                << r.output().substr(0, 2000);
     std::set<std::string> stages;
     for (size_t i = 0; i < progs.size(); ++i) {
         const Program& p = progs[i];
@@ -156,8 +157,8 @@ TEST_P(SceneExample, EveryAssembledShaderPassesGlslang) {
         ASSERT_NE(p.source.find("#version 450"), std::string::npos) << p.header;
         fs::path file = dir / ("program_" + std::to_string(i) + "." + p.stage);
         std::ofstream(file) << p.source;
-        RunResult v = run("glslangValidator " + quote(file));
-        EXPECT_EQ(v.exitCode, 0) << p.header << "\n" << v.output;
+        CommandResult v = runCommand("glslangValidator " + shellQuote(file));
+        EXPECT_EQ(v.exitCode, 0) << p.header << "\n" << v.output();
     }
     EXPECT_EQ(stages.size(), 2u);
 }
@@ -181,11 +182,12 @@ TEST_P(SceneExample, HasAReadmeAndARenderedImage) {
 TEST_P(SceneExample, OpensInTheViewerUnderXvfb) {
     fs::path dir = scratchDir("view_" + GetParam());
     fs::path shot = dir / "shot.png";
-    RunResult r = run("xvfb-run -a -s '-screen 0 1280x1024x24' " + quote(kCli) + " view " +
-                      quote(scene()) + " --frames 3 --size 400x300 --screenshot " + quote(shot));
-    ASSERT_EQ(r.exitCode, 0) << r.output;
+    CommandResult r = runCommand("xvfb-run -a -s '-screen 0 1280x1024x24' " + shellQuote(kCli) +
+                                 " view " + shellQuote(scene()) +
+                                 " --frames 3 --size 400x300 --screenshot " + shellQuote(shot));
+    ASSERT_EQ(r.exitCode, 0) << r.output();
     Image img = readImage(shot);
-    ASSERT_EQ(img.width, 400) << r.output;
+    ASSERT_EQ(img.width, 400) << r.output();
     ASSERT_EQ(img.height, 300);
     // Many distinct colours: shaded surfaces and the panel, not a cleared window.
     std::set<int> colours;

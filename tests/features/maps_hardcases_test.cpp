@@ -1,4 +1,4 @@
-// Hard cases of the feature-map bake and evaluator (issue 3), each a test:
+// Hard cases of the feature-map bake and evaluator, each a test:
 // star junctions, curves through texel corners and along texel edges, two
 // curves in one texel, tangential contact, tiny loops, nearly straight
 // Beziers (theta_min), the Eq. 7 case, curves leaving the map, coincident

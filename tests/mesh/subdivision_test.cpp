@@ -17,6 +17,7 @@
 
 #include "mesh_test_util.h"
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/osd_primvar.h"
 #include "surfgrad/subdivision.h"
 
 namespace {
@@ -56,21 +57,6 @@ bool allFinite(const RenderMesh& m) {
 struct FarLimit {
     std::vector<glm::vec3> pos, tan1, tan2;
     std::vector<std::vector<glm::vec2>> uv; // per channel, per level-N fvar value
-};
-
-template <class V>
-struct Ref {
-    V* v;
-    void Clear() { *v = V(0.0f); }
-    template <class S>
-    void AddWithWeight(const S& s, float w) {
-        *v += w * *s.v;
-    }
-};
-template <class V>
-struct View {
-    V* b;
-    Ref<V> operator[](int i) const { return {b + i}; }
 };
 
 FarLimit farLimit(const PolygonMesh& cage, int level, const SubdivOptions& o) {
@@ -118,7 +104,7 @@ FarLimit farLimit(const PolygonMesh& cage, int level, const SubdivOptions& o) {
     std::vector<glm::vec3> src = cage.positions, dst;
     for (int l = 1; l <= level; ++l) {
         dst.assign(size_t(r->GetLevel(l).GetNumVertices()), glm::vec3(0.0f));
-        View<glm::vec3> s{src.data()}, t{dst.data()};
+        PrimvarView<glm::vec3> s{src.data()}, t{dst.data()};
         pr.Interpolate(l, s, t);
         src.swap(dst);
     }
@@ -126,18 +112,19 @@ FarLimit farLimit(const PolygonMesh& cage, int level, const SubdivOptions& o) {
     out.pos.resize(src.size());
     out.tan1.resize(src.size());
     out.tan2.resize(src.size());
-    View<glm::vec3> s{src.data()}, p{out.pos.data()}, t1{out.tan1.data()}, t2{out.tan2.data()};
+    PrimvarView<glm::vec3> s{src.data()}, p{out.pos.data()}, t1{out.tan1.data()},
+        t2{out.tan2.data()};
     pr.Limit(s, p, t1, t2);
     for (size_t c = 0; c < cage.uvSets.size(); ++c) {
         std::vector<glm::vec2> us = cage.uvSets[c].values, ud;
         for (int l = 1; l <= level; ++l) {
             ud.assign(size_t(r->GetLevel(l).GetNumFVarValues(int(c))), glm::vec2(0.0f));
-            View<glm::vec2> a{us.data()}, b{ud.data()};
+            PrimvarView<glm::vec2> a{us.data()}, b{ud.data()};
             pr.InterpolateFaceVarying(l, a, b, int(c));
             us.swap(ud);
         }
         std::vector<glm::vec2> lim(us.size());
-        View<glm::vec2> a{us.data()}, b{lim.data()};
+        PrimvarView<glm::vec2> a{us.data()}, b{lim.data()};
         pr.LimitFaceVarying(a, b, int(c));
         out.uv.push_back(lim);
     }

@@ -4,11 +4,11 @@
 // `surfgrad view` opens a window under xvfb-run and screenshots it.
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <set>
 
+#include "cli.h"
 #include "render_test_util.h"
 
 namespace sg::render::test {
@@ -16,24 +16,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CmdResult {
-    int status = -1;
-    std::string output; // stdout + stderr
-};
+using CmdResult = sg::test::CommandResult;
 
+// `surfgrad args` run in `cwd`.
 CmdResult run(const std::string& args, const fs::path& cwd) {
     fs::create_directories(cwd);
-    fs::path log = cwd / "cmd.log";
-    std::string cmd = "cd '" + cwd.string() + "' && " + std::string(SURFGRAD_BINARY_DIR) +
-                      "/bin/surfgrad " + args + " > '" + log.string() + "' 2>&1";
-    int rc = std::system(cmd.c_str());
-    CmdResult r;
-    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.output = ss.str();
-    return r;
+    return sg::test::runSurfgrad(args, {.cwd = cwd});
 }
 
 fs::path scratch(const std::string& name) {
@@ -57,7 +45,7 @@ size_t distinctColours(const Image& img) {
 TEST(Cli, RenderWithoutArgumentsWritesTheDefaultImage) {
     fs::path dir = scratch("default");
     CmdResult r = run("render --size 192x108", dir);
-    ASSERT_EQ(r.status, 0) << r.output;
+    ASSERT_EQ(r.exitCode, 0) << r.output();
     Image img = readImage(dir / "out/default.png");
     EXPECT_EQ(img.width, 192);
     EXPECT_EQ(img.height, 108);
@@ -69,24 +57,24 @@ TEST(Cli, BadInputFailsWithTheFieldAndNoOutput) {
     std::ofstream(dir / "bad.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
         "materials": [{"layers": [{"type": "noise", "octaves": 40}]}]})";
     CmdResult r = run("render bad.json -o bad.png", dir);
-    EXPECT_EQ(r.status, 1);
+    EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(
-        r.output.find("bad.json: materials[0].layers[0].octaves: expected an integer in [1, 12]"),
+        r.output().find("bad.json: materials[0].layers[0].octaves: expected an integer in [1, 12]"),
         std::string::npos)
-        << r.output;
+        << r.output();
     EXPECT_FALSE(fs::exists(dir / "bad.png"));
     // Same for `shader`, an unknown AOV, a bad size, an unsupported format,
     // and an output that would overwrite the input.
-    EXPECT_EQ(run("shader bad.json", dir).status, 1);
+    EXPECT_EQ(run("shader bad.json", dir).exitCode, 1);
     CmdResult aov = run("render --aov normals -o x.png", dir);
-    EXPECT_EQ(aov.status, 1);
-    EXPECT_NE(aov.output.find("--aov"), std::string::npos);
-    EXPECT_NE(run("render --size 0x10 -o x.png", dir).status, 0);
+    EXPECT_EQ(aov.exitCode, 1);
+    EXPECT_NE(aov.output().find("--aov"), std::string::npos);
+    EXPECT_NE(run("render --size 0x10 -o x.png", dir).exitCode, 0);
     CmdResult fmt = run("render --size 8x8 -o x.bmp", dir);
-    EXPECT_EQ(fmt.status, 1);
-    EXPECT_NE(fmt.output.find("unsupported image format"), std::string::npos);
+    EXPECT_EQ(fmt.exitCode, 1);
+    EXPECT_NE(fmt.output().find("unsupported image format"), std::string::npos);
     std::ofstream(dir / "ok.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}]})";
-    EXPECT_EQ(run("render ok.json -o ok.json", dir).status, 1);
+    EXPECT_EQ(run("render ok.json -o ok.json", dir).exitCode, 1);
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
@@ -95,18 +83,18 @@ TEST(Cli, ShaderPrintsOnlyWhatTheSceneUses) {
     std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
         "materials": [{"layers": [{"type": "noise"}]}]})";
     CmdResult r = run("shader s.json", dir);
-    ASSERT_EQ(r.status, 0) << r.output;
-    EXPECT_NE(r.output.find("#version 450"), std::string::npos);
-    EXPECT_NE(r.output.find("sgLayerNoise"), std::string::npos);
-    EXPECT_EQ(r.output.find("sgLayerTriplanar"), std::string::npos);
-    EXPECT_EQ(r.output.find("sgLayerUvNormal"), std::string::npos);
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    EXPECT_NE(r.output().find("#version 450"), std::string::npos);
+    EXPECT_NE(r.output().find("sgLayerNoise"), std::string::npos);
+    EXPECT_EQ(r.output().find("sgLayerTriplanar"), std::string::npos);
+    EXPECT_EQ(r.output().find("sgLayerUvNormal"), std::string::npos);
 }
 
 TEST(Cli, ExrOutputKeepsRawAovValues) {
     fs::path dir = scratch("exr");
     std::ofstream(dir / "p.json") << R"({"meshes": [{"procedural": {"type": "plane"}}],
         "camera": {"position": [0, 2, 0.01], "target": [0, 0, 0]}, "output": {"width": 32, "height": 24}})";
-    ASSERT_EQ(run("render p.json --aov normal -o n.exr", dir).status, 0);
+    ASSERT_EQ(run("render p.json --aov normal -o n.exr", dir).exitCode, 0);
     Image n = readImage(dir / "n.exr");
     // A flat plane without layers: the normal is +y everywhere it is seen.
     const glm::vec4& c = n.at(16, 12);
@@ -116,15 +104,12 @@ TEST(Cli, ExrOutputKeepsRawAovValues) {
 
 TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
     fs::path dir = scratch("viewer");
-    std::string cmd =
-        "cd '" + dir.string() + "' && xvfb-run -a -s '-screen 0 1280x1024x24' " +
-        std::string(SURFGRAD_BINARY_DIR) +
-        "/bin/surfgrad view --frames 3 --size 400x300 --screenshot shot.png > view.log 2>&1";
-    int rc = std::system(cmd.c_str());
-    std::ifstream logIn(dir / "view.log");
-    std::stringstream log;
-    log << logIn.rdbuf();
-    ASSERT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << log.str();
+    const CmdResult r =
+        sg::test::runCommand("xvfb-run -a -s '-screen 0 1280x1024x24' " +
+                                 sg::test::shellQuote(sg::test::surfgradBinary()) +
+                                 " view --frames 3 --size 400x300 --screenshot shot.png",
+                             {.cwd = dir});
+    ASSERT_EQ(r.exitCode, 0) << r.output();
     Image shot = readImage(dir / "shot.png");
     EXPECT_EQ(shot.width, 400);
     EXPECT_EQ(shot.height, 300);

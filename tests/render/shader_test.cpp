@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 
+#include "cli.h"
 #include "render_test_util.h"
 
 namespace sg::render::test {
@@ -143,10 +144,10 @@ int glslang(const ProgramSource& src, const std::string& tag) {
     std::string vs = dir + "/glslang_" + tag + ".vert", fs = dir + "/glslang_" + tag + ".frag";
     std::ofstream(vs) << src.vertex;
     std::ofstream(fs) << src.fragment;
-    std::string cmd = std::string(SURFGRAD_GLSLANG) + " -l " + vs + " " + fs + " > " + dir +
-                      "/glslang_" + tag + ".log 2>&1";
-    int rc = std::system(cmd.c_str());
-    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+    const sg::test::CommandResult r =
+        sg::test::runCommand(std::string(SURFGRAD_GLSLANG) + " -l " + vs + " " + fs);
+    std::ofstream(dir + "/glslang_" + tag + ".log") << r.output();
+    return r.exitCode;
 }
 
 TEST(EffectsOnDemand, EveryVariantPassesGlslangValidator) {

@@ -1,5 +1,5 @@
-// Tangent sources per UV set (issue 4: "tangent source pixel|mikktspace|limit
-// per UV set") and derived UV sets of mesh files (the mesh-level "uv_sets"
+// Tangent sources per UV set ("tangent source pixel|mikktspace|limit per UV
+// set") and derived UV sets of mesh files (the mesh-level "uv_sets"
 // field, docs/scene.md):
 //  - every UV set that asks for vertex tangents gets exactly what the mesh
 //    module computes for that set alone (sg::mesh::generateLimitTangents,
@@ -17,8 +17,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
+#include "cli.h"
 #include "render_test_util.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -252,16 +252,12 @@ TEST(TangentSets, MikkTSpaceOnThreeSetsSplitsVerticesForEachAndKeepsTheOthers) {
 // #if SG_VTX_TANGENT_k, so a text search before preprocessing would see them).
 std::string preprocessed(const std::string& text, const std::string& tag, const char* stage) {
     fs::path dir = scratch("pre_" + tag);
-    fs::path in = dir / (std::string("p.") + stage), out = dir / "out.txt";
+    fs::path in = dir / (std::string("p.") + stage);
     std::ofstream(in) << text;
-    std::string cmd =
-        std::string(SURFGRAD_GLSLANG) + " -E " + in.string() + " > " + out.string() + " 2>&1";
-    int rc = std::system(cmd.c_str());
-    EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << cmd;
-    std::ifstream f(out);
-    std::stringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
+    const std::string cmd = std::string(SURFGRAD_GLSLANG) + " -E " + in.string();
+    const sg::test::CommandResult r = sg::test::runCommand(cmd);
+    EXPECT_EQ(r.exitCode, 0) << cmd;
+    return r.output();
 }
 
 struct Stages {

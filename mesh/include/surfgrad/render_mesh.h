@@ -62,7 +62,7 @@ struct RenderMesh {
 // that vertex is taken with respect to that (u,v), so positions and all UV
 // sets share one parameterization and the 2x2 Jacobian d(s,t)/d(u,v) turns
 // dPdu/dPdv into dP/ds, dP/dt (the chain rule behind Mikkelsen 2019,
-// sec. 2.3; the "limit" tangent frames of issue 5). Consequences:
+// sec. 2.3; the "limit" tangent frames of surfgrad/tangents.h). Consequences:
 //  - derivatives of two vertices are in different parameterizations unless
 //    they share a ptex face: compare directions, not magnitudes;
 //  - vertices split at a UV seam or a sharp crease have their own home in a
