@@ -596,7 +596,10 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
 
 } // namespace
 
-struct MikkTSpaceGenerator::Scratch {
+namespace {
+
+// The generator's buffers, reused between calls.
+struct Buffers {
     // Triangulation (only filled when faceSizes is given).
     std::vector<uint32_t> triVertex; // input vertex per triangle corner
     std::vector<uint32_t> triCorner; // output corner per triangle corner
@@ -639,6 +642,990 @@ struct MikkTSpaceGenerator::Scratch {
     std::vector<uint32_t> firstGoodCorner;
 };
 
+// One generate() call: its input and buffers, and what each step hands on
+// to the next (the steps are numbered as in docs/tangents.md).
+struct Pass {
+    Pass(const MikkTSpaceInput& input, Buffers& buffers, std::vector<MikkTSpaceFrame>* f)
+        : in(input), s(buffers), frames(f) {}
+
+    const MikkTSpaceInput& in;
+    Buffers& s;
+    std::vector<MikkTSpaceFrame>* frames; // complete frames requested, or nullptr
+    size_t triCount = 0, cornerCount = 0;
+    bool trianglesOnly = true; // no faceSizes, or every face a triangle
+    bool hasQuads = false;     // faces are given and not all triangles
+    // Results go to per-corner spaces (s.spaces: quads average two frames,
+    // frames need the magnitudes) instead of straight to the tangents.
+    bool fullSpaces = false;
+    glm::vec4* tangentsOut = nullptr;
+    // Step 1: the input vertex of each triangle corner.
+    const uint32_t* triVertex = nullptr;
+    // Step 2: the welded vertices.
+    const WeldedVertex* wv = nullptr;
+    size_t weldedCount = 0;
+    // Steps 3-5.
+    size_t degenerateCount = 0, goodCount = 0;
+    // Triangles in the good-first order: welded ids per corner, output
+    // corner per corner (null: corner j is output corner j), face per
+    // triangle (null: triangle t is face t) and each corner's position in
+    // its face (quads only).
+    const uint32_t* gWelded = nullptr;
+    const uint32_t* gCorner = nullptr;
+    const uint32_t* gFace = nullptr;
+    const uint8_t* gVertInFace = nullptr;
+
+    uint32_t cornerOut(size_t j) const { return gCorner ? gCorner[j] : uint32_t(j); }
+    uint32_t faceOf(size_t t) const { return gFace ? gFace[t] : uint32_t(t); }
+};
+
+// --- Step 1: triangles ---------------------------------------------------------------
+
+// Whether a quad (its four input vertices fv) splits along 0-2: the shorter
+// UV diagonal; on a tie the shorter position diagonal; on a second tie 0-2.
+bool quadSplitsAlong02(const MikkTSpaceInput& in, const uint32_t* fv) {
+    auto uvDist2 = [&](int a, int b) {
+        const glm::vec2 ta = in.uvs[fv[a]], tb = in.uvs[fv[b]];
+        const float dx = tb.x - ta.x, dy = tb.y - ta.y;
+        return dx * dx + dy * dy;
+    };
+    const float uv02 = uvDist2(0, 2), uv13 = uvDist2(1, 3);
+    if (uv02 < uv13) return true;
+    if (uv13 < uv02) return false;
+    auto posDist2 = [&](int a, int b) {
+        return mikk::lengthSquared(
+            mikk::sub(mikk::toVec3(in.positions[fv[b]]), mikk::toVec3(in.positions[fv[a]])));
+    };
+    return !(posDist2(1, 3) < posDist2(0, 2));
+}
+
+// The triangle list. Without quads a triangle's corners are the input
+// corners 3t..3t+2 and nothing is copied.
+void triangulate(Pass& p) {
+    const MikkTSpaceInput& in = p.in;
+    Buffers& s = p.s;
+    p.triVertex = in.cornerVertices.data();
+    if (p.trianglesOnly) return;
+    s.triVertex.resize(p.triCount * 3);
+    s.triCorner.resize(p.triCount * 3);
+    s.triFace.resize(p.triCount);
+    s.triVertInFace.resize(p.triCount * 3);
+    size_t t = 0, first = 0;
+    for (size_t f = 0; f < in.faceSizes.size(); first += in.faceSizes[f], ++f) {
+        const uint32_t n = in.faceSizes[f];
+        if (n != 3 && n != 4) continue;
+        const uint32_t* fv = in.cornerVertices.data() + first;
+        auto emit = [&](int a, int b, int c) {
+            const int k[3] = {a, b, c};
+            for (int i = 0; i < 3; ++i) {
+                s.triVertex[t * 3 + size_t(i)] = fv[k[i]];
+                s.triCorner[t * 3 + size_t(i)] = uint32_t(first) + uint32_t(k[i]);
+                s.triVertInFace[t * 3 + size_t(i)] = uint8_t(k[i]);
+            }
+            s.triFace[t] = uint32_t(f);
+            ++t;
+        };
+        if (n == 3) {
+            emit(0, 1, 2);
+        } else if (quadSplitsAlong02(in, fv)) {
+            emit(0, 1, 2);
+            emit(0, 2, 3);
+        } else {
+            emit(0, 1, 3);
+            emit(1, 2, 3);
+        }
+    }
+    p.triVertex = s.triVertex.data();
+}
+
+// --- Step 2: weld --------------------------------------------------------------------
+
+constexpr uint32_t kSeen = kNone - 1;
+
+// Pass 1: the input vertices in order of first use (marked kSeen).
+void listVerticesByFirstUse(Pass& p) {
+    Buffers& s = p.s;
+    s.vertexClass.assign(p.in.positions.size(), kNone);
+    s.firstUse.clear();
+    for (size_t c = 0; c < p.triCount * 3; ++c) {
+        const uint32_t v = p.triVertex[c];
+        if (s.vertexClass[v] == kNone) {
+            s.vertexClass[v] = kSeen;
+            s.firstUse.push_back(v);
+        }
+    }
+}
+
+// Pass 2: their values, in order of first use, into `staged`, hashed.
+void stageVertexValues(Pass& p) {
+    Buffers& s = p.s;
+    const size_t used = s.firstUse.size();
+    s.hashes.resize(used);
+    s.staged.resize(used);
+    for (size_t i = 0; i < used; ++i) {
+        const uint32_t v = s.firstUse[i];
+        const glm::vec3 pos = p.in.positions[v], n = p.in.normals[v];
+        const glm::vec2 uv = p.in.uvs[v];
+        s.staged[i] = {mikk::toVec3(pos), mikk::toVec3(n), uv};
+        s.hashes[i] = weldHash(pos, n, uv);
+    }
+}
+
+// Pass 3: each staged vertex looked up in an open-addressing table (slot =
+// staged index of the class's first vertex and 32 hash bits, so a probe
+// rarely reads the candidate's values), prefetching the slot a few
+// vertices ahead; the values compared are read from `staged`
+// (sequentially), not from the input. Returns the number of classes.
+uint32_t classifyStagedVertices(Buffers& s) {
+    const size_t used = s.firstUse.size();
+    size_t tableSize = 64;
+    while (tableSize < 2 * used) tableSize *= 2;
+    const size_t mask = tableSize - 1;
+    constexpr uint64_t kEmpty = ~uint64_t(0);
+    s.hashTable.assign(tableSize, kEmpty);
+    s.stagedId.resize(used);
+    const WeldedVertex* const staged = s.staged.data();
+    uint32_t* const stagedId = s.stagedId.data();
+    uint32_t classCount = 0;
+    constexpr size_t kAhead = 16;
+    for (size_t i = 0; i < used; ++i) {
+        if (i + kAhead < used) __builtin_prefetch(&s.hashTable[s.hashes[i + kAhead] & mask]);
+        const uint64_t h = s.hashes[i];
+        const uint64_t tag = h & 0xFFFFFFFF00000000ull;
+        const WeldedVertex& x = staged[i];
+        uint32_t id;
+        for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
+            const uint64_t entry = s.hashTable[slot];
+            if (entry == kEmpty) {
+                id = classCount++;
+                s.hashTable[slot] = tag | i;
+                break;
+            }
+            if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
+            const WeldedVertex& y = staged[uint32_t(entry)];
+            if (mikk::exactlyEqual(x.position, y.position) &&
+                mikk::exactlyEqual(x.normal, y.normal) && x.uv.x == y.uv.x && x.uv.y == y.uv.y) {
+                id = stagedId[uint32_t(entry)];
+                break;
+            }
+        }
+        stagedId[i] = id;
+        s.vertexClass[s.firstUse[i]] = id;
+    }
+    return classCount;
+}
+
+// Weld by exact (position, normal, uv), through the input vertices. Welded
+// ids in order of first use; their values are those of the first corner
+// using them (as the oracle's representative).
+void weld(Pass& p) {
+    Buffers& s = p.s;
+    listVerticesByFirstUse(p);
+    stageVertexValues(p);
+    const uint32_t classCount = classifyStagedVertices(s);
+    // Welded values: each class's first vertex (new ids appear in
+    // increasing order); without duplicates that is `staged` itself.
+    const size_t used = s.firstUse.size();
+    if (classCount == used) {
+        s.welded.swap(s.staged);
+    } else {
+        s.welded.resize(classCount);
+        uint32_t nextId = 0;
+        for (size_t i = 0; i < used; ++i)
+            if (s.stagedId[i] == nextId) s.welded[nextId++] = s.staged[i];
+    }
+    // Pass 4: welded id per triangle corner.
+    s.triWelded.resize(p.triCount * 3);
+    for (size_t c = 0; c < p.triCount * 3; ++c) s.triWelded[c] = s.vertexClass[p.triVertex[c]];
+    p.wv = s.welded.data();
+    p.weldedCount = s.welded.size();
+}
+
+// --- Steps 3-5: degenerate triangles, derivatives, orientation -----------------------
+
+// Per-triangle derivatives and orientation (eq. 18/19) of every triangle
+// in input order, with the degenerate test (two corners at one position)
+// in the same pass: both read the same positions. A degenerate triangle's
+// derivatives are computed and dropped in step 4.
+void faceDerivativesAndDegenerates(Pass& p) {
+    Buffers& s = p.s;
+    const size_t triCount = p.triCount;
+    const WeldedVertex* const wv = p.wv;
+    s.deriv.resize(triCount);
+    s.flags.assign(triCount, 0); // indexed in the good-first order after step 4
+    size_t degenerateCount = 0;
+    const uint32_t* const tw = s.triWelded.data();
+    size_t firstScalar = 0;
+#if defined(__SSE2__)
+    for (; firstScalar + 4 <= triCount; firstScalar += 4)
+        degenerateCount += faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
+                                            s.flags.data() + firstScalar);
+#endif
+    for (size_t t = firstScalar; t < triCount; ++t) {
+        const WeldedVertex& a = wv[tw[t * 3]];
+        const WeldedVertex& b = wv[tw[t * 3 + 1]];
+        const WeldedVertex& c = wv[tw[t * 3 + 2]];
+        const mikk::FaceDerivatives d =
+            mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
+        s.deriv[t] = {d.vOs, d.magS, d.vOt, d.magT};
+        const bool degenerate = mikk::exactlyEqual(a.position, b.position) ||
+                                mikk::exactlyEqual(a.position, c.position) ||
+                                mikk::exactlyEqual(b.position, c.position);
+        s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0) |
+                              (degenerate ? kDegenerate : 0));
+        degenerateCount += degenerate;
+    }
+    p.degenerateCount = degenerateCount;
+    p.goodCount = triCount - degenerateCount;
+}
+
+// Step 4: quads with exactly one degenerate triangle are marked (fixed up in
+// step 9); then degenerate triangles go last (the good ones keep their
+// order; their derivatives and flags move to the front).
+void moveDegeneratesLast(Pass& p) {
+    Buffers& s = p.s;
+    const size_t triCount = p.triCount;
+    const bool hasQuads = p.hasQuads;
+    auto isDegenerate = [&](size_t t) { return (s.flags[t] & kDegenerate) != 0; };
+    if (hasQuads) {
+        s.quadOneDegen.assign(triCount, 0);
+        for (size_t t = 0; t + 1 < triCount;) {
+            if (s.triFace[t] == s.triFace[t + 1]) {
+                if (isDegenerate(t) != isDegenerate(t + 1))
+                    s.quadOneDegen[t] = s.quadOneDegen[t + 1] = 1;
+                t += 2;
+            } else {
+                ++t;
+            }
+        }
+    }
+    s.order.clear();
+    for (size_t t = 0; t < triCount; ++t)
+        if (!isDegenerate(t)) s.order.push_back(uint32_t(t));
+    for (size_t t = 0; t < triCount; ++t)
+        if (isDegenerate(t)) s.order.push_back(uint32_t(t));
+    s.goodWelded.resize(triCount * 3);
+    s.goodCorner.resize(triCount * 3);
+    if (hasQuads) {
+        s.goodFace.resize(triCount);
+        s.goodVertInFace.resize(triCount * 3);
+    }
+    for (size_t t = 0; t < triCount; ++t) {
+        const size_t src = s.order[t];
+        for (size_t i = 0; i < 3; ++i) {
+            s.goodWelded[t * 3 + i] = s.triWelded[src * 3 + i];
+            s.goodCorner[t * 3 + i] = hasQuads ? s.triCorner[src * 3 + i] : uint32_t(src * 3 + i);
+            if (hasQuads) s.goodVertInFace[t * 3 + i] = s.triVertInFace[src * 3 + i];
+        }
+        if (hasQuads) s.goodFace[t] = s.triFace[src];
+        // In place: order[t] >= t for the good prefix, and a degenerate
+        // triangle keeps no derivative bits.
+        const uint8_t quadBit = hasQuads && s.quadOneDegen[src] ? kQuadOneDegen : 0;
+        if (t < p.goodCount) {
+            s.deriv[t] = s.deriv[src];
+            s.flags[t] = uint8_t((s.flags[src] & (kOrient | kAny)) | quadBit);
+        } else {
+            s.flags[t] = quadBit;
+        }
+    }
+    p.gWelded = s.goodWelded.data();
+    p.gCorner = s.goodCorner.data();
+    p.gFace = hasQuads ? s.goodFace.data() : nullptr;
+    p.gVertInFace = hasQuads ? s.goodVertInFace.data() : nullptr;
+}
+
+// Step 5, quads: the two good triangles of a quad get one orientation, the
+// one of the good ("not group-with-any") triangle, else of the larger UV
+// area.
+void oneOrientationPerQuad(Pass& p) {
+    const WeldedVertex* const wv = p.wv;
+    for (size_t t = 0; t + 1 < p.goodCount;) {
+        if (p.faceOf(t) != p.faceOf(t + 1)) {
+            ++t;
+            continue;
+        }
+        uint8_t& fa = p.s.flags[t];
+        uint8_t& fb = p.s.flags[t + 1];
+        if ((fa & kOrient) != (fb & kOrient)) {
+            const uint32_t* wa = p.gWelded + t * 3;
+            const uint32_t* wb = p.gWelded + (t + 1) * 3;
+            const bool keepFirst = (fb & kAny) != 0 ||
+                                   mikk::uvAreaTimes2(wv[wa[0]].uv, wv[wa[1]].uv, wv[wa[2]].uv) >=
+                                       mikk::uvAreaTimes2(wv[wb[0]].uv, wv[wb[1]].uv, wv[wb[2]].uv);
+            if (keepFirst)
+                fb = uint8_t((fb & ~kOrient) | (fa & kOrient));
+            else
+                fa = uint8_t((fa & ~kOrient) | (fb & kOrient));
+        }
+        t += 2;
+    }
+}
+
+// --- Step 6: adjacency, as a vertex -> incident corners table -------------------------
+
+// Each welded vertex's incident corners of good triangles, each list in
+// ascending triangle order (the order of the reference's sorted edge list
+// and of its sorted subgroups).
+void buildIncidence(Pass& p) {
+    Buffers& s = p.s;
+    const size_t weldedCount = p.weldedCount, goodCount = p.goodCount;
+    const uint32_t* const gWelded = p.gWelded;
+    s.incidenceStart.assign(weldedCount + 1, 0);
+    for (size_t j = 0; j < goodCount * 3; ++j) ++s.incidenceStart[gWelded[j] + 1];
+    for (size_t w = 0; w < weldedCount; ++w) s.incidenceStart[w + 1] += s.incidenceStart[w];
+    s.incidence.resize(goodCount * 3);
+    // The next list's start serves as the cursor, shifted back after.
+    uint32_t* cursor = s.incidenceStart.data();
+    constexpr size_t kAheadT = 16; // triangles
+    for (size_t t = 0; t < goodCount; ++t) {
+        const uint32_t* w = gWelded + t * 3;
+        if (t + kAheadT < goodCount) {
+            const uint32_t* wa = w + kAheadT * 3;
+            __builtin_prefetch(s.incidence.data() + cursor[wa[0]], 1);
+            __builtin_prefetch(s.incidence.data() + cursor[wa[1]], 1);
+            __builtin_prefetch(s.incidence.data() + cursor[wa[2]], 1);
+        }
+        const uint32_t tc =
+            uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) | ((s.flags[t] & kOrient) ? 4u : 0u);
+        s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
+        s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
+        s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
+    }
+    for (size_t w = weldedCount; w > 0; --w) s.incidenceStart[w] = s.incidenceStart[w - 1];
+    s.incidenceStart[0] = 0;
+}
+
+// --- Steps 7-8: groups and frames ------------------------------------------------------
+
+// Steps 7-8, vertex by vertex. The reference floods groups across the two
+// edges at a vertex, so everything a vertex needs is in its incidence list:
+// which corners pair across each edge (step 6 of the oracle, restricted to
+// the edges at this vertex), its groups (step 7) and their frames (step 8).
+// Groups only interact through group-with-any triangles, whose orientation
+// the first group meeting them sets in the reference's seed order; vertices
+// touching such a triangle are therefore deferred and done afterwards in
+// that order.
+//
+// Without quads or full frames, the usual vertex (one group, one subgroup:
+// every corner at it gets the same frame) stores that frame once in
+// vertexOut; other vertices store w = 0 there (a real w is +-1) and their
+// entries' results in entryOut, in incidence order. Corner order is
+// gathered afterwards (gatherCornerOrder): writing each corner straight
+// into the corner-ordered output scatters 16-byte stores over the whole
+// array and costs more.
+class VertexFrames {
+public:
+    VertexFrames(Pass& p, bool wide);
+    void run();
+
+private:
+    // What the 8-lane test made of a vertex.
+    enum class Fan { Done, Deferred, General };
+
+    void computeTerms(uint32_t w0, uint32_t w1, const Terms& out);
+    bool pairManifoldEdges(const Incidence* list, size_t k);
+    void pairEdgesGreedy(const Incidence* list, size_t k);
+    void pairEdges(const Incidence* list, size_t k) {
+        if (!pairManifoldEdges(list, k)) pairEdgesGreedy(list, k);
+    }
+    bool together(const Incidence* list, const Terms& terms, uint32_t x, uint32_t y) const {
+        return list[x].any() || list[y].any() ||
+               p_.faceOf(list[x].tri()) == p_.faceOf(list[y].tri()) ||
+               (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos_ &&
+                mikk::dot(terms.ot(x), terms.ot(y)) > thresholdCos_);
+    }
+    void accumulateOver(mikk::FrameAccumulator& fr, const Incidence* list, const Terms& terms,
+                        uint32_t e) const {
+        if (list[e].any()) return; // bad triangles contribute nothing
+        const uint32_t t = list[e].tri();
+        fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), triDeriv_[t].magS,
+                      triDeriv_[t].magT);
+    }
+    void writeEntry(const Incidence* entry, const mikk::FrameAccumulator& fr, bool orient) {
+        if (fullSpaces_)
+            mikk::writeCornerSpace(
+                s_.spaces[p_.cornerOut(size_t(entry->tri()) * 3 + entry->corner())], fr, orient);
+        else
+            entryOut_[entry - incidence_] =
+                glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
+    }
+    void emitGroup(uint32_t w, const Incidence* list, const Terms& terms, const uint32_t* members,
+                   size_t m, bool orient, bool wholeVertex);
+#if defined(__SSE2__)
+    Fan smallFan(uint32_t w, const Incidence* list, size_t k, const Terms& terms);
+#endif
+    bool oneFan(size_t k) const;
+    void vertex(uint32_t w, const Incidence* list, size_t k, const Terms& terms);
+    void components(uint32_t w, const Incidence* list, size_t k, const Terms& terms);
+    void cleanVertices();
+    void deferredGroup(size_t f, uint32_t i);
+    void deferredVertices();
+
+    // Vertices are processed in chunks of about kChunk entries whose terms
+    // are computed together (4 or 8 entries per SIMD step).
+    static constexpr size_t kChunk = 1024;
+    static constexpr size_t kPrefetchAhead = 32; // entries; 16..96 measure the same
+
+    Pass& p_;
+    Buffers& s_;
+    const bool wide_;
+    const bool fullSpaces_;
+    const float thresholdCos_;
+    const WeldedVertex* const wv_;
+    const TriDerivatives* const triDeriv_;
+    const Incidence* const incidence_;
+    const uint32_t* const incidenceStart_;
+    const size_t entryCount_;
+    glm::vec4* vertexOut_ = nullptr;
+    glm::vec4* entryOut_ = nullptr;
+    Terms chunkTerms_{};
+    int32_t* outNbr_ = nullptr;
+    int32_t* inNbr_ = nullptr;
+};
+
+VertexFrames::VertexFrames(Pass& p, bool wide)
+    : p_(p), s_(p.s), wide_(wide), fullSpaces_(p.fullSpaces),
+      thresholdCos_(mikk::defaultThresholdCos()), wv_(p.wv), triDeriv_(p.s.deriv.data()),
+      incidence_(p.s.incidence.data()), incidenceStart_(p.s.incidenceStart.data()),
+      entryCount_(p.goodCount * 3) {
+    if (fullSpaces_) s_.spaces.assign(p.cornerCount, mikk::CornerSpace{});
+    if (!fullSpaces_) {
+        s_.vertexOut.resize(p.weldedCount);
+        s_.entryOut.resize(entryCount_);
+    }
+    vertexOut_ = s_.vertexOut.data();
+    entryOut_ = s_.entryOut.data();
+    size_t maxDegree = 0;
+    for (size_t w = 0; w < p.weldedCount; ++w)
+        maxDegree = std::max<size_t>(maxDegree, incidenceStart_[w + 1] - incidenceStart_[w]);
+    const size_t termCapacity = std::max(kChunk, maxDegree) + TermBatch::kLanes;
+    s_.terms.resize(7 * termCapacity);
+    chunkTerms_ = Terms::over(s_.terms.data(), termCapacity);
+    const size_t localSize = std::max<size_t>(maxDegree, 8); // the 8-lane path writes 8
+    s_.outNbr.resize(localSize);
+    s_.inNbr.resize(localSize);
+    s_.component.resize(localSize);
+    s_.members.resize(localSize);
+    outNbr_ = s_.outNbr.data();
+    inNbr_ = s_.inNbr.data();
+}
+
+void VertexFrames::run() {
+    cleanVertices();
+    if (!s_.deferred.empty()) deferredVertices();
+}
+
+// Terms of the entries of vertices [w0, w1) (consecutive in the incidence
+// array), entry j at index j - incidenceStart[w0].
+void VertexFrames::computeTerms(uint32_t w0, uint32_t w1, const Terms& out) {
+    TermBatch batch;
+    size_t filled = 0, first = 0;
+    for (uint32_t w = w0; w < w1; ++w) {
+        const Incidence* list = incidence_ + incidenceStart_[w];
+        const size_t k = incidenceStart_[w + 1] - incidenceStart_[w];
+        for (size_t e = 0; e < k; ++e) {
+            const size_t ahead = incidenceStart_[w] + e + kPrefetchAhead;
+            if (ahead < entryCount_) {
+                const Incidence& a = incidence_[ahead];
+                __builtin_prefetch(triDeriv_ + a.tri());
+                __builtin_prefetch(wv_ + a.prev);
+                __builtin_prefetch(wv_ + a.next);
+            }
+            batch.set(filled, triDeriv_ + list[e].tri(), wv_ + w, wv_ + list[e].prev,
+                      wv_ + list[e].next);
+            if (++filled == TermBatch::kLanes) {
+                batch.compute(out, first, wide_);
+                first += TermBatch::kLanes;
+                filled = 0;
+            }
+        }
+    }
+    if (filled > 0) {
+        for (size_t lane = filled; lane < TermBatch::kLanes; ++lane) batch.copyLane(lane, 0);
+        batch.compute(out, first, wide_); // writes up to 7 entries past the end: capacity has room
+        first += filled;
+    }
+    mikktspaceAnglesFromCos({out.angle, first}, wide_);
+}
+
+// Which entries pair across each edge at the vertex: entry e's edge
+// vertex->next ("out", the reference's left neighbour) and prev->vertex
+// ("in", its right neighbour). The half-edges on one edge {vertex, x}, in
+// ascending triangle order: each unpaired one takes the first later
+// unpaired one running the other way (the reference's pairing of its
+// sorted edge list). This is the fast path: when every x is some entry's
+// next at most once and some entry's prev at most once (a manifold fan), a
+// pair is simply next == prev. Returns false when that does not hold.
+bool VertexFrames::pairManifoldEdges(const Incidence* list, size_t k) {
+    int32_t* const outNbr = outNbr_;
+    int32_t* const inNbr = inNbr_;
+    for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
+#if defined(__SSE2__)
+    if (k <= 8) {
+        // All nexts and prevs in two registers each; one compare per
+        // register finds every entry whose next/prev equals x.
+        alignas(16) uint32_t nexts[8], prevs[8];
+        for (size_t e = 0; e < 8; ++e) {
+            nexts[e] = e < k ? list[e].next : kNone; // kNone is never a welded id
+            prevs[e] = e < k ? list[e].prev : kNone;
+        }
+        const __m128i n0 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts));
+        const __m128i n1 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts + 4));
+        const __m128i p0 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs));
+        const __m128i p1 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs + 4));
+        auto matches = [](__m128i a, __m128i b, __m128i x) {
+            return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(a, x)))) |
+                   unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(b, x)))) << 4;
+        };
+        for (size_t e = 0; e < k; ++e) {
+            const __m128i x = _mm_set1_epi32(int(nexts[e]));
+            const unsigned sameNext = matches(n0, n1, x), prevIsX = matches(p0, p1, x);
+            if ((sameNext & (sameNext - 1)) != 0 || (prevIsX & (prevIsX - 1)) != 0)
+                return false; // two half-edges one way on one edge
+            if (prevIsX != 0) {
+                const int32_t f = int32_t(__builtin_ctz(prevIsX));
+                outNbr[e] = f;
+                inNbr[size_t(f)] = int32_t(e);
+            }
+        }
+        return true;
+    }
+#endif
+    for (size_t e = 0; e < k; ++e) {
+        const uint32_t x = list[e].next;
+        int32_t found = -1;
+        int dupNext = 0, dupPrev = 0;
+        for (size_t f = 0; f < k; ++f) {
+            dupNext += list[f].next == x;
+            if (list[f].prev == x) {
+                ++dupPrev;
+                found = int32_t(f);
+            }
+        }
+        if (dupNext > 1 || dupPrev > 1) return false;
+        if (found >= 0) {
+            outNbr[e] = found;
+            inNbr[size_t(found)] = int32_t(e);
+        }
+    }
+    return true;
+}
+
+// Non-manifold edges at this vertex: the general greedy. Half-edges sorted
+// by (x, entry); within a run each direction's candidate pointer only moves
+// forward (linear in the run length).
+void VertexFrames::pairEdgesGreedy(const Incidence* list, size_t k) {
+    int32_t* const outNbr = outNbr_;
+    int32_t* const inNbr = inNbr_;
+    for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
+    s_.halfEdges.resize(2 * k);
+    uint64_t* h = s_.halfEdges.data();
+    for (size_t e = 0; e < k; ++e) {
+        h[2 * e] = (uint64_t(list[e].next) << 32) | (uint64_t(e) << 1) | 1u; // out
+        h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1);  // in
+    }
+    const size_t n = 2 * k;
+    std::sort(h, h + n);
+    for (size_t r = 0; r < n;) {
+        size_t end = r + 1;
+        while (end < n && (h[end] >> 32) == (h[r] >> 32)) ++end;
+        s_.paired.assign(end - r, 0);
+        size_t next[2] = {r, r};
+        for (size_t i = r; i < end; ++i) {
+            if (s_.paired[i - r]) continue;
+            const unsigned dir = unsigned(h[i] & 1), other = dir ^ 1u;
+            size_t& q = next[other];
+            if (q <= i) q = i + 1;
+            while (q < end && (unsigned(h[q] & 1) != other || s_.paired[q - r])) ++q;
+            if (q == end) continue;
+            s_.paired[i - r] = s_.paired[q - r] = 1;
+            const int32_t a = int32_t((h[i] & 0xFFFFFFFFu) >> 1);
+            const int32_t b = int32_t((h[q] & 0xFFFFFFFFu) >> 1);
+            (dir ? outNbr : inNbr)[size_t(a)] = b;
+            (other ? outNbr : inNbr)[size_t(b)] = a;
+        }
+        r = end;
+    }
+}
+
+// Step 8 for one group (entries `members` of `list`, the incidence list of
+// vertex w, ascending) into its corners; `terms` holds the list's terms
+// from index 0. wholeVertex: the group is every entry of w.
+//
+// Every pair passes the 180-degree threshold (dot products > -1) when every
+// member's unit vectors are within ~89 degrees of the first member's
+// (computed dots >= 0.02): any two are then at most ~178 degrees apart, dot
+// >= -0.9993, far from -1 for float rounding (~1e-6). Checked while
+// accumulating; otherwise every pair is tested, as the reference.
+void VertexFrames::emitGroup(uint32_t w, const Incidence* list, const Terms& terms,
+                             const uint32_t* members, size_t m, bool orient, bool wholeVertex) {
+    mikk::FrameAccumulator fr;
+    bool oneSubgroup = true;
+    {
+        const Vec3 rs = terms.os(members[0]), rt = terms.ot(members[0]);
+        accumulateOver(fr, list, terms, members[0]);
+        for (size_t x = 1; x < m; ++x) {
+            const uint32_t e = members[x];
+            oneSubgroup &=
+                mikk::dot(terms.os(e), rs) >= 0.02f && mikk::dot(terms.ot(e), rt) >= 0.02f;
+            accumulateOver(fr, list, terms, e);
+        }
+    }
+    if (!oneSubgroup) {
+        oneSubgroup = true;
+        for (size_t x = 0; x < m && oneSubgroup; ++x)
+            for (size_t y = x + 1; y < m; ++y)
+                if (!together(list, terms, members[x], members[y])) {
+                    oneSubgroup = false;
+                    break;
+                }
+    }
+    if (oneSubgroup) {
+        fr.finish();
+        if (!fullSpaces_ && wholeVertex) {
+            vertexOut_[w] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
+            return;
+        }
+    }
+    if (!fullSpaces_) vertexOut_[w].w = 0.0f; // per entry
+    if (oneSubgroup) {
+        for (size_t x = 0; x < m; ++x) writeEntry(list + members[x], fr, orient);
+        return;
+    }
+    // Rare: the group splits. Member x's subgroup is every member together
+    // with it (x included: same face), ascending.
+    for (size_t x = 0; x < m; ++x) {
+        mikk::FrameAccumulator sub;
+        for (size_t y = 0; y < m; ++y)
+            if (together(list, terms, members[x], members[y]))
+                accumulateOver(sub, list, terms, members[y]);
+        sub.finish();
+        writeEntry(list + members[x], sub, orient);
+    }
+}
+
+#if defined(__SSE2__)
+// The usual vertex (k <= 8 entries), without data-dependent loops (their
+// exits are what costs here): flags, pairing and the single-group test on
+// all 8 lanes at once; lanes >= k hold ids no welded vertex has, distinct
+// per lane. Done: one group with every entry, emitted. Deferred: it
+// touches a group-with-any triangle. General: anything else.
+VertexFrames::Fan VertexFrames::smallFan(uint32_t w, const Incidence* list, size_t k,
+                                         const Terms& terms) {
+    int32_t* const outNbr = outNbr_;
+    alignas(16) uint32_t packed[8], nexts[8], prevs[8];
+    alignas(16) int32_t inLinks[8];
+    for (uint32_t e = 0; e < 8; ++e) {
+        const bool used = e < k;
+        packed[e] = used ? list[e].packed : 0u;
+        nexts[e] = used ? list[e].next : 0xFFFFFF00u + e;
+        prevs[e] = used ? list[e].prev : 0xFFFFFE00u + e;
+        outNbr[e] = -1;
+        inLinks[e] = -1;
+    }
+    auto load = [](const void* q) { return _mm_load_si128(static_cast<const __m128i*>(q)); };
+    auto bits8 = [](__m128i lo, __m128i hi) {
+        return unsigned(_mm_movemask_ps(_mm_castsi128_ps(lo))) |
+               unsigned(_mm_movemask_ps(_mm_castsi128_ps(hi))) << 4;
+    };
+    const __m128i pk0 = load(packed), pk1 = load(packed + 4);
+    const __m128i anyBit = _mm_set1_epi32(8), orientBit = _mm_set1_epi32(4);
+    const unsigned valid = (1u << k) - 1u;
+    const unsigned anyBits = bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, anyBit), anyBit),
+                                   _mm_cmpeq_epi32(_mm_and_si128(pk1, anyBit), anyBit)) &
+                             valid;
+    if (anyBits != 0) return Fan::Deferred;
+    const unsigned orientBits = bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, orientBit), orientBit),
+                                      _mm_cmpeq_epi32(_mm_and_si128(pk1, orientBit), orientBit)) &
+                                valid;
+    const __m128i n0 = load(nexts), n1 = load(nexts + 4), p0 = load(prevs), p1 = load(prevs + 4);
+    bool simple = true;
+    for (uint32_t e = 0; e < 8; ++e) {
+        const __m128i x = _mm_set1_epi32(int(nexts[e]));
+        const unsigned sameNext = bits8(_mm_cmpeq_epi32(n0, x), _mm_cmpeq_epi32(n1, x));
+        const unsigned prevIsX = bits8(_mm_cmpeq_epi32(p0, x), _mm_cmpeq_epi32(p1, x));
+        simple &= (sameNext & (sameNext - 1)) == 0 && (prevIsX & (prevIsX - 1)) == 0;
+        if (prevIsX != 0) {
+            const int32_t f = int32_t(__builtin_ctz(prevIsX));
+            outNbr[e] = f;
+            inLinks[f] = int32_t(e);
+        }
+    }
+    if (!simple || (orientBits != 0 && orientBits != valid)) return Fan::General;
+    // One orientation: one group iff the out-links chain all entries, from
+    // the entry without an in-link (open fan) or from entry 0 (closed fan).
+    const unsigned noIn = bits8(_mm_cmplt_epi32(load(inLinks), _mm_setzero_si128()),
+                                _mm_cmplt_epi32(load(inLinks + 4), _mm_setzero_si128())) &
+                          valid;
+    const int32_t start = noIn != 0 ? int32_t(__builtin_ctz(noIn)) : 0;
+    size_t reached = 1;
+    for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
+    if (reached != k) return Fan::General;
+    uint32_t* const members = s_.members.data();
+    for (uint32_t e = 0; e < 8; ++e) members[e] = e;
+    emitGroup(w, list, terms, members, k, orientBits != 0, true);
+    return Fan::Done;
+}
+#endif
+
+// After pairEdges on k entries of one orientation: whether the pairing
+// links all entries into one chain (open fan, from the entry without an
+// in-link) or cycle (closed fan, from entry 0).
+bool VertexFrames::oneFan(size_t k) const {
+    int32_t start = 0;
+    for (size_t e = 0; e < k; ++e)
+        if (inNbr_[e] < 0) {
+            start = int32_t(e);
+            break;
+        }
+    size_t reached = 1;
+    for (int32_t e = outNbr_[start]; e >= 0 && e != start && reached <= k; e = outNbr_[e])
+        ++reached;
+    return reached == k;
+}
+
+// Steps 7-8 for one vertex w (its k entries `list`, their terms), or its
+// deferral when it touches a group-with-any triangle.
+void VertexFrames::vertex(uint32_t w, const Incidence* list, size_t k, const Terms& terms) {
+#if defined(__SSE2__)
+    if (k <= 8) {
+        const Fan fan = smallFan(w, list, k, terms);
+        if (fan == Fan::Done) return;
+        if (fan == Fan::Deferred) {
+            s_.deferred.push_back(w);
+            return;
+        }
+    } else
+#endif
+    {
+        bool touchesAny = false;
+        for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
+        if (touchesAny) {
+            s_.deferred.push_back(w);
+            return;
+        }
+    }
+    uint32_t* const members = s_.members.data();
+    if (k == 1) {
+        members[0] = 0;
+        emitGroup(w, list, terms, members, 1, list[0].orient(), true);
+        return;
+    }
+    pairEdges(list, k);
+    // Usual case: one orientation, and the pairing links all entries into
+    // one chain or cycle: one group with every entry, already ascending.
+    const bool orient0 = list[0].orient();
+    bool oneOrientation = true;
+    for (size_t e = 1; e < k; ++e) oneOrientation &= list[e].orient() == orient0;
+    if (oneOrientation && oneFan(k)) {
+        for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
+        emitGroup(w, list, terms, members, k, orient0, true);
+        return;
+    }
+    components(w, list, k, terms);
+}
+
+// Step 7 for a vertex without group-with-any triangles: its groups are the
+// connected components of same-orientation entries (any flood order gives
+// the same components), each emitted in ascending entry order.
+void VertexFrames::components(uint32_t w, const Incidence* list, size_t k, const Terms& terms) {
+    int32_t* const comp = s_.component.data();
+    uint32_t* const members = s_.members.data();
+    for (size_t e = 0; e < k; ++e) comp[e] = -1;
+    for (size_t seed = 0; seed < k; ++seed) {
+        if (comp[seed] >= 0) continue;
+        const bool orientBit = list[seed].orient();
+        // Flood (members[] doubles as the stack), then list the component
+        // in ascending entry order.
+        comp[seed] = int32_t(seed);
+        size_t top = 0;
+        members[top++] = uint32_t(seed);
+        while (top > 0) {
+            const uint32_t e = members[--top];
+            for (const int32_t nb : {outNbr_[e], inNbr_[e]}) {
+                if (nb < 0 || comp[nb] >= 0 || list[nb].orient() != orientBit) continue;
+                comp[nb] = int32_t(seed);
+                members[top++] = uint32_t(nb);
+            }
+        }
+        size_t m = 0;
+        for (size_t e = seed; e < k; ++e)
+            if (comp[e] == int32_t(seed)) members[m++] = uint32_t(e);
+        emitGroup(w, list, terms, members, m, orientBit, false);
+    }
+}
+
+// Every vertex in chunks: terms for the chunk, then each vertex's groups.
+void VertexFrames::cleanVertices() {
+    s_.deferred.clear();
+    const uint32_t weldedCount = uint32_t(p_.weldedCount);
+    for (uint32_t w0 = 0; w0 < weldedCount;) {
+        uint32_t w1 = w0 + 1;
+        while (w1 < weldedCount && incidenceStart_[w1 + 1] - incidenceStart_[w0] <= kChunk) ++w1;
+        computeTerms(w0, w1, chunkTerms_);
+        for (uint32_t w = w0; w < w1; ++w) {
+            const size_t k = incidenceStart_[w + 1] - incidenceStart_[w];
+            if (k == 0) continue;
+            vertex(w, incidence_ + incidenceStart_[w], k,
+                   chunkTerms_.offset(incidenceStart_[w] - incidenceStart_[w0]));
+        }
+        w0 = w1;
+    }
+}
+
+// The group seeded at corner i of good triangle f (at deferred vertex w):
+// flooded from it, left edge first as the reference's recursion; a
+// group-with-any triangle met with no corner in any group adopts the
+// group's orientation.
+void VertexFrames::deferredGroup(size_t f, uint32_t i) {
+    uint8_t* const fl = s_.flags.data();
+    const uint32_t w = p_.gWelded[f * 3 + i];
+    const Incidence* list = incidence_ + incidenceStart_[w];
+    const size_t k = incidenceStart_[w + 1] - incidenceStart_[w];
+    computeTerms(w, w + 1, chunkTerms_);
+    pairEdges(list, k);
+    uint32_t seed = 0;
+    while (list[seed].tri() != f) ++seed;
+    const bool orient = (fl[f] & kOrient) != 0;
+    fl[f] |= uint8_t(kGrouped0 << i);
+    s_.groupMembers.assign(1, seed);
+    s_.stack.clear();
+    if (inNbr_[seed] >= 0) s_.stack.push_back(uint32_t(inNbr_[seed]));   // right
+    if (outNbr_[seed] >= 0) s_.stack.push_back(uint32_t(outNbr_[seed])); // left first
+    while (!s_.stack.empty()) {
+        const uint32_t e = s_.stack.back();
+        s_.stack.pop_back();
+        const uint32_t t = list[e].tri(), c = list[e].corner();
+        if (fl[t] & (kGrouped0 << c)) continue;
+        if ((fl[t] & kAny) && (fl[t] & kGroupedAll) == 0)
+            fl[t] = uint8_t((fl[t] & ~kOrient) | (orient ? kOrient : 0));
+        if (((fl[t] & kOrient) != 0) != orient) continue;
+        fl[t] |= uint8_t(kGrouped0 << c);
+        s_.groupMembers.push_back(e);
+        if (inNbr_[e] >= 0) s_.stack.push_back(uint32_t(inNbr_[e]));
+        if (outNbr_[e] >= 0) s_.stack.push_back(uint32_t(outNbr_[e]));
+    }
+    std::sort(s_.groupMembers.begin(), s_.groupMembers.end());
+    emitGroup(w, list, chunkTerms_, s_.groupMembers.data(), s_.groupMembers.size(), orient, false);
+}
+
+// Steps 7-8 for the deferred vertices, in the reference's seed order
+// (triangle, then corner): a group from each good triangle corner at a
+// deferred vertex not yet in a group. Their entries get the reference's
+// default first (some may never be reached).
+void VertexFrames::deferredVertices() {
+    s_.isDeferred.assign(p_.weldedCount, 0);
+    for (const uint32_t w : s_.deferred) {
+        s_.isDeferred[w] = 1;
+        if (fullSpaces_) continue; // spaces start as the default
+        vertexOut_[w].w = 0.0f;
+        for (uint32_t j = incidenceStart_[w]; j < incidenceStart_[w + 1]; ++j)
+            entryOut_[j] = glm::vec4(1, 0, 0, -1);
+    }
+    const uint8_t* const fl = s_.flags.data();
+    for (size_t f = 0; f < p_.goodCount; ++f) {
+        for (uint32_t i = 0; i < 3; ++i) {
+            const uint32_t w = p_.gWelded[f * 3 + i];
+            if (!s_.isDeferred[w] || (fl[f] & kAny) || (fl[f] & (kGrouped0 << i))) continue;
+            deferredGroup(f, i);
+        }
+    }
+}
+
+// --- Output ------------------------------------------------------------------------------
+
+// Per-vertex and per-entry results (steps 7-8 without full spaces) into
+// corner order, in triangle order.
+void gatherCornerOrder(Pass& p) {
+    const Buffers& s = p.s;
+    const glm::vec4* const vertexOut = s.vertexOut.data();
+    for (size_t t = 0; t < p.goodCount; ++t) {
+        for (size_t i = 0; i < 3; ++i) {
+            const uint32_t w = p.gWelded[t * 3 + i];
+            glm::vec4 v = vertexOut[w];
+            if (v.w == 0.0f) { // this corner's entry (a good triangle meets w once)
+                uint32_t j = s.incidenceStart[w];
+                while (s.incidence[j].tri() != t) ++j;
+                v = s.entryOut[j];
+            }
+            p.tangentsOut[p.cornerOut(t * 3 + i)] = v;
+        }
+    }
+}
+
+void copyCorner(Pass& p, uint32_t dst, uint32_t src) {
+    if (p.fullSpaces)
+        p.s.spaces[dst] = p.s.spaces[src];
+    else
+        p.tangentsOut[dst] = p.tangentsOut[src];
+}
+
+// Step 9, whole degenerate triangles: each corner copies the frame of the
+// first good corner with the same welded vertex (or gets the default).
+void copyFromFirstGoodCorner(Pass& p) {
+    Buffers& s = p.s;
+    s.firstGoodCorner.assign(p.weldedCount, kNone);
+    for (size_t j = p.goodCount * 3; j-- > 0;) s.firstGoodCorner[p.gWelded[j]] = uint32_t(j);
+    for (size_t t = p.goodCount; t < p.triCount; ++t) {
+        if (s.flags[t] & kQuadOneDegen) continue;
+        for (size_t i = 0; i < 3; ++i) {
+            const uint32_t j = s.firstGoodCorner[p.gWelded[t * 3 + i]];
+            if (j != kNone)
+                copyCorner(p, p.cornerOut(t * 3 + i), p.cornerOut(j));
+            else if (!p.fullSpaces)
+                p.tangentsOut[p.cornerOut(t * 3 + i)] = glm::vec4(1, 0, 0, -1);
+        }
+    }
+}
+
+// Step 9, quads with one degenerate half: the face corner missing from the
+// good half copies the good half's corner at the same position.
+void completeQuadsWithOneDegenerateHalf(Pass& p) {
+    const MikkTSpaceInput& in = p.in;
+    for (size_t t = 0; t < p.goodCount; ++t) {
+        if (!(p.s.flags[t] & kQuadOneDegen)) continue;
+        const uint8_t* vf = p.gVertInFace + t * 3;
+        const int present = (1 << vf[0]) | (1 << vf[1]) | (1 << vf[2]);
+        const int missing =
+            (present & 2) == 0 ? 1 : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
+        // Face corner k of this triangle's face: output corner (first
+        // corner of the face) + k.
+        const uint32_t faceFirst = p.cornerOut(t * 3) - vf[0];
+        const Vec3 missingPos =
+            mikk::toVec3(in.positions[in.cornerVertices[faceFirst + uint32_t(missing)]]);
+        for (size_t i = 0; i < 3; ++i) {
+            const Vec3 q = mikk::toVec3(in.positions[in.cornerVertices[faceFirst + vf[i]]]);
+            if (mikk::exactlyEqual(q, missingPos)) {
+                copyCorner(p, faceFirst + uint32_t(missing), faceFirst + vf[i]);
+                break;
+            }
+        }
+    }
+}
+
+// Step 10 with full spaces: tangents (and frames) of the corners of
+// triangles and quads; others stay zero.
+void writeFrames(Pass& p) {
+    auto emitCorner = [&](size_t c) {
+        const MikkTSpaceFrame fr = mikk::toFrame(p.s.spaces[c]);
+        p.tangentsOut[c] = glm::vec4(fr.tangent, fr.sign);
+        if (p.frames) (*p.frames)[c] = fr;
+    };
+    if (p.in.faceSizes.empty()) {
+        for (size_t c = 0; c < p.cornerCount; ++c) emitCorner(c);
+        return;
+    }
+    size_t first = 0;
+    for (const uint32_t n : p.in.faceSizes) {
+        if (n == 3 || n == 4)
+            for (size_t k = 0; k < n; ++k) emitCorner(first + k);
+        first += n;
+    }
+}
+
+} // namespace
+
+struct MikkTSpaceGenerator::Scratch : Buffers {};
+
 MikkTSpaceGenerator::MikkTSpaceGenerator() : scratch_(new Scratch) {}
 void MikkTSpaceGenerator::setWideSimd(bool enabled) {
     wideSimd_ = enabled;
@@ -650,851 +1637,42 @@ MikkTSpaceGenerator::~MikkTSpaceGenerator() {
 void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
                                    std::vector<glm::vec4>& cornerTangents,
                                    std::vector<MikkTSpaceFrame>* frames) {
-    const size_t triCount = mikk::validateInput(in);
-    Scratch& s = *scratch_;
-    const size_t cornerCount = in.cornerVertices.size();
-    const bool trianglesOnly =
-        in.faceSizes.empty() ||
-        std::all_of(in.faceSizes.begin(), in.faceSizes.end(), [](uint32_t n) { return n == 3; });
-    const bool hasQuads = !trianglesOnly;
+    Pass p(in, *scratch_, frames);
+    p.triCount = mikk::validateInput(in);
+    p.cornerCount = in.cornerVertices.size();
+    p.trianglesOnly = in.faceSizes.empty() || std::all_of(in.faceSizes.begin(), in.faceSizes.end(),
+                                                          [](uint32_t n) { return n == 3; });
+    p.hasQuads = !p.trianglesOnly;
+    p.fullSpaces = p.hasQuads || frames != nullptr;
     // Corners of faces that are neither triangles nor quads stay zero. With
     // triangles only every corner is written below (a good corner by its
     // group or the default frame, a degenerate one by step 9), so the
     // buffer needs no clearing.
-    if (trianglesOnly && !frames)
-        cornerTangents.resize(cornerCount);
+    if (p.trianglesOnly && !frames)
+        cornerTangents.resize(p.cornerCount);
     else
-        cornerTangents.assign(cornerCount, glm::vec4(0.0f));
-    if (frames) frames->assign(cornerCount, MikkTSpaceFrame{{0, 0, 0}, 0, {0, 0, 0}, 0, 0});
-    if (triCount == 0) return;
+        cornerTangents.assign(p.cornerCount, glm::vec4(0.0f));
+    if (frames) frames->assign(p.cornerCount, MikkTSpaceFrame{{0, 0, 0}, 0, {0, 0, 0}, 0, 0});
+    if (p.triCount == 0) return;
+    p.tangentsOut = cornerTangents.data();
 
-    // --- Step 1: triangle list. Without quads a triangle's corners are the
-    // input corners 3t..3t+2 and nothing is copied.
-    const uint32_t* triVertex = in.cornerVertices.data();
-    if (!trianglesOnly) {
-        s.triVertex.resize(triCount * 3);
-        s.triCorner.resize(triCount * 3);
-        s.triFace.resize(triCount);
-        s.triVertInFace.resize(triCount * 3);
-        size_t t = 0, first = 0;
-        for (size_t f = 0; f < in.faceSizes.size(); first += in.faceSizes[f], ++f) {
-            const uint32_t n = in.faceSizes[f];
-            if (n != 3 && n != 4) continue;
-            const uint32_t* fv = in.cornerVertices.data() + first;
-            auto emit = [&](int a, int b, int c) {
-                const int k[3] = {a, b, c};
-                for (int i = 0; i < 3; ++i) {
-                    s.triVertex[t * 3 + size_t(i)] = fv[k[i]];
-                    s.triCorner[t * 3 + size_t(i)] = uint32_t(first) + uint32_t(k[i]);
-                    s.triVertInFace[t * 3 + size_t(i)] = uint8_t(k[i]);
-                }
-                s.triFace[t] = uint32_t(f);
-                ++t;
-            };
-            if (n == 3) {
-                emit(0, 1, 2);
-                continue;
-            }
-            // Shorter UV diagonal; on a tie the shorter position diagonal.
-            auto uvDist2 = [&](int a, int b) {
-                const glm::vec2 ta = in.uvs[fv[a]], tb = in.uvs[fv[b]];
-                const float dx = tb.x - ta.x, dy = tb.y - ta.y;
-                return dx * dx + dy * dy;
-            };
-            const float uv02 = uvDist2(0, 2), uv13 = uvDist2(1, 3);
-            bool diagonal02;
-            if (uv02 < uv13) {
-                diagonal02 = true;
-            } else if (uv13 < uv02) {
-                diagonal02 = false;
-            } else {
-                auto posDist2 = [&](int a, int b) {
-                    return mikk::lengthSquared(mikk::sub(mikk::toVec3(in.positions[fv[b]]),
-                                                         mikk::toVec3(in.positions[fv[a]])));
-                };
-                diagonal02 = !(posDist2(1, 3) < posDist2(0, 2));
-            }
-            if (diagonal02) {
-                emit(0, 1, 2);
-                emit(0, 2, 3);
-            } else {
-                emit(0, 1, 3);
-                emit(1, 2, 3);
-            }
-        }
-        triVertex = s.triVertex.data();
+    triangulate(p);                   // step 1
+    weld(p);                          // step 2
+    faceDerivativesAndDegenerates(p); // steps 3 and 5
+    p.gWelded = p.s.triWelded.data();
+    p.gCorner = p.hasQuads ? p.s.triCorner.data() : nullptr;
+    p.gFace = p.hasQuads ? p.s.triFace.data() : nullptr;
+    p.gVertInFace = p.hasQuads ? p.s.triVertInFace.data() : nullptr;
+    if (p.degenerateCount > 0) moveDegeneratesLast(p); // step 4
+    if (p.hasQuads) oneOrientationPerQuad(p);          // step 5, quads
+    buildIncidence(p);                                 // step 6
+    VertexFrames(p, wideSimd_ && cpuHasAvx2()).run();  // steps 7-8
+    if (!p.fullSpaces) gatherCornerOrder(p);
+    if (p.degenerateCount > 0) { // step 9
+        copyFromFirstGoodCorner(p);
+        if (p.hasQuads) completeQuadsWithOneDegenerateHalf(p);
     }
-    auto outCornerOf = [&](const uint32_t* corners, size_t triCorner) -> uint32_t {
-        return hasQuads ? corners[triCorner] : uint32_t(triCorner);
-    };
-
-    // --- Step 2: weld by exact (position, normal, uv), through the input
-    // vertices. Welded ids in order of first use; their values are those of
-    // the first corner using them (as the oracle's representative).
-    {
-        // Pass 1: input vertices in order of first use.
-        const size_t vertexCount = in.positions.size();
-        constexpr uint32_t kSeen = kNone - 1;
-        s.vertexClass.assign(vertexCount, kNone);
-        s.firstUse.clear();
-        for (size_t c = 0; c < triCount * 3; ++c) {
-            const uint32_t v = triVertex[c];
-            if (s.vertexClass[v] == kNone) {
-                s.vertexClass[v] = kSeen;
-                s.firstUse.push_back(v);
-            }
-        }
-        // Pass 2: copy their values, in order of first use, into `staged`
-        // and hash them. Pass 3: look each up in an open-addressing table
-        // (slot = staged index of the class's first vertex and 32 hash
-        // bits, so a probe rarely reads the candidate's values),
-        // prefetching the slot a few vertices ahead; the values compared
-        // are read from `staged` (sequentially), not from the input.
-        const size_t used = s.firstUse.size();
-        s.hashes.resize(used);
-        s.staged.resize(used);
-        for (size_t i = 0; i < used; ++i) {
-            const uint32_t v = s.firstUse[i];
-            const glm::vec3 p = in.positions[v], n = in.normals[v];
-            const glm::vec2 uv = in.uvs[v];
-            s.staged[i] = {mikk::toVec3(p), mikk::toVec3(n), uv};
-            s.hashes[i] = weldHash(p, n, uv);
-        }
-        size_t tableSize = 64;
-        while (tableSize < 2 * used) tableSize *= 2;
-        const size_t mask = tableSize - 1;
-        constexpr uint64_t kEmpty = ~uint64_t(0);
-        s.hashTable.assign(tableSize, kEmpty);
-        s.stagedId.resize(used);
-        const WeldedVertex* const staged = s.staged.data();
-        uint32_t* const stagedId = s.stagedId.data();
-        uint32_t classCount = 0;
-        constexpr size_t kAhead = 16;
-        for (size_t i = 0; i < used; ++i) {
-            if (i + kAhead < used) __builtin_prefetch(&s.hashTable[s.hashes[i + kAhead] & mask]);
-            const uint64_t h = s.hashes[i];
-            const uint64_t tag = h & 0xFFFFFFFF00000000ull;
-            const WeldedVertex& x = staged[i];
-            uint32_t id;
-            for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
-                const uint64_t entry = s.hashTable[slot];
-                if (entry == kEmpty) {
-                    id = classCount++;
-                    s.hashTable[slot] = tag | i;
-                    break;
-                }
-                if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
-                const WeldedVertex& y = staged[uint32_t(entry)];
-                if (mikk::exactlyEqual(x.position, y.position) &&
-                    mikk::exactlyEqual(x.normal, y.normal) && x.uv.x == y.uv.x &&
-                    x.uv.y == y.uv.y) {
-                    id = stagedId[uint32_t(entry)];
-                    break;
-                }
-            }
-            stagedId[i] = id;
-            s.vertexClass[s.firstUse[i]] = id;
-        }
-        // Welded values: each class's first vertex (new ids appear in
-        // increasing order); without duplicates that is `staged` itself.
-        if (classCount == used) {
-            s.welded.swap(s.staged);
-        } else {
-            s.welded.resize(classCount);
-            uint32_t nextId = 0;
-            for (size_t i = 0; i < used; ++i)
-                if (stagedId[i] == nextId) s.welded[nextId++] = staged[i];
-        }
-        // Pass 4: welded id per triangle corner.
-        s.triWelded.resize(triCount * 3);
-        for (size_t c = 0; c < triCount * 3; ++c) s.triWelded[c] = s.vertexClass[triVertex[c]];
-    }
-    const WeldedVertex* wv = s.welded.data();
-
-    // --- Steps 3-5: per-triangle derivatives and orientation (eq. 18/19)
-    // of every triangle in input order, with the degenerate test (two
-    // corners at one position) in the same pass: both read the same
-    // positions. Then degenerate triangles go last (the good ones keep
-    // their order; their derivatives and flags move to the front) and
-    // quads with one degenerate half are marked. A degenerate triangle's
-    // derivatives are computed and dropped.
-    s.deriv.resize(triCount);
-    s.flags.assign(triCount, 0); // indexed in the good-first order after the compaction
-    size_t degenerateCount = 0;
-    {
-        const uint32_t* const tw = s.triWelded.data();
-        size_t firstScalar = 0;
-#if defined(__SSE2__)
-        for (; firstScalar + 4 <= triCount; firstScalar += 4)
-            degenerateCount +=
-                faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
-                                 s.flags.data() + firstScalar);
-#endif
-        for (size_t t = firstScalar; t < triCount; ++t) {
-            const WeldedVertex& a = wv[tw[t * 3]];
-            const WeldedVertex& b = wv[tw[t * 3 + 1]];
-            const WeldedVertex& c = wv[tw[t * 3 + 2]];
-            const mikk::FaceDerivatives d =
-                mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
-            s.deriv[t] = {d.vOs, d.magS, d.vOt, d.magT};
-            const bool degenerate = mikk::exactlyEqual(a.position, b.position) ||
-                                    mikk::exactlyEqual(a.position, c.position) ||
-                                    mikk::exactlyEqual(b.position, c.position);
-            s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0) |
-                                  (degenerate ? kDegenerate : 0));
-            degenerateCount += degenerate;
-        }
-    }
-    const size_t goodCount = triCount - degenerateCount;
-    const uint32_t* gWelded = s.triWelded.data();
-    const uint32_t* gCorner = hasQuads ? s.triCorner.data() : nullptr;
-    const uint32_t* gFace = hasQuads ? s.triFace.data() : nullptr;
-    const uint8_t* gVertInFace = hasQuads ? s.triVertInFace.data() : nullptr;
-    std::vector<uint8_t>& quadOneDegen = s.quadOneDegen;
-    if (degenerateCount > 0) {
-        auto isDegenerate = [&](size_t t) { return (s.flags[t] & kDegenerate) != 0; };
-        if (hasQuads) {
-            quadOneDegen.assign(triCount, 0);
-            for (size_t t = 0; t + 1 < triCount;) {
-                if (s.triFace[t] == s.triFace[t + 1]) {
-                    if (isDegenerate(t) != isDegenerate(t + 1))
-                        quadOneDegen[t] = quadOneDegen[t + 1] = 1;
-                    t += 2;
-                } else {
-                    ++t;
-                }
-            }
-        }
-        s.order.clear();
-        for (size_t t = 0; t < triCount; ++t)
-            if (!isDegenerate(t)) s.order.push_back(uint32_t(t));
-        for (size_t t = 0; t < triCount; ++t)
-            if (isDegenerate(t)) s.order.push_back(uint32_t(t));
-        s.goodWelded.resize(triCount * 3);
-        s.goodCorner.resize(triCount * 3);
-        if (hasQuads) {
-            s.goodFace.resize(triCount);
-            s.goodVertInFace.resize(triCount * 3);
-        }
-        for (size_t t = 0; t < triCount; ++t) {
-            const size_t src = s.order[t];
-            for (size_t i = 0; i < 3; ++i) {
-                s.goodWelded[t * 3 + i] = s.triWelded[src * 3 + i];
-                s.goodCorner[t * 3 + i] = outCornerOf(s.triCorner.data(), src * 3 + i);
-                if (hasQuads) s.goodVertInFace[t * 3 + i] = s.triVertInFace[src * 3 + i];
-            }
-            if (hasQuads) s.goodFace[t] = s.triFace[src];
-            // In place: order[t] >= t for the good prefix, and a degenerate
-            // triangle keeps no derivative bits.
-            const uint8_t quadBit = hasQuads && quadOneDegen[src] ? kQuadOneDegen : 0;
-            if (t < goodCount) {
-                s.deriv[t] = s.deriv[src];
-                s.flags[t] = uint8_t((s.flags[src] & (kOrient | kAny)) | quadBit);
-            } else {
-                s.flags[t] = quadBit;
-            }
-        }
-        gWelded = s.goodWelded.data();
-        gCorner = s.goodCorner.data();
-        gFace = hasQuads ? s.goodFace.data() : nullptr;
-        gVertInFace = hasQuads ? s.goodVertInFace.data() : nullptr;
-    }
-    // Output corner of good-order triangle corner j, and its face.
-    auto cornerOut = [&](size_t j) -> uint32_t { return gCorner ? gCorner[j] : uint32_t(j); };
-    auto faceOf = [&](size_t t) -> uint32_t { return gFace ? gFace[t] : uint32_t(t); };
-
-    if (hasQuads) { // one orientation per quad
-        for (size_t t = 0; t + 1 < goodCount;) {
-            if (faceOf(t) != faceOf(t + 1)) {
-                ++t;
-                continue;
-            }
-            uint8_t& fa = s.flags[t];
-            uint8_t& fb = s.flags[t + 1];
-            if ((fa & kOrient) != (fb & kOrient)) {
-                const uint32_t* wa = gWelded + t * 3;
-                const uint32_t* wb = gWelded + (t + 1) * 3;
-                const bool keepFirst =
-                    (fb & kAny) != 0 ||
-                    mikk::uvAreaTimes2(wv[wa[0]].uv, wv[wa[1]].uv, wv[wa[2]].uv) >=
-                        mikk::uvAreaTimes2(wv[wb[0]].uv, wv[wb[1]].uv, wv[wb[2]].uv);
-                if (keepFirst)
-                    fb = uint8_t((fb & ~kOrient) | (fa & kOrient));
-                else
-                    fa = uint8_t((fa & ~kOrient) | (fb & kOrient));
-            }
-            t += 2;
-        }
-    }
-
-    // --- Step 6: vertex -> incident corners of good triangles, each list
-    // in ascending triangle order (the order of the reference's sorted edge
-    // list and of its sorted subgroups).
-    const size_t weldedCount = s.welded.size();
-    s.incidenceStart.assign(weldedCount + 1, 0);
-    for (size_t j = 0; j < goodCount * 3; ++j) ++s.incidenceStart[gWelded[j] + 1];
-    for (size_t w = 0; w < weldedCount; ++w) s.incidenceStart[w + 1] += s.incidenceStart[w];
-    s.incidence.resize(goodCount * 3);
-    {
-        // The next list's start serves as the cursor, shifted back after.
-        uint32_t* cursor = s.incidenceStart.data();
-        constexpr size_t kAheadT = 16; // triangles
-        for (size_t t = 0; t < goodCount; ++t) {
-            const uint32_t* w = gWelded + t * 3;
-            if (t + kAheadT < goodCount) {
-                const uint32_t* wa = w + kAheadT * 3;
-                __builtin_prefetch(s.incidence.data() + cursor[wa[0]], 1);
-                __builtin_prefetch(s.incidence.data() + cursor[wa[1]], 1);
-                __builtin_prefetch(s.incidence.data() + cursor[wa[2]], 1);
-            }
-            const uint32_t tc = uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
-                                ((s.flags[t] & kOrient) ? 4u : 0u);
-            s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
-            s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
-            s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
-        }
-        for (size_t w = weldedCount; w > 0; --w) s.incidenceStart[w] = s.incidenceStart[w - 1];
-        s.incidenceStart[0] = 0;
-    }
-
-    // --- Steps 7-8, vertex by vertex. The reference floods groups across
-    // the two edges at a vertex, so everything a vertex needs is in its
-    // incidence list: which corners pair across each edge (step 6 of the
-    // oracle, restricted to the edges at this vertex), its groups (step 7)
-    // and their frames (step 8). Groups only interact through
-    // group-with-any triangles, whose orientation the first group meeting
-    // them sets in the reference's seed order; vertices touching such a
-    // triangle are therefore deferred and done afterwards in that order.
-    const bool fullSpaces = hasQuads || frames != nullptr;
-    if (fullSpaces) s.spaces.assign(cornerCount, mikk::CornerSpace{});
-    glm::vec4* tangentsOut = cornerTangents.data();
-    // Every entry of a vertex without group-with-any triangles is written
-    // by its group below; entries of deferred vertices get the reference's
-    // default first (some may never be reached).
-    // Without quads or full frames, the usual vertex (one group, one
-    // subgroup: every corner at it gets the same frame) stores that frame
-    // once in vertexOut; other vertices store w = 0 there (a real w is
-    // +-1) and their entries' results in entryOut, in incidence order.
-    // Corner order is gathered afterwards, in triangle order, from
-    // vertexOut (welded ids are numbered in order of first use, so these
-    // reads are nearly sequential); writing each corner straight into the
-    // corner-ordered output scatters 16-byte stores over the whole array
-    // and costs more.
-    if (!fullSpaces) {
-        s.vertexOut.resize(s.welded.size());
-        s.entryOut.resize(goodCount * 3);
-    }
-    glm::vec4* const vertexOut = s.vertexOut.data();
-    glm::vec4* const entryOut = s.entryOut.data();
-    const Incidence* const incidenceBase = s.incidence.data();
-    auto writeEntry = [&](const Incidence* entry, const mikk::FrameAccumulator& fr, bool orient) {
-        if (fullSpaces)
-            mikk::writeCornerSpace(s.spaces[cornerOut(size_t(entry->tri()) * 3 + entry->corner())],
-                                   fr, orient);
-        else
-            entryOut[entry - incidenceBase] =
-                glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
-    };
-    const float thresholdCos = mikk::defaultThresholdCos();
-    const TriDerivatives* const triDeriv = s.deriv.data();
-    size_t maxDegree = 0;
-    for (size_t w = 0; w < weldedCount; ++w)
-        maxDegree = std::max<size_t>(maxDegree, s.incidenceStart[w + 1] - s.incidenceStart[w]);
-    // Vertices are processed in chunks of about kChunk entries whose terms
-    // are computed together (4 entries per SIMD step) into these arrays.
-    constexpr size_t kChunk = 1024;
-    const size_t termCapacity = std::max(kChunk, maxDegree) + TermBatch::kLanes;
-    const bool wide = wideSimd_ && cpuHasAvx2();
-    s.terms.resize(7 * termCapacity);
-    const Terms chunkTerms = Terms::over(s.terms.data(), termCapacity);
-    const size_t localSize = std::max<size_t>(maxDegree, 8); // the 8-lane path writes 8
-    s.outNbr.resize(localSize);
-    s.inNbr.resize(localSize);
-    s.component.resize(localSize);
-    s.members.resize(localSize);
-    int32_t* const outNbr = s.outNbr.data();
-    int32_t* const inNbr = s.inNbr.data();
-
-    // Terms of the entries of vertices [w0, w1) (consecutive in the
-    // incidence array), entry j at index j - incidenceStart[w0].
-    const size_t entryCount = goodCount * 3;
-    constexpr size_t kPrefetchAhead = 32; // entries; 16..96 measure the same
-    auto computeTerms = [&](uint32_t w0, uint32_t w1, const Terms& out) {
-        TermBatch batch;
-        size_t filled = 0, first = 0;
-        for (uint32_t w = w0; w < w1; ++w) {
-            const Incidence* list = s.incidence.data() + s.incidenceStart[w];
-            const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
-            for (size_t e = 0; e < k; ++e) {
-                const size_t ahead = s.incidenceStart[w] + e + kPrefetchAhead;
-                if (ahead < entryCount) {
-                    const Incidence& a = incidenceBase[ahead];
-                    __builtin_prefetch(triDeriv + a.tri());
-                    __builtin_prefetch(wv + a.prev);
-                    __builtin_prefetch(wv + a.next);
-                }
-                batch.set(filled, triDeriv + list[e].tri(), wv + w, wv + list[e].prev,
-                          wv + list[e].next);
-                if (++filled == TermBatch::kLanes) {
-                    batch.compute(out, first, wide);
-                    first += TermBatch::kLanes;
-                    filled = 0;
-                }
-            }
-        }
-        if (filled > 0) {
-            for (size_t lane = filled; lane < TermBatch::kLanes; ++lane) batch.copyLane(lane, 0);
-            batch.compute(out, first,
-                          wide); // writes up to 7 entries past the end: capacity has room
-            first += filled;
-        }
-        mikktspaceAnglesFromCos({out.angle, first}, wide);
-    };
-
-    // Which entries pair across each edge at the vertex: entry e's edge
-    // vertex->next ("out", the reference's left neighbour) and prev->vertex
-    // ("in", its right neighbour). The half-edges on one edge {vertex, x},
-    // in ascending triangle order: each unpaired one takes the first later
-    // unpaired one running the other way (the reference's pairing of its
-    // sorted edge list). Fast path: every x is some entry's next at most
-    // once and some entry's prev at most once (a manifold fan), then a
-    // pair is simply next == prev.
-    auto pairEdges = [&](const Incidence* list, size_t k) {
-        bool simple = true;
-        for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
-#if defined(__SSE2__)
-        if (k <= 8) {
-            // All nexts and prevs in two registers each; one compare per
-            // register finds every entry whose next/prev equals x.
-            alignas(16) uint32_t nexts[8], prevs[8];
-            for (size_t e = 0; e < 8; ++e) {
-                nexts[e] = e < k ? list[e].next : kNone; // kNone is never a welded id
-                prevs[e] = e < k ? list[e].prev : kNone;
-            }
-            const __m128i n0 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts));
-            const __m128i n1 = _mm_load_si128(reinterpret_cast<const __m128i*>(nexts + 4));
-            const __m128i p0 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs));
-            const __m128i p1 = _mm_load_si128(reinterpret_cast<const __m128i*>(prevs + 4));
-            auto matches = [](__m128i a, __m128i b, __m128i x) {
-                return unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(a, x)))) |
-                       unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(b, x)))) << 4;
-            };
-            for (size_t e = 0; e < k; ++e) {
-                const __m128i x = _mm_set1_epi32(int(nexts[e]));
-                const unsigned sameNext = matches(n0, n1, x), prevIsX = matches(p0, p1, x);
-                if ((sameNext & (sameNext - 1)) != 0 || (prevIsX & (prevIsX - 1)) != 0) {
-                    simple = false; // two half-edges one way on one edge
-                    break;
-                }
-                if (prevIsX != 0) {
-                    const int32_t f = int32_t(__builtin_ctz(prevIsX));
-                    outNbr[e] = f;
-                    inNbr[size_t(f)] = int32_t(e);
-                }
-            }
-        } else
-#endif
-            for (size_t e = 0; e < k; ++e) {
-                const uint32_t x = list[e].next;
-                int32_t found = -1;
-                int dupNext = 0, dupPrev = 0;
-                for (size_t f = 0; f < k; ++f) {
-                    dupNext += list[f].next == x;
-                    if (list[f].prev == x) {
-                        ++dupPrev;
-                        found = int32_t(f);
-                    }
-                }
-                if (dupNext > 1 || dupPrev > 1) {
-                    simple = false;
-                    break;
-                }
-                if (found >= 0) {
-                    outNbr[e] = found;
-                    inNbr[size_t(found)] = int32_t(e);
-                }
-            }
-        if (simple) return;
-        // Non-manifold edges at this vertex: the general greedy. Half-edges
-        // sorted by (x, entry); within a run each direction's candidate
-        // pointer only moves forward (linear in the run length).
-        for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
-        s.halfEdges.resize(2 * k);
-        uint64_t* h = s.halfEdges.data();
-        for (size_t e = 0; e < k; ++e) {
-            h[2 * e] = (uint64_t(list[e].next) << 32) | (uint64_t(e) << 1) | 1u; // out
-            h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1);  // in
-        }
-        const size_t n = 2 * k;
-        std::sort(h, h + n);
-        for (size_t r = 0; r < n;) {
-            size_t end = r + 1;
-            while (end < n && (h[end] >> 32) == (h[r] >> 32)) ++end;
-            s.paired.assign(end - r, 0);
-            size_t next[2] = {r, r};
-            for (size_t i = r; i < end; ++i) {
-                if (s.paired[i - r]) continue;
-                const unsigned dir = unsigned(h[i] & 1), other = dir ^ 1u;
-                size_t& p = next[other];
-                if (p <= i) p = i + 1;
-                while (p < end && (unsigned(h[p] & 1) != other || s.paired[p - r])) ++p;
-                if (p == end) continue;
-                s.paired[i - r] = s.paired[p - r] = 1;
-                const int32_t a = int32_t((h[i] & 0xFFFFFFFFu) >> 1);
-                const int32_t b = int32_t((h[p] & 0xFFFFFFFFu) >> 1);
-                (dir ? outNbr : inNbr)[size_t(a)] = b;
-                (other ? outNbr : inNbr)[size_t(b)] = a;
-            }
-            r = end;
-        }
-    };
-
-    // Frames of one group (entries `members` of `list`, the incidence list
-    // of vertex w, ascending) into its corners; `terms` holds the list's
-    // terms from index 0. wholeVertex: the group is every entry of w.
-    auto emitGroup = [&](uint32_t w, const Incidence* list, const Terms& terms,
-                         const uint32_t* members, size_t m, bool orient, bool wholeVertex) {
-        auto together = [&](uint32_t x, uint32_t y) {
-            return list[x].any() || list[y].any() ||
-                   faceOf(list[x].tri()) == faceOf(list[y].tri()) ||
-                   (mikk::dot(terms.os(x), terms.os(y)) > thresholdCos &&
-                    mikk::dot(terms.ot(x), terms.ot(y)) > thresholdCos);
-        };
-        auto accumulateOver = [&](mikk::FrameAccumulator& fr, uint32_t e) {
-            if (list[e].any()) return; // bad triangles contribute nothing
-            const uint32_t t = list[e].tri();
-            fr.accumulate(terms.angle[e], terms.os(e), terms.ot(e), triDeriv[t].magS,
-                          triDeriv[t].magT);
-        };
-        // Every pair passes the 180-degree threshold (dot products > -1)
-        // when every member's unit vectors are within ~89 degrees of the
-        // first member's (computed dots >= 0.02): any two are then at most
-        // ~178 degrees apart, dot >= -0.9993, far from -1 for float
-        // rounding (~1e-6). Checked while accumulating; otherwise every
-        // pair is tested, as the reference.
-        mikk::FrameAccumulator fr;
-        bool oneSubgroup = true;
-        {
-            const Vec3 rs = terms.os(members[0]), rt = terms.ot(members[0]);
-            accumulateOver(fr, members[0]);
-            for (size_t x = 1; x < m; ++x) {
-                const uint32_t e = members[x];
-                oneSubgroup &=
-                    mikk::dot(terms.os(e), rs) >= 0.02f && mikk::dot(terms.ot(e), rt) >= 0.02f;
-                accumulateOver(fr, e);
-            }
-        }
-        if (!oneSubgroup) {
-            oneSubgroup = true;
-            for (size_t x = 0; x < m && oneSubgroup; ++x)
-                for (size_t y = x + 1; y < m; ++y)
-                    if (!together(members[x], members[y])) {
-                        oneSubgroup = false;
-                        break;
-                    }
-        }
-        if (oneSubgroup) {
-            fr.finish();
-            if (!fullSpaces && wholeVertex) {
-                vertexOut[w] = glm::vec4(fr.vOs.x, fr.vOs.y, fr.vOs.z, orient ? 1.0f : -1.0f);
-                return;
-            }
-        }
-        if (!fullSpaces) vertexOut[w].w = 0.0f; // per entry
-        if (oneSubgroup) {
-            for (size_t x = 0; x < m; ++x) writeEntry(list + members[x], fr, orient);
-            return;
-        }
-        // Rare: the group splits. Member x's subgroup is every member
-        // together with it (x included: same face), ascending.
-        for (size_t x = 0; x < m; ++x) {
-            mikk::FrameAccumulator sub;
-            for (size_t y = 0; y < m; ++y)
-                if (together(members[x], members[y])) accumulateOver(sub, members[y]);
-            sub.finish();
-            writeEntry(list + members[x], sub, orient);
-        }
-    };
-
-    // Step 7 for a vertex without group-with-any triangles: its groups are
-    // the connected components of same-orientation entries (any flood
-    // order gives the same components).
-    s.deferred.clear();
-    int32_t* const comp = s.component.data();
-    uint32_t* const members = s.members.data();
-    for (uint32_t w0 = 0; w0 < weldedCount;) {
-        uint32_t w1 = w0 + 1;
-        while (w1 < weldedCount && s.incidenceStart[w1 + 1] - s.incidenceStart[w0] <= kChunk) ++w1;
-        computeTerms(w0, w1, chunkTerms);
-        for (uint32_t w = w0; w < w1; ++w) {
-            const Incidence* list = s.incidence.data() + s.incidenceStart[w];
-            const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
-            if (k == 0) continue;
-            const Terms terms = chunkTerms.offset(s.incidenceStart[w] - s.incidenceStart[w0]);
-#if defined(__SSE2__)
-            if (k <= 8) {
-                // The usual vertex, without data-dependent loops (their exits
-                // are what costs here): flags, pairing and the single-group
-                // test on all 8 lanes at once; lanes >= k hold ids no welded
-                // vertex has, distinct per lane.
-                alignas(16) uint32_t packed[8], nexts[8], prevs[8];
-                alignas(16) int32_t inLinks[8];
-                for (uint32_t e = 0; e < 8; ++e) {
-                    const bool used = e < k;
-                    packed[e] = used ? list[e].packed : 0u;
-                    nexts[e] = used ? list[e].next : 0xFFFFFF00u + e;
-                    prevs[e] = used ? list[e].prev : 0xFFFFFE00u + e;
-                    outNbr[e] = -1;
-                    inLinks[e] = -1;
-                }
-                auto load = [](const void* p) {
-                    return _mm_load_si128(static_cast<const __m128i*>(p));
-                };
-                auto bits8 = [](__m128i lo, __m128i hi) {
-                    return unsigned(_mm_movemask_ps(_mm_castsi128_ps(lo))) |
-                           unsigned(_mm_movemask_ps(_mm_castsi128_ps(hi))) << 4;
-                };
-                const __m128i pk0 = load(packed), pk1 = load(packed + 4);
-                const __m128i anyBit = _mm_set1_epi32(8), orientBit = _mm_set1_epi32(4);
-                const unsigned valid = (1u << k) - 1u;
-                const unsigned anyBits =
-                    bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, anyBit), anyBit),
-                          _mm_cmpeq_epi32(_mm_and_si128(pk1, anyBit), anyBit)) &
-                    valid;
-                if (anyBits != 0) {
-                    s.deferred.push_back(w);
-                    continue;
-                }
-                const unsigned orientBits =
-                    bits8(_mm_cmpeq_epi32(_mm_and_si128(pk0, orientBit), orientBit),
-                          _mm_cmpeq_epi32(_mm_and_si128(pk1, orientBit), orientBit)) &
-                    valid;
-                const __m128i n0 = load(nexts), n1 = load(nexts + 4), p0 = load(prevs),
-                              p1 = load(prevs + 4);
-                bool simple = true;
-                for (uint32_t e = 0; e < 8; ++e) {
-                    const __m128i x = _mm_set1_epi32(int(nexts[e]));
-                    const unsigned sameNext = bits8(_mm_cmpeq_epi32(n0, x), _mm_cmpeq_epi32(n1, x));
-                    const unsigned prevIsX = bits8(_mm_cmpeq_epi32(p0, x), _mm_cmpeq_epi32(p1, x));
-                    simple &= (sameNext & (sameNext - 1)) == 0 && (prevIsX & (prevIsX - 1)) == 0;
-                    if (prevIsX != 0) {
-                        const int32_t f = int32_t(__builtin_ctz(prevIsX));
-                        outNbr[e] = f;
-                        inLinks[f] = int32_t(e);
-                    }
-                }
-                if (simple && (orientBits == 0 || orientBits == valid)) {
-                    // One orientation: one group iff the out-links chain all
-                    // entries, from the entry without an in-link (open fan)
-                    // or from entry 0 (closed fan).
-                    const unsigned noIn =
-                        bits8(_mm_cmplt_epi32(load(inLinks), _mm_setzero_si128()),
-                              _mm_cmplt_epi32(load(inLinks + 4), _mm_setzero_si128())) &
-                        valid;
-                    const int32_t start = noIn != 0 ? int32_t(__builtin_ctz(noIn)) : 0;
-                    size_t reached = 1;
-                    for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k;
-                         e = outNbr[e])
-                        ++reached;
-                    if (reached == k) {
-                        for (uint32_t e = 0; e < 8; ++e) members[e] = e;
-                        emitGroup(w, list, terms, members, k, orientBits != 0, true);
-                        continue;
-                    }
-                }
-            } else
-#endif
-            {
-                bool touchesAny = false;
-                for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
-                if (touchesAny) {
-                    s.deferred.push_back(w);
-                    continue;
-                }
-            }
-            if (k == 1) {
-                members[0] = 0;
-                emitGroup(w, list, terms, members, 1, list[0].orient(), true);
-                continue;
-            }
-            pairEdges(list, k);
-            // Usual case: one orientation, and the pairing links all entries
-            // into one chain (open fan) or cycle (closed fan): one group
-            // with every entry, already in ascending order.
-            const bool orient0 = list[0].orient();
-            bool oneOrientation = true;
-            for (size_t e = 1; e < k; ++e) oneOrientation &= list[e].orient() == orient0;
-            if (oneOrientation) {
-                int32_t start = 0;
-                for (size_t e = 0; e < k; ++e)
-                    if (inNbr[e] < 0) {
-                        start = int32_t(e);
-                        break;
-                    }
-                size_t reached = 1;
-                for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e])
-                    ++reached;
-                if (reached == k) {
-                    for (size_t e = 0; e < k; ++e) members[e] = uint32_t(e);
-                    emitGroup(w, list, terms, members, k, orient0, true);
-                    continue;
-                }
-            }
-            for (size_t e = 0; e < k; ++e) comp[e] = -1;
-            for (size_t seed = 0; seed < k; ++seed) {
-                if (comp[seed] >= 0) continue;
-                const bool orientBit = list[seed].orient();
-                // Flood (members[] doubles as the stack), then list the
-                // component in ascending entry order.
-                comp[seed] = int32_t(seed);
-                size_t top = 0;
-                members[top++] = uint32_t(seed);
-                while (top > 0) {
-                    const uint32_t e = members[--top];
-                    for (const int32_t nb : {outNbr[e], inNbr[e]}) {
-                        if (nb < 0 || comp[nb] >= 0 || list[nb].orient() != orientBit) continue;
-                        comp[nb] = int32_t(seed);
-                        members[top++] = uint32_t(nb);
-                    }
-                }
-                size_t m = 0;
-                for (size_t e = seed; e < k; ++e)
-                    if (comp[e] == int32_t(seed)) members[m++] = uint32_t(e);
-                emitGroup(w, list, terms, members, m, orientBit, false);
-            }
-        }
-        w0 = w1;
-    }
-
-    // Steps 7-8 for the deferred vertices, in the reference's seed order
-    // (triangle, then corner): flood from each good triangle corner not yet
-    // in a group, left edge first, as the reference's recursion; a
-    // group-with-any triangle met with no corner in any group adopts the
-    // group's orientation.
-    if (!s.deferred.empty()) {
-        s.isDeferred.assign(weldedCount, 0);
-        for (const uint32_t w : s.deferred) {
-            s.isDeferred[w] = 1;
-            if (fullSpaces) continue; // spaces start as the default
-            vertexOut[w].w = 0.0f;
-            for (uint32_t j = s.incidenceStart[w]; j < s.incidenceStart[w + 1]; ++j)
-                entryOut[j] = glm::vec4(1, 0, 0, -1);
-        }
-        uint8_t* const fl = s.flags.data();
-        for (size_t f = 0; f < goodCount; ++f) {
-            for (uint32_t i = 0; i < 3; ++i) {
-                const uint32_t w = gWelded[f * 3 + i];
-                if (!s.isDeferred[w] || (fl[f] & kAny) || (fl[f] & (kGrouped0 << i))) continue;
-                const Incidence* list = s.incidence.data() + s.incidenceStart[w];
-                const size_t k = s.incidenceStart[w + 1] - s.incidenceStart[w];
-                computeTerms(w, w + 1, chunkTerms);
-                pairEdges(list, k);
-                uint32_t seed = 0;
-                while (list[seed].tri() != f) ++seed;
-                const bool orient = (fl[f] & kOrient) != 0;
-                fl[f] |= uint8_t(kGrouped0 << i);
-                s.groupMembers.assign(1, seed);
-                s.stack.clear();
-                if (inNbr[seed] >= 0) s.stack.push_back(uint32_t(inNbr[seed]));   // right
-                if (outNbr[seed] >= 0) s.stack.push_back(uint32_t(outNbr[seed])); // left first
-                while (!s.stack.empty()) {
-                    const uint32_t e = s.stack.back();
-                    s.stack.pop_back();
-                    const uint32_t t = list[e].tri(), c = list[e].corner();
-                    if (fl[t] & (kGrouped0 << c)) continue;
-                    if ((fl[t] & kAny) && (fl[t] & kGroupedAll) == 0)
-                        fl[t] = uint8_t((fl[t] & ~kOrient) | (orient ? kOrient : 0));
-                    if (((fl[t] & kOrient) != 0) != orient) continue;
-                    fl[t] |= uint8_t(kGrouped0 << c);
-                    s.groupMembers.push_back(e);
-                    if (inNbr[e] >= 0) s.stack.push_back(uint32_t(inNbr[e]));
-                    if (outNbr[e] >= 0) s.stack.push_back(uint32_t(outNbr[e]));
-                }
-                std::sort(s.groupMembers.begin(), s.groupMembers.end());
-                emitGroup(w, list, chunkTerms, s.groupMembers.data(), s.groupMembers.size(), orient,
-                          false);
-            }
-        }
-    }
-
-    if (!fullSpaces) { // -> corner order
-        for (size_t t = 0; t < goodCount; ++t) {
-            for (size_t i = 0; i < 3; ++i) {
-                const uint32_t w = gWelded[t * 3 + i];
-                glm::vec4 v = vertexOut[w];
-                if (v.w == 0.0f) { // this corner's entry (a good triangle meets w once)
-                    uint32_t j = s.incidenceStart[w];
-                    while (s.incidence[j].tri() != t) ++j;
-                    v = entryOut[j];
-                }
-                tangentsOut[cornerOut(t * 3 + i)] = v;
-            }
-        }
-    }
-
-    // --- Step 9: degenerate triangles copy frames from good corners.
-    auto copyCorner = [&](uint32_t dst, uint32_t src) {
-        if (fullSpaces)
-            s.spaces[dst] = s.spaces[src];
-        else
-            tangentsOut[dst] = tangentsOut[src];
-    };
-    if (degenerateCount > 0) {
-        s.firstGoodCorner.assign(weldedCount, kNone);
-        for (size_t j = goodCount * 3; j-- > 0;) s.firstGoodCorner[gWelded[j]] = uint32_t(j);
-        for (size_t t = goodCount; t < triCount; ++t) {
-            if (s.flags[t] & kQuadOneDegen) continue;
-            for (size_t i = 0; i < 3; ++i) {
-                const uint32_t j = s.firstGoodCorner[gWelded[t * 3 + i]];
-                if (j != kNone)
-                    copyCorner(cornerOut(t * 3 + i), cornerOut(j));
-                else if (!fullSpaces)
-                    tangentsOut[cornerOut(t * 3 + i)] = glm::vec4(1, 0, 0, -1);
-            }
-        }
-        if (hasQuads) {
-            for (size_t t = 0; t < goodCount; ++t) {
-                if (!(s.flags[t] & kQuadOneDegen)) continue;
-                const uint8_t* vf = gVertInFace + t * 3;
-                const int present = (1 << vf[0]) | (1 << vf[1]) | (1 << vf[2]);
-                const int missing = (present & 2) == 0
-                                        ? 1
-                                        : ((present & 4) == 0 ? 2 : ((present & 8) == 0 ? 3 : 0));
-                // Face corner k of this triangle's face: output corner
-                // (first corner of the face) + k.
-                const uint32_t faceFirst = cornerOut(t * 3) - vf[0];
-                const Vec3 missingPos =
-                    mikk::toVec3(in.positions[in.cornerVertices[faceFirst + uint32_t(missing)]]);
-                for (size_t i = 0; i < 3; ++i) {
-                    const Vec3 p = mikk::toVec3(in.positions[in.cornerVertices[faceFirst + vf[i]]]);
-                    if (mikk::exactlyEqual(p, missingPos)) {
-                        copyCorner(faceFirst + uint32_t(missing), faceFirst + vf[i]);
-                        break;
-                    }
-                }
-            }
-        }
-    }
-
-    // --- Step 10: outputs.
-    if (fullSpaces) {
-        // Only corners of triangles and quads; others stay zero.
-        auto emitCorner = [&](size_t c) {
-            const MikkTSpaceFrame fr = mikk::toFrame(s.spaces[c]);
-            tangentsOut[c] = glm::vec4(fr.tangent, fr.sign);
-            if (frames) (*frames)[c] = fr;
-        };
-        if (in.faceSizes.empty()) {
-            for (size_t c = 0; c < cornerCount; ++c) emitCorner(c);
-        } else {
-            size_t first = 0;
-            for (const uint32_t n : in.faceSizes) {
-                if (n == 3 || n == 4)
-                    for (size_t k = 0; k < n; ++k) emitCorner(first + k);
-                first += n;
-            }
-        }
-    }
+    if (p.fullSpaces) writeFrames(p); // step 10
 }
 
 } // namespace sg::mesh

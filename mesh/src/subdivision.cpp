@@ -432,6 +432,26 @@ glm::vec3 safeNormal(const glm::vec3& du, const glm::vec3& dv, const glm::vec3& 
     return len > 0.0f && std::isfinite(len) ? fallback / len : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
+// The limit surface's patches (evaluateLimit): an adaptively refined copy
+// of the cage, its patch table, and the map from (ptex face, u, v) to patch.
+struct LimitPatches {
+    std::unique_ptr<Far::TopologyRefiner> adaptive;
+    std::unique_ptr<Far::PatchTable> patches;
+    std::unique_ptr<Far::PatchMap> patchMap;
+};
+
+// Where the limit is evaluated: each corner of refined() at its home
+// location, each render vertex's derivatives at a point moved slightly
+// into its home face.
+struct LimitHomes {
+    std::vector<uint32_t> offsets;    // refined() face offsets
+    std::vector<uint32_t> cornerPtex; // per corner: ptex face
+    std::vector<glm::vec2> cornerUV;  // per corner: (u, v) in it, clamped to [0, 1]
+    std::vector<const Far::PatchMap::Handle*> cornerHandle; // per corner: its patch, or null
+    std::vector<glm::vec2> derivUV; // per render vertex: where derivatives are taken
+    std::vector<const Far::PatchMap::Handle*> derivHandle; // per render vertex: that patch
+};
+
 } // namespace
 
 // ---- Impl ----------------------------------------------------------------------
@@ -489,6 +509,8 @@ struct Subdivider::Impl {
     mutable std::vector<glm::vec4> points4;
 
     void build(const PolygonMesh& cage);
+    void checkBuildable(const PolygonMesh& cage) const;
+    void keepTopologyKey(const PolygonMesh& cage);
     bool sameTopology(const PolygonMesh& cage) const;
     // far: the uniform Far refiner, or nullptr for the specialised one.
     void recordUniformStencils(const Far::TopologyRefiner* far, const PolygonMesh& cage);
@@ -501,6 +523,15 @@ struct Subdivider::Impl {
                        std::vector<glm::vec2>& cornerUV) const;
     void evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform,
                        std::vector<uint8_t>& dropFace);
+    // The steps of evaluateLimit.
+    LimitPatches buildPatches(const PolygonMesh& cage) const;
+    void recordLimitStencils(const PolygonMesh& cage, const LimitPatches& lp);
+    void locateHomes(const Far::TopologyRefiner& uniform, const LimitPatches& lp, LimitHomes& homes,
+                     std::vector<uint8_t>& dropFace);
+    void buildSamples(const LimitPatches& lp, LimitHomes& homes);
+    void evaluatePositions(const PolygonMesh& cage);
+    void evaluateUvSets(const PolygonMesh& cage, const LimitPatches& lp, const LimitHomes& homes);
+    void copyLimitToRefined(const PolygonMesh& cage);
     void buildRender();
     // Copies of one vertex evaluated from different home faces differ in the
     // last bits; make them bitwise equal (no cracks): positions per refined
@@ -902,19 +933,16 @@ void Subdivider::Impl::locateCorners(const Far::TopologyRefiner& refiner,
     }
 }
 
-void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform,
-                                     std::vector<uint8_t>& dropFace) {
-    detail::Stopwatch sw;
-    const int N = settings.level;
-    // Isolation: at least N (every level-N vertex on a patch corner, where
-    // patches interpolate the limit exactly) and at least the largest finite
-    // crease/corner sharpness (semi-sharp features are exact only when
-    // isolated that deep); OpenSubdiv caps it at 10. At least 5: Gregory
-    // end caps approximate the tangent plane around extraordinary vertices,
-    // better the deeper they sit, while float patch points lose precision
-    // the deeper they sit. On spot, vs OpenSubdiv's limit masks, the worst
-    // normal is off by 4.5e-3 rad at isolation 3, 1.6e-3 at 4, 9.7e-4 at 5
-    // and 3.4e-3 at 6 (tests/mesh/subdivision_test.cpp).
+// Isolation: at least N (every level-N vertex on a patch corner, where
+// patches interpolate the limit exactly) and at least the largest finite
+// crease/corner sharpness (semi-sharp features are exact only when isolated
+// that deep); OpenSubdiv caps it at 10. At least 5: Gregory end caps
+// approximate the tangent plane around extraordinary vertices, better the
+// deeper they sit, while float patch points lose precision the deeper they
+// sit. On spot, vs OpenSubdiv's limit masks, the worst normal is off by
+// 4.5e-3 rad at isolation 3, 1.6e-3 at 4, 9.7e-4 at 5 and 3.4e-3 at 6
+// (tests/mesh/subdivision_test.cpp).
+LimitPatches Subdivider::Impl::buildPatches(const PolygonMesh& cage) const {
     float maxSharp = 0.0f;
     for (const EdgeCrease& c : cage.creases) {
         if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
@@ -922,9 +950,10 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     for (const VertexCorner& c : cage.corners) {
         if (c.sharpness < kInfiniteSharpness) maxSharp = std::max(maxSharp, c.sharpness);
     }
-    const int isolation = std::clamp(std::max({N, 5, int(std::ceil(maxSharp))}), 5, 10);
-    std::unique_ptr<Far::TopologyRefiner> adaptive =
-        createRefiner(descriptor, settings.options, file);
+    const int isolation =
+        std::clamp(std::max({settings.level, 5, int(std::ceil(maxSharp))}), 5, 10);
+    LimitPatches lp;
+    lp.adaptive = createRefiner(descriptor, settings.options, file);
     Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
     popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     popt.useInfSharpPatch = true;
@@ -932,68 +961,79 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
     popt.generateFVarLegacyLinearPatches = false; // smooth UV patches where the rules say smooth
     popt.generateLegacySharpCornerPatches = false;
     popt.generateVaryingTables = false;
-    adaptive->RefineAdaptive(popt.GetRefineAdaptiveOptions());
-    std::unique_ptr<Far::PatchTable> patches(Far::PatchTableFactory::Create(*adaptive, popt));
-    if (!patches)
+    lp.adaptive->RefineAdaptive(popt.GetRefineAdaptiveOptions());
+    lp.patches.reset(Far::PatchTableFactory::Create(*lp.adaptive, popt));
+    if (!lp.patches)
         throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
-    Far::PatchMap patchMap(*patches);
+    lp.patchMap = std::make_unique<Far::PatchMap>(*lp.patches);
+    return lp;
+}
 
-    // Cage -> every adaptive point, then the patch table's local points.
+// Cage -> every adaptive point, then the patch table's local points.
+void Subdivider::Impl::recordLimitStencils(const PolygonMesh& cage, const LimitPatches& lp) {
+    const Far::TopologyRefiner& adaptive = *lp.adaptive;
     limitStencils = FactoredStencils();
     limitStencils.numControl = uint32_t(cage.positions.size());
-    std::vector<uint32_t> levelBase(size_t(adaptive->GetNumLevels()) + 1, 0);
-    for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
+    std::vector<uint32_t> levelBase(size_t(adaptive.GetNumLevels()) + 1, 0);
+    for (int l = 0; l < adaptive.GetNumLevels(); ++l) {
         levelBase[size_t(l) + 1] =
-            levelBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumVertices());
+            levelBase[size_t(l)] + uint32_t(adaptive.GetLevel(l).GetNumVertices());
     }
-    for (int l = 1; l < adaptive->GetNumLevels(); ++l)
-        limitStencils.recordLevel(*adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
+    for (int l = 1; l < adaptive.GetNumLevels(); ++l)
+        limitStencils.recordLevel(adaptive, l, levelBase[size_t(l) - 1], levelBase[size_t(l)]);
     const uint32_t refinedTotal = levelBase.back();
     uint32_t localCount = 0;
-    if (const Far::StencilTableReal<float>* local = patches->GetLocalPointStencilTable<float>()) {
+    if (const Far::StencilTableReal<float>* local =
+            lp.patches->GetLocalPointStencilTable<float>()) {
         limitStencils.appendTable(*local, refinedTotal);
         localCount = uint32_t(local->GetNumStencils());
     }
     limitStencils.numPoints = refinedTotal + localCount;
+}
 
-    // Home location of each corner; faces with a corner off every patch
-    // (boundary faces under BoundaryInterpolation::None) leave the limit mesh.
-    std::vector<uint32_t> cornerPtex;
-    std::vector<glm::vec2> cornerUV;
-    locateCorners(uniform, cornerPtex, cornerUV);
-    std::vector<uint32_t> offsets = faceOffsets(refined);
+// Home location (ptex face, (u,v) clamped, patch) of each corner of
+// refined(); faces with a corner off every patch (boundary faces under
+// BoundaryInterpolation::None) leave the limit mesh: dropFace, and holes of
+// refined() so the render split skips them.
+void Subdivider::Impl::locateHomes(const Far::TopologyRefiner& uniform, const LimitPatches& lp,
+                                   LimitHomes& homes, std::vector<uint8_t>& dropFace) {
+    locateCorners(uniform, homes.cornerPtex, homes.cornerUV);
+    homes.offsets = faceOffsets(refined);
     dropFace.assign(refined.faceSizes.size(), 0);
-    std::vector<const Far::PatchMap::Handle*> cornerHandle(cornerPtex.size(), nullptr);
+    homes.cornerHandle.assign(homes.cornerPtex.size(), nullptr);
     for (size_t f = 0; f < refined.faceSizes.size(); ++f) {
-        for (uint32_t c = offsets[f]; c < offsets[f + 1]; ++c) {
-            cornerUV[c] = glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y));
-            cornerHandle[c] = patchMap.FindPatch(int(cornerPtex[c]), cornerUV[c].x, cornerUV[c].y);
-            if (!cornerHandle[c]) dropFace[f] = 1;
+        for (uint32_t c = homes.offsets[f]; c < homes.offsets[f + 1]; ++c) {
+            glm::vec2& uv = homes.cornerUV[c];
+            uv = glm::vec2(clampParam(uv.x), clampParam(uv.y));
+            homes.cornerHandle[c] = lp.patchMap->FindPatch(int(homes.cornerPtex[c]), uv.x, uv.y);
+            if (!homes.cornerHandle[c]) dropFace[f] = 1;
         }
     }
-    // Faces without limit surface become holes of refined(), so the render
-    // split skips them.
     refined.holes.clear();
     for (uint32_t f = 0; f < dropFace.size(); ++f) {
         if (dropFace[f]) refined.holes.push_back(f);
     }
-    timings.limit += sw.lap();
-    // Render vertices over the surviving faces (the split needs dropFace).
-    buildRender();
-    timings.render = sw.lap();
-    const size_t nR = split.renderFirstCorner.size();
-    // Derivative locations: the corner moved kInward of the way to its
-    // face's centre. At the corner itself the derivatives of an end-cap
-    // patch can be singular (Gregory weights are 0/0 there; a sharp corner
-    // of a one-face sector came out with a flipped normal), and a corner on
-    // a sharp crease belongs to patches on both sides: a point just inside
-    // the home face picks that face's side. The shift is 2^-12 of the face's
-    // size, so derivatives move by O(2^-12 h |P''|), far below float noise
-    // in the tangent plane.
+}
+
+// Per render vertex: the derivative location and the sample's basis
+// weights (value at the home corner, derivatives at the derivative
+// location), and the LimitFrame's home location.
+//
+// Derivative locations: the corner moved kInward of the way to its face's
+// centre. At the corner itself the derivatives of an end-cap patch can be
+// singular (Gregory weights are 0/0 there; a sharp corner of a one-face
+// sector came out with a flipped normal), and a corner on a sharp crease
+// belongs to patches on both sides: a point just inside the home face picks
+// that face's side. The shift is 2^-12 of the face's size, so derivatives
+// move by O(2^-12 h |P''|), far below float noise in the tangent plane.
+void Subdivider::Impl::buildSamples(const LimitPatches& lp, LimitHomes& homes) {
     constexpr float kInward = 1.0f / 4096.0f;
-    std::vector<uint32_t> faceOf = detail::cornerFaces(offsets);
-    std::vector<glm::vec2> derivUV(nR);
-    std::vector<const Far::PatchMap::Handle*> derivHandle(nR);
+    const Far::PatchTable& patches = *lp.patches;
+    const std::vector<uint32_t>& offsets = homes.offsets;
+    const size_t nR = split.renderFirstCorner.size();
+    const std::vector<uint32_t> faceOf = detail::cornerFaces(offsets);
+    homes.derivUV.resize(nR);
+    homes.derivHandle.resize(nR);
     samples.clear();
     float wP[20], wDu[20], wDv[20];
     frame = LimitFrame();
@@ -1005,38 +1045,45 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         glm::vec2 centre(0.0f);
         bool onePtex = true;
         for (uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
-            centre += cornerUV[k];
-            onePtex &= cornerPtex[k] == cornerPtex[c];
+            centre += homes.cornerUV[k];
+            onePtex &= homes.cornerPtex[k] == homes.cornerPtex[c];
         }
         centre /= float(offsets[f + 1] - offsets[f]);
         // A level-0 polygon that is not a quad spans one ptex sub-face per
         // corner; the corner sits at (0,0) of its sub-face, whose centre is (0.5,0.5).
         if (!onePtex) centre = glm::vec2(0.5f);
-        glm::vec2 d = cornerUV[c] + kInward * (centre - cornerUV[c]);
-        derivUV[r] = glm::vec2(clampParam(d.x), clampParam(d.y));
-        derivHandle[r] = patchMap.FindPatch(int(cornerPtex[c]), derivUV[r].x, derivUV[r].y);
-        if (!derivHandle[r])
-            derivHandle[r] = cornerHandle[c]; // cannot happen inside a face with patches; stay safe
+        glm::vec2 d = homes.cornerUV[c] + kInward * (centre - homes.cornerUV[c]);
+        glm::vec2& derivUV = homes.derivUV[r];
+        const Far::PatchMap::Handle*& derivHandle = homes.derivHandle[r];
+        derivUV = glm::vec2(clampParam(d.x), clampParam(d.y));
+        derivHandle = lp.patchMap->FindPatch(int(homes.cornerPtex[c]), derivUV.x, derivUV.y);
+        if (!derivHandle)
+            derivHandle = homes.cornerHandle[c]; // cannot happen inside a face with patches
 
-        const Far::PatchMap::Handle* h = cornerHandle[c];
-        float u = clampParam(cornerUV[c].x), v = clampParam(cornerUV[c].y);
+        const Far::PatchMap::Handle* h = homes.cornerHandle[c];
+        float u = clampParam(homes.cornerUV[c].x), v = clampParam(homes.cornerUV[c].y);
         float wValue[20];
-        patches->EvaluateBasis(*h, u, v, wValue, wDu, wDv);
+        patches.EvaluateBasis(*h, u, v, wValue, wDu, wDv);
         // A regular (B-spline) patch has well-defined derivatives at its
         // corners: evaluate the home face's patch at the corner itself (fewer
         // non-zero weights, no shift); end caps keep the shifted point.
-        glm::vec2 at = derivUV[r];
-        if (patches->GetPatchDescriptor(*derivHandle[r]).GetType() == Far::PatchDescriptor::REGULAR)
+        glm::vec2 at = derivUV;
+        if (patches.GetPatchDescriptor(*derivHandle).GetType() == Far::PatchDescriptor::REGULAR)
             at = glm::vec2(u, v);
-        patches->EvaluateBasis(*derivHandle[r], at.x, at.y, wP, wDu, wDv);
-        int n = patches->GetPatchVertices(*derivHandle[r]).size();
-        toPtexUnits(patches->GetPatchParam(*derivHandle[r]), n, wDu, wDv);
-        samples.add(patches->GetPatchVertices(*h), wValue,
-                    patches->GetPatchVertices(*derivHandle[r]), wDu, wDv);
-        frame.ptexFace[r] = cornerPtex[c];
+        patches.EvaluateBasis(*derivHandle, at.x, at.y, wP, wDu, wDv);
+        int n = patches.GetPatchVertices(*derivHandle).size();
+        toPtexUnits(patches.GetPatchParam(*derivHandle), n, wDu, wDv);
+        samples.add(patches.GetPatchVertices(*h), wValue, patches.GetPatchVertices(*derivHandle),
+                    wDu, wDv);
+        frame.ptexFace[r] = homes.cornerPtex[c];
         frame.ptexUV[r] = glm::vec2(u, v);
     }
-    // Positions and derivatives of the cage and of every morph target.
+}
+
+// Limit positions, dP/du, dP/dv and normals of the render vertices, and the
+// same for every morph target's deltas.
+void Subdivider::Impl::evaluatePositions(const PolygonMesh& cage) {
+    const size_t nR = split.renderFirstCorner.size();
     points.resize(limitStencils.numPoints);
     auto evalVec3 = [&](const std::vector<glm::vec3>& control, glm::vec3* value,
                         std::vector<glm::vec3>& du, std::vector<glm::vec3>& dv) {
@@ -1061,64 +1108,89 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         std::vector<glm::vec3>& d = render.morphTargets[t].positionDeltas;
         for (size_t r = 0; r < nR; ++r) d[r] = d[positionRep[r]];
     }
-    // UV sets: static, so interpolated once through all adaptive levels
-    // (concatenated, as the patch table indexes them) plus local points.
+}
+
+namespace {
+
+// UV set s's values at every adaptive point: UVs are static, so they are
+// interpolated once through all adaptive levels (concatenated, as the
+// patch table indexes them), plus the local points.
+std::vector<glm::vec2> limitUvPoints(const PolygonMesh& cage, const LimitPatches& lp, size_t s) {
+    const Far::TopologyRefiner& adaptive = *lp.adaptive;
+    const int ch = int(s);
+    std::vector<uint32_t> fvBase(size_t(adaptive.GetNumLevels()) + 1, 0);
+    for (int l = 0; l < adaptive.GetNumLevels(); ++l) {
+        fvBase[size_t(l) + 1] =
+            fvBase[size_t(l)] + uint32_t(adaptive.GetLevel(l).GetNumFVarValues(ch));
+    }
+    const Far::StencilTableReal<float>* local =
+        lp.patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
+    std::vector<glm::vec2> values(fvBase.back() + (local ? size_t(local->GetNumStencils()) : 0));
+    std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
+    Far::PrimvarRefiner primvar(adaptive);
+    for (int l = 1; l < adaptive.GetNumLevels(); ++l) {
+        PrimvarView<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
+        PrimvarView<glm::vec2> dst{values.data() + fvBase[size_t(l)]};
+        primvar.InterpolateFaceVarying(l, src, dst, ch);
+    }
+    if (local) {
+        FactoredStencils localPoints;
+        localPoints.appendTable(*local, fvBase.back());
+        localPoints.apply(values.data());
+    }
+    return values;
+}
+
+} // namespace
+
+// Every UV set's limit value at each render vertex's home corner and its
+// derivatives at the derivative location (same locations as the
+// positions').
+void Subdivider::Impl::evaluateUvSets(const PolygonMesh& cage, const LimitPatches& lp,
+                                      const LimitHomes& homes) {
+    const Far::PatchTable& patches = *lp.patches;
+    const size_t nR = split.renderFirstCorner.size();
+    float wP[20], wDu[20], wDv[20];
     frame.dUVdu.assign(cage.uvSets.size(), {});
     frame.dUVdv.assign(cage.uvSets.size(), {});
     for (size_t s = 0; s < cage.uvSets.size(); ++s) {
         const int ch = int(s);
-        std::vector<uint32_t> fvBase(size_t(adaptive->GetNumLevels()) + 1, 0);
-        for (int l = 0; l < adaptive->GetNumLevels(); ++l) {
-            fvBase[size_t(l) + 1] =
-                fvBase[size_t(l)] + uint32_t(adaptive->GetLevel(l).GetNumFVarValues(ch));
-        }
-        const Far::StencilTableReal<float>* local =
-            patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
-        std::vector<glm::vec2> values(fvBase.back() +
-                                      (local ? size_t(local->GetNumStencils()) : 0));
-        std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
-        Far::PrimvarRefiner primvar(*adaptive);
-        for (int l = 1; l < adaptive->GetNumLevels(); ++l) {
-            PrimvarView<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
-            PrimvarView<glm::vec2> dst{values.data() + fvBase[size_t(l)]};
-            primvar.InterpolateFaceVarying(l, src, dst, ch);
-        }
-        if (local) {
-            FactoredStencils lp;
-            lp.appendTable(*local, fvBase.back());
-            lp.apply(values.data());
-        }
+        const std::vector<glm::vec2> values = limitUvPoints(cage, lp, s);
+        auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value,
+                          glm::vec2& du, glm::vec2& dv) {
+            patches.EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr,
+                                             nullptr, ch);
+            Far::ConstIndexArray cvs = patches.GetPatchFVarValues(*h, ch);
+            toPtexUnits(patches.GetPatchFVarPatchParam(*h, ch), cvs.size(), wDu, wDv);
+            value = du = dv = glm::vec2(0.0f);
+            for (int k = 0; k < cvs.size(); ++k) {
+                const glm::vec2& x = values[size_t(cvs[k])];
+                value += wP[k] * x;
+                du += wDu[k] * x;
+                dv += wDv[k] * x;
+            }
+        };
         std::vector<glm::vec2>& outUV = render.uvSets[s];
         frame.dUVdu[s].resize(nR);
         frame.dUVdv[s].resize(nR);
         for (size_t r = 0; r < nR; ++r) {
             uint32_t c = split.renderFirstCorner[r];
-            auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value,
-                              glm::vec2& du, glm::vec2& dv) {
-                patches->EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr,
-                                                  nullptr, ch);
-                Far::ConstIndexArray cvs = patches->GetPatchFVarValues(*h, ch);
-                toPtexUnits(patches->GetPatchFVarPatchParam(*h, ch), cvs.size(), wDu, wDv);
-                value = du = dv = glm::vec2(0.0f);
-                for (int k = 0; k < cvs.size(); ++k) {
-                    const glm::vec2& x = values[size_t(cvs[k])];
-                    value += wP[k] * x;
-                    du += wDu[k] * x;
-                    dv += wDv[k] * x;
-                }
-            };
-            glm::vec2 p, du, dv, unused;
-            evalUv(cornerHandle[c], glm::vec2(clampParam(cornerUV[c].x), clampParam(cornerUV[c].y)),
-                   p, unused, unused);
-            evalUv(derivHandle[r], derivUV[r], unused, du, dv);
-            outUV[r] = p;
+            glm::vec2 q, du, dv, unused;
+            evalUv(homes.cornerHandle[c],
+                   glm::vec2(clampParam(homes.cornerUV[c].x), clampParam(homes.cornerUV[c].y)), q,
+                   unused, unused);
+            evalUv(homes.derivHandle[r], homes.derivUV[r], unused, du, dv);
+            outUV[r] = q;
             frame.dUVdu[s][r] = du;
             frame.dUVdv[s][r] = dv;
         }
     }
-    // refined() gets the limit positions and UVs too (per refined vertex /
-    // per UV value: from the render vertex that is home to it).
-    for (size_t r = 0; r < nR; ++r) {
+}
+
+// refined() gets the limit positions and UVs too (per refined vertex / per
+// UV value: from the render vertex that is home to it).
+void Subdivider::Impl::copyLimitToRefined(const PolygonMesh& cage) {
+    for (size_t r = 0; r < split.renderFirstCorner.size(); ++r) {
         uint32_t c = split.renderFirstCorner[r];
         refined.positions[refined.faceVertices[c]] = render.positions[r];
         refined.normals[refined.faceVertices[c]] = render.normals[r];
@@ -1129,6 +1201,28 @@ void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::Topolog
         for (size_t s = 0; s < cage.uvSets.size(); ++s)
             refined.uvSets[s].values[refined.uvSets[s].indices[c]] = render.uvSets[s][r];
     }
+}
+
+// Limit evaluation (docs/mesh.md, "Limit evaluation"): patches of an
+// adaptively refined copy of the cage, the stencils from the cage to their
+// points, every corner's home location, the render mesh over the faces
+// that have patches, one sample per render vertex, then positions,
+// normals, morph deltas and UVs with their derivatives.
+void Subdivider::Impl::evaluateLimit(const PolygonMesh& cage, const Far::TopologyRefiner& uniform,
+                                     std::vector<uint8_t>& dropFace) {
+    detail::Stopwatch sw;
+    const LimitPatches lp = buildPatches(cage);
+    recordLimitStencils(cage, lp);
+    LimitHomes homes;
+    locateHomes(uniform, lp, homes, dropFace);
+    timings.limit += sw.lap();
+    // Render vertices over the surviving faces (the split needs dropFace).
+    buildRender();
+    timings.render = sw.lap();
+    buildSamples(lp, homes);
+    evaluatePositions(cage);
+    evaluateUvSets(cage, lp, homes);
+    copyLimitToRefined(cage);
     timings.limit += sw.lap();
 }
 
@@ -1340,8 +1434,10 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     }
 }
 
-void Subdivider::Impl::build(const PolygonMesh& cage) {
-    timings = SubdivisionTimings();
+// What build() refuses before refining: a level out of range, an empty
+// cage, non-triangles under Loop, and refinements beyond
+// settings.maxRefinedFaces.
+void Subdivider::Impl::checkBuildable(const PolygonMesh& cage) const {
     const SubdivOptions& o = settings.options;
     const int N = settings.level;
     if (N < 0 || N > kMaxSubdivisionLevel) {
@@ -1366,6 +1462,34 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
                          "would make about " + std::to_string((unsigned long long)estimate) +
                              " faces; the limit is " + std::to_string(settings.maxRefinedFaces));
     }
+}
+
+// What a rebuild of the same topology needs (sameTopology): the topology,
+// tags and value counts of this cage (its values are not kept).
+void Subdivider::Impl::keepTopologyKey(const PolygonMesh& cage) {
+    keyValid = true;
+    keyLevel = settings.level;
+    keyOptions = settings.options;
+    renderValid = settings.buildRenderMesh;
+    key.positions.resize(cage.positions.size());
+    key.faceSizes = cage.faceSizes;
+    key.faceVertices = cage.faceVertices;
+    key.holes = cage.holes;
+    key.creases = cage.creases;
+    key.corners = cage.corners;
+    key.morphTargets.resize(cage.morphTargets.size());
+    key.uvSets.resize(cage.uvSets.size());
+    for (size_t s = 0; s < cage.uvSets.size(); ++s) {
+        key.uvSets[s].indices = cage.uvSets[s].indices;
+        key.uvSets[s].values.resize(cage.uvSets[s].values.size());
+    }
+}
+
+void Subdivider::Impl::build(const PolygonMesh& cage) {
+    timings = SubdivisionTimings();
+    const SubdivOptions& o = settings.options;
+    const int N = settings.level;
+    checkBuildable(cage);
     cageVertices = cage.positions.size();
     if (!settings.limit && settings.reuseTopology && sameTopology(cage)) {
         rebuildValues(cage);
@@ -1458,22 +1582,7 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
     // A specialised build keeps its levels in `fast`.
     if (!settings.limit && settings.reuseTopology) {
         if (!fastBuilt) keptRefiner = std::move(refiner);
-        keyValid = true;
-        keyLevel = N;
-        keyOptions = o;
-        renderValid = settings.buildRenderMesh;
-        key.positions.resize(cage.positions.size());
-        key.faceSizes = cage.faceSizes;
-        key.faceVertices = cage.faceVertices;
-        key.holes = cage.holes;
-        key.creases = cage.creases;
-        key.corners = cage.corners;
-        key.morphTargets.resize(cage.morphTargets.size());
-        key.uvSets.resize(cage.uvSets.size());
-        for (size_t s = 0; s < cage.uvSets.size(); ++s) {
-            key.uvSets[s].indices = cage.uvSets[s].indices;
-            key.uvSets[s].values.resize(cage.uvSets[s].values.size());
-        }
+        keepTopologyKey(cage);
     }
 }
 
