@@ -172,6 +172,224 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
     return true;
 }
 
+namespace {
+
+// The face-varying linear-interpolation option and the boundary rule as the
+// questions FVarLevel asks of them.
+struct FVarRules {
+    explicit FVarRules(const Sdc::Options& options) {
+        using Opt = Sdc::Options;
+        const Opt::FVarLinearInterpolation rule = options.GetFVarLinearInterpolation();
+        linearBoundaries = rule == Opt::FVAR_LINEAR_ALL || rule == Opt::FVAR_LINEAR_BOUNDARIES;
+        dependentSharpness =
+            rule == Opt::FVAR_LINEAR_CORNERS_PLUS1 || rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
+        const bool geomCornersSmooth =
+            options.GetVtxBoundaryInterpolation() != Opt::VTX_BOUNDARY_EDGE_AND_CORNER;
+        fvarCornersSharp = rule != Opt::FVAR_LINEAR_NONE;
+        makeSmoothCornersSharp = geomCornersSmooth && fvarCornersSharp;
+        sharpenBothIfOneCorner = rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
+        sharpenDarts = sharpenBothIfOneCorner || linearBoundaries;
+    }
+    bool linearBoundaries, dependentSharpness, fvarCornersSharp, makeSmoothCornersSharp,
+        sharpenBothIfOneCorner, sharpenDarts;
+};
+
+// The faces (vf), each one's corner at the vertex (vif) and the edges (ve)
+// around vertex v of a level, counter-clockwise.
+struct VertexRing {
+    VertexRing(const RefineLevel& Z, uint32_t v)
+        : vf(Z.vertFaces.data() + Z.vertFaceOffsets[v]),
+          vif(Z.vertInFace.data() + Z.vertFaceOffsets[v]),
+          ve(Z.vertEdges.data() + Z.vertEdgeOffsets[v]),
+          nf(Z.vertFaceOffsets[v + 1] - Z.vertFaceOffsets[v]),
+          ne(Z.vertEdgeOffsets[v + 1] - Z.vertEdgeOffsets[v]) {}
+    const uint32_t* vf;
+    const uint16_t* vif;
+    const uint32_t* ve;
+    uint32_t nf, ne;
+    bool boundary() const { return ne > nf; }
+    // Level-0 corner index of the vertex in face i of the ring.
+    uint32_t corner(const RefineLevel& Z, uint32_t i) const {
+        return Z.faceOffsets[vf[i]] + vif[i];
+    }
+};
+
+// Siblings (distinct values) around a vertex, in order of first appearance,
+// with OpenSubdiv's shortcut for the second distinct value (which does not
+// look for it among the earlier ones): sibling[i] of face i; returns the
+// number of distinct values.
+uint32_t siblingsAroundVertex(const std::vector<uint32_t>& values, std::vector<uint32_t>& unique,
+                              std::vector<uint16_t>& sibling) {
+    const size_t nf = values.size();
+    unique.assign(1, values[0]);
+    sibling.assign(nf, 0);
+    for (size_t i = 1; i < nf; ++i) {
+        if (values[i] == values[i - 1]) {
+            sibling[i] = sibling[i - 1];
+            continue;
+        }
+        sibling[i] = uint16_t(unique.size());
+        if (unique.size() == 1 || (unique.size() == 2 && unique[0] != values[i])) {
+            unique.push_back(values[i]);
+        } else {
+            auto it = std::find(unique.begin(), unique.end(), values[i]);
+            if (it == unique.end())
+                unique.push_back(values[i]);
+            else
+                sibling[i] = uint16_t(it - unique.begin());
+        }
+    }
+    return uint32_t(unique.size());
+}
+
+// Pass 1 of classifyFVar: the seams (F.edgeTags), the vertices on one or
+// made sharp by the boundary rules (mismatch), and the values around each
+// vertex (count, F.cornerSibling).
+void findSeamsAndSiblings(const RefineLevel& Z, FVarLevelData& F, const FVarRules& r,
+                          std::vector<uint8_t>& mismatch, std::vector<uint32_t>& count) {
+    std::vector<uint32_t> values, unique;
+    std::vector<uint16_t> sibling;
+    for (uint32_t v = 0; v < Z.numVerts; ++v) {
+        const VertexRing ring(Z, v);
+        const uint32_t nf = ring.nf, ne = ring.ne;
+        values.resize(nf);
+        for (uint32_t i = 0; i < nf; ++i) values[i] = F.faceValues[ring.corner(Z, i)];
+        // Edge i lies between faces i-1 and i (OpenSubdiv's ordering).
+        for (uint32_t i = ring.boundary() ? 1 : 0; i < nf; ++i) {
+            const uint32_t prev = i ? i - 1 : nf - 1;
+            if (values[i] != values[prev]) {
+                const uint32_t e = ring.ve[i];
+                mismatch[Z.edgeVerts[2 * e]] = 1;
+                mismatch[Z.edgeVerts[2 * e + 1]] = 1;
+                F.edgeTags[e] |=
+                    uint8_t(kFvEdgeMismatch | (r.linearBoundaries ? kFvEdgeLinear : 0));
+            }
+        }
+        if (ring.boundary() && !mismatch[v]) {
+            if (r.linearBoundaries) {
+                mismatch[v] = 1;
+                F.edgeTags[ring.ve[0]] |= kFvEdgeLinear;
+                F.edgeTags[ring.ve[ne - 1]] |= kFvEdgeLinear;
+            } else if (nf == 1 && r.makeSmoothCornersSharp) {
+                mismatch[v] = 1;
+            }
+        }
+        count[v] = siblingsAroundVertex(values, unique, sibling);
+        if (count[v] > 1) {
+            for (uint32_t i = 0; i < nf; ++i) F.cornerSibling[ring.corner(Z, i)] = sibling[i];
+        }
+    }
+}
+
+// A run of faces around a vertex that share one value
+// (FVarLevel::gatherValueSpans).
+struct ValueSpan {
+    int size = 0, start = 0, disjoint = 0, semiSharp = 0;
+};
+
+// The spans of the n values around vertex v (a vertex on a seam).
+void gatherValueSpans(const RefineLevel& Z, const FVarLevelData& F, const VertexRing& ring,
+                      uint32_t n, std::vector<ValueSpan>& spans) {
+    const uint32_t nf = ring.nf, ne = ring.ne;
+    const uint32_t* ve = ring.ve;
+    auto cornerSib = [&](uint32_t i) { return F.cornerSibling[ring.corner(Z, i)]; };
+    auto edgeSeam = [&](uint32_t e) { return (F.edgeTags[e] & kFvEdgeMismatch) != 0; };
+    spans.assign(n, ValueSpan());
+    if (n == 1) {
+        for (uint32_t i = 0; i < ne; ++i) {
+            if (edgeSeam(ve[i])) {
+                if (spans[0].size) {
+                    spans[0].disjoint = 1;
+                    break;
+                }
+                spans[0].size = int(nf);
+                spans[0].start = int(i);
+            } else if (Z.edgeTags[ve[i]] & kEdgeInfSharp) {
+                spans[0].disjoint = 1;
+                break;
+            } else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp) {
+                ++spans[0].semiSharp;
+            }
+        }
+        return;
+    }
+    spans[0].size = 1;
+    spans[0].start = 0;
+    if (!ring.boundary() && cornerSib(nf - 1) == 0) {
+        if (edgeSeam(ve[0]) || (Z.edgeTags[ve[0]] & kEdgeInfSharp))
+            spans[0].disjoint = 1;
+        else if (Z.edgeTags[ve[0]] & kEdgeSemiSharp)
+            ++spans[0].semiSharp;
+    }
+    for (uint32_t i = 1; i < nf; ++i) {
+        ValueSpan& s = spans[cornerSib(i)];
+        if (cornerSib(i) == cornerSib(i - 1)) {
+            if (edgeSeam(ve[i]))
+                ++s.disjoint;
+            else if (Z.edgeTags[ve[i]] & kEdgeInfSharp)
+                s.disjoint = 1;
+            else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp)
+                ++s.semiSharp;
+        } else {
+            if (s.size > 0) ++s.disjoint;
+            s.start = int(i);
+        }
+        ++s.size;
+    }
+    if (cornerSib(nf - 1) == 0 && !ring.boundary()) --spans[0].disjoint;
+}
+
+// Pass 2 of classifyFVar for vertex v on a seam: each of its n values (at
+// F slots off..off+n-1) becomes a corner (kept) or a crease (smoothed along
+// the seam, with its span). False, with `why`, for the semi-sharp cases
+// left to Far.
+bool classifySeamValues(const RefineLevel& Z, FVarLevelData& F, const FVarRules& r, uint32_t v,
+                        uint32_t n, std::vector<ValueSpan>& spans, std::string& why) {
+    const VertexRing ring(Z, v);
+    const uint32_t off = F.valueOffsets[v];
+    const uint8_t vtag = Z.vertTags[v];
+    bool allCorners = r.linearBoundaries || (vtag & kVertInfSharp) ||
+                      (r.dependentSharpness && n > 2) ||
+                      (r.sharpenDarts && n == 1 && !ring.boundary());
+    if (allCorners) {
+        std::fill_n(F.valueTags.begin() + off, n, kValueMismatch);
+        return true;
+    }
+    gatherValueSpans(Z, F, ring, n, spans);
+    if (r.dependentSharpness && n == 2) {
+        allCorners = spans[0].disjoint || spans[1].disjoint;
+        if (r.sharpenBothIfOneCorner) allCorners |= spans[0].size == 1 || spans[1].size == 1;
+        if (!allCorners && (spans[0].semiSharp > 0) != (spans[1].semiSharp > 0)) {
+            why = "a UV seam with semi-sharp creasing at vertex " + std::to_string(v);
+            return false;
+        }
+    }
+    if (allCorners) {
+        std::fill_n(F.valueTags.begin() + off, n, kValueMismatch);
+        return true;
+    }
+    for (uint32_t i = 0; i < n; ++i) {
+        const ValueSpan& s = spans[i];
+        if (s.disjoint || (s.size == 1 && r.fvarCornersSharp)) {
+            F.valueTags[off + i] = kValueMismatch;
+            continue;
+        }
+        if (s.semiSharp > 0 || (vtag & kVertSemiSharp)) {
+            // OpenSubdiv's semi-sharp face-varying values (a corner
+            // decaying into a crease) are left to Far.
+            why = "a UV seam with semi-sharp creasing at vertex " + std::to_string(v);
+            return false;
+        }
+        F.valueTags[off + i] = kValueMismatch | kValueCrease;
+        F.creaseStart[off + i] = uint16_t(s.start);
+        F.creaseEnd[off + i] = uint16_t(
+            (i == 0 && s.start != 0) ? s.start + s.size - 1 - int(ring.nf) : s.start + s.size - 1);
+    }
+    return true;
+}
+
+} // namespace
+
 // Vtr::FVarLevel::completeTopologyFromFaceValues for a manifold level 0:
 // which values meet at each vertex (siblings), which edges are UV seams,
 // and for every value on a seam whether it is a corner (kept) or a crease
@@ -179,87 +397,20 @@ bool UniformRefiner::accept(const Far::TopologyRefiner& base, const PolygonMesh&
 // option. The order of operations is OpenSubdiv's (a vertex's boundary
 // test sees only the seams found so far), so the outcome is the same.
 bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::string& why) {
-    using Opt = Sdc::Options;
     RefineLevel& Z = level_[0];
     FVarLevelData& F = Z.fvar[channel];
-    const Opt::FVarLinearInterpolation rule = options_.GetFVarLinearInterpolation();
-    const bool linearBoundaries =
-        rule == Opt::FVAR_LINEAR_ALL || rule == Opt::FVAR_LINEAR_BOUNDARIES;
-    const bool dependentSharpness =
-        rule == Opt::FVAR_LINEAR_CORNERS_PLUS1 || rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
-    const bool geomCornersSmooth =
-        options_.GetVtxBoundaryInterpolation() != Opt::VTX_BOUNDARY_EDGE_AND_CORNER;
-    const bool fvarCornersSharp = rule != Opt::FVAR_LINEAR_NONE;
-    const bool makeSmoothCornersSharp = geomCornersSmooth && fvarCornersSharp;
-    const bool sharpenBothIfOneCorner = rule == Opt::FVAR_LINEAR_CORNERS_PLUS2;
-    const bool sharpenDarts = sharpenBothIfOneCorner || linearBoundaries;
-    fvarLinear_ = rule == Opt::FVAR_LINEAR_ALL;
-    fvarSmoothBoundaries_ = !linearBoundaries;
+    const FVarRules rules(options_);
+    fvarLinear_ = options_.GetFVarLinearInterpolation() == Sdc::Options::FVAR_LINEAR_ALL;
+    fvarSmoothBoundaries_ = !rules.linearBoundaries;
 
     const std::vector<uint32_t>& cageIndices = cage.uvSets[channel].indices;
     F.faceValues.assign(cageIndices.begin(), cageIndices.end());
     F.edgeTags.assign(Z.numEdges, 0);
     F.cornerSibling.assign(Z.numCorners, 0);
     std::vector<uint8_t> mismatch(Z.numVerts, 0);
-    std::vector<uint32_t> count(Z.numVerts, 1), values, unique;
-    std::vector<uint16_t> sibling;
+    std::vector<uint32_t> count(Z.numVerts, 1);
+    findSeamsAndSiblings(Z, F, rules, mismatch, count);
 
-    // Pass 1: seams, and the values (siblings) around each vertex.
-    for (uint32_t v = 0; v < Z.numVerts; ++v) {
-        const uint32_t* vf = Z.vertFaces.data() + Z.vertFaceOffsets[v];
-        const uint16_t* vif = Z.vertInFace.data() + Z.vertFaceOffsets[v];
-        const uint32_t* ve = Z.vertEdges.data() + Z.vertEdgeOffsets[v];
-        const uint32_t nf = Z.vertFaceOffsets[v + 1] - Z.vertFaceOffsets[v];
-        const uint32_t ne = Z.vertEdgeOffsets[v + 1] - Z.vertEdgeOffsets[v];
-        const bool boundary = ne > nf;
-        values.resize(nf);
-        for (uint32_t i = 0; i < nf; ++i) values[i] = F.faceValues[Z.faceOffsets[vf[i]] + vif[i]];
-        // Edge i lies between faces i-1 and i (OpenSubdiv's ordering).
-        for (uint32_t i = boundary ? 1 : 0; i < nf; ++i) {
-            const uint32_t prev = i ? i - 1 : nf - 1;
-            if (values[i] != values[prev]) {
-                const uint32_t e = ve[i];
-                mismatch[Z.edgeVerts[2 * e]] = 1;
-                mismatch[Z.edgeVerts[2 * e + 1]] = 1;
-                F.edgeTags[e] |= uint8_t(kFvEdgeMismatch | (linearBoundaries ? kFvEdgeLinear : 0));
-            }
-        }
-        if (boundary && !mismatch[v]) {
-            if (linearBoundaries) {
-                mismatch[v] = 1;
-                F.edgeTags[ve[0]] |= kFvEdgeLinear;
-                F.edgeTags[ve[ne - 1]] |= kFvEdgeLinear;
-            } else if (nf == 1 && makeSmoothCornersSharp) {
-                mismatch[v] = 1;
-            }
-        }
-        // Siblings in order of first appearance around the vertex, with
-        // OpenSubdiv's shortcut for the second distinct value (which does
-        // not look for it among the earlier ones).
-        unique.assign(1, values[0]);
-        sibling.assign(nf, 0);
-        for (uint32_t i = 1; i < nf; ++i) {
-            if (values[i] == values[i - 1]) {
-                sibling[i] = sibling[i - 1];
-                continue;
-            }
-            sibling[i] = uint16_t(unique.size());
-            if (unique.size() == 1 || (unique.size() == 2 && unique[0] != values[i])) {
-                unique.push_back(values[i]);
-            } else {
-                auto it = std::find(unique.begin(), unique.end(), values[i]);
-                if (it == unique.end())
-                    unique.push_back(values[i]);
-                else
-                    sibling[i] = uint16_t(it - unique.begin());
-            }
-        }
-        count[v] = uint32_t(unique.size());
-        if (count[v] > 1) {
-            for (uint32_t i = 0; i < nf; ++i)
-                F.cornerSibling[Z.faceOffsets[vf[i]] + vif[i]] = sibling[i];
-        }
-    }
     sized(F.valueOffsets, Z.numVerts + 1);
     uint32_t total = 0;
     for (uint32_t v = 0; v < Z.numVerts; ++v) {
@@ -273,106 +424,17 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
     F.creaseEnd.assign(total, 0);
 
     // Pass 2: the values of each vertex and, on seams, corner or crease.
-    struct Span {
-        int size = 0, start = 0, disjoint = 0, semiSharp = 0;
-    };
-    std::vector<Span> spans;
+    std::vector<ValueSpan> spans;
     for (uint32_t v = 0; v < Z.numVerts; ++v) {
-        const uint32_t* vf = Z.vertFaces.data() + Z.vertFaceOffsets[v];
-        const uint16_t* vif = Z.vertInFace.data() + Z.vertFaceOffsets[v];
-        const uint32_t* ve = Z.vertEdges.data() + Z.vertEdgeOffsets[v];
-        const uint32_t nf = Z.vertFaceOffsets[v + 1] - Z.vertFaceOffsets[v];
-        const uint32_t ne = Z.vertEdgeOffsets[v + 1] - Z.vertEdgeOffsets[v];
-        const uint32_t off = F.valueOffsets[v], n = count[v];
-        auto cornerSib = [&](uint32_t i) { return F.cornerSibling[Z.faceOffsets[vf[i]] + vif[i]]; };
-        F.valueIndex[off] = F.faceValues[Z.faceOffsets[vf[0]] + vif[0]];
+        const VertexRing ring(Z, v);
+        const uint32_t off = F.valueOffsets[v];
+        F.valueIndex[off] = F.faceValues[ring.corner(Z, 0)];
         if (!mismatch[v]) continue;
-        for (uint32_t i = 1, next = 1; i < nf; ++i) {
-            if (cornerSib(i) == next)
-                F.valueIndex[off + next++] = F.faceValues[Z.faceOffsets[vf[i]] + vif[i]];
+        for (uint32_t i = 1, next = 1; i < ring.nf; ++i) {
+            if (F.cornerSibling[ring.corner(Z, i)] == next)
+                F.valueIndex[off + next++] = F.faceValues[ring.corner(Z, i)];
         }
-        const uint8_t vtag = Z.vertTags[v];
-        const bool boundary = ne > nf;
-        bool allCorners = linearBoundaries || (vtag & kVertInfSharp) ||
-                          (dependentSharpness && n > 2) || (sharpenDarts && n == 1 && !boundary);
-        if (allCorners) {
-            std::fill_n(F.valueTags.begin() + off, n, kValueMismatch);
-            continue;
-        }
-        // Spans of faces sharing each value (FVarLevel::gatherValueSpans).
-        spans.assign(n, Span());
-        auto edgeSeam = [&](uint32_t e) { return (F.edgeTags[e] & kFvEdgeMismatch) != 0; };
-        if (n == 1) {
-            for (uint32_t i = 0; i < ne; ++i) {
-                if (edgeSeam(ve[i])) {
-                    if (spans[0].size) {
-                        spans[0].disjoint = 1;
-                        break;
-                    }
-                    spans[0].size = int(nf);
-                    spans[0].start = int(i);
-                } else if (Z.edgeTags[ve[i]] & kEdgeInfSharp) {
-                    spans[0].disjoint = 1;
-                    break;
-                } else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp) {
-                    ++spans[0].semiSharp;
-                }
-            }
-        } else {
-            spans[0].size = 1;
-            spans[0].start = 0;
-            if (!boundary && cornerSib(nf - 1) == 0) {
-                if (edgeSeam(ve[0]) || (Z.edgeTags[ve[0]] & kEdgeInfSharp))
-                    spans[0].disjoint = 1;
-                else if (Z.edgeTags[ve[0]] & kEdgeSemiSharp)
-                    ++spans[0].semiSharp;
-            }
-            for (uint32_t i = 1; i < nf; ++i) {
-                Span& s = spans[cornerSib(i)];
-                if (cornerSib(i) == cornerSib(i - 1)) {
-                    if (edgeSeam(ve[i]))
-                        ++s.disjoint;
-                    else if (Z.edgeTags[ve[i]] & kEdgeInfSharp)
-                        s.disjoint = 1;
-                    else if (Z.edgeTags[ve[i]] & kEdgeSemiSharp)
-                        ++s.semiSharp;
-                } else {
-                    if (s.size > 0) ++s.disjoint;
-                    s.start = int(i);
-                }
-                ++s.size;
-            }
-            if (cornerSib(nf - 1) == 0 && !boundary) --spans[0].disjoint;
-        }
-        if (dependentSharpness && n == 2) {
-            allCorners = spans[0].disjoint || spans[1].disjoint;
-            if (sharpenBothIfOneCorner) allCorners |= spans[0].size == 1 || spans[1].size == 1;
-            if (!allCorners && (spans[0].semiSharp > 0) != (spans[1].semiSharp > 0)) {
-                why = "a UV seam with semi-sharp creasing at vertex " + std::to_string(v);
-                return false;
-            }
-        }
-        if (allCorners) {
-            std::fill_n(F.valueTags.begin() + off, n, kValueMismatch);
-            continue;
-        }
-        for (uint32_t i = 0; i < n; ++i) {
-            const Span& s = spans[i];
-            if (s.disjoint || (s.size == 1 && fvarCornersSharp)) {
-                F.valueTags[off + i] = kValueMismatch;
-                continue;
-            }
-            if (s.semiSharp > 0 || (vtag & kVertSemiSharp)) {
-                // OpenSubdiv's semi-sharp face-varying values (a corner
-                // decaying into a crease) are left to Far.
-                why = "a UV seam with semi-sharp creasing at vertex " + std::to_string(v);
-                return false;
-            }
-            F.valueTags[off + i] = kValueMismatch | kValueCrease;
-            F.creaseStart[off + i] = uint16_t(s.start);
-            F.creaseEnd[off + i] = uint16_t(
-                (i == 0 && s.start != 0) ? s.start + s.size - 1 - int(nf) : s.start + s.size - 1);
-        }
+        if (!classifySeamValues(Z, F, rules, v, count[v], spans, why)) return false;
     }
     return true;
 }
@@ -396,47 +458,51 @@ void UniformRefiner::refine(int levels) {
     }
 }
 
-// Vtr::QuadRefinement's child relations for a uniform split: child faces
-// of a quad keep the parent's orientation (child j has its parent corner at
-// position j), those of other polygons start at the parent corner.
-void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool last) {
-    const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges, nC = P.numCorners;
-    const uint32_t firstFace = nV, firstEdge = nV + nF; // child vertices of faces / edges
-    C.numVerts = nV + nF + nE;
-    C.numFaces = nC;
-    C.numCorners = 4 * nC;
-    C.numEdges = 2 * nE + nC;
-    C.triangles = false;
+namespace {
+
+// Child vertex numbering of a uniform split of level P: one per vertex, then
+// one per face, then one per edge.
+struct ChildNumbering {
+    explicit ChildNumbering(const RefineLevel& P)
+        : firstFace(P.numVerts), firstEdge(P.numVerts + P.numFaces) {}
+    uint32_t firstFace; // child vertex of face f: firstFace + f
+    uint32_t firstEdge; // child vertex of edge e: firstEdge + e
+};
+
+// Face vertices: child j of a quad keeps its parent corner at position j
+// (v_j, e_j, centre, e_j-1 rotated by j); a child of another polygon starts
+// at its parent corner.
+void childFaceVertices(const RefineLevel& P, RefineLevel& C) {
+    const ChildNumbering at(P);
+    const uint32_t nF = P.numFaces;
     const uint32_t* pfo = P.faceOffsets.data();
     const uint32_t* pfv = P.faceVerts.data();
     const uint32_t* pfe = P.faceEdges.data();
-    const uint32_t* pev = P.edgeVerts.data();
-
     sized(C.faceVerts, C.numCorners);
     uint32_t* cfv = C.faceVerts.data();
-    const bool quads = nC == 4 * nF; // every level after the first
+    const bool quads = P.numCorners == 4 * nF; // every level after the first
     if (quads) {
         for (uint32_t f = 0; f < nF; ++f) {
             const uint32_t* v = pfv + 4 * f;
             const uint32_t* e = pfe + 4 * f;
-            const uint32_t fc = firstFace + f;
-            const uint32_t e0 = firstEdge + e[0], e1 = firstEdge + e[1], e2 = firstEdge + e[2],
-                           e3 = firstEdge + e[3];
+            const uint32_t fc = at.firstFace + f;
+            const uint32_t e0 = at.firstEdge + e[0], e1 = at.firstEdge + e[1],
+                           e2 = at.firstEdge + e[2], e3 = at.firstEdge + e[3];
             uint32_t* out = cfv + 16 * f;
-            // Child j keeps corner j at position j: (v_j, e_j, centre, e_j-1) rotated by j.
             out[0] = v[0], out[1] = e0, out[2] = fc, out[3] = e3;
             out[4] = e0, out[5] = v[1], out[6] = e1, out[7] = fc;
             out[8] = fc, out[9] = e1, out[10] = v[2], out[11] = e2;
             out[12] = e3, out[13] = fc, out[14] = e2, out[15] = v[3];
         }
+        return;
     }
-    for (uint32_t f = 0; !quads && f < nF; ++f) {
+    for (uint32_t f = 0; f < nF; ++f) {
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t jp = j ? j - 1 : k - 1;
             uint32_t* out = cfv + 4 * (off + j);
-            const uint32_t vv = pfv[off + j], en = firstEdge + pfe[off + j], fc = firstFace + f,
-                           ep = firstEdge + pfe[off + jp];
+            const uint32_t vv = pfv[off + j], en = at.firstEdge + pfe[off + j],
+                           fc = at.firstFace + f, ep = at.firstEdge + pfe[off + jp];
             if (k == 4) {
                 out[j] = vv;
                 out[(j + 1) & 3] = en;
@@ -450,13 +516,18 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             }
         }
     }
-    if (last) return;
+}
 
+// Face edges: the half of each parent edge at the corner, the two interior
+// edges.
+void childFaceEdges(const RefineLevel& P, RefineLevel& C) {
+    const uint32_t nF = P.numFaces, nC = P.numCorners;
+    const uint32_t* pfo = P.faceOffsets.data();
+    const uint32_t* pfv = P.faceVerts.data();
+    const uint32_t* pfe = P.faceEdges.data();
+    const uint32_t* pev = P.edgeVerts.data();
     sized(C.faceOffsets, C.numFaces + 1);
     for (uint32_t c = 0; c <= C.numFaces; ++c) C.faceOffsets[c] = 4 * c;
-
-    // Face edges: the half of each parent edge at the corner, the two
-    // interior edges.
     sized(C.faceEdges, C.numCorners);
     uint32_t* cfe = C.faceEdges.data();
     for (uint32_t f = 0; f < nF; ++f) {
@@ -480,9 +551,17 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             }
         }
     }
+}
 
-    // Edge vertices and edge faces: interior edges of faces first, then
-    // the two halves of each parent edge.
+// Edge vertices and edge faces: interior edges of faces first, then the
+// two halves of each parent edge.
+void childEdges(const RefineLevel& P, RefineLevel& C) {
+    const ChildNumbering at(P);
+    const uint32_t nF = P.numFaces, nE = P.numEdges, nC = P.numCorners;
+    const uint32_t* pfo = P.faceOffsets.data();
+    const uint32_t* pfv = P.faceVerts.data();
+    const uint32_t* pfe = P.faceEdges.data();
+    const uint32_t* pev = P.edgeVerts.data();
     sized(C.edgeVerts, 2 * size_t(C.numEdges));
     sized(C.edgeFaces, 2 * size_t(C.numEdges));
     sized(C.edgeInFace, 2 * size_t(C.numEdges));
@@ -493,8 +572,8 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t c = off + j, jn = j + 1 == k ? 0 : j + 1;
-            cev[2 * c] = firstFace + f;
-            cev[2 * c + 1] = firstEdge + pfe[c];
+            cev[2 * c] = at.firstFace + f;
+            cev[2 * c + 1] = at.firstEdge + pfe[c];
             cef[2 * c] = off + j;
             ceif[2 * c] = uint16_t(k == 4 ? jn : 1);
             cef[2 * c + 1] = off + jn;
@@ -505,7 +584,7 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         const uint32_t nfE = P.edgeFaceCount(e);
         for (uint32_t j = 0; j < 2; ++j) {
             const uint32_t c = nC + 2 * e + j;
-            cev[2 * c] = firstEdge + e;
+            cev[2 * c] = at.firstEdge + e;
             cev[2 * c + 1] = pev[2 * e + j];
             cef[2 * c + 1] = kNone;
             ceif[2 * c + 1] = 0;
@@ -520,39 +599,51 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             }
         }
     }
+}
 
-    // Vertex faces and vertex edges, counter-clockwise, vertices of
-    // vertices first, then of faces, then of edges.
+// Offsets of the vertex-face and vertex-edge relations (vertices of
+// vertices, then of faces, then of edges), and their arrays sized.
+void childVertexOffsets(const RefineLevel& P, RefineLevel& C) {
+    const ChildNumbering at(P);
+    const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges;
+    const uint32_t* pfo = P.faceOffsets.data();
     sized(C.vertFaceOffsets, C.numVerts + 1);
     sized(C.vertEdgeOffsets, C.numVerts + 1);
-    {
-        uint32_t fAt = 0, eAt = 0;
-        for (uint32_t v = 0; v < nV; ++v) {
-            C.vertFaceOffsets[v] = fAt;
-            C.vertEdgeOffsets[v] = eAt;
-            fAt += P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
-            eAt += P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
-        }
-        for (uint32_t f = 0; f < nF; ++f) {
-            C.vertFaceOffsets[firstFace + f] = fAt;
-            C.vertEdgeOffsets[firstFace + f] = eAt;
-            fAt += pfo[f + 1] - pfo[f];
-            eAt += pfo[f + 1] - pfo[f];
-        }
-        for (uint32_t e = 0; e < nE; ++e) {
-            C.vertFaceOffsets[firstEdge + e] = fAt;
-            C.vertEdgeOffsets[firstEdge + e] = eAt;
-            fAt += 2 * P.edgeFaceCount(e);
-            eAt += 2 + P.edgeFaceCount(e);
-        }
-        C.vertFaceOffsets[C.numVerts] = fAt;
-        C.vertEdgeOffsets[C.numVerts] = eAt;
-        sized(C.vertFaces, fAt);
-        sized(C.vertInFace, fAt);
-        sized(C.vertEdges, eAt);
-        sized(C.vertInEdge, eAt);
-        sized(C.vertRing, eAt);
+    uint32_t fAt = 0, eAt = 0;
+    for (uint32_t v = 0; v < nV; ++v) {
+        C.vertFaceOffsets[v] = fAt;
+        C.vertEdgeOffsets[v] = eAt;
+        fAt += P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
+        eAt += P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
     }
+    for (uint32_t f = 0; f < nF; ++f) {
+        C.vertFaceOffsets[at.firstFace + f] = fAt;
+        C.vertEdgeOffsets[at.firstFace + f] = eAt;
+        fAt += pfo[f + 1] - pfo[f];
+        eAt += pfo[f + 1] - pfo[f];
+    }
+    for (uint32_t e = 0; e < nE; ++e) {
+        C.vertFaceOffsets[at.firstEdge + e] = fAt;
+        C.vertEdgeOffsets[at.firstEdge + e] = eAt;
+        fAt += 2 * P.edgeFaceCount(e);
+        eAt += 2 + P.edgeFaceCount(e);
+    }
+    C.vertFaceOffsets[C.numVerts] = fAt;
+    C.vertEdgeOffsets[C.numVerts] = eAt;
+    sized(C.vertFaces, fAt);
+    sized(C.vertInFace, fAt);
+    sized(C.vertEdges, eAt);
+    sized(C.vertInEdge, eAt);
+    sized(C.vertRing, eAt);
+}
+
+// Faces and edges around the child vertices of parent vertices and of
+// parent faces, counter-clockwise.
+void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C) {
+    const ChildNumbering at(P);
+    const uint32_t nV = P.numVerts, nF = P.numFaces, nC = P.numCorners;
+    const uint32_t* pfo = P.faceOffsets.data();
+    const uint32_t* pfe = P.faceEdges.data();
     uint32_t* cvf = C.vertFaces.data();
     uint16_t* cvif = C.vertInFace.data();
     uint32_t* cve = C.vertEdges.data();
@@ -570,27 +661,41 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
         for (uint32_t i = P.vertEdgeOffsets[v]; i < P.vertEdgeOffsets[v + 1]; ++i, ++eo) {
             cve[eo] = nC + 2 * P.vertEdges[i] + P.vertInEdge[i];
             cvie[eo] = 1;
-            cvr[eo] = firstEdge + P.vertEdges[i];
+            cvr[eo] = at.firstEdge + P.vertEdges[i];
         }
     }
     for (uint32_t f = 0; f < nF; ++f) {
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
-        const uint32_t fo = C.vertFaceOffsets[firstFace + f], eo = C.vertEdgeOffsets[firstFace + f];
+        const uint32_t fo = C.vertFaceOffsets[at.firstFace + f];
+        const uint32_t eo = C.vertEdgeOffsets[at.firstFace + f];
         for (uint32_t j = 0; j < k; ++j) {
             cvf[fo + j] = off + j;
             cvif[fo + j] = uint16_t(k == 4 ? ((j + 2) & 3) : 2);
             cve[eo + j] = off + (j ? j - 1 : k - 1);
             cvie[eo + j] = 0;
-            cvr[eo + j] = firstEdge + pfe[off + (j ? j - 1 : k - 1)];
+            cvr[eo + j] = at.firstEdge + pfe[off + (j ? j - 1 : k - 1)];
         }
     }
+}
+
+// Faces and edges around the child vertices of parent edges,
+// counter-clockwise: (half, face edge, half, ...), the first half being the
+// one the first face's edge direction leaves.
+void edgeVertexRelations(const RefineLevel& P, RefineLevel& C) {
+    const ChildNumbering at(P);
+    const uint32_t nE = P.numEdges, nC = P.numCorners;
+    const uint32_t* pfo = P.faceOffsets.data();
+    const uint32_t* pfv = P.faceVerts.data();
+    const uint32_t* pev = P.edgeVerts.data();
+    uint32_t* cvf = C.vertFaces.data();
+    uint16_t* cvif = C.vertInFace.data();
     for (uint32_t e = 0; e < nE; ++e) {
         const uint32_t nfE = P.edgeFaceCount(e);
-        uint32_t fo = C.vertFaceOffsets[firstEdge + e];
-        const uint32_t eo = C.vertEdgeOffsets[firstEdge + e];
-        uint32_t* edges = cve + eo;
-        uint16_t* inEdge = cvie + eo;
-        uint32_t* ring = cvr + eo;
+        uint32_t fo = C.vertFaceOffsets[at.firstEdge + e];
+        const uint32_t eo = C.vertEdgeOffsets[at.firstEdge + e];
+        uint32_t* edges = C.vertEdges.data() + eo;
+        uint16_t* inEdge = C.vertInEdge.data() + eo;
+        uint32_t* ring = C.vertRing.data() + eo;
         edges[0] = nC + 2 * e;
         edges[1] = nC + 2 * e + 1;
         inEdge[0] = inEdge[1] = 0;
@@ -606,10 +711,8 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             cvif[fo++] = uint16_t(k == 4 ? child1 : 1);
             edges[2 + i] = off + eif;
             inEdge[2 + i] = 1;
-            ring[2 + i] = firstFace + pf;
+            ring[2 + i] = at.firstFace + pf;
             if (i == 0) {
-                // Order (half, face edge, half, ...) counter-clockwise: the
-                // first half is the one this face's edge direction leaves.
                 if (pfv[off + eif] == pev[2 * e]) {
                     std::swap(edges[0], edges[1]);
                     std::swap(ring[0], ring[1]);
@@ -620,6 +723,27 @@ void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool l
             }
         }
     }
+}
+
+} // namespace
+
+// Vtr::QuadRefinement's child relations for a uniform split: child faces
+// of a quad keep the parent's orientation (child j has its parent corner at
+// position j), those of other polygons start at the parent corner. The
+// last level gets its face vertices only.
+void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool last) {
+    C.numVerts = P.numVerts + P.numFaces + P.numEdges;
+    C.numFaces = P.numCorners;
+    C.numCorners = 4 * P.numCorners;
+    C.numEdges = 2 * P.numEdges + P.numCorners;
+    C.triangles = false;
+    childFaceVertices(P, C);
+    if (last) return;
+    childFaceEdges(P, C);
+    childEdges(P, C);
+    childVertexOffsets(P, C);
+    childVertexAndFaceVertexRelations(P, C);
+    edgeVertexRelations(P, C);
 }
 
 // Vtr::Refinement::subdivideSharpnessValues + reclassifySemisharpVertices.

@@ -150,8 +150,10 @@ std::string degenerateReason(const PolygonMesh& mesh, uint32_t begin, uint32_t c
     return {};
 }
 
-void checkStructure(const PolygonMesh& mesh, const std::string& file, const InputLimits& limits,
-                    const std::vector<uint32_t>* faceLines) {
+// Counts within the limits, face sizes adding up to the corners, finite
+// positions, vertex indices in range.
+void checkFaces(const PolygonMesh& mesh, const std::string& file, const InputLimits& limits,
+                const std::vector<uint32_t>* faceLines) {
     const size_t nV = mesh.positions.size(), nF = mesh.faceSizes.size(),
                  nC = mesh.faceVertices.size();
     if (nV > limits.maxVertices) {
@@ -200,6 +202,12 @@ void checkStructure(const PolygonMesh& mesh, const std::string& file, const Inpu
             }
         }
     }
+}
+
+// UV sets and normals: counts, finite values, indices in range.
+void checkFaceVaryingData(const PolygonMesh& mesh, const std::string& file,
+                          const InputLimits& limits) {
+    const size_t nC = mesh.faceVertices.size();
     if (mesh.uvSets.size() > limits.maxUvSets) {
         throw InputError(file, "uv sets",
                          std::to_string(mesh.uvSets.size()) + " UV sets; the limit is " +
@@ -243,6 +251,11 @@ void checkStructure(const PolygonMesh& mesh, const std::string& file, const Inpu
                                  " normals)");
         }
     }
+}
+
+// Crease, corner and hole tags: indices in range, sharpness finite and >= 0.
+void checkTags(const PolygonMesh& mesh, const std::string& file) {
+    const size_t nV = mesh.positions.size(), nF = mesh.faceSizes.size();
     for (size_t i = 0; i < mesh.creases.size(); ++i) {
         const EdgeCrease& e = mesh.creases[i];
         std::string el = "crease " + std::to_string(i) + " (" + std::to_string(e.v0) + ", " +
@@ -275,6 +288,13 @@ void checkStructure(const PolygonMesh& mesh, const std::string& file, const Inpu
             throw InputError(file, "hole tag (face " + std::to_string(h) + ")",
                              "face index out of range (" + std::to_string(nF) + " faces)");
     }
+}
+
+// Morph targets and weights: counts, one finite delta per vertex, finite
+// weights.
+void checkMorphTargets(const PolygonMesh& mesh, const std::string& file,
+                       const InputLimits& limits) {
+    const size_t nV = mesh.positions.size();
     if (mesh.morphTargets.size() > limits.maxMorphTargets) {
         throw InputError(file, "morph targets",
                          std::to_string(mesh.morphTargets.size()) + " targets; the limit is " +
@@ -301,6 +321,14 @@ void checkStructure(const PolygonMesh& mesh, const std::string& file, const Inpu
     for (float w : mesh.morphWeights) {
         if (!std::isfinite(w)) throw InputError(file, "morph weights", "non-finite weight");
     }
+}
+
+void checkStructure(const PolygonMesh& mesh, const std::string& file, const InputLimits& limits,
+                    const std::vector<uint32_t>* faceLines) {
+    checkFaces(mesh, file, limits, faceLines);
+    checkFaceVaryingData(mesh, file, limits);
+    checkTags(mesh, file);
+    checkMorphTargets(mesh, file, limits);
 }
 
 // Welds vertices with exactly equal positions and morph deltas; returns the
