@@ -82,13 +82,15 @@ std::vector<float> parseLine(const Entry& e, std::string_view line) {
             }
         }
     }
-    // Enumerations and counts are validated here, so kernels see valid ones.
+    // Integers (enumerations, counts) are checked against their range here,
+    // so kernels see valid ones.
     for (const auto& f : e.inputs) {
+        if (f.kind != FieldKind::Int) continue;
         const float v = rec[size_t(f.slot)];
-        if (f.key == "bface_mode" && (v < 0 || v > 2)) {
-            throw LineError("key 'bface_mode': must be 0 (none), 1 (mirror) or 2 (flip)");
+        if (v < float(f.minValue) || v > float(f.maxValue)) {
+            throw LineError("key '" + f.key + "': must be " + std::to_string(f.minValue) + ".." +
+                            std::to_string(f.maxValue) + " (" + f.doc + ")");
         }
-        if (f.key == "count" && (v < 0 || v > 4)) throw LineError("key 'count': must be 0..4");
     }
     return rec;
 }

@@ -27,8 +27,9 @@ inline constexpr double kMaxInputMagnitude = 1e18;
 // Parses one JSON line into an input record of inStride() floats for entry
 // e. Rejects (LineError): invalid JSON, a non-object, unknown keys, missing
 // required keys, wrong types or array lengths, non-finite numbers or
-// numbers beyond kMaxInputMagnitude, out-of-range enumerations (bface_mode
-// 0..2, count 0..4) and lines over 1 MiB. Never throws anything else for
+// numbers beyond kMaxInputMagnitude, integers outside their field's range
+// (Field::minValue..maxValue: bface_mode 0..2, count 0..4) and lines over
+// 1 MiB. Never throws anything else for
 // any byte string.
 std::vector<float> parseLine(const Entry& e, std::string_view line);
 

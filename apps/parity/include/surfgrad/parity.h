@@ -1,15 +1,18 @@
-// CPU/GPU parity of the shared shader functions: random and adversarial
-// input records for every evaluation entry (sg::eval), evaluated by the C++
-// build (binary32, GLM) and by the GLSL build (compute shader on the
-// headless context), and compared. Used by `surfgrad selftest` and
-// tests/bump/parity_test.cpp.
+// CPU/GPU parity of the shared shader functions: the random and adversarial
+// input records of every evaluation entry (sg::eval::generateInputs),
+// evaluated by the C++ build (binary32, GLM) and by the GLSL build (compute
+// shader on the headless context), and compared with the entry's tolerance
+// (eval::Entry::tolerance, maxIllFraction and the reason for both, declared
+// with the function in shaders/sg/eval/kernels.glsl). Used by `surfgrad
+// selftest` and tests/bump/parity_test.cpp.
 //
 // Error measure. Per output field (a vector or a scalar) of one record,
 //   mixed = |gpu - cpu|_inf / max(1, |cpu|_inf),
 // i.e. absolute below magnitude 1 and relative above it (surface gradients
 // range over 36 decades on the adversarial set; unit normals are O(1)).
-// Exception: screen-deriv-of-pos (listing 17), whose outputs are position
-// units per pixel with no natural unit scale, uses |gpu - cpu|_inf / |cpu|_inf.
+// Entries whose outputs have no natural unit scale (ErrorMeasure::Relative:
+// screen-deriv-of-pos, listing 17, position units per pixel) use
+// |gpu - cpu|_inf / |cpu|_inf.
 //
 // Conditioning. Two correct binary32 builds of one formula may disagree by
 // far more than an ulp where the formula itself is ill-conditioned: a sign
@@ -58,17 +61,6 @@ inline constexpr int kPerturbationsLong = 64;
 inline constexpr double kBackwardRadius = 1.0 / (1 << 18);
 inline constexpr int kBackwardSearch = 64;
 
-// Input records for entry e: `count` records of eval::inStride() floats.
-// About 40% are adversarial: zero vectors, normals at the horizon
-// (component along n -> 0), parallel screen derivatives, zero-determinant
-// UV Jacobians, back faces and every double-sided mode, magnitudes from
-// denormals (1e-44) to 1e18 (the documented input domain, SG_BIG in
-// shaders/sg/compat.glsl), normal-map values on and outside the unit circle,
-// edge-on and far-away cameras for listing 17 (whose matrix is always a real
-// inverse of viewport * projection * view). The rest are random with
-// magnitudes spread over 1e-3..1e3. Deterministic in seed.
-std::vector<float> generateInputs(const eval::Entry& e, size_t count, uint64_t seed);
-
 struct Row {
     std::string entry;
     size_t records = 0;
@@ -103,7 +95,8 @@ private:
 };
 
 // Evaluates all records on the CPU, on the GPU and in binary64, classifies
-// conditioning with the tolerance `mixedTol`, checks invariants and compares.
+// conditioning with the tolerance `mixedTol` (the entry's tolerance),
+// checks invariants and compares.
 Row compare(GpuEvaluator& gpu, const eval::Entry& e, const std::vector<float>& inputs,
             double mixedTol);
 
