@@ -701,7 +701,6 @@ SG_FN SgEvalOut sgEvalBoundedScale(SgEvalIn sgRecIn) {
     SG_EVAL_DECAL_VOLUME(X)                                                                       \
     SG_EVAL_HEIGHT_3TAP(X)                                                                        \
     SG_EVAL_BOUNDED_SCALE(X)
-#define SG_EVAL_COUNT 28
 
 #define SG_EVAL_DISPATCH(name, id, kernel, IN, OUT, summary, measure, tolerance, illShare, reason, \
                          inputs)                                                                  \
