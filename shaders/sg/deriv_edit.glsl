@@ -41,6 +41,29 @@ SG_FN vec2 sgDerivModulate(vec2 d1, float h1, vec2 d2, float h2) { return d1 * h
 // "Curves (2)-(3)": the derivative of f(h) is f'(h) * d (chain rule).
 SG_FN vec2 sgDerivCurve(vec2 d, float fPrimeAtH) { return fPrimeAtH * d; }
 
+// "Curves (4)": a curve given by points (the paper's dependent texture
+// lookup, evaluated exactly). One cubic Hermite segment through
+// (knots.x, knots.y) and (knots.z, knots.w) with end slopes df/dx =
+// slopes.x, slopes.y; returns (f(x), f'(x)). x is clamped to the segment, so
+// beyond an end the end value and end slope are returned; the caller picks
+// the segment (and the slopes, e.g. Fritsch-Carlson monotone ones). A
+// segment shorter than SG_FLT_EPSILON has no finite slope: (knots.y, 0).
+SG_FN vec2 sgCurveHermite(float x, vec4 knots, vec2 slopes) {
+    float len = knots.z - knots.x;
+    if (!(len >= SG_FLT_EPSILON)) return vec2(knots.y, 0.0f);
+    float t = clamp((x - knots.x) / len, 0.0f, 1.0f);
+    // The Hermite cubic written around the chord y0 + t (y1 - y0) with the
+    // end slopes relative to the secant slope s: the same polynomial as the
+    // usual basis-function sum, without its cancellation of large terms.
+    float secant = (knots.w - knots.y) / len;
+    float a = slopes.x - secant;
+    float b = slopes.y - secant;
+    float u = 1.0f - t;
+    float f = knots.y + t * (knots.w - knots.y) + len * t * u * (u * a - t * b);
+    float fPrime = secant + u * (1.0f - 3.0f * t) * a + t * (3.0f * t - 2.0f) * b;
+    return vec2(f, fPrime);
+}
+
 // "Curves (5)": f'(h) = 1 / (1 + P (h - H)^2): boosts slopes of elevations
 // near H; P >= 0 controls the width of the affected range.
 // Written as 1 / (1 + q^2), q = sqrt(P) |h - H| clamped to SG_BIG, so the
@@ -59,6 +82,23 @@ SG_FN float sgCurveBoostValue(float h, float boostP, float centreH) {
     if (p < SG_FLT_EPSILON) return x;
     float r = sqrt(p);
     return atan(r * x) / r;
+}
+
+// "Adding and Blending" with a spatially varying mask m (the blend of two
+// height fields h = (1 - m) hA + m hB): by the product rule ("Modulation")
+// d = (1 - m) dA + m dB + (hB - hA) dm, where dm is the mask's derivative.
+// Without the last term (constant m) this is sgDerivAdd.
+SG_FN vec2 sgDerivMaskBlend(vec2 dA, float hA, vec2 dB, float hB, float m, vec2 dm) {
+    return sgDerivModulate(dA, hA, -dm, 1.0f - m) + sgDerivModulate(dB, hB, dm, m);
+}
+
+// "Birth: Shorthand: Partial Derivative": the derivative (dh/du, dh/dv) of a
+// height sampled one texel left, right, below and above the texel, by
+// central differences ((h(u + 1) - h(u - 1)) / 2, u in texels): the slope
+// the normal map normalize(-dh/du, -dh/dv, 1) stores. Compare listing 9
+// (sgHeightDeriv3Tap), the forward difference, which is half a texel off.
+SG_FN vec2 sgHeightDerivCentral(float hLeft, float hRight, float hDown, float hUp) {
+    return vec2(0.5f * (hRight - hLeft), 0.5f * (hUp - hDown));
 }
 
 // "Deformation (2)-(3)": h(s(u, v), t(u, v)) has the derivative

@@ -13,7 +13,11 @@
 //    against finite differences of a real projection;
 //  - Loviscach 2008 "Feeding": scale (alpha = -1 inverts, alpha = 2 never
 //    turns inward), modulate (product rule), curves (chain rule), deform
-//    (warp Jacobian), each against finite differences.
+//    (warp Jacobian), masked blend (product rule), each against finite
+//    differences; central differences of a height, a curve through points
+//    (cubic Hermite) against its closed form;
+//  - "Care: Antialiasing": LEAN moments and covariance of a known set of
+//    slopes, Toksvig's variance of a known average normal.
 // Tolerances: the shared code runs in binary32; each comparison states the
 // precision it expects and why.
 #include <gtest/gtest.h>
@@ -494,6 +498,98 @@ TEST(KnownAnswers, LoviscachModulateCurveDeformMatchFiniteDifferences) {
                                                                float(Jw[1][0]), float(Jw[1][1])));
         ASSERT_LT(glm::length(dvec2(def2.x, def2.y) - grad(warped2, u, v)), 1e-5) << i;
     }
+}
+
+TEST(KnownAnswers, LoviscachMaskedBlendMatchesFiniteDifferences) {
+    auto hA = [](double u, double v) { return 0.4 * std::sin(1.3 * u) * std::cos(0.7 * v); };
+    auto hB = [](double u, double v) { return 0.25 * std::cos(2.1 * u + v) + 0.3; };
+    auto m = [](double u, double v) { return 0.5 + 0.45 * std::sin(0.9 * u - 1.7 * v); };
+    auto grad = [](auto&& h, double u, double v) {
+        const double e = 1e-5;
+        return dvec2((h(u + e, v) - h(u - e, v)) / (2 * e), (h(u, v + e) - h(u, v - e)) / (2 * e));
+    };
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> U(-3, 3);
+    for (int i = 0; i < 2000; ++i) {
+        const double u = U(rng), v = U(rng);
+        auto blended = [&](double a, double b) {
+            return (1 - m(a, b)) * hA(a, b) + m(a, b) * hB(a, b);
+        };
+        const g::vec2 d =
+            g::sgDerivMaskBlend(f2(grad(hA, u, v)), float(hA(u, v)), f2(grad(hB, u, v)),
+                                float(hB(u, v)), float(m(u, v)), f2(grad(m, u, v)));
+        // Same budget as the modulate test: finite differences ~1e-10,
+        // binary32 products of O(1) values ~1e-7.
+        ASSERT_LT(glm::length(dvec2(d.x, d.y) - grad(blended, u, v)), 2e-6) << i;
+    }
+}
+
+TEST(KnownAnswers, CentralDifferenceAndHermiteCurve) {
+    // Central differences of a quadratic are exact: h = a u^2 + b v^2 + c u v.
+    auto h = [](double u, double v) { return 0.25 * u * u - 0.5 * v * v + 0.125 * u * v; };
+    for (double u : {-3.0, 0.0, 2.0, 7.0})
+        for (double v : {-1.0, 0.0, 4.0}) {
+            const g::vec2 d = g::sgHeightDerivCentral(float(h(u - 1, v)), float(h(u + 1, v)),
+                                                      float(h(u, v - 1)), float(h(u, v + 1)));
+            // Values are small integers / 8: binary32 exact.
+            EXPECT_EQ(double(d.x), 0.5 * u + 0.125 * v);
+            EXPECT_EQ(double(d.y), -1.0 * v + 0.125 * u);
+        }
+    // The Hermite segment reproduces every cubic: f(x) = x^3 - 2x^2 + 0.5x + 1
+    // on [x0, x1] from its end values and end slopes.
+    auto f = [](double x) { return x * x * x - 2 * x * x + 0.5 * x + 1; };
+    auto fp = [](double x) { return 3 * x * x - 4 * x + 0.5; };
+    const double x0 = 0.25, x1 = 1.75;
+    const g::vec4 knots(float(x0), float(f(x0)), float(x1), float(f(x1)));
+    const g::vec2 slopes(float(fp(x0)), float(fp(x1)));
+    for (int i = 0; i <= 100; ++i) {
+        const double x = x0 + (x1 - x0) * i / 100.0;
+        const g::vec2 r = g::sgCurveHermite(float(x), knots, slopes);
+        // O(1) values through ~20 binary32 operations: 1e-6.
+        EXPECT_NEAR(r.x, f(x), 1e-6) << x;
+        EXPECT_NEAR(r.y, fp(x), 1e-6) << x;
+    }
+    // Clamped beyond the ends; a zero-length segment has slope 0.
+    EXPECT_NEAR(g::sgCurveHermite(5.0f, knots, slopes).y, fp(x1), 1e-6);
+    EXPECT_EQ(g::sgCurveHermite(0.5f, g::vec4(0.5f, 0.2f, 0.5f, 0.9f), slopes),
+              g::vec2(0.2f, 0.0f));
+}
+
+TEST(KnownAnswers, LeanCovarianceAndToksvigVariance) {
+    // Slopes d_k = (c + a cos(phi_k), e + b sin(phi_k)) at 64 equally spaced
+    // phases: mean (c, e), var x = a^2 / 2, var y = b^2 / 2, cov 0 exactly.
+    const double a = 0.6, b = 0.3, c = 0.2, e = -0.1;
+    dvec2 mean(0);
+    glm::dvec3 second(0);
+    const int n = 64;
+    for (int k = 0; k < n; ++k) {
+        const double phi = 2 * 3.14159265358979 * k / n;
+        const g::vec2 d(float(c + a * std::cos(phi)), float(e + b * std::sin(phi)));
+        const g::vec3 m2 = g::sgLeanSecondMoments(d);
+        mean += dvec2(d.x, d.y) / double(n);
+        second += glm::dvec3(m2.x, m2.y, m2.z) / double(n);
+    }
+    const g::vec3 cov =
+        g::sgLeanCovariance(f2(mean), g::vec3(float(second.x), float(second.y), float(second.z)));
+    // M - B B^T of O(0.1) binary32 values: 1e-6.
+    EXPECT_NEAR(cov.x, a * a / 2, 1e-6);
+    EXPECT_NEAR(cov.y, b * b / 2, 1e-6);
+    EXPECT_NEAR(cov.z, 0.0, 1e-6);
+    // Rounding that makes M - B B^T indefinite is clamped to a valid covariance.
+    const g::vec3 clamped = g::sgLeanCovariance(g::vec2(1.0f, 1.0f), g::vec3(0.999f, 2.0f, 5.0f));
+    EXPECT_EQ(clamped.x, 0.0f);
+    EXPECT_EQ(clamped.z, 0.0f);
+    // Toksvig: |N| = 1 / (1 + s2) gives s2 back; the factor is 1 / (1 + p s2).
+    for (double s2 : {0.0, 0.01, 0.3, 4.0}) {
+        const double len = 1 / (1 + s2);
+        const g::vec3 avg(float(0.6 * len), 0.0f, float(0.8 * len));
+        // (1 - |N|) / |N| with |N| good to 1e-7 relative: 1e-6 relative.
+        EXPECT_NEAR(g::sgToksvigVariance(avg), s2, 1e-6 * (1 + s2)) << s2;
+        EXPECT_NEAR(g::sgToksvigFactor(float(s2), 64.0f), 1 / (1 + 64 * s2), 1e-6) << s2;
+    }
+    // An average that cancels stays finite (fully rough), a unit one is 0.
+    EXPECT_TRUE(std::isfinite(g::sgToksvigVariance(g::vec3(0.0f))));
+    EXPECT_EQ(g::sgToksvigVariance(g::vec3(0.0f, 0.0f, 1.0f)), 0.0f);
 }
 
 } // namespace

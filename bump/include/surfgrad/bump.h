@@ -13,7 +13,11 @@
 //                               normal (L7), scale-dependent (L8, L9),
 //                               parallax (L10, L11), volume (L12),
 //                               triplanar (L13, L14), decals (L15);
-//   shaders/sg/deriv_edit.glsl  scale, add/blend, modulate, curves, deform.
+//   shaders/sg/deriv_edit.glsl  scale, add/blend, masked blend, modulate,
+//                               curves (boost, Hermite points), deform,
+//                               central-difference height derivative;
+//   shaders/sg/lean.glsl        LEAN moments and covariance, Toksvig variance
+//                               and factor (antialiasing).
 // Read the contracts (spaces, units, degenerate cases) there. This header
 // makes them callable from C++ as sg::glsl::sgResolve(...), etc., with GLM
 // types (sg::glsl::vec3 == glm::vec3).
@@ -25,6 +29,7 @@ namespace sg::glsl {
 #include "sg/frame.glsl"
 #include "sg/surfgrad.glsl"
 #include "sg/deriv_edit.glsl"
+#include "sg/lean.glsl"
 } // namespace sg::glsl
 
 namespace sg {

@@ -79,6 +79,7 @@
 #include "sg/record.glsl"
 #include "sg/surfgrad.glsl"
 #include "sg/deriv_edit.glsl"
+#include "sg/lean.glsl"
 
 #define SG_EVAL_IN 28
 #define SG_EVAL_OUT 12
@@ -671,6 +672,132 @@ SG_FN SgEvalOut sgEvalBoundedScale(SgEvalIn sgRecIn) {
       Mixed, 1e-5, 0.02, SG_EVAL_WHY_LINEAR, fieldInputs)
 
 // ---------------------------------------------------------------------------
+// height-central (Loviscach, "Birth"; the normal-map toolkit's from-height)
+#define SG_EVAL_HEIGHT_CENTRAL_IN(F)                                                               \
+    F(float, hl, ("h one texel left", sgGenSymmetric))                                            \
+    F(float, hr, ("h one texel right", sgGenSymmetric))                                           \
+    F(float, hd, ("h one texel below", sgGenSymmetric))                                           \
+    F(float, hu, ("h one texel above", sgGenSymmetric))
+#define SG_EVAL_HEIGHT_CENTRAL_OUT(F) F(vec2, d, ("(dh/du, dh/dv) per texel"))
+SG_FN SgEvalOut sgEvalHeightCentral(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_HEIGHT_CENTRAL_IN)
+    SG_REC_DECLARE(SG_EVAL_HEIGHT_CENTRAL_OUT)
+    d = sgHeightDerivCentral(hl, hr, hd, hu);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_HEIGHT_CENTRAL_OUT)
+}
+#define SG_EVAL_HEIGHT_CENTRAL(X)                                                                  \
+    X(("height-central"), 28, sgEvalHeightCentral, SG_EVAL_HEIGHT_CENTRAL_IN,                      \
+      SG_EVAL_HEIGHT_CENTRAL_OUT, ("central-difference height derivative (Loviscach, Birth)"),     \
+      Mixed, 1e-5, 0.02, SG_EVAL_WHY_LINEAR, fieldInputs)
+
+// ---------------------------------------------------------------------------
+// curve-hermite (Loviscach, Curves (4))
+#define SG_EVAL_CURVE_HERMITE_IN(F)                                                                \
+    F(float, x, ("curve input", sgGenSymmetric)) F(vec4, knots, ("(x0, y0, x1, y1)"))             \
+    F(vec2, slopes, ("end slopes (m0, m1)"))
+#define SG_EVAL_CURVE_HERMITE_OUT(F) F(vec2, f, ("(f(x), df/dx at x)"))
+SG_FN SgEvalOut sgEvalCurveHermite(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_CURVE_HERMITE_IN)
+    SG_REC_DECLARE(SG_EVAL_CURVE_HERMITE_OUT)
+    f = sgCurveHermite(x, knots, slopes);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_CURVE_HERMITE_OUT)
+}
+#define SG_EVAL_CURVE_HERMITE(X)                                                                   \
+    X(("curve-hermite"), 29, sgEvalCurveHermite, SG_EVAL_CURVE_HERMITE_IN,                         \
+      SG_EVAL_CURVE_HERMITE_OUT,                                                                  \
+      ("cubic Hermite curve segment, value and slope (Loviscach, Curves (4))"), Mixed, 1e-5,      \
+      0.05,                                                                                       \
+      ("polynomial written around the chord (no cancellation of large basis terms): measured " \
+       "0; 1.6% ill-conditioned (steep secants of short segments)"),                             \
+      fieldInputs)
+
+// ---------------------------------------------------------------------------
+// deriv-mask-blend (Loviscach, blending with a mask by the product rule)
+#define SG_EVAL_DERIV_MASK_BLEND_IN(F)                                                             \
+    F(vec2, da, ("derivative of hA")) F(float, ha, ("height hA", sgGenSymmetric))                 \
+    F(vec2, db, ("derivative of hB")) F(float, hb, ("height hB", sgGenSymmetric))                 \
+    F(float, m, ("mask", sgGenSymmetric)) F(vec2, dm, ("derivative of the mask"))
+SG_FN SgEvalOut sgEvalDerivMaskBlend(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_DERIV_MASK_BLEND_IN)
+    SG_REC_DECLARE(SG_EVAL_DERIV_OUT)
+    d = sgDerivMaskBlend(da, ha, db, hb, m, dm);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_DERIV_OUT)
+}
+#define SG_EVAL_DERIV_MASK_BLEND(X)                                                                \
+    X(("deriv-mask-blend"), 30, sgEvalDerivMaskBlend, SG_EVAL_DERIV_MASK_BLEND_IN,                 \
+      SG_EVAL_DERIV_OUT, ("derivative of (1 - m) hA + m hB (Loviscach, blend and modulation)"),    \
+      Mixed, 1e-5, 0.05,                                                                          \
+      ("two products summed: measured 4.9e-7; cancellation in the sum excludes 2.5%"),           \
+      fieldInputs)
+
+// ---------------------------------------------------------------------------
+// lean-second (LEAN, lean.glsl)
+#define SG_EVAL_LEAN_SECOND_IN(F) F(vec2, d, ("slope"))
+#define SG_EVAL_LEAN_SECOND_OUT(F) F(vec3, m, ("(x^2, y^2, xy)"))
+SG_FN SgEvalOut sgEvalLeanSecond(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_LEAN_SECOND_IN)
+    SG_REC_DECLARE(SG_EVAL_LEAN_SECOND_OUT)
+    m = sgLeanSecondMoments(d);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_LEAN_SECOND_OUT)
+}
+#define SG_EVAL_LEAN_SECOND(X)                                                                     \
+    X(("lean-second"), 31, sgEvalLeanSecond, SG_EVAL_LEAN_SECOND_IN, SG_EVAL_LEAN_SECOND_OUT,      \
+      ("second slope moments (x^2, y^2, xy) (LEAN)"), Mixed, 1e-5, 0.02,                          \
+      ("three products, the same in both builds: measured 0"), fieldInputs)
+
+// ---------------------------------------------------------------------------
+// lean-covariance (LEAN, lean.glsl)
+#define SG_EVAL_LEAN_COVARIANCE_IN(F)                                                              \
+    F(vec2, b, ("filtered mean slope")) F(vec3, m, ("filtered second moments"))
+#define SG_EVAL_LEAN_COVARIANCE_OUT(F) F(vec3, cov, ("(var x, var y, cov xy)"))
+SG_FN SgEvalOut sgEvalLeanCovariance(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_LEAN_COVARIANCE_IN)
+    SG_REC_DECLARE(SG_EVAL_LEAN_COVARIANCE_OUT)
+    cov = sgLeanCovariance(b, m);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_LEAN_COVARIANCE_OUT)
+}
+#define SG_EVAL_LEAN_COVARIANCE(X)                                                                 \
+    X(("lean-covariance"), 32, sgEvalLeanCovariance, SG_EVAL_LEAN_COVARIANCE_IN,                   \
+      SG_EVAL_LEAN_COVARIANCE_OUT,                                                                \
+      ("slope covariance M - B B^T, clamped positive semi-definite (LEAN)"), Mixed, 1e-5, 0.02,   \
+      ("products and differences, clamps decided on the same values: measured 0"), fieldInputs)
+
+// ---------------------------------------------------------------------------
+// toksvig-variance (Toksvig 2005, lean.glsl)
+#define SG_EVAL_TOKSVIG_VARIANCE_IN(F) F(vec3, n, ("average of unit normals"))
+#define SG_EVAL_TOKSVIG_VARIANCE_OUT(F) F(float, s2, ("variance"))
+SG_FN SgEvalOut sgEvalToksvigVariance(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_TOKSVIG_VARIANCE_IN)
+    SG_REC_DECLARE(SG_EVAL_TOKSVIG_VARIANCE_OUT)
+    s2 = sgToksvigVariance(n);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_TOKSVIG_VARIANCE_OUT)
+}
+#define SG_EVAL_TOKSVIG_VARIANCE(X)                                                                \
+    X(("toksvig-variance"), 33, sgEvalToksvigVariance, SG_EVAL_TOKSVIG_VARIANCE_IN,                \
+      SG_EVAL_TOKSVIG_VARIANCE_OUT, ("(1 - |N|) / |N| of an average of unit normals (Toksvig)"),  \
+      Mixed, 1e-5, 0.02,                                                                          \
+      ("a length (llvmpipe 1/sqrt within 1 ulp) and one division by it, clamped at 2^-20: "      \
+       "measured 2.4e-7"),                                                                        \
+      fieldInputs)
+
+// ---------------------------------------------------------------------------
+// toksvig-factor (Toksvig 2005, lean.glsl)
+#define SG_EVAL_TOKSVIG_FACTOR_IN(F)                                                               \
+    F(float, s2, ("variance", sgGenPositive)) F(float, p, ("specular exponent", sgGenPositive))
+#define SG_EVAL_TOKSVIG_FACTOR_OUT(F) F(float, k, ("factor in (0, 1]"))
+SG_FN SgEvalOut sgEvalToksvigFactor(SgEvalIn sgRecIn) {
+    SG_REC_READ(SG_EVAL_TOKSVIG_FACTOR_IN)
+    SG_REC_DECLARE(SG_EVAL_TOKSVIG_FACTOR_OUT)
+    k = sgToksvigFactor(s2, p);
+    SG_REC_RETURN(SgEvalOut, SG_EVAL_TOKSVIG_FACTOR_OUT)
+}
+#define SG_EVAL_TOKSVIG_FACTOR(X)                                                                  \
+    X(("toksvig-factor"), 34, sgEvalToksvigFactor, SG_EVAL_TOKSVIG_FACTOR_IN,                      \
+      SG_EVAL_TOKSVIG_FACTOR_OUT, ("1 / (1 + p s2): Blinn-Phong exponent scale (Toksvig)"), Mixed, \
+      1e-5, 0.02, ("one product and one division, the same in both builds: measured 0"),          \
+      fieldInputs)
+
+// ---------------------------------------------------------------------------
 // The list, in id order.
 #define SG_EVAL_KERNELS(X)                                                                         \
     SG_EVAL_RESOLVE(X)                                                                            \
@@ -700,7 +827,14 @@ SG_FN SgEvalOut sgEvalBoundedScale(SgEvalIn sgRecIn) {
     SG_EVAL_DERIV_SINE_WARP(X)                                                                    \
     SG_EVAL_DECAL_VOLUME(X)                                                                       \
     SG_EVAL_HEIGHT_3TAP(X)                                                                        \
-    SG_EVAL_BOUNDED_SCALE(X)
+    SG_EVAL_BOUNDED_SCALE(X)                                                                      \
+    SG_EVAL_HEIGHT_CENTRAL(X)                                                                     \
+    SG_EVAL_CURVE_HERMITE(X)                                                                      \
+    SG_EVAL_DERIV_MASK_BLEND(X)                                                                   \
+    SG_EVAL_LEAN_SECOND(X)                                                                        \
+    SG_EVAL_LEAN_COVARIANCE(X)                                                                    \
+    SG_EVAL_TOKSVIG_VARIANCE(X)                                                                   \
+    SG_EVAL_TOKSVIG_FACTOR(X)
 
 #define SG_EVAL_DISPATCH(name, id, kernel, IN, OUT, summary, measure, tolerance, illShare, reason, \
                          inputs)                                                                  \
