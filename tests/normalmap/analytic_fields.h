@@ -38,8 +38,8 @@ inline Field sines(int W, int H, double amplitude) {
     f.grad = [=](double u, double v) {
         glm::dvec2 g(0.0);
         for (const auto& w : waves) {
-            const double c =
-                amplitude * w.a * 2 * kPi * std::cos(2 * kPi * (w.p * u / W + w.q * v / H) + w.phase);
+            const double c = amplitude * w.a * 2 * kPi *
+                             std::cos(2 * kPi * (w.p * u / W + w.q * v / H) + w.phase);
             g += c * glm::dvec2(w.p / W, w.q / H);
         }
         return g;
@@ -73,9 +73,7 @@ inline Field crease(int H, double slope) {
     auto wrapV = [H](double v) { return v - H * std::floor(v / H); };
     Field f;
     f.h = [=](double, double v) { return slope * (H / 4.0 - std::abs(wrapV(v) - H / 2.0)); };
-    f.grad = [=](double, double v) {
-        return glm::dvec2(0.0, wrapV(v) < H / 2.0 ? slope : -slope);
-    };
+    f.grad = [=](double, double v) { return glm::dvec2(0.0, wrapV(v) < H / 2.0 ? slope : -slope); };
     return f;
 }
 
@@ -119,14 +117,16 @@ struct AngleError {
 
 // Angular error of slopes (or normals) against exact slopes, over texels
 // at least `margin` texels from the border.
-inline AngleError compare(const DerivField& got, const std::vector<glm::dvec2>& want, int margin = 0) {
+inline AngleError compare(const DerivField& got, const std::vector<glm::dvec2>& want,
+                          int margin = 0) {
     AngleError e;
     double sum = 0;
     size_t n = 0;
     for (int j = margin; j < got.height - margin; ++j)
         for (int i = margin; i < got.width - margin; ++i) {
             const glm::vec2 g = got.at(i, j);
-            const double a = angleDeg(glm::dvec2(g.x, g.y), want[size_t(j) * size_t(got.width) + size_t(i)]);
+            const double a =
+                angleDeg(glm::dvec2(g.x, g.y), want[size_t(j) * size_t(got.width) + size_t(i)]);
             e.maxDeg = std::max(e.maxDeg, a);
             sum += a * a;
             ++n;
@@ -134,7 +134,8 @@ inline AngleError compare(const DerivField& got, const std::vector<glm::dvec2>& 
     e.rmsDeg = std::sqrt(sum / double(std::max<size_t>(n, 1)));
     return e;
 }
-inline AngleError compare(const NormalField& got, const std::vector<glm::dvec2>& want, int margin = 0) {
+inline AngleError compare(const NormalField& got, const std::vector<glm::dvec2>& want,
+                          int margin = 0) {
     AngleError e;
     double sum = 0;
     size_t n = 0;
@@ -152,7 +153,8 @@ inline AngleError compare(const NormalField& got, const std::vector<glm::dvec2>&
 }
 
 // Exact slopes of a transformed height at every texel centre.
-inline std::vector<glm::dvec2> exact(int W, int H, const std::function<glm::dvec2(double, double)>& g) {
+inline std::vector<glm::dvec2> exact(int W, int H,
+                                     const std::function<glm::dvec2(double, double)>& g) {
     std::vector<glm::dvec2> out(size_t(W) * size_t(H));
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < W; ++i) out[size_t(j) * size_t(W) + size_t(i)] = g(i + 0.5, j + 0.5);

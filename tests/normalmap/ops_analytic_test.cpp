@@ -41,7 +41,8 @@ TEST(OpsAnalytic, ScaleInvertsAndDoublesExactly) {
         const DerivField d = slopes(f, W, H);
         const NormalField n = normalsFromSlopes(d);
         for (float alpha : {-1.0f, 2.0f, 0.5f}) {
-            const auto want = exact(W, H, [&](double u, double v) { return double(alpha) * f.grad(u, v); });
+            const auto want =
+                exact(W, H, [&](double u, double v) { return double(alpha) * f.grad(u, v); });
             const AngleError ok = compare(scale(d, alpha), want);
             const AngleError nv = compare(naive::scale(n, alpha), want);
             print(alpha < 0 ? "scale -1" : alpha > 1 ? "scale 2" : "scale 0.5", ok, nv);
@@ -67,18 +68,21 @@ TEST(OpsAnalytic, ScaleMinusOneTwiceIsIdentityAndAddSelfIsScaleTwo) {
     // The naive versions are not: measure how far.
     const NormalField n = normalsFromSlopes(d);
     const auto want = exact(W, H, [&](double u, double v) { return sinesField().grad(u, v); });
-    const auto want2 = exact(W, H, [&](double u, double v) { return 2.0 * sinesField().grad(u, v); });
+    const auto want2 =
+        exact(W, H, [&](double u, double v) { return 2.0 * sinesField().grad(u, v); });
     const AngleError nvBack = compare(naive::scale(naive::scale(n, -1.0f), -1.0f), want);
     const AngleError nvAdd = compare(naive::add(n, 1.0f, n, 1.0f), want2);
-    std::printf("[ measure  ] naive scale -1 twice: max %.3f deg; naive add(A, A) vs 2h: max %.3f deg\n",
-                nvBack.maxDeg, nvAdd.maxDeg);
+    std::printf(
+        "[ measure  ] naive scale -1 twice: max %.3f deg; naive add(A, A) vs 2h: max %.3f deg\n",
+        nvBack.maxDeg, nvAdd.maxDeg);
     EXPECT_GT(nvBack.maxDeg, 1.0);
 }
 
 TEST(OpsAnalytic, AddEqualsTheSummedHeights) {
     const Field a = sinesField(), b = bumpField();
     const DerivField da = slopes(a, W, H), db = slopes(b, W, H);
-    const auto want = exact(W, H, [&](double u, double v) { return 0.7 * a.grad(u, v) + 1.3 * b.grad(u, v); });
+    const auto want =
+        exact(W, H, [&](double u, double v) { return 0.7 * a.grad(u, v) + 1.3 * b.grad(u, v); });
     const AngleError ok = compare(add(da, 0.7f, db, 1.3f), want);
     const AngleError nv =
         compare(naive::add(normalsFromSlopes(da), 0.7f, normalsFromSlopes(db), 1.3f), want);
@@ -122,10 +126,12 @@ TEST(OpsAnalytic, BlendWithMaskUsesTheProductRule) {
         compare(naive::blend(normalsFromSlopes(da), normalsFromSlopes(db), mask), want);
     // Without the mask's slope term (sgDerivBlend with per-texel weights).
     DerivField lerp(W, H);
-    for (size_t k = 0; k < da.size(); ++k) lerp.v[k] = (1 - mask.v[k]) * da.v[k] + mask.v[k] * db.v[k];
+    for (size_t k = 0; k < da.size(); ++k)
+        lerp.v[k] = (1 - mask.v[k]) * da.v[k] + mask.v[k] * db.v[k];
     const AngleError noMaskTerm = compare(lerp, want);
     print("blend A B --mask M", ok, nv);
-    std::printf("[ measure  ] blend without the mask-slope term: max %.3f deg\n", noMaskTerm.maxDeg);
+    std::printf("[ measure  ] blend without the mask-slope term: max %.3f deg\n",
+                noMaskTerm.maxDeg);
     // The mask's slope by central differences is off by omega^2 / 6
     // relative (0.3% for its 4-per-tile waves, more for the harmonics sin()
     // adds), and it is multiplied by hB - hA (up to ~35 texels); the
@@ -159,7 +165,8 @@ TEST(OpsAnalytic, CurvesScaleSlopesByTheCurvesDerivative) {
     const DerivField da = slopes(a, W, H);
     const ScalarField ha = toHeight(da, Wrap::Repeat);
     const ScalarField t = heights(a, W, H);
-    const double lo = *std::min_element(t.v.begin(), t.v.end()), hi = *std::max_element(t.v.begin(), t.v.end());
+    const double lo = *std::min_element(t.v.begin(), t.v.end()),
+                 hi = *std::max_element(t.v.begin(), t.v.end());
     for (const Curve& c : {boostCurve(100.0f, 0.5f), boostCurve(500.0f, 0.1f),
                            parseCurvePoints("0,0 0.3,0.1 0.6,0.8 1,1", "test")}) {
         const auto want = exact(W, H, [&](double u, double v) {

@@ -59,7 +59,8 @@ TEST(Transforms, DctIsOrthonormalDct2AndInverts) {
             err = std::max(err, std::abs(sum - X[size_t(k)]));
         }
         dct.inverse(X.data(), back.data(), a, s);
-        for (int m = 0; m < n; ++m) errBack = std::max(errBack, std::abs(back[size_t(m)] - x[size_t(m)]));
+        for (int m = 0; m < n; ++m)
+            errBack = std::max(errBack, std::abs(back[size_t(m)] - x[size_t(m)]));
         // Same budget as the FFT test.
         EXPECT_LT(err, 1e-11) << "n = " << n;
         EXPECT_LT(errBack, 1e-11) << "n = " << n;

@@ -73,13 +73,15 @@ Curve boostCurve(float P, float H) {
 
 Curve parseCurvePoints(std::string_view text, const std::string& source) {
     if (text.size() > kMaxCurveText) {
-        throw io::InputError(source, "", "curve text longer than " + std::to_string(kMaxCurveText) +
-                                             " characters");
+        throw io::InputError(
+            source, "", "curve text longer than " + std::to_string(kMaxCurveText) + " characters");
     }
     Curve c;
     c.boost = false;
     size_t pos = 0;
-    auto isSep = [](char ch) { return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == ';'; };
+    auto isSep = [](char ch) {
+        return ch == ' ' || ch == '\t' || ch == '\n' || ch == '\r' || ch == ';';
+    };
     while (pos < text.size()) {
         while (pos < text.size() && isSep(text[pos])) ++pos;
         if (pos >= text.size()) break;

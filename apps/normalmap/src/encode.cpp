@@ -76,7 +76,8 @@ void checkChannels(const Image& img, const MapFormat& f, const std::string& file
 // The stored x, y (signed, file's green convention) of a normal encoding.
 glm::vec2 storedXY(const Image& img, Encoding e, int i, int j) {
     if (e == Encoding::Signed) return glm::vec2(img.at(i, j, 0), img.at(i, j, 1));
-    if (e == Encoding::Ag) return glm::vec2(2.0f * img.at(i, j, 3) - 1.0f, 2.0f * img.at(i, j, 1) - 1.0f);
+    if (e == Encoding::Ag)
+        return glm::vec2(2.0f * img.at(i, j, 3) - 1.0f, 2.0f * img.at(i, j, 1) - 1.0f);
     return glm::vec2(2.0f * img.at(i, j, 0) - 1.0f, 2.0f * img.at(i, j, 1) - 1.0f);
 }
 

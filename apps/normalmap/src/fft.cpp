@@ -95,8 +95,7 @@ Dct::Dct(int n) : fft_(n) {
     for (int k = 0; k < n; ++k) shift_[size_t(k)] = std::polar(1.0, -kPi * k / (2.0 * n));
 }
 
-void Dct::forward(const double* x, double* out, std::vector<cplx>& a,
-                  std::vector<cplx>& s) const {
+void Dct::forward(const double* x, double* out, std::vector<cplx>& a, std::vector<cplx>& s) const {
     const int n = size();
     a.resize(size_t(n));
     // Even samples in order, odd samples reversed (Makhoul's reordering).

@@ -223,7 +223,8 @@ void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
             spec.attribute("surfgrad:layout", layout);
             spec.attribute("surfgrad:wrap", wrap == Wrap::Repeat ? "repeat" : "clamp");
             spec.attribute("oiio:ColorSpace", "Linear");
-            const auto mode = k == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
+            const auto mode =
+                k == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
             const std::vector<float> buf = fileOrder(L, SampleType::Float);
             if (!out->open(tmp.string(), spec, mode) ||
                 !out->write_image(OIIO::TypeDesc::FLOAT, buf.data())) {

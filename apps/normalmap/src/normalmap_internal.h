@@ -32,12 +32,19 @@ inline int wrapIndex(int i, int n, Wrap wrap) {
     return i < 0 ? 0 : (i >= n ? n - 1 : i);
 }
 
-// Central-difference slopes of a scalar field at texel (i, j)
-// (sgHeightDerivCentral), borders by the wrap mode.
+// Slopes of a scalar field at texel (i, j): central differences
+// (sgHeightDerivCentral) inside; at the border of a Clamp grid the one-sided
+// difference (h(1) - h(0), h(N-1) - h(N-2)), i.e. twice the central
+// difference of the border-repeated grid.
 inline glm::vec2 centralSlope(const ScalarField& s, int i, int j, Wrap wrap) {
     const int l = wrapIndex(i - 1, s.width, wrap), r = wrapIndex(i + 1, s.width, wrap);
     const int d = wrapIndex(j - 1, s.height, wrap), u = wrapIndex(j + 1, s.height, wrap);
-    return sg::glsl::sgHeightDerivCentral(s.at(l, j), s.at(r, j), s.at(i, d), s.at(i, u));
+    glm::vec2 g = sg::glsl::sgHeightDerivCentral(s.at(l, j), s.at(r, j), s.at(i, d), s.at(i, u));
+    if (wrap == Wrap::Clamp) {
+        if (i == 0 || i == s.width - 1) g.x *= 2.0f;
+        if (j == 0 || j == s.height - 1) g.y *= 2.0f;
+    }
+    return g;
 }
 
 // Bilinear sample of a grid at texel coordinates (x, y) (texel centres at

@@ -24,12 +24,15 @@ void rasterizeTriangle(const sg::mesh::RenderMesh& m, const std::vector<glm::vec
     const int W = f.covered.width, H = f.covered.height;
     glm::vec2 p[3];
     for (int k = 0; k < 3; ++k) p[k] = uv[idx[k]] * glm::vec2(float(W), float(H));
-    const float area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+    const float area =
+        (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
     if (!(std::abs(area) > 1e-12f)) return; // zero-area in UV: covers no texel centre
     const float lo[2] = {std::min({p[0].x, p[1].x, p[2].x}), std::min({p[0].y, p[1].y, p[2].y})};
     const float hi[2] = {std::max({p[0].x, p[1].x, p[2].x}), std::max({p[0].y, p[1].y, p[2].y})};
-    const int i0 = std::max(0, int(std::floor(lo[0] - 0.5f))), i1 = std::min(W - 1, int(std::ceil(hi[0])));
-    const int j0 = std::max(0, int(std::floor(lo[1] - 0.5f))), j1 = std::min(H - 1, int(std::ceil(hi[1])));
+    const int i0 = std::max(0, int(std::floor(lo[0] - 0.5f))),
+              i1 = std::min(W - 1, int(std::ceil(hi[0])));
+    const int j0 = std::max(0, int(std::floor(lo[1] - 0.5f))),
+              j1 = std::min(H - 1, int(std::ceil(hi[1])));
     for (int j = j0; j <= j1; ++j) {
         for (int i = i0; i <= i1; ++i) {
             const glm::vec2 c(float(i) + 0.5f, float(j) + 0.5f);

@@ -29,7 +29,8 @@ DerivField add(const DerivField& a, float wa, const DerivField& b, float wb) {
     requireSameSize(a, b);
     DerivField r(a.width, a.height);
     forRows(a.height, [&](int j) {
-        for (int i = 0; i < a.width; ++i) r.at(i, j) = g::sgDerivAdd(a.at(i, j), wa, b.at(i, j), wb);
+        for (int i = 0; i < a.width; ++i)
+            r.at(i, j) = g::sgDerivAdd(a.at(i, j), wa, b.at(i, j), wb);
     });
     return r;
 }

@@ -10,7 +10,10 @@
 //  - Clamp (border texel repeated = mirrored extension, Neumann): Dx maps
 //    the cosine basis cos(pi k (u + 1/2) / W) (DCT-II) to -sin(pi k / W)
 //    times the sine basis sin(pi k (u + 1/2) / W) (DST-II), so with
-//    orthonormal transforms A = -(sx Gx + sy Gy) / (sx^2 + sy^2).
+//    orthonormal transforms A = -(sx Gx + sy Gy) / (sx^2 + sy^2). The
+//    central difference of the mirrored grid is half the one-sided
+//    difference at the border; fromHeight stores the one-sided one (the
+//    better slope estimate there) and the solve halves it back.
 // Frequencies with sx = sy = 0 are not seen by the differences: set to 0.
 #include <algorithm>
 #include <cmath>
@@ -89,7 +92,8 @@ ScalarField solvePeriodic(const DerivField& d, const Progress& progress) {
         const double sy = std::sin(2.0 * kPi * l / h);
         for (int k = 0; k < w; ++k) {
             const int km = (w - k) % w;
-            const size_t a = size_t(l) * size_t(w) + size_t(k), b = size_t(lm) * size_t(w) + size_t(km);
+            const size_t a = size_t(l) * size_t(w) + size_t(k),
+                         b = size_t(lm) * size_t(w) + size_t(km);
             if (b < a) continue; // handled with its mirror
             const double sx = std::sin(2.0 * kPi * k / w);
             const double den = sx * sx + sy * sy;
@@ -124,8 +128,12 @@ ScalarField solveNeumann(const DerivField& d, const Progress& progress) {
     forRows(h, [&](int j) {
         for (int i = 0; i < w; ++i) {
             const size_t k = size_t(j) * size_t(w) + size_t(i);
-            ax[k] = (i % 2 ? -1.0 : 1.0) * d.v[k].x;
-            ay[k] = (j % 2 ? -1.0 : 1.0) * d.v[k].y;
+            // fromHeight's one-sided border slopes are twice the central
+            // difference of the mirrored grid the DCT models: halved here.
+            const double bx = (i == 0 || i == w - 1) ? 0.5 : 1.0;
+            const double by = (j == 0 || j == h - 1) ? 0.5 : 1.0;
+            ax[k] = (i % 2 ? -bx : bx) * d.v[k].x;
+            ay[k] = (j % 2 ? -by : by) * d.v[k].y;
         }
     });
     const detail::Dct cw(w), ch(h);
@@ -140,8 +148,10 @@ ScalarField solveNeumann(const DerivField& d, const Progress& progress) {
         alongColumns(x, w, h, [&](double* line, auto& a, auto& s) {
             thread_local std::vector<double> tmp;
             tmp.assign(line, line + h);
-            if (inv) ch.inverse(tmp.data(), line, a, s);
-            else ch.forward(tmp.data(), line, a, s);
+            if (inv)
+                ch.inverse(tmp.data(), line, a, s);
+            else
+                ch.forward(tmp.data(), line, a, s);
         });
         if (inv) {
             alongRows(x, w, h, [&](double* line, auto& a, auto& s) {

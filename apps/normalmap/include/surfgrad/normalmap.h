@@ -24,9 +24,9 @@
 //    that need h (modulate, curves, masked blend) use this one.
 //  - Tiling: Wrap::Repeat treats the image as one period of a tiling
 //    texture (differences, sampling and integration wrap around);
-//    Wrap::Clamp as a finite patch (differences clamp at the border, i.e.
-//    the height is mirrored there, which is a Neumann boundary for
-//    integration).
+//    Wrap::Clamp as a finite patch (one-sided differences across the
+//    border; integration with a Neumann boundary: the height mirrored at
+//    the border).
 //  - Inputs are finite: readImage refuses non-finite texels, and every op
 //    returns finite slopes and unit normals for finite inputs (flat,
 //    extreme and horizon normals included: listing 4 clamps slopes to
@@ -88,7 +88,7 @@ enum class SampleType { U8, U16, Half, Float };
 // samples become [0, 1], float samples are kept. Row 0 is the bottom row.
 struct Image {
     int width = 0, height = 0, channels = 0;
-    bool isFloat = false; // samples were (or are to be written as) floating point
+    bool isFloat = false;      // samples were (or are to be written as) floating point
     std::vector<float> texels; // width * height * channels
     float& at(int i, int j, int c) {
         return texels[(size_t(j) * size_t(width) + size_t(i)) * size_t(channels) + size_t(c)];
@@ -188,8 +188,8 @@ Image imageFromScalar(const ScalarField& s, float offset, float scale, bool isFl
 // Height <-> slopes ("Birth of Normal Vectors")
 
 // Central differences of scale * h (scale: texels of height per unit of the
-// field's value), sgHeightDerivCentral; Clamp repeats the border texel
-// (one-sided half differences there).
+// field's value), sgHeightDerivCentral; Clamp uses one-sided differences
+// (h(1) - h(0), h(N-1) - h(N-2)) across the border rows and columns.
 DerivField fromHeight(const ScalarField& h, float scale, Wrap wrap);
 
 // The height whose central-difference slopes are closest (least squares) to
