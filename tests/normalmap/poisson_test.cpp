@@ -24,7 +24,8 @@ double maxDiff(const ScalarField& a, const ScalarField& b) {
 double maxDiff(const DerivField& a, const DerivField& b) {
     double m = 0;
     for (size_t k = 0; k < a.size(); ++k) {
-        m = std::max({m, std::abs(double(a.v[k].x) - b.v[k].x), std::abs(double(a.v[k].y) - b.v[k].y)});
+        m = std::max(
+            {m, std::abs(double(a.v[k].x) - b.v[k].x), std::abs(double(a.v[k].y) - b.v[k].y)});
     }
     return m;
 }
@@ -84,7 +85,8 @@ TEST(Poisson, ToHeightIsALeastSquaresProjectionOnRealMaps) {
     const DerivField p1 = fromHeight(toHeight(d, Wrap::Repeat), 1.0f, Wrap::Repeat);
     const DerivField p2 = fromHeight(toHeight(p1, Wrap::Repeat), 1.0f, Wrap::Repeat);
     double rmsResidual = 0;
-    for (size_t k = 0; k < d.size(); ++k) rmsResidual += glm::dot(d.v[k] - p1.v[k], d.v[k] - p1.v[k]);
+    for (size_t k = 0; k < d.size(); ++k)
+        rmsResidual += glm::dot(d.v[k] - p1.v[k], d.v[k] - p1.v[k]);
     rmsResidual = std::sqrt(rmsResidual / double(d.size()));
     std::printf("[ measure  ] wicker 512^2: rms non-integrable slope part %.4f; projection "
                 "repeated: max change %.2e\n",

@@ -219,7 +219,10 @@ void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
             spec.tile_height = 64;
             spec.channelnames = channelNames;
             spec.attribute("compression", "zip");
-            spec.attribute("openexr:roundingmode", 0); // ROUND_DOWN
+            // A MIP-mapped tiled file (OpenEXR MIPMAP_LEVELS, ROUND_DOWN).
+            spec.attribute("textureformat", "Plain Texture");
+            spec.attribute("openexr:levelmode", 1);
+            spec.attribute("openexr:roundingmode", 0);
             spec.attribute("surfgrad:layout", layout);
             spec.attribute("surfgrad:wrap", wrap == Wrap::Repeat ? "repeat" : "clamp");
             spec.attribute("oiio:ColorSpace", "Linear");
@@ -238,16 +241,48 @@ void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
     });
 }
 
+std::vector<std::string> mipChannelNames(std::string_view layout) {
+    if (layout == kLeanLayout) return {"dx", "dy", "dxx", "dyy", "dxy"};
+    if (layout == kToksvigLayout) return {"nx", "ny", "nz", "s2"};
+    if (layout == kNaiveMipLayout) return {"nx", "ny", "nz"};
+    return {};
+}
+
 std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* channelNames,
                                 std::string* layout) {
     auto in = openInput(path);
-    if (channelNames) *channelNames = in->spec().channelnames;
-    if (layout) *layout = in->spec().get_string_attribute("surfgrad:layout");
+    const std::vector<std::string> fileNames = in->spec().channelnames;
+    const std::string lay = in->spec().get_string_attribute("surfgrad:layout");
+    // OpenEXR stores channels sorted by name: put a known layout's back in
+    // its documented order.
+    std::vector<std::string> names = mipChannelNames(lay);
+    std::vector<int> from;
+    for (const std::string& n : names) {
+        auto it = std::find(fileNames.begin(), fileNames.end(), n);
+        if (it == fileNames.end()) {
+            throw io::InputError(path.string(), "channels",
+                                 "layout " + lay + " needs a channel \"" + n + "\"");
+        }
+        from.push_back(int(it - fileNames.begin()));
+    }
+    if (names.empty()) {
+        names = fileNames;
+        for (size_t c = 0; c < names.size(); ++c) from.push_back(int(c));
+    }
     std::vector<Image> levels;
     for (int level = 0; level < 64 && in->seek_subimage(0, level); ++level) {
-        levels.push_back(decode(path, *in, 0, level));
+        Image raw = decode(path, *in, 0, level);
+        Image L = raw;
+        L.channels = int(from.size());
+        L.texels.resize(size_t(L.width) * size_t(L.height) * from.size());
+        for (int j = 0; j < L.height; ++j)
+            for (int i = 0; i < L.width; ++i)
+                for (int c = 0; c < L.channels; ++c) L.at(i, j, c) = raw.at(i, j, from[size_t(c)]);
+        levels.push_back(std::move(L));
     }
     in->close();
+    if (channelNames) *channelNames = names;
+    if (layout) *layout = lay;
     return levels;
 }
 

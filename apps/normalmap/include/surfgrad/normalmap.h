@@ -366,8 +366,13 @@ void finishNaiveMips(std::vector<Image>& levels);
 void writeMipChain(const std::filesystem::path& path, const std::vector<Image>& levels,
                    const std::vector<std::string>& channelNames, const std::string& layout,
                    Wrap wrap);
-// Reads every level of such a file (for tests and the renderer), with its
-// channel names and layout attribute.
+// The channel names of a layout in the order above (empty for another).
+// OpenEXR stores channels sorted by name: readers look them up by name.
+std::vector<std::string> mipChannelNames(std::string_view layout);
+// Reads every level of such a file (for tests and the renderer), channels
+// in the layout's order (the file's order for an unknown layout), with the
+// channel names and the layout attribute. Throws InputError when a layout's
+// channel is missing.
 std::vector<Image> readMipChain(const std::filesystem::path& path,
                                 std::vector<std::string>* channelNames = nullptr,
                                 std::string* layout = nullptr);
