@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
         sg::cli::addMeshCommands(app, status); // more mesh subcommands attach here
     sg::cli::addMeshTangentsCommand(*meshGroup, status);
     sg::cli::addFeaturesCommands(app, status);
+    sg::cli::addNormalmapCommands(app, status);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

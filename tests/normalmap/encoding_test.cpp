@@ -29,7 +29,8 @@ int maxLsbDiff(const Image& a, const Image& b, int channel, int bits) {
     int m = 0;
     for (int j = 0; j < a.height; ++j)
         for (int i = 0; i < a.width; ++i) {
-            m = std::max(m, int(std::lround(std::abs(a.at(i, j, channel) - b.at(i, j, channel)) * q)));
+            m = std::max(m,
+                         int(std::lround(std::abs(a.at(i, j, channel) - b.at(i, j, channel)) * q)));
         }
     return m;
 }
@@ -41,7 +42,8 @@ DerivField testSlopes() {
 TEST(Encoding, RgbRoundTripIsLosslessUpToQuantisation) {
     for (int bits : {8, 16}) {
         const Image stored = quantise(encodeSlopes(testSlopes(), MapFormat{}, false), bits);
-        const Image again = quantise(encodeSlopes(decodeSlopes(stored, MapFormat{}, "t"), MapFormat{}, false), bits);
+        const Image again = quantise(
+            encodeSlopes(decodeSlopes(stored, MapFormat{}, "t"), MapFormat{}, false), bits);
         // x and y are what listing 4 reads: identical codes.
         EXPECT_EQ(maxLsbDiff(stored, again, 0, bits), 0) << bits;
         EXPECT_EQ(maxLsbDiff(stored, again, 1, bits), 0) << bits;
@@ -68,7 +70,8 @@ TEST(Encoding, EveryEncodingCarriesTheSameSlopes) {
         if (c.bits) img = quantise(img, c.bits);
         const DerivField back = decodeSlopes(img, f, "t");
         double err = 0;
-        for (size_t k = 0; k < d.size(); ++k) err = std::max(err, double(glm::length(back.v[k] - d.v[k])));
+        for (size_t k = 0; k < d.size(); ++k)
+            err = std::max(err, double(glm::length(back.v[k] - d.v[k])));
         // 16-bit codes: a normal component to 1/65535, i.e. a slope to
         // (1 + s^2)^1.5 / 32768 ~ 1e-4 at s = 1.2; a 16-bit derivative map
         // to 2 range / 65535 = 1.2e-4; float: rounding (1e-6).
@@ -94,8 +97,10 @@ TEST(Encoding, DirectXGreenMirrorsTheGreenChannel) {
 }
 
 TEST(Encoding, ObjectSpaceThroughSpotsFramesMatchesTbnAndInverts) {
-    const auto mesh = sg::mesh::loadRenderMesh(std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj");
-    const Image map = readImage(std::string(SURFGRAD_SOURCE_DIR) + "/examples/data/spot_normal.png");
+    const auto mesh = sg::mesh::loadRenderMesh(std::string(SURFGRAD_DATA_DIR) +
+                                               "/meshes/spot/spot_control_mesh.obj");
+    const Image map =
+        readImage(std::string(SURFGRAD_SOURCE_DIR) + "/examples/data/spot_normal.png");
     const DerivField d = decodeSlopes(map, MapFormat{}, "spot_normal");
     const TexelFrames frames = rasterizeFrames(mesh, 0, map.width, map.height, 2);
     const NormalField obj = objectFromTangent(d, frames);
@@ -111,7 +116,8 @@ TEST(Encoding, ObjectSpaceThroughSpotsFramesMatchesTbnAndInverts) {
             const glm::vec4 t = frames.tangent.at(i, j);
             const glm::vec3 b = t.w * glm::cross(n, glm::vec3(t));
             const glm::vec3 m = normalsFromSlopes(DerivField(1, 1, d.at(i, j))).v[0];
-            const glm::dvec3 tbn = glm::normalize(glm::dvec3(m.x * glm::vec3(t) + m.y * b + m.z * n));
+            const glm::dvec3 tbn =
+                glm::normalize(glm::dvec3(m.x * glm::vec3(t) + m.y * b + m.z * n));
             const glm::vec3 o = obj.at(i, j);
             worstTbn = std::max(worstTbn, angleDeg(tbn, glm::dvec3(o.x, o.y, o.z)));
         }

@@ -43,7 +43,8 @@ TEST(Mips, LeanGivesTheKnownMeanAndCovariance) {
         for (int j = 0; j < L.height; ++j)
             for (int i = 0; i < L.width; ++i) {
                 const glm::vec2 b(L.at(i, j, 0), L.at(i, j, 1));
-                const glm::vec3 cov = sg::glsl::sgLeanCovariance(b, glm::vec3(L.at(i, j, 2), L.at(i, j, 3), L.at(i, j, 4)));
+                const glm::vec3 cov = sg::glsl::sgLeanCovariance(
+                    b, glm::vec3(L.at(i, j, 2), L.at(i, j, 3), L.at(i, j, 4)));
                 // Averages of 256+ binary32 values of O(0.5) in double:
                 // 1e-6 absolute.
                 ASSERT_NEAR(b.x, kC, 1e-6);

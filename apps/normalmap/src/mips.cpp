@@ -114,6 +114,18 @@ Image toksvigLevel0(const NormalField& n) {
     return img;
 }
 
+Image naiveMipLevel0(const NormalField& n) {
+    Image img;
+    img.width = n.width;
+    img.height = n.height;
+    img.channels = 3;
+    img.isFloat = true;
+    img.texels.resize(n.size() * 3);
+    for (size_t k = 0; k < n.size(); ++k)
+        for (int c = 0; c < 3; ++c) img.texels[k * 3 + size_t(c)] = n.v[k][c];
+    return img;
+}
+
 std::vector<Image> mipChain(Image level0, const Progress& progress) {
     const auto sizes = mipSizes(level0.width, level0.height);
     std::vector<Image> levels;

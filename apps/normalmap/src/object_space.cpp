@@ -152,4 +152,52 @@ DerivField tangentFromObject(const NormalField& objectNormals, const TexelFrames
     return d;
 }
 
+namespace naive {
+
+namespace {
+
+// The normalised frame (t, b, n) of a texel, false when degenerate.
+bool unitFrame(const TexelFrames& f, int i, int j, glm::vec3& t, glm::vec3& b, glm::vec3& n) {
+    const glm::vec4 t4 = f.tangent.at(i, j);
+    n = g::sgSafeNormalize(f.normal.at(i, j), glm::vec3(0.0f));
+    t = g::sgSafeNormalize(glm::vec3(t4), glm::vec3(0.0f));
+    b = g::sgSafeNormalize((t4.w < 0.0f ? -1.0f : 1.0f) * glm::cross(n, t), glm::vec3(0.0f));
+    return glm::dot(n, n) > 0.5f && glm::dot(t, t) > 0.5f && glm::dot(b, b) > 0.5f;
+}
+
+} // namespace
+
+NormalField objectFromTangent(const NormalField& m, const TexelFrames& frames) {
+    detail::requireSameSize(m, frames.covered);
+    NormalField o(m.width, m.height);
+    forRows(m.height, [&](int j) {
+        for (int i = 0; i < m.width; ++i) {
+            glm::vec3 t, b, n;
+            o.at(i, j) = glm::vec3(0.0f);
+            if (!frames.covered.at(i, j) || !unitFrame(frames, i, j, t, b, n)) continue;
+            const glm::vec3 v = m.at(i, j);
+            o.at(i, j) = g::sgSafeNormalize(v.x * t + v.y * b + v.z * n, n);
+        }
+    });
+    return o;
+}
+
+NormalField tangentFromObject(const NormalField& objectNormals, const TexelFrames& frames) {
+    detail::requireSameSize(objectNormals, frames.covered);
+    NormalField m(objectNormals.width, objectNormals.height);
+    forRows(m.height, [&](int j) {
+        for (int i = 0; i < m.width; ++i) {
+            glm::vec3 t, b, n;
+            m.at(i, j) = detail::kFlat;
+            if (!frames.covered.at(i, j) || !unitFrame(frames, i, j, t, b, n)) continue;
+            const glm::vec3 v = objectNormals.at(i, j);
+            m.at(i, j) = g::sgSafeNormalize(
+                glm::vec3(glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)), detail::kFlat);
+        }
+    });
+    return m;
+}
+
+} // namespace naive
+
 } // namespace sg::normalmap

@@ -317,6 +317,13 @@ NormalField objectFromTangent(const DerivField& d, const TexelFrames& frames);
 // degenerate frames get slope 0. Object normals below the base's horizon
 // are clamped by listing 7 (large but finite slopes).
 DerivField tangentFromObject(const NormalField& objectNormals, const TexelFrames& frames);
+namespace naive {
+// The common shader shortcut: the interpolated frame normalised (t, n, and
+// b = sign(w) normalize(n x t)) and used as a rotation, ignoring the
+// mikktspace basis scaling of section 2.2; its inverse is the transpose.
+NormalField objectFromTangent(const NormalField& n, const TexelFrames& frames);
+NormalField tangentFromObject(const NormalField& objectNormals, const TexelFrames& frames);
+} // namespace naive
 
 // ---------------------------------------------------------------------------
 // MIP chains for antialiasing ("Care: Antialiasing")
@@ -357,6 +364,7 @@ Image boxReduce(const Image& src, int width, int height);
 // Level 0 of each layout (channels as listed above); mipChain() makes the rest.
 Image leanLevel0(const DerivField& d);
 Image toksvigLevel0(const NormalField& n);
+Image naiveMipLevel0(const NormalField& n);
 std::vector<Image> mipChain(Image level0, const Progress& progress = {});
 // Recomputes "s2" (channel 3) of Toksvig levels from their averaged normals,
 // and renormalises naive levels.
