@@ -28,6 +28,7 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -86,7 +87,8 @@ struct Reporter {
             const int pct = int(std::lround(100.0 * f));
             if (pct == last && pct != 100) return;
             last = pct;
-            std::fprintf(stderr, "surfgrad: normalmap %s: %s %3d%%\n", what.c_str(), name.c_str(), pct);
+            std::fprintf(stderr, "surfgrad: normalmap %s: %s %3d%%\n", what.c_str(), name.c_str(),
+                         pct);
             if (pct == 100) last = -1;
         };
     }
@@ -138,10 +140,10 @@ Map readMap(const std::string& file, const Options& o) {
 
 void requireSameSize(const Map& a, const nm::Image& b, const std::string& bFile) {
     if (a.image.width != b.width || a.image.height != b.height) {
-        throw io::InputError(bFile, "size",
-                             std::to_string(b.width) + "x" + std::to_string(b.height) +
-                                 " does not match " + a.file + " (" + std::to_string(a.image.width) +
-                                 "x" + std::to_string(a.image.height) + ")");
+        throw io::InputError(
+            bFile, "size",
+            std::to_string(b.width) + "x" + std::to_string(b.height) + " does not match " + a.file +
+                " (" + std::to_string(a.image.width) + "x" + std::to_string(a.image.height) + ")");
     }
 }
 
@@ -159,11 +161,15 @@ OutFormat outFormat(const Options& o, const nm::MapFormat& in) {
     if (!o.toGreen.empty()) f.format.green = nm::parseGreen(o.toGreen);
     f.format.derivRange = o.range;
     const bool needFloat = f.format.encoding == nm::Encoding::Signed;
-    f.type = o.bits.empty() ? nm::defaultSampleType(o.output, needFloat) : nm::parseSampleType(o.bits);
+    f.type =
+        o.bits.empty() ? nm::defaultSampleType(o.output, needFloat) : nm::parseSampleType(o.bits);
     const bool isFloat = f.type == nm::SampleType::Half || f.type == nm::SampleType::Float;
-    if (needFloat && !isFloat) {
-        throw io::InputError(o.output, "encoding",
-                             "signed normals need a float output (.exr, or .tif with --bits float)");
+    std::string ext = fs::path(o.output).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    if (needFloat && (!isFloat || ext == ".png" || ext == ".tga")) {
+        throw io::InputError(
+            o.output, "encoding",
+            "signed normals need a float output (.exr, or .tif with --bits float)");
     }
     if (f.format.encoding == nm::Encoding::Deriv && !isFloat) {
         // Integer derivative maps hold +-range at full scale.
@@ -225,7 +231,8 @@ nm::ScalarField scalarInput(const std::string& file, int channel, float scale, c
 
 nm::Curve curveOf(const Options& o) {
     const int given = int(!o.boost.empty()) + int(!o.points.empty()) + int(!o.pointsFile.empty());
-    if (given != 1) throw CliError("normalmap curves: give exactly one of --boost, --points, --points-file");
+    if (given != 1)
+        throw CliError("normalmap curves: give exactly one of --boost, --points, --points-file");
     if (!o.boost.empty()) {
         const auto v = parseFloats(o.boost, 2, "--boost P,H");
         if (v[0] < 0.0f) throw CliError("normalmap curves: --boost P must be >= 0");
@@ -257,8 +264,8 @@ void runToHeight(const Options& o, Reporter& r) {
         o.naive ? nm::naive::toHeight(d) : nm::toHeight(d, wrapOf(o), r.stage("integrating"));
     float hi = 0.0f;
     for (float x : h.v) hi = std::max(hi, x);
-    const nm::SampleType type = o.bits.empty() ? nm::defaultSampleType(o.output, false)
-                                               : nm::parseSampleType(o.bits);
+    const nm::SampleType type =
+        o.bits.empty() ? nm::defaultSampleType(o.output, false) : nm::parseSampleType(o.bits);
     const bool isFloat = isFloatType(type);
     // Float files hold texels of height; integer files height / range, so
     // `from-height OUT --scale range` gives the map back.
@@ -269,8 +276,7 @@ void runToHeight(const Options& o, Reporter& r) {
     std::printf("wrote %s (%dx%d height, 0 to %.6g texels%s; from-height --scale %.6g restores "
                 "the slopes)\n",
                 o.output.c_str(), h.width, h.height, double(hi),
-                isFloat ? ", stored in texels" : ", stored as height / range",
-                double(1.0f / unit));
+                isFloat ? ", stored in texels" : ", stored as height / range", double(1.0f / unit));
 }
 
 void runConvert(const Options& o, Reporter& r) {
@@ -300,13 +306,15 @@ void runConvert(const Options& o, Reporter& r) {
     if (mesh.normals.size() != mesh.positions.size()) {
         throw io::InputError(o.mesh, "normals", "the mesh has no vertex normals");
     }
-    const nm::TexelFrames frames = nm::rasterizeFrames(mesh, o.uvSet, m.image.width, m.image.height, o.dilate);
+    const nm::TexelFrames frames =
+        nm::rasterizeFrames(mesh, o.uvSet, m.image.width, m.image.height, o.dilate);
     nm::MapFormat objFormat; // object maps: rgb 0.5 n + 0.5, no green convention
     Options out = o;
     if (toObject) {
         const nm::DerivField d = nm::decodeSlopes(m.image, m.format, m.file);
-        const nm::NormalField obj = o.naive ? nm::naive::objectFromTangent(nm::normalsFromSlopes(d), frames)
-                                            : nm::objectFromTangent(d, frames);
+        const nm::NormalField obj =
+            o.naive ? nm::naive::objectFromTangent(nm::normalsFromSlopes(d), frames)
+                    : nm::objectFromTangent(d, frames);
         out.to = "rgb";
         out.toGreen = "gl";
         writeNormals(out, obj, objFormat);
@@ -329,7 +337,8 @@ void runConvert(const Options& o, Reporter& r) {
 void runScale(const Options& o, Reporter&) {
     const Map m = readMap(o.inputs[0], o);
     if (o.naive) {
-        writeNormals(o, nm::naive::scale(nm::decodeNormals(m.image, m.format, m.file), o.alpha), m.format);
+        writeNormals(o, nm::naive::scale(nm::decodeNormals(m.image, m.format, m.file), o.alpha),
+                     m.format);
     } else {
         writeSlopes(o, nm::scale(nm::decodeSlopes(m.image, m.format, m.file), o.alpha), m.format);
     }
@@ -340,12 +349,14 @@ void runAdd(const Options& o, Reporter&) {
     requireSameSize(a, b.image, b.file);
     const auto w = parseFloats(o.weights, 2, "--weights WA,WB");
     if (o.naive) {
-        writeNormals(o, nm::naive::add(nm::decodeNormals(a.image, a.format, a.file), w[0],
-                                       nm::decodeNormals(b.image, b.format, b.file), w[1]),
+        writeNormals(o,
+                     nm::naive::add(nm::decodeNormals(a.image, a.format, a.file), w[0],
+                                    nm::decodeNormals(b.image, b.format, b.file), w[1]),
                      a.format);
     } else {
-        writeSlopes(o, nm::add(nm::decodeSlopes(a.image, a.format, a.file), w[0],
-                               nm::decodeSlopes(b.image, b.format, b.file), w[1]),
+        writeSlopes(o,
+                    nm::add(nm::decodeSlopes(a.image, a.format, a.file), w[0],
+                            nm::decodeSlopes(b.image, b.format, b.file), w[1]),
                     a.format);
     }
 }
@@ -356,8 +367,9 @@ void runBlend(const Options& o, Reporter& r) {
     requireSameSize(a, b.image, b.file);
     const nm::ScalarField mask = scalarInput(o.mask, o.maskChannel, 1.0f, a);
     if (o.naive) {
-        writeNormals(o, nm::naive::blend(nm::decodeNormals(a.image, a.format, a.file),
-                                         nm::decodeNormals(b.image, b.format, b.file), mask),
+        writeNormals(o,
+                     nm::naive::blend(nm::decodeNormals(a.image, a.format, a.file),
+                                      nm::decodeNormals(b.image, b.format, b.file), mask),
                      a.format);
         return;
     }
@@ -372,7 +384,8 @@ void runModulate(const Options& o, Reporter& r) {
     const Map m = readMap(o.inputs[0], o);
     const nm::ScalarField gain = scalarInput(o.by, o.byChannel, o.gain, m);
     if (o.naive) {
-        writeNormals(o, nm::naive::modulate(nm::decodeNormals(m.image, m.format, m.file), gain), m.format);
+        writeNormals(o, nm::naive::modulate(nm::decodeNormals(m.image, m.format, m.file), gain),
+                     m.format);
         return;
     }
     const nm::DerivField d = nm::decodeSlopes(m.image, m.format, m.file);
@@ -385,7 +398,8 @@ void runCurves(const Options& o, Reporter& r) {
     const nm::DerivField d = nm::decodeSlopes(m.image, m.format, m.file);
     const nm::ScalarField h = heightsOf(m, d, o, r);
     if (o.naive) {
-        writeNormals(o, nm::naive::applyCurve(nm::decodeNormals(m.image, m.format, m.file), h, curve),
+        writeNormals(o,
+                     nm::naive::applyCurve(nm::decodeNormals(m.image, m.format, m.file), h, curve),
                      m.format);
     } else {
         writeSlopes(o, nm::applyCurve(d, h, curve), m.format);
@@ -393,14 +407,17 @@ void runCurves(const Options& o, Reporter& r) {
 }
 
 void runDeform(const Options& o, Reporter&) {
-    if (o.warp.empty()) throw CliError("normalmap deform: --warp sine:A,B or rotate:DEG is required");
+    if (o.warp.empty())
+        throw CliError("normalmap deform: --warp sine:A,B or rotate:DEG is required");
     const nm::Warp warp = nm::parseWarp(o.warp);
     const Map m = readMap(o.inputs[0], o);
     if (o.naive) {
-        writeNormals(o, nm::naive::deform(nm::decodeNormals(m.image, m.format, m.file), warp, wrapOf(o)),
-                     m.format);
+        writeNormals(
+            o, nm::naive::deform(nm::decodeNormals(m.image, m.format, m.file), warp, wrapOf(o)),
+            m.format);
     } else {
-        writeSlopes(o, nm::deform(nm::decodeSlopes(m.image, m.format, m.file), warp, wrapOf(o)), m.format);
+        writeSlopes(o, nm::deform(nm::decodeSlopes(m.image, m.format, m.file), warp, wrapOf(o)),
+                    m.format);
     }
 }
 
@@ -413,14 +430,17 @@ void runMips(const Options& o, Reporter& r) {
     std::string layout;
     if (o.lean) {
         layout = nm::kLeanLayout;
-        levels = nm::mipChain(nm::leanLevel0(nm::decodeSlopes(m.image, m.format, m.file)), r.stage("filtering"));
+        levels = nm::mipChain(nm::leanLevel0(nm::decodeSlopes(m.image, m.format, m.file)),
+                              r.stage("filtering"));
     } else {
         layout = o.toksvig ? nm::kToksvigLayout : nm::kNaiveMipLayout;
         const nm::NormalField n = nm::decodeNormals(m.image, m.format, m.file);
         levels = nm::mipChain(o.toksvig ? nm::toksvigLevel0(n) : nm::naiveMipLevel0(n),
                               r.stage("filtering"));
-        if (o.toksvig) nm::finishToksvig(levels);
-        else nm::finishNaiveMips(levels);
+        if (o.toksvig)
+            nm::finishToksvig(levels);
+        else
+            nm::finishNaiveMips(levels);
     }
     nm::writeMipChain(o.output, levels, nm::mipChannelNames(layout), layout, wrapOf(o));
     std::printf("wrote %s (%s, %zu levels from %dx%d)\n", o.output.c_str(), layout.c_str(),
@@ -430,8 +450,11 @@ void runMips(const Options& o, Reporter& r) {
 void runShade(const Options& o, Reporter&) {
     const Map m = readMap(o.inputs[0], o);
     const auto l = parseFloats(o.light, 3, "--light X,Y,Z");
-    const nm::Image img = nm::shade(nm::decodeNormals(m.image, m.format, m.file), glm::vec3(l[0], l[1], l[2]));
-    nm::writeImage(o.output, img, o.bits.empty() ? nm::defaultSampleType(o.output, false) : nm::parseSampleType(o.bits));
+    const nm::Image img =
+        nm::shade(nm::decodeNormals(m.image, m.format, m.file), glm::vec3(l[0], l[1], l[2]));
+    nm::writeImage(o.output, img,
+                   o.bits.empty() ? nm::defaultSampleType(o.output, false)
+                                  : nm::parseSampleType(o.bits));
     std::printf("wrote %s (%dx%d, Lambert shading)\n", o.output.c_str(), img.width, img.height);
 }
 
@@ -451,20 +474,31 @@ void run(Options o) {
     Reporter r;
     r.what = o.op;
     r.on = o.progress || ::isatty(2);
-    if (o.op == "from-height") runFromHeight(o, r);
-    else if (o.op == "to-height") runToHeight(o, r);
+    if (o.op == "from-height")
+        runFromHeight(o, r);
+    else if (o.op == "to-height")
+        runToHeight(o, r);
     else if (o.op == "to-derivative") {
         o.to = "deriv";
         runConvert(o, r);
-    } else if (o.op == "convert") runConvert(o, r);
-    else if (o.op == "scale") runScale(o, r);
-    else if (o.op == "add") runAdd(o, r);
-    else if (o.op == "blend") runBlend(o, r);
-    else if (o.op == "modulate") runModulate(o, r);
-    else if (o.op == "curves") runCurves(o, r);
-    else if (o.op == "deform") runDeform(o, r);
-    else if (o.op == "mips") runMips(o, r);
-    else runShade(o, r);
+    } else if (o.op == "convert")
+        runConvert(o, r);
+    else if (o.op == "scale")
+        runScale(o, r);
+    else if (o.op == "add")
+        runAdd(o, r);
+    else if (o.op == "blend")
+        runBlend(o, r);
+    else if (o.op == "modulate")
+        runModulate(o, r);
+    else if (o.op == "curves")
+        runCurves(o, r);
+    else if (o.op == "deform")
+        runDeform(o, r);
+    else if (o.op == "mips")
+        runMips(o, r);
+    else
+        runShade(o, r);
 }
 
 // Options every op takes.
@@ -510,16 +544,20 @@ void addNormalmapCommands(CLI::App& app, int& status) {
         return std::make_pair(c, o);
     };
     {
-        auto [c, o] = add("from-height", "Normal map of a height image (central differences)", 1, false);
-        c->add_option("--scale", o->scale, "Texels of height per unit of the image value (default 1)");
+        auto [c, o] =
+            add("from-height", "Normal map of a height image (central differences)", 1, false);
+        c->add_option("--scale", o->scale,
+                      "Texels of height per unit of the image value (default 1)");
         c->add_option("--channel", o->channel, "Height channel (default: luminance or channel 0)");
         c->add_option("--green", o->green, "Output green convention: gl (default) or dx");
     }
     add("to-height", "Height of a normal map (least-squares Poisson solve)", 1, true);
     add("to-derivative", "Derivative map (dh/du, dh/dv) of a normal map", 1, true);
     {
-        auto [c, o] = add("convert", "Between encodings, green conventions, tangent and object space", 1, true);
-        c->add_option("--mesh", o->mesh, "Mesh whose UV layout and frames the map belongs to (object space)");
+        auto [c, o] = add(
+            "convert", "Between encodings, green conventions, tangent and object space", 1, true);
+        c->add_option("--mesh", o->mesh,
+                      "Mesh whose UV layout and frames the map belongs to (object space)");
         c->add_option("--uv-set", o->uvSet, "UV set of the mesh (default 0)");
         c->add_option("--dilate", o->dilate, "Texels filled past UV island borders (default 4)");
     }
@@ -562,7 +600,8 @@ void addNormalmapCommands(CLI::App& app, int& status) {
     }
     {
         auto [c, o] = add("shade", "Lambert-shaded preview of a map", 1, true);
-        c->add_option("--light", o->light, "Light direction x,y,z in tangent space (default -0.5,0.5,0.7)");
+        c->add_option("--light", o->light,
+                      "Light direction x,y,z in tangent space (default -0.5,0.5,0.7)");
     }
     (void)status;
 }
