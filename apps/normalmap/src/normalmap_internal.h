@@ -37,6 +37,10 @@ inline int wrapIndex(int i, int n, Wrap wrap) {
 // difference (h(1) - h(0), h(N-1) - h(N-2)), i.e. twice the central
 // difference of the border-repeated grid.
 inline glm::vec2 centralSlope(const ScalarField& s, int i, int j, Wrap wrap) {
+    if (i > 0 && j > 0 && i + 1 < s.width && j + 1 < s.height) { // interior: no border rule
+        return sg::glsl::sgHeightDerivCentral(s.at(i - 1, j), s.at(i + 1, j), s.at(i, j - 1),
+                                              s.at(i, j + 1));
+    }
     const int l = wrapIndex(i - 1, s.width, wrap), r = wrapIndex(i + 1, s.width, wrap);
     const int d = wrapIndex(j - 1, s.height, wrap), u = wrapIndex(j + 1, s.height, wrap);
     glm::vec2 g = sg::glsl::sgHeightDerivCentral(s.at(l, j), s.at(r, j), s.at(i, d), s.at(i, u));

@@ -214,8 +214,8 @@ DerivField fromHeight(const ScalarField& h, float scale, Wrap wrap) {
     DerivField d(h.width, h.height);
     forRows(h.height, [&](int j) {
         for (int i = 0; i < h.width; ++i) {
-            const int r = detail::wrapIndex(i + 1, h.width, wrap);
-            const int u = detail::wrapIndex(j + 1, h.height, wrap);
+            const int r = i + 1 < h.width ? i + 1 : detail::wrapIndex(i + 1, h.width, wrap);
+            const int u = j + 1 < h.height ? j + 1 : detail::wrapIndex(j + 1, h.height, wrap);
             d.at(i, j) = scale * g::sgHeightDeriv3Tap(h.at(i, j), h.at(r, j), h.at(i, u));
         }
     });
