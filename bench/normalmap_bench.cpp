@@ -81,7 +81,8 @@ Timing measure(const Row& r, int runs) {
     for (int threads : {1, 0}) {
         std::vector<double> c, n;
         tbb::global_control gc(tbb::global_control::max_allowed_parallelism,
-                               threads ? size_t(threads) : size_t(tbb::info::default_concurrency()));
+                               threads ? size_t(threads)
+                                       : size_t(tbb::info::default_concurrency()));
         for (int k = 0; k < runs; ++k) {
             c.push_back(timeMs(r.correct));
             if (r.naive) n.push_back(timeMs(r.naive));
@@ -98,9 +99,12 @@ int main(int argc, char** argv) {
     int n = 4096, runs = 5;
     std::string only;
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--size") && i + 1 < argc) n = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc) runs = std::atoi(argv[++i]);
-        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc) only = argv[++i];
+        if (!std::strcmp(argv[i], "--size") && i + 1 < argc)
+            n = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
+            runs = std::atoi(argv[++i]);
+        else if (!std::strcmp(argv[i], "--only") && i + 1 < argc)
+            only = argv[++i];
         else {
             std::fprintf(stderr, "usage: normalmap_bench [--size N] [--runs K] [--only NAME]\n");
             return 2;
@@ -117,7 +121,8 @@ int main(int argc, char** argv) {
     const ScalarField h = toHeight(d, Wrap::Repeat), h2 = toHeight(d2, Wrap::Repeat);
     ScalarField mask(n, n);
     for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) mask.at(i, j) = 0.5f + 0.45f * std::sin(float(2 * kPi * (i + 2 * j)) / float(n));
+        for (int i = 0; i < n; ++i)
+            mask.at(i, j) = 0.5f + 0.45f * std::sin(float(2 * kPi * (i + 2 * j)) / float(n));
     const Curve boost = boostCurve(100.0f, 0.5f);
     const Warp sine{Warp::Kind::Sine, 0.02f, float(8 * kPi)};
     const Wrap R = Wrap::Repeat;
@@ -128,20 +133,24 @@ int main(int argc, char** argv) {
     auto keepI = [&](const Image& img) { sink = sink + img.texels[img.texels.size() / 2]; };
 
     const std::vector<Row> rows = {
-        {"decode rgb8 to slopes (L4) / to normals", [&] { keep(decodeSlopes(rgb, MapFormat{}, "b")); },
+        {"decode rgb8 to slopes (L4) / to normals",
+         [&] { keep(decodeSlopes(rgb, MapFormat{}, "b")); },
          [&] { keep(decodeNormals(rgb, MapFormat{}, "b")); }},
         {"scale 2", [&] { keep(scale(d, 2.0f)); }, [&] { keep(naive::scale(nf, 2.0f)); }},
-        {"add A B", [&] { keep(add(d, 1.0f, d2, 1.0f)); }, [&] { keep(naive::add(nf, 1.0f, nf2, 1.0f)); }},
+        {"add A B", [&] { keep(add(d, 1.0f, d2, 1.0f)); },
+         [&] { keep(naive::add(nf, 1.0f, nf2, 1.0f)); }},
         {"blend A B --mask (heights given)", [&] { keep(blend(d, h, d2, h2, mask, R)); },
          [&] { keep(naive::blend(nf, nf2, mask)); }},
         {"modulate (heights given)", [&] { keep(modulate(d, h, mask, R)); },
          [&] { keep(naive::modulate(nf, mask)); }},
         {"curves boost (heights given)", [&] { keep(applyCurve(d, h, boost)); },
          [&] { keep(naive::applyCurve(nf, h, boost)); }},
-        {"deform sine", [&] { keep(deform(d, sine, R)); }, [&] { keep(naive::deform(nf, sine, R)); }},
+        {"deform sine", [&] { keep(deform(d, sine, R)); },
+         [&] { keep(naive::deform(nf, sine, R)); }},
         {"from-height (central / forward differences)", [&] { keep(fromHeight(h, 1.0f, R)); },
          [&] { keep(naive::fromHeight(h, 1.0f, R)); }},
-        {"to-height --wrap (DFT / path integration)", [&] { keepS(toHeight(d, R)); }, [&] { keepS(naive::toHeight(d)); }},
+        {"to-height --wrap (DFT / path integration)", [&] { keepS(toHeight(d, R)); },
+         [&] { keepS(naive::toHeight(d)); }},
         {"to-height, no wrap (DCT / path integration)", [&] { keepS(toHeight(d, Wrap::Clamp)); },
          [&] { keepS(naive::toHeight(d)); }},
         {"mips --lean / --naive", [&] { keepI(mipChain(leanLevel0(d)).back()); },
@@ -150,28 +159,31 @@ int main(int argc, char** argv) {
              finishNaiveMips(l);
              keepI(l.back());
          }},
-        {"mips --toksvig", [&] {
+        {"mips --toksvig",
+         [&] {
              auto l = mipChain(toksvigLevel0(nf));
              finishToksvig(l);
              keepI(l.back());
-         }, {}},
+         },
+         {}},
         {"encode slopes / normals to rgb8", [&] { keepI(encodeSlopes(d, MapFormat{}, false)); },
          [&] { keepI(encodeNormals(nf, MapFormat{}, false)); }},
     };
     const double mpx = double(n) * double(n) / 1e6;
-    std::printf("\n| op | correct 1T Mpx/s | correct all Mpx/s | naive 1T Mpx/s | naive all Mpx/s | "
-                "correct/naive time (1T) | speed-up all/1T (correct) |\n|---|---|---|---|---|---|---|\n");
+    std::printf(
+        "\n| op | correct 1T Mpx/s | correct all Mpx/s | naive 1T Mpx/s | naive all Mpx/s | "
+        "correct/naive time (1T) | speed-up all/1T (correct) |\n|---|---|---|---|---|---|---|\n");
     for (const Row& r : rows) {
         if (!only.empty() && r.name.find(only) == std::string::npos) continue;
         const Timing t = measure(r, runs);
         auto rate = [&](double ms) { return ms > 0 ? mpx / (ms / 1e3) : 0.0; };
         if (r.naive) {
-            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f |\n", r.name.c_str(), rate(t.correct1),
-                        rate(t.correctAll), rate(t.naive1), rate(t.naiveAll), t.correct1 / t.naive1,
-                        t.correct1 / t.correctAll);
+            std::printf("| %s | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f |\n", r.name.c_str(),
+                        rate(t.correct1), rate(t.correctAll), rate(t.naive1), rate(t.naiveAll),
+                        t.correct1 / t.naive1, t.correct1 / t.correctAll);
         } else {
-            std::printf("| %s | %.1f | %.1f | - | - | - | %.2f |\n", r.name.c_str(), rate(t.correct1),
-                        rate(t.correctAll), t.correct1 / t.correctAll);
+            std::printf("| %s | %.1f | %.1f | - | - | - | %.2f |\n", r.name.c_str(),
+                        rate(t.correct1), rate(t.correctAll), t.correct1 / t.correctAll);
         }
         std::fflush(stdout);
     }

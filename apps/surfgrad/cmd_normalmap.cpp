@@ -43,6 +43,7 @@
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/normalmap.h"
+#include "surfgrad/tangents.h"
 
 namespace sg::cli {
 

@@ -6,12 +6,12 @@
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
 
+#include "cli.h"
 #include "surfgrad/normalmap.h"
 
 namespace {
@@ -19,15 +19,11 @@ namespace {
 namespace fs = std::filesystem;
 using namespace sg::normalmap;
 
-struct CmdResult {
-    int status = -1;
-    std::string output; // stdout + stderr
-};
-
 const std::string kSrc = SURFGRAD_SOURCE_DIR;
 const std::string kRock = kSrc + "/examples/data/rock_normal.png";
 const std::string kBrand = kSrc + "/examples/data/brand_normal.png";
-const std::string kPaint = std::string(SURFGRAD_DATA_DIR) + "/textures/ClearCoatCarPaint_Normal.png";
+const std::string kPaint =
+    std::string(SURFGRAD_DATA_DIR) + "/textures/ClearCoatCarPaint_Normal.png";
 const std::string kLava = std::string(SURFGRAD_DATA_DIR) + "/textures/lava_height.png";
 
 fs::path scratch(const std::string& name) {
@@ -37,19 +33,16 @@ fs::path scratch(const std::string& name) {
     return p;
 }
 
+struct CmdResult {
+    int status = -1;
+    std::string output; // stdout + stderr
+};
+
 CmdResult run(const std::string& args, const fs::path& cwd) {
-    const fs::path log = cwd / "cmd.log";
-    const std::string cmd = "cd '" + cwd.string() + "' && " + std::string(SURFGRAD_BINARY_DIR) +
-                            "/bin/surfgrad normalmap " + args + " > '" + log.string() + "' 2>&1";
-    const int rc = std::system(cmd.c_str());
-    CmdResult r;
-    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.output = ss.str();
-    fs::remove(log);
-    return r;
+    sg::test::CommandOptions opt;
+    opt.cwd = cwd;
+    const sg::test::CommandResult r = sg::test::runSurfgrad("normalmap " + args, opt);
+    return {r.exitCode, r.output()};
 }
 
 // Files in a directory (an atomic write leaves no temporary behind).
@@ -93,8 +86,8 @@ TEST(NormalmapCli, EveryOpAndItsNaiveVariantRunsOnTheRepositoryMaps) {
         }
     }
     // Outputs are readable maps of the input's size.
-    for (const char* f : {"fh.png", "th.exr", "td.exr", "rg.png", "dx.tga", "ag.tif", "s.png", "a.png",
-                          "b.png", "m.png", "c.png", "d.png", "r.png", "sh.png"}) {
+    for (const char* f : {"fh.png", "th.exr", "td.exr", "rg.png", "dx.tga", "ag.tif", "s.png",
+                          "a.png", "b.png", "m.png", "c.png", "d.png", "r.png", "sh.png"}) {
         const Image img = readImage(dir / f);
         EXPECT_EQ(img.width, std::string(f) == "fh.png" ? 1024 : 256) << f;
     }
@@ -123,7 +116,8 @@ TEST(NormalmapCli, RoundTripsThroughFiles) {
     const Image a = readImage(kRock), b = readImage(dir / "back.png");
     for (int j = 0; j < a.height; ++j)
         for (int i = 0; i < a.width; ++i)
-            for (int c = 0; c < 2; ++c) ASSERT_EQ(std::lround(a.at(i, j, c) * 255), std::lround(b.at(i, j, c) * 255));
+            for (int c = 0; c < 2; ++c)
+                ASSERT_EQ(std::lround(a.at(i, j, c) * 255), std::lround(b.at(i, j, c) * 255));
     // to-height (float) then from-height gives the integrable part of the
     // slopes; applying both again changes them by rounding only.
     ASSERT_EQ(run("to-height " + kRock + " -o h.exr --wrap", dir).status, 0);
@@ -131,7 +125,8 @@ TEST(NormalmapCli, RoundTripsThroughFiles) {
     ASSERT_EQ(run("to-height p.exr --encoding deriv -o h2.exr --wrap", dir).status, 0);
     const Image h1 = readImage(dir / "h.exr"), h2 = readImage(dir / "h2.exr");
     double maxDiff = 0;
-    for (size_t k = 0; k < h1.texels.size(); ++k) maxDiff = std::max(maxDiff, double(std::abs(h1.texels[k] - h2.texels[k])));
+    for (size_t k = 0; k < h1.texels.size(); ++k)
+        maxDiff = std::max(maxDiff, double(std::abs(h1.texels[k] - h2.texels[k])));
     // Heights of a few texels stored in binary32: 1e-4 texels.
     EXPECT_LT(maxDiff, 1e-4);
 }
@@ -151,20 +146,25 @@ TEST(NormalmapCli, BadInputIsAnErrorWithoutOutput) {
         std::string args, needle;
     };
     const std::vector<Case> cases = {
-        {"scale " + kLava + " -o out.png --alpha 2", "lava_height.png: channels: the image has 1 channel(s); the rgb encoding needs 3"},
+        {"scale " + kLava + " -o out.png --alpha 2",
+         "lava_height.png: channels: the image has 1 channel(s); the rgb encoding needs 3"},
         {"scale nan.exr -o out.png --alpha 2", "nan.exr: pixel (2, 0) channel 1: non-finite value"},
         {"scale junk.png -o out.png --alpha 2", "junk.png: cannot read image"},
         {"scale nothere.png -o out.png --alpha 2", "nothere.png: no such file"},
-        {"add " + kRock + " " + kPaint + " -o out.png", "ClearCoatCarPaint_Normal.png: size: 128x128 does not match"},
+        {"add " + kRock + " " + kPaint + " -o out.png",
+         "ClearCoatCarPaint_Normal.png: size: 128x128 does not match"},
         {"scale " + kRock + " -o " + kRock + " --alpha 2", "rock_normal.png"},
-        {"curves " + kRock + " -o out.png --points \"0,0 0.5\"", "--points: point 2: \"0.5\" is not x,y"},
+        {"curves " + kRock + " -o out.png --points \"0,0 0.5\"",
+         "--points: point 2: \"0.5\" is not x,y"},
         {"curves " + kRock + " -o out.png", "give exactly one of --boost, --points, --points-file"},
         {"deform " + kRock + " -o out.png --warp twist:3", "--warp: twist:3"},
         {"mips " + kRock + " -o out.png --lean", "a MIP chain is written as OpenEXR"},
         {"mips " + kRock + " -o out.exr", "give exactly one of --lean, --toksvig, --naive"},
         {"convert " + kRock + " -o out.png --to signed", "signed normals need a float output"},
-        {"convert " + kRock + " -o out.png --to object", "object-space maps need `convert --mesh M`"},
-        {"convert " + kRock + " -o out.png --to yuv", "encoding: yuv: expected rgb, rg, ag, signed or deriv"},
+        {"convert " + kRock + " -o out.png --to object",
+         "object-space maps need `convert --mesh M`"},
+        {"convert " + kRock + " -o out.png --to yuv",
+         "encoding: yuv: expected rgb, rg, ag, signed or deriv"},
         {"scale " + kRock + " -o out.jpg --alpha 2", "cannot write 8-bit samples as \".jpg\""},
     };
     const size_t before = fileCount(dir);

@@ -31,14 +31,14 @@ fs::path scratch(const std::string& name) {
 // the hard cases.
 Image hardMap(int W, int H) {
     const float cases[][3] = {
-        {0.5f, 0.5f, 1.0f},            // flat
-        {1.0f, 0.5f, 0.5f},            // horizon: x = 1, z = 0
-        {0.5f, 0.0f, 0.5f},            // horizon: y = -1
-        {0.853553f, 0.853553f, 0.5f},  // on the unit circle at 45 degrees
-        {1.0f, 1.0f, 1.0f},            // beyond: |xy| = sqrt(2)
-        {0.0f, 0.0f, 0.0f},            // (-1, -1, -1): inward and beyond
-        {0.5f, 0.5f, 0.0f},            // straight down
-        {0.5f, 0.5f, 0.5f},            // zero vector
+        {0.5f, 0.5f, 1.0f},           // flat
+        {1.0f, 0.5f, 0.5f},           // horizon: x = 1, z = 0
+        {0.5f, 0.0f, 0.5f},           // horizon: y = -1
+        {0.853553f, 0.853553f, 0.5f}, // on the unit circle at 45 degrees
+        {1.0f, 1.0f, 1.0f},           // beyond: |xy| = sqrt(2)
+        {0.0f, 0.0f, 0.0f},           // (-1, -1, -1): inward and beyond
+        {0.5f, 0.5f, 0.0f},           // straight down
+        {0.5f, 0.5f, 0.5f},           // zero vector
     };
     Image img;
     img.width = W;
@@ -96,7 +96,8 @@ TEST(Robustness, HardTexelsThroughEveryOpStayFinite) {
             expectUnit(naive::scale(n, -1.0f), "naive scale");
             expectUnit(naive::add(n, 1.0f, n, -1.0f), "naive add (cancels to zero)");
             expectUnit(naive::blend(n, naive::scale(n, -1.0f), mask), "naive blend");
-            expectUnit(naive::deform(n, Warp{Warp::Kind::Sine, 0.3f, 100.0f}, wrap), "naive deform");
+            expectUnit(naive::deform(n, Warp{Warp::Kind::Sine, 0.3f, 100.0f}, wrap),
+                       "naive deform");
         }
         // Every result encodes without NaN.
         const Image out = encodeSlopes(scale(d, 2.0f), MapFormat{}, false);
@@ -118,7 +119,8 @@ TEST(Robustness, ExtremeValuesAndSizes) {
         const DerivField d = decodeSlopes(img, MapFormat{}, "tiny");
         // A warp slope A B = 1e12 multiplies slopes of up to 128: finite
         // (sgSineWarpJacobian clamps the slope to 1e18).
-        expectFinite(deform(d, Warp{Warp::Kind::Sine, 1e6f, 1e6f}, Wrap::Clamp), "huge warp", 1e21f);
+        expectFinite(deform(d, Warp{Warp::Kind::Sine, 1e6f, 1e6f}, Wrap::Clamp), "huge warp",
+                     1e21f);
         const auto levels = mipChain(leanLevel0(d));
         EXPECT_EQ(levels.back().width, 1);
         EXPECT_EQ(levels.back().height, 1);
@@ -151,8 +153,8 @@ TEST(Robustness, BadFilesAreInputErrors) {
         OIIO::ImageSpec spec(4, 3, 3, OIIO::TypeDesc::FLOAT);
         std::vector<float> px(4 * 3 * 3, 0.5f);
         px[(1 * 4 + 2) * 3 + 1] = std::numeric_limits<float>::quiet_NaN();
-        ASSERT_TRUE(out->open(p.string(), spec) && out->write_image(OIIO::TypeDesc::FLOAT, px.data()) &&
-                    out->close());
+        ASSERT_TRUE(out->open(p.string(), spec) &&
+                    out->write_image(OIIO::TypeDesc::FLOAT, px.data()) && out->close());
         try {
             (void)readImage(p);
             FAIL();
@@ -192,8 +194,8 @@ TEST(Robustness, CurveAndWarpTextIsValidated) {
     // Monotone data gives a monotone curve (Fritsch-Carlson): f' >= 0.
     const Curve m = parseCurvePoints("0,0 0.1,0.9 0.2,0.91 1,1", "t");
     for (int k = 0; k <= 1000; ++k) EXPECT_GE(m.slopeAt(k / 1000.0f), -1e-6f) << k;
-    for (const char* bad : {"", "sine", "sine:1", "sine:1,2,3", "rotate:", "rotate:x", "twist:1,2",
-                            "sine:1e9,1"}) {
+    for (const char* bad :
+         {"", "sine", "sine:1", "sine:1,2,3", "rotate:", "rotate:x", "twist:1,2", "sine:1e9,1"}) {
         EXPECT_THROW((void)parseWarp(bad), sg::io::InputError) << bad;
     }
     EXPECT_EQ(parseWarp("rotate:45").kind, Warp::Kind::Rotate);

@@ -5,7 +5,6 @@
 // and normal conversion goes through the shared functions.
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "normalmap_internal.h"
 
@@ -109,9 +108,7 @@ void storeNormal(Image& img, Encoding e, int i, int j, glm::vec3 n) {
 }
 
 Image blankImage(int w, int h, Encoding e, bool isFloat) {
-    if (e == Encoding::Signed && !isFloat) {
-        throw std::invalid_argument("signed normals need a floating-point image");
-    }
+    SG_EXPECTS(e != Encoding::Signed || isFloat, "signed normals need a floating-point image");
     Image img;
     img.width = w;
     img.height = h;

@@ -15,7 +15,6 @@ namespace sg::normalmap::naive {
 namespace g = sg::glsl;
 using detail::forRows;
 using detail::kFlat;
-using detail::requireSameSize;
 
 namespace {
 
@@ -40,15 +39,15 @@ NormalField scale(const NormalField& n, float alpha) {
 }
 
 NormalField add(const NormalField& a, float wa, const NormalField& b, float wb) {
-    requireSameSize(a, b);
+    SG_NM_EXPECT_SAME_SIZE(a, b);
     return perTexel(a.width, a.height, [&](int i, int j) {
         return kFlat + wa * (a.at(i, j) - kFlat) + wb * (b.at(i, j) - kFlat);
     });
 }
 
 NormalField blend(const NormalField& a, const NormalField& b, const ScalarField& mask) {
-    requireSameSize(a, b);
-    requireSameSize(a, mask);
+    SG_NM_EXPECT_SAME_SIZE(a, b);
+    SG_NM_EXPECT_SAME_SIZE(a, mask);
     return perTexel(a.width, a.height, [&](int i, int j) {
         const float m = mask.at(i, j);
         return (1.0f - m) * a.at(i, j) + m * b.at(i, j);
@@ -56,7 +55,7 @@ NormalField blend(const NormalField& a, const NormalField& b, const ScalarField&
 }
 
 NormalField modulate(const NormalField& n, const ScalarField& gain) {
-    requireSameSize(n, gain);
+    SG_NM_EXPECT_SAME_SIZE(n, gain);
     return perTexel(n.width, n.height, [&](int i, int j) {
         const float k = gain.at(i, j);
         return k * n.at(i, j) + (1.0f - k) * kFlat;
@@ -64,7 +63,7 @@ NormalField modulate(const NormalField& n, const ScalarField& gain) {
 }
 
 NormalField applyCurve(const NormalField& n, const ScalarField& h, const Curve& curve) {
-    requireSameSize(n, h);
+    SG_NM_EXPECT_SAME_SIZE(n, h);
     const ScalarField x = detail::normalisedElevation(h);
     return perTexel(n.width, n.height, [&](int i, int j) {
         const float k = curve.slopeAt(x.at(i, j));

@@ -6,10 +6,10 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 #include "surfgrad/bump.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/io.h"
 #include "surfgrad/normalmap.h"
 
@@ -70,14 +70,10 @@ T sampleBilinear(const Grid<T>& g, float x, float y, Wrap wrap) {
     return bottom * (1.0f - ay) + top * ay;
 }
 
-// Precondition of the ops that combine grids (the CLI checks the sizes of
-// its inputs and names the files): a caller bug otherwise.
-template <class A, class B>
-void requireSameSize(const Grid<A>& a, const Grid<B>& b) {
-    if (a.width != b.width || a.height != b.height) {
-        throw std::invalid_argument("surfgrad normalmap: grids of different sizes");
-    }
-}
+// Precondition of the ops that combine grids (a contract: the CLI checks
+// the sizes of its inputs and names the files).
+#define SG_NM_EXPECT_SAME_SIZE(a, b)                                                               \
+    SG_EXPECTS((a).width == (b).width && (a).height == (b).height, "grids of different sizes")
 
 // The normalised elevation (h - min) / (max - min) of every texel, 0 for a
 // flat field (ops.cpp; the x of Curve).

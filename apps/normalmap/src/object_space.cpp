@@ -85,6 +85,9 @@ g::SgFrame baseFrame(glm::vec3 vtxNormal) {
 
 TexelFrames rasterizeFrames(const sg::mesh::RenderMesh& mesh, int uvSet, int width, int height,
                             int dilateTexels) {
+    SG_EXPECTS(uvSet >= 0 && size_t(uvSet) < mesh.uvSets.size(), "uvSet indexes mesh.uvSets");
+    SG_EXPECTS(mesh.normals.size() == mesh.positions.size(), "the mesh has vertex normals");
+    SG_EXPECTS(width > 0 && height > 0, "a non-empty grid");
     TexelFrames f;
     f.normal = Grid<glm::vec3>(width, height);
     f.tangent = Grid<glm::vec4>(width, height);
@@ -105,7 +108,7 @@ TexelFrames rasterizeFrames(const sg::mesh::RenderMesh& mesh, int uvSet, int wid
 }
 
 NormalField objectFromTangent(const DerivField& d, const TexelFrames& frames) {
-    detail::requireSameSize(d, frames.covered);
+    SG_NM_EXPECT_SAME_SIZE(d, frames.covered);
     NormalField n(d.width, d.height);
     forRows(d.height, [&](int j) {
         for (int i = 0; i < d.width; ++i) {
@@ -123,7 +126,7 @@ NormalField objectFromTangent(const DerivField& d, const TexelFrames& frames) {
 }
 
 DerivField tangentFromObject(const NormalField& objectNormals, const TexelFrames& frames) {
-    detail::requireSameSize(objectNormals, frames.covered);
+    SG_NM_EXPECT_SAME_SIZE(objectNormals, frames.covered);
     DerivField d(objectNormals.width, objectNormals.height);
     forRows(d.height, [&](int j) {
         for (int i = 0; i < d.width; ++i) {
@@ -168,7 +171,7 @@ bool unitFrame(const TexelFrames& f, int i, int j, glm::vec3& t, glm::vec3& b, g
 } // namespace
 
 NormalField objectFromTangent(const NormalField& m, const TexelFrames& frames) {
-    detail::requireSameSize(m, frames.covered);
+    SG_NM_EXPECT_SAME_SIZE(m, frames.covered);
     NormalField o(m.width, m.height);
     forRows(m.height, [&](int j) {
         for (int i = 0; i < m.width; ++i) {
@@ -183,7 +186,7 @@ NormalField objectFromTangent(const NormalField& m, const TexelFrames& frames) {
 }
 
 NormalField tangentFromObject(const NormalField& objectNormals, const TexelFrames& frames) {
-    detail::requireSameSize(objectNormals, frames.covered);
+    SG_NM_EXPECT_SAME_SIZE(objectNormals, frames.covered);
     NormalField m(objectNormals.width, objectNormals.height);
     forRows(m.height, [&](int j) {
         for (int i = 0; i < m.width; ++i) {

@@ -15,7 +15,6 @@ namespace sg::normalmap {
 
 namespace g = sg::glsl;
 using detail::forRows;
-using detail::requireSameSize;
 
 DerivField scale(const DerivField& d, float alpha) {
     DerivField r(d.width, d.height);
@@ -26,7 +25,7 @@ DerivField scale(const DerivField& d, float alpha) {
 }
 
 DerivField add(const DerivField& a, float wa, const DerivField& b, float wb) {
-    requireSameSize(a, b);
+    SG_NM_EXPECT_SAME_SIZE(a, b);
     DerivField r(a.width, a.height);
     forRows(a.height, [&](int j) {
         for (int i = 0; i < a.width; ++i)
@@ -37,10 +36,10 @@ DerivField add(const DerivField& a, float wa, const DerivField& b, float wb) {
 
 DerivField blend(const DerivField& a, const ScalarField& ha, const DerivField& b,
                  const ScalarField& hb, const ScalarField& mask, Wrap wrap) {
-    requireSameSize(a, b);
-    requireSameSize(a, ha);
-    requireSameSize(a, hb);
-    requireSameSize(a, mask);
+    SG_NM_EXPECT_SAME_SIZE(a, b);
+    SG_NM_EXPECT_SAME_SIZE(a, ha);
+    SG_NM_EXPECT_SAME_SIZE(a, hb);
+    SG_NM_EXPECT_SAME_SIZE(a, mask);
     DerivField r(a.width, a.height);
     forRows(a.height, [&](int j) {
         for (int i = 0; i < a.width; ++i) {
@@ -52,8 +51,8 @@ DerivField blend(const DerivField& a, const ScalarField& ha, const DerivField& b
 }
 
 DerivField modulate(const DerivField& d, const ScalarField& h, const ScalarField& gain, Wrap wrap) {
-    requireSameSize(d, h);
-    requireSameSize(d, gain);
+    SG_NM_EXPECT_SAME_SIZE(d, h);
+    SG_NM_EXPECT_SAME_SIZE(d, gain);
     DerivField r(d.width, d.height);
     forRows(d.height, [&](int j) {
         for (int i = 0; i < d.width; ++i) {
@@ -85,7 +84,7 @@ ScalarField normalisedElevation(const ScalarField& h) {
 } // namespace detail
 
 DerivField applyCurve(const DerivField& d, const ScalarField& h, const Curve& curve) {
-    requireSameSize(d, h);
+    SG_NM_EXPECT_SAME_SIZE(d, h);
     const ScalarField x = detail::normalisedElevation(h);
     DerivField r(d.width, d.height);
     forRows(d.height, [&](int j) {

@@ -31,8 +31,11 @@
 //    returns finite slopes and unit normals for finite inputs (flat,
 //    extreme and horizon normals included: listing 4 clamps slopes to
 //    +-128).
-//  - Errors in untrusted input (files, channel counts, size mismatches,
-//    curve text) throw sg::io::InputError naming file, element and reason.
+//  - Errors in untrusted input (files, channel counts, curve and warp
+//    text) throw sg::io::InputError naming file, element and reason.
+//    Preconditions stated at a declaration (grids of one size, a UV set the
+//    mesh has) are contracts (surfgrad/contract.h): the CLI checks the
+//    files it reads before calling.
 //    Long operations report progress through a Progress callback and run
 //    on TBB's task arena (tbb::global_control limits the threads).
 #pragma once
@@ -211,8 +214,8 @@ ScalarField toHeight(const DerivField& d, Wrap wrap, const Progress& progress = 
 // "Scaling": the slopes of alpha h (sgDerivScale). alpha = -1 inverts,
 // alpha = 2 doubles the slopes and never turns a normal inward.
 DerivField scale(const DerivField& d, float alpha);
-// "Adding and Blending": the slopes of wa hA + wb hB (sgDerivAdd). Sizes
-// must match (caller's check).
+// "Adding and Blending": the slopes of wa hA + wb hB (sgDerivAdd).
+// Every op taking several grids requires them to have one size.
 DerivField add(const DerivField& a, float wa, const DerivField& b, float wb);
 // Blending with a mask m in [0, 1] (any values accepted): the slopes of
 // (1 - m) hA + m hB (sgDerivMaskBlend, product rule), with the mask's
@@ -299,7 +302,11 @@ DerivField slopesFromNormals(const NormalField& n);
 // (Mikkelsen 2019, section 2.2: the mikktspace basis uses the interpolated
 // vectors). Texels outside every triangle are filled from the nearest
 // covered texel up to `dilateTexels` away (covered = 2 there), else stay
-// uncovered (0). Where UV islands overlap the last triangle wins.
+// uncovered (0). Where UV islands overlap the last triangle wins; parts of
+// triangles outside [0, 1]^2 are clipped (not wrapped). Preconditions: the
+// mesh has vertex normals, uvSet indexes its UV sets, and MikkTSpace's input
+// conditions hold (sg::mesh::tangentInputProblem(mesh, MikkTSpace, uvSet)
+// is empty) when it has no tangents for that set.
 struct TexelFrames {
     Grid<glm::vec3> normal;
     Grid<glm::vec4> tangent;
