@@ -70,6 +70,7 @@ struct Options {
     int uvSet = 0, dilate = 4;
     bool lean = false, toksvig = false;
     std::string light = "-0.5,0.5,0.7";
+    int level = -1;
 };
 
 nm::Wrap wrapOf(const Options& o) {
@@ -448,11 +449,44 @@ void runMips(const Options& o, Reporter& r) {
                 levels.size(), m.image.width, m.image.height);
 }
 
+// A MIP level of a chain file as shading normals: Toksvig's average normal
+// as stored (unnormalised: its Lambert term is the average of the texels'
+// Lambert terms wherever they face the light), a naive chain's renormalised
+// one, LEAN's mean slope as a normal.
+nm::NormalField mipLevelNormals(const Options& o) {
+    std::string layout;
+    const auto levels = nm::readMipChain(o.inputs[0], nullptr, &layout);
+    if (o.level < 0 || size_t(o.level) >= levels.size()) {
+        throw io::InputError(o.inputs[0], "level " + std::to_string(o.level),
+                             "the chain has " + std::to_string(levels.size()) + " levels");
+    }
+    const nm::Image& L = levels[size_t(o.level)];
+    if (layout == nm::kLeanLayout) {
+        nm::DerivField d(L.width, L.height);
+        for (int j = 0; j < L.height; ++j)
+            for (int i = 0; i < L.width; ++i) d.at(i, j) = glm::vec2(L.at(i, j, 0), L.at(i, j, 1));
+        return nm::normalsFromSlopes(d);
+    }
+    if (layout != nm::kToksvigLayout && layout != nm::kNaiveMipLayout) {
+        throw io::InputError(o.inputs[0], "surfgrad:layout", "not a MIP chain of `normalmap mips`");
+    }
+    nm::NormalField n(L.width, L.height);
+    for (int j = 0; j < L.height; ++j)
+        for (int i = 0; i < L.width; ++i)
+            n.at(i, j) = glm::vec3(L.at(i, j, 0), L.at(i, j, 1), L.at(i, j, 2));
+    return n;
+}
+
 void runShade(const Options& o, Reporter&) {
-    const Map m = readMap(o.inputs[0], o);
     const auto l = parseFloats(o.light, 3, "--light X,Y,Z");
-    const nm::Image img =
-        nm::shade(nm::decodeNormals(m.image, m.format, m.file), glm::vec3(l[0], l[1], l[2]));
+    nm::NormalField n;
+    if (o.level >= 0) {
+        n = mipLevelNormals(o);
+    } else {
+        const Map m = readMap(o.inputs[0], o);
+        n = nm::decodeNormals(m.image, m.format, m.file);
+    }
+    const nm::Image img = nm::shade(n, glm::vec3(l[0], l[1], l[2]));
     nm::writeImage(o.output, img,
                    o.bits.empty() ? nm::defaultSampleType(o.output, false)
                                   : nm::parseSampleType(o.bits));
@@ -603,6 +637,7 @@ void addNormalmapCommands(CLI::App& app, int& status) {
         auto [c, o] = add("shade", "Lambert-shaded preview of a map", 1, true);
         c->add_option("--light", o->light,
                       "Light direction x,y,z in tangent space (default -0.5,0.5,0.7)");
+        c->add_option("--level", o->level, "Shade this level of a `mips` chain file instead");
     }
     (void)status;
 }

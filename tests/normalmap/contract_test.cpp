@@ -17,8 +17,10 @@ TEST_F(ContractDeath, OpsOnGridsOfDifferentSizes) {
     const ScalarField h(8, 8), small(4, 4);
     SG_EXPECT_CONTRACT_DEATH((void)add(a, 1.0f, b, 1.0f), "grids of different sizes");
     SG_EXPECT_CONTRACT_DEATH((void)modulate(a, h, small, Wrap::Clamp), "grids of different sizes");
-    SG_EXPECT_CONTRACT_DEATH((void)blend(a, h, a, h, small, Wrap::Clamp), "grids of different sizes");
-    SG_EXPECT_CONTRACT_DEATH((void)applyCurve(a, small, boostCurve(1.0f, 0.5f)), "grids of different sizes");
+    SG_EXPECT_CONTRACT_DEATH((void)blend(a, h, a, h, small, Wrap::Clamp),
+                             "grids of different sizes");
+    SG_EXPECT_CONTRACT_DEATH((void)applyCurve(a, small, boostCurve(1.0f, 0.5f)),
+                             "grids of different sizes");
     SG_EXPECT_CONTRACT_DEATH((void)naive::add(NormalField(8, 8), 1.0f, NormalField(2, 2), 1.0f),
                              "grids of different sizes");
 }

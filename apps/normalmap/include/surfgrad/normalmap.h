@@ -396,7 +396,10 @@ std::vector<Image> readMipChain(const std::filesystem::path& path,
 // Shading preview (for docs/before-after images)
 
 // Lambert shading of tangent-space normals lit from `lightDir` (tangent
-// space, normalised inside), grey albedo, as a 3-channel [0, 1] image.
+// space, normalised inside), grey albedo, as a 3-channel [0, 1] image:
+// 0.08 + 0.85 max(0, n . l). n is used as given: an unnormalised average
+// normal (Toksvig) gives the average of its texels' Lambert terms where
+// they all face the light.
 Image shade(const NormalField& n, glm::vec3 lightDir);
 
 } // namespace sg::normalmap
