@@ -37,7 +37,9 @@ Field creaseField() {
 }
 
 TEST(OpsAnalytic, ScaleInvertsAndDoublesExactly) {
-    for (const Field& f : {sinesField(), bumpField(), creaseField()}) {
+    const std::pair<const char*, Field> fields[] = {
+        {"sines", sinesField()}, {"bump", bumpField()}, {"crease", creaseField()}};
+    for (const auto& [name, f] : fields) {
         const DerivField d = slopes(f, W, H);
         const NormalField n = normalsFromSlopes(d);
         for (float alpha : {-1.0f, 2.0f, 0.5f}) {
@@ -45,7 +47,11 @@ TEST(OpsAnalytic, ScaleInvertsAndDoublesExactly) {
                 exact(W, H, [&](double u, double v) { return double(alpha) * f.grad(u, v); });
             const AngleError ok = compare(scale(d, alpha), want);
             const AngleError nv = compare(naive::scale(n, alpha), want);
-            print(alpha < 0 ? "scale -1" : alpha > 1 ? "scale 2" : "scale 0.5", ok, nv);
+            const std::string what = std::string(alpha < 0   ? "scale -1"
+                                                 : alpha > 1 ? "scale 2"
+                                                             : "scale 0.5") +
+                                     " (" + name + ")";
+            print(what.c_str(), ok, nv);
             // alpha d in binary32, then the normal: rounding only (1e-4 deg
             // is ~2e-6 rad, tens of ulps).
             EXPECT_LT(ok.maxDeg, 1e-4);
