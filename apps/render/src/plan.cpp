@@ -633,8 +633,8 @@ std::string modifierBlock(const PlanLayer& pl, const std::string& indent) {
             o += in + "hd = sgModCurve(hd, " + op + ");\n";
             break;
         case ModifierKind::Modulate:
-            o +=
-                in + "hd = sgModModulate(hd, " + op + ", " + tex(pl.modTex[i]) + ", st, dx, dy);\n";
+            o += in + "hd = sgModModulate(hd, " + op + ", " + tex(pl.modTex[i]) + ", st, dx, dy, " +
+                 (deform ? "jac" : "mat2(1.0f)") + ");\n";
             break;
         }
     }
@@ -1012,7 +1012,7 @@ glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector
                 hd = G::sgModCurve(hd, m[i]);
                 break;
             case ModifierKind::Modulate:
-                hd = G::sgModModulate(hd, m[i], t(pl.modTex[i]), st, dx, dy);
+                hd = G::sgModModulate(hd, m[i], t(pl.modTex[i]), st, dx, dy, jac);
                 break;
             }
         }

@@ -8,8 +8,10 @@
 //   CURVE    (P, H)              h' = f(h),        d' = f'(h) d,
 //                                f' = 1 / (1 + P (h - H)^2)       ("Curves (5)")
 //   MODULATE (mask channel, gain) h' = h m,        d' = d m + h dm ("Modulation"),
-//                                m = gain * mask, dm by central differences of
-//                                the mask (one texel apart), per st unit
+//                                m = gain * mask at the lookup coordinate, dm by
+//                                central differences of the mask (one texel
+//                                apart), per st unit, through the warp's
+//                                Jacobian like the map's derivative
 //   DEFORM   (A, B)              samples at the warp (s, t + A sin(B s)) and
 //                                d' = J^T d (chain rule, "Deformation (2)-(4)")
 // h and d share units: h per unit of st (the layer's height scale converts
@@ -70,9 +72,15 @@ SG_FN SgHeightDeriv sgModCurve(SgHeightDeriv s, vec4 op) {
     return r;
 }
 
-// MODULATE by a mask sampled at st (the layer's, warped, coordinate) with
-// the layer's screen derivatives; dm by central differences one texel apart.
-SG_FN SgHeightDeriv sgModModulate(SgHeightDeriv s, vec4 op, sampler2D mask, vec2 st, vec2 dSTdx, vec2 dSTdy) {
+// MODULATE by a mask sampled at st (the layer's lookup coordinate: warped
+// when the layer's first modifier is DEFORM) with the layer's screen
+// derivatives. dm by central differences one texel apart is the mask's
+// derivative w.r.t. the lookup coordinate; the mask as the layer sees it,
+// m(w(s, t)), has the derivative J^T dm (chain rule, "Deformation (2)"),
+// exactly as the map's derivative (sgModDeform). jac: the warp's Jacobian
+// from sgModWarp, the identity without DEFORM.
+SG_FN SgHeightDeriv sgModModulate(SgHeightDeriv s, vec4 op, sampler2D mask, vec2 st, vec2 dSTdx,
+                                  vec2 dSTdy, mat2 jac) {
     int ch = sgRecInt(op.y);
     vec2 texel = vec2(1.0f) / vec2(textureSize(mask, 0));
     float mc = op.z * sgTexelChannel(textureGrad(mask, st, dSTdx, dSTdy), ch);
@@ -80,7 +88,8 @@ SG_FN SgHeightDeriv sgModModulate(SgHeightDeriv s, vec4 op, sampler2D mask, vec2
     float ms0 = sgTexelChannel(textureGrad(mask, st - vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
     float mt1 = sgTexelChannel(textureGrad(mask, st + vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
     float mt0 = sgTexelChannel(textureGrad(mask, st - vec2(0.0f, texel.y), dSTdx, dSTdy), ch);
-    vec2 dm = op.z * vec2((ms1 - ms0) / (2.0f * texel.x), (mt1 - mt0) / (2.0f * texel.y));
+    vec2 dmAtLookup = op.z * vec2((ms1 - ms0) / (2.0f * texel.x), (mt1 - mt0) / (2.0f * texel.y));
+    vec2 dm = sgDerivDeform(dmAtLookup, jac);
     SgHeightDeriv r;
     r.d = sgDerivModulate(s.d, s.h, dm, mc);
     r.h = s.h * mc;
