@@ -29,7 +29,8 @@ constexpr int kSize = 256;
 
 // Height (per unit of st) and mask, periodic on [0, 1]^2.
 double height(double s, double t) {
-    return 0.02 * std::sin(2 * kPi * (3 * s + t)) + 0.012 * std::cos(2 * kPi * (2 * s - 3 * t)) + 0.05;
+    return 0.02 * std::sin(2 * kPi * (3 * s + t)) + 0.012 * std::cos(2 * kPi * (2 * s - 3 * t)) +
+           0.05;
 }
 double mask(double s, double t) {
     return 0.5 + 0.4 * std::sin(2 * kPi * (s + 2 * t) + 0.4);
@@ -48,7 +49,8 @@ sg::render::TextureImage mapTexture() {
             const double s = (i + 0.5) / kSize, tt = (j + 0.5) / kSize;
             const glm::dvec2 d = grad(height, s, tt);
             const glm::dvec3 n = glm::normalize(glm::dvec3(-d.x, -d.y, 1.0));
-            t[size_t(j) * kSize + size_t(i)] = glm::vec4(float(n.x), float(n.y), float(n.z), float(height(s, tt)));
+            t[size_t(j) * kSize + size_t(i)] =
+                glm::vec4(float(n.x), float(n.y), float(n.z), float(height(s, tt)));
         }
     return sg::render::makeTexture(kSize, kSize, std::move(t), sg::render::Wrap::Repeat);
 }
@@ -95,7 +97,8 @@ double transformed(const std::vector<Kind>& mods, double s, double t) {
 }
 
 // The modifier chain as modifierBlock() emits it.
-glm::vec2 chain(const std::vector<Kind>& mods, G::sampler2D map, G::sampler2D maskSmp, glm::vec2 st0) {
+glm::vec2 chain(const std::vector<Kind>& mods, G::sampler2D map, G::sampler2D maskSmp,
+                glm::vec2 st0) {
     G::SgUvNormalParams p;
     p.strength = 1.0f;
     p.encoding = SG_ENC_FLOAT;
@@ -131,14 +134,17 @@ TEST(ModifierPairs, EveryOrderedPairMatchesTheTransformedHeight) {
         double worst = 0, scale = 0;
         for (int k = 0; k < 400; ++k) {
             // Points between texel centres too (bilinear interpolation).
-            const double s = 0.0371 + 0.7431 * ((k * 37) % 400) / 400.0, t = 0.0913 + 0.8017 * k / 400.0;
-            const glm::dvec2 want = grad([&](double a, double b) { return transformed(mods, a, b); }, s, t);
+            const double s = 0.0371 + 0.7431 * ((k * 37) % 400) / 400.0,
+                         t = 0.0913 + 0.8017 * k / 400.0;
+            const glm::dvec2 want =
+                grad([&](double a, double b) { return transformed(mods, a, b); }, s, t);
             const glm::vec2 got = chain(mods, map, maskSmp, glm::vec2(float(s), float(t)));
             worst = std::max(worst, glm::length(glm::dvec2(got.x, got.y) - want));
             scale = std::max(scale, glm::length(want));
         }
         const std::string name = std::string(kNames[mods[0]]) + " -> " + kNames[mods[1]];
-        std::printf("[ measure  ] %-20s max |d - exact| %.2e (largest |d| %.3f)\n", name.c_str(), worst, scale);
+        std::printf("[ measure  ] %-20s max |d - exact| %.2e (largest |d| %.3f)\n", name.c_str(),
+                    worst, scale);
         // Bilinear interpolation of 256^2 texels between centres: the
         // slopes' second derivative (2 pi 4)^2 |d| / 8 per (1/256)^2, 0.2%
         // of |d|; the mask's central differences one texel apart, omega^2 / 6
