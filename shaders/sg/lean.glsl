@@ -32,11 +32,16 @@ SG_FN vec3 sgLeanSecondMoments(vec2 d) { return vec3(d.x * d.x, d.y * d.y, d.x *
 // vary (|B|^2 >> variance): the variances are clamped to >= 0 and the
 // covariance to |cov| <= sqrt(var x var y), so the result is always a valid
 // (positive semi-definite) covariance.
+// Variances below SG_FLT_MIN are 0 (a GPU flushes such denormals; the CPU
+// then does the same), and the bound is sqrt(var x) sqrt(var y), which
+// neither underflows nor overflows where the product would.
 SG_FN vec3 sgLeanCovariance(vec2 meanD, vec3 second) {
-    float vx = max(second.x - meanD.x * meanD.x, 0.0f);
-    float vy = max(second.y - meanD.y * meanD.y, 0.0f);
+    float vx = second.x - meanD.x * meanD.x;
+    float vy = second.y - meanD.y * meanD.y;
+    vx = vx >= SG_FLT_MIN ? vx : 0.0f;
+    vy = vy >= SG_FLT_MIN ? vy : 0.0f;
     float c = second.z - meanD.x * meanD.y;
-    float cMax = sqrt(vx * vy);
+    float cMax = sqrt(vx) * sqrt(vy);
     return vec3(vx, vy, clamp(c, -cMax, cMax));
 }
 

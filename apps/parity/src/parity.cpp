@@ -206,6 +206,20 @@ std::string checkInvariants(const eval::Entry& e, const float* in, const float* 
         // tang = min(1/|n|, SG_BIG) t and bino = sign cross(n/|n|, t): within
         // SG_BIG * |t| and |t| for inputs in the domain.
         bounded("t", 2 * kBig * kBig) && bounded("b", 2 * kBig);
+    } else if (n == "lean-covariance") {
+        // A valid covariance: variances >= 0, |cov| <= sqrt(var x var y)
+        // (the clamp of lean.glsl), up to the rounding of the sqrt.
+        if (!(out[0] >= 0.0f && out[1] >= 0.0f) ||
+            std::fabs(double(out[2])) > std::sqrt(double(out[0]) * out[1]) * (1.0 + 1e-6)) {
+            why << "cov = (" << out[0] << ", " << out[1] << ", " << out[2]
+                << ") is not positive semi-definite";
+        }
+    } else if (n == "toksvig-variance") {
+        // (1 - |N|) / |N| with |N| clamped to [2^-20, 1]: in [0, 2^20].
+        if (!(out[0] >= 0.0f && out[0] <= 1048576.0f))
+            why << "s2 = " << out[0] << " outside [0, 2^20]";
+    } else if (n == "toksvig-factor") {
+        if (!(out[0] > 0.0f && out[0] <= 1.0f)) why << "k = " << out[0] << " outside (0, 1]";
     }
     (void)in;
     return why.str();
