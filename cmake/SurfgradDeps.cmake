@@ -1,37 +1,16 @@
 # All third-party packages, found once. Installed on Debian 12 by
 # scripts/setup-deps (see README). Quirks handled here are documented in
 # docs/platform.md.
-find_package(glm REQUIRED)
-find_package(nlohmann_json REQUIRED)
+#
+# What the libraries link is found by cmake/surfgradDependencies.cmake,
+# which the installed surfgradConfig.cmake runs too (the same code, one
+# place: OpenSubdiv through cmake/FindOpenSubdiv.cmake, OpenImageIO's
+# opencv4 include directory filtered out).
+set(_surfgrad_with_viewer ${SURFGRAD_BUILD_VIEWER})
+include(surfgradDependencies)
+
+# The CLI, the tests and the benchmarks only.
 find_package(CLI11 REQUIRED)
-find_package(OpenMesh REQUIRED)
-find_package(OpenSubdiv REQUIRED)          # cmake/FindOpenSubdiv.cmake
-find_package(TinyGLTF REQUIRED)
-find_package(Freetype REQUIRED)
-find_package(TBB REQUIRED)
-find_package(PkgConfig REQUIRED)
-pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)
-pkg_check_modules(EGL REQUIRED IMPORTED_TARGET egl)
-
-# OpenImageIO's exported target names /usr/include/opencv4, which does not
-# exist unless libopencv-dev is installed; CMake then fails at generate time.
-find_package(OpenImageIO REQUIRED)
-foreach(_oiio_tgt OpenImageIO::OpenImageIO OpenImageIO::OpenImageIO_Util)
-    if(TARGET ${_oiio_tgt})
-        foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
-            get_target_property(_dirs ${_oiio_tgt} ${_prop})
-            if(_dirs)
-                list(FILTER _dirs EXCLUDE REGEX "opencv4")
-                set_target_properties(${_oiio_tgt} PROPERTIES ${_prop} "${_dirs}")
-            endif()
-        endforeach()
-    endif()
-endforeach()
-
-if(SURFGRAD_BUILD_VIEWER)
-    find_package(glfw3 REQUIRED)
-    pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)
-endif()
 if(SURFGRAD_BUILD_TESTS)
     find_package(GTest REQUIRED)
 endif()

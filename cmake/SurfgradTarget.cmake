@@ -29,3 +29,29 @@ function(surfgrad_defaults tgt)
         endif()
     endif()
 endfunction()
+
+# surfgrad_export(target NAME name [HEADERS dir]): makes a first-party
+# library part of the installed package (cmake/SurfgradInstall.cmake):
+#  - the alias surfgrad::<name>, the name consumers use after
+#    find_package(surfgrad) and first-party code may use in the build tree;
+#  - export name <name> (the installed target is surfgrad::<name> too);
+#  - HEADERS: the module's public include directory (its surfgrad/*.h),
+#    used from the source tree in a build and from <prefix>/include in an
+#    installation, where SurfgradInstall.cmake copies its files;
+#  - in a build with SURFGRAD_CONTRACTS on, the installed target passes
+#    SURFGRAD_CONTRACTS=1 on to consumers, so inline functions of the
+#    headers check the same contracts as the library (surfgrad/contract.h).
+function(surfgrad_export tgt)
+    cmake_parse_arguments(E "" "NAME;HEADERS" "" ${ARGN})
+    add_library(surfgrad::${E_NAME} ALIAS ${tgt})
+    set_target_properties(${tgt} PROPERTIES EXPORT_NAME ${E_NAME})
+    if(E_HEADERS)
+        target_include_directories(${tgt} PUBLIC "$<BUILD_INTERFACE:${E_HEADERS}>"
+                                   "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+        set_property(GLOBAL APPEND PROPERTY SURFGRAD_HEADER_DIRS "${E_HEADERS}")
+    endif()
+    if(SURFGRAD_CONTRACTS)
+        target_compile_definitions(${tgt} INTERFACE "$<INSTALL_INTERFACE:SURFGRAD_CONTRACTS=1>")
+    endif()
+    set_property(GLOBAL APPEND PROPERTY SURFGRAD_EXPORTED_TARGETS ${tgt})
+endfunction()

@@ -17,10 +17,6 @@
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
 
-#ifndef SURFGRAD_DEFAULT_DATA_DIR
-#define SURFGRAD_DEFAULT_DATA_DIR ""
-#endif
-
 namespace sg::render {
 
 namespace fs = std::filesystem;
@@ -77,11 +73,6 @@ std::optional<Aov> parseAov(const std::string& name) {
         if (name == aovName(Aov(i))) return Aov(i);
     }
     return std::nullopt;
-}
-
-fs::path dataDirectory() {
-    if (const char* env = std::getenv("SURFGRAD_DATA_DIR"); env && *env) return fs::path(env);
-    return fs::path(SURFGRAD_DEFAULT_DATA_DIR);
 }
 
 std::string FeatureSource::key() const {

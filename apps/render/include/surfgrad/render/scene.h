@@ -250,8 +250,21 @@ Scene defaultScene();
 // A scene that frames one model file (glTF/OBJ) with a default camera and
 // light, using the model's own materials' normal maps (needs the mesh module).
 Scene sceneForModel(const std::filesystem::path& model);
-// Directory "data:" paths resolve against: $SURFGRAD_DATA_DIR, else the
-// data directory this build was configured with (the source tree's data/).
+// Directory "data:" paths resolve against, the first that applies:
+//  1. $SURFGRAD_DATA_DIR when set and not empty;
+//  2. the source tree's data/ when the running executable is in the bin/
+//     directory of the build tree surfgrad was built in (build/bin/surfgrad,
+//     the tests);
+//  3. share/surfgrad/data of the installation the executable belongs to,
+//     found relative to it (<prefix>/bin/../share/surfgrad/data): an
+//     installed or relocated prefix, the Debian package, and programs
+//     installed into the same prefix;
+//  4. the data directory of the configured install prefix
+//     (CMAKE_INSTALL_PREFIX at build time) when it exists: programs
+//     elsewhere that link an installed surfgrad::render;
+//  5. otherwise the source tree's data/ (paths under it then name what is
+//     missing).
+// Never fails; whether a file exists is checked where it is read.
 std::filesystem::path dataDirectory();
 
 } // namespace sg::render

@@ -1,0 +1,118 @@
+# Installation (cmake --install) and packaging (cpack -G DEB). Layout under
+# the prefix (directories set in the top-level CMakeLists.txt):
+#   bin/surfgrad                          the CLI                    [runtime]
+#   share/surfgrad/data/                  data/ ("data:" in scenes)  [runtime]
+#   share/surfgrad/examples/              examples/                  [runtime]
+#   include/surfgrad/**.h                 public headers of each module   [development]
+#   lib/libsurfgrad_*.a                   the libraries, static          [development]
+#   lib/cmake/surfgrad/                   surfgradConfig.cmake, version, targets,
+#                                         surfgradDependencies.cmake,
+#                                         FindOpenSubdiv.cmake           [development]
+#   share/surfgrad/shaders/sg/**.glsl     the GLSL library               [development]
+# The two components become the Debian packages surfgrad and surfgrad-dev;
+# `cmake --install` installs both. docs/install.md describes the use.
+include(CMakePackageConfigHelpers)
+set(SURFGRAD_INSTALL_EXAMPLESDIR "${SURFGRAD_INSTALL_SHAREDIR}/examples")
+
+# ---- libraries, headers, the CLI
+get_property(_sg_targets GLOBAL PROPERTY SURFGRAD_EXPORTED_TARGETS)
+install(TARGETS ${_sg_targets} EXPORT surfgradTargets
+        ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT development
+        LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT development)
+get_property(_sg_header_dirs GLOBAL PROPERTY SURFGRAD_HEADER_DIRS)
+foreach(_dir IN LISTS _sg_header_dirs)
+    install(DIRECTORY "${_dir}/" DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
+            COMPONENT development FILES_MATCHING PATTERN "*.h")
+endforeach()
+set_target_properties(surfgrad PROPERTIES EXPORT_NAME surfgrad)
+install(TARGETS surfgrad EXPORT surfgradTargets
+        RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT runtime)
+
+# ---- the GLSL library: share/surfgrad/shaders/sg/**.glsl, so that
+# `#include "sg/surfgrad.glsl"` resolves with only share/surfgrad/shaders
+# on the include path (and C++ sees the same files through surfgrad::shaders).
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/shaders/sg" DESTINATION "${SURFGRAD_INSTALL_SHADERDIR}"
+        COMPONENT development FILES_MATCHING PATTERN "*.glsl")
+
+# ---- data and examples: the installed `surfgrad render
+# share/surfgrad/examples/terrain/scene.json` finds "../data/..." beside it
+# and "data:..." in share/surfgrad/data (sg::render::dataDirectory()).
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/data/" DESTINATION "${SURFGRAD_INSTALL_DATADIR}"
+        COMPONENT runtime)
+install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION "${SURFGRAD_INSTALL_EXAMPLESDIR}"
+        COMPONENT runtime USE_SOURCE_PERMISSIONS
+        # examples/CMakeLists.txt only adds the sample programs to this build;
+        # each program's own CMakeLists.txt also builds it on its own.
+        REGEX "/examples/CMakeLists\\.txt$" EXCLUDE)
+
+# ---- the package config: find_package(surfgrad CONFIG REQUIRED)
+install(EXPORT surfgradTargets NAMESPACE surfgrad:: DESTINATION "${SURFGRAD_INSTALL_CMAKEDIR}"
+        COMPONENT development)
+configure_package_config_file(
+    "${PROJECT_SOURCE_DIR}/cmake/surfgradConfig.cmake.in"
+    "${PROJECT_BINARY_DIR}/cmake/surfgradConfig.cmake"
+    INSTALL_DESTINATION "${SURFGRAD_INSTALL_CMAKEDIR}"
+    PATH_VARS SURFGRAD_INSTALL_SHADERDIR SURFGRAD_INSTALL_DATADIR SURFGRAD_INSTALL_EXAMPLESDIR)
+# 0.x: a minor version may change the API, so only the same major.minor matches.
+write_basic_package_version_file("${PROJECT_BINARY_DIR}/cmake/surfgradConfigVersion.cmake"
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES "${PROJECT_BINARY_DIR}/cmake/surfgradConfig.cmake"
+              "${PROJECT_BINARY_DIR}/cmake/surfgradConfigVersion.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/surfgradDependencies.cmake"
+              "${PROJECT_SOURCE_DIR}/cmake/FindOpenSubdiv.cmake"
+        DESTINATION "${SURFGRAD_INSTALL_CMAKEDIR}" COMPONENT development)
+
+# ---- Debian packages: cpack -G DEB (in the build directory) writes
+#   surfgrad_<version>_<arch>.deb      the CLI, data, examples; Depends from
+#                                      dpkg-shlibdeps plus Mesa's EGL/GL
+#                                      drivers (loaded at run time, so
+#                                      shlibdeps cannot see them);
+#   surfgrad-dev_<version>_<arch>.deb  headers, static libraries, CMake
+#                                      config, GLSL library; Depends on
+#                                      surfgrad and the -dev packages whose
+#                                      CMake targets the config finds.
+# tests/install/package_test.sh checks both; scripts/test-package installs
+# them on a clean Debian 12 root and renders.
+set(CPACK_GENERATOR DEB)
+set(CPACK_PACKAGE_NAME surfgrad)
+set(CPACK_PACKAGE_VENDOR "surfgrad")
+# The Maintainer field: whoever builds the packages sets it (the default's
+# .invalid domain, RFC 2606, is a placeholder that cannot receive mail).
+set(SURFGRAD_PACKAGE_MAINTAINER "surfgrad maintainers <maintainers@surfgrad.invalid>"
+    CACHE STRING "Maintainer field of the Debian packages (name <email>)")
+set(CPACK_PACKAGE_CONTACT "${SURFGRAD_PACKAGE_MAINTAINER}")
+set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+set(CPACK_STRIP_FILES ON)
+set(CPACK_COMPONENTS_ALL runtime development)
+set(CPACK_DEB_COMPONENT_INSTALL ON)
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
+set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME surfgrad)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# The feature-curves example renders glyphs of DejaVu Serif.
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "fonts-dejavu-core")
+# Descriptions: the first line is the synopsis.
+set(CPACK_DEBIAN_RUNTIME_DESCRIPTION "surface-gradient bump mapping on subdivision meshes (CLI)
+surfgrad renders bump-mapped subdivision meshes with surface gradients
+(Mikkelsen 2019): normal, height, triplanar, decal, noise and feature-curve
+layers add as surface gradients. This package holds the surfgrad command
+(render, shader, view, mesh, features, eval, selftest), the example scenes
+and the data they read (/usr/share/surfgrad).")
+set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME surfgrad-dev)
+set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
+set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION "surface-gradient bump mapping on subdivision meshes (development)
+Headers, static libraries and the CMake package of surfgrad, for
+find_package(surfgrad CONFIG REQUIRED) and the targets surfgrad::bump,
+surfgrad::mesh, surfgrad::features, surfgrad::render and the others; the
+GLSL library for engines under /usr/share/surfgrad/shaders (sg/*.glsl).")
+set(_sg_dev_depends
+    "surfgrad (= ${PROJECT_VERSION})" cmake pkg-config libglm-dev nlohmann-json3-dev
+    libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libtbb-dev libopenimageio-dev
+    libepoxy-dev libegl-dev)
+if(SURFGRAD_BUILD_VIEWER)
+    list(APPEND _sg_dev_depends libglfw3-dev libimgui-dev)
+endif()
+string(REPLACE ";" ", " CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS "${_sg_dev_depends}")
+include(CPack)

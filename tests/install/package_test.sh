@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# ctest package_deb (label package): the Debian packages `cpack -G DEB`
+# builds from this build directory (cmake/SurfgradInstall.cmake).
+#   1. cpack writes surfgrad_<version>_<arch>.deb and surfgrad-dev_...deb;
+#   2. control fields: names, version, architecture, a Maintainer
+#      "name <email>", sections; surfgrad's Depends comes from dpkg-shlibdeps
+#      (libc6, OpenImageIO, OpenSubdiv, ...) plus Mesa's EGL and GL drivers;
+#      surfgrad-dev depends on surfgrad (= version) and the -dev packages of
+#      the CMake dependencies; every package named is a real Debian package
+#      (installed on this machine, where the build found them);
+#   3. contents (dpkg-deb -c): the CLI, data, examples in surfgrad; headers,
+#      static libraries, CMake package and GLSL library in surfgrad-dev;
+#      everything under /usr, owned by root, no file in both packages;
+#   4. both extracted into a scratch root (dpkg-deb -x): the packaged
+#      surfgrad renders the packaged terrain example, finding the packaged
+#      data relative to itself.
+# A clean Debian 12 root with dpkg -i and apt is scripts/test-package (too
+# slow for every test run; docs/install.md).
+# Usage: package_test.sh BUILD_DIR SOURCE_DIR WORK_DIR VERSION
+set -euo pipefail
+build="$1" src="$2" work="$3" version="$4"
+
+fail() { echo "package_test: FAIL: $*" >&2; exit 1; }
+t0=$SECONDS
+step() { echo "package_test: [$((SECONDS - t0)) s] $*"; }
+unset SURFGRAD_DATA_DIR
+
+rm -rf "$work"
+mkdir -p "$work"
+arch="$(dpkg --print-architecture)"
+
+# ---- 1. build the packages
+step "cpack -G DEB"
+cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work" >"$work/cpack.log" 2>&1 ||
+    { cat "$work/cpack.log" >&2; fail "cpack -G DEB"; }
+run="$work/surfgrad_${version}_${arch}.deb"
+dev="$work/surfgrad-dev_${version}_${arch}.deb"
+[ -f "$run" ] || fail "$(basename "$run") not written: $(ls "$work")"
+[ -f "$dev" ] || fail "$(basename "$dev") not written: $(ls "$work")"
+
+# ---- 2. control fields
+step "control fields"
+field() { dpkg-deb -f "$1" "$2"; }
+expect_field() { # deb field value
+    [ "$(field "$1" "$2")" = "$3" ] || fail "$(basename "$1"): $2 is '$(field "$1" "$2")', expected '$3'"
+}
+expect_field "$run" Package surfgrad
+expect_field "$dev" Package surfgrad-dev
+for deb in "$run" "$dev"; do
+    expect_field "$deb" Version "$version"
+    expect_field "$deb" Architecture "$arch"
+    field "$deb" Maintainer | grep -Eq '^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$' ||
+        fail "$(basename "$deb"): Maintainer '$(field "$deb" Maintainer)' is not 'name <email>'"
+    [ -n "$(field "$deb" Description)" ] || fail "$(basename "$deb"): no Description"
+done
+expect_field "$run" Section graphics
+expect_field "$dev" Section libdevel
+run_deps="$(field "$run" Depends)"
+dev_deps="$(field "$dev" Depends)"
+# dpkg-shlibdeps ran (libc6 with a version) and found the shared libraries
+# the CLI links; Mesa's drivers are dlopened, so they are named explicitly.
+for want in 'libc6 (>= ' 'libopenimageio' 'libosdcpu' 'libtinygltf' 'libepoxy0' \
+            'libegl-mesa0' 'libgl1-mesa-dri'; do
+    grep -qF "$want" <<<"$run_deps" || fail "surfgrad Depends lacks $want: $run_deps"
+done
+for want in "surfgrad (= $version)" libglm-dev libopenmesh-dev libosd-dev libopenimageio-dev \
+            libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev; do
+    grep -qF "$want" <<<"$dev_deps" || fail "surfgrad-dev Depends lacks $want: $dev_deps"
+done
+# Every package named (alternatives and version constraints stripped) is a
+# Debian 12 package: installed here (the build found its files).
+for p in $(sed 's/([^)]*)//g; s/[,|]/ /g' <<<"$run_deps, $dev_deps, $(field "$run" Recommends)"); do
+    [ "$p" = surfgrad ] && continue
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+        fail "package $p named by the control files is not an installed Debian package"
+done
+
+# ---- 3. contents
+step "contents"
+list() { dpkg-deb -c "$1" | awk '{ print $6 }' | sed 's|^\./|/|'; }
+list "$run" >"$work/run.list"
+list "$dev" >"$work/dev.list"
+has() { grep -qx "$2" "$work/$1.list" || fail "$1 package lacks $2"; }
+has run /usr/bin/surfgrad
+has run /usr/share/surfgrad/data/README.md
+has run /usr/share/surfgrad/data/meshes/spot/spot_control_mesh.obj
+has run /usr/share/surfgrad/examples/terrain/scene.json
+has run /usr/share/surfgrad/examples/data/rock_normal.png
+has run /usr/share/surfgrad/examples/engine-integration/CMakeLists.txt
+has run /usr/share/surfgrad/examples/consumer-tangents/main.cpp
+has dev /usr/include/surfgrad/bump.h
+has dev /usr/include/surfgrad/tangents.h
+has dev /usr/include/surfgrad/render/scene.h
+has dev /usr/share/surfgrad/shaders/sg/surfgrad.glsl
+has dev /usr/share/surfgrad/shaders/sg/compat.glsl
+cfgdir="$(grep -x '/usr/lib.*/cmake/surfgrad/' "$work/dev.list" || true)"
+[ -n "$cfgdir" ] || fail "surfgrad-dev has no /usr/lib*/cmake/surfgrad/"
+for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake \
+         surfgradDependencies.cmake FindOpenSubdiv.cmake; do
+    has dev "$cfgdir$f"
+done
+for m in base shaders bump features mesh gl parity render; do
+    has dev "$(dirname "$(dirname "$cfgdir")")/libsurfgrad_$m.a"
+done
+# Data: every file of data/ is in the package.
+n_src="$(cd "$src/data" && find . -type f | wc -l)"
+n_deb="$(grep -c '^/usr/share/surfgrad/data/.*[^/]$' "$work/run.list")"
+[ "$n_src" = "$n_deb" ] || fail "surfgrad has $n_deb data files, data/ has $n_src"
+# Headers and libraries only in -dev, the CLI only in surfgrad, no file in both.
+! grep -q '^/usr/include/\|\.a$' "$work/run.list" || fail "surfgrad holds headers or static libraries"
+! grep -qx /usr/bin/surfgrad "$work/dev.list" || fail "surfgrad-dev holds the CLI"
+both="$(comm -12 <(grep -v '/$' "$work/run.list" | sort) <(grep -v '/$' "$work/dev.list" | sort))"
+[ -z "$both" ] || fail "files in both packages: $both"
+! grep -v '^/usr/\|^/$' "$work/run.list" "$work/dev.list" || fail "files outside /usr"
+dpkg-deb -c "$run" | awk '$6 == "./usr/bin/surfgrad" { print $1, $2 }' | grep -qx -- '-rwxr-xr-x root/root' ||
+    fail "/usr/bin/surfgrad is not -rwxr-xr-x root/root"
+
+# ---- 4. run from the unpacked packages
+step "surfgrad render from the unpacked packages"
+root="$work/root"
+dpkg-deb -x "$run" "$root"
+dpkg-deb -x "$dev" "$root"
+export LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
+cd "$work"
+"$root/usr/bin/surfgrad" render "$root/usr/share/surfgrad/examples/tessellated-asset/scene.json" \
+    -o asset.png --size 64x48 >render.out 2>&1 || { cat render.out >&2; fail "packaged surfgrad render"; }
+grep -q "^wrote asset.png (64x48" render.out || fail "render: $(cat render.out)"
+step "passed"
