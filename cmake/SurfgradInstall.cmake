@@ -64,8 +64,8 @@ install(FILES "${PROJECT_BINARY_DIR}/cmake/surfgradConfig.cmake"
 
 # ---- Debian packages: cpack -G DEB (in the build directory) writes
 #   surfgrad_<version>_<arch>.deb      the CLI, data, examples; Depends from
-#                                      dpkg-shlibdeps plus Mesa's EGL/GL
-#                                      drivers (loaded at run time, so
+#                                      dpkg-shlibdeps plus GLVND's EGL/GL and
+#                                      Mesa's drivers (loaded at run time, so
 #                                      shlibdeps cannot see them);
 #   surfgrad-dev_<version>_<arch>.deb  headers, static libraries, CMake
 #                                      config, GLSL library; Depends on
@@ -90,7 +90,9 @@ set(CPACK_DEBIAN_PACKAGE_SECTION graphics)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME surfgrad)
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "libegl-mesa0, libgl1-mesa-dri")
+# libepoxy dlopens libEGL.so.1 and libGL.so.1 (GLVND), which load Mesa's
+# EGL vendor library and llvmpipe: none of them is seen by dpkg-shlibdeps.
+set(CPACK_DEBIAN_RUNTIME_PACKAGE_DEPENDS "libegl1, libgl1, libegl-mesa0, libgl1-mesa-dri")
 # The feature-curves example renders glyphs of DejaVu Serif.
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "fonts-dejavu-core")
 # Descriptions: the first line is the synopsis.
@@ -107,10 +109,12 @@ Headers, static libraries and the CMake package of surfgrad, for
 find_package(surfgrad CONFIG REQUIRED) and the targets surfgrad::bump,
 surfgrad::mesh, surfgrad::features, surfgrad::render and the others; the
 GLSL library for engines under /usr/share/surfgrad/shaders (sg/*.glsl).")
+# openimageio-tools: Debian's OpenImageIOConfig.cmake fails unless the
+# tools it exports as targets (/usr/bin/iconvert, ...) are installed.
 set(_sg_dev_depends
     "surfgrad (= ${PROJECT_VERSION})" cmake pkg-config libglm-dev nlohmann-json3-dev
     libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libtbb-dev libopenimageio-dev
-    libepoxy-dev libegl-dev)
+    openimageio-tools libepoxy-dev libegl-dev)
 if(SURFGRAD_BUILD_VIEWER)
     list(APPEND _sg_dev_depends libglfw3-dev libimgui-dev)
 endif()

@@ -58,13 +58,16 @@ expect_field "$dev" Section libdevel
 run_deps="$(field "$run" Depends)"
 dev_deps="$(field "$dev" Depends)"
 # dpkg-shlibdeps ran (libc6 with a version) and found the shared libraries
-# the CLI links; Mesa's drivers are dlopened, so they are named explicitly.
+# the CLI links; libepoxy dlopens GLVND's libEGL/libGL and they load Mesa's
+# drivers, so those are named explicitly (without libegl1 the CLI aborts on
+# a clean Debian 12: scripts/test-package).
 for want in 'libc6 (>= ' 'libopenimageio' 'libosdcpu' 'libtinygltf' 'libepoxy0' \
-            'libegl-mesa0' 'libgl1-mesa-dri'; do
+            'libegl1,' 'libgl1,' 'libegl-mesa0' 'libgl1-mesa-dri'; do
     grep -qF "$want" <<<"$run_deps" || fail "surfgrad Depends lacks $want: $run_deps"
 done
+# openimageio-tools: OpenImageIO's CMake config fails without its tools.
 for want in "surfgrad (= $version)" libglm-dev libopenmesh-dev libosd-dev libopenimageio-dev \
-            libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev; do
+            openimageio-tools libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev; do
     grep -qF "$want" <<<"$dev_deps" || fail "surfgrad-dev Depends lacks $want: $dev_deps"
 done
 # Every package named (alternatives and version constraints stripped) is a
