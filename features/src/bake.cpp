@@ -24,14 +24,15 @@
 //  5. Distance and gradient at every corner within bandTexels of a curve, by
 //     local brute force in double (exact point-curve distance) with
 //     min-merging over segments (sec. 4, "Rasterization of distance
-//     field"); the gradient is the unit vector from the closest point.
+//     field"); the gradient is the unit vector from the closest point
+//     (bake_distance.cpp).
 //  6. Constrained Laplacian smoothing of the gradient (sec. 4): each corner
 //     moves halfway to the mean of its grid neighbours, excluding those
 //     across a texel edge that carries a discontinuity point and those with
 //     no curve within the band (no gradient). The distance is never
-//     smoothed.
+//     smoothed (bake_distance.cpp).
+// bake() below runs these steps in order, one named function each.
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <numeric>
@@ -66,10 +67,7 @@ double threadCpu() {
 constexpr double kJoinTol = 1e-7; // texels: segment ends closer than this are one point
 constexpr double kMaxCoord = 1e6; // texels: larger coordinates are absurd input
 
-struct OSeg {
-    Quad q;
-    bool line = true;
-};
+using OSeg = TexelPiece;
 
 struct Stroke {
     std::vector<OSeg> segs;
@@ -518,11 +516,8 @@ private:
     bool havePrevTan_ = false;
 };
 
-} // namespace
-
-FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* statsOut) {
-    auto t0 = Clock::now();
-    const double cpu0 = threadCpu();
+// Step 1: the options a caller may get wrong.
+void checkOptions(const BakeOptions& opt) {
     if (opt.size < 1 || opt.size > kMaxFeatureMapSize) {
         throw io::InputError("(options)", "size",
                              "must be 1.." + std::to_string(kMaxFeatureMapSize) + ", got " +
@@ -537,29 +532,31 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     if (!std::isfinite(opt.marginTexels) || opt.marginTexels < 0.0) {
         throw io::InputError("(options)", "margin", "must be a finite number >= 0");
     }
-    BakeStats st;
-    st.size = opt.size;
+}
+
+// Step 1: the input-to-texel transform (fitted or given).
+TexelTransform inputToTexel(const CurveNetwork& net, const BakeOptions& opt) {
     TexelTransform xf = opt.fit ? fitTransform(net, opt) : opt.transform;
     if (!std::isfinite(xf.scale.x) || !std::isfinite(xf.scale.y) || !std::isfinite(xf.offset.x) ||
         !std::isfinite(xf.offset.y) || xf.scale.x == 0.0 || xf.scale.y == 0.0) {
         throw io::InputError("(options)", "transform",
                              "scale must be finite and non-zero, offset finite");
     }
-    st.inputToTexel = xf;
-    std::vector<OSeg> segs = toTexelSpace(net, xf);
+    return xf;
+}
 
-    const int n = opt.size;
+// Steps 2-3: strokes, scan conversion, and the edge points of rule 1 (the
+// centre of mass of each edge's crossings and the mean of their tangent
+// angles), quantized to the 16-bit grids.
+void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const BakeOptions& opt,
+                 Grid& g, BakeStats& st) {
+    const int n = g.n;
     const size_t nc = size_t(n + 1) * size_t(n + 1);
-    Grid g;
-    g.n = n;
     g.hAcc.assign(nc, {});
     g.vAcc.assign(nc, {});
     g.segMask.assign(size_t(n) * size_t(n), 0);
     g.quadMask.assign(size_t(n) * size_t(n), 0);
     g.straightMask.assign(size_t(n) * size_t(n), 0);
-
-    // Steps 2-3.
-    double tScan = threadCpu();
     {
         Scanner scanner(g, st, opt.mode == BakeMode::Quadratic);
         std::vector<Stroke> strokes = buildStrokes(net, segs);
@@ -591,34 +588,25 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     g.hAcc.shrink_to_fit();
     g.vAcc.clear();
     g.vAcc.shrink_to_fit();
-    st.secondsScan = threadCpu() - tScan;
+}
 
-    // Step 4.
-    double tOpt = threadCpu();
-    if (opt.mode == BakeMode::Quadratic) {
-        optimizeSignatures(g, st, opt.progress);
-    }
-    st.secondsOptimize = threadCpu() - tOpt;
-
-    FeatureMaps maps;
-    maps.size = n;
-    maps.mode = opt.mode;
-    maps.inputToTexel = xf;
-    maps.bandTexels = opt.bandTexels;
-    maps.smoothIterations = opt.smoothIterations;
-    maps.source = net.source;
+// The configuration word bits 0-11 of every texel (after the straightening
+// rules of the quadratic mode) and the edge points, into the maps.
+void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeStats& st) {
+    const int n = g.n;
+    const size_t nc = size_t(n + 1) * size_t(n + 1);
     maps.seg.assign(nc, 0);
     ValidationCounters counters;
     for (int j = 0; j < n; ++j) {
         for (int i = 0; i < n; ++i) {
             size_t ti = g.ti(i, j);
             bool anyPoint = false;
-            for (int e = 0; e < 4; ++e) anyPoint |= g.pos(i, j, e) >= 0.0;
+            for (int e = 0; e < 4; ++e) anyPoint |= const_cast<Grid&>(g).pos(i, j, e) >= 0.0;
             if (anyPoint || g.segMask[ti]) ++st.texelsWithFeatures;
             if (!g.segMask[ti]) continue;
             ++st.texelsWithSegments;
             LocalTexel t = decodeTexel(g, i, j);
-            if (opt.mode == BakeMode::Quadratic) validateTexel(t, &counters);
+            if (mode == BakeMode::Quadratic) validateTexel(t, &counters);
             uint32_t word = uint32_t(t.nseg);
             for (int s = 0; s < t.nseg; ++s) {
                 word |= uint32_t(t.a[s]) << (2 + 5 * s);
@@ -647,181 +635,46 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
         maps.hAngle[k] = g.hPos[k] >= 0.0 ? float(g.hAng[k]) : 0.0f;
         maps.vAngle[k] = g.vPos[k] >= 0.0 ? float(g.vAng[k]) : 0.0f;
     }
+}
 
-    // Step 5: distances.
-    double tDist = threadCpu();
-    const double band = opt.bandTexels;
-    maps.dist.assign(nc, float(band));
-    maps.gradX.assign(nc, 0.0f);
-    maps.gradY.assign(nc, 0.0f);
-    maps.left.assign(nc, 0);
-    {
-        std::vector<double> best(nc, band * band);
-        auto last = Clock::now();
-        auto store = [&](size_t ci, double dd, dvec2 r, dvec2 tu) {
-            // r: corner minus closest point; tu: unit curve tangent there.
-            best[ci] = dd;
-            double d = std::sqrt(dd);
-            dvec2 grad;
-            if (d > 1e-9) {
-                grad = r * (1.0 / d);
-            } else {
-                // On the curve: the side the symbolic shift (e^2, e) leaves
-                // the corner on (below, or left of a vertical curve).
-                grad = dvec2(-tu.y, tu.x);
-                if (grad.y > 0 || (grad.y == 0 && grad.x > 0)) grad = -grad;
-            }
-            maps.dist[ci] = float(d);
-            maps.gradX[ci] = float(grad.x);
-            maps.gradY[ci] = float(grad.y);
-            maps.left[ci] = cross2(tu, grad) > 0 ? 1 : 0;
-        };
-        for (size_t k = 0; k < segs.size(); ++k) {
-            const OSeg& s = segs[k];
-            dvec2 lo = glm::min(glm::min(s.q.p0, s.q.p1), s.q.p2) - band;
-            dvec2 hi = glm::max(glm::max(s.q.p0, s.q.p1), s.q.p2) + band;
-            int i0 = std::max(0, int(std::ceil(lo.x))), i1 = std::min(n, int(std::floor(hi.x)));
-            int j0 = std::max(0, int(std::ceil(lo.y))), j1 = std::min(n, int(std::floor(hi.y)));
-            if (s.line) {
-                // Straight segment: the closest point in closed form; only
-                // corners inside the capsule of radius `band` are visited.
-                dvec2 p0 = s.q.p0, e = s.q.p2 - s.q.p0;
-                double len = glm::length(e);
-                dvec2 eu = e / len, f = e / (len * len);
-                for (int j = j0; j <= j1; ++j) {
-                    // Row interval of the capsule: the union of the two end
-                    // discs and the strip along the segment.
-                    double dy = j - p0.y, xa = 1e300, xb = -1e300;
-                    for (const dvec2& c : {s.q.p0, s.q.p2}) {
-                        double h = band * band - (j - c.y) * (j - c.y);
-                        if (h >= 0) {
-                            xa = std::min(xa, c.x - std::sqrt(h));
-                            xb = std::max(xb, c.x + std::sqrt(h));
-                        }
-                    }
-                    if (std::fabs(eu.y) > 1e-12) {
-                        // |cross(eu, p - p0)| <= band and 0 <= dot(eu, p - p0) <= len,
-                        // each linear in x on this row.
-                        double lo2 = -1e300, hi2 = 1e300;
-                        auto clip = [&](double a, double b, double vmin, double vmax) {
-                            // vmin <= a x + b <= vmax
-                            if (a == 0) {
-                                if (b < vmin || b > vmax) {
-                                    lo2 = 1e300;
-                                    hi2 = -1e300;
-                                }
-                                return;
-                            }
-                            double x1 = (vmin - b) / a, x2 = (vmax - b) / a;
-                            lo2 = std::max(lo2, std::min(x1, x2));
-                            hi2 = std::min(hi2, std::max(x1, x2));
-                        };
-                        clip(-eu.y, eu.x * dy + eu.y * p0.x, -band, band);
-                        clip(eu.x, eu.y * dy - eu.x * p0.x, 0.0, len);
-                        if (lo2 <= hi2) {
-                            xa = std::min(xa, lo2);
-                            xb = std::max(xb, hi2);
-                        }
-                    } else if (std::fabs(dy) <= band) {
-                        xa = std::min(xa, std::min(s.q.p0.x, s.q.p2.x));
-                        xb = std::max(xb, std::max(s.q.p0.x, s.q.p2.x));
-                    }
-                    int ia = std::max(i0, int(std::ceil(xa))),
-                        ib = std::min(i1, int(std::floor(xb)));
-                    size_t ci = maps.index(ia, j);
-                    for (int i = ia; i <= ib; ++i, ++ci) {
-                        double dx = i - p0.x;
-                        double u = std::clamp(dx * f.x + dy * f.y, 0.0, 1.0);
-                        double rx = dx - u * e.x, ry = dy - u * e.y;
-                        double dd = rx * rx + ry * ry;
-                        if (dd < best[ci]) store(ci, dd, {rx, ry}, eu);
-                    }
-                }
-            } else {
-                for (int j = j0; j <= j1; ++j) {
-                    for (int i = i0; i <= i1; ++i) {
-                        dvec2 p(i, j);
-                        double u;
-                        double dd = closestParam(s.q, false, p, u);
-                        size_t ci = maps.index(i, j);
-                        if (dd < best[ci]) {
-                            dvec2 tan = s.q.tangent(u);
-                            double tl = glm::length(tan);
-                            store(ci, dd, p - s.q.at(u), tl > 0 ? tan / tl : dvec2(1, 0));
-                        }
-                    }
-                }
-            }
-            if (opt.progress && (k & 255) == 255 &&
-                Clock::now() - last > std::chrono::milliseconds(200)) {
-                opt.progress("distance", double(k + 1) / double(segs.size()));
-                last = Clock::now();
-            }
-        }
-    }
-    st.secondsDistance = threadCpu() - tDist;
+} // namespace
 
-    // Step 6: constrained Laplacian smoothing of the gradient.
-    double tSmooth = threadCpu();
-    {
-        // Neighbour links per corner (bits: +x, -x, +y, -y): not across an
-        // edge with a discontinuity point, and only between corners that
-        // have a curve within the band (others carry no gradient).
-        const int m = n + 1;
-        std::vector<uint8_t> links(nc, 0);
-        const float inBand = float(band) * 0.9999f;
-        for (int j = 0; j < m; ++j) {
-            for (int i = 0; i < m; ++i) {
-                size_t k = maps.index(i, j);
-                if (!(maps.dist[k] < inBand)) continue;
-                uint8_t l = 0;
-                if (i + 1 < m && !(maps.hPos[k] >= 0.0f) && maps.dist[k + 1] < inBand) l |= 1;
-                if (i > 0 && !(maps.hPos[k - 1] >= 0.0f) && maps.dist[k - 1] < inBand) l |= 2;
-                if (j + 1 < m && !(maps.vPos[k] >= 0.0f) && maps.dist[k + size_t(m)] < inBand)
-                    l |= 4;
-                if (j > 0 && !(maps.vPos[k - size_t(m)] >= 0.0f) &&
-                    maps.dist[k - size_t(m)] < inBand)
-                    l |= 8;
-                links[k] = l;
-            }
-        }
-        std::vector<float> gx2(maps.gradX), gy2(maps.gradY);
-        float weight[16];
-        for (int l = 0; l < 16; ++l)
-            weight[l] = l ? 0.5f / float(std::popcount(unsigned(l))) : 0.0f;
-        for (int it = 0; it < opt.smoothIterations; ++it) {
-            const float* gx = maps.gradX.data();
-            const float* gy = maps.gradY.data();
-            for (size_t k = 0; k < nc; ++k) {
-                uint8_t l = links[k];
-                if (!l) continue;
-                float sx = 0, sy = 0;
-                if (l & 1) {
-                    sx += gx[k + 1];
-                    sy += gy[k + 1];
-                }
-                if (l & 2) {
-                    sx += gx[k - 1];
-                    sy += gy[k - 1];
-                }
-                if (l & 4) {
-                    sx += gx[k + size_t(m)];
-                    sy += gy[k + size_t(m)];
-                }
-                if (l & 8) {
-                    sx += gx[k - size_t(m)];
-                    sy += gy[k - size_t(m)];
-                }
-                float w = weight[l];
-                gx2[k] = 0.5f * gx[k] + w * sx;
-                gy2[k] = 0.5f * gy[k] + w * sy;
-            }
-            maps.gradX.swap(gx2);
-            maps.gradY.swap(gy2);
-            // Corners without links keep their value in both buffers.
-        }
-    }
-    st.secondsSmooth = threadCpu() - tSmooth;
+FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* statsOut) {
+    auto t0 = Clock::now();
+    const double cpu0 = threadCpu();
+    checkOptions(opt); // step 1
+    BakeStats st;
+    st.size = opt.size;
+    const TexelTransform xf = inputToTexel(net, opt);
+    st.inputToTexel = xf;
+    const std::vector<OSeg> segs = toTexelSpace(net, xf);
+
+    Grid g;
+    g.n = opt.size;
+    double tPhase = threadCpu();
+    scanConvert(net, segs, opt, g, st); // steps 2-3
+    st.secondsScan = threadCpu() - tPhase;
+
+    tPhase = threadCpu();
+    if (opt.mode == BakeMode::Quadratic) optimizeSignatures(g, st, opt.progress); // step 4
+    st.secondsOptimize = threadCpu() - tPhase;
+
+    FeatureMaps maps;
+    maps.size = opt.size;
+    maps.mode = opt.mode;
+    maps.inputToTexel = xf;
+    maps.bandTexels = opt.bandTexels;
+    maps.smoothIterations = opt.smoothIterations;
+    maps.source = net.source;
+    storeConfigurations(g, opt.mode, maps, st);
+
+    tPhase = threadCpu();
+    computeDistances(segs, opt.bandTexels, maps, opt.progress); // step 5
+    st.secondsDistance = threadCpu() - tPhase;
+
+    tPhase = threadCpu();
+    smoothGradients(opt.bandTexels, opt.smoothIterations, maps); // step 6
+    st.secondsSmooth = threadCpu() - tPhase;
     st.seconds = wallSince(t0);
     st.cpuSeconds = threadCpu() - cpu0;
     if (statsOut) *statsOut = st;

@@ -41,6 +41,12 @@ struct EdgeAcc {
     int count = 0;
 };
 
+// An input segment in texel space (a line keeps its chord midpoint as p1).
+struct TexelPiece {
+    Quad q;
+    bool line = true;
+};
+
 // The grid being baked.
 struct Grid {
     int n = 0; // texels per side
@@ -112,5 +118,16 @@ bool eq7Safe(const Quad& c);
 // signature is invalid, straightening what it cannot repair.
 void optimizeSignatures(Grid& g, BakeStats& stats,
                         const std::function<void(const char*, double)>& progress);
+
+// Step 5 (bake_distance.cpp): distance and gradient at every grid corner
+// within `band` texels of a piece, exact in double (TOG 2008 sec. 4,
+// "Rasterization of distance field"); fills maps.dist, gradX, gradY, left.
+void computeDistances(const std::vector<TexelPiece>& pieces, double band, FeatureMaps& maps,
+                      const std::function<void(const char*, double)>& progress);
+
+// Step 6 (bake_distance.cpp): constrained Laplacian smoothing of the
+// gradient (TOG 2008 sec. 4); needs maps.hPos/vPos (the edges it does not
+// smooth across) and the distances.
+void smoothGradients(double band, int iterations, FeatureMaps& maps);
 
 } // namespace sg::features::detail
