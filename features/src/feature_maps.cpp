@@ -82,45 +82,6 @@ glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos) {
     return glsl::sgFeatSample(maps.cornerSampler(), maps.edgeSampler(), texelPos);
 }
 
-void evalKernelCpu(int kernel, const float* in, float* out) {
-    glsl::SgFeatEvalIn x;
-    for (int k = 0; k < kEvalInStride; ++k) x.v[k] = in[k];
-    glsl::SgFeatEvalOut y = glsl::sgFeatEvalKernel(kernel, x);
-    for (int k = 0; k < kEvalOutStride; ++k) out[k] = y.v[k];
-}
-
-std::string evalKernelGpuBody() {
-    return "#include \"sg/features/kernels.comp.glsl\"\n";
-}
-
-std::vector<std::string> evalKernelGpuDefines(int kernel) {
-    return {"SG_FEAT_EVAL_KERNEL " + std::to_string(kernel)};
-}
-
-std::string sampleGpuBody() {
-    return "#include \"sg/features/sample.comp.glsl\"\n";
-}
-
-void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
-    SG_EXPECTS(i >= 0 && j >= 0 && i < maps.size && j < maps.size, "texel (i, j) inside the map");
-    glsl::SgFeatTexel tx =
-        glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
-    for (int k = 0; k < kEvalInStride; ++k) r[k] = 0.0f;
-    for (int k = 0; k < 4; ++k) r[k] = tx.dist[k];
-    const glsl::vec2 g[4] = {tx.grad0, tx.grad1, tx.grad2, tx.grad3};
-    for (int k = 0; k < 4; ++k) {
-        r[4 + 2 * k] = g[k].x;
-        r[5 + 2 * k] = g[k].y;
-    }
-    r[12] = float(tx.cfg);
-    for (int k = 0; k < 4; ++k) {
-        r[13 + 2 * k] = float(tx.edges[k] & 0xFFFFu);
-        r[14 + 2 * k] = float(tx.edges[k] >> 16);
-    }
-    r[21] = local.x;
-    r[22] = local.y;
-}
-
 std::vector<std::string> profileNames() {
     return {"vgroove", "crease", "ridge", "step", "seam", "table:h0,h1,..."};
 }

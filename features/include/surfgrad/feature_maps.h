@@ -72,6 +72,7 @@
 #include "surfgrad/contract.h"
 #include "surfgrad/curves.h"
 #include "surfgrad/glsl_cpp.h"
+#include "surfgrad/record.h"
 
 // The shared evaluator, compiled as C++. Samplers over CPU arrays first, so
 // fetch.glsl's texelFetch/textureSize calls resolve to them.
@@ -234,19 +235,34 @@ FeatureMaps load(const std::filesystem::path& path);
 // Same checks on an in-memory file (fuzzing); `name` appears in messages.
 FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name);
 
-// Evaluation kernels (shaders/sg/features/kernels.glsl, record layouts
-// there) for CPU/GPU parity: the C++ build of sgFeatEvalKernel, and the
-// compute-program body and defines that run the same kernel on the GPU
-// (assemble with sg::shaders::assemble, run with sg::gl::runCompute).
+// Evaluation kernels (shaders/sg/features/kernels.glsl) for CPU/GPU
+// parity. The table is expanded from the kernel list there (one
+// declaration per kernel: name, id, record layouts, parity tolerance with
+// its reason, input generator).
 inline constexpr int kEvalInStride = SG_FEAT_EVAL_IN;
 inline constexpr int kEvalOutStride = SG_FEAT_EVAL_OUT;
+struct Kernel {
+    std::string name;               // e.g. "eval"
+    int id = 0;                     // SG_FEAT_K_*
+    std::vector<record::Field> in;  // input record layout (kEvalInStride floats)
+    std::vector<record::Field> out; // output record layout (kEvalOutStride floats)
+    double tolerance = 0.0;         // max over outputs of |cpu - gpu| / max(1, |cpu|)
+    std::string reason;             // why that tolerance
+    std::vector<float> (*inputs)(uint32_t seed) = nullptr; // parity records, kEvalInStride each
+};
+const std::vector<Kernel>& kernels(); // in id order
+const Kernel* findKernel(std::string_view name);
+// The C++ build of sgFeatEvalKernel: in kEvalInStride floats, out
+// kEvalOutStride floats.
 void evalKernelCpu(int kernel, const float* in, float* out);
+// The compute-program body and defines that run the same kernel on the GPU
+// (assemble with sg::shaders::assemble, run with sg::gl::runCompute).
 std::string evalKernelGpuBody(); // includes sg/features/kernels.comp.glsl
 std::vector<std::string> evalKernelGpuDefines(int kernel);
 // Body of the texture-path compute program (sg/features/sample.comp.glsl):
 // samplers uFeatCorners / uFeatEdges, records of 2 floats -> 4 floats.
 std::string sampleGpuBody();
-// The SG_FEAT_K_EVAL record of texel (i, j) of `maps` at local point `local`.
+// The "eval" record of texel (i, j) of `maps` at local point `local`.
 void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* record);
 
 // Named profiles: "vgroove", "crease", "ridge", "step", "seam", or

@@ -1,13 +1,28 @@
 // Evaluation kernels of the feature-curve functions: one entry point per
 // shared function, reading its arguments from a flat float record and
-// writing its results to another (the pattern of shaders/sg/eval/
-// kernels.glsl). The SAME kernels run on the CPU (sg::features::evalKernelCpu
-// in surfgrad/feature_maps.h) and in a compute shader (kernels.comp.glsl via
-// sg::gl::runCompute), which the CPU/GPU parity tests compare. Record layouts
-// are listed with each kernel id below.
+// writing its results to another. The SAME kernels run on the CPU
+// (sg::features::evalKernelCpu, surfgrad/feature_maps.h) and in a compute
+// shader (kernels.comp.glsl via sg::gl::runCompute), which the CPU/GPU
+// parity test (tests/features/maps_gpu_test.cpp) compares, kernel by kernel.
+//
+// ONE DECLARATION PER KERNEL (the convention of sg/record.glsl): the list
+// SG_FEAT_KERNELS below has one entry per kernel,
+//   X(name, id, function, IN, OUT, tolerance, reason, inputs)
+//     name       its name in the C++ table (sg::features::kernels())
+//     id         SG_FEAT_K_* (the dispatch below; the compute define)
+//     function   SgFeatEvalOut function(SgFeatEvalIn sgRecIn)
+//     IN, OUT    its field lists: the record layouts, in order
+//     tolerance  the largest CPU/GPU difference the parity test accepts,
+//                max over outputs of |cpu - gpu| / max(1, |cpu|)
+//     reason     why that tolerance (a string)
+//     inputs     the C++ generator of its parity records
+//                (features/src/kernel_inputs.cpp)
+// and the GLSL dispatch, the C++ table (names, slots, docs, tolerances) and
+// the parity test are all expanded from it.
 #ifndef SG_FEATURES_KERNELS_GLSL
 #define SG_FEATURES_KERNELS_GLSL
 
+#include "sg/record.glsl"
 #include "sg/features/evaluate.glsl"
 #include "sg/features/profile.glsl"
 
@@ -20,68 +35,121 @@ struct SgFeatEvalIn {
 struct SgFeatEvalOut {
     float v[SG_FEAT_EVAL_OUT];
 };
+SG_REC_DEFINE_IO(SgFeatEvalIn, SgFeatEvalOut, SG_FEAT_EVAL_OUT)
 
-// sgFeatEval on one texel.
-//  in:  0-3 corner distances SW, SE, NE, NW; 4-11 corner gradients
-//       (SW.x, SW.y, SE.x, ..., NW.y); 12 configuration word (an exact
-//       integer); 13-20 edge words S, E, N, W split into 16-bit halves
-//       (low, high), each an exact integer 0..65535; 21-22 local point.
-//  out: 0 distance, 1-2 unit gradient, 3 side.
+// ---------------------------------------------------------------------------
+// eval: sgFeatEval on one texel (evaluate.glsl).
 #define SG_FEAT_K_EVAL 0
-// Profile composition (profile.glsl).
-//  in:  0 distance, 1-2 unit gradient, 3 side, 4 profile kind, 5 depth,
-//       6 w0, 7 w, 8 table count, 9-24 table, 25-26 base derivative,
-//       27-29 base tangent-space normal.
-//  out: 0-1 sgFeatDeriv (surfgrad mode), 2-4 sgFeatNormalPaper (paper
-//       mode), 5 height h(d), 6 slope h'(d), 7 blend b(d).
-#define SG_FEAT_K_PROFILE 1
-#define SG_FEAT_K_COUNT 2
+#define SG_FEAT_EVAL_IN_FIELDS(F)                                                                     \
+    F(vec4, cornerDist, ("distance at corners SW, SE, NE, NW (texels, non-negative)"))                         \
+    F(vec2, grad0, ("gradient sample at SW (length at most 1)"))                                            \
+    F(vec2, grad1, ("gradient sample at SE"))                                                          \
+    F(vec2, grad2, ("gradient sample at NE"))                                                          \
+    F(vec2, grad3, ("gradient sample at NW"))                                                          \
+    F(uint, cfg, ("configuration word (layout.glsl)"))                                                 \
+    F(uint, edgeS, ("edge word of edge S (layout.glsl)"))                                              \
+    F(uint, edgeE, ("edge word of edge E"))                                                            \
+    F(uint, edgeN, ("edge word of edge N"))                                                            \
+    F(uint, edgeW, ("edge word of edge W"))                                                            \
+    F(vec2, local, ("texel-local point in [0, 1]^2"))
+#define SG_FEAT_EVAL_OUT_FIELDS(F)                                                                    \
+    F(float, dist, ("reconstructed distance (texels)"))                                                \
+    F(vec2, grad, ("unit gradient, texel space"))                                                      \
+    F(float, side, ("+1 left of the nearest curve, else -1"))
 
-SG_FN uint sgFeatInWord(SgFeatEvalIn x, int i) {
-    return uint(max(x.v[i], 0.0f)) | (uint(max(x.v[i + 1], 0.0f)) << 16u);
+SG_FN SgFeatEvalOut sgFeatKernelEval(SgFeatEvalIn sgRecIn) {
+    SG_REC_READ(SG_FEAT_EVAL_IN_FIELDS)
+    SgFeatTexel tx;
+    tx.dist = cornerDist;
+    tx.grad0 = grad0;
+    tx.grad1 = grad1;
+    tx.grad2 = grad2;
+    tx.grad3 = grad3;
+    tx.cfg = cfg;
+    tx.edges = uvec4(edgeS, edgeE, edgeN, edgeW);
+    SgFeatResult r = sgFeatEval(tx, local);
+    SG_REC_DECLARE(SG_FEAT_EVAL_OUT_FIELDS)
+    dist = r.dist;
+    grad = r.grad;
+    side = r.side;
+    SG_REC_RETURN(SgFeatEvalOut, SG_FEAT_EVAL_OUT_FIELDS)
 }
 
-SG_FN SgFeatEvalOut sgFeatEvalKernel(int kernel, SgFeatEvalIn x) {
-    SgFeatEvalOut y;
-    for (int i = 0; i < SG_FEAT_EVAL_OUT; ++i) y.v[i] = 0.0f;
-    if (kernel == SG_FEAT_K_EVAL) {
-        SgFeatTexel tx;
-        tx.dist = vec4(x.v[0], x.v[1], x.v[2], x.v[3]);
-        tx.grad0 = vec2(x.v[4], x.v[5]);
-        tx.grad1 = vec2(x.v[6], x.v[7]);
-        tx.grad2 = vec2(x.v[8], x.v[9]);
-        tx.grad3 = vec2(x.v[10], x.v[11]);
-        tx.cfg = uint(max(x.v[12], 0.0f));
-        tx.edges = uvec4(sgFeatInWord(x, 13), sgFeatInWord(x, 15), sgFeatInWord(x, 17), sgFeatInWord(x, 19));
-        SgFeatResult r = sgFeatEval(tx, vec2(x.v[21], x.v[22]));
-        y.v[0] = r.dist;
-        y.v[1] = r.grad.x;
-        y.v[2] = r.grad.y;
-        y.v[3] = r.side;
-    } else if (kernel == SG_FEAT_K_PROFILE) {
-        SgFeatResult r;
-        r.dist = x.v[0];
-        r.grad = vec2(x.v[1], x.v[2]);
-        r.side = x.v[3];
-        SgFeatProfile pr;
-        pr.kind = int(x.v[4]);
-        pr.depth = x.v[5];
-        pr.w0 = x.v[6];
-        pr.w = x.v[7];
-        pr.tableCount = int(x.v[8]);
-        for (int i = 0; i < SG_FEAT_TABLE_MAX; ++i) pr.table[i] = x.v[9 + i];
-        vec2 deriv = sgFeatDeriv(r, pr, vec2(x.v[25], x.v[26]));
-        vec3 n = sgFeatNormalPaper(r, pr, vec3(x.v[27], x.v[28], x.v[29]));
-        vec2 hs = sgFeatProfileHeightSlope(pr, r.dist, r.side);
-        y.v[0] = deriv.x;
-        y.v[1] = deriv.y;
-        y.v[2] = n.x;
-        y.v[3] = n.y;
-        y.v[4] = n.z;
-        y.v[5] = hs.x;
-        y.v[6] = hs.y;
-        y.v[7] = sgFeatBlend(pr, r.dist);
+// ---------------------------------------------------------------------------
+// profile: the profile and its two compositions (profile.glsl).
+#define SG_FEAT_K_PROFILE 1
+#define SG_FEAT_PROFILE_IN_FIELDS(F)                                                                  \
+    F(float, dist, ("distance d (texels)"))                                                            \
+    F(vec2, grad, ("unit gradient of d"))                                                              \
+    F(float, side, ("+1 left of the curve, -1 right"))                                                 \
+    F(int, kind, ("SG_FEAT_PROFILE_*"))                                                                \
+    F(float, depth, ("depth D (texels)"))                                                              \
+    F(float, w0, ("blend start (texels)"))                                                             \
+    F(float, w, ("profile half-width (texels)"))                                                       \
+    F(int, tableCount, ("table heights used (2..16)"))                                                 \
+    F(vec4, table0, ("table heights 0-3 (units of D)"))                                                \
+    F(vec4, table1, ("table heights 4-7"))                                                             \
+    F(vec4, table2, ("table heights 8-11"))                                                            \
+    F(vec4, table3, ("table heights 12-15"))                                                           \
+    F(vec2, baseDeriv, ("texture-space derivative of the base layer"))                                      \
+    F(vec3, baseNormal, ("unit tangent-space normal of the base layer"))
+#define SG_FEAT_PROFILE_OUT_FIELDS(F)                                                                 \
+    F(vec2, deriv, ("sgFeatDeriv (surfgrad composition)"))                                             \
+    F(vec3, normal, ("sgFeatNormalPaper (Eq. 1 composition)"))                                         \
+    F(float, height, ("h(d), texels"))                                                                 \
+    F(float, slope, ("slope dh/dd"))                                                                         \
+    F(float, blend, ("b(d)"))
+
+SG_FN SgFeatEvalOut sgFeatKernelProfile(SgFeatEvalIn sgRecIn) {
+    SG_REC_READ(SG_FEAT_PROFILE_IN_FIELDS)
+    SgFeatResult r;
+    r.dist = dist;
+    r.grad = grad;
+    r.side = side;
+    SgFeatProfile pr;
+    pr.kind = kind;
+    pr.depth = depth;
+    pr.w0 = w0;
+    pr.w = w;
+    pr.tableCount = tableCount;
+    for (int i = 0; i < 4; ++i) {
+        pr.table[i] = table0[i];
+        pr.table[4 + i] = table1[i];
+        pr.table[8 + i] = table2[i];
+        pr.table[12 + i] = table3[i];
     }
+    SG_REC_DECLARE(SG_FEAT_PROFILE_OUT_FIELDS)
+    deriv = sgFeatDeriv(r, pr, baseDeriv);
+    normal = sgFeatNormalPaper(r, pr, baseNormal);
+    vec2 hs = sgFeatProfileHeightSlope(pr, r.dist, r.side);
+    height = hs.x;
+    slope = hs.y;
+    blend = sgFeatBlend(pr, r.dist);
+    SG_REC_RETURN(SgFeatEvalOut, SG_FEAT_PROFILE_OUT_FIELDS)
+}
+
+// ---------------------------------------------------------------------------
+// The kernel list.
+#define SG_FEAT_KERNELS(X)                                                                            \
+    X(eval, SG_FEAT_K_EVAL, sgFeatKernelEval, SG_FEAT_EVAL_IN_FIELDS, SG_FEAT_EVAL_OUT_FIELDS, 1e-4,  \
+      ("binary32 in both builds; they differ by FMA contraction and library sqrt/inversesqrt (a few "  \
+      "ulps, measured 4e-7 on d and the gradient); records within 1e-3 texels of a curve, where the " \
+      "side is decided by rounding, are not generated"),                                               \
+      kernelInputsEval)                                                                               \
+    X(profile, SG_FEAT_K_PROFILE, sgFeatKernelProfile, SG_FEAT_PROFILE_IN_FIELDS,                     \
+      SG_FEAT_PROFILE_OUT_FIELDS, 1e-5,                                                               \
+      ("polynomials, sin/cos and one sqrt/normalize in binary32: a few ulps of values up to ~10 "      \
+      "(slopes 2 D / w)"),                                                                             \
+      kernelInputsProfile)
+#define SG_FEAT_K_COUNT 2
+
+#define SG_FEAT_KERNEL_DISPATCH(name, id, function, IN, OUT, tolerance, reason, inputs)              \
+    if (kernel == id) return function(x);
+
+SG_FN SgFeatEvalOut sgFeatEvalKernel(int kernel, SgFeatEvalIn x) {
+    SG_FEAT_KERNELS(SG_FEAT_KERNEL_DISPATCH)
+    SgFeatEvalOut y;
+    sgRecClear(y);
     return y;
 }
 
