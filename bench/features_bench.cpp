@@ -277,6 +277,8 @@ void benchAccuracy() {
             r.dist = d;
             r.grad = g;
             r.side = 1.0f;
+            r.profile = -1;
+            r.width = 0.0f;
             return sg::glsl::sgFeatNormalFromDeriv(sg::glsl::sgFeatDeriv(r, prof, glm::vec2(0.0f)));
         };
         std::vector<glm::vec3> samples(size_t(n + 1) * size_t(n + 1));

@@ -276,6 +276,8 @@ void runRender(const RenderArgs& a) {
                 r.grad = glsl::sgSafeNormalize2(glm::vec2(maps.gradX[k], maps.gradY[k]),
                                                 glm::vec2(0.0f));
                 r.side = maps.left[k] ? 1.0f : -1.0f;
+                r.profile = -1;
+                r.width = 0.0f;
                 sampleNormals[k] =
                     a.composition == "paper"
                         ? glsl::sgFeatNormalPaper(r, prof, flat)

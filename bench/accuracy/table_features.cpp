@@ -219,6 +219,8 @@ void tableFeatures(const Options& o) {
         r.dist = d;
         r.grad = g;
         r.side = 1.0f;
+        r.profile = -1;
+        r.width = 0.0f;
         return r;
     };
     // The flat-base surfgrad normal of an exact (distance, gradient); used

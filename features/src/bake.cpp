@@ -675,6 +675,7 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* sta
     tPhase = threadCpu();
     smoothGradients(opt.bandTexels, opt.smoothIterations, maps); // step 6
     st.secondsSmooth = threadCpu() - tPhase;
+    if (opt.nearField) keepNearPieces(net, segs, opt, xf, maps, st); // exact near field
     st.seconds = wallSince(t0);
     st.cpuSeconds = threadCpu() - cpu0;
     if (statsOut) *statsOut = st;

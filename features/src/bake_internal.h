@@ -130,4 +130,13 @@ void computeDistances(const std::vector<TexelPiece>& pieces, double band, Featur
 // smooth across) and the distances.
 void smoothGradients(double band, int iterations, FeatureMaps& maps);
 
+// The exact near field (near_field.cpp): the bake keeps the pieces with
+// their profiles and widths (throws InputError for unknown profiles, too
+// many pieces or profiles, widths beyond the band) ...
+void keepNearPieces(const CurveNetwork& net, const std::vector<TexelPiece>& segs,
+                    const BakeOptions& opt, const TexelTransform& xf, FeatureMaps& maps,
+                    BakeStats& st);
+// ... and packing derives the GPU lists and piece texture from them.
+void packNearField(const FeatureMaps& m, GpuFeatureMaps& g);
+
 } // namespace sg::features::detail

@@ -68,6 +68,7 @@ GpuFeatureMaps FeatureMaps::packGpu() const {
             edgeWords(i, j, &g.edges[(size_t(j) * size_t(size) + size_t(i)) * 4]);
         }
     }
+    detail::packNearField(*this, g);
     return g;
 }
 
@@ -78,7 +79,15 @@ double FeatureMaps::canonicalBytesPerTexel() const {
     return perCorner * corners / (double(size) * double(size));
 }
 
-glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos) {
+const char* toString(NearMode m) {
+    return m == NearMode::Exact ? "exact" : "paper";
+}
+
+glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos, NearMode near) {
+    if (near == NearMode::Exact && maps.hasNearField()) {
+        return glsl::sgFeatSampleNear(maps.cornerSampler(), maps.edgeSampler(), maps.nearSampler(),
+                                      maps.pieceSampler(), texelPos);
+    }
     return glsl::sgFeatSample(maps.cornerSampler(), maps.edgeSampler(), texelPos);
 }
 

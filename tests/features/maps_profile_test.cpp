@@ -15,6 +15,8 @@ SgFeatResult at(float d, float side = 1.0f, float angle = 0.3f) {
     r.dist = d;
     r.grad = vec2(std::cos(angle), std::sin(angle));
     r.side = side;
+    r.profile = -1;
+    r.width = 0.0f;
     return r;
 }
 

@@ -130,9 +130,17 @@ struct Closest {
     double t = 0.0;
 };
 
+// Lower bound of the distance from p to segment s: the distance to the box
+// of its control points (the curve lies in their convex hull).
+inline double segBoxDistance(const Segment& s, dvec2 p) {
+    dvec2 lo = glm::min(glm::min(s.p0, s.p1), s.p2), hi = glm::max(glm::max(s.p0, s.p1), s.p2);
+    return glm::length(glm::max(glm::max(lo - p, p - hi), dvec2(0.0)));
+}
+
 inline Closest closest(const CurveNetwork& net, dvec2 p) {
     Closest c;
     for (size_t k = 0; k < net.segments.size(); ++k) {
+        if (segBoxDistance(net.segments[k], p) > c.dist) continue; // cannot be closer
         double t;
         double d = segDistance(net.segments[k], p, &t);
         if (d < c.dist) {

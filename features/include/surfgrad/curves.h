@@ -45,6 +45,9 @@ struct Segment {
     // so code that handles quadratics handles lines).
     glm::dvec2 p0{0.0}, p1{0.0}, p2{0.0};
     int curve = 0; // index into CurveNetwork::curves
+    // Profile width (input units) at p0 and p2, linear in between (per-vertex
+    // widths of the JSON input); < 0 = the curve's width (CurveInfo::width).
+    double width0 = -1.0, width1 = -1.0;
 };
 
 struct CurveInfo {

@@ -101,6 +101,34 @@ inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
 inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) {
     return ivec2(s.width, s.height);
 }
+// The two textures of the exact near field (near.glsl).
+struct SgFeatNearSampler {
+    const uint32_t* rgba = nullptr;
+    int width = 0;
+    int height = 0;
+};
+struct SgFeatPieceSampler {
+    const uint32_t* rgba = nullptr;
+    int width = 0;
+    int height = 0;
+};
+inline uvec4 texelFetch(const SgFeatNearSampler& s, ivec2 p, int /*lod*/) {
+    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
+    return uvec4(t[0], t[1], t[2], t[3]);
+}
+inline uvec4 texelFetch(const SgFeatPieceSampler& s, ivec2 p, int /*lod*/) {
+    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
+    return uvec4(t[0], t[1], t[2], t[3]);
+}
+inline ivec2 textureSize(const SgFeatNearSampler& s, int /*lod*/) {
+    return ivec2(s.width, s.height);
+}
+// The C++ build always has the exact near field (the GLSL build only when a
+// map has it).
+#undef SG_FEAT_NEAR
+#define SG_FEAT_NEAR 1
 #include "sg/features/fetch.glsl"
 #include "sg/features/profile.glsl"
 #include "sg/features/kernels.glsl"
@@ -143,6 +171,16 @@ struct BakeOptions {
     double bandTexels = 16.0;
     // Constrained Laplacian smoothing of the gradient (TOG 2008 sec. 4).
     int smoothIterations = 10;
+    // Exact near field (shaders/sg/features/near.glsl): keep the input's
+    // pieces (texel space) with their per-curve profiles and widths, so the
+    // runtime evaluates exact distances within the band of the largest
+    // profile width in the map (curves without their own width count as
+    // nearWidthTexels) plus nearMarginTexels. The band must not exceed
+    // bandTexels. Per-curve profiles are CurveInfo::profile names
+    // (makeProfile); at most SG_FEAT_MAX_PROFILES distinct ones.
+    bool nearField = false;
+    double nearWidthTexels = 3.0;
+    double nearMarginTexels = 1.0;
     // Called with a phase name and its completed fraction (0..1) at most
     // every few milliseconds; may be empty.
     std::function<void(const char* phase, double fraction)> progress;
@@ -165,6 +203,8 @@ struct BakeStats {
     int invalidTexels = 0;        // texels whose signature needed the optimisation
     int optimizedTexels = 0;      // ... and were made valid by it
     int fallbackTexels = 0;       // ... and were made valid by straightening instead
+    int nearPieces = 0;           // pieces kept for the exact near field
+    double nearBandTexels = 0.0;  // its band (0: no near field)
     double seconds = 0.0;         // wall-clock time of the whole bake
     double cpuSeconds = 0.0;      // CPU time of the calling thread (the bake is single-threaded)
     // CPU time of the phases: scan conversion and configurations, signature
@@ -173,6 +213,19 @@ struct BakeStats {
 };
 
 struct GpuFeatureMaps;
+
+// One input piece kept for the exact near field: a quadratic Bezier (a line
+// has p1 = (p0 + p2) / 2 and curved = false) in texel space, in binary32 as
+// the GPU reads it, with its curve's profile and its profile widths.
+struct NearPiece {
+    glm::vec2 p0{0.0f}, p1{0.0f}, p2{0.0f};
+    bool curved = false;
+    int profile = -1;    // index into FeatureMaps::profiles; -1: the layer's profile
+    float width0 = 0.0f; // profile width at p0 / p2 (texels); 0: the layer's width
+    float width1 = 0.0f;
+};
+// Most pieces a map with a near field may hold (15-bit list slots).
+inline constexpr int kMaxNearPieces = 32767;
 
 // The baked maps in their canonical (file) form; see the file layout above.
 // Arrays over grid corners have (N+1)^2 entries, index j * (N+1) + i.
@@ -188,6 +241,13 @@ struct FeatureMaps {
     std::vector<uint8_t> left;
     std::vector<uint16_t> seg;                     // configuration bits 0-11 of texel (i, j)
     std::vector<float> hPos, hAngle, vPos, vAngle; // edge points (see file layout)
+
+    // Exact near field (BakeOptions::nearField); nearBandTexels == 0: none.
+    // The GPU lists are derived from the pieces (packGpu), never stored.
+    double nearBandTexels = 0.0;
+    std::vector<NearPiece> pieces;
+    std::vector<std::string> profiles; // profile table: makeProfile names
+    bool hasNearField() const { return nearBandTexels > 0.0; }
 
     int gridSize() const { return size + 1; }
     size_t index(int i, int j) const { return size_t(j) * size_t(size + 1) + size_t(i); }
@@ -216,11 +276,45 @@ struct GpuFeatureMaps {
     int cornerPairsHeight() const { return size + 1; }
     glsl::SgFeatCornerSampler cornerSampler() const { return {cornerPairs.data(), size, size + 1}; }
     glsl::SgFeatEdgeSampler edgeSampler() const { return {edges.data(), size, size}; }
+
+    // Exact near field (near.glsl), empty without one: the list texture
+    // (N x nearHeight: headers of the N x N texels, then overflow rows) and
+    // the piece texture (SG_FEAT_PIECES_WIDTH x piecesHeight: the profile
+    // table, then two texels per piece). Both RGBA32UI, GL_NEAREST.
+    int nearHeight = 0;
+    std::vector<uint32_t> nearLists;
+    int piecesHeight = 0;
+    std::vector<uint32_t> pieces;
+    bool hasNearField() const { return nearHeight > 0; }
+    glsl::SgFeatNearSampler nearSampler() const { return {nearLists.data(), size, nearHeight}; }
+    glsl::SgFeatPieceSampler pieceSampler() const {
+        return {pieces.data(), SG_FEAT_PIECES_WIDTH, piecesHeight};
+    }
+    // What the lists hold: texels in the band, pieces per listed texel (mean
+    // and max), texels whose list overflows its 8 header slots.
+    struct NearStats {
+        int bandTexels = 0;
+        double meanPieces = 0.0;
+        int maxPieces = 0;
+        int overflowTexels = 0;
+    } nearStats;
+    // Bytes of the near-field textures per map texel (N^2).
+    double nearBytesPerTexel() const;
 };
 
+// How the evaluator treats a map with an exact near field.
+enum class NearMode {
+    Exact, // within the band, the exact distance to the input curves (near.glsl)
+    Paper  // the papers' interpolation everywhere
+};
+const char* toString(NearMode m);
+
 // Exactly what the shader computes at texel-space texelPos (the C++ build of
-// sgFeatSample): distance (texels), unit gradient, side.
-glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos);
+// sgFeatSample, or sgFeatSampleNear for maps with a near field in Exact
+// mode): distance (texels), unit gradient, side, and in the near field the
+// nearest curve's profile and width.
+glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos,
+                          NearMode near = NearMode::Exact);
 
 // Bakes a network. Throws sg::io::InputError for bad input: non-finite or
 // absurd coordinates, coincident control points (a zero-length segment, a

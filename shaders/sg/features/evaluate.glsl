@@ -400,6 +400,8 @@ SG_FN SgFeatResult sgFeatEval(SgFeatTexel tx, vec2 pIn) {
     vec2 gr = vec2(val.y, val.z);
     float l2 = dot(gr, gr);
     res.grad = l2 > 1e-24f ? gr * inversesqrt(l2) : vec2(0.0f);
+    res.profile = -1;
+    res.width = 0.0f;
     return res;
 }
 

@@ -24,6 +24,10 @@
 #define SG_FEATURES_FETCH_GLSL
 
 #include "sg/features/evaluate.glsl"
+// (Included whatever SG_FEAT_NEAR says: the #include expansion is textual
+// and once per file, so an #include inside #if would hide the file from
+// later includers; near.glsl compiles its code only with SG_FEAT_NEAR 1.)
+#include "sg/features/near.glsl"
 
 #ifdef SG_CPP
 #define SG_FEAT_CORNER_SAMPLER const SgFeatCornerSampler&
@@ -68,5 +72,23 @@ SG_FN SgFeatResult sgFeatSample(SG_FEAT_CORNER_SAMPLER corners, SG_FEAT_EDGE_SAM
     ivec2 ij = sgFeatTexelOf(textureSize(edges, 0), texelPos, local);
     return sgFeatEval(sgFeatFetch(corners, edges, ij), local);
 }
+
+
+// ---------------------------------------------------------------------------
+// Exact near field (near.glsl), compiled only with SG_FEAT_NEAR 1 (for maps
+// baked with it: effects on demand). Within the band the distance, gradient
+// and side are those of the input curves; outside it the interpolation
+// above. Costs 1 fetch of the list header per sample, and in the band 2
+// per listed piece (docs/features.md).
+#if SG_FEAT_NEAR
+SG_FN SgFeatResult sgFeatSampleNear(SG_FEAT_CORNER_SAMPLER corners, SG_FEAT_EDGE_SAMPLER edges,
+                                    SG_FEAT_NEAR_SAMPLER nearMap, SG_FEAT_PIECE_SAMPLER pieces, vec2 texelPos) {
+    vec2 local;
+    ivec2 ij = sgFeatTexelOf(textureSize(edges, 0), texelPos, local);
+    uvec4 header = texelFetch(nearMap, ij, 0);
+    if (sgFeatInBand(header)) return sgFeatNearEval(nearMap, pieces, header, ij, local);
+    return sgFeatEval(sgFeatFetch(corners, edges, ij), local);
+}
+#endif
 
 #endif

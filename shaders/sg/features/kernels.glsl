@@ -106,6 +106,8 @@ SG_FN SgFeatEvalOut sgFeatKernelProfile(SgFeatEvalIn sgRecIn) {
     r.dist = dist;
     r.grad = grad;
     r.side = side;
+    r.profile = -1;
+    r.width = 0.0f;
     SgFeatProfile pr;
     pr.kind = kind;
     pr.depth = depth;

@@ -33,6 +33,11 @@
 #ifndef SG_FEAT_CURVED
 #define SG_FEAT_CURVED 1
 #endif
+// 1: the exact near field (near.glsl) for maps baked with it; 0: not
+// compiled. Define it before including any sg/features file.
+#ifndef SG_FEAT_NEAR
+#define SG_FEAT_NEAR 0
+#endif
 
 #define SG_FEAT_S 0
 #define SG_FEAT_E 1
@@ -123,10 +128,15 @@ struct SgFeatTexel {
 
 // What the evaluator returns for a point.
 struct SgFeatResult {
-    float dist; // reconstructed distance to the feature curves, texels (>= 0)
-    vec2 grad;  // unit gradient of dist, texel space; (0, 0) only where
-                // every contributing sample is 0 (no curve within the band)
-    float side; // +1 when the point lies left of its nearest curve, else -1
+    float dist;  // reconstructed distance to the feature curves, texels (>= 0)
+    vec2 grad;   // unit gradient of dist, texel space; (0, 0) only where
+                 // every contributing sample is 0 (no curve within the band)
+    float side;  // +1 when the point lies left of its nearest curve, else -1
+    int profile; // exact near field: the nearest curve's entry in the map's
+                 // profile table; -1: the layer's profile (always, in the
+                 // paper's interpolation)
+    float width; // exact near field: the nearest curve's profile width at the
+                 // closest point (texels); 0: the layer's width
 };
 
 #endif
