@@ -3,14 +3,14 @@
 // for a seed; each returns whole records of kEvalInStride floats.
 #include "kernel_inputs.h"
 
+#include "bake_geometry.h"
+
 #include <cmath>
 #include <random>
 
 namespace sg::features::detail {
 
 namespace {
-
-using glm::dvec2;
 
 Segment makeSegment(dvec2 a, dvec2 c, dvec2 b, bool line, int curve) {
     Segment s;
@@ -129,6 +129,63 @@ std::vector<float> kernelInputsProfile(uint32_t seed) {
         }
         r.set("baseDeriv", glm::vec2(u(rng) - 0.5f, u(rng) - 0.5f));
         r.set("baseNormal", glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, 1.0f)));
+    }
+    return out;
+}
+
+std::vector<float> kernelInputsNearPiece(uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    const auto& layout = kernels()[SG_FEAT_K_NEAR_PIECE].in;
+    std::vector<float> out;
+    std::vector<float> rec(static_cast<size_t>(kEvalInStride));
+    while (out.size() < 20000 * size_t(kEvalInStride)) {
+        // Pieces from 0.05 to 30 texels, tight to nearly straight, some
+        // straight, with points up to 3 texels around (texel-local frames).
+        const double scale = std::pow(10.0, -1.3 + 2.8 * u(rng));
+        const dvec2 p0(u(rng), u(rng));
+        const dvec2 e = scale * dvec2(u(rng) - 0.5, u(rng) - 0.5);
+        if (glm::length(e) < 1e-3) continue;
+        const double bend = std::pow(10.0, -4.0 + 4.5 * u(rng)) * (u(rng) < 0.5 ? -1.0 : 1.0);
+        const bool curved = u(rng) < 0.8;
+        const dvec2 p2 = p0 + e;
+        const dvec2 p1 = curved
+                             ? 0.5 * (p0 + p2) + bend * dvec2(-e.y, e.x) + 0.2 * (u(rng) - 0.5) * e
+                             : 0.5 * (p0 + p2);
+        const glm::vec2 f0(p0), f1(p1), f2(p2);
+        const glm::vec2 pt(float(u(rng) * 3.0 - 1.0), float(u(rng) * 3.0 - 1.0));
+        // Conditioning, in binary64 on the binary32 data: the distance along
+        // the piece sampled densely; skip points within 1e-3 texels of it,
+        // with a second local minimum within 1e-3 of the first, or whose
+        // distance is within 10% of the radius of curvature at the foot.
+        const Quad q{dvec2(f0), curved ? dvec2(f1) : 0.5 * (dvec2(f0) + dvec2(f2)), dvec2(f2)};
+        double best = 1e300, second = 1e300, bestU = 0.0;
+        const int n = 512;
+        std::vector<double> d(n + 1);
+        for (int k = 0; k <= n; ++k) d[size_t(k)] = glm::length(q.at(double(k) / n) - dvec2(pt));
+        for (int k = 0; k <= n; ++k) {
+            bool localMin = (k == 0 || d[size_t(k)] <= d[size_t(k - 1)]) &&
+                            (k == n || d[size_t(k)] <= d[size_t(k + 1)]);
+            if (!localMin) continue;
+            if (d[size_t(k)] < best) {
+                second = best;
+                best = d[size_t(k)];
+                bestU = double(k) / n;
+            } else {
+                second = std::min(second, d[size_t(k)]);
+            }
+        }
+        if (best < 1e-3 || second - best < 1e-3) continue;
+        const dvec2 t = q.tangent(bestU), acc = 2.0 * q.a();
+        const double curvature = std::fabs(cross2(t, acc)) / std::pow(glm::length(t), 3.0);
+        if (curved && std::fabs(1.0 - best * curvature) < 0.1) continue;
+        RecordWriter r(layout, rec.data());
+        r.set("p0", f0);
+        r.set("p1", curved ? f1 : 0.5f * (f0 + f2));
+        r.set("p2", f2);
+        r.set("curved", curved ? 1.0f : 0.0f);
+        r.set("point", pt);
+        out.insert(out.end(), rec.begin(), rec.end());
     }
     return out;
 }

@@ -53,5 +53,6 @@ private:
 
 std::vector<float> kernelInputsEval(uint32_t seed);
 std::vector<float> kernelInputsProfile(uint32_t seed);
+std::vector<float> kernelInputsNearPiece(uint32_t seed);
 
 } // namespace sg::features::detail

@@ -57,6 +57,18 @@ std::vector<FeatureMaps> testMaps() {
     }
     out.push_back(bake(a.net, texelSpace(32, BakeMode::Quadratic)));
     out.push_back(bake(a.net, texelSpace(32, BakeMode::Linear)));
+    // The same with the exact near field, and a star of twelve rays (lists
+    // overflowing their eight header slots).
+    BakeOptions o = texelSpace(32, BakeMode::Quadratic);
+    o.nearField = true;
+    out.push_back(bake(a.net, o));
+    NetBuilder star;
+    for (int k = 0; k < 12; ++k) {
+        double ang = 0.2 + 2 * M_PI * k / 12;
+        star.polyline(
+            {{16.3, 15.8}, dvec2(16.3, 15.8) + 9.0 * dvec2(std::cos(ang), std::sin(ang))});
+    }
+    out.push_back(bake(star.net, o));
     return out;
 }
 
@@ -110,9 +122,10 @@ TEST_F(FeatureMapsGpu, KernelParity) {
         for (size_t r = 0; r < n; ++r)
             evalKernelCpu(k.id, &in[r * size_t(kEvalInStride)], &cpu[r * size_t(kEvalOutStride)]);
         std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
-        double worst = 0;
+        double worst = 0, largest = 0;
         size_t nonFinite = 0;
         for (size_t i = 0; i < cpu.size(); ++i) {
+            largest = std::max(largest, double(std::fabs(cpu[i])));
             if (!std::isfinite(cpu[i]) || !std::isfinite(gpu[i])) {
                 ++nonFinite;
                 continue;
@@ -123,6 +136,7 @@ TEST_F(FeatureMapsGpu, KernelParity) {
         std::printf("%-8s %7zu records: max difference %.2e (tolerance %.0e: %s)\n", k.name.c_str(),
                     n, worst, k.tolerance, k.reason.c_str());
         EXPECT_EQ(nonFinite, 0u) << k.name;
+        EXPECT_GT(largest, 0.1) << k.name << ": the kernel computed nothing";
         EXPECT_LE(worst, k.tolerance) << k.name << ": " << k.reason;
     }
 }
@@ -215,29 +229,104 @@ TEST_F(FeatureMapsGpu, EvalKernelFiniteOnArbitraryData) {
     EXPECT_EQ(bad, 0u);
 }
 
+// The exact closest point on arbitrary pieces: degenerate ones (coincident
+// control points, a middle point on an end, folded back), huge and tiny
+// ones, points on the piece and far away: both builds stay finite and
+// return a unit gradient.
+TEST_F(FeatureMapsGpu, NearPieceFiniteOnArbitraryPieces) {
+    sg::gl::Program prog = kernelProgram(SG_FEAT_K_NEAR_PIECE);
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const auto& layout = kernels()[SG_FEAT_K_NEAR_PIECE].in;
+    auto slot = [&](const char* f) { return sg::record::findField(layout, f)->slot; };
+    const size_t n = 20000;
+    std::vector<float> in(n * size_t(kEvalInStride), 0.0f);
+    for (size_t k = 0; k < n; ++k) {
+        float* r = &in[k * size_t(kEvalInStride)];
+        float scale = std::pow(10.0f, float(int(rng() % 13) - 6)); // 1e-6 .. 1e6
+        glm::vec2 p[3] = {{u(rng), u(rng)}, {u(rng), u(rng)}, {u(rng), u(rng)}};
+        for (auto& q : p) q *= scale;
+        switch (k % 6) {
+        case 0:
+            p[1] = p[0];
+            break; // middle point on an end
+        case 1:
+            p[2] = p[0];
+            break; // folded back: ends coincide
+        case 2:
+            p[1] = p[2] = p[0];
+            break; // a point
+        case 3:
+            p[1] = 3.0f * p[2] - 2.0f * p[0];
+            break; // collinear, beyond the end
+        default:
+            break;
+        }
+        const char* names[3] = {"p0", "p1", "p2"};
+        for (int c = 0; c < 3; ++c) {
+            r[slot(names[c])] = p[c].x;
+            r[slot(names[c]) + 1] = p[c].y;
+        }
+        r[slot("curved")] = (k % 5) ? 1.0f : 0.0f;
+        glm::vec2 pt = (k % 7 == 0) ? p[0] : glm::vec2(u(rng), u(rng)) * scale * 2.0f;
+        r[slot("point")] = pt.x;
+        r[slot("point") + 1] = pt.y;
+    }
+    std::vector<float> cpu(n * size_t(kEvalOutStride));
+    for (size_t k = 0; k < n; ++k)
+        evalKernelCpu(SG_FEAT_K_NEAR_PIECE, &in[k * size_t(kEvalInStride)],
+                      &cpu[k * size_t(kEvalOutStride)]);
+    std::vector<float> gpu = sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n);
+    size_t bad = 0;
+    for (const std::vector<float>* v : {&cpu, &gpu}) {
+        for (size_t k = 0; k < n; ++k) {
+            const float* o = &(*v)[k * size_t(kEvalOutStride)];
+            float gl = std::hypot(o[1], o[2]);
+            // Finite, non-negative distance, unit gradient (binary32
+            // normalization: a few ulps).
+            bool ok = std::isfinite(o[0]) && o[0] >= 0.0f && std::fabs(gl - 1.0f) < 1e-5f &&
+                      std::fabs(o[3]) == 1.0f;
+            if (!ok && bad++ < 5)
+                ADD_FAILURE() << "record " << k << ": d " << o[0] << " grad " << o[1] << ", "
+                              << o[2] << " side " << o[3];
+        }
+    }
+    EXPECT_EQ(bad, 0u);
+}
+
 // The texture path: RGBA32UI corner pairs and edges read with texelFetch,
 // sampled on a dense grid covering the map and its surroundings.
 TEST_F(FeatureMapsGpu, TexturePathParity) {
     auto src = sg::shaders::assemble(sampleGpuBody(), "features-sample");
-    sg::gl::Program prog({{sg::gl::Stage::Compute, src}});
+    sg::gl::Program progPaper({{sg::gl::Stage::Compute, src}});
+    auto srcNear =
+        sg::shaders::assemble(sampleGpuBody(), "features-sample-near", {"SG_FEAT_NEAR 1"});
+    sg::gl::Program progNear({{sg::gl::Stage::Compute, srcNear}});
     for (const FeatureMaps& m : testMaps()) {
         GpuFeatureMaps g = m.packGpu();
-        GLuint tex[2];
-        glCreateTextures(GL_TEXTURE_2D, 2, tex);
-        glTextureStorage2D(tex[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
-        glTextureSubImage2D(tex[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(),
-                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.cornerPairs.data());
-        glTextureStorage2D(tex[1], 1, GL_RGBA32UI, g.size, g.size);
-        glTextureSubImage2D(tex[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                            g.edges.data());
-        for (GLuint t : tex) {
+        const bool near = g.hasNearField();
+        const sg::gl::Program& prog = near ? progNear : progPaper;
+        GLuint tex[4] = {0, 0, 0, 0};
+        auto upload = [](GLuint& t, int w, int h, const std::vector<uint32_t>& data) {
+            glCreateTextures(GL_TEXTURE_2D, 1, &t);
+            glTextureStorage2D(t, 1, GL_RGBA32UI, w, h);
+            glTextureSubImage2D(t, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, data.data());
             glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        };
+        upload(tex[0], g.cornerPairsWidth(), g.cornerPairsHeight(), g.cornerPairs);
+        upload(tex[1], g.size, g.size, g.edges);
+        if (near) {
+            upload(tex[2], g.size, g.nearHeight, g.nearLists);
+            upload(tex[3], SG_FEAT_PIECES_WIDTH, g.piecesHeight, g.pieces);
         }
-        glBindTextureUnit(0, tex[0]);
-        glBindTextureUnit(1, tex[1]);
+        for (int k = 0; k < (near ? 4 : 2); ++k) glBindTextureUnit(GLuint(k), tex[k]);
         glProgramUniform1i(prog.id(), prog.uniform("uFeatCorners"), 0);
         glProgramUniform1i(prog.id(), prog.uniform("uFeatEdges"), 1);
+        if (near) {
+            glProgramUniform1i(prog.id(), prog.uniform("uFeatNear"), 2);
+            glProgramUniform1i(prog.id(), prog.uniform("uFeatPieces"), 3);
+        }
         std::vector<float> in;
         const int per = 13; // not a divisor of the texel: covers texel interiors and edges
         for (int j = -per; j <= (g.size + 1) * per; ++j) {
@@ -256,13 +345,14 @@ TEST_F(FeatureMapsGpu, TexturePathParity) {
             cpu[4 * k + 2] = r.grad.y;
             cpu[4 * k + 3] = r.side;
         }
-        glDeleteTextures(2, tex);
+        glDeleteTextures(near ? 4 : 2, tex);
         sg::gl::checkError("texture path");
         Diff d;
         compare(cpu.data(), gpu.data(), 4, n, d);
-        std::printf("%s maps, texture path: %zu points, max |d| diff %.2e, max angle %.2e rad, %zu "
-                    "side mismatches\n",
-                    toString(m.mode), d.records, d.maxDist, d.maxAngle, d.sideMismatch);
+        std::printf("%s maps%s, texture path: %zu points, max |d| diff %.2e, max angle %.2e rad, "
+                    "%zu side mismatches\n",
+                    toString(m.mode), near ? " with the exact near field" : "", d.records,
+                    d.maxDist, d.maxAngle, d.sideMismatch);
         EXPECT_EQ(d.nonFinite, 0u);
         EXPECT_LT(d.maxDist, 5e-5); // as in EvalKernelParity
         EXPECT_LT(d.maxAngle, 1e-3);

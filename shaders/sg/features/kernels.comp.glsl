@@ -2,6 +2,8 @@
 // invocation per record; SG_FEAT_EVAL_KERNEL (a define set by the host)
 // selects the function.
 // glslang-validate: SG_FEAT_EVAL_KERNEL 0
+// The kernels include the near field's functions.
+#define SG_FEAT_NEAR 1
 #include "sg/features/kernels.glsl"
 
 layout(local_size_x = 64) in;

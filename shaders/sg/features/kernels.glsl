@@ -25,6 +25,7 @@
 #include "sg/record.glsl"
 #include "sg/features/evaluate.glsl"
 #include "sg/features/profile.glsl"
+#include "sg/features/near.glsl"
 
 #define SG_FEAT_EVAL_IN 32
 #define SG_FEAT_EVAL_OUT 8
@@ -131,6 +132,46 @@ SG_FN SgFeatEvalOut sgFeatKernelProfile(SgFeatEvalIn sgRecIn) {
 }
 
 // ---------------------------------------------------------------------------
+// near-piece: the exact closest point of one piece (near.glsl), compiled
+// with the near field (kernels compile with SG_FEAT_NEAR 1, see
+// kernels.comp.glsl).
+#define SG_FEAT_K_NEAR_PIECE 2
+#define SG_FEAT_NEAR_PIECE_IN_FIELDS(F)                                                               \
+    F(vec2, p0, ("first control point (texels)"))                                                    \
+    F(vec2, p1, ("middle control point"))                                                            \
+    F(vec2, p2, ("last control point"))                                                              \
+    F(bool, curved, ("quadratic (else the line p0 p2)"))                                             \
+    F(vec2, point, ("the point (texels)"))
+#define SG_FEAT_NEAR_PIECE_OUT_FIELDS(F)                                                              \
+    F(float, dist, ("distance to the piece (texels)"))                                               \
+    F(vec2, grad, ("unit gradient of the distance"))                                                 \
+    F(float, side, ("+1 left of the piece, else -1"))
+
+SG_FN SgFeatEvalOut sgFeatKernelNearPiece(SgFeatEvalIn sgRecIn) {
+    SG_REC_READ(SG_FEAT_NEAR_PIECE_IN_FIELDS)
+    SG_REC_DECLARE(SG_FEAT_NEAR_PIECE_OUT_FIELDS)
+#if SG_FEAT_NEAR
+    SgFeatPiece c;
+    c.p0 = p0;
+    c.p1 = p1;
+    c.p2 = p2;
+    c.curved = curved;
+    c.profile = -1;
+    c.width0 = 0.0f;
+    c.width1 = 0.0f;
+    SgFeatResult r = sgFeatNearResult(sgFeatClosestOnPiece(c, point), c);
+    dist = r.dist;
+    grad = r.grad;
+    side = r.side;
+#else
+    dist = 0.0f;
+    grad = vec2(0.0f);
+    side = 0.0f;
+#endif
+    SG_REC_RETURN(SgFeatEvalOut, SG_FEAT_NEAR_PIECE_OUT_FIELDS)
+}
+
+// ---------------------------------------------------------------------------
 // The kernel list.
 #define SG_FEAT_KERNELS(X)                                                                            \
     X(eval, SG_FEAT_K_EVAL, sgFeatKernelEval, SG_FEAT_EVAL_IN_FIELDS, SG_FEAT_EVAL_OUT_FIELDS, 1e-4,  \
@@ -142,8 +183,15 @@ SG_FN SgFeatEvalOut sgFeatKernelProfile(SgFeatEvalIn sgRecIn) {
       SG_FEAT_PROFILE_OUT_FIELDS, 1e-5,                                                               \
       ("polynomials, sin/cos and one sqrt/normalize in binary32: a few ulps of values up to ~10 "      \
       "(slopes 2 D / w)"),                                                                             \
-      kernelInputsProfile)
-#define SG_FEAT_K_COUNT 2
+      kernelInputsProfile)                                                                            \
+    X(near_piece, SG_FEAT_K_NEAR_PIECE, sgFeatKernelNearPiece, SG_FEAT_NEAR_PIECE_IN_FIELDS,          \
+      SG_FEAT_NEAR_PIECE_OUT_FIELDS, 1e-4,                                                            \
+      ("binary32 Newton iterations on both builds (FMA contraction would move the foot point by "   \
+      "ulps; measured 0, bit-identical on llvmpipe); "                                                \
+      "records within 1e-3 texels of the piece, with two near-equal minima, or near a centre of "     \
+      "curvature (where the foot point is ill-conditioned) are not generated"),                       \
+      kernelInputsNearPiece)
+#define SG_FEAT_K_COUNT 3
 
 #define SG_FEAT_KERNEL_DISPATCH(name, id, function, IN, OUT, tolerance, reason, inputs)              \
     if (kernel == id) return function(x);

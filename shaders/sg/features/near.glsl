@@ -34,6 +34,7 @@
 //           two texels per piece: floatBits(p0, p1); floatBits(p2),
 //           packHalf2x16(width0, width1), flags (bit 0 curved, bits 8-15
 //           profile index + 1, 0 = the layer's).
+// glslang-validate: SG_FEAT_NEAR 1
 #ifndef SG_FEATURES_NEAR_GLSL
 #define SG_FEATURES_NEAR_GLSL
 
