@@ -3,25 +3,32 @@
 //
 //   features bake (--json F | --svg F | --font F --text STR [--face I])
 //                 --size N [--mode linear|quadratic] [--margin T] [--band T]
-//                 [--smooth K] -o MAPS.exr [--json]
+//                 [--smooth K] [--near exact|paper] [--near-width T]
+//                 -o MAPS.exr [--json]
 //     Bakes a curve network into feature maps (OpenEXR). Texel space: x
 //     right, y up, texel (i, j) covers [i, i+1] x [j, j+1]; the input is
 //     scaled uniformly and centred into [T, N - T]^2 (T = --margin, default
 //     8). --json prints the statistics as one JSON object (size,
 //     texels_with_features, seconds, input_to_texel {scale, offset}, ...).
-//     Bakes longer than a second report progress on stderr.
-//   features sample MAPS.exr --points F
+//     Bakes longer than a second report progress on stderr. --near exact
+//     keeps the exact near field (the input pieces with their per-curve
+//     profiles and widths; curves without a width count as --near-width,
+//     default 3 texels); paper (default) stores the papers' maps only.
+//   features sample MAPS.exr --points F [--near exact|paper]
 //     F holds one "x y" (texel space) per line; prints "x y d gx gy" per
 //     line: the distance (texels) and unit gradient exactly as the shader
-//     computes them (the C++ build of sgFeatSample).
+//     computes them (the C++ build of sgFeatSample / sgFeatSampleNear; maps
+//     with a near field use it unless --near paper).
 //   features render MAPS.exr --profile NAME [--width W] [--depth D]
 //                 [--blend W0] [--zoom K] [--center x,y] [--size WxH]
 //                 [--composition surfgrad|paper] [--compare bilinear]
-//                 -o IMG.png
+//                 [--near exact|paper] -o IMG.png
 //     A lit close-up of the feature normal field on the CPU (same code as
 //     the shader), K pixels per texel around the centre; with --compare
 //     bilinear, side by side with a plain bilinear normal map of the same
-//     resolution (the profile's normals at the map's samples).
+//     resolution (the profile's normals at the map's samples). In the exact
+//     near field, curves with their own profile or width use them (the
+//     layer's --profile and --width are the default).
 #include <CLI/CLI.hpp>
 #include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
@@ -54,8 +61,16 @@ struct BakeArgs {
     double margin = 8.0;
     double band = 16.0;
     int smooth = 10;
+    std::string near = "paper";
+    double nearWidth = 3.0;
     bool printJson = false;
 };
+
+NearMode parseNear(const std::string& cmd, const std::string& v) {
+    if (v == "exact") return NearMode::Exact;
+    if (v == "paper") return NearMode::Paper;
+    throw CliError("features " + cmd + ": --near must be exact or paper, got '" + v + "'");
+}
 
 void runBake(const BakeArgs& a) {
     int inputs = int(!a.json.empty()) + int(!a.svg.empty()) + int(!a.font.empty());
@@ -85,6 +100,8 @@ void runBake(const BakeArgs& a) {
     opt.marginTexels = a.margin;
     opt.bandTexels = a.band;
     opt.smoothIterations = a.smooth;
+    opt.nearField = parseNear("bake", a.near) == NearMode::Exact;
+    opt.nearWidthTexels = a.nearWidth;
     auto start = std::chrono::steady_clock::now();
     opt.progress = [start](const char* phase, double fraction) {
         if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
@@ -126,6 +143,17 @@ void runBake(const BakeArgs& a) {
                        {"canonical_bytes_per_texel", maps.canonicalBytesPerTexel()},
                        {"file_bytes", fileBytes},
                        {"file_bytes_per_texel", fileBytes / texels}};
+        if (maps.hasNearField()) {
+            GpuFeatureMaps gpu = maps.packGpu();
+            j["near"] = {{"pieces", st.nearPieces},
+                         {"band_texels", st.nearBandTexels},
+                         {"profiles", maps.profiles},
+                         {"band_texel_count", gpu.nearStats.bandTexels},
+                         {"pieces_per_band_texel_mean", gpu.nearStats.meanPieces},
+                         {"pieces_per_band_texel_max", gpu.nearStats.maxPieces},
+                         {"overflow_texels", gpu.nearStats.overflowTexels},
+                         {"gpu_bytes_per_texel", gpu.nearBytesPerTexel()}};
+        }
         j["output"] = a.out;
         std::cout << j.dump() << "\n";
     } else {
@@ -182,13 +210,15 @@ std::string fmt(float v) {
     return std::string(buf, r.ptr);
 }
 
-void runSample(const std::string& mapsFile, const std::string& pointsFile) {
+void runSample(const std::string& mapsFile, const std::string& pointsFile,
+               const std::string& nearArg) {
+    const NearMode near = parseNear("sample", nearArg);
     FeatureMaps maps = load(mapsFile);
     GpuFeatureMaps gpu = maps.packGpu();
     std::vector<glm::vec2> pts = readPoints(pointsFile);
     std::string out;
     for (const auto& p : pts) {
-        glsl::SgFeatResult r = sample(gpu, p);
+        glsl::SgFeatResult r = sample(gpu, p, near);
         out += fmt(p.x) + " " + fmt(p.y) + " " + fmt(r.dist) + " " + fmt(r.grad.x) + " " +
                fmt(r.grad.y) + "\n";
     }
@@ -197,6 +227,7 @@ void runSample(const std::string& mapsFile, const std::string& pointsFile) {
 
 struct RenderArgs {
     std::string maps, profile, out, center, size = "512x512", composition = "surfgrad", compare;
+    std::string near = "exact";
     float width = 3.0f, depth = 1.0f, blend = 0.0f, zoom = 16.0f;
 };
 
@@ -226,6 +257,12 @@ void runRender(const RenderArgs& a) {
         throw CliError("features render: --width " + fmt(a.width) +
                        " exceeds the maps' distance band " + fmt(float(maps.bandTexels)) +
                        " minus 1.5 texels (bake with a larger --band)");
+    }
+    const NearMode near = parseNear("render", a.near);
+    if (near == NearMode::Exact && maps.hasNearField() && a.width > float(maps.nearBandTexels)) {
+        throw CliError("features render: --width " + fmt(a.width) +
+                       " exceeds the near field's band " + fmt(float(maps.nearBandTexels)) +
+                       " texels (bake with a larger --near-width, or render --near paper)");
     }
     if (!(a.zoom > 0.0f && a.zoom <= 4096.0f))
         throw CliError("features render: --zoom must be in (0, 4096]");
@@ -258,9 +295,12 @@ void runRender(const RenderArgs& a) {
     std::vector<float> img(size_t(W) * h * 3, 1.0f);
     const glm::vec3 flat(0.0f, 0.0f, 1.0f);
     auto featureNormal = [&](glm::vec2 p) {
-        glsl::SgFeatResult r = sample(gpu, p);
-        if (a.composition == "paper") return glsl::sgFeatNormalPaper(r, prof, flat);
-        return glsl::sgFeatNormalFromDeriv(glsl::sgFeatDeriv(r, prof, glm::vec2(0.0f)));
+        glsl::SgFeatResult r = sample(gpu, p, near);
+        // Per-curve profiles and widths (exact near field only).
+        const glsl::SgFeatProfile pr =
+            gpu.hasNearField() ? glsl::sgFeatCurveProfile(gpu.pieceSampler(), prof, r) : prof;
+        if (a.composition == "paper") return glsl::sgFeatNormalPaper(r, pr, flat);
+        return glsl::sgFeatNormalFromDeriv(glsl::sgFeatDeriv(r, pr, glm::vec2(0.0f)));
     };
     // The bilinear reference: the profile's normal at every grid sample
     // (distance and unit gradient of the sample), interpolated bilinearly.
@@ -364,6 +404,12 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     bakeCmd->add_option("--band", bakeArgs->band,
                         "Distances are exact up to this many texels (default 16)");
     bakeCmd->add_option("--smooth", bakeArgs->smooth, "Gradient smoothing iterations (default 10)");
+    bakeCmd->add_option("--near", bakeArgs->near,
+                        "exact: keep the exact near field (input pieces, per-curve profiles and "
+                        "widths); paper (default): the papers' maps only");
+    bakeCmd->add_option("--near-width", bakeArgs->nearWidth,
+                        "Profile width (texels) of curves without their own, for the near "
+                        "field's band (default 3)");
     bakeCmd->add_option("-o,--output", bakeArgs->out, "Output maps (.exr)")->required();
     bakeCmd->callback([bakeArgs, jsonArgs, jsonOpt] {
         size_t files = 0;
@@ -384,7 +430,12 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     sampleCmd->add_option("maps", *sampleMaps, "Feature maps (.exr)")->required();
     sampleCmd->add_option("--points", *samplePoints, "File of \"x y\" lines in texel space")
         ->required();
-    sampleCmd->callback([sampleMaps, samplePoints] { runSample(*sampleMaps, *samplePoints); });
+    auto sampleNear = std::make_shared<std::string>("exact");
+    sampleCmd->add_option("--near", *sampleNear,
+                          "exact (default: the near field when the maps have one) or paper");
+    sampleCmd->callback([sampleMaps, samplePoints, sampleNear] {
+        runSample(*sampleMaps, *samplePoints, *sampleNear);
+    });
 
     auto renderArgs = std::make_shared<RenderArgs>();
     auto* renderCmd =
@@ -406,6 +457,8 @@ void addFeaturesCommands(CLI::App& app, int& status) {
                           "surfgrad (default) or paper (Eq. 1)");
     renderCmd->add_option("--compare", renderArgs->compare,
                           "bilinear: add a plain bilinear normal map panel");
+    renderCmd->add_option("--near", renderArgs->near,
+                          "exact (default: the near field when the maps have one) or paper");
     renderCmd->add_option("-o,--output", renderArgs->out, "Output image (.png)")->required();
     renderCmd->callback([renderArgs] { runRender(*renderArgs); });
     (void)status;

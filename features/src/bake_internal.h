@@ -138,5 +138,10 @@ void keepNearPieces(const CurveNetwork& net, const std::vector<TexelPiece>& segs
                     BakeStats& st);
 // ... and packing derives the GPU lists and piece texture from them.
 void packNearField(const FeatureMaps& m, GpuFeatureMaps& g);
+// Bounds the work of building the lists (pieces times the texels their
+// boxes grown by the band cover, at most kNearWorkBudget): InputError
+// naming `source` beyond it, so untrusted maps cannot make packing hang.
+inline constexpr double kNearWorkBudget = 3.0e7;
+void checkNearFieldWork(const FeatureMaps& m, const std::string& source);
 
 } // namespace sg::features::detail

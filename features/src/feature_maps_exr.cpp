@@ -8,6 +8,7 @@
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -133,6 +134,88 @@ std::vector<std::string> channelNames() {
 
 std::string pixelName(int i, int j) {
     return "corner (" + std::to_string(i) + ", " + std::to_string(j) + ")";
+}
+
+// Floats per piece in surfgrad:nearPieces: p0, p1, p2 (x, y), curved (0/1),
+// profile (-1 or a table index), width0, width1.
+constexpr int kPieceFloats = 10;
+
+// The exact near field's metadata, when present (every value checked: the
+// runtime only ever sees pieces the bake could have written).
+void readNearField(const OIIO::ImageSpec& spec, const std::string& name, FeatureMaps& m) {
+    using io::InputError;
+    const OIIO::ParamValue* band = spec.find_attribute("surfgrad:nearBandTexels");
+    if (!band) return;
+    double b = 0;
+    if (!spec.getattribute("surfgrad:nearBandTexels", OIIO::TypeDesc::DOUBLE, &b) ||
+        !(b > 0.0 && b <= m.bandTexels && b <= kMaxNearBandTexels)) {
+        throw InputError(name, "metadata surfgrad:nearBandTexels",
+                         "must be a double in (0, min(bandTexels, " +
+                             std::to_string(int(kMaxNearBandTexels)) + ")]");
+    }
+    m.nearBandTexels = b;
+    // The profile table (';'-separated makeProfile names; absent: empty).
+    const OIIO::ParamValue* profiles = spec.find_attribute("surfgrad:nearProfiles");
+    if (profiles && profiles->type() != OIIO::TypeDesc::STRING)
+        throw InputError(name, "metadata surfgrad:nearProfiles", "not a string");
+    const std::string table(profiles ? profiles->get_string().c_str() : "");
+    for (size_t at = 0; at < table.size();) {
+        size_t end = std::min(table.find(';', at), table.size());
+        std::string p = table.substr(at, end - at);
+        try {
+            (void)makeProfile(p, 1.0f, 0.0f, 1.0f);
+        } catch (const InputError& e) {
+            throw InputError(name, "metadata surfgrad:nearProfiles", e.reason());
+        }
+        if (std::find(m.profiles.begin(), m.profiles.end(), p) != m.profiles.end())
+            throw InputError(name, "metadata surfgrad:nearProfiles", "profile '" + p + "' twice");
+        m.profiles.push_back(p);
+        if (m.profiles.size() > size_t(SG_FEAT_MAX_PROFILES))
+            throw InputError(name, "metadata surfgrad:nearProfiles",
+                             "more than " + std::to_string(SG_FEAT_MAX_PROFILES) + " profiles");
+        at = end + 1;
+    }
+    const OIIO::ParamValue* pieces = spec.find_attribute("surfgrad:nearPieces");
+    const OIIO::TypeDesc t = pieces ? pieces->type() : OIIO::TypeDesc();
+    if (!pieces || t.basetype != OIIO::TypeDesc::FLOAT || t.aggregate != OIIO::TypeDesc::SCALAR ||
+        pieces->nvalues() != 1 || t.arraylen <= 0 || t.arraylen % kPieceFloats != 0 ||
+        t.arraylen / kPieceFloats > kMaxNearPieces) {
+        throw InputError(name, "metadata surfgrad:nearPieces",
+                         "missing, or not a float array of 10 values per piece (at most " +
+                             std::to_string(kMaxNearPieces) + " pieces)");
+    }
+    const float* v = static_cast<const float*>(pieces->data());
+    const int count = t.arraylen / kPieceFloats;
+    m.pieces.resize(size_t(count));
+    for (int k = 0; k < count; ++k) {
+        const float* f = v + size_t(k) * kPieceFloats;
+        auto bad = [&](const std::string& why) {
+            return InputError(name, "metadata surfgrad:nearPieces piece " + std::to_string(k), why);
+        };
+        for (int c = 0; c < kPieceFloats; ++c)
+            if (!std::isfinite(f[c])) throw bad("not finite");
+        for (int c = 0; c < 6; ++c)
+            if (std::fabs(f[c]) > 1e6f)
+                throw bad("coordinate more than 1e6 texels from the origin");
+        NearPiece& p = m.pieces[size_t(k)];
+        p.p0 = {f[0], f[1]};
+        p.p1 = {f[2], f[3]};
+        p.p2 = {f[4], f[5]};
+        if (f[6] != 0.0f && f[6] != 1.0f) throw bad("curved flag must be 0 or 1");
+        p.curved = f[6] == 1.0f;
+        if (!p.curved && p.p1 != 0.5f * (p.p0 + p.p2))
+            throw bad("a line's middle point must be its midpoint");
+        if (p.p0 == p.p2) throw bad("coincident end points");
+        if (f[7] != std::floor(f[7]) || f[7] < -1.0f || f[7] >= float(m.profiles.size()))
+            throw bad("profile index outside the profile table");
+        p.profile = int(f[7]);
+        for (int c = 8; c < 10; ++c)
+            if (f[c] < 0.0f || double(f[c]) > m.nearBandTexels)
+                throw bad("profile width outside [0, near band]");
+        p.width0 = f[8];
+        p.width1 = f[9];
+    }
+    detail::checkNearFieldWork(m, name);
 }
 
 FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
@@ -353,6 +436,7 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             }
         }
     }
+    readNearField(spec, name, m);
     return m;
 }
 
@@ -403,6 +487,22 @@ void save(const FeatureMaps& m, const std::filesystem::path& path) {
         spec.attribute("surfgrad:smoothIterations", m.smoothIterations);
         spec.attribute("surfgrad:source", m.source);
         spec.attribute("surfgrad:layout", kLayout);
+        std::vector<float> pieces;
+        if (m.hasNearField()) {
+            dbl("surfgrad:nearBandTexels", m.nearBandTexels);
+            std::string table;
+            for (const std::string& p : m.profiles) table += (table.empty() ? "" : ";") + p;
+            if (!table.empty()) spec.attribute("surfgrad:nearProfiles", table);
+            pieces.reserve(m.pieces.size() * kPieceFloats);
+            for (const NearPiece& p : m.pieces) {
+                pieces.insert(pieces.end(),
+                              {p.p0.x, p.p0.y, p.p1.x, p.p1.y, p.p2.x, p.p2.y,
+                               p.curved ? 1.0f : 0.0f, float(p.profile), p.width0, p.width1});
+            }
+            spec.attribute("surfgrad:nearPieces",
+                           OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, int(pieces.size())),
+                           pieces.data());
+        }
         if (!out->open(tmp.string(), spec))
             throw InputError(path.string(), "", "cannot open for writing: " + out->geterror());
         if (!out->write_image(OIIO::TypeDesc::FLOAT, px.data())) {

@@ -58,9 +58,16 @@ std::vector<std::vector<int>> binPieces(const std::vector<NearPiece>& pieces, in
         int by0 = std::max(0, int(std::floor(lo.y / kBinTexels)));
         int bx1 = std::min(bins - 1, int(std::floor(hi.x / kBinTexels)));
         int by1 = std::min(bins - 1, int(std::floor(hi.y / kBinTexels)));
-        for (int by = by0; by <= by1; ++by)
-            for (int bx = bx0; bx <= bx1; ++bx)
+        // Only bins the piece comes within `reach` of (bin centre distance
+        // minus the bin's half diagonal).
+        const double halfDiagonal = 0.5 * std::sqrt(2.0) * kBinTexels;
+        for (int by = by0; by <= by1; ++by) {
+            for (int bx = bx0; bx <= bx1; ++bx) {
+                dvec2 centre((bx + 0.5) * kBinTexels, (by + 0.5) * kBinTexels);
+                if (pieceDistance(q, pieces[k].curved, centre) - halfDiagonal > reach) continue;
                 out[size_t(by) * size_t(bins) + size_t(bx)].push_back(int(k));
+            }
+        }
     }
     return out;
 }
@@ -190,6 +197,31 @@ void packNearField(const FeatureMaps& m, GpuFeatureMaps& g) {
     packPieces(m, g);
 }
 
+void checkNearFieldWork(const FeatureMaps& m, const std::string& source) {
+    // Per piece: the texels of the bins within reach of it, at most its
+    // length (bounded by its control polygon) plus the reach and a bin on
+    // each side, times twice that across; and the bins of its box it tests.
+    const double reach = m.nearBandTexels + 2.0, n = m.size;
+    double work = 0.0;
+    for (const NearPiece& p : m.pieces) {
+        double len = double(glm::length(p.p1 - p.p0) + glm::length(p.p2 - p.p1));
+        double across = 2.0 * (reach + kBinTexels);
+        // (The box clipped to the map: binning visits only the map's bins.)
+        const dvec2 lo = glm::clamp(dvec2(glm::min(glm::min(p.p0, p.p1), p.p2)), 0.0, n);
+        const dvec2 hi = glm::clamp(dvec2(glm::max(glm::max(p.p0, p.p1), p.p2)), 0.0, n);
+        const dvec2 ext = hi - lo;
+        double boxBins = (ext.x + across) * (ext.y + across) / (kBinTexels * kBinTexels);
+        work += (std::min(len, 4.0 * n) + across) * across + boxBins;
+    }
+    if (work > kNearWorkBudget) {
+        throw io::InputError(source, "near field",
+                             "its pieces cover " + std::to_string(static_cast<long long>(work)) +
+                                 " texels of list work (the limit is " +
+                                 std::to_string(static_cast<long long>(kNearWorkBudget)) +
+                                 "): fewer or shorter pieces, or a narrower band");
+    }
+}
+
 void keepNearPieces(const CurveNetwork& net, const std::vector<TexelPiece>& segs,
                     const BakeOptions& opt, const TexelTransform& xf, FeatureMaps& maps,
                     BakeStats& st) {
@@ -264,6 +296,12 @@ void keepNearPieces(const CurveNetwork& net, const std::vector<TexelPiece>& segs
                                  "distances (" +
                                  std::to_string(opt.bandTexels) + " texels): raise --band");
     }
+    if (maps.nearBandTexels > kMaxNearBandTexels) {
+        throw io::InputError("(options)", "near",
+                             "the near band may be at most " +
+                                 std::to_string(int(kMaxNearBandTexels)) + " texels");
+    }
+    checkNearFieldWork(maps, file);
     st.nearPieces = int(maps.pieces.size());
     st.nearBandTexels = maps.nearBandTexels;
 }

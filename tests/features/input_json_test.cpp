@@ -199,6 +199,32 @@ TEST(InputJson, WidthNotNumber) {
     expectError(curve(R"({"width": "2", "points": [[0,0],[1,1]]})"), "curves[0].width",
                 "expected a number");
 }
+// Per-vertex widths: one per point (polyline) or per segment start plus the
+// last end, linear along each segment; a closing line runs back to the
+// first vertex's width.
+TEST(InputJson, PerVertexWidths) {
+    CurveNetwork net = parse(curve(
+        R"({"profile": "table:0,1,0.5", "width": [1, 2, 4], "closed": true, "points": [[0,0],[1,0],[1,1]]},
+           {"width": 2.5, "segments": [{"line": [[5,0],[6,0]]}, {"quad": [[6,0],[7,1],[8,0]]}]},
+           {"width": [3, 0.5, 1], "segments": [{"line": [[9,0],[10,0]]}, {"quad": [[10,0],[11,1],[12,0]]}]})"));
+    ASSERT_EQ(net.segments.size(), 7u);
+    EXPECT_EQ(net.curves[0].profile, "table:0,1,0.5");
+    const double w[7][2] = {{1, 2}, {2, 4}, {4, 1}, {-1, -1}, {-1, -1}, {3, 0.5}, {0.5, 1}};
+    for (size_t k = 0; k < 7; ++k) {
+        EXPECT_EQ(net.segments[k].width0, w[k][0]) << k;
+        EXPECT_EQ(net.segments[k].width1, w[k][1]) << k;
+    }
+    EXPECT_EQ(net.curves[1].width, 2.5);
+    EXPECT_EQ(net.curves[2].width, -1.0);
+}
+TEST(InputJson, PerVertexWidthCountAndValues) {
+    expectError(curve(R"({"width": [1, 2], "points": [[0,0],[1,1],[2,0]]})"), "curves[0].width",
+                "one width per vertex (3)");
+    expectError(curve(R"({"width": [1, 0], "points": [[0,0],[1,1]]})"), "curves[0].width[1]",
+                "must be > 0");
+    expectError(curve(R"({"width": [1, "a"], "points": [[0,0],[1,1]]})"), "curves[0].width[1]",
+                "expected a number");
+}
 TEST(InputJson, ProfileBadCharacters) {
     expectError(curve(R"({"profile": "v groove", "points": [[0,0],[1,1]]})"), "curves[0].profile",
                 "only letters");

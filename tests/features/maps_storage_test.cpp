@@ -275,3 +275,91 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
         forge("msg", [&](auto&, auto& p) { p[size_t(chan("d"))] = -1.0f; }).find(".exr: corner ("),
         std::string::npos);
 }
+
+// The exact near field round-trips (pieces, profiles, band: the GPU lists
+// derived from them are identical), and every forged value is refused.
+TEST(FeatureMapsStorage, NearFieldRoundTripAndForgeries) {
+    TempDir dir;
+    NetBuilder b;
+    b.circle({8.3, 8.1}, 4.2, 8);
+    b.polyline({{1.5, 14.2}, {14.5, 12.9}, {9.0, 2.0}});
+    b.net.curves[0].profile = "seam";
+    b.net.curves[1].profile = "table:0,1,0.5";
+    b.net.curves[1].width = 2.5;
+    b.net.segments.back().width0 = 1.0; // per-vertex widths on the last segment
+    b.net.segments.back().width1 = 3.5;
+    BakeOptions o = texelSpace(16, BakeMode::Quadratic);
+    o.nearField = true;
+    FeatureMaps m = bake(b.net, o);
+    ASSERT_TRUE(m.hasNearField());
+    EXPECT_EQ(m.profiles, (std::vector<std::string>{"seam", "table:0,1,0.5"}));
+    EXPECT_EQ(m.nearBandTexels, 3.5 + o.nearMarginTexels); // the widest profile plus the margin
+    fs::path good = dir.path / "near.exr";
+    save(m, good);
+    FeatureMaps l = load(good);
+    EXPECT_EQ(l.nearBandTexels, m.nearBandTexels);
+    EXPECT_EQ(l.profiles, m.profiles);
+    ASSERT_EQ(l.pieces.size(), m.pieces.size());
+    for (size_t k = 0; k < m.pieces.size(); ++k) {
+        EXPECT_EQ(l.pieces[k].p0, m.pieces[k].p0);
+        EXPECT_EQ(l.pieces[k].p1, m.pieces[k].p1);
+        EXPECT_EQ(l.pieces[k].p2, m.pieces[k].p2);
+        EXPECT_EQ(l.pieces[k].curved, m.pieces[k].curved);
+        EXPECT_EQ(l.pieces[k].profile, m.pieces[k].profile);
+        EXPECT_EQ(l.pieces[k].width0, m.pieces[k].width0);
+        EXPECT_EQ(l.pieces[k].width1, m.pieces[k].width1);
+    }
+    GpuFeatureMaps a = m.packGpu(), c = l.packGpu();
+    EXPECT_EQ(a.nearLists, c.nearLists);
+    EXPECT_EQ(a.pieces, c.pieces);
+
+    auto in = OIIO::ImageInput::open(good.string());
+    ASSERT_TRUE(in);
+    OIIO::ImageSpec spec = in->spec();
+    std::vector<float> px(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data()));
+    in.reset();
+    const OIIO::ParamValue* pv = spec.find_attribute("surfgrad:nearPieces");
+    ASSERT_TRUE(pv);
+    const float* f = static_cast<const float*>(pv->data());
+    const std::vector<float> pieces(f, f + pv->type().arraylen);
+    auto forge = [&](const std::string& name, auto&& edit) {
+        OIIO::ImageSpec s = spec;
+        std::vector<float> v = pieces;
+        edit(s, v);
+        s.attribute("surfgrad:nearPieces", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, int(v.size())),
+                    v.data());
+        fs::path file = dir.path / (name + ".exr");
+        writeExr(file, s, px);
+        return loadError(file);
+    };
+    auto expectError = [](const std::string& e, const char* what) {
+        EXPECT_NE(e.find(what), std::string::npos) << e;
+    };
+    expectError(forge("nan", [](auto&, auto& v) { v[0] = std::nanf(""); }), "not finite");
+    expectError(forge("far", [](auto&, auto& v) { v[1] = 3e6f; }), "1e6 texels");
+    expectError(forge("flag", [](auto&, auto& v) { v[6] = 0.5f; }), "curved flag");
+    expectError(forge("profile", [](auto&, auto& v) { v[7] = 5.0f; }), "profile index");
+    expectError(forge("width", [](auto&, auto& v) { v[8] = 1e3f; }), "profile width");
+    expectError(forge("count", [](auto&, auto& v) { v.pop_back(); }), "10 values per piece");
+    expectError(forge("point", [](auto&, auto& v) { v[4] = v[0], v[5] = v[1]; }),
+                "coincident end points");
+    expectError(forge("band",
+                      [](auto& s, auto&) {
+                          double band = 100.0;
+                          s.attribute("surfgrad:nearBandTexels", OIIO::TypeDesc::DOUBLE, &band);
+                      }),
+                "nearBandTexels");
+    expectError(forge("table",
+                      [](auto& s, auto&) { s.attribute("surfgrad:nearProfiles", "crease;bogus"); }),
+                "unknown profile");
+    // Without the table (absent: empty), the pieces' profile indices point nowhere.
+    expectError(
+        forge("notable", [](auto& s, auto&) { s.erase_attribute("surfgrad:nearProfiles"); }),
+        "profile index");
+    // A line whose middle point is not its midpoint.
+    size_t line = 0;
+    while (line < pieces.size() / 10 && pieces[line * 10 + 6] != 0.0f) ++line;
+    ASSERT_LT(line, pieces.size() / 10);
+    expectError(forge("midpoint", [&](auto&, auto& v) { v[line * 10 + 2] += 0.25f; }), "midpoint");
+}

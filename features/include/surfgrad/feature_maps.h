@@ -224,8 +224,10 @@ struct NearPiece {
     float width0 = 0.0f; // profile width at p0 / p2 (texels); 0: the layer's width
     float width1 = 0.0f;
 };
-// Most pieces a map with a near field may hold (15-bit list slots).
+// Most pieces a map with a near field may hold (15-bit list slots), and its
+// widest band (texels).
 inline constexpr int kMaxNearPieces = 32767;
+inline constexpr double kMaxNearBandTexels = 64.0;
 
 // The baked maps in their canonical (file) form; see the file layout above.
 // Arrays over grid corners have (N+1)^2 entries, index j * (N+1) + i.
