@@ -100,6 +100,18 @@ std::vector<LayerCase> layerCases() {
              R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
                         "mode": "paper", "tiling": 2, "base_map": )" +
              tiles + "}")},
+        // The exact near field with per-curve profiles and widths
+        // (examples/feature-profiles/curves.json: V-grooves, a ridge, a
+        // tapered crease, a table profile) next to a paper-mode layer.
+        {"feature_curves_near_exact_per_curve_profiles",
+         sphereScene(
+             R"({"type": "feature", "near": "exact", "curves": {"json": ")" +
+             std::string(SURFGRAD_SOURCE_DIR) +
+             R"(/examples/feature-profiles/curves.json", "size": 96, "mode": "quadratic", "margin": 6},
+                        "profile": "crease", "depth": 1.5, "width": 3},
+                       {"type": "feature", "curves": {"svg": ")" +
+             std::string(SURFGRAD_DATA_DIR) +
+             R"(/svg/flame.svg", "size": 64}, "profile": "vgroove", "depth": 1, "width": 2, "tiling": 2})")},
         {"spot_subdivided_mikktspace_tangents",
          oneMaterialScene(
              R"({"type": "uv_normal", "map": )" + bricks + "}",

@@ -127,6 +127,27 @@ TEST(EffectsOnDemand, AProgramHoldsOnlyTheLayerKindsItUses) {
     }
 }
 
+int glslang(const ProgramSource& src, const std::string& tag);
+
+// The exact near field (sg/features/near.glsl) is compiled only when a
+// feature layer asks for it ("near": "exact"): not for a feature layer on the
+// same curves without it.
+TEST(EffectsOnDemand, NearFieldOnlyWhenALayerUsesIt) {
+    const std::string curves = R"("curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
+                               R"(/svg/flame.svg", "size": 32, "mode": "quadratic"})";
+    std::string paper = programFor(R"({"type": "feature", )" + curves + "}");
+    std::string exact = programFor(R"({"type": "feature", "near": "exact", )" + curves + "}");
+    for (const char* m : {"sgFeatSampleNear", "sgFeatNearEval", "sgFeatClosestOnPiece",
+                          "sgFeatCurveProfile", "uFeatNear", "uFeatPieces"}) {
+        EXPECT_EQ(paper.find(m), std::string::npos) << m;
+        EXPECT_NE(exact.find(m), std::string::npos) << m;
+    }
+    Scene s = sceneFromJson(
+        oneMaterialScene(R"({"type": "feature", "near": "exact", )" + curves + "}", kSphere));
+    SceneAssets a = loadAssets(s);
+    EXPECT_EQ(glslang(assembleProgram(planMaterial(s, a, 0, 0)), "near"), 0);
+}
+
 TEST(EffectsOnDemand, NoLayersMeansNoBumpCode) {
     std::string p = programFor("");
     for (const char* m : {"sgLayer", "sgTspaceNormalToDeriv", "sgPerlinNoise", "sgTriplanar",

@@ -266,12 +266,15 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
         opt.size = f.size;
         opt.mode = f.quadratic ? sf::BakeMode::Quadratic : sf::BakeMode::Linear;
         opt.marginTexels = f.marginTexels;
+        opt.nearField = f.nearField;
+        opt.nearWidthTexels = f.nearWidthTexels;
         maps = sf::bake(net, opt);
     }
     auto a = std::make_shared<FeatureMapsAsset>();
     a->gpu = maps.packGpu();
     a->bandTexels = maps.bandTexels;
     a->quadratic = maps.mode == sf::BakeMode::Quadratic;
+    a->nearBandTexels = maps.nearBandTexels;
     a->uid = nextUid++;
     return a;
 }
@@ -555,6 +558,19 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
                                  "the profile width must be at most " + std::to_string(band - 1.5) +
                                      " texels (the maps hold exact distances up to " +
                                      std::to_string(band) + ")");
+        }
+        // The exact near field: the maps must have one covering the width.
+        const double nearBand = assets.featureMaps[key]->nearBandTexels;
+        if (L->featNearExact && nearBand <= 0.0) {
+            throw io::InputError(scene.sourceName, L->fieldPath + ".near",
+                                 "\"exact\" needs maps baked with the near field (surfgrad "
+                                 "features bake --near exact)");
+        }
+        if (L->featNearExact && double(L->featWidth) > nearBand) {
+            throw io::InputError(scene.sourceName, L->fieldPath + ".width",
+                                 "the profile width must be at most the near field's band " +
+                                     std::to_string(nearBand) +
+                                     " texels (bake with a larger --near-width)");
         }
     }
     // Meshes whose enabled layers now read the basis of a UV set they ask

@@ -7,6 +7,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <unordered_map>
 
@@ -74,10 +75,9 @@ struct GlRenderer::Impl {
     ~Impl() {
         for (auto& m : meshes) deleteMesh(m);
         for (auto& [img, t] : textures) glDeleteTextures(1, &t);
-        for (auto& [uid, t] : featureTex) {
-            glDeleteTextures(1, &t.first);
-            glDeleteTextures(1, &t.second);
-        }
+        for (auto& [uid, t] : featureTex)
+            for (GLuint x : t)
+                if (x) glDeleteTextures(1, &x);
         if (fbo) glDeleteFramebuffers(1, &fbo);
         if (colorTex) glDeleteTextures(1, &colorTex);
         if (depthRb) glDeleteRenderbuffers(1, &depthRb);
@@ -171,29 +171,33 @@ struct GlRenderer::Impl {
         return t;
     }
 
-    std::unordered_map<uint64_t, std::pair<GLuint, GLuint>> featureTex; // by FeatureMapsAsset::uid
+    // Feature maps' textures by FeatureMapsAsset::uid: corner pairs, edges
+    // and, for maps with an exact near field, its lists and pieces (else 0).
+    std::unordered_map<uint64_t, std::array<GLuint, 4>> featureTex;
 
-    void featureTextures(const FeatureMapsAsset& fm, GLuint& corners, GLuint& edges) {
+    const std::array<GLuint, 4>& featureTextures(const FeatureMapsAsset& fm) {
         auto it = featureTex.find(fm.uid);
         if (it == featureTex.end()) {
             const auto& g = fm.gpu;
-            GLuint t[2];
-            glCreateTextures(GL_TEXTURE_2D, 2, t);
-            glTextureStorage2D(t[0], 1, GL_RGBA32UI, g.cornerPairsWidth(), g.cornerPairsHeight());
-            glTextureSubImage2D(t[0], 0, 0, 0, g.cornerPairsWidth(), g.cornerPairsHeight(),
-                                GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.cornerPairs.data());
-            glTextureStorage2D(t[1], 1, GL_RGBA32UI, g.size, g.size);
-            glTextureSubImage2D(t[1], 0, 0, 0, g.size, g.size, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                                g.edges.data());
-            for (GLuint x : t) {
+            std::array<GLuint, 4> t{0, 0, 0, 0};
+            auto upload = [](GLuint& x, int w, int h, const std::vector<uint32_t>& data) {
+                glCreateTextures(GL_TEXTURE_2D, 1, &x);
+                glTextureStorage2D(x, 1, GL_RGBA32UI, w, h);
+                glTextureSubImage2D(x, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                                    data.data());
                 glTextureParameteri(x, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
                 glTextureParameteri(x, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            };
+            upload(t[0], g.cornerPairsWidth(), g.cornerPairsHeight(), g.cornerPairs);
+            upload(t[1], g.size, g.size, g.edges);
+            if (g.hasNearField()) {
+                upload(t[2], g.size, g.nearHeight, g.nearLists);
+                upload(t[3], SG_FEAT_PIECES_WIDTH, g.piecesHeight, g.pieces);
             }
-            it = featureTex.emplace(fm.uid, std::make_pair(t[0], t[1])).first;
+            it = featureTex.emplace(fm.uid, t).first;
             sg::gl::checkError("feature map upload");
         }
-        corners = it->second.first;
-        edges = it->second.second;
+        return it->second;
     }
 
     GpuProgram& program(const MaterialPlan& plan, RenderStats& stats) {
@@ -273,24 +277,33 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             std::string name = "uTex" + std::to_string(s);
             glUniform1i(gp.loc(name.c_str()), GLint(s));
         }
-        // Feature maps: corner pairs and edges (both RGBA32UI), read with
+        // Feature maps: corner pairs and edges (and, when the plan uses the
+        // exact near field, its lists and pieces; all RGBA32UI), read with
         // texelFetch only, on the units after the regular textures; the
         // per-layer sampler arrays point at them (and at the base maps).
+        const int unitsPerMap = plan.featureNear ? 4 : 2;
         for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
-            GLuint unit = GLuint(plan.textureKeys.size() + 2 * f);
+            GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
             auto it = assets.featureMaps.find(plan.featureKeys[f]);
-            GLuint tc = 0, te = 0;
-            if (it != assets.featureMaps.end()) I.featureTextures(*it->second, tc, te);
-            glBindTextureUnit(unit, tc);
-            glBindTextureUnit(unit + 1, te);
+            std::array<GLuint, 4> t{0, 0, 0, 0};
+            if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
+            // Maps without a near field: their corner texture stands in for the
+            // near textures, which such layers never read (an integer sampler
+            // needs an integer texture bound).
+            if (!t[2]) t[2] = t[3] = t[0];
+            for (int k = 0; k < unitsPerMap; ++k) glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
         }
         for (const auto& g : plan.groups)
             for (const auto& pl : g) {
                 if (pl.featureIndex < 0) continue;
                 std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
-                GLint unit = GLint(plan.textureKeys.size()) + 2 * pl.featureSlot;
+                GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
                 glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
                 glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
+                if (plan.featureNear) {
+                    glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
+                    glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
+                }
                 glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
             }
         const Material& mat = scene.materials[size_t(mi.material)];

@@ -246,6 +246,10 @@ struct Planner {
             // code (TOG 2008) only when some map was baked with curves.
             auto fm = assets.featureMaps.find(key);
             if (fm != assets.featureMaps.end() && fm->second->quadratic) plan.featureCurved = true;
+            // ... and the exact near field only when a layer uses one.
+            if (fm != assets.featureMaps.end() && L.featNearExact &&
+                fm->second->nearBandTexels > 0.0)
+                plan.featureNear = true;
         }
         int nTex = L.kind == LayerKind::Triplanar ? 3 : (L.kind == LayerKind::Noise ? 0 : 1);
         for (int i = 0; i < nTex; ++i) {
@@ -300,7 +304,8 @@ struct Planner {
         if (plan.baseColorTex >= 0)
             sig << "|bc@uv" << plan.baseColorUvSet << ":t" << plan.baseColorTex;
         if (plan.featureLayerCount > 0)
-            sig << (plan.featureCurved ? "|featcurved" : "|featstraight");
+            sig << (plan.featureCurved ? "|featcurved" : "|featstraight")
+                << (plan.featureNear ? "|featnear" : "");
         sig << "|tex" << plan.textureKeys.size();
         plan.signature = sig.str();
     }
@@ -416,7 +421,7 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
                 // see them, so the renderers patch r0.z (featureMapSizes()).
                 o[0] = {L.strength, b(L.featPaperMode), 0.0f, L.featTiling};
                 o[1] = {L.featOffset.x, L.featOffset.y, b(!L.maps.empty()), enc};
-                o[2] = {b(L.flipV), 0, 0, 0};
+                o[2] = {b(L.flipV), b(L.featNearExact), 0, 0};
                 sg::glsl::SgFeatProfile pr =
                     sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
                 o[3] = {float(pr.kind), pr.depth, pr.w0, pr.w};
@@ -524,6 +529,10 @@ std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
         if (it == assets.featureMaps.end()) continue;
         s[i].corners = it->second->gpu.cornerSampler();
         s[i].edges = it->second->gpu.edgeSampler();
+        if (it->second->gpu.hasNearField()) {
+            s[i].nearLists = it->second->gpu.nearSampler();
+            s[i].pieces = it->second->gpu.pieceSampler();
+        }
     }
     return s;
 }
@@ -697,6 +706,10 @@ std::string fragmentBody(const MaterialPlan& plan) {
         o << "uniform usampler2D uFeatCorners[" << n << "];\n"
           << "uniform usampler2D uFeatEdges[" << n << "];\n"
           << "uniform sampler2D uFeatBase[" << n << "];\n";
+        if (plan.featureNear) {
+            o << "uniform usampler2D uFeatNear[" << n << "];   // exact near field: lists\n"
+              << "uniform usampler2D uFeatPieces[" << n << "]; // exact near field: pieces\n";
+        }
         arr("kFeatRecord", rec);
         arr("kFeatUvSet", uvs);
         if (plan.uber) arr("kFeatFlag", flags);
@@ -797,14 +810,16 @@ std::string fragmentBody(const MaterialPlan& plan) {
                 }
             }
             o << indent
-              << "    surfGrad += sgLayerFeature(fuv, sgUnpackFeatureLayer(uLayerData[r], "
+              << "    surfGrad += " << (plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature")
+              << "(fuv, sgUnpackFeatureLayer(uLayerData[r], "
                  "uLayerData[r + 1], "
                  "uLayerData[r + 2]),\n"
               << indent
               << "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + "
                  "5], "
                  "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n"
-              << indent << "        uFeatCorners[fi], uFeatEdges[fi], uFeatBase[fi]);\n"
+              << indent << "        uFeatCorners[fi], uFeatEdges[fi], "
+              << (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") << "uFeatBase[fi]);\n"
               << indent << "}\n";
         }
         if (g == 0) {
@@ -959,6 +974,7 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     fdefs.push_back("SG_LAYER_RECORDS " + std::to_string(std::max(plan.recordCount, 1)));
     if (plan.featureLayerCount > 0)
         fdefs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
+    if (plan.featureNear) fdefs.push_back("SG_FEAT_NEAR 1"); // effects on demand
     const char* vs = sg::shaders::find("sg/render/surface_vs.glsl");
     SG_ASSERT(vs, "the vertex stage is embedded");
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);
@@ -1042,6 +1058,12 @@ glm::vec3 layerCpu(const PlanLayer& pl, const DrawUniforms& u, const std::vector
         if (pl.featureSlot < 0 || !fsmp[size_t(pl.featureSlot)].corners.rgba)
             return glm::vec3(0.0f);
         const FeatureSamplers& fs = fsmp[size_t(pl.featureSlot)];
+        if (fs.nearLists.rgba) {
+            return G::sgLayerFeatureNear(f, G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
+                                         G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
+                                         fs.corners, fs.edges, fs.nearLists, fs.pieces,
+                                         t(pl.tex[0]));
+        }
         return G::sgLayerFeature(f, G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
                                  G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
                                  fs.corners, fs.edges, t(pl.tex[0]));

@@ -15,8 +15,9 @@ namespace sg::render {
 struct FeatureMapsAsset {
     sg::features::GpuFeatureMaps gpu;
     double bandTexels = 16.0;
-    bool quadratic = false; // baked in quadratic mode (curved segments)
-    uint64_t uid = 0;       // unique per load (GPU caches key on it)
+    bool quadratic = false;      // baked in quadratic mode (curved segments)
+    double nearBandTexels = 0.0; // exact near field's band (0: the maps have none)
+    uint64_t uid = 0;            // unique per load (GPU caches key on it)
 };
 } // namespace sg::render
 
@@ -70,6 +71,8 @@ struct PixelInputs {
 struct FeatureSamplers {
     sg::glsl::SgFeatCornerSampler corners;
     sg::glsl::SgFeatEdgeSampler edges;
+    sg::glsl::SgFeatNearSampler nearLists; // exact near field (rgba null: none)
+    sg::glsl::SgFeatPieceSampler pieces;
 };
 std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
                                                  const SceneAssets& assets);

@@ -79,7 +79,8 @@ std::string FeatureSource::key() const {
     if (!mapsFile.empty()) return "maps:" + mapsFile.lexically_normal().string();
     return "bake:" + curvesKind + ":" + curvesFile.lexically_normal().string() + ":" + text + ":" +
            std::to_string(size) + (quadratic ? ":quadratic:" : ":linear:") +
-           std::to_string(marginTexels);
+           std::to_string(marginTexels) +
+           (nearField ? ":near:" + std::to_string(nearWidthTexels) : std::string());
 }
 
 std::string TextureSource::key() const {
@@ -510,7 +511,7 @@ struct Parser {
         case LayerKind::Feature: {
             n.allowOnly({"type", "enabled", "maps", "curves", "uv_set", "tiling", "offset",
                          "profile", "depth", "width", "w0", "mode", "strength", "base_map",
-                         "encoding", "green"});
+                         "encoding", "green", "near"});
             if (n.has("maps") == n.has("curves")) {
                 n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features "
                        "bake`) or "
@@ -554,6 +555,14 @@ struct Parser {
             L.featW0 = n.num("w0", 0.0, 0.0, 1024.0);
             if (!(L.featW0 < L.featWidth)) n.failField("w0", "expected a number < width");
             L.featPaperMode = n.choice("mode", 0, {"surfgrad", "paper"}) == 1;
+            // --- exact near field (docs/features.md): baked with the curves, or
+            // required of the maps file; the band covers the layer's width.
+            L.featNearExact = n.choice("near", 0, {"paper", "exact"}) == 1;
+            if (L.featNearExact && L.feature) {
+                L.feature->nearField = true;
+                L.feature->nearWidthTexels = L.featWidth;
+            }
+            // --- end exact near field
             L.strength = n.num("strength", 1.0, -kHuge, kHuge);
             if (n.has("base_map")) L.maps.push_back(texture(n.child("base_map"), Wrap::Repeat));
             L.encoding = encoding(n, true);

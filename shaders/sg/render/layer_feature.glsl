@@ -10,6 +10,10 @@
 //   paper mode    - Eq. 1 of the papers blends the profile's normal with the
 //                   base normal; the result's derivative (listing 4) is used.
 // Without a base map the base is flat (derivative 0, normal +z).
+// With SG_FEAT_NEAR 1 (some layer of the program uses a map's exact near
+// field), sgLayerFeatureNear also reads the near-field textures: within the
+// band the exact distance to the curves, and each curve's own profile and
+// width (sg/features/near.glsl).
 #ifndef SG_RENDER_LAYER_FEATURE_GLSL
 #define SG_RENDER_LAYER_FEATURE_GLSL
 
@@ -18,7 +22,7 @@
 #include "sg/features/profile.glsl"
 
 // Records r0 = (strength, paperMode, map size N (texels), tiling);
-// r1 = (offset.xy, hasBase, base encoding); r2 = (base flipV, 0, 0, 0).
+// r1 = (offset.xy, hasBase, base encoding); r2 = (base flipV, nearExact, 0, 0).
 // texelPos = (st * tiling + offset) * N (the map is clamped at its border).
 struct SgFeatureLayerParams {
     float strength;
@@ -29,6 +33,7 @@ struct SgFeatureLayerParams {
     bool hasBase;
     int baseEncoding;
     bool baseFlipV;
+    bool nearExact; // the layer uses its map's exact near field
 };
 
 SG_FN SgFeatureLayerParams sgUnpackFeatureLayer(vec4 r0, vec4 r1, vec4 r2) {
@@ -41,6 +46,7 @@ SG_FN SgFeatureLayerParams sgUnpackFeatureLayer(vec4 r0, vec4 r1, vec4 r2) {
     p.hasBase = sgRecBool(r1.z);
     p.baseEncoding = sgRecInt(r1.w);
     p.baseFlipV = sgRecBool(r2.x);
+    p.nearExact = sgRecBool(r2.y);
     return p;
 }
 
@@ -72,11 +78,9 @@ SG_FN SgFeatProfile sgUnpackFeatProfile(vec4 p0, vec4 p1, vec4 t0, vec4 t1, vec4
     return pr;
 }
 
-// baseMap is read only when p.hasBase (bind any texture otherwise).
-SG_FN vec3 sgLayerFeature(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr, SG_FEAT_CORNER_SAMPLER corners,
-                          SG_FEAT_EDGE_SAMPLER edges, sampler2D baseMap) {
-    vec2 texelPos = (uv.st * p.tiling + p.offset) * p.mapSize;
-    SgFeatResult r = sgFeatSample(corners, edges, texelPos);
+// The layer's surface gradient from a sampled result r and its profile.
+SG_FN vec3 sgLayerFeatureFrom(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr, SgFeatResult r,
+                              sampler2D baseMap) {
     vec2 baseDeriv = vec2(0.0f);
     if (p.hasBase) {
         baseDeriv = sgSampleTspaceDeriv(baseMap, uv.st, uv.dSTdx, uv.dSTdy, p.baseEncoding, p.baseFlipV);
@@ -90,5 +94,35 @@ SG_FN vec3 sgLayerFeature(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr
     }
     return sgSurfgradFromTBN(sgBumpScale(p.strength, d), uv.vT, uv.vB);
 }
+
+SG_FN vec2 sgFeatureLayerTexelPos(SgUvFrame uv, SgFeatureLayerParams p) {
+    return (uv.st * p.tiling + p.offset) * p.mapSize;
+}
+
+// baseMap is read only when p.hasBase (bind any texture otherwise).
+SG_FN vec3 sgLayerFeature(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr, SG_FEAT_CORNER_SAMPLER corners,
+                          SG_FEAT_EDGE_SAMPLER edges, sampler2D baseMap) {
+    SgFeatResult r = sgFeatSample(corners, edges, sgFeatureLayerTexelPos(uv, p));
+    return sgLayerFeatureFrom(uv, p, pr, r, baseMap);
+}
+
+#if SG_FEAT_NEAR
+// As sgLayerFeature, with the exact near field when p.nearExact (the near
+// textures are read only then; bind any RGBA32UI texture otherwise).
+SG_FN vec3 sgLayerFeatureNear(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr, SG_FEAT_CORNER_SAMPLER corners,
+                              SG_FEAT_EDGE_SAMPLER edges, SG_FEAT_NEAR_SAMPLER nearMap, SG_FEAT_PIECE_SAMPLER pieces,
+                              sampler2D baseMap) {
+    vec2 texelPos = sgFeatureLayerTexelPos(uv, p);
+    SgFeatResult r;
+    SgFeatProfile prc = pr;
+    if (p.nearExact) {
+        r = sgFeatSampleNear(corners, edges, nearMap, pieces, texelPos);
+        prc = sgFeatCurveProfile(pieces, pr, r);
+    } else {
+        r = sgFeatSample(corners, edges, texelPos);
+    }
+    return sgLayerFeatureFrom(uv, p, prc, r, baseMap);
+}
+#endif
 
 #endif

@@ -56,6 +56,7 @@ struct MaterialPlan {
     std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
     int featureLayerCount = 0;                        // feature layers (all groups)
     bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
+    bool featureNear = false;   // some feature layer uses an exact near field (SG_FEAT_NEAR)
     int recordCount = 0;
     int uberFlagCount = 0;
     uint32_t uvUsedMask = 0; // UV sets read by some layer (or the base colour map)

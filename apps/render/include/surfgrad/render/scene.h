@@ -79,6 +79,10 @@ struct FeatureSource {
     int size = 256;         // bake: texels per side
     bool quadratic = false; // bake: quadratic (TOG 2008) or linear (TR2005)
     double marginTexels = 8.0;
+    // bake: keep the exact near field (the layer's "near": "exact"), its
+    // band covering the layer's profile width.
+    bool nearField = false;
+    double nearWidthTexels = 3.0;
     std::string fieldPath;
     std::string key() const;
 };
@@ -136,6 +140,7 @@ struct Layer {
     std::string featProfile = "crease";   // sg::features::makeProfile name
     float featDepth = 1.0f, featW0 = 0.0f, featWidth = 3.0f; // texels
     bool featPaperMode = false;
+    bool featNearExact = false; // "near": "exact": the maps' exact near field, per-curve profiles
     float featTiling = 1.0f;
     glm::vec2 featOffset{0.0f};
 
