@@ -639,6 +639,16 @@ void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeSt
 
 } // namespace
 
+Grid detail::scanGrid(const CurveNetwork& net, const BakeOptions& opt, BakeStats& st) {
+    checkOptions(opt);
+    st.size = opt.size;
+    st.inputToTexel = inputToTexel(net, opt);
+    Grid g;
+    g.n = opt.size;
+    scanConvert(net, toTexelSpace(net, st.inputToTexel), opt, g, st);
+    return g;
+}
+
 FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* statsOut) {
     auto t0 = Clock::now();
     const double cpu0 = threadCpu();

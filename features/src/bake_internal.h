@@ -77,12 +77,15 @@ struct Grid {
     double& ang(int i, int j, int e);
 };
 
-// A texel decoded for validation (mirrors sgFeatDecode in double).
+// A texel decoded for validation: its edge points and tangents from the
+// 16-bit edge words through the runtime's own decode (the binary64 build of
+// evaluate.glsl, shared_double.h), and its segments.
 struct LocalTexel {
-    dvec2 q[4];
-    double t[4];
-    double theta[4];
-    bool pt[4];
+    uint32_t edgeWords[4] = {0, 0, 0, 0}; // S, E, N, W (layout.glsl)
+    uint32_t edgeFlags = 0;               // configuration bits 12-15
+    dvec2 q[4];                           // edge vertices
+    dvec2 tang[4];                        // unit tangents there
+    bool pt[4] = {false, false, false, false};
     int nseg = 0;
     int a[2] = {0, 0}, b[2] = {0, 0};
     int pair[2] = {0, 0};
@@ -91,6 +94,9 @@ struct LocalTexel {
     Quad seg[2];
     bool hasTarget[2] = {false, false};
     dvec2 target[2];
+    // The configuration word the runtime reads (segments, curved bits, edge
+    // flags, angles bit).
+    uint32_t configWord() const;
 };
 
 LocalTexel decodeTexel(const Grid& g, int i, int j);
@@ -107,17 +113,69 @@ struct ValidationCounters {
 // partition is well formed for the runtime schemes of sec. 5.3).
 double validateTexel(LocalTexel& t, ValidationCounters* counters);
 
-// Thin-plate energy (Eq. 3) of segment s of t as implied by its signature.
-double segmentEnergy(const LocalTexel& t, int s);
+// Thin-plate energy (Eq. 3) of segment s of t as implied by its signature,
+// plus (fidelity) the weighted squared distance from the input curve's
+// farthest-from-chord point in the texel to the segment.
+double segmentEnergy(const LocalTexel& t, int s, bool fidelity = true);
 
 // Eq. 7 safety test for a curved segment (true = the implicit side test
 // cannot be fooled by the parabola's second branch).
 bool eq7Safe(const Quad& c);
 
+// The local problem of one invalid texel (TOG 2008 sec. 4, Eq. 2), in
+// signature variables (bake_optimize.cpp): x holds (t, theta) of the
+// texel's edge points that touch a curve candidate here or across the edge.
+// The paper's equality constraints (G1 continuity, points on edges) hold by
+// construction; the rest is "every affected texel valid": violation(x) is
+// this texel's violation plus any increase of its edge neighbours'.
+class TexelProblem {
+public:
+    enum class Energy {
+        Ours, // Eq. 3 of the affected segments + fidelity + 0.25 (t - t0)^2
+        Paper // Eq. 3 alone
+    };
+    TexelProblem(Grid& g, int i, int j, Energy energy = Energy::Ours);
+    size_t size() const { return 2 * vars_.size(); } // 0: nothing to optimise
+    const std::vector<double>& initial() const { return saved_; }
+    // The search's starts: the current signature, the paper's Eq. 7 remedy
+    // (middle point onto the chord's bisector), Catmull-Rom tangents.
+    std::vector<std::vector<double>> starts() const;
+    // Each writes x (quantized) into the grid first.
+    double violation(const std::vector<double>& x);
+    double energy(const std::vector<double>& x);
+    // Extreme barrier: energy when feasible, else 1e9 + violation.
+    double merit(const std::vector<double>& x);
+    // Natural step of coordinate k (positions 1/128 texel, angles 1/32 rad).
+    double scale(size_t k) const { return k % 2 == 0 ? 1.0 / 128.0 : 1.0 / 32.0; }
+    void write(const std::vector<double>& x);
+    int evaluations = 0;
+
+private:
+    struct Var {
+        int e;      // edge of the texel
+        int ni, nj; // the texel across it
+        double t0;  // initial position
+    };
+    Grid& g_;
+    int i_, j_;
+    Energy kind_;
+    std::vector<Var> vars_;
+    std::vector<double> saved_;
+    double neighbours0_ = 0.0; // the neighbours' violation before
+};
+
+// Compass (pattern) search with the extreme-barrier merit from the best of
+// the problem's starts; x: the result. True when it ends feasible.
+bool compassSearch(TexelProblem& p, std::vector<double>& x);
+
 // Runs the signature optimisation of TOG 2008 sec. 4 on every texel whose
 // signature is invalid, straightening what it cannot repair.
 void optimizeSignatures(Grid& g, BakeStats& stats,
                         const std::function<void(const char*, double)>& progress);
+
+// Steps 1-3 of the bake (bake.cpp): the grid after scan conversion, as the
+// optimisation of step 4 starts from it (the optimiser's bench uses it).
+Grid scanGrid(const CurveNetwork& net, const BakeOptions& opt, BakeStats& st);
 
 // Step 5 (bake_distance.cpp): distance and gradient at every grid corner
 // within `band` texels of a piece, exact in double (TOG 2008 sec. 4,

@@ -41,11 +41,18 @@
 // remedy (middle point moved onto the chord's perpendicular bisector, x0 = 0); tangents from the
 // neighbouring edge points (Catmull-Rom). A texel the search cannot make valid has its segments
 // straightened, which is always valid (the linear partition of TR2005).
+//
+// The geometry validated is the runtime's own: edge points and tangents are
+// decoded from the 16-bit edge words, middle control points, the partition
+// (paths, r_m, spokes, diagonals) come from the binary64 build of
+// evaluate.glsl (shared_double.h), with its thresholds; the margins below
+// only keep the runtime's binary32 decisions away from them.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "bake_internal.h"
+#include "shared_double.h"
 
 namespace sg::features::detail {
 
@@ -61,6 +68,12 @@ constexpr double kAreaMargin = 1e-6;      // straight inner triangle orientation
 constexpr double kSliverArea = 0.005;     // 1C triangles this thin need not be star-shaped
 constexpr double kCurveMargin = 1e-4;     // curve interior kept this far inside the texel
 constexpr double kInwardSin = 1e-3;       // curves leave their end points into the texel
+// Tangents closer to parallel than this are not a curved segment (a margin
+// far above the runtime's SG_FEAT_PARALLEL_SIN = 1e-6, where the middle
+// control point would be ill-conditioned); such a segment is straight when
+// both tangents follow its chord within kChordSin, else invalid.
+constexpr double kParallelSin = 1e-3;
+constexpr double kChordSin = 2e-3;
 // Weight of the squared distance from the input curve's sample to the
 // segment, added to the thin-plate energy (texels^-2 vs. the energy's
 // texels^2). The thin-plate energy of a one-texel piece of a circle of
@@ -70,25 +83,8 @@ constexpr double kInwardSin = 1e-3;       // curves leave their end points into 
 // (merged points, angles at junctions).
 constexpr double kFidelityWeight = 1000.0;
 
-dvec2 edgePoint(int e, double t) {
-    switch (e) {
-    case 0:
-        return {t, 0.0};
-    case 1:
-        return {1.0, t};
-    case 2:
-        return {t, 1.0};
-    default:
-        return {0.0, t};
-    }
-}
-
 dvec2 cornerPos(int k) {
     return {(k == 1 || k == 2) ? 1.0 : 0.0, k >= 2 ? 1.0 : 0.0};
-}
-
-dvec2 dirOf(double theta) {
-    return {std::cos(theta), std::sin(theta)};
 }
 
 double posOf(const Grid& g, int i, int j, int e) {
@@ -96,16 +92,6 @@ double posOf(const Grid& g, int i, int j, int e) {
 }
 double angOf(const Grid& g, int i, int j, int e) {
     return const_cast<Grid&>(g).ang(i, j, e);
-}
-
-// Middle control point from the signature; false when the tangent lines
-// are (nearly) parallel.
-bool tangentIntersection(dvec2 qa, double ta, dvec2 qb, double tb, dvec2& b1, double minSin) {
-    dvec2 da = dirOf(ta), db = dirOf(tb);
-    double den = cross2(da, db);
-    if (std::fabs(den) < minSin) return false;
-    b1 = qa + (cross2(qb - qa, db) / den) * da;
-    return true;
 }
 
 // Exact safety of the implicit side test: the parabola outside u in [0, 1]
@@ -209,15 +195,6 @@ double twoCViolation(const Quad& c1, const Quad& c2) {
     return v;
 }
 
-struct PEdge {
-    Quad c;
-    bool curved = false;
-};
-
-PEdge lineEdge(dvec2 a, dvec2 b) {
-    return {{a, 0.5 * (a + b), b}, false};
-}
-
 } // namespace
 
 bool eq7Safe(const Quad& c) {
@@ -243,12 +220,17 @@ bool eq7Safe(const Quad& c) {
 
 LocalTexel decodeTexel(const Grid& g, int i, int j) {
     LocalTexel t;
+    // Edge points through their 16-bit words, as the runtime reads them.
     for (int e = 0; e < 4; ++e) {
         double p = posOf(g, i, j, e);
         t.pt[e] = p >= 0.0;
-        t.t[e] = t.pt[e] ? p : 0.5;
-        t.theta[e] = t.pt[e] ? angOf(g, i, j, e) : 0.0;
-        t.q[e] = edgePoint(e, t.t[e]);
+        t.edgeWords[e] = t.pt[e] ? packEdgeWord(p, angOf(g, i, j, e)) : 0u;
+        if (t.pt[e]) t.edgeFlags |= 1u << (SG_FEAT_CFG_EDGE_SHIFT + e);
+    }
+    const SharedGeom geom = sharedDecode(t.configWord(), t.edgeWords);
+    for (int e = 0; e < 4; ++e) {
+        t.q[e] = geom.q[e];
+        t.tang[e] = geom.tang[e];
     }
     size_t ti = g.ti(i, j);
     unsigned mask = g.segMask[ti];
@@ -272,199 +254,168 @@ LocalTexel decodeTexel(const Grid& g, int i, int j) {
     return t;
 }
 
-double segmentEnergy(const LocalTexel& t, int s) {
+uint32_t LocalTexel::configWord() const {
+    uint32_t word = uint32_t(nseg) | edgeFlags | (1u << 20); // angles present
+    for (int s = 0; s < nseg; ++s) {
+        word |= uint32_t(a[s]) << (2 + 5 * s);
+        word |= uint32_t(b[s]) << (4 + 5 * s);
+        if (curved[s]) word |= 1u << (6 + 5 * s);
+    }
+    return word;
+}
+
+double segmentEnergy(const LocalTexel& t, int s, bool fidelity) {
     if (!t.candidate[s]) return 0.0;
-    dvec2 qa = t.q[t.a[s]], qb = t.q[t.b[s]];
+    const int a = t.a[s], b = t.b[s];
+    dvec2 qa = t.q[a], qb = t.q[b];
     dvec2 b1;
     double energy = 0.0;
-    if (!tangentIntersection(qa, t.theta[t.a[s]], qb, t.theta[t.b[s]], b1, 1e-9)) {
+    if (!sharedTangentIntersection(qa, t.tang[a], qb, t.tang[b], b1)) {
+        // Parallel tangents: straight (no energy) when they follow the chord.
         dvec2 ch = glm::normalize(qb - qa);
-        bool collinear = std::fabs(cross2(ch, dirOf(t.theta[t.a[s]]))) < 1e-6 &&
-                         std::fabs(cross2(ch, dirOf(t.theta[t.b[s]]))) < 1e-6;
+        bool collinear = std::fabs(cross2(ch, t.tang[a])) < kChordSin &&
+                         std::fabs(cross2(ch, t.tang[b])) < kChordSin;
         if (!collinear) return 1e3;
         b1 = 0.5 * (qa + qb);
     } else {
         dvec2 d = qa - 2.0 * b1 + qb;
         energy = 4.0 * glm::dot(d, d); // Eq. 3
     }
-    if (t.hasTarget[s]) {
+    if (fidelity && t.hasTarget[s]) {
         double u;
         energy += kFidelityWeight * closestParam(Quad{qa, b1, qb}, false, t.target[s], u);
     }
     return energy;
 }
 
-double validateTexel(LocalTexel& t, ValidationCounters* counters) {
-    double viol = 0.0;
-    for (int s = 0; s < t.nseg; ++s) {
-        t.curved[s] = false;
-        if (!t.candidate[s]) continue;
-        int a = t.a[s], b = t.b[s];
-        dvec2 qa = t.q[a], qb = t.q[b];
-        dvec2 chord = qb - qa;
-        double L = glm::length(chord);
-        dvec2 ch = chord / L;
-        dvec2 b1;
-        if (!tangentIntersection(qa, t.theta[a], qb, t.theta[b], b1, 1e-3)) {
-            // Parallel tangents: a straight segment if they follow the chord.
-            if (std::fabs(cross2(ch, dirOf(t.theta[a]))) < 2e-3 &&
-                std::fabs(cross2(ch, dirOf(t.theta[b]))) < 2e-3) {
-                if (counters) ++counters->flat;
-            } else {
-                viol += 1.0;
-            }
-            continue;
-        }
-        if (0.5 * std::fabs(cross2(ch, b1 - qa)) < kFlatDeviation) {
-            if (counters) ++counters->flat;
-            continue;
-        }
-        // The curve must stay inside the texel away from its ends: it
-        // leaves both end points into the texel and its interior extremes
-        // in x and y lie in [margin, 1 - margin]. (The paper requires b1
-        // inside the texel, which implies this but rejects curves that
-        // hug a texel edge; this is what the runtime needs.)
-        Quad cc{qa, b1, qb};
-        double out = 0.0;
-        for (int end = 0; end < 2; ++end) {
-            int e = end == 0 ? a : b;
-            dvec2 q = end == 0 ? qa : qb;
-            dvec2 inward = e == 0   ? dvec2(0, 1)
-                           : e == 1 ? dvec2(-1, 0)
-                           : e == 2 ? dvec2(0, -1)
-                                    : dvec2(1, 0);
-            double len = glm::length(b1 - q);
-            double sn = len > 0 ? glm::dot(b1 - q, inward) / len : -1.0;
-            out += std::max(0.0, kInwardSin - sn);
-        }
-        for (int axis = 0; axis < 2; ++axis) {
-            double ac = cc.a()[axis], bc = cc.b()[axis];
-            if (std::fabs(ac) < 1e-14) continue;
-            double u = -bc / (2.0 * ac);
-            if (u <= 0.0 || u >= 1.0) continue;
-            double v = cc.at(u)[axis];
-            out += std::max(0.0, kCurveMargin - v) + std::max(0.0, v - (1.0 - kCurveMargin));
-        }
-        // theta_min rule (sec. 5.2): the angle between the tangent and the
-        // texel edge at each end must exceed theta_min(y0) =
-        // |atan(2 y0) - atan(4 y0)| (y0: height of b1 over the chord in the
-        // frame of Eq. 5); below it the segment becomes straight.
-        dvec2 m = 0.5 * (qa + qb);
-        double y0 = std::fabs(cross2(ch, b1 - m)) / L;
-        double thetaMin = std::fabs(std::atan(2.0 * y0) - std::atan(4.0 * y0));
-        auto edgeAngle = [&](int e) {
-            double th = std::fabs(t.theta[e]);
-            return (e == 0 || e == 2) ? th : 0.5 * M_PI - th;
-        };
-        if (edgeAngle(a) < thetaMin || edgeAngle(b) < thetaMin) {
-            if (counters) ++counters->thetaMin;
-            continue;
-        }
-        // A curve leaving the texel (measured above) is invalid; the
-        // amount it leaves by ranks infeasible trial points in the search.
-        if (out > 0.0) {
-            viol += out;
-            continue;
-        }
-        Quad c{qa, b1, qb};
-        bool eq7 = eq7Safe(c);
-        if (!eq7 && counters) ++counters->eq7;
-        if (!eq7 && !extensionSafe(c)) {
-            viol += 0.5;
-            continue;
-        }
-        t.seg[s] = c;
-        t.curved[s] = true;
-    }
-    // Two curved segments crossing the texel (S-N and W-E): the runtime
-    // intersects a line with a curve in closed form, so the flatter one
-    // becomes straight.
-    if (t.nseg == 2 && t.curved[0] && t.curved[1] && t.pair[0] == 4 && t.pair[1] == 5) {
-        auto dev = [&](int s) {
-            return std::fabs(
-                cross2(glm::normalize(t.seg[s].p2 - t.seg[s].p0), t.seg[s].p1 - t.seg[s].p0));
-        };
-        int flat = dev(0) <= dev(1) ? 0 : 1;
-        t.curved[flat] = false;
-        t.seg[flat] = {t.q[t.a[flat]], 0.5 * (t.q[t.a[flat]] + t.q[t.b[flat]]), t.q[t.b[flat]]};
-        if (counters) ++counters->cross;
-    }
-    bool anyCurved = false;
-    for (int s = 0; s < t.nseg; ++s) anyCurved |= t.curved[s];
-    if (viol > 0.0 || !anyCurved) return viol; // straight partitions are always valid
+namespace {
 
-    // The partition of evaluate.glsl, in double.
-    auto segBetween = [&](int ea, int eb, PEdge& out) {
-        for (int s = 0; s < t.nseg; ++s) {
-            if (t.a[s] == ea && t.b[s] == eb) {
-                out = {t.seg[s], t.curved[s]};
-                return true;
-            }
-            if (t.a[s] == eb && t.b[s] == ea) {
-                out = {t.seg[s].reversed(), t.curved[s]};
-                return true;
-            }
+// Angle between the tangent line at edge point e and the edge itself.
+double edgeAngle(const LocalTexel& t, int e) {
+    const double theta = std::atan2(std::fabs(t.tang[e].y), std::fabs(t.tang[e].x));
+    return (e == 0 || e == 2) ? theta : 0.5 * M_PI - theta;
+}
+
+// The straightening rules and the checks of one candidate segment s
+// (decides t.curved[s] and t.seg[s]); returns its violation.
+double checkSegment(LocalTexel& t, int s, ValidationCounters* counters) {
+    t.curved[s] = false;
+    if (!t.candidate[s]) return 0.0;
+    const int a = t.a[s], b = t.b[s];
+    const dvec2 qa = t.q[a], qb = t.q[b];
+    const double L = glm::length(qb - qa);
+    const dvec2 ch = (qb - qa) / L;
+    dvec2 b1;
+    if (std::fabs(cross2(t.tang[a], t.tang[b])) < kParallelSin ||
+        !sharedTangentIntersection(qa, t.tang[a], qb, t.tang[b], b1)) {
+        // Parallel tangents: a straight segment if they follow the chord.
+        if (std::fabs(cross2(ch, t.tang[a])) < kChordSin &&
+            std::fabs(cross2(ch, t.tang[b])) < kChordSin) {
+            if (counters) ++counters->flat;
+            return 0.0;
         }
-        return false;
+        return 1.0;
+    }
+    if (0.5 * std::fabs(cross2(ch, b1 - qa)) < kFlatDeviation) {
+        if (counters) ++counters->flat;
+        return 0.0;
+    }
+    // The curve must stay inside the texel away from its ends: it leaves
+    // both end points into the texel and its interior extremes in x and y
+    // lie in [margin, 1 - margin]. (The paper requires b1 inside the texel,
+    // which implies this but rejects curves that hug a texel edge; this is
+    // what the runtime needs.)
+    const Quad cc{qa, b1, qb};
+    double out = 0.0;
+    for (int end = 0; end < 2; ++end) {
+        int e = end == 0 ? a : b;
+        dvec2 q = end == 0 ? qa : qb;
+        dvec2 inward = e == 0   ? dvec2(0, 1)
+                       : e == 1 ? dvec2(-1, 0)
+                       : e == 2 ? dvec2(0, -1)
+                                : dvec2(1, 0);
+        double len = glm::length(b1 - q);
+        double sn = len > 0 ? glm::dot(b1 - q, inward) / len : -1.0;
+        out += std::max(0.0, kInwardSin - sn);
+    }
+    for (int axis = 0; axis < 2; ++axis) {
+        double ac = cc.a()[axis], bc = cc.b()[axis];
+        if (std::fabs(ac) < 1e-14) continue;
+        double u = -bc / (2.0 * ac);
+        if (u <= 0.0 || u >= 1.0) continue;
+        double v = cc.at(u)[axis];
+        out += std::max(0.0, kCurveMargin - v) + std::max(0.0, v - (1.0 - kCurveMargin));
+    }
+    // theta_min rule (sec. 5.2): the angle between the tangent and the texel
+    // edge at each end must exceed theta_min(y0) = |atan(2 y0) - atan(4 y0)|
+    // (y0: height of b1 over the chord in the frame of Eq. 5); below it the
+    // segment becomes straight.
+    const double y0 = std::fabs(cross2(ch, b1 - 0.5 * (qa + qb))) / L;
+    const double thetaMin = std::fabs(std::atan(2.0 * y0) - std::atan(4.0 * y0));
+    if (edgeAngle(t, a) < thetaMin || edgeAngle(t, b) < thetaMin) {
+        if (counters) ++counters->thetaMin;
+        return 0.0;
+    }
+    // A curve leaving the texel (measured above) is invalid; the amount it
+    // leaves by ranks infeasible trial points in the search.
+    if (out > 0.0) return out;
+    const bool eq7 = eq7Safe(cc);
+    if (!eq7 && counters) ++counters->eq7;
+    if (!eq7 && !extensionSafe(cc)) return 0.5;
+    t.seg[s] = cc;
+    t.curved[s] = true;
+    return 0.0;
+}
+
+// Two curved segments crossing the texel (S-N and W-E): the runtime
+// intersects a line with a curve in closed form, so the flatter one becomes
+// straight.
+void crossingRule(LocalTexel& t, ValidationCounters* counters) {
+    if (!(t.nseg == 2 && t.curved[0] && t.curved[1] && t.pair[0] == 4 && t.pair[1] == 5)) return;
+    auto dev = [&](int s) {
+        return std::fabs(
+            cross2(glm::normalize(t.seg[s].p2 - t.seg[s].p0), t.seg[s].p1 - t.seg[s].p0));
     };
-    PEdge pathV = lineEdge(t.q[0], t.q[2]), pathH = lineEdge(t.q[3], t.q[1]);
-    segBetween(0, 2, pathV);
-    segBetween(3, 1, pathH);
-    double uV = 0.5, uH = 0.5;
-    dvec2 rm;
-    if (pathV.curved || pathH.curved) {
-        const PEdge& cur = pathV.curved ? pathV : pathH;
-        const PEdge& lin = pathV.curved ? pathH : pathV;
+    const int flat = dev(0) <= dev(1) ? 0 : 1;
+    t.curved[flat] = false;
+    t.seg[flat] = {t.q[t.a[flat]], 0.5 * (t.q[t.a[flat]] + t.q[t.b[flat]]), t.q[t.b[flat]]};
+    if (counters) ++counters->cross;
+}
+
+// The runtime's 8-triangle partition of the texel with its final curved
+// bits (the binary64 build of sgFeatDecode): r_m must be one clean
+// line/curve intersection, and each quadrant's corner and inner triangles
+// must suit their interpolation scheme (sec. 5.3).
+double partitionViolation(const LocalTexel& t) {
+    const SharedGeom g = sharedDecode(t.configWord(), t.edgeWords);
+    if (g.pathV.curved || g.pathH.curved) {
+        const PEdge& cur = g.pathV.curved ? g.pathV : g.pathH;
+        const PEdge& lin = g.pathV.curved ? g.pathH : g.pathV;
         dvec2 d = lin.c.p2 - lin.c.p0;
         double r[2];
         int n = quadRoots(cross2(cur.c.a(), d), cross2(cur.c.b(), d),
                           cross2(cur.c.p0 - lin.c.p0, d), r);
         int inside = 0;
-        double u = 0.5;
-        for (int k = 0; k < n; ++k) {
-            if (r[k] >= -1e-9 && r[k] <= 1.0 + 1e-9) {
-                ++inside;
-                u = std::clamp(r[k], 0.0, 1.0);
-            }
-        }
+        for (int k = 0; k < n; ++k) inside += r[k] >= -1e-9 && r[k] <= 1.0 + 1e-9;
         if (inside != 1) return 0.5;
-        rm = cur.c.at(u);
-        double ul = glm::dot(rm - lin.c.p0, d) / glm::dot(d, d);
+        double ul = glm::dot(g.rm - lin.c.p0, d) / glm::dot(d, d);
         if (ul <= 1e-4 || ul >= 1.0 - 1e-4) return 0.5;
-        (pathV.curved ? uV : uH) = u;
-        (pathV.curved ? uH : uV) = ul;
-    } else {
-        // Two straight paths: they always cross inside (one vertex on each
-        // side of the square).
-        dvec2 dv = pathV.c.p2 - pathV.c.p0, dh = pathH.c.p2 - pathH.c.p0;
-        double den = cross2(dv, dh);
-        uV = std::clamp(cross2(pathH.c.p0 - pathV.c.p0, dh) / den, 0.0, 1.0);
-        uH = std::clamp(cross2(pathH.c.p0 - pathV.c.p0, dv) / den, 0.0, 1.0);
-        rm = pathV.c.at(uV);
     }
-    auto spoke = [&](int e) -> PEdge {
-        if (e == 0) return {pathV.c.sub(0.0, uV), pathV.curved};
-        if (e == 2) return {pathV.c.sub(1.0, uV), pathV.curved};
-        if (e == 3) return {pathH.c.sub(0.0, uH), pathH.curved};
-        return {pathH.c.sub(1.0, uH), pathH.curved};
-    };
-    // Each quadrant: the corner triangle and the inner triangle must suit
-    // their interpolation scheme (sec. 5.3).
+    double viol = 0.0;
     for (int k = 0; k < 4; ++k) {
         int ea = (k + 3) % 4, eb = k;
-        PEdge diag = lineEdge(t.q[ea], t.q[eb]);
-        segBetween(ea, eb, diag);
-        dvec2 corner = cornerPos(k);
+        const PEdge diag = sharedDiagonal(g, ea, eb);
+        const dvec2 corner = cornerPos(k);
         if (diag.curved) viol += starViolation(diag.c, corner);
-        PEdge sa = spoke(ea), sb = spoke(eb);
-        int nc = int(diag.curved) + int(sa.curved) + int(sb.curved);
+        const PEdge sa = sharedSpoke(g, ea), sb = sharedSpoke(g, eb);
+        const int nc = int(diag.curved) + int(sa.curved) + int(sb.curved);
         if (nc == 0) {
-            double sIn = cross2(t.q[eb] - t.q[ea], rm - t.q[ea]);
+            double sIn = cross2(t.q[eb] - t.q[ea], g.rm - t.q[ea]);
             double sC = cross2(t.q[eb] - t.q[ea], corner - t.q[ea]);
             viol += std::max(0.0, kAreaMargin - (sC > 0 ? -sIn : sIn));
         } else if (nc == 1) {
             if (diag.curved)
-                viol += starViolation(diag.c, rm);
+                viol += starViolation(diag.c, g.rm);
             else if (sa.curved)
                 viol += starViolation(sa.c, t.q[eb]);
             else
@@ -480,240 +431,16 @@ double validateTexel(LocalTexel& t, ValidationCounters* counters) {
     return viol;
 }
 
-namespace {
-
-// Neighbour of texel (i, j) across edge e and the edge's index there.
-void across(int i, int j, int e, int& ni, int& nj, int& ne) {
-    static const int di[4] = {0, 1, 0, -1}, dj[4] = {-1, 0, 1, 0};
-    ni = i + di[e];
-    nj = j + dj[e];
-    ne = (e + 2) % 4;
-}
-
-bool touchesCandidate(const Grid& g, int i, int j, int e) {
-    if (i < 0 || j < 0 || i >= g.n || j >= g.n) return false;
-    size_t ti = g.ti(i, j);
-    unsigned m = g.segMask[ti] & g.quadMask[ti] & ~unsigned(g.straightMask[ti]);
-    for (int p = 0; p < kPairCount; ++p) {
-        if ((m & (1u << p)) && (kPairEdges[p][0] == e || kPairEdges[p][1] == e)) return true;
-    }
-    return false;
-}
-
-double texelViolation(const Grid& g, int i, int j) {
-    if (i < 0 || j < 0 || i >= g.n || j >= g.n) return 0.0;
-    LocalTexel t = decodeTexel(g, i, j);
-    return validateTexel(t, nullptr);
-}
-
-double texelEnergy(const Grid& g, int i, int j) {
-    if (i < 0 || j < 0 || i >= g.n || j >= g.n) return 0.0;
-    LocalTexel t = decodeTexel(g, i, j);
-    double e = 0.0;
-    for (int s = 0; s < t.nseg; ++s) e += segmentEnergy(t, s);
-    return e;
-}
-
-double angleOf(dvec2 d) {
-    return wrapAngle(std::atan2(d.y, d.x));
-}
-
-// Optimises the signature of texel (i, j); true when it ends valid.
-bool optimizeTexel(Grid& g, int i, int j) {
-    struct Var {
-        int e;
-        int ni, nj;
-        double t0;
-    };
-    std::vector<Var> vars;
-    for (int e = 0; e < 4; ++e) {
-        if (g.pos(i, j, e) < 0.0) continue;
-        int ni, nj, ne;
-        across(i, j, e, ni, nj, ne);
-        if (touchesCandidate(g, i, j, e) || touchesCandidate(g, ni, nj, ne)) {
-            vars.push_back({e, ni, nj, g.pos(i, j, e)});
-        }
-    }
-    if (vars.empty()) return false;
-    const size_t nv = vars.size();
-    std::vector<double> x(2 * nv), saved(2 * nv);
-    auto read = [&](std::vector<double>& v) {
-        for (size_t k = 0; k < nv; ++k) {
-            v[2 * k] = g.pos(i, j, vars[k].e);
-            v[2 * k + 1] = g.ang(i, j, vars[k].e);
-        }
-    };
-    auto write = [&](const std::vector<double>& v) {
-        for (size_t k = 0; k < nv; ++k) {
-            g.pos(i, j, vars[k].e) = quantizePos(v[2 * k]);
-            g.ang(i, j, vars[k].e) = quantizeAngle(v[2 * k + 1]);
-        }
-    };
-    read(saved);
-    double nb0 = 0.0;
-    for (const auto& v : vars) nb0 += texelViolation(g, v.ni, v.nj);
-    // Extreme-barrier merit: infeasible points rank by violation above any
-    // feasible energy.
-    auto merit = [&](const std::vector<double>& v) {
-        write(v);
-        double vt = texelViolation(g, i, j);
-        double nb = 0.0;
-        for (const auto& w : vars) nb += texelViolation(g, w.ni, w.nj);
-        if (vt > 0.0 || nb > nb0 + 1e-12) return 1e9 + vt + std::max(0.0, nb - nb0);
-        double energy = texelEnergy(g, i, j);
-        for (size_t k = 0; k < nv; ++k) {
-            energy += texelEnergy(g, vars[k].ni, vars[k].nj);
-            double dt = g.pos(i, j, vars[k].e) - vars[k].t0;
-            energy += 0.25 * dt * dt;
-        }
-        return energy;
-    };
-
-    // Starts.
-    std::vector<std::vector<double>> starts{saved};
-    LocalTexel t = decodeTexel(g, i, j);
-    {
-        // Eq. 7 remedy: b1 onto the chord's perpendicular bisector (x0 = 0).
-        std::vector<double> s = saved;
-        for (int sg = 0; sg < t.nseg; ++sg) {
-            if (!t.candidate[sg]) continue;
-            int a = t.a[sg], b = t.b[sg];
-            dvec2 qa = t.q[a], qb = t.q[b], b1;
-            if (!tangentIntersection(qa, t.theta[a], qb, t.theta[b], b1, 1e-9)) continue;
-            dvec2 m = 0.5 * (qa + qb), ch = glm::normalize(qb - qa), nrm{-ch.y, ch.x};
-            double h = std::clamp(glm::dot(b1 - m, nrm), -0.45, 0.45);
-            dvec2 sym = m + h * nrm;
-            for (size_t k = 0; k < nv; ++k) {
-                if (vars[k].e == a) s[2 * k + 1] = angleOf(sym - qa);
-                if (vars[k].e == b) s[2 * k + 1] = angleOf(sym - qb);
-            }
-        }
-        starts.push_back(s);
-    }
-    {
-        // Catmull-Rom: tangent at an edge point along the line through the
-        // other ends of the segments on its two sides.
-        std::vector<double> s = saved;
-        for (size_t k = 0; k < nv; ++k) {
-            int e = vars[k].e, ni, nj, ne;
-            across(i, j, e, ni, nj, ne);
-            dvec2 here{0.0}, there{0.0};
-            bool hasHere = false, hasThere = false;
-            for (int sg = 0; sg < t.nseg && !hasHere; ++sg) {
-                if (t.a[sg] == e) {
-                    here = t.q[t.b[sg]];
-                    hasHere = true;
-                } else if (t.b[sg] == e) {
-                    here = t.q[t.a[sg]];
-                    hasHere = true;
-                }
-            }
-            if (ni >= 0 && nj >= 0 && ni < g.n && nj < g.n) {
-                LocalTexel u = decodeTexel(g, ni, nj);
-                for (int sg = 0; sg < u.nseg && !hasThere; ++sg) {
-                    int o = u.a[sg] == ne ? u.b[sg] : (u.b[sg] == ne ? u.a[sg] : -1);
-                    if (o >= 0) {
-                        there = u.q[o] + dvec2(ni - i, nj - j);
-                        hasThere = true;
-                    }
-                }
-            }
-            if (hasHere && hasThere && glm::length(there - here) > 1e-6)
-                s[2 * k + 1] = angleOf(there - here);
-        }
-        starts.push_back(s);
-    }
-    double best = 1e300;
-    for (const auto& s : starts) {
-        double m = merit(s);
-        if (m < best) {
-            best = m;
-            x = s;
-        }
-    }
-    // Compass search: poll +-step along every coordinate, move to the best
-    // improving point and double the steps, else halve them. Small first
-    // steps: most invalid signatures need only a nudge.
-    double stepT = 1.0 / 128.0, stepA = 1.0 / 32.0;
-    int evals = 0;
-    while (stepT >= 1.0 / 8192.0 && evals < 320) {
-        std::vector<double> bestY;
-        double bestM = best;
-        for (size_t k = 0; k < 2 * nv; ++k) {
-            for (double sgn : {1.0, -1.0}) {
-                std::vector<double> y = x;
-                y[k] += sgn * ((k % 2 == 0) ? stepT : stepA);
-                double m = merit(y);
-                ++evals;
-                if (m < bestM - 1e-12) {
-                    bestM = m;
-                    bestY = y;
-                }
-            }
-        }
-        if (!bestY.empty()) {
-            best = bestM;
-            x = bestY;
-            stepT = std::min(stepT * 2.0, 1.0 / 8.0);
-            stepA = std::min(stepA * 2.0, 0.5);
-        } else {
-            stepT *= 0.5;
-            stepA *= 0.5;
-        }
-    }
-    if (best >= 1e9) {
-        write(saved);
-        return false;
-    }
-    write(x);
-    return true;
-}
-
 } // namespace
 
-void optimizeSignatures(Grid& g, BakeStats& stats,
-                        const std::function<void(const char*, double)>& progress) {
-    const int n = g.n;
-    std::vector<std::pair<int, int>> work;
-    ValidationCounters counters;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            size_t ti = g.ti(i, j);
-            if (!(g.segMask[ti] & g.quadMask[ti])) continue;
-            LocalTexel t = decodeTexel(g, i, j);
-            if (validateTexel(t, &counters) > 0.0) work.emplace_back(i, j);
-        }
-    }
-    stats.eq7Failures = counters.eq7;
-    stats.invalidTexels = int(work.size());
-    auto last = std::chrono::steady_clock::now();
-    for (size_t w = 0; w < work.size(); ++w) {
-        auto [i, j] = work[w];
-        size_t ti = g.ti(i, j);
-        if (texelViolation(g, i, j) <= 0.0 || optimizeTexel(g, i, j)) {
-            ++stats.optimizedTexels;
-        } else {
-            g.straightMask[ti] |= g.segMask[ti];
-            ++stats.fallbackTexels;
-        }
-        auto now = std::chrono::steady_clock::now();
-        if (progress && now - last > std::chrono::milliseconds(200)) {
-            progress("optimize", double(w + 1) / double(work.size()));
-            last = now;
-        }
-    }
-    // Safety net: anything still invalid becomes straight (always valid).
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            size_t ti = g.ti(i, j);
-            if (!(g.segMask[ti] & g.quadMask[ti] & ~g.straightMask[ti])) continue;
-            if (texelViolation(g, i, j) > 0.0) {
-                g.straightMask[ti] |= g.segMask[ti];
-                ++stats.fallbackTexels;
-            }
-        }
-    }
-    if (progress) progress("optimize", 1.0);
+double validateTexel(LocalTexel& t, ValidationCounters* counters) {
+    double viol = 0.0;
+    for (int s = 0; s < t.nseg; ++s) viol += checkSegment(t, s, counters);
+    crossingRule(t, counters);
+    bool anyCurved = false;
+    for (int s = 0; s < t.nseg; ++s) anyCurved |= t.curved[s];
+    if (viol > 0.0 || !anyCurved) return viol; // straight partitions are always valid
+    return partitionViolation(t);
 }
 
 } // namespace sg::features::detail

@@ -218,7 +218,9 @@ void readNearField(const OIIO::ImageSpec& spec, const std::string& name, Feature
     detail::checkNearFieldWork(m, name);
 }
 
-FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
+// The metadata: version, mode, size (and the image's), transform, band,
+// smoothing, source.
+FeatureMaps readMetadata(OIIO::ImageInput* in, const std::string& name) {
     using io::InputError;
     if (!in) throw InputError(name, "", "not a readable image: " + OIIO::geterror());
     if (std::string(in->format_name()) != "openexr") {
@@ -290,7 +292,15 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             spec.find_attribute("surfgrad:source", OIIO::TypeDesc::STRING)) {
         m.source = std::string(p->get_string());
     }
+    return m;
+}
 
+// The corner channels: every value finite and in range, positions and
+// angles on their 16-bit grids.
+void readCorners(OIIO::ImageInput* in, const std::string& name, FeatureMaps& m) {
+    using io::InputError;
+    const OIIO::ImageSpec& spec = in->spec();
+    const int g = m.size + 1;
     auto names = channelNames();
     if (spec.nchannels != int(names.size())) {
         throw InputError(name, "channels",
@@ -375,8 +385,13 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             }
         }
     }
-    // Configurations: counts, distinct segment types, end points present,
-    // curved only in quadratic mode.
+}
+
+// Configurations: counts, distinct segment types, end points present,
+// curved only in quadratic mode, curved signatures valid (the bake's checks).
+void checkConfigurations(const std::string& name, const FeatureMaps& m) {
+    using io::InputError;
+    const size_t nc = size_t(m.size + 1) * size_t(m.size + 1);
     detail::Grid grid;
     grid.n = m.size;
     grid.hPos.assign(nc, -1.0);
@@ -436,7 +451,13 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
             }
         }
     }
-    readNearField(spec, name, m);
+}
+
+FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
+    FeatureMaps m = readMetadata(in, name);
+    readCorners(in, name, m);
+    checkConfigurations(name, m);
+    readNearField(in->spec(), name, m);
     return m;
 }
 

@@ -1,9 +1,10 @@
 // The feature-map bake's parts: the transformation table (TOG 2008 sec. 4),
 // the input-to-texel fit, constrained gradient smoothing (never across a
 // discontinuity, never on the distance), statistics and option checks.
+#include <algorithm>
 #include <bit>
 
-#include "../../features/src/bake_internal.h" // white-box: the transformation table
+#include "../../features/src/bake_internal.h" // white-box: the transformation table, the optimiser
 #include "maps_test_util.h"
 #include "surfgrad/io.h"
 
@@ -170,4 +171,87 @@ TEST(FeatureMapsBake, ProgressIsReported) {
     };
     bake(b.net, o);
     EXPECT_EQ(last, 1.0);
+}
+
+// The signature optimisation (TOG 2008 sec. 4) does its job on fixed
+// inputs: it repairs most invalid texels instead of straightening them, the
+// repaired signatures are valid for the runtime, and the repaired curves
+// keep the input's shape (the fidelity term) rather than being flattened.
+TEST(FeatureMapsBake, OptimiserRepairsInvalidTexels) {
+    struct Case {
+        const char* name;
+        CurveNetwork net;
+        int size;
+        int minRepaired; // measured (bake statistics) minus a margin
+        int maxStraightened;
+    };
+    std::vector<Case> cases;
+    cases.push_back({"WenQuanYi 繁 at 64^2",
+                     loadFont("/usr/share/fonts/truetype/wqy/wqy-microhei.ttc", "\xe7\xb9\x81"), 64,
+                     35, 15}); // measured: 51 invalid, 39 repaired, 12 straightened
+    cases.push_back({"lucide flame at 64^2",
+                     loadSvg(std::string(SURFGRAD_DATA_DIR) + "/svg/flame.svg"), 64, 6,
+                     1}); // measured: 7 invalid, 6 repaired, 1 straightened
+    for (Case& c : cases) {
+        BakeOptions o;
+        o.size = c.size;
+        o.mode = BakeMode::Quadratic;
+        BakeStats st;
+        (void)bake(c.net, o, &st);
+        std::printf("%s: %d invalid, %d repaired, %d straightened\n", c.name, st.invalidTexels,
+                    st.optimizedTexels, st.fallbackTexels);
+        EXPECT_GE(st.optimizedTexels, c.minRepaired) << c.name;
+        EXPECT_LE(st.fallbackTexels, c.maxStraightened) << c.name;
+
+        // White-box: each invalid texel of the scanned grid, on its own.
+        BakeStats st2;
+        detail::Grid g = detail::scanGrid(c.net, o, st2);
+        int invalid = 0, repaired = 0, curvedKept = 0;
+        std::vector<double> misses, chordMisses;
+        for (int j = 0; j < g.n; ++j) {
+            for (int i = 0; i < g.n; ++i) {
+                size_t ti = g.ti(i, j);
+                if (!(g.segMask[ti] & g.quadMask[ti])) continue;
+                detail::LocalTexel t0 = detail::decodeTexel(g, i, j);
+                if (detail::validateTexel(t0, nullptr) <= 0.0) continue;
+                ++invalid;
+                detail::TexelProblem p(g, i, j);
+                std::vector<double> x;
+                if (p.size() == 0) continue;
+                const bool ok = detail::compassSearch(p, x);
+                p.write(ok ? x : p.initial());
+                if (!ok) continue;
+                ++repaired;
+                p.write(x);
+                detail::LocalTexel t = detail::decodeTexel(g, i, j);
+                // Valid for the runtime, now.
+                EXPECT_LE(detail::validateTexel(t, nullptr), 0.0) << c.name << " " << i << "," << j;
+                for (int s = 0; s < t.nseg; ++s) {
+                    if (!t.curved[s] || !t.hasTarget[s]) continue;
+                    ++curvedKept;
+                    double u;
+                    misses.push_back(std::sqrt(closestParam(t.seg[s], false, t.target[s], u)));
+                    // What straightening would leave: the chord.
+                    chordMisses.push_back(std::sqrt(closestParam(t.seg[s], true, t.target[s], u)));
+                }
+                p.write(p.initial());
+            }
+        }
+        std::sort(misses.begin(), misses.end());
+        std::sort(chordMisses.begin(), chordMisses.end());
+        auto median = [](const std::vector<double>& v) {
+            return v.empty() ? 0.0 : v[v.size() / 2];
+        };
+        std::printf("  on their own: %d invalid, %d repaired, %d curved segments kept; input "
+                    "samples from their repaired curves: median %.4f texels (from the chords: "
+                    "%.4f)\n",
+                    invalid, repaired, curvedKept, median(misses), median(chordMisses));
+        EXPECT_GE(repaired, c.minRepaired) << c.name;
+        EXPECT_GT(curvedKept, 0) << c.name;
+        // The fidelity term keeps repaired curves nearer the input than
+        // straightening would (texels where rule 1 merged strokes have a
+        // sample between them, far from any single curve, hence medians).
+        // Measured: 繁 0.090 vs 0.224, flame 0.0017 vs 0.0041.
+        EXPECT_LT(median(misses), 0.8 * median(chordMisses)) << c.name;
+    }
 }

@@ -126,7 +126,7 @@ SG_FN float sgFeatLineCurveParam(SgFeatCurve c, vec2 o, vec2 r, bool forwardOnly
 // parallel; the midpoint is returned then.
 SG_FN vec2 sgFeatTangentIntersection(vec2 q0, vec2 t0, vec2 q2, vec2 t2, SG_OUT(bool) ok) {
     float den = sgFeatCross(t0, t2);
-    ok = abs(den) > 1e-6f;
+    ok = abs(den) > SG_FEAT_PARALLEL_SIN;
     if (!ok) return 0.5f * (q0 + q2);
     float alpha = sgFeatCross(q2 - q0, t2) / den;
     return q0 + alpha * t0;

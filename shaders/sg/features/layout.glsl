@@ -106,6 +106,11 @@ SG_FN vec2 sgFeatEdgeTangent(uint w) {
     return vec2(1.0f - uu, 2.0f * u) / (1.0f + uu);
 }
 
+// Tangents at a segment's two ends whose cross product is at most this are
+// parallel: the segment is straight (sgFeatTangentIntersection). The bake
+// keeps the curved segments it stores far above it (bake_quadratic.cpp).
+#define SG_FEAT_PARALLEL_SIN 1e-6f
+
 // Smallest and largest position of an edge point: the bake moves points off
 // the texel corners by this much (curves through corners and along texel
 // edges), so no partition triangle degenerates. 2^-10 texels.
