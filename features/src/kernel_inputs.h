@@ -4,10 +4,10 @@
 // them).
 #pragma once
 
-#include <cassert>
 #include <cstdint>
 #include <vector>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
 
 namespace sg::features::detail {
@@ -43,7 +43,7 @@ public:
 private:
     float* at(const char* name, int floats) {
         const record::Field* f = record::findField(layout_, name);
-        assert(f && f->floats == floats);
+        SG_EXPECTS(f && f->floats == floats, "a field of the kernel's record, of that width");
         (void)floats;
         return rec_ + f->slot;
     }

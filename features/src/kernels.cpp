@@ -2,10 +2,10 @@
 // kernel list of shaders/sg/features/kernels.glsl (one declaration per
 // kernel), the CPU evaluation of a record, and the compute-program pieces
 // that run the same kernels on the GPU.
-#include <cassert>
 #include <cstring>
 
 #include "kernel_inputs.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
 
 namespace sg::features {
@@ -21,9 +21,10 @@ std::vector<Kernel> buildTable() {
     std::vector<Kernel> t{SG_FEAT_KERNELS(SG_FEAT_CPP_KERNEL)};
     for (size_t k = 0; k < t.size(); ++k) {
         // Ids are the list's order, and the records fit their strides.
-        assert(t[k].id == int(k));
-        assert(record::recordFloats(t[k].in) <= kEvalInStride);
-        assert(record::recordFloats(t[k].out) <= kEvalOutStride);
+        SG_ASSERT(t[k].id == int(k), "kernel ids are the list's order");
+        SG_ASSERT(record::recordFloats(t[k].in) <= kEvalInStride, "input record fits its stride");
+        SG_ASSERT(record::recordFloats(t[k].out) <= kEvalOutStride,
+                  "output record fits its stride");
     }
     return t;
 }
@@ -35,7 +36,7 @@ std::vector<Kernel> buildTable() {
 const std::vector<Kernel>& kernels() {
     static const std::vector<Kernel> table = buildTable();
     static_assert(SG_FEAT_K_COUNT > 0);
-    assert(table.size() == size_t(SG_FEAT_K_COUNT));
+    SG_ASSERT(table.size() == size_t(SG_FEAT_K_COUNT), "SG_FEAT_K_COUNT counts the list");
     return table;
 }
 
@@ -65,7 +66,7 @@ std::string sampleGpuBody() {
 }
 
 void packEvalRecord(const GpuFeatureMaps& maps, int i, int j, glm::vec2 local, float* r) {
-    assert(i >= 0 && j >= 0 && i < maps.size && j < maps.size);
+    SG_EXPECTS(i >= 0 && j >= 0 && i < maps.size && j < maps.size, "texel (i, j) inside the map");
     glsl::SgFeatTexel tx =
         glsl::sgFeatFetch(maps.cornerSampler(), maps.edgeSampler(), glsl::ivec2(i, j));
     detail::RecordWriter w(kernels()[SG_FEAT_K_EVAL].in, r);

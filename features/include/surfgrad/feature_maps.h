@@ -113,12 +113,12 @@ struct SgFeatPieceSampler {
     int height = 0;
 };
 inline uvec4 texelFetch(const SgFeatNearSampler& s, ivec2 p, int /*lod*/) {
-    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the texture");
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }
 inline uvec4 texelFetch(const SgFeatPieceSampler& s, ivec2 p, int /*lod*/) {
-    assert(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height);
+    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the texture");
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }
