@@ -10,7 +10,11 @@
 // and writes it. Only the normal's source differs:
 //   baseline   texture() of an RGBA8 normal map of the same resolution
 //              (GL_LINEAR, hardware bilinear), decoded to a derivative;
-//   features   sgFeatSample (3 texelFetch) + sgFeatDeriv (V-groove).
+//   features   sgFeatSample (3 texelFetch) + sgFeatDeriv (V-groove);
+//   near       quadratic maps with the exact near field (SG_FEAT_NEAR 1):
+//              sgFeatSampleNear (the list header, then in the band 2
+//              fetches per listed piece and the exact closest points; the
+//              interpolation outside it) + the curve's profile + sgFeatDeriv.
 // Maps: "dense" is a network of random curves in which every texel of the
 // viewed window has a discontinuity (feature coverage ratio, FCR, ~100%: the
 // paper's worst case); "glyph" is a CJK glyph seen whole (FCR a few %).
@@ -110,6 +114,34 @@ void main() {
 }
 )";
 
+// The same with the exact near field (SG_FEAT_NEAR 1): in the band, the
+// listed pieces' closest points and each curve's own profile; outside it,
+// the interpolation above.
+const char* kFragmentFeaturesNear = R"(
+#include "sg/features/fetch.glsl"
+#include "sg/features/profile.glsl"
+uniform usampler2D uFeatCorners;
+uniform usampler2D uFeatEdges;
+uniform usampler2D uFeatNear;
+uniform usampler2D uFeatPieces;
+uniform float uDepth;
+uniform float uWidth;
+void main() {
+    vec2 texelPos = uWindowMin + vUnit * uWindowSize;
+    SgFeatResult r = sgFeatSampleNear(uFeatCorners, uFeatEdges, uFeatNear, uFeatPieces, texelPos);
+    SgFeatProfile p;
+    p.kind = SG_FEAT_PROFILE_VGROOVE;
+    p.depth = uDepth;
+    p.w0 = 0.0;
+    p.w = uWidth;
+    p.tableCount = 0;
+    for (int i = 0; i < SG_FEAT_TABLE_MAX; ++i) p.table[i] = 0.0;
+    p = sgFeatCurveProfile(uFeatPieces, p, r);
+    vec2 d = sgFeatDeriv(r, p, vec2(0.0));
+    oColor = shade(normalize(vec3(-d, 1.0)));
+}
+)";
+
 // CPU time of the whole process (llvmpipe's rasterizer threads included):
 // on a shared machine it measures the work, where wall time also measures
 // the waiting.
@@ -126,7 +158,7 @@ double median(std::vector<double> v) {
 
 struct MapSet {
     std::string name;
-    FeatureMaps lin, quad;
+    FeatureMaps lin, quad, nearMaps; // nearMaps: quadratic with the exact near field
     glm::vec2 windowMin, windowSize;
     double fcr = 0; // fraction of pixels in texels with features
 };
@@ -189,6 +221,9 @@ int main(int argc, char** argv) {
         s.lin = bake(net, o);
         o.mode = BakeMode::Quadratic;
         s.quad = bake(net, o);
+        o.nearField = true;
+        o.nearWidthTexels = 2.0; // the V-groove's half-width below
+        s.nearMaps = bake(net, o);
         s.windowMin = glm::vec2(40.0f);
         s.windowSize = glm::vec2(48.0f); // 21 pixels per texel
         sets.push_back(std::move(s));
@@ -204,6 +239,9 @@ int main(int argc, char** argv) {
         s.lin = bake(net, o);
         o.mode = BakeMode::Quadratic;
         s.quad = bake(net, o);
+        o.nearField = true;
+        o.nearWidthTexels = 2.0;
+        s.nearMaps = bake(net, o);
         s.windowMin = glm::vec2(0.0f);
         s.windowSize = glm::vec2(512.0f);
         sets.push_back(std::move(s));
@@ -233,6 +271,7 @@ int main(int argc, char** argv) {
     sg::gl::Program featLinear =
         program(kFragmentFeatures, "features-linear", {"SG_FEAT_CURVED 0"});
     sg::gl::Program fetchOnly = program(kFragmentFetchOnly, "fetchonly");
+    sg::gl::Program featNear = program(kFragmentFeaturesNear, "features-near", {"SG_FEAT_NEAR 1"});
 
     std::printf("\nShader cost, %dx%d fragments, llvmpipe (median frame over %d runs of %d frames, "
                 "one draw + glFinish "
@@ -274,13 +313,19 @@ int main(int argc, char** argv) {
             double goal;
         };
         double baseMs = 0.0;
-        for (const Variant& v : {Variant{"bilinear normal map (baseline)", nullptr, 0.0},
-                                 Variant{"(fetches only, no evaluation)", &s.lin, -1.0},
-                                 Variant{"feature maps, linear", &s.lin, 3.0},
-                                 Variant{"feature maps, quadratic", &s.quad, 6.0}}) {
+        for (const Variant& v :
+             {Variant{"bilinear normal map (baseline)", nullptr, 0.0},
+              Variant{"(fetches only, no evaluation)", &s.lin, -1.0},
+              Variant{"feature maps, linear", &s.lin, 3.0},
+              Variant{"feature maps, quadratic", &s.quad, 6.0},
+              Variant{"feature maps, quadratic + exact near field", &s.nearMaps, 0.0}}) {
             const sg::gl::Program& prog =
-                v.maps ? (v.goal < 0 ? fetchOnly : (v.maps == &s.lin ? featLinear : feat)) : base;
-            GLuint tex[2] = {0, 0};
+                v.maps
+                    ? (v.goal < 0 ? fetchOnly
+                                  : (v.maps == &s.lin ? featLinear
+                                                      : (v.maps == &s.nearMaps ? featNear : feat)))
+                    : base;
+            GLuint tex[4] = {0, 0, 0, 0};
             glUseProgram(prog.id());
             // The normal map is sampled at uv = texelPos / N: its N+1
             // samples sit at texel corners only approximately, which does
@@ -298,6 +343,17 @@ int main(int argc, char** argv) {
                 glBindTextureUnit(1, tex[1]);
                 glUniform1i(prog.uniform("uFeatCorners"), 0);
                 glUniform1i(prog.uniform("uFeatEdges"), 1);
+                if (g.hasNearField()) {
+                    tex[2] = makeTexture(GL_RGBA32UI, n, g.nearHeight, GL_RGBA_INTEGER,
+                                         GL_UNSIGNED_INT, g.nearLists.data(), GL_NEAREST);
+                    tex[3] =
+                        makeTexture(GL_RGBA32UI, SG_FEAT_PIECES_WIDTH, g.piecesHeight,
+                                    GL_RGBA_INTEGER, GL_UNSIGNED_INT, g.pieces.data(), GL_NEAREST);
+                    glBindTextureUnit(2, tex[2]);
+                    glBindTextureUnit(3, tex[3]);
+                    glUniform1i(prog.uniform("uFeatNear"), 2);
+                    glUniform1i(prog.uniform("uFeatPieces"), 3);
+                }
                 if (prog.uniform("uDepth") >= 0) glUniform1f(prog.uniform("uDepth"), 1.0f);
                 if (prog.uniform("uWidth") >= 0) glUniform1f(prog.uniform("uWidth"), 2.0f);
             } else {
@@ -333,7 +389,8 @@ int main(int argc, char** argv) {
             std::printf("| %s | %.1f%% | %s | %.2f | %.2f | %.1f | %.2fx | %s |\n", s.name.c_str(),
                         100.0 * s.fcr, v.name, ms, wallMs, ms * 1e6 / (double(size) * size),
                         ms / baseMs, goal.c_str());
-            if (tex[0]) glDeleteTextures(2, tex);
+            for (GLuint t : tex)
+                if (t) glDeleteTextures(1, &t);
             sg::gl::checkError("features_llvmpipe_bench draw");
         }
         glDeleteTextures(1, &normalTex);

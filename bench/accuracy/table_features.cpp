@@ -12,7 +12,9 @@
 // normal blended with the base normal, the base masked near the curve) or as
 // surface gradients ("surfgrad": the profile's slope h'(d) grad d added to the
 // base's derivative; with the base map inside the layer the slopes are
-// blended instead, "masked").
+// blended instead, "masked"); and quadratic maps with the exact near field
+// (shaders/sg/features/near.glsl: within the band of the profile's width the
+// distance to the input's pieces themselves; --near exact), surfgrad.
 //
 // Error, measured on probe lines across the curves (points 0.5 texel apart
 // along every curve, 3 texels clear of ends and other curves; 64 samples per
@@ -150,10 +152,13 @@ glm::dvec3 normalOfDeriv(dvec2 d) {
     return glm::normalize(glm::dvec3(-d.x, -d.y, 1.0));
 }
 
-enum Mode { Bilinear, LinearSurfgrad, QuadSurfgrad, QuadPaper, QuadMasked, ModeCount };
-const char* kModeNames[ModeCount] = {"bilinear normal map 128^2", "linear maps, surfgrad",
-                                     "quadratic maps, surfgrad", "quadratic maps, paper (Eq. 1)",
-                                     "quadratic maps, surfgrad, base in layer (masked)"};
+enum Mode { Bilinear, LinearSurfgrad, QuadSurfgrad, QuadPaper, QuadMasked, QuadNear, ModeCount };
+const char* kModeNames[ModeCount] = {"bilinear normal map 128^2",
+                                     "linear maps, surfgrad",
+                                     "quadratic maps, surfgrad",
+                                     "quadratic maps, paper (Eq. 1)",
+                                     "quadratic maps, surfgrad, base in layer (masked)",
+                                     "quadratic maps + exact near field, surfgrad"};
 
 const char* kFragment = R"(
 #include "sg/features/fetch.glsl"
@@ -165,6 +170,8 @@ uniform vec4 uProfile; // kind, depth, w0, w
 uniform sampler2D uNormalMap;
 uniform usampler2D uFeatCorners;
 uniform usampler2D uFeatEdges;
+uniform usampler2D uFeatNear;
+uniform usampler2D uFeatPieces;
 layout(location = 0) out vec4 oColor;
 void main() {
     vec2 texelPos = uWindowMin + gl_FragCoord.xy * (uWindowSize / UVIEW);
@@ -173,7 +180,11 @@ void main() {
     vec3 m = texture(uNormalMap, texelPos / uMapSize).xyz * 2.0 - 1.0;
     n = normalize(m);
 #else
+#if SG_FEAT_NEAR
+    SgFeatResult r = sgFeatSampleNear(uFeatCorners, uFeatEdges, uFeatNear, uFeatPieces, texelPos);
+#else
     SgFeatResult r = sgFeatSample(uFeatCorners, uFeatEdges, texelPos);
+#endif
     SgFeatProfile p;
 #ifdef KIND_UNIFORM
     p.kind = int(uProfile.x); // as the renderer's records pass it
@@ -185,6 +196,9 @@ void main() {
     p.w = uProfile.w;
     p.tableCount = 0;
     for (int i = 0; i < SG_FEAT_TABLE_MAX; ++i) p.table[i] = 0.0;
+#if SG_FEAT_NEAR
+    p = sgFeatCurveProfile(uFeatPieces, p, r); // per-curve profiles, as the renderer does
+#endif
 #ifdef PAPER
     n = sgFeatNormalPaper(r, p, vec3(0.0, 0.0, 1.0));
 #else
@@ -211,6 +225,9 @@ void tableFeatures(const Options& o) {
     const sg::features::FeatureMaps quadMaps = sg::features::bake(net, bo);
     const sg::features::GpuFeatureMaps lin = linMaps.packGpu(), quad = quadMaps.packGpu();
     const float depth = 1.0f, w0 = 0.5f, w = 3.0f;
+    bo.nearField = true;
+    bo.nearWidthTexels = w; // the band covers the profile
+    const sg::features::GpuFeatureMaps nearMaps = sg::features::bake(net, bo).packGpu();
     const sg::glsl::SgFeatProfile prof = sg::features::makeProfile("crease", depth, w0, w);
     const Base base;
 
@@ -252,7 +269,10 @@ void tableFeatures(const Options& o) {
     auto modeNormal = [&](int mode, dvec2 p, bool bumpy) -> glm::dvec3 {
         const dvec2 bd = bumpy ? base.grad(p) : dvec2(0.0);
         if (mode == Bilinear) return bilinear(bumpy ? bumpyMap : flatMap, p);
-        const auto r = sg::features::sample(mode == LinearSurfgrad ? lin : quad, glm::vec2(p));
+        const auto r =
+            mode == QuadNear
+                ? sg::features::sample(nearMaps, glm::vec2(p), sg::features::NearMode::Exact)
+                : sg::features::sample(mode == LinearSurfgrad ? lin : quad, glm::vec2(p));
         if (mode == QuadPaper) {
             return glm::dvec3(sg::glsl::sgFeatNormalPaper(r, prof, glm::vec3(normalOfDeriv(bd))));
         }
@@ -355,9 +375,9 @@ void tableFeatures(const Options& o) {
     }
 
     // Cost.
-    GLuint texCorners[2], texEdges[2], texNormal;
-    const sg::features::GpuFeatureMaps* gm[2] = {&lin, &quad};
-    for (int k = 0; k < 2; ++k) {
+    GLuint texCorners[3], texEdges[3], texNormal, texNear[2];
+    const sg::features::GpuFeatureMaps* gm[3] = {&lin, &quad, &nearMaps};
+    for (int k = 0; k < 3; ++k) {
         // Layout of surfgrad/feature_maps.h: corner pairs N x (N+1) and edge
         // words N x N, both RGBA32UI.
         glCreateTextures(GL_TEXTURE_2D, 1, &texCorners[k]);
@@ -371,6 +391,20 @@ void tableFeatures(const Options& o) {
         glTextureSubImage2D(texEdges[k], 0, 0, 0, n, n, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
                             gm[k]->edges.data());
         for (GLuint t : {texCorners[k], texEdges[k]}) {
+            glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+    }
+    {
+        // The near field's lists (N x nearHeight) and pieces, RGBA32UI.
+        glCreateTextures(GL_TEXTURE_2D, 2, texNear);
+        glTextureStorage2D(texNear[0], 1, GL_RGBA32UI, n, nearMaps.nearHeight);
+        glTextureSubImage2D(texNear[0], 0, 0, 0, n, nearMaps.nearHeight, GL_RGBA_INTEGER,
+                            GL_UNSIGNED_INT, nearMaps.nearLists.data());
+        glTextureStorage2D(texNear[1], 1, GL_RGBA32UI, SG_FEAT_PIECES_WIDTH, nearMaps.piecesHeight);
+        glTextureSubImage2D(texNear[1], 0, 0, 0, SG_FEAT_PIECES_WIDTH, nearMaps.piecesHeight,
+                            GL_RGBA_INTEGER, GL_UNSIGNED_INT, nearMaps.pieces.data());
+        for (GLuint t : texNear) {
             glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
             glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
         }
@@ -396,8 +430,10 @@ void tableFeatures(const Options& o) {
     const int view = std::min(o.size, 512);
     const std::string uview = "UVIEW " + std::to_string(view) + ".0";
     // The fifth timed variant: quadratic surfgrad with the profile kind in a
-    // uniform, as the renderer's layer records pass it.
-    const int timedModes[5] = {Bilinear, LinearSurfgrad, QuadSurfgrad, QuadPaper, QuadSurfgrad};
+    // uniform, as the renderer's layer records pass it; the sixth the exact
+    // near field.
+    const int timedModes[6] = {Bilinear,  LinearSurfgrad, QuadSurfgrad,
+                               QuadPaper, QuadSurfgrad,   QuadNear};
     std::vector<sg::gl::Program> progs;
     progs.push_back(
         makeProgram(fullscreenVertexShader(), kFragment, "feat_bilinear", {uview, "BILINEAR"}));
@@ -407,12 +443,14 @@ void tableFeatures(const Options& o) {
         makeProgram(fullscreenVertexShader(), kFragment, "feat_paper", {uview, "PAPER"}));
     progs.push_back(
         makeProgram(fullscreenVertexShader(), kFragment, "feat_uniform", {uview, "KIND_UNIFORM"}));
+    progs.push_back(
+        makeProgram(fullscreenVertexShader(), kFragment, "feat_near", {uview, "SG_FEAT_NEAR 1"}));
     // Window: 32x32 texels where the circle and the S curve pass.
     const glm::vec2 windowMin(22.0f, 40.0f), windowSize(32.0f);
     Target tim(view, view, 1, false);
     glDisable(GL_DEPTH_TEST);
     const auto ms = timeVariants(
-        5,
+        6,
         [&](size_t k) {
             tim.clear();
             const sg::gl::Program& p = progs[k];
@@ -424,15 +462,21 @@ void tableFeatures(const Options& o) {
             glUniform1i(p.uniform("uNormalMap"), 0);
             glUniform1i(p.uniform("uFeatCorners"), 1);
             glUniform1i(p.uniform("uFeatEdges"), 2);
-            const int mapSet = timedModes[k] == LinearSurfgrad ? 0 : 1;
+            glUniform1i(p.uniform("uFeatNear"), 3);
+            glUniform1i(p.uniform("uFeatPieces"), 4);
+            const int mapSet =
+                timedModes[k] == LinearSurfgrad ? 0 : (timedModes[k] == QuadNear ? 2 : 1);
             glBindTextureUnit(0, texNormal);
             glBindTextureUnit(1, texCorners[mapSet]);
             glBindTextureUnit(2, texEdges[mapSet]);
+            glBindTextureUnit(3, texNear[0]);
+            glBindTextureUnit(4, texNear[1]);
             fullscreen.draw();
         },
         o);
-    glDeleteTextures(2, texCorners);
-    glDeleteTextures(2, texEdges);
+    glDeleteTextures(3, texCorners);
+    glDeleteTextures(3, texEdges);
+    glDeleteTextures(2, texNear);
     glDeleteTextures(1, &texNormal);
     // Fraction of the window's texels with a discontinuity (the evaluator's
     // slow path).
@@ -453,7 +497,7 @@ void tableFeatures(const Options& o) {
         const ErrorStats c = errorStats(crease[size_t(m)]), f = errorStats(flatErr[size_t(m)]),
                          b = errorStats(bumpyErr[size_t(m)]);
         int timed = -1;
-        for (int k = 3; k >= 0; --k) timed = timedModes[k] == m ? k : timed;
+        for (int k : {5, 3, 2, 1, 0}) timed = timedModes[k] == m ? k : timed;
         t.add({kModeNames[m], fmtErr(c.mean), fmtErr(c.max), fmt(c.max * 64.0, 1), fmtErr(f.p50),
                fmtErr(f.p99), fmtErr(b.p50), fmtErr(b.max),
                timed >= 0 ? fmt(ms[size_t(timed)], 2) : "(as surfgrad)",
@@ -476,7 +520,13 @@ void tableFeatures(const Options& o) {
         std::to_string(featureTexels) + "/1024 texels with a discontinuity), " + o.renderer + ", " +
         std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
         " frames, medians; ratio to the bilinear map (RGBA8, GL_LINEAR). Accuracy per resolution "
-        "64..1024: features_bench accuracy.");
+        "64..1024: features_bench accuracy. Exact near field: band " +
+        fmt(nearMaps.nearStats.bandTexels, 0) + " texels of the map, " +
+        fmt(nearMaps.nearStats.meanPieces, 2) + " pieces per band texel (max " +
+        std::to_string(nearMaps.nearStats.maxPieces) + "), " +
+        fmt(nearMaps.nearBytesPerTexel(), 1) +
+        " bytes per texel on top of the maps' 32; accuracy on glyphs, icons and stars: "
+        "features_near_bench.");
     t.print(o.markdown);
 }
 

@@ -121,12 +121,15 @@ SG_FN SgFeatNearHit sgFeatHitAt(vec2 d0, vec2 b, vec2 a, float u) {
 SG_FN SgFeatNearHit sgFeatClosestOnPiece(SgFeatPiece c, vec2 p) {
     vec2 d0 = c.p0 - p;
     vec2 b = 2.0f * (c.p1 - c.p0);
-    vec2 a = c.curved ? c.p0 - 2.0f * c.p1 + c.p2 : vec2(0.0f);
     float bb = dot(b, b);
-    // Straight: the projection, clamped.
-    float uLine = bb > SG_FLT_MIN ? clamp(-dot(d0, b) / bb, 0.0f, 1.0f) : 0.0f;
-    // Curved: the increasing intervals of f (roots of f', numerically
-    // stable form; q = 0 only for a vanishing f', then one interval).
+    if (!c.curved) {
+        // Straight: the projection, clamped.
+        float uLine = bb > SG_FLT_MIN ? clamp(-dot(d0, b) / bb, 0.0f, 1.0f) : 0.0f;
+        return sgFeatHitAt(d0, b, vec2(0.0f), uLine);
+    }
+    vec2 a = c.p0 - 2.0f * c.p1 + c.p2;
+    // The increasing intervals of f: the roots of f' (numerically stable
+    // form; q = 0 only for a vanishing f', then one interval).
     float qa = 6.0f * dot(a, a);
     float qb = 6.0f * dot(a, b);
     float qc = bb + 2.0f * dot(a, d0);
@@ -135,14 +138,17 @@ SG_FN SgFeatNearHit sgFeatClosestOnPiece(SgFeatPiece c, vec2 p) {
     float q = -0.5f * (qb + (qb < 0.0f ? -s : s));
     float ra = qa > SG_FLT_MIN ? q / qa : 2.0f;
     float rb = abs(q) > SG_FLT_MIN ? qc / q : 2.0f;
-    bool two = c.curved && disc > 0.0f && qa > SG_FLT_MIN;
+    bool two = disc > 0.0f && qa > SG_FLT_MIN;
     float r1 = two ? clamp(min(ra, rb), 0.0f, 1.0f) : 1.0f;
-    float r2 = two ? clamp(max(ra, rb), 0.0f, 1.0f) : 1.0f;
-    float u1 = sgFeatFootOnIncreasing(d0, b, a, 0.0f, r1);
-    float u2 = sgFeatFootOnIncreasing(d0, b, a, r2, 1.0f);
-    SgFeatNearHit h1 = sgFeatHitAt(d0, b, a, c.curved ? u1 : uLine);
-    SgFeatNearHit h2 = sgFeatHitAt(d0, b, a, u2);
-    return (c.curved && h2.dist2 < h1.dist2) ? h2 : h1;
+    SgFeatNearHit h = sgFeatHitAt(d0, b, a, sgFeatFootOnIncreasing(d0, b, a, 0.0f, r1));
+    // The second interval only where f' has two roots (p beyond a centre of
+    // curvature of the piece): a branch, not paid where no lane needs it.
+    if (two) {
+        float r2 = clamp(max(ra, rb), 0.0f, 1.0f);
+        SgFeatNearHit h2 = sgFeatHitAt(d0, b, a, sgFeatFootOnIncreasing(d0, b, a, r2, 1.0f));
+        if (h2.dist2 < h.dist2) h = h2;
+    }
+    return h;
 }
 
 // Distance, unit gradient and side of the hit (the side with respect to the
@@ -237,10 +243,15 @@ SG_FN SgFeatResult sgFeatNearEval(SG_FEAT_NEAR_SAMPLER nearMap, SG_FEAT_PIECE_SA
         uint idx = sgFeatListSlot(slots, k);
         if (idx == 0u) break;
         SgFeatPiece c = sgFeatFetchPiece(pieces, int(idx) - 1, vec2(ij));
-        SgFeatNearHit h = sgFeatClosestOnPiece(c, p);
-        if (h.dist2 < best.dist2) {
-            best = h;
-            bestPiece = c;
+        // The piece lies in the box of its control points: skip the closest
+        // point when that box is no nearer than the best so far.
+        vec2 outside = max(max(min(min(c.p0, c.p1), c.p2) - p, p - max(max(c.p0, c.p1), c.p2)), vec2(0.0f));
+        if (dot(outside, outside) < best.dist2) {
+            SgFeatNearHit h = sgFeatClosestOnPiece(c, p);
+            if (h.dist2 < best.dist2) {
+                best = h;
+                bestPiece = c;
+            }
         }
     }
     return sgFeatNearResult(best, bestPiece);
