@@ -11,6 +11,8 @@
 #include <CLI/CLI.hpp>
 
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <iostream>
 #include <set>
@@ -58,6 +60,31 @@ void parseSize(const std::string& s, int& w, int& h) {
     h = int(b);
 }
 
+// "512M", "1.5G", "2GiB", "800MB", "1073741824": bytes (binary units).
+uint64_t parseBytes(const std::string& option, const std::string& s) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    std::string unit(end ? end : "");
+    for (auto& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
+    if (unit.size() > 1 && unit.back() == 'B') unit.pop_back();
+    if (unit.size() > 1 && unit.back() == 'I') unit.pop_back();
+    if (unit == "B") unit.clear();
+    const std::string units = "KMGT";
+    const size_t u = unit.empty() ? std::string::npos : units.find(unit);
+    if (end == s.c_str() || !(v > 0.0) ||
+        (!unit.empty() && (unit.size() != 1 || u == std::string::npos)))
+        throw CliError(option + ": expected a size such as 512M, 1.5G or 2GiB, got \"" + s + "\"");
+    const double bytes = v * std::pow(1024.0, unit.empty() ? 0.0 : double(u + 1));
+    if (!(bytes >= 1.0 && bytes < 1.8e19)) throw CliError(option + ": " + s + " is out of range");
+    return uint64_t(bytes);
+}
+
+constexpr const char* kBudgetHelp =
+    "Memory all of the scene's textures may take together (e.g. 512M, 4G): each texture's "
+    "mip chain as stored plus the decoder's buffers; a texture that would exceed it is "
+    "refused before it is decoded. Default: a quarter of physical memory, at most 8G, at "
+    "most half of the process's memory limit (ulimit -v)";
+
 void overrideTangents(Scene& scene, const std::string& tbn) {
     if (tbn.empty()) return;
     TangentSource src = tbn == "pixel"        ? TangentSource::Pixel
@@ -93,7 +120,8 @@ void addRenderCommands(CLI::App& app, int& status) {
     auto* render =
         app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
     struct RenderOpts {
-        std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact";
+        std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact",
+                                      budget;
         double frame = 0.0;
         bool cpu = false, allFrames = false, verbose = false, compare = false;
     };
@@ -124,6 +152,7 @@ void addRenderCommands(CLI::App& app, int& status) {
         ->check(CLI::IsMember({"exact", "llvmpipe"}));
     render->add_flag("--all-frames", ro->allFrames,
                      "Render every frame of the scene to OUT_NNNN.ext");
+    render->add_option("--texture-budget", ro->budget, kBudgetHelp);
     render->add_flag("-v,--verbose", ro->verbose, "Print what was loaded and compiled");
     render->add_flag(
         "--compare-cpu", ro->compare,
@@ -152,8 +181,11 @@ void addRenderCommands(CLI::App& app, int& status) {
         if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
         int w = 0, h = 0;
         if (!ro->size.empty()) parseSize(ro->size, w, h);
+        AssetOptions assetOptions;
+        if (!ro->budget.empty())
+            assetOptions.textureBudgetBytes = parseBytes("--texture-budget", ro->budget);
         auto t0 = std::chrono::steady_clock::now();
-        SceneAssets assets = loadAssets(scene);
+        SceneAssets assets = loadAssets(scene, assetOptions);
         if (ro->verbose) {
             for (const auto& l : assets.log) std::printf("%s\n", l.c_str());
         }
@@ -220,7 +252,7 @@ void addRenderCommands(CLI::App& app, int& status) {
     // ---- shader
     auto* shader = app.add_subcommand("shader", "Print the assembled GLSL programs of a scene");
     struct ShaderOpts {
-        std::string scene;
+        std::string scene, budget;
         int mesh = -1;
         bool vertex = false, body = false;
     };
@@ -229,9 +261,13 @@ void addRenderCommands(CLI::App& app, int& status) {
     shader->add_option("--mesh", so->mesh, "Only the program of mesh I");
     shader->add_flag("--vertex", so->vertex, "Print the vertex programs too");
     shader->add_flag("--body", so->body, "Print the generated body before #include expansion");
+    shader->add_option("--texture-budget", so->budget, kBudgetHelp);
     shader->callback([so, &status] {
         Scene scene = sceneFromArg(so->scene);
-        SceneAssets assets = loadAssets(scene);
+        AssetOptions assetOptions;
+        if (!so->budget.empty())
+            assetOptions.textureBudgetBytes = parseBytes("--texture-budget", so->budget);
+        SceneAssets assets = loadAssets(scene, assetOptions);
         std::set<std::string> seen;
         for (size_t i = 0; i < scene.meshes.size(); ++i) {
             if (so->mesh >= 0 && size_t(so->mesh) != i) continue;
@@ -257,7 +293,7 @@ void addRenderCommands(CLI::App& app, int& status) {
     // ---- view
     auto* view = app.add_subcommand("view", "Interactive viewer (GLFW window + Dear ImGui)");
     struct ViewOpts {
-        std::string scene, screenshot, size;
+        std::string scene, screenshot, size, budget;
         int frames = 0;
     };
     auto vo = std::make_shared<ViewOpts>();
@@ -266,12 +302,15 @@ void addRenderCommands(CLI::App& app, int& status) {
         ->check(CLI::Range(0, 1000000));
     view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
     view->add_option("--size", vo->size, "Window size WxH (default 1280x720)");
+    view->add_option("--texture-budget", vo->budget, kBudgetHelp);
     view->callback([vo, &status] {
 #if SURFGRAD_HAVE_VIEWER
         ViewerOptions opt;
         opt.maxFrames = vo->frames;
         opt.screenshot = vo->screenshot;
         if (!vo->size.empty()) parseSize(vo->size, opt.width, opt.height);
+        if (!vo->budget.empty())
+            opt.textureBudgetBytes = parseBytes("--texture-budget", vo->budget);
         if (!opt.screenshot.empty() && !vo->scene.empty())
             io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
         status = runViewer(sceneFromArg(vo->scene), opt);

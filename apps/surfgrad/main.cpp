@@ -5,6 +5,8 @@
 
 #include <cstdio>
 #include <exception>
+#include <new>
+#include <string>
 
 #include "commands.h"
 #include "surfgrad/bump.h"
@@ -32,6 +34,18 @@ int main(int argc, char** argv) {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e);
+    } catch (const std::bad_alloc&) {
+        // Loaders check declared sizes against limits and the texture
+        // budget before they allocate, and name the input when memory runs
+        // out all the same; this is the last line for anything else.
+        std::string args;
+        for (int i = 1; i < argc; ++i) args += std::string(i > 1 ? " " : "") + argv[i];
+        std::fflush(stdout);
+        std::fprintf(stderr,
+                     "surfgrad: error: out of memory (std::bad_alloc) running `surfgrad %s`: an "
+                     "input declares more data than this machine can hold\n",
+                     args.c_str());
+        return 1;
     } catch (const std::exception& e) {
         std::fflush(stdout);
         std::fprintf(stderr, "surfgrad: error: %s\n", e.what());

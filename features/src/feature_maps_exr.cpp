@@ -16,6 +16,7 @@
 
 #include "bake_internal.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/image_header.h"
 #include "surfgrad/io.h"
 
 namespace sg::features {
@@ -27,106 +28,6 @@ const char* kLayout =
     "corner; "
     "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
     "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
-
-// The EXR header's attribute list, checked before OpenEXR reads it:
-// OpenEXR allocates each attribute's declared size before reading it, so a
-// 2 KB file declaring a 2 GB string attribute takes 2 GB (found by
-// fuzz_feature_maps). Layout (OpenEXR file layout, "Header"): magic
-// 76 2f 31 01, a version word (bits 0-7 version 2; 0x800 deep, 0x1000
-// multi-part), then attributes {name\0, type\0, int32 size, size bytes}
-// ended by an empty name. Feature maps are single-part scanline or tiled
-// images; every declared size must fit in the bytes that follow.
-// Bytes OpenEXR's reader of a fixed-size attribute type consumes (0 for
-// types read by their declared size: string, stringvector, floatvector,
-// unknown/opaque; chlist and preview are checked separately).
-int exrFixedTypeBytes(const std::string& type) {
-    static const std::pair<const char*, int> kFixed[] = {
-        {"int", 4},       {"float", 4},    {"double", 8},
-        {"rational", 8},  {"timecode", 8}, {"v2i", 8},
-        {"v2f", 8},       {"v2d", 16},     {"v3i", 12},
-        {"v3f", 12},      {"v3d", 24},     {"box2i", 16},
-        {"box2f", 16},    {"m33f", 36},    {"m33d", 72},
-        {"m44f", 64},     {"m44d", 128},   {"chromaticities", 32},
-        {"keycode", 28},  {"tiledesc", 9}, {"compression", 1},
-        {"lineOrder", 1}, {"envmap", 1},   {"deepImageState", 1},
-    };
-    for (const auto& [t, n] : kFixed) {
-        if (type == t) return n;
-    }
-    return 0;
-}
-
-void checkExrHeader(const std::string& bytes, const std::string& name) {
-    auto fail = [&](const std::string& reason) {
-        throw io::InputError(name, "EXR header", reason);
-    };
-    auto u8 = [&](size_t i) { return uint32_t(static_cast<unsigned char>(bytes[i])); };
-    auto u32 = [&](size_t i) { return u8(i) | u8(i + 1) << 8 | u8(i + 2) << 16 | u8(i + 3) << 24; };
-    if (bytes.size() < 8 || u32(0) != 20000630u) fail("not an OpenEXR file (magic number)");
-    const uint32_t version = u32(4);
-    if ((version & 0xFFu) != 2u)
-        fail("EXR version " + std::to_string(version & 0xFFu) + " (this reader knows 2)");
-    if (version & 0x1800u) fail("deep or multi-part EXR (feature maps are single-part images)");
-    size_t at = 8;
-    // A null-terminated name of at most 255 characters (the long-name limit).
-    auto cstring = [&](const char* what) {
-        const size_t end = bytes.find('\0', at);
-        if (end == std::string::npos || end - at > 255)
-            fail(std::string("unterminated or over-long attribute ") + what + " at byte " +
-                 std::to_string(at));
-        std::string out = bytes.substr(at, end - at);
-        at = end + 1;
-        return out;
-    };
-    constexpr int kMaxAttributes = 1024; // real headers have a few dozen
-    for (int n = 0; n < kMaxAttributes; ++n) {
-        const std::string attr = cstring("name");
-        if (attr.empty()) return; // end of the header
-        const std::string type = cstring("type");
-        if (bytes.size() - at < 4) fail("attribute '" + attr.substr(0, 64) + "' has no size");
-        const uint32_t size = u32(at);
-        at += 4;
-        if (size > bytes.size() - at) {
-            fail("attribute '" + attr.substr(0, 64) + "' declares " + std::to_string(size) +
-                 " bytes but the file has " + std::to_string(bytes.size() - at) + " left");
-        }
-        // OpenEXR's readers of the known types read what the type needs, not
-        // the declared size: a size that disagrees would leave its stream
-        // somewhere else than this scan, reading later bytes as attributes.
-        auto badSize = [&](const std::string& need) {
-            fail("attribute '" + attr.substr(0, 64) + "' of type " + type + " declares " +
-                 std::to_string(size) + " bytes; the type needs " + need);
-        };
-        if (const int fixed = exrFixedTypeBytes(type); fixed > 0 && size != uint32_t(fixed))
-            badSize(std::to_string(fixed));
-        if (type == "chlist") {
-            // Channels {name\0, int32 type, uint8 pLinear, 3 reserved, int32
-            // xSampling, int32 ySampling}, ended by an empty name, exactly
-            // filling the attribute.
-            size_t p = at;
-            const size_t end = at + size;
-            for (;;) {
-                const size_t nameEnd = bytes.find('\0', p);
-                if (nameEnd == std::string::npos || nameEnd >= end)
-                    badSize("its channel list to end inside it");
-                if (nameEnd == p) {
-                    if (nameEnd + 1 != end) badSize("its channel list to end exactly at its end");
-                    break;
-                }
-                p = nameEnd + 1 + 16;
-                if (p > end) badSize("room for every channel record");
-            }
-        }
-        if (type == "preview") {
-            // uint32 width, uint32 height, then 4 bytes per pixel (OpenEXR
-            // allocates width * height * 4 before reading them).
-            if (size < 8 || uint64_t(u32(at)) * uint64_t(u32(at + 4)) * 4u != uint64_t(size) - 8u)
-                badSize("8 + 4 * width * height");
-        }
-        at += size;
-    }
-    fail("more than " + std::to_string(kMaxAttributes) + " header attributes");
-}
 
 std::vector<std::string> channelNames() {
     return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"};
@@ -546,7 +447,9 @@ FeatureMaps load(const std::filesystem::path& path) {
 }
 
 FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name) {
-    checkExrHeader(bytes, name);
+    // OpenEXR allocates what its header declares before reading it: the
+    // header is checked first (surfgrad/image_header.h).
+    io::scanExrHeader(io::MemoryBytes(bytes), name);
     OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
     auto in = OIIO::ImageInput::open("memory.exr", nullptr, &reader);
     return readFrom(in.get(), name);

@@ -1,19 +1,21 @@
 // Scene assets: meshes (procedural here, files through the mesh module),
-// textures (files through OpenImageIO, or procedural), per-frame morphing,
-// and the camera views. Effects on demand: only textures of enabled layers
-// are loaded, each once (by TextureSource::key()).
-#include <OpenImageIO/imageio.h>
-
+// textures (files through texture_file.cpp, or procedural), per-frame
+// morphing, and the camera views. Effects on demand: only textures of
+// enabled layers are loaded, each once (by TextureSource::key()), and only
+// the channels those layers read; all of them within the scene's texture
+// budget.
 #include <algorithm>
-#include <cmath>
 #include <atomic>
+#include <cmath>
 #include <map>
+#include <new>
 #include <set>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "render_internal.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/image_header.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -170,72 +172,6 @@ void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, g
 
 } // namespace detail
 
-// ---------------------------------------------------------------------------
-// Textures
-
-std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
-                                                const std::string& sceneName) {
-    if (!src.procedural.empty())
-        return std::make_shared<TextureImage>(detail::makeProceduralTexture(src));
-    const std::string name = src.file.string();
-    std::error_code ec;
-    if (!fs::is_regular_file(src.file, ec)) {
-        throw io::InputError(sceneName, src.fieldPath, "texture file " + name + " does not exist");
-    }
-    auto in = OIIO::ImageInput::open(name);
-    if (!in) {
-        throw io::InputError(
-            name, "", "cannot read image (" + OIIO::geterror() + ") [" + src.fieldPath + "]");
-    }
-    const OIIO::ImageSpec& spec = in->spec();
-    constexpr int kMaxTexSize = 16384;
-    if (spec.width < 1 || spec.height < 1 || spec.width > kMaxTexSize ||
-        spec.height > kMaxTexSize || spec.nchannels < 1 || spec.nchannels > 64) {
-        throw io::InputError(name, "",
-                             "unsupported image size " + std::to_string(spec.width) + "x" +
-                                 std::to_string(spec.height) + " with " +
-                                 std::to_string(spec.nchannels) + " channels (at most " +
-                                 std::to_string(kMaxTexSize) + " per side)");
-    }
-    const int w = spec.width, h = spec.height, nc = spec.nchannels;
-    std::vector<float> raw(size_t(w) * size_t(h) * size_t(nc));
-    // Raw channel values (no colour conversion): bump maps are data.
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-        throw io::InputError(name, "", "cannot decode image: " + in->geterror());
-    }
-    in->close();
-    std::vector<glm::vec4> texels(size_t(w) * size_t(h));
-    for (int y = 0; y < h; ++y) {
-        const float* row = &raw[size_t(h - 1 - y) * size_t(w) * size_t(nc)]; // bottom row first
-        for (int x = 0; x < w; ++x) {
-            const float* p = row + size_t(x) * size_t(nc);
-            glm::vec4 t(0.0f, 0.0f, 0.0f, 1.0f);
-            if (nc == 1) {
-                t = glm::vec4(p[0], p[0], p[0], 1.0f);
-            } else {
-                for (int c = 0; c < std::min(nc, 4); ++c) t[c] = p[c];
-            }
-            for (int c = 0; c < 4; ++c) {
-                if (!std::isfinite(t[c])) {
-                    throw io::InputError(name,
-                                         "pixel (" + std::to_string(x) + ", " +
-                                             std::to_string(h - 1 - y) + ")",
-                                         "non-finite texel value");
-                }
-            }
-            if (src.srgb) {
-                // Colour maps are sRGB-encoded; filtering happens on linear values.
-                for (int c = 0; c < 3; ++c) {
-                    float v = std::clamp(t[c], 0.0f, 1.0f);
-                    t[c] = v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-                }
-            }
-            texels[size_t(y) * size_t(w) + size_t(x)] = t;
-        }
-    }
-    return std::make_shared<TextureImage>(makeTexture(w, h, std::move(texels), src.wrap));
-}
-
 namespace {
 
 void collectFeatures(const Layer& L, std::vector<const Layer*>& out) {
@@ -279,12 +215,118 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
     return a;
 }
 
-void collectTextures(const Layer& L, std::vector<const TextureSource*>& out) {
+// A texture a layer reads and the RGBA components it reads from it
+// (bit c: component c).
+struct TextureUse {
+    const TextureSource* src;
+    uint32_t channels;
+    const char* why; // for messages: what reads them
+};
+
+constexpr uint32_t kR = 1, kG = 2, kB = 4, kA = 8;
+
+// Components of a layer's maps its shader function reads
+// (shaders/sg/render/common.glsl: sgDecodeNormalXY/XYZ, sgTexelChannel).
+uint32_t mapChannels(const Layer& L, const char*& why) {
+    const uint32_t xy = L.encoding == NormalEncoding::Ag ? (kG | kA) : (kR | kG);
+    const uint32_t height = L.heightChannel >= 0 ? 1u << L.heightChannel : 0u;
+    switch (L.kind) {
+    case LayerKind::UvNormal:
+        why = L.heightChannel >= 0 ? "the normal encoding and the height channel"
+                                   : "the normal encoding";
+        return xy | height;
+    case LayerKind::Triplanar:
+    case LayerKind::Decal:
+    case LayerKind::Feature:
+        why = "the normal encoding";
+        return xy;
+    case LayerKind::DerivMap:
+        why = L.heightChannel >= 0 ? "the derivative (r, g) and the height channel"
+                                   : "the derivative (r, g)";
+        return kR | kG | height;
+    case LayerKind::ObjectNormal:
+        why = "the normal (r, g, b)";
+        return kR | kG | kB;
+    case LayerKind::Height:
+        why = "the height channel";
+        return 1u << L.channel;
+    default:
+        why = "the layer";
+        return kR | kG | kB | kA;
+    }
+}
+
+void collectTextures(const Layer& L, std::vector<TextureUse>& out) {
     if (!L.enabled) return; // effects on demand: nothing for disabled layers
-    for (const auto& m : L.maps) out.push_back(&m);
+    const char* why = "";
+    const uint32_t channels = mapChannels(L, why);
+    for (const auto& m : L.maps) out.push_back({&m, channels, why});
     for (const auto& md : L.modifiers)
-        if (md.kind == ModifierKind::Modulate && md.mask) out.push_back(&*md.mask);
+        if (md.kind == ModifierKind::Modulate && md.mask)
+            out.push_back({&*md.mask, 1u << md.channel, "the modulate channel"});
     for (const auto& c : L.children) collectTextures(c, out);
+}
+
+std::string componentList(uint32_t mask) {
+    std::string s;
+    for (int c = 0; c < 4; ++c)
+        if (mask >> c & 1u) s += std::string(s.empty() ? "" : ", ") + "rgba"[c];
+    return s;
+}
+
+// Loads every texture of `uses` the assets lack, or lack components of
+// (a newly enabled layer may read more of a file than the ones before),
+// within the scene's texture budget; then refuses a layer that reads a
+// component its file does not have.
+void loadTextures(const Scene& scene, SceneAssets& assets, const std::vector<TextureUse>& uses) {
+    std::map<std::string, uint32_t> need;
+    for (const TextureUse& u : uses) need[u.src->key()] |= u.channels;
+    for (const TextureUse& u : uses) {
+        const std::string key = u.src->key();
+        auto it = assets.textures.find(key);
+        uint32_t channels = need[key];
+        if (it != assets.textures.end()) {
+            const TextureImage& t = *it->second;
+            const uint32_t inFile =
+                t.sourceChannels == 1 ? 0x7u : (1u << std::min(t.sourceChannels, 4)) - 1u;
+            if (t.sourceChannels == 0 || (channels & ~t.channelMask & inFile) == 0) continue;
+            channels |= t.channelMask; // reload with every component in use
+        }
+        TextureLoadOptions opt;
+        opt.channels = channels;
+        opt.budgetBytes = assets.textureBudgetBytes;
+        for (const auto& [k, t] : assets.textures) {
+            if (k == key) continue;
+            opt.usedBytes += t->bytes();
+            ++opt.otherTextures;
+        }
+        auto tex = loadTexture(*u.src, scene.sourceName, opt);
+        assets.textures[key] = tex;
+        const TexelType type = tex->levels[0].type;
+        assets.log.push_back(
+            "texture " + key + ": " + std::to_string(tex->width()) + "x" +
+            std::to_string(tex->height()) + ", " + std::to_string(tex->levels.size()) +
+            " levels, " + std::to_string(tex->levels[0].channels) +
+            (tex->sourceChannels > 0 ? " of " + std::to_string(tex->sourceChannels) : "") +
+            " channels, " +
+            (type == TexelType::Unorm8    ? "8-bit"
+             : type == TexelType::Unorm16 ? "16-bit"
+             : type == TexelType::Half    ? "half"
+                                          : "float") +
+            " level 0, " + io::formatBytes(tex->bytes()));
+    }
+    for (const TextureUse& u : uses) {
+        const TextureImage& t = *assets.textures.at(u.src->key());
+        if (const uint32_t missing = u.channels & ~t.channelMask) {
+            throw io::InputError(
+                scene.sourceName, u.src->fieldPath,
+                u.src->file.string() + ": " + u.why + " reads channel" +
+                    (missing & (missing - 1) ? "s " : " ") + componentList(missing) +
+                    ", but the image has " + std::to_string(t.sourceChannels) +
+                    (t.sourceChannels == 1 ? " channel (grey: r, g, b)"
+                                           : " channels (" + componentList(t.channelMask) + ")"));
+        }
+    }
 }
 
 namespace sm = sg::mesh;
@@ -513,13 +555,22 @@ void applyWeights(MeshAsset& a, const std::vector<float>& w) {
 
 } // namespace
 
-SceneAssets loadAssets(const Scene& scene) {
+SceneAssets loadAssets(const Scene& scene, const AssetOptions& options) {
     static std::atomic<uint64_t> nextUid{1};
     SceneAssets assets;
     assets.uid = nextUid++;
+    assets.textureBudgetBytes =
+        options.textureBudgetBytes ? options.textureBudgetBytes : defaultTextureBudget();
     FileCache files;
     for (const auto& mi : scene.meshes) {
-        assets.meshes.push_back(loadMeshAsset(scene, mi, files));
+        try {
+            assets.meshes.push_back(loadMeshAsset(scene, mi, files));
+        } catch (const std::bad_alloc&) {
+            throw io::InputError(
+                scene.sourceName, mi.fieldPath,
+                "out of memory loading " +
+                    (mi.file.empty() ? std::string("the procedural mesh") : mi.file.string()));
+        }
         const auto& m = assets.meshes.back().mesh;
         assets.log.push_back("mesh " + (mi.name.empty() ? mi.fieldPath : mi.name) + ": " +
                              std::to_string(m.vertexCount()) + " vertices, " +
@@ -535,11 +586,12 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     // Textures of materials that some mesh uses and layers that are enabled.
     std::set<int> usedMaterials;
     for (const auto& mi : scene.meshes) usedMaterials.insert(mi.material);
-    std::vector<const TextureSource*> sources;
+    std::vector<TextureUse> textureUses;
     for (int mIdx : usedMaterials) {
         const Material& mat = scene.materials[size_t(mIdx)];
-        if (mat.baseColorMap) sources.push_back(&*mat.baseColorMap);
-        for (const Layer& L : mat.layers) collectTextures(L, sources);
+        if (mat.baseColorMap)
+            textureUses.push_back({&*mat.baseColorMap, kR | kG | kB, "the colour"});
+        for (const Layer& L : mat.layers) collectTextures(L, textureUses);
     }
     std::vector<const Layer*> features;
     for (int mIdx : usedMaterials)
@@ -592,15 +644,8 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
         assets.log.push_back("mesh " + scene.meshes[i].fieldPath +
                              ": rebuilt with vertex tangents for newly enabled layers");
     }
-    for (const TextureSource* src : sources) {
-        std::string key = src->key();
-        if (assets.textures.count(key)) continue;
-        assets.textures[key] = loadTexture(*src, scene.sourceName);
-        const auto& t = assets.textures[key];
-        assets.log.push_back("texture " + key + ": " + std::to_string(t->width()) + "x" +
-                             std::to_string(t->height()) + ", " + std::to_string(t->levels.size()) +
-                             " levels");
-    }
+    if (assets.textureBudgetBytes == 0) assets.textureBudgetBytes = defaultTextureBudget();
+    loadTextures(scene, assets, textureUses);
 }
 
 namespace {

@@ -154,11 +154,19 @@ struct GlRenderer::Impl {
         GLuint t = 0;
         glCreateTextures(GL_TEXTURE_2D, 1, &t);
         glTextureStorage2D(t, GLsizei(img->levels.size()), GL_RGBA32F, img->width(), img->height());
-        // The exact mip chain the CPU reference filters (no glGenerateMipmap).
+        // The exact mip chain the CPU reference filters (no glGenerateMipmap),
+        // expanded to RGBA float a band of rows at a time (at most 4 MiB).
+        std::vector<glm::vec4> band;
         for (size_t l = 0; l < img->levels.size(); ++l) {
             const auto& L = img->levels[l];
-            glTextureSubImage2D(t, GLint(l), 0, 0, L.width, L.height, GL_RGBA, GL_FLOAT,
-                                L.texels.data());
+            const int rows = std::clamp(
+                int((size_t(4) << 20) / (sizeof(glm::vec4) * size_t(L.width))), 1, L.height);
+            band.resize(size_t(rows) * size_t(L.width));
+            for (int y = 0; y < L.height; y += rows) {
+                const int n = std::min(rows, L.height - y);
+                L.expandRows(y, n, band.data());
+                glTextureSubImage2D(t, GLint(l), 0, y, L.width, n, GL_RGBA, GL_FLOAT, band.data());
+            }
         }
         glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, GL_LINEAR);

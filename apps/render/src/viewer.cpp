@@ -159,7 +159,9 @@ bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
 
 int runViewer(Scene scene, const ViewerOptions& opt) {
     Glfw glfw(opt.width, opt.height, opt.title);
-    SceneAssets assets = loadAssets(scene);
+    AssetOptions assetOptions;
+    assetOptions.textureBudgetBytes = opt.textureBudgetBytes;
+    SceneAssets assets = loadAssets(scene, assetOptions);
     GlRenderer renderer;
     ImGuiScope imgui(glfw.window);
 

@@ -10,6 +10,7 @@
 // under `xvfb-run -a -s "-screen 0 1280x1024x24"`.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -22,6 +23,7 @@ struct ViewerOptions {
     int maxFrames = 0;                // quit after this many frames (0: run until closed)
     std::filesystem::path screenshot; // PNG written from the last frame on exit (empty: none)
     std::string title = "surfgrad view";
+    uint64_t textureBudgetBytes = 0; // AssetOptions::textureBudgetBytes (0: the default)
 };
 
 // Runs the viewer until the window closes (or maxFrames). Returns the

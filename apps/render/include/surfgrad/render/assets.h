@@ -6,14 +6,17 @@
 // files it names are untrusted: a missing or malformed mesh, texture or
 // curve file, or a mesh that cannot give what the scene asks of it (a UV
 // set it lacks, tangents its values do not allow), throws
-// sg::io::InputError naming the scene file and field. SceneAssets::meshes
-// is aligned with Scene::meshes.
+// sg::io::InputError naming the scene file and field. Image files go
+// through the image header scan (surfgrad/image_header.h) and the texture
+// budget before anything is allocated (docs/scene.md, "Texture files").
+// SceneAssets::meshes is aligned with Scene::meshes.
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -49,6 +52,7 @@ uint32_t tangentBasisUvSets(const Material& material);
 
 struct SceneAssets {
     uint64_t uid = 0;              // unique per loadAssets() call (GPU caches key on it)
+    uint64_t textureBudgetBytes = 0; // what all textures may take (AssetOptions)
     uint64_t meshVersion = 0;      // bumped by applyFrame() when vertex data changed
     std::vector<MeshAsset> meshes; // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
@@ -57,17 +61,57 @@ struct SceneAssets {
     std::vector<std::string> log; // what was loaded/generated (for -v output and tests)
 };
 
-SceneAssets loadAssets(const Scene& scene);
+struct AssetOptions {
+    // Memory all of the scene's textures may take together (bytes): every
+    // texture's mip chain in its stored format (TextureImage::bytes()), plus
+    // the decoder's own buffers while a file is read. A texture that would
+    // exceed it is refused (sg::io::InputError) before anything is
+    // allocated. 0: defaultTextureBudget().
+    uint64_t textureBudgetBytes = 0;
+};
+// A quarter of physical memory, at most 8 GiB, and at most half of the
+// process's address-space or data-segment limit (setrlimit, `ulimit -v`).
+uint64_t defaultTextureBudget();
+
+SceneAssets loadAssets(const Scene& scene, const AssetOptions& options = {});
 // Loads the textures and feature maps of layers that are enabled now but
 // were not when the assets were loaded (the viewer's layer toggles), and
 // rebuilds a mesh whose newly enabled layers read a UV set it asks vertex
-// tangents for but does not have yet (its morph weights are kept).
+// tangents for but does not have yet (its morph weights are kept). The
+// texture budget is the one the assets were loaded with.
 void loadMissingAssets(const Scene& scene, SceneAssets& assets);
 // Applies the morph weights of time `seconds` to every animated mesh
 // (positions and normals; pixel frames need nothing else).
 void applyFrame(const Scene& scene, SceneAssets& assets, float seconds);
-// Loads or generates one texture (also used by tests).
+// Largest texture file accepted (pixels per side).
+inline constexpr int kMaxTextureSize = 16384;
+
+// What the layers read from one texture and what it may cost.
+struct TextureLoadOptions {
+    // RGBA components some layer reads (bit c: component c). A file's
+    // channels beyond the highest one read are not decoded. Components the
+    // file does not have are left to the caller (TextureImage::channelMask;
+    // loadAssets refuses a layer that reads one: a grey image has r, g and
+    // b, not a).
+    uint32_t channels = 0xFu;
+    uint64_t budgetBytes = 0; // the scene's texture budget (0: defaultTextureBudget())
+    uint64_t usedBytes = 0;   // taken by the scene's other textures
+    int otherTextures = 0;    // how many those are (messages)
+};
+
+// Loads or generates one texture. A file goes through the image header
+// scan (surfgrad/image_header.h), the size limit (kMaxTextureSize) and the
+// budget before it is decoded, scanline band by band, into level 0 in the
+// file's own precision (TexelType): 8/16-bit unorm, half, or float. Errors
+// name the scene file and the field: InputError(sceneName, src.fieldPath,
+// "<image>: <reason>").
 std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
-                                                const std::string& sceneName);
+                                                const std::string& sceneName,
+                                                const TextureLoadOptions& options = {});
+// The decoding of loadTexture for an image already in memory (fuzzing and
+// tests); `name` stands for the file in messages and gives TGA's extension.
+// Throws InputError(name, element, reason).
+TextureImage decodeTextureImage(std::string_view bytes, const std::string& name, bool srgb,
+                                Wrap wrap, const TextureLoadOptions& options = {});
 
 } // namespace sg::render
