@@ -144,7 +144,7 @@ public:
         src_.read(at, s.data(), n);
         return s;
     }
-    uint32_t u8(uint64_t at) const { return uint8_t(bytes(at, 1)[0]); }
+    uint32_t u8(uint64_t at) const { return int_(at, 1, false); }
     uint32_t le16(uint64_t at) const { return int_(at, 2, false); }
     uint32_t le32(uint64_t at) const { return int_(at, 4, false); }
     uint32_t be16(uint64_t at) const { return int_(at, 2, true); }
@@ -154,12 +154,11 @@ public:
 
 private:
     uint32_t int_(uint64_t at, size_t n, bool big) const {
-        std::string s = bytes(at, n);
+        need(at, n);
+        unsigned char b[4] = {0, 0, 0, 0};
+        src_.read(at, b, n);
         uint32_t v = 0;
-        for (size_t i = 0; i < n; ++i) {
-            uint32_t b = uint8_t(s[big ? i : n - 1 - i]);
-            v = v << 8 | b;
-        }
+        for (size_t i = 0; i < n; ++i) v = v << 8 | b[big ? i : n - 1 - i];
         return v;
     }
     const ByteSource& src_;
@@ -205,25 +204,37 @@ ImageHeader scanPng(Reader& r) {
     uint64_t at = 8, idat = 0;
     uint32_t w = 0, ht = 0, depth = 0, ct = 0, interlace = 0;
     bool trns = false, sawIdat = false;
+    // Element names are built only on failure (a file may hold millions
+    // of chunks).
+    r.element("PNG chunks");
     for (;;) {
-        r.element("PNG chunk at byte " + std::to_string(at));
         if (r.size() - at < 12) {
+            r.element("PNG chunk at byte " + std::to_string(at));
             r.fail(at == r.size() ? "the file ends without an IEND chunk"
                                   : "truncated chunk header (" + std::to_string(r.size() - at) +
                                         " bytes left)");
         }
         const uint32_t len = r.be32(at);
-        const std::string type = r.bytes(at + 4, 4);
+        char typeBytes[4];
+        for (int i = 0; i < 4; ++i) typeBytes[i] = char(r.u8(at + 4 + uint64_t(i)));
+        const std::string type(typeBytes, 4);
+        auto failChunk = [&](const std::string& reason) {
+            r.element("PNG " + type + " chunk at byte " + std::to_string(at));
+            r.fail(reason);
+        };
         for (char c : type) {
-            if (!std::isalpha(static_cast<unsigned char>(c))) r.fail("not a chunk type");
+            if (!std::isalpha(static_cast<unsigned char>(c))) {
+                r.element("PNG chunk at byte " + std::to_string(at));
+                r.fail("not a chunk type");
+            }
         }
-        r.element("PNG " + type + " chunk at byte " + std::to_string(at));
-        if (len > 0x7FFFFFFFu) r.fail("length " + std::to_string(len) + " over 2^31 - 1");
+        if (len > 0x7FFFFFFFu) failChunk("length " + std::to_string(len) + " over 2^31 - 1");
         if (uint64_t(len) + 12 > r.size() - at) {
-            r.fail("declares " + std::to_string(len) + " bytes of data; the file has " +
-                   std::to_string(r.size() - at - 12) + " after its header");
+            failChunk("declares " + std::to_string(len) + " bytes of data; the file has " +
+                      std::to_string(r.size() - at - 12) + " after its header");
         }
         if (at == 8) {
+            r.element("PNG IHDR chunk");
             if (type != "IHDR" || len != 13) r.fail("the first chunk must be a 13-byte IHDR");
             w = r.be32(at + 8);
             ht = r.be32(at + 12);
@@ -250,6 +261,7 @@ ImageHeader scanPng(Reader& r) {
         } else if (type == "IEND") {
             break;
         }
+        r.element("PNG chunks");
         at += 12 + uint64_t(len);
     }
     r.element("PNG IDAT");
@@ -281,22 +293,30 @@ ImageHeader scanJpeg(Reader& r) {
     uint32_t width = 0, height = 0, hMax = 1, vMax = 1;
     uint32_t hs[4] = {1, 1, 1, 1}, vs[4] = {1, 1, 1, 1};
     bool progressive = false, sawFrame = false;
+    r.element("JPEG markers");
     for (;;) {
-        r.element("JPEG marker at byte " + std::to_string(at));
-        if (r.u8(at) != 0xFF) r.fail("expected a marker (0xFF)");
+        if (r.u8(at) != 0xFF) {
+            r.element("JPEG marker at byte " + std::to_string(at));
+            r.fail("expected a marker (0xFF)");
+        }
         while (r.u8(at) == 0xFF) ++at; // fill bytes
         const uint32_t m = r.u8(at);
         ++at;
         if (m == 0xD8 || m == 0x01 || (m >= 0xD0 && m <= 0xD7)) continue; // no length
-        char name[8];
-        std::snprintf(name, sizeof name, "0xFF%02X", m);
-        r.element(std::string("JPEG marker ") + name + " at byte " + std::to_string(at - 2));
+        const bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
+        // Segments are named only when checked or failing (a file may
+        // hold millions of others).
+        if (sof || m == 0xDA || m == 0xD9 || m == 0x00 || r.size() - at < 2 || r.be16(at) < 2 ||
+            r.be16(at) > r.size() - at) {
+            char name[8];
+            std::snprintf(name, sizeof name, "0xFF%02X", m);
+            r.element(std::string("JPEG marker ") + name + " at byte " + std::to_string(at - 2));
+        }
         if (m == 0xD9) r.fail("end of image before any scan");
         if (m == 0x00) r.fail("not a marker");
         const uint32_t len = r.be16(at);
         if (len < 2) r.fail("segment length " + std::to_string(len));
         r.need(at, len);
-        const bool sof = m >= 0xC0 && m <= 0xCF && m != 0xC4 && m != 0xC8 && m != 0xCC;
         if (sof) {
             if (sawFrame) r.fail("a second frame header");
             if (m != 0xC0 && m != 0xC1 && m != 0xC2) {
@@ -585,7 +605,8 @@ ImageHeader scanExr(Reader& r) {
     h.minFileBytes = addSat(addSat(headerEnd, mulSat(chunks, 8 + chunkHeader)), data);
     r.element("EXR pixel data");
     if (h.minFileBytes > r.size()) {
-        r.fail(describe(h) + " in " + std::to_string(chunks) + " " + codec.name + " " +
+        r.fail(describe(h) + " in " + std::to_string(chunks) + " " +
+               (L.compression == 0 ? "uncompressed" : codec.name) + " " +
                (tiled ? "tiles" : "chunks") + " need at least " + formatBytes(h.minFileBytes) +
                " (offset table, chunk headers" +
                (codec.ratio ? std::string(", pixels at ") + std::to_string(codec.ratio) + ":1"
@@ -636,10 +657,11 @@ TiffIfd readTiffIfd(Reader& r) {
         const uint64_t bytes = mulSat(entry.count, type < 14 ? kTypeBytes[type] : 0);
         if (bytes > 4) {
             entry.at = r.u32(e + 8, ifd.big);
-            r.element("TIFF tag " + std::to_string(tag));
-            if (entry.at > r.size() || bytes > r.size() - entry.at)
+            if (entry.at > r.size() || bytes > r.size() - entry.at) {
+                r.element("TIFF tag " + std::to_string(tag));
                 r.fail("declares " + std::to_string(bytes) + " bytes at byte " +
                        std::to_string(entry.at) + ", the file has " + std::to_string(r.size()));
+            }
         }
         ifd.entries.emplace_back(tag, entry);
     }
@@ -650,17 +672,20 @@ ImageHeader scanTiff(Reader& r) {
     ImageHeader h;
     h.format = ImageFormat::Tiff;
     const TiffIfd ifd = readTiffIfd(r);
-    // Value `i` of a SHORT/LONG/BYTE tag (def when the tag is absent).
-    auto value = [&](uint32_t tag, uint32_t i, uint64_t def) -> uint64_t {
-        const TiffIfd::Entry* e = ifd.find(tag);
+    // Value `i` of a SHORT/LONG/BYTE entry (def when the tag is absent).
+    auto entryValue = [&](uint32_t tag, const TiffIfd::Entry* e, uint32_t i,
+                          uint64_t def) -> uint64_t {
         if (!e) return def;
+        if (e->type == 3 && i < e->count) return r.u16(e->at + 2ull * i, ifd.big);
+        if (e->type == 4 && i < e->count) return r.u32(e->at + 4ull * i, ifd.big);
+        if (e->type == 1 && i < e->count) return r.u8(e->at + i);
         r.element("TIFF tag " + std::to_string(tag));
         if (i >= e->count)
             r.fail("has " + std::to_string(e->count) + " values, needs " + std::to_string(i + 1));
-        if (e->type == 3) return r.u16(e->at + 2ull * i, ifd.big);
-        if (e->type == 4) return r.u32(e->at + 4ull * i, ifd.big);
-        if (e->type == 1) return r.u8(e->at + i);
         r.fail("type " + std::to_string(e->type) + " (BYTE, SHORT or LONG expected)");
+    };
+    auto value = [&](uint32_t tag, uint32_t i, uint64_t def) {
+        return entryValue(tag, ifd.find(tag), i, def);
     };
     const uint64_t w = value(256, 0, 0), ht = value(257, 0, 0), spp = value(277, 0, 1);
     const uint64_t bps = value(258, 0, 1), compression = value(259, 0, 1);
@@ -669,8 +694,14 @@ ImageHeader scanTiff(Reader& r) {
     r.element("TIFF IFD");
     if (w < 1 || ht < 1) r.fail("size " + std::to_string(w) + "x" + std::to_string(ht));
     if (spp < 1) r.fail("no samples per pixel");
-    for (uint32_t i = 1; ifd.find(258) && i < std::min<uint64_t>(spp, ifd.find(258)->count); ++i)
-        if (value(258, i, bps) != bps) r.fail("channels of different bit depths");
+    if (const TiffIfd::Entry* bits = ifd.find(258)) {
+        for (uint32_t i = 1; i < std::min<uint64_t>(spp, bits->count); ++i) {
+            if (entryValue(258, bits, i, bps) != bps) {
+                r.element("TIFF IFD");
+                r.fail("channels of different bit depths");
+            }
+        }
+    }
     r.element("TIFF IFD");
     const bool isFloat = format == 3;
     if ((bps != 1 && bps != 2 && bps != 4 && bps != 8 && bps != 16 && bps != 32 && bps != 64) ||
@@ -730,14 +761,15 @@ ImageHeader scanTiff(Reader& r) {
         h.decoderBytes = addSat(h.decoderBytes, mulSat(mulSat(w, ht), 4));
     }
     const uint32_t offTag = tiled ? 324 : 273, countTag = tiled ? 325 : 279;
+    const TiffIfd::Entry *offs = ifd.find(offTag), *counts = ifd.find(countTag);
     r.element(std::string("TIFF ") + (tiled ? "tiles" : "strips"));
-    if (!ifd.find(offTag) || !ifd.find(countTag) || ifd.find(offTag)->count < chunks ||
-        ifd.find(countTag)->count < chunks)
+    if (!offs || !counts || offs->count < chunks || counts->count < chunks)
         r.fail("expected " + std::to_string(chunks) + " offsets and byte counts");
     // What the byte counts promise first (the clearer message), then that
     // every strip or tile lies inside the file.
     uint64_t have = 0;
-    for (uint64_t i = 0; i < chunks; ++i) have = addSat(have, value(countTag, uint32_t(i), 0));
+    for (uint64_t i = 0; i < chunks; ++i)
+        have = addSat(have, entryValue(countTag, counts, uint32_t(i), 0));
     r.element(std::string("TIFF ") + (tiled ? "tiles" : "strips"));
     const uint64_t raw =
         tiled ? mulSat(chunks, chunkRaw)
@@ -748,7 +780,8 @@ ImageHeader scanTiff(Reader& r) {
                    std::string("its ") + std::to_string(chunks) + (tiled ? " tile" : " strip") +
                        (chunks == 1 ? " holds" : "s hold"));
     for (uint64_t i = 0; i < chunks; ++i) {
-        const uint64_t off = value(offTag, uint32_t(i), 0), n = value(countTag, uint32_t(i), 0);
+        const uint64_t off = entryValue(offTag, offs, uint32_t(i), 0),
+                       n = entryValue(countTag, counts, uint32_t(i), 0);
         if (off > r.size() || n > r.size() - off) {
             r.element(std::string("TIFF ") + (tiled ? "tile " : "strip ") + std::to_string(i));
             r.fail("declares " + std::to_string(n) + " bytes at byte " + std::to_string(off) +

@@ -22,7 +22,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
 #include <functional>
+#include <limits>
 #include <new>
 
 #include "render_internal.h"
@@ -140,13 +142,16 @@ void checkBudget(const std::string& name, const TextureLoadOptions& opt, const s
 void finishBand(uint8_t* band, int rows, int w, int k, TexelType type, bool srgb, int y0,
                 const std::string& name) {
     const size_t n = size_t(rows) * size_t(w) * size_t(k);
-    auto bad = [&](size_t i) {
+    auto bad = [&](size_t i, const std::string& reason = "non-finite texel value") {
         const size_t px = i / size_t(k);
         throw InputError(name,
                          "pixel (" + std::to_string(px % size_t(w)) + ", " +
                              std::to_string(size_t(y0) + px / size_t(w)) + ")",
-                         "non-finite texel value");
+                         reason);
     };
+    // Mip levels sum up to four texels in float: larger magnitudes would
+    // overflow to infinity there.
+    constexpr float kMaxTexel = std::numeric_limits<float>::max() / 4.0f;
     if (type == TexelType::Half) {
         for (size_t i = 0; i < n; ++i) {
             uint16_t v;
@@ -157,6 +162,12 @@ void finishBand(uint8_t* band, int rows, int w, int k, TexelType type, bool srgb
         float* f = reinterpret_cast<float*>(band);
         for (size_t i = 0; i < n; ++i) {
             if (!std::isfinite(f[i])) bad(i);
+            if (std::fabs(f[i]) > kMaxTexel) {
+                char v[64];
+                std::snprintf(v, sizeof v, "texel value %g is out of range (|v| <= %g)",
+                              double(f[i]), double(kMaxTexel));
+                bad(i, v);
+            }
             // Colour maps are sRGB-encoded; filtering happens on linear values.
             if (srgb && int(i % size_t(k)) < 3) f[i] = srgbToLinear(f[i]);
         }
@@ -212,8 +223,16 @@ TextureImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr, cons
         std::vector<uint8_t> band(size_t(bandRows) * rowBytes);
         for (int y0 = 0; y0 < h; y0 += bandRows) {
             const int rows = std::min(bandRows, h - y0);
-            if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y0 + rows, 0, 0, k, oiioType(type),
-                                   band.data())) {
+            // Tiled files a row of tiles at a time through read_tiles, as
+            // read_image does (OpenImageIO 2.4's read_scanlines divides by
+            // a zero rows-per-strip on tiled files when it converts).
+            const bool ok =
+                spec.tile_width > 0
+                    ? in.read_tiles(0, 0, spec.x, spec.x + w, spec.y + y0, spec.y + y0 + rows,
+                                    spec.z, spec.z + 1, 0, k, oiioType(type), band.data())
+                    : in.read_scanlines(0, 0, spec.y + y0, spec.y + y0 + rows, 0, 0, k,
+                                        oiioType(type), band.data());
+            if (!ok) {
                 throw InputError(name, "row " + std::to_string(y0),
                                  "cannot decode: " + oneLine(in.geterror()));
             }
