@@ -1,9 +1,10 @@
 // Texture files (apps/render/src/texture_file.cpp, surfgrad/image_header.h):
 // every format a scene accepts decodes to exactly the values OpenImageIO
-// gives as float, in the file's own precision; the mip chain equals the
-// all-float chain bit for bit; layers decode only the channels they read
-// and refuse ones the file lacks; non-finite texels are refused; the
-// texture budget covers all of a scene's textures.
+// gives as float (colour not premultiplied by alpha), in the file's own
+// precision; the mip chain equals the all-float chain bit for bit; layers
+// decode only the channels they read and refuse ones the file lacks;
+// non-finite texels are refused; the texture budget covers all of a
+// scene's textures.
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
@@ -55,7 +56,9 @@ struct FloatImage {
 
 FloatImage readFloat(const fs::path& p) {
     FloatImage im;
-    auto in = OIIO::ImageInput::open(p.string());
+    OIIO::ImageSpec config; // raw values, as textures read them
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto in = OIIO::ImageInput::open(p.string(), &config);
     if (!in) {
         ADD_FAILURE() << p << ": " << OIIO::geterror();
         return im;
@@ -148,6 +151,22 @@ TEST(TextureFiles, EveryFormatDecodesToOpenImageIOsFloatValuesAndTheSameMipChain
             expectSameChain(img, floatReference(ref, srgb), srgb ? "sRGB" : "raw");
         }
     }
+}
+
+// Colour channels come as stored, not multiplied by alpha (a normal map
+// may carry a height in alpha): rgba8.png has alpha from 0 to 1.
+TEST(TextureFiles, ColourChannelsAreNotPremultipliedByAlpha) {
+    const FloatImage raw = readFloat(corpus("rgba8.png"));
+    auto premultiplied = OIIO::ImageInput::open(corpus("rgba8.png").string());
+    ASSERT_TRUE(premultiplied);
+    std::vector<float> pre(raw.px.size());
+    ASSERT_TRUE(premultiplied->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, pre.data()));
+    ASSERT_NE(pre, raw.px) << "the file should have partial alpha";
+    const TextureImage img =
+        decodeTextureImage(readBytes(corpus("rgba8.png")), "rgba8.png", false, Wrap::Repeat);
+    for (int y = 0; y < raw.height; ++y)
+        for (int x = 0; x < raw.width; ++x)
+            EXPECT_TRUE(sameBits(img.levels[0].texel(x, raw.height - 1 - y), raw.rgba(x, y)));
 }
 
 TEST(TextureFiles, LevelZeroKeepsTheFilesPrecision) {

@@ -11,9 +11,10 @@
 //  4. rows are decoded a band at a time into level 0, so a truncated file
 //     fails having touched only the rows it held; channels past the
 //     highest one the layers read are not decoded.
-// Values are OpenImageIO's: raw channel values (bump maps are data), an
-// n-bit unorm sample stored as is and read as float(s) * (1 / (2^n - 1)),
-// exactly what OpenImageIO's conversion to float gives.
+// Values are OpenImageIO's: raw channel values (bump maps are data: colour
+// channels are not premultiplied by alpha), an n-bit unorm sample stored
+// as is and read as float(s) * (1 / (2^n - 1)), exactly what OpenImageIO's
+// conversion to float gives.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
@@ -182,6 +183,16 @@ std::string oneLine(std::string msg) {
     return msg.size() > 300 ? msg.substr(0, 300) + "..." : msg;
 }
 
+// Decoder settings: channel values as stored. OpenImageIO multiplies the
+// colour channels of PNG, TGA and TIFF files with unassociated alpha by
+// alpha unless told not to, which would scale a normal map carrying a
+// height in alpha (bump maps are data).
+OIIO::ImageSpec rawValues() {
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    return config;
+}
+
 using OpenFn = std::function<std::unique_ptr<OIIO::ImageInput>(const char* plugin)>;
 
 // Steps 3 and 4 (the header is already checked).
@@ -314,8 +325,10 @@ TextureImage decodeTextureImage(std::string_view bytes, const std::string& name,
     OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
     auto open = [&](const char* plugin) -> std::unique_ptr<OIIO::ImageInput> {
         auto in = OIIO::ImageInput::create(plugin, false, nullptr, &reader);
-        OIIO::ImageSpec spec;
-        if (!in || !in->set_ioproxy(&reader) || !in->open(name, spec)) return nullptr;
+        OIIO::ImageSpec config = rawValues(), spec;
+        OIIO::Filesystem::IOProxy* proxy = &reader;
+        config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+        if (!in || !in->set_ioproxy(&reader) || !in->open(name, spec, config)) return nullptr;
         return in;
     };
     return decodeGuarded(source, name, srgb, wrap, options, open);
@@ -345,7 +358,7 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
         auto open = [&](const char* plugin) -> std::unique_ptr<OIIO::ImageInput> {
             auto in = OIIO::ImageInput::create(plugin);
             OIIO::ImageSpec spec;
-            if (!in || !in->open(name, spec)) return nullptr;
+            if (!in || !in->open(name, spec, rawValues())) return nullptr;
             return in;
         };
         return std::make_shared<TextureImage>(
