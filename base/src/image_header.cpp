@@ -558,6 +558,30 @@ uint64_t exrTileCount(const ExrLayout& L, uint64_t w, uint64_t ht) {
     return mulSat(nx, ny);
 }
 
+// The offset table after the header: every chunk starts after the table,
+// and its header and its declared data lie inside the file. OpenEXR seeks
+// to whatever the table says (a fuzzed table made OpenImageIO's in-memory
+// reader copy from before its buffer).
+void checkExrChunks(Reader& r, uint64_t headerEnd, uint64_t chunks, uint64_t chunkHeader) {
+    const uint64_t tableEnd = headerEnd + 8 * chunks; // inside the file: minFileBytes
+    for (uint64_t i = 0; i < chunks; ++i) {
+        const uint64_t at = headerEnd + 8 * i;
+        const uint64_t off = uint64_t(r.le32(at)) | uint64_t(r.le32(at + 4)) << 32;
+        if (off < tableEnd || off > r.size() || chunkHeader > r.size() - off) {
+            r.element("EXR chunk " + std::to_string(i));
+            r.fail("offset " + std::to_string(off) + " is outside the pixel data (bytes " +
+                   std::to_string(tableEnd) + ".." + std::to_string(r.size()) + ")");
+        }
+        const uint32_t size = r.le32(off + chunkHeader - 4);
+        if (size > r.size() - off - chunkHeader) {
+            r.element("EXR chunk " + std::to_string(i));
+            r.fail("declares " + std::to_string(int32_t(size)) + " bytes at byte " +
+                   std::to_string(off + chunkHeader) + ", the file has " +
+                   std::to_string(r.size()));
+        }
+    }
+}
+
 ImageHeader scanExr(Reader& r) {
     ImageHeader h;
     h.format = ImageFormat::OpenExr;
@@ -613,6 +637,7 @@ ImageHeader scanExr(Reader& r) {
                             : std::string(", 88-byte DWA headers")) +
                "), but the file has " + formatBytes(r.size()));
     }
+    checkExrChunks(r, headerEnd, chunks, chunkHeader);
     return h;
 }
 

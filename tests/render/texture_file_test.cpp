@@ -406,6 +406,10 @@ TEST(ImageHeader, RefusesWhatTheFileCannotHold) {
         {"giga_rgba.tga", "TGA pixel data",
          "65535x65535 pixels, 4 channels of 8 bits (16.0 GiB): uncompressed pixels need at least "
          "16.0 GiB"},
+        // Found by fuzz_texture: an offset table entry of 2^64 - 1 made
+        // OpenImageIO's in-memory reader copy from before its buffer.
+        {"oob_exr_offset_table.exr", "EXR chunk 0",
+         "offset 18446744073709551615 is outside the pixel data (bytes 193..288)"},
         {"giga_deflate.tif", "TIFF strips",
          "768.0 MiB of deflate data to decode, but its 1 strip holds 64 bytes, which expand to "
          "at most 64.5 KiB (1032:1)"},
