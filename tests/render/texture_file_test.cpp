@@ -353,6 +353,22 @@ TEST(TextureFiles, TheBudgetCoversAllTexturesOfAScene) {
     EXPECT_NO_THROW(loadAssets(p, small));
 }
 
+// Feature-map EXR files go through the same header scan; the refusal
+// names the scene and the field.
+TEST(TextureFiles, FeatureMapFilesAreScannedToo) {
+    Scene s = sceneFromJson(oneMaterialScene(
+        R"({"type": "feature", "maps": ")" + corpus("giga_none.exr").string() + R"("})", kSphere));
+    try {
+        loadAssets(s);
+        ADD_FAILURE() << "accepted";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.file(), "test.json");
+        EXPECT_EQ(e.element(), "materials[0].layers[0].maps");
+        EXPECT_NE(e.reason().find("EXR pixel data: 16384x16384 pixels"), std::string::npos)
+            << e.what();
+    }
+}
+
 TEST(TextureFiles, DefaultBudgetFollowsTheMachine) {
     const uint64_t b = defaultTextureBudget();
     EXPECT_GT(b, 0u);

@@ -193,7 +193,11 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
             throw io::InputError(sceneName, f.fieldPath,
                                  "feature maps file " + f.mapsFile.string() + " does not exist");
         }
-        maps = sf::load(f.mapsFile);
+        try {
+            maps = sf::load(f.mapsFile); // EXR: the image header scan first
+        } catch (const io::InputError& e) {
+            throw io::InputError(sceneName, f.fieldPath, e.what());
+        }
     } else {
         sf::CurveNetwork net = f.curvesKind == "svg"    ? sf::loadSvg(f.curvesFile)
                                : f.curvesKind == "json" ? sf::loadCurvesJson(f.curvesFile)
