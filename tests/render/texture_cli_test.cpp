@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "cli.h"
 #include "render_test_util.h"
 
 #ifdef __has_feature
@@ -28,13 +29,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CmdResult {
-    int status = -1;
-    std::string output; // stdout + stderr
-};
+using sg::test::CommandResult;
 
 // Runs `surfgrad ARGS` in `cwd` with at most 1.5 GB of memory.
-CmdResult runLimited(const std::string& args, const fs::path& cwd) {
+CommandResult runLimited(const std::string& args, const fs::path& cwd) {
 #ifdef SG_TEST_ASAN
     // Appended to the run's own options (scripts/test-sanitize sets some).
     const std::string limit = "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}"
@@ -42,18 +40,10 @@ CmdResult runLimited(const std::string& args, const fs::path& cwd) {
 #else
     const std::string limit = "ulimit -v 1500000 && exec ";
 #endif
-    const fs::path log = cwd / "cmd.log";
-    const std::string cmd = "cd '" + cwd.string() + "' && sh -c '" + limit +
-                            std::string(SURFGRAD_BINARY_DIR) + "/bin/surfgrad " + args + "' > '" +
-                            log.string() + "' 2>&1";
-    const int rc = std::system(cmd.c_str());
-    CmdResult r;
-    r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.output = ss.str();
-    return r;
+    sg::test::CommandOptions options;
+    options.cwd = cwd;
+    return sg::test::runCommand(
+        limit + sg::test::shellQuote(sg::test::surfgradBinary()) + " " + args, options);
 }
 
 fs::path scratch(const std::string& name) {
@@ -97,13 +87,13 @@ TEST(TextureLimits, HeadersPromisingGigabytesAreRefusedUnderAMemoryLimit) {
         SCOPED_TRACE(c.file);
         const std::string map = (corpus / c.file).string();
         writeScene(dir / "scene.json", map);
-        const CmdResult r = runLimited("render scene.json -o out.png", dir);
-        EXPECT_EQ(r.status, 1) << r.output;
-        EXPECT_NE(r.output.find("surfgrad: error: scene.json: materials[0].layers[0].map: " + map +
-                                ": " + c.reason),
+        const CommandResult r = runLimited("render scene.json -o out.png", dir);
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.output().find("surfgrad: error: scene.json: materials[0].layers[0].map: " +
+                                  map + ": " + c.reason),
                   std::string::npos)
-            << r.output;
-        EXPECT_EQ(r.output.find("bad_alloc"), std::string::npos) << r.output;
+            << r.output();
+        EXPECT_EQ(r.output().find("bad_alloc"), std::string::npos) << r.output();
         EXPECT_FALSE(fs::exists(dir / "out.png"));
     }
 }
@@ -117,14 +107,15 @@ TEST(TextureLimits, GltfMaterialImagesAreCheckedToo) {
     fs::copy_file(box / "BoxTextured0.bin", dir / "BoxTextured0.bin");
     fs::copy_file(fs::path(SURFGRAD_SOURCE_DIR) / "tests/fuzz/corpus/texture/issue16_huge_dims.png",
                   dir / "CesiumLogoFlat.png");
-    const CmdResult r = runLimited("render BoxTextured.gltf -o out.png", dir);
-    EXPECT_EQ(r.status, 1) << r.output;
-    EXPECT_NE(r.output.find("surfgrad: error: BoxTextured.gltf: BoxTextured.gltf "
-                            "materials[0].baseColorTexture: "),
+    const CommandResult r = runLimited("render BoxTextured.gltf -o out.png", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.output();
+    EXPECT_NE(r.output().find("surfgrad: error: BoxTextured.gltf: BoxTextured.gltf "
+                              "materials[0].baseColorTexture: "),
               std::string::npos)
-        << r.output;
-    EXPECT_NE(r.output.find("CesiumLogoFlat.png: PNG IDAT: 16384x16384 pixels"), std::string::npos)
-        << r.output;
+        << r.output();
+    EXPECT_NE(r.output().find("CesiumLogoFlat.png: PNG IDAT: 16384x16384 pixels"),
+              std::string::npos)
+        << r.output();
 }
 
 // CRC-32 of PNG chunks (ISO 15948 annex D).
@@ -165,19 +156,20 @@ TEST(TextureLimits, RunningOutOfMemoryNamesTheImageAndItsSize) {
     // ASan aborts on a failed operator new instead of throwing
     // std::bad_alloc, so a sanitizer build checks the budget's refusal of
     // the same file instead of the out-of-memory path.
-    const CmdResult r = runLimited("render scene.json -o out.png --texture-budget 1G", dir);
+    const CommandResult r = runLimited("render scene.json -o out.png --texture-budget 1G", dir);
     const std::string expected = map + ": 16384x16384 pixels, 4 channels as 16-bit unorm: needs "
                                        "3.33 GiB with its mip chain";
 #else
-    const CmdResult r = runLimited("render scene.json -o out.png --texture-budget 64G", dir);
+    const CommandResult r = runLimited("render scene.json -o out.png --texture-budget 64G", dir);
     const std::string expected = map + ": out of memory decoding 16384x16384 pixels, 4 channels "
                                        "as 16-bit unorm (3.33 GiB with its mip chain)";
 #endif
-    EXPECT_EQ(r.status, 1) << r.output;
-    EXPECT_NE(r.output.find("surfgrad: error: scene.json: materials[0].layers[0].map: " + expected),
-              std::string::npos)
-        << r.output;
-    EXPECT_EQ(r.output.find("std::bad_alloc"), std::string::npos) << r.output;
+    EXPECT_EQ(r.exitCode, 1) << r.output();
+    EXPECT_NE(
+        r.output().find("surfgrad: error: scene.json: materials[0].layers[0].map: " + expected),
+        std::string::npos)
+        << r.output();
+    EXPECT_EQ(r.output().find("std::bad_alloc"), std::string::npos) << r.output();
 }
 
 TEST(TextureLimits, TheBudgetOptionIsParsedAndNamedInMessages) {
@@ -186,20 +178,21 @@ TEST(TextureLimits, TheBudgetOptionIsParsedAndNamedInMessages) {
         (fs::path(SURFGRAD_SOURCE_DIR) / "tests/fuzz/corpus/texture/rgb8.png").string();
     writeScene(dir / "scene.json", map);
     // 16x16 RGB 8-bit, 2 channels read: 512 bytes + the float mip chain.
-    const CmdResult tiny = runLimited("render scene.json -o out.png --texture-budget 1K", dir);
-    EXPECT_EQ(tiny.status, 1) << tiny.output;
-    EXPECT_NE(tiny.output.find(map + ": 16x16 pixels, 2 of 3 channels as 8-bit unorm: needs "),
+    const CommandResult tiny = runLimited("render scene.json -o out.png --texture-budget 1K", dir);
+    EXPECT_EQ(tiny.exitCode, 1) << tiny.output();
+    EXPECT_NE(tiny.output().find(map + ": 16x16 pixels, 2 of 3 channels as 8-bit unorm: needs "),
               std::string::npos)
-        << tiny.output;
-    EXPECT_NE(tiny.output.find("the texture budget is 1.00 KiB (--texture-budget)"),
+        << tiny.output();
+    EXPECT_NE(tiny.output().find("the texture budget is 1.00 KiB (--texture-budget)"),
               std::string::npos)
-        << tiny.output;
-    EXPECT_EQ(runLimited("shader scene.json --texture-budget 2MiB", dir).status, 0);
-    const CmdResult bad = runLimited("render scene.json -o out.png --texture-budget 1X", dir);
-    EXPECT_EQ(bad.status, 1);
-    EXPECT_NE(bad.output.find("--texture-budget: expected a size such as 512M"), std::string::npos)
-        << bad.output;
-    EXPECT_EQ(runLimited("shader scene.json --texture-budget 1K", dir).status, 1);
+        << tiny.output();
+    EXPECT_EQ(runLimited("shader scene.json --texture-budget 2MiB", dir).exitCode, 0);
+    const CommandResult bad = runLimited("render scene.json -o out.png --texture-budget 1X", dir);
+    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_NE(bad.output().find("--texture-budget: expected a size such as 512M"),
+              std::string::npos)
+        << bad.output();
+    EXPECT_EQ(runLimited("shader scene.json --texture-budget 1K", dir).exitCode, 1);
 }
 
 } // namespace

@@ -51,10 +51,10 @@ struct MeshAsset {
 uint32_t tangentBasisUvSets(const Material& material);
 
 struct SceneAssets {
-    uint64_t uid = 0;              // unique per loadAssets() call (GPU caches key on it)
+    uint64_t uid = 0;                // unique per loadAssets() call (GPU caches key on it)
     uint64_t textureBudgetBytes = 0; // what all textures may take (AssetOptions)
-    uint64_t meshVersion = 0;      // bumped by applyFrame() when vertex data changed
-    std::vector<MeshAsset> meshes; // one per Scene::meshes entry
+    uint64_t meshVersion = 0;        // bumped by applyFrame() when vertex data changed
+    std::vector<MeshAsset> meshes;   // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
     // Feature maps in their GPU layout, by FeatureSource::key().
     std::map<std::string, std::shared_ptr<const FeatureMapsAsset>> featureMaps;
