@@ -13,26 +13,30 @@ cmake_minimum_required(VERSION 3.20) # IN_LIST, list(POP_FRONT)
 
 # Module -> the first-party targets it may reach by linking.
 set(_modules surfgrad_shaders surfgrad_base surfgrad_bump surfgrad_features surfgrad_mesh
-             surfgrad_gl surfgrad_parity surfgrad_render surfgrad_viewer surfgrad_normalmap)
+             surfgrad_gl surfgrad_parity surfgrad_render surfgrad_viewer surfgrad_normalmap
+             surfgrad_image)
 set(_may_surfgrad_shaders "")
 set(_may_surfgrad_base "")
 set(_may_surfgrad_bump surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_features surfgrad_bump surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_mesh surfgrad_base)
+# The image decoder: the header scan of base and OpenImageIO, nothing else.
+set(_may_surfgrad_image surfgrad_base)
 set(_may_surfgrad_gl surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_parity surfgrad_bump surfgrad_gl surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_render surfgrad_bump surfgrad_features surfgrad_mesh surfgrad_gl
-                         surfgrad_shaders surfgrad_base)
+                         surfgrad_image surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_viewer surfgrad_render ${_may_surfgrad_render})
 # Image operations: the shared math (bump) and the mesh's tangent frames; no
 # GL, no renderer, no feature curves.
-set(_may_surfgrad_normalmap surfgrad_bump surfgrad_mesh surfgrad_shaders surfgrad_base)
+set(_may_surfgrad_normalmap surfgrad_bump surfgrad_mesh surfgrad_image surfgrad_shaders
+                            surfgrad_base)
 # Executables that exercise one module: what they must not reach.
 set(_mesh_only_regex "^(fuzz_mesh_|fuzz_mikktspace|mesh_tests|mesh_tangents_tests|mesh_bench$|tangents_bench$)")
-set(_mesh_only_forbidden surfgrad_features surfgrad_bump surfgrad_gl surfgrad_parity
+set(_mesh_only_forbidden surfgrad_features surfgrad_bump surfgrad_gl surfgrad_parity surfgrad_image
                          surfgrad_render surfgrad_viewer)
 set(_base_regex "^base_")
-set(_base_forbidden surfgrad_shaders surfgrad_bump surfgrad_features surfgrad_mesh surfgrad_gl
+set(_base_forbidden surfgrad_shaders surfgrad_bump surfgrad_features surfgrad_mesh surfgrad_gl surfgrad_image
                     surfgrad_parity surfgrad_render surfgrad_viewer)
 
 if(NOT EXISTS "${LINKS}")

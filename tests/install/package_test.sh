@@ -102,7 +102,7 @@ for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake 
          surfgradDependencies.cmake FindOpenSubdiv.cmake; do
     has dev "$cfgdir$f"
 done
-for m in base shaders bump features mesh gl parity render normalmap; do
+for m in base shaders bump features mesh image gl parity render normalmap; do
     has dev "$(dirname "$(dirname "$cfgdir")")/libsurfgrad_$m.a"
 done
 # Data: every file of data/ is in the package.

@@ -2,7 +2,9 @@
 // (and its --naive variant) runs and writes a readable image of the right
 // size; round trips through files hold; bad input (too few channels, NaN,
 // unreadable, mismatched sizes, bad option values, output over an input)
-// ends with `surfgrad: error: ...`, exit status 1 and no output file.
+// ends with `surfgrad: error: ...`, exit status 1 and no output file;
+// image headers promising gigabytes (issue 16) are refused under a 1.5 GB
+// memory limit by the same guarded decoder as the renderer's textures.
 #include <gtest/gtest.h>
 #include <OpenImageIO/imageio.h>
 
@@ -13,6 +15,15 @@
 
 #include "cli.h"
 #include "surfgrad/normalmap.h"
+
+#ifdef __has_feature
+#if __has_feature(address_sanitizer)
+#define SG_TEST_ASAN 1
+#endif
+#endif
+#if defined(__SANITIZE_ADDRESS__)
+#define SG_TEST_ASAN 1
+#endif
 
 namespace {
 
@@ -174,6 +185,51 @@ TEST(NormalmapCli, BadInputIsAnErrorWithoutOutput) {
         EXPECT_EQ(r.output.rfind("surfgrad: error: ", 0), 0u) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find(c.needle), std::string::npos) << c.args << "\n" << r.output;
         EXPECT_EQ(fileCount(dir), before) << c.args;
+    }
+}
+
+// The files of issue 16 and headers of other formats declaring gigabytes
+// (tests/fuzz/corpus/texture), as `surfgrad normalmap` inputs with at most
+// 1.5 GB of memory: refused by the header scan with the file and the
+// reason, exit 1, no output, no std::bad_alloc. The limit proves nothing
+// large is allocated (`ulimit -v`; in a sanitizer build, which reserves
+// terabytes of address space, ASan's own allocation limit).
+TEST(NormalmapCli, HeadersPromisingGigabytesAreRefusedUnderAMemoryLimit) {
+#ifdef SG_TEST_ASAN
+    const std::string limit = "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}"
+                              "max_allocation_size_mb=1500:allocator_may_return_null=1 exec ";
+#else
+    const std::string limit = "ulimit -v 1500000 && exec ";
+#endif
+    const fs::path corpus = fs::path(kSrc) / "tests/fuzz/corpus/texture";
+    struct Case {
+        const char* file;
+        const char* reason;
+    };
+    const Case cases[] = {
+        {"issue16_huge_dims.png", "PNG IDAT: 16384x16384 pixels, 4 channels of 8 bits (1.00 GiB)"},
+        {"issue16_huge_64ch.tif",
+         "TIFF strips: 16384x16384 pixels, 64 channels of 8 bits (16.0 GiB)"},
+        {"giga_progressive.jpg", "JPEG scan data: 16384x16384 pixels, 3 channels of 8 bits"},
+        {"giga_none.exr", "EXR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
+        {"giga.hdr", "HDR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
+    };
+    const fs::path dir = scratch("giga");
+    const size_t before = fileCount(dir);
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.file);
+        const std::string file = (corpus / c.file).string();
+        sg::test::CommandOptions options;
+        options.cwd = dir;
+        const sg::test::CommandResult r = sg::test::runCommand(
+            limit + sg::test::shellQuote(sg::test::surfgradBinary()) + " normalmap scale " +
+                sg::test::shellQuote(file) + " -o out.png --alpha 2",
+            options);
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_EQ(r.output().rfind("surfgrad: error: " + file + ": " + c.reason, 0), 0u)
+            << r.output();
+        EXPECT_EQ(r.output().find("bad_alloc"), std::string::npos) << r.output();
+        EXPECT_EQ(fileCount(dir), before);
     }
 }
 

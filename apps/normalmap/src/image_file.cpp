@@ -1,5 +1,6 @@
-// Image files of the normal-map toolkit through OpenImageIO: raw channel
-// values in, atomic writes out, and the MIP-chain files of
+// Image files of the normal-map toolkit: raw channel values in through the
+// guarded decoder (surfgrad/image_decode.h), atomic writes out through
+// OpenImageIO, and the MIP-chain files of
 // surfgrad/normalmap.h ("MIP chains for antialiasing").
 #include <OpenImageIO/imageio.h>
 
@@ -7,6 +8,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "surfgrad/image_decode.h"
 #include "surfgrad/io.h"
 #include "surfgrad/normalmap.h"
 
@@ -49,72 +51,6 @@ const char* typeName(SampleType t) {
     }
 }
 
-// Opens `path` for reading with alpha kept as stored (OpenImageIO would
-// multiply the colour channels of PNG/TGA/TIFF files with unassociated
-// alpha by it: a height in alpha would scale the normal).
-std::unique_ptr<OIIO::ImageInput> openInput(const fs::path& path) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) {
-        throw io::InputError(path.string(), "", "no such file");
-    }
-    OIIO::ImageSpec config;
-    config.attribute("oiio:UnassociatedAlpha", 1);
-    auto in = OIIO::ImageInput::open(path.string(), &config);
-    if (!in) {
-        throw io::InputError(path.string(), "", "cannot read image (" + OIIO::geterror() + ")");
-    }
-    return in;
-}
-
-void checkSize(const fs::path& path, const OIIO::ImageSpec& spec) {
-    const bool sizeOk = spec.width >= 1 && spec.height >= 1 && spec.width <= kMaxImageSide &&
-                        spec.height <= kMaxImageSide &&
-                        size_t(spec.width) * size_t(spec.height) <= kMaxImageTexels;
-    if (!sizeOk || spec.depth > 1) {
-        throw io::InputError(path.string(), "size",
-                             std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                                 " is not a supported image size (1 to " +
-                                 std::to_string(kMaxImageSide) + " per side)");
-    }
-    if (spec.nchannels < 1 || spec.nchannels > 64) {
-        throw io::InputError(path.string(), "channels",
-                             std::to_string(spec.nchannels) +
-                                 " channels (a map has 1 to 64 channels)");
-    }
-}
-
-// Decodes the current subimage/level into an Image (bottom row first) and
-// refuses non-finite texels.
-Image decode(const fs::path& path, OIIO::ImageInput& in, int subimage, int level) {
-    const OIIO::ImageSpec& spec = in.spec();
-    checkSize(path, spec);
-    Image img;
-    img.width = spec.width;
-    img.height = spec.height;
-    img.channels = spec.nchannels;
-    img.isFloat = spec.format.is_floating_point();
-    const size_t rowFloats = size_t(img.width) * size_t(img.channels);
-    std::vector<float> raw(rowFloats * size_t(img.height));
-    if (!in.read_image(subimage, level, 0, img.channels, OIIO::TypeDesc::FLOAT, raw.data())) {
-        throw io::InputError(path.string(), "", "cannot decode image: " + in.geterror());
-    }
-    img.texels.resize(raw.size());
-    for (int y = 0; y < img.height; ++y) {
-        const float* src = &raw[size_t(y) * rowFloats];
-        for (size_t k = 0; k < rowFloats; ++k) {
-            if (!std::isfinite(src[k])) {
-                throw io::InputError(path.string(),
-                                     "pixel (" + std::to_string(k / size_t(img.channels)) + ", " +
-                                         std::to_string(y) + ") channel " +
-                                         std::to_string(k % size_t(img.channels)),
-                                     "non-finite value");
-            }
-        }
-        std::copy(src, src + rowFloats, &img.texels[size_t(img.height - 1 - y) * rowFloats]);
-    }
-    return img;
-}
-
 // The texels of `img` top row first, clamped to [0, 1] for integer types.
 std::vector<float> fileOrder(const Image& img, SampleType type) {
     const size_t rowFloats = size_t(img.width) * size_t(img.channels);
@@ -131,18 +67,80 @@ std::vector<float> fileOrder(const Image& img, SampleType type) {
     return buf;
 }
 
+// The options of every read: at most kMaxImageSide per side and 64
+// channels, and room in the memory budget for the decoded samples plus the
+// float image they become.
+image::DecodeOptions readOptions(const fs::path& path, int level) {
+    image::DecodeOptions opt;
+    opt.maxSide = kMaxImageSide;
+    opt.level = level;
+    opt.checkMemory = [name = path.string()](const image::DecodePlan& p) {
+        if (p.fileChannels > 64) {
+            throw io::InputError(name, "channels",
+                                 std::to_string(p.fileChannels) +
+                                     " channels (a map has 1 to 64 channels)");
+        }
+        const uint64_t floats = uint64_t(p.width) * uint64_t(p.height) * uint64_t(p.channels) * 4;
+        const uint64_t need = floats + p.imageBytes + p.transientBytes;
+        const uint64_t budget = image::defaultMemoryBudget();
+        if (need > budget) {
+            throw io::InputError(name, "",
+                                 p.describe() + ": needs " + io::formatBytes(need) +
+                                     " as float; the memory budget is " + io::formatBytes(budget));
+        }
+    };
+    return opt;
+}
+
+// The decoder's image as floats. Refusals without an element read
+// "cannot read image: <reason>".
+Image decodeToFloat(const fs::path& path, int level, image::DecodedImage* info = nullptr) {
+    image::DecodedImage d;
+    try {
+        d = image::decodeImageFile(path, readOptions(path, level));
+    } catch (const io::InputError& e) {
+        if (!e.element().empty() || e.reason() == "no such file" ||
+            e.reason().rfind("cannot read", 0) == 0)
+            throw;
+        throw io::InputError(e.file(), "", "cannot read image: " + e.reason());
+    }
+    Image img;
+    img.width = d.width;
+    img.height = d.height;
+    img.channels = d.channels;
+    img.isFloat = d.fileType == image::SampleType::Half || d.fileType == image::SampleType::Float;
+    img.texels.resize(size_t(d.width) * size_t(d.height) * size_t(d.channels));
+    size_t i = 0;
+    for (int y = 0; y < d.height; ++y)
+        for (int x = 0; x < d.width; ++x)
+            for (int c = 0; c < d.channels; ++c) img.texels[i++] = d.sample(x, y, c);
+    if (info) {
+        d.data = {};
+        *info = std::move(d);
+    }
+    return img;
+}
+
 } // namespace
 
 Image readImage(const fs::path& path, SampleType* sampleType) {
-    auto in = openInput(path);
-    const OIIO::TypeDesc f = in->spec().format;
-    Image img = decode(path, *in, 0, 0);
-    in->close();
+    image::DecodedImage info;
+    Image img = decodeToFloat(path, 0, &info);
     if (sampleType) {
-        *sampleType = f == OIIO::TypeDesc::UINT8    ? SampleType::U8
-                      : f == OIIO::TypeDesc::UINT16 ? SampleType::U16
-                      : f == OIIO::TypeDesc::HALF   ? SampleType::Half
-                                                    : SampleType::Float;
+        switch (info.fileType) {
+        case image::SampleType::Unorm8:
+            *sampleType = SampleType::U8;
+            break;
+        case image::SampleType::Unorm16:
+            *sampleType = SampleType::U16;
+            break;
+        case image::SampleType::Half:
+            *sampleType = SampleType::Half;
+            break;
+        case image::SampleType::Float:
+            *sampleType = SampleType::Float;
+            break;
+        }
     }
     return img;
 }
@@ -250,9 +248,11 @@ std::vector<std::string> mipChannelNames(std::string_view layout) {
 
 std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* channelNames,
                                 std::string* layout) {
-    auto in = openInput(path);
-    const std::vector<std::string> fileNames = in->spec().channelnames;
-    const std::string lay = in->spec().get_string_attribute("surfgrad:layout");
+    image::DecodedImage info;
+    Image first = decodeToFloat(path, 0, &info);
+    const std::vector<std::string>& fileNames = info.channelNames;
+    const auto attr = info.stringAttributes.find("surfgrad:layout");
+    const std::string lay = attr == info.stringAttributes.end() ? "" : attr->second;
     // OpenEXR stores channels sorted by name: put a known layout's back in
     // its documented order.
     std::vector<std::string> names = mipChannelNames(lay);
@@ -270,8 +270,8 @@ std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* 
         for (size_t c = 0; c < names.size(); ++c) from.push_back(int(c));
     }
     std::vector<Image> levels;
-    for (int level = 0; level < 64 && in->seek_subimage(0, level); ++level) {
-        Image raw = decode(path, *in, 0, level);
+    for (int level = 0; level < info.levels; ++level) {
+        const Image raw = level == 0 ? std::move(first) : decodeToFloat(path, level);
         Image L = raw;
         L.channels = int(from.size());
         L.texels.resize(size_t(L.width) * size_t(L.height) * from.size());
@@ -280,7 +280,6 @@ std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* 
                 for (int c = 0; c < L.channels; ++c) L.at(i, j, c) = raw.at(i, j, from[size_t(c)]);
         levels.push_back(std::move(L));
     }
-    in->close();
     if (channelNames) *channelNames = names;
     if (layout) *layout = lay;
     return levels;

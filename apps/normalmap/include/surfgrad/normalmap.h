@@ -83,7 +83,9 @@ enum class Wrap { Clamp, Repeat };
 using Progress = std::function<void(double fraction)>;
 
 // ---------------------------------------------------------------------------
-// Image files (PNG, TGA, TIFF, OpenEXR and whatever else OpenImageIO reads)
+// Image files: read by the guarded decoder of surfgrad/image_decode.h (PNG,
+// JPEG, OpenEXR, TIFF, Radiance HDR, TGA; headers checked against the file
+// before anything is allocated), written through OpenImageIO
 
 enum class SampleType { U8, U16, Half, Float };
 
@@ -107,9 +109,11 @@ inline constexpr int kMaxImageSide = 16384;
 inline constexpr size_t kMaxImageTexels = size_t(1) << 28;
 
 // Reads an image. Throws InputError when the file is missing or unreadable,
-// its size is 0 or beyond the limits, it has no channels or more than 64, it
-// cannot be decoded, or a texel is not finite (element "pixel (x, y)" in
-// file coordinates, row 0 at the top). `sampleType` receives the file's.
+// its header promises more than the file holds, its size is 0 or beyond the
+// limits, it has no channels or more than 64, the decoded image as float
+// would not fit in sg::image::defaultMemoryBudget(), it cannot be decoded,
+// or a texel is not finite (element "pixel (x, y) channel c" in file
+// coordinates, row 0 at the top). `sampleType` receives the file's.
 // Alpha is read as stored (never premultiplied into the colour channels).
 Image readImage(const std::filesystem::path& path, SampleType* sampleType = nullptr);
 

@@ -7,8 +7,9 @@
 // curve file, or a mesh that cannot give what the scene asks of it (a UV
 // set it lacks, tangents its values do not allow), throws
 // sg::io::InputError naming the scene file and field. Image files go
-// through the image header scan (surfgrad/image_header.h) and the texture
-// budget before anything is allocated (docs/scene.md, "Texture files").
+// through the guarded decoder (surfgrad/image_decode.h: header scan, size
+// limit) and the texture budget before anything is allocated (docs/scene.md,
+// "Texture files").
 // SceneAssets::meshes is aligned with Scene::meshes.
 #pragma once
 
@@ -99,8 +100,8 @@ struct TextureLoadOptions {
     int otherTextures = 0;    // how many those are (messages)
 };
 
-// Loads or generates one texture. A file goes through the image header
-// scan (surfgrad/image_header.h), the size limit (kMaxTextureSize) and the
+// Loads or generates one texture. A file goes through the guarded decoder
+// (surfgrad/image_decode.h), the size limit (kMaxTextureSize) and the
 // budget before it is decoded, scanline band by band, into level 0 in the
 // file's own precision (TexelType): 8/16-bit unorm, half, or float. Errors
 // name the scene file and the field: InputError(sceneName, src.fieldPath,
