@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "surfgrad/image_decode.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
 #include "surfgrad/render_shaders.h"
@@ -96,29 +97,20 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
 }
 
 Image readImage(const fs::path& path) {
-    auto in = OIIO::ImageInput::open(path.string());
-    if (!in) throw io::InputError(path.string(), "", "cannot read image: " + OIIO::geterror());
-    const auto& spec = in->spec();
-    if (spec.width < 1 || spec.height < 1 || spec.width > 65536 || spec.height > 65536 ||
-        spec.nchannels < 1 || spec.nchannels > 64) {
-        throw io::InputError(path.string(), "", "unsupported image size");
-    }
+    // The guarded decoder (surfgrad/image_decode.h): header checked against
+    // the file, memory checked, before anything is allocated.
+    image::DecodeOptions options;
+    options.maxChannels = 4;
+    const image::DecodedImage d = image::decodeImageFile(path, options);
     Image img;
-    img.width = spec.width;
-    img.height = spec.height;
-    int nc = spec.nchannels;
-    std::vector<float> raw(size_t(img.width) * size_t(img.height) * size_t(nc));
-    if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, raw.data())) {
-        throw io::InputError(path.string(), "", "cannot decode image: " + in->geterror());
-    }
+    img.width = d.width;
+    img.height = d.height;
     img.pixels.resize(size_t(img.width) * size_t(img.height));
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
-            const float* p =
-                &raw[(size_t(img.height - 1 - y) * size_t(img.width) + size_t(x)) * size_t(nc)];
             glm::vec4 v(0, 0, 0, 1);
-            for (int c = 0; c < std::min(nc, 4); ++c) v[c] = p[c];
-            if (nc == 1) v = glm::vec4(p[0], p[0], p[0], 1);
+            for (int c = 0; c < d.channels; ++c) v[c] = d.sample(x, y, c);
+            if (d.channels == 1) v = glm::vec4(v.x, v.x, v.x, 1);
             img.at(x, y) = v;
         }
     return img;
