@@ -253,8 +253,8 @@ int seekLevel(OIIO::ImageInput& in, const DecodeOptions& opt, const std::string&
 }
 
 // Step 4: bands of file rows into `out`, which ends with the bottom row first.
-void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows,
-              const DecodeOptions& opt, const std::string& name, std::vector<uint8_t>& out) {
+void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows, const DecodeOptions& opt,
+              const std::string& name, std::vector<uint8_t>& out) {
     const OIIO::ImageSpec& spec = in.spec();
     const int w = int(plan.width), h = int(plan.height), k = plan.channels;
     const size_t rowBytes = size_t(w) * size_t(k) * sampleTypeBytes(plan.type);
@@ -265,12 +265,12 @@ void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows,
         // Tiled files a row of tiles at a time through read_tiles, as
         // read_image does (OpenImageIO 2.4's read_scanlines divides by a
         // zero rows-per-strip on tiled files when it converts).
-        const bool ok = spec.tile_width > 0
-                            ? in.read_tiles(0, opt.level, spec.x, spec.x + w, spec.y + y0,
-                                            spec.y + y0 + rows, spec.z, spec.z + 1, 0, k,
-                                            oiioType(plan.type), band.data())
-                            : in.read_scanlines(0, opt.level, spec.y + y0, spec.y + y0 + rows, 0,
-                                                0, k, oiioType(plan.type), band.data());
+        const bool ok =
+            spec.tile_width > 0
+                ? in.read_tiles(0, opt.level, spec.x, spec.x + w, spec.y + y0, spec.y + y0 + rows,
+                                spec.z, spec.z + 1, 0, k, oiioType(plan.type), band.data())
+                : in.read_scanlines(0, opt.level, spec.y + y0, spec.y + y0 + rows, 0, 0, k,
+                                    oiioType(plan.type), band.data());
         if (!ok) {
             throw InputError(name, "row " + std::to_string(y0),
                              "cannot decode: " + oneLine(in.geterror()));
@@ -286,15 +286,14 @@ void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows,
 }
 
 // Step 3 and 4 (the header is already checked).
-DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr,
-                          const std::string& name, const DecodeOptions& opt) {
+DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr, const std::string& name,
+                          const DecodeOptions& opt) {
     DecodedImage img;
     img.levels = seekLevel(in, opt, name);
     const OIIO::ImageSpec& spec = in.spec();
-    const bool sizeOk = opt.level == 0
-                            ? spec.width == hdr.width && spec.height == hdr.height
-                            : spec.width >= 1 && spec.height >= 1 && spec.width <= hdr.width &&
-                                  spec.height <= hdr.height;
+    const bool sizeOk = opt.level == 0 ? spec.width == hdr.width && spec.height == hdr.height
+                                       : spec.width >= 1 && spec.height >= 1 &&
+                                             spec.width <= hdr.width && spec.height <= hdr.height;
     if (!sizeOk || spec.depth != 1 || spec.nchannels < 1) {
         throw InputError(name, "",
                          std::string("the decoder reads ") + std::to_string(spec.width) + "x" +
@@ -308,8 +307,7 @@ DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr,
     plan.fileChannels = spec.nchannels;
     plan.channels = std::clamp(opt.maxChannels, 1, spec.nchannels);
     plan.type = storageType(spec, plan.channels, opt);
-    const size_t rowBytes =
-        size_t(spec.width) * size_t(plan.channels) * sampleTypeBytes(plan.type);
+    const size_t rowBytes = size_t(spec.width) * size_t(plan.channels) * sampleTypeBytes(plan.type);
     int bandRows = int(std::clamp<size_t>((size_t(1) << 20) / rowBytes, 1, size_t(spec.height)));
     if (spec.tile_height > 0) { // whole rows of tiles
         const int64_t th = spec.tile_height;
@@ -339,8 +337,8 @@ DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr,
     return img;
 }
 
-DecodedImage decode(const io::ByteSource& bytes, const std::string& name,
-                    const DecodeOptions& opt, const OpenFn& open) {
+DecodedImage decode(const io::ByteSource& bytes, const std::string& name, const DecodeOptions& opt,
+                    const OpenFn& open) {
     const io::ImageHeader hdr = io::scanImageHeader(bytes, name);
     if (hdr.width > opt.maxSide || hdr.height > opt.maxSide) {
         throw InputError(name, "",

@@ -40,7 +40,7 @@ namespace sg::image {
 // How decoded samples are stored: the file's own 8/16-bit unorm or half
 // samples, float for everything else.
 enum class SampleType : uint8_t { Unorm8, Unorm16, Half, Float };
-uint32_t sampleTypeBytes(SampleType type);  // 1, 2, 2, 4
+uint32_t sampleTypeBytes(SampleType type);   // 1, 2, 2, 4
 const char* sampleTypeName(SampleType type); // "8-bit unorm", "16-bit unorm", "half", "float"
 
 // A quarter of physical memory, at most 8 GiB, and at most half of the
@@ -60,10 +60,10 @@ struct DecodePlan {
 };
 
 struct DecodeOptions {
-    int maxSide = 16384;   // larger widths or heights are refused
-    int maxChannels = 64;  // the file's channels [0, maxChannels) are decoded, the rest skipped
-    bool toFloat = false;  // decode every sample to float (else the smallest SampleType)
-    bool keepHalf = true;  // half sources stay half (else float)
+    int maxSide = 16384;  // larger widths or heights are refused
+    int maxChannels = 64; // the file's channels [0, maxChannels) are decoded, the rest skipped
+    bool toFloat = false; // decode every sample to float (else the smallest SampleType)
+    bool keepHalf = true; // half sources stay half (else float)
     // Finite half/float samples larger in magnitude are refused (the
     // renderer's mip filter sums four texels in float).
     float maxMagnitude = std::numeric_limits<float>::max();
@@ -75,9 +75,9 @@ struct DecodeOptions {
 };
 
 struct DecodedImage {
-    int width = 0, height = 0; // of the decoded level
-    int channels = 0;          // decoded channels
-    int fileChannels = 0;      // channels of the file
+    int width = 0, height = 0;               // of the decoded level
+    int channels = 0;                        // decoded channels
+    int fileChannels = 0;                    // channels of the file
     SampleType type = SampleType::Float;     // as stored in `data`
     SampleType fileType = SampleType::Float; // the file's own sample type (the widest channel)
     int levels = 1;                          // MIP levels the file holds
