@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "hardcase.h"
 #include "mesh_test_util.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/polymesh.h"
@@ -46,6 +47,10 @@ TEST(Formats, NonManifoldOffIsNamedNotDropped) {
     PolyMeshProperties props;
     expectInputError([&] { toPolyMesh(m, props, "fin.off"); }, "face 2",
                      "OpenMesh cannot insert it");
+    sg::test::reportHardCaseHolds("non-manifold", "three faces on one edge (OFF, OpenMesh reader)",
+                                  "loading; loading with non-manifold input allowed",
+                                  "InputError naming the edge; all 3 faces kept",
+                                  "InputError naming the edge; all 3 faces kept");
 }
 
 TEST(Formats, PlyWithUvsThroughOpenMesh) {

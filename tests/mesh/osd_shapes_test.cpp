@@ -8,6 +8,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "hardcase.h"
 #include "mesh_test_util.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -97,6 +98,10 @@ TEST(OsdShapes, RepairDropsDegenerateFacesButNotNonManifoldTopology) {
             "edge (", "non-manifold edge");
         EXPECT_GT(report.degenerateFacesDropped, 0u);
     }
+    sg::test::reportHardCaseHolds(
+        "non-manifold", "OpenSubdiv's catmark_nonman_edges and loop_nonman_edges, repair on",
+        "loading", "InputError naming a non-manifold edge",
+        "InputError naming a non-manifold edge");
 }
 
 } // namespace

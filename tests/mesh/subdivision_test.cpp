@@ -15,6 +15,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "hardcase.h"
 #include "mesh_test_util.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/osd_primvar.h"
@@ -237,6 +238,7 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
     // Interior crease vertices use the crease rule, so the limit curve is the
     // closed uniform cubic B-spline of those four points (DeRose et al. 1998).
     PolygonMesh cube = cubeWith("t crease 5/1/0 4 5 6 7 4 10\n");
+    sg::test::Worst worst;
     const glm::vec3 ctrl[4] = {{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
     auto bspline = [&](float t) { // t in [0,4)
         int i = int(std::floor(t)) % 4;
@@ -270,6 +272,7 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
             for (int k = 0; k < n; ++k)
                 best = std::min(best, glm::length(p - bspline(4.0f * float(k) / float(n))));
             // Float evaluation of patches vs the closed form: 2e-6 on unit coordinates.
+            worst.add(best);
             EXPECT_LT(best, 2e-6f) << "level " << level << " vertex " << v << " at " << p.x << ","
                                    << p.y << "," << p.z;
         }
@@ -298,6 +301,9 @@ TEST(Subdivision, InfinitelySharpCreaseFollowsTheCubicBSpline) {
         EXPECT_EQ(upward, onCrease.size());
         EXPECT_GE(sideways, onCrease.size());
     }
+    sg::test::reportHardCase({"creases", "an infinitely sharp crease loop on a cube, levels 1-4",
+                              "distance of the crease's limit points to the cubic B-spline",
+                              "<= 2e-06", sg::test::hardCaseNumber(worst.value)});
 }
 
 TEST(Subdivision, DerivativesMatchFiniteDifferences) {
@@ -503,6 +509,11 @@ TEST(Subdivision, ZeroAreaUvFacesStayFinite) {
         }
     }
     EXPECT_GT(collapsed, 0u); // the vertices inside the collapsed face see zero UV derivatives
+    sg::test::reportHardCaseHolds("uv-degenerate",
+                                  "a cube face whose UVs are one point, level 3 limit",
+                                  "render mesh and limit UV derivatives",
+                                  "finite, unit normals; zero UV derivatives inside the face",
+                                  "finite, unit normals; zero UV derivatives inside the face");
 }
 
 TEST(Subdivision, Valence2AndIsolatedVertices) {

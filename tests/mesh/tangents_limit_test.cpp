@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "hardcase.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
 #include "surfgrad/tangents.h"
@@ -105,6 +106,10 @@ TEST(LimitTangent, DegenerateJacobiansFallBackFinitely) {
         EXPECT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << s;
         EXPECT_NEAR(glm::length(glm::vec3(t)), 1.0f, 1e-6f) << s;
     }
+    sg::test::reportHardCaseHolds(
+        "uv-degenerate", "limit tangent of zero or collinear UV and surface derivatives",
+        "the tangent and its fallback case", "the documented fallback, exactly",
+        "the documented fallback, exactly");
 }
 
 // ---------------------------------------------------------------------------
@@ -295,6 +300,7 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
     sg::mesh::validate(cage, "mirrored plane");
     const LimitMesh lm = limitMesh(cage, 2);
     size_t left = 0, right = 0;
+    sg::test::Worst worst;
     for (size_t v = 0; v < lm.mesh.vertexCount(); ++v) {
         const float x = lm.mesh.positions[v].x, s = lm.mesh.uvSets[0][v].x;
         const glm::vec4 t = lm.mesh.tangents[v];
@@ -309,11 +315,19 @@ TEST(LimitTangents, MirroredUvsGiveNegativeHandedness) {
             // smooth corners are included here too).
             EXPECT_LT(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}), 1e-2)
                 << "vertex " << v;
+            worst.add(angleDeg(glm::vec3(t), {isLeft ? 1.0f : -1.0f, 0, 0}));
             ++(isLeft ? left : right);
         }
     }
     EXPECT_GT(left, 20u);
     EXPECT_GT(right, 20u);
+    sg::test::reportHardCaseHolds("uv-mirrored",
+                                  "limit tangents of a plane mirrored at a UV seam, level 2",
+                                  "handedness w off the seam", "-1 on the mirrored side, +1 else",
+                                  "-1 on the mirrored side, +1 else");
+    sg::test::reportHardCase({"uv-mirrored", "the same, two cage faces from the seam",
+                              "angle of the tangent to +-x (deg)", "<= 0.01",
+                              sg::test::hardCaseNumber(worst.value)});
 }
 
 TEST(LimitTangents, ZeroAreaUvsFallBackWithoutNaN) {
@@ -330,13 +344,21 @@ TEST(LimitTangents, ZeroAreaUvsFallBackWithoutNaN) {
     sg::mesh::validate(cage, "collapsed uvs");
     const LimitMesh lm = limitMesh(cage, 2);
     EXPECT_GT(lm.irregular, 0u);
+    sg::test::Worst unit, ortho;
     for (size_t v = 0; v < lm.mesh.vertexCount(); ++v) {
         const glm::vec4 t = lm.mesh.tangents[v];
         ASSERT_TRUE(std::isfinite(t.x) && std::isfinite(t.y) && std::isfinite(t.z)) << v;
         EXPECT_NEAR(glm::length(glm::vec3(t)), 1.0f, 1e-6f);
         EXPECT_TRUE(t.w == 1.0f || t.w == -1.0f);
         EXPECT_NEAR(glm::dot(glm::vec3(t), lm.mesh.normals[v]), 0.0f, 1e-6f);
+        unit.add(std::fabs(glm::length(glm::vec3(t)) - 1.0f));
+        ortho.add(std::fabs(glm::dot(glm::vec3(t), lm.mesh.normals[v])));
     }
+    sg::test::reportHardCase({"uv-degenerate",
+                              "limit tangents where 4 cage faces' UVs collapse to one point",
+                              "| |T| - 1 |", "<= 1e-06", sg::test::hardCaseNumber(unit.value)});
+    sg::test::reportHardCase({"uv-degenerate", "the same", "|T . n|", "<= 1e-06",
+                              sg::test::hardCaseNumber(ortho.value)});
 }
 
 TEST(LimitTangents, MikkTSpaceOnRefinedMeshesApproachesTheLimitFrame) {

@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "hardcase.h"
 #include "surfgrad/tangents.h"
 #include "tangents_test_util.h"
 
@@ -236,6 +237,11 @@ TEST(MikkTSpace, FastEqualsOracleOnAdversarialMeshes) {
         }
     }
     std::printf("%zu meshes: fast == oracle bit for bit\n", meshes);
+    sg::test::reportHardCaseHolds(
+        "zero-area",
+        "MikkTSpace on 280 random soups, up to 40% degenerate and zero-UV-area triangles, "
+        "mirrors, seams, 3+ faces per edge",
+        "fast generator against the step-by-step reference", "bit for bit", "bit for bit");
 }
 
 // A flat strip in the xy plane, normal +z, two quads side by side split into
@@ -285,6 +291,11 @@ TEST(MikkTSpace, FastEqualsOracleOnHighValenceFans) {
         }
         EXPECT_EQ(countOracleMismatches(inputOf(m)), 0u) << n << " triangles";
     }
+    sg::test::reportHardCaseHolds(
+        "non-manifold",
+        "MikkTSpace on fans of 3 to 200 triangles with a duplicated triangle (3 faces on an "
+        "edge), mirrored and zero-UV-area sectors",
+        "fast generator against the step-by-step reference", "bit for bit", "bit for bit");
 }
 
 TEST(MikkTSpace, OppositeFramesInOneGroupAreKeptApart) {
@@ -358,6 +369,9 @@ TEST(MikkTSpace, MirroredUvsFlipTheSign) {
     for (size_t c = 0; c < rm.indices.size(); ++c)
         EXPECT_EQ(rm.tangents[rm.indices[c]], t[c]) << "corner " << c;
     EXPECT_EQ(rm.tangentUvSet, 0);
+    sg::test::reportHardCaseHolds("uv-mirrored", "MikkTSpace, a strip mirrored at a shared UV seam",
+                                  "tangent and sign per corner; seam vertices split",
+                                  "(+-1, 0, 0, +-1) exactly", "(+-1, 0, 0, +-1) exactly");
 }
 
 TEST(MikkTSpace, UvSeamSidesAreComputedSeparately) {
@@ -405,6 +419,10 @@ TEST(MikkTSpace, ZeroAreaUvTriangleTakesItsNeighborsFrame) {
     EXPECT_EQ(t[7], t[2]) << "Z's corner at a2 takes the square's frame there";
     EXPECT_EQ(t[8], glm::vec4(1, 0, 0, -1));
     for (size_t c = 9; c < 12; ++c) EXPECT_EQ(t[c], glm::vec4(1, 0, 0, -1)) << "lone corner " << c;
+    sg::test::reportHardCaseHolds(
+        "uv-degenerate", "MikkTSpace, a zero-UV-area triangle next to a good one, and alone",
+        "frames of its corners", "the neighbours' frames, else the default, exactly",
+        "the neighbours' frames, else the default, exactly");
 }
 
 TEST(MikkTSpace, DegenerateTrianglesCopyFromGoodCorners) {
@@ -426,6 +444,12 @@ TEST(MikkTSpace, DegenerateTrianglesCopyFromGoodCorners) {
     EXPECT_EQ(t[8], t[5]);                   // a3
     EXPECT_EQ(t[7], glm::vec4(1, 0, 0, -1)); // d welds with nothing good
     for (size_t c = 9; c < 12; ++c) EXPECT_EQ(t[c], glm::vec4(1, 0, 0, -1));
+    sg::test::reportHardCaseHolds("zero-area",
+                                  "MikkTSpace, a triangle with two corners at one position, and "
+                                  "a zero-area triangle alone",
+                                  "frames of its corners",
+                                  "copied from a good corner, else the default, exactly",
+                                  "copied from a good corner, else the default, exactly");
 }
 
 TEST(MikkTSpace, QuadsSplitAlongTheShorterUvDiagonal) {

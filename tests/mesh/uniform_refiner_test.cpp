@@ -15,6 +15,7 @@
 #include <map>
 #include <random>
 
+#include "hardcase.h"
 #include "mesh_test_util.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -221,6 +222,10 @@ TEST(UniformRefiner, CreasesAndCornersWithBothCreasingMethods) {
     std::string why;
     EXPECT_FALSE(compareBuilds(withUvs, s, "spot with UVs and semi-sharp creases", &why));
     EXPECT_NE(why.find("semi-sharp"), std::string::npos) << why;
+    sg::test::reportHardCaseHolds(
+        "creases", "spot with random semi-sharp and sharp creases and corners, levels 1-4",
+        "surfgrad's refiner against OpenSubdiv's (uniform and Chaikin creasing)", "bit for bit",
+        "bit for bit");
 }
 
 TEST(UniformRefiner, MorphDeltasAndStencilUpdatesMatch) {
