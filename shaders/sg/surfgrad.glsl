@@ -108,7 +108,9 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_O
 // be unit length; v and nrmBase must be in the same space. A v at or below
 // the horizon (dot(n, v) -> 0) is treated as FLT_EPSILON above it: the
 // gradient is large but finite and resolves to a normal close to v's
-// tangential direction.
+// tangential direction (within about FLT_EPSILON rad of the horizon: the
+// rounding of n.v, amplified by the clamped 1/(n.v), can leave it that far
+// on either side; tests/bump/hardcases_test.cpp measures it).
 SG_FN vec3 sgSurfgradFromPerturbedNormal(SgFrame f, vec3 v) {
     vec3 n = f.nrmBase;
     // Scale v to O(1) first so huge inputs do not overflow; the gradient is

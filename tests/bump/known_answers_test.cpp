@@ -29,6 +29,7 @@
 #include <functional>
 #include <random>
 
+#include "hardcase.h"
 #include "surfgrad/bump.h"
 
 namespace {
@@ -186,6 +187,7 @@ TEST(KnownAnswers, ParametrizationIndependenceScaleDependent) {
     // give the same normal.
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<double> U(-1, 1);
+    sg::test::Worst worst;
     for (int i = 0; i < 1000; ++i) {
         const double u = U(rng) * 3, v = U(rng) * 1.2;
         const SurfacePoint s = torus(u, v);
@@ -210,7 +212,14 @@ TEST(KnownAnswers, ParametrizationIndependenceScaleDependent) {
         const dvec3 n2 = d3(g::sgResolve(f1, sg2));
         ASSERT_LT(angle(n1, n2), kAngleTol) << i;
         ASSERT_LT(angle(n1, blinnNormal(s, hg)), kAngleTol) << i;
+        worst.add(angle(n1, n2));
     }
+    sg::test::reportHardCase({"uv-mirrored",
+                              "L8 on a torus, a second UV layout (u2, v2) = A (u, v) + c with a "
+                              "mirroring, shearing, anisotropic A",
+                              "angle between the two layouts' normals (rad)",
+                              "<= " + sg::test::hardCaseNumber(kAngleTol),
+                              sg::test::hardCaseNumber(worst.value)});
 }
 
 TEST(KnownAnswers, ParametrizationIndependenceGenBasisTB) {
@@ -224,6 +233,7 @@ TEST(KnownAnswers, ParametrizationIndependenceGenBasisTB) {
     const Height hgt{0.4, 2.5, 1.5, 0.2}; // h over plane coordinates (a, b)
     std::mt19937_64 rng(4);
     std::uniform_real_distribution<double> U(-1, 1);
+    sg::test::Worst worstRotated, worstMirrored;
     for (int i = 0; i < 1000; ++i) {
         const double pa = U(rng) * 4, pb = U(rng) * 4;
         const dvec2 hg = hgt.grad(pa, pb); // dh/d(a, b)
@@ -247,7 +257,17 @@ TEST(KnownAnswers, ParametrizationIndependenceGenBasisTB) {
         const dvec3 oracle = glm::normalize(n - (hg.x * e1 + hg.y * e2));
         ASSERT_LT(angle(normals[0], oracle), kAngleTol) << i;
         ASSERT_LT(angle(normals[1], oracle), kAngleTol) << i;
+        worstRotated.add(angle(normals[0], oracle));
+        worstMirrored.add(angle(normals[1], oracle));
     }
+    sg::test::reportHardCase({"uv-mirrored", "L6 + L5 on a plane, UVs rotated (not mirrored)",
+                              "angle to the exact normal (rad)",
+                              "<= " + sg::test::hardCaseNumber(kAngleTol),
+                              sg::test::hardCaseNumber(worstRotated.value)});
+    sg::test::reportHardCase({"uv-mirrored", "L6 + L5 on a plane, UVs rotated and mirrored",
+                              "angle to the exact normal (rad)",
+                              "<= " + sg::test::hardCaseNumber(kAngleTol),
+                              sg::test::hardCaseNumber(worstMirrored.value)});
 }
 
 TEST(KnownAnswers, LayersAddLikeHeights) {
@@ -328,6 +348,7 @@ TEST(KnownAnswers, DoubleSidedModes) {
     // The generated tangent frame (L6) must be the same on both sides.
     std::mt19937_64 rng(8);
     std::uniform_real_distribution<double> U(-1, 1);
+    sg::test::Worst worst[3], frameChange;
     for (int i = 0; i < 2000; ++i) {
         const dvec3 n = glm::normalize(dvec3(U(rng), U(rng), U(rng)));
         const dvec3 dPdx = glm::cross(n, dvec3(U(rng), U(rng), U(rng)));
@@ -356,8 +377,23 @@ TEST(KnownAnswers, DoubleSidedModes) {
             if (mode == SG_BFACE_MIRROR) expect = front - 2.0 * glm::dot(front, n) * n;
             if (mode == SG_BFACE_FLIP) expect = -front;
             ASSERT_LT(angle(back, expect), kAngleTol) << "mode " << mode << " record " << i;
+            worst[mode].add(angle(back, expect));
+            frameChange.add(std::max(glm::length(d3(t) - d3(t0)), glm::length(d3(b) - d3(b0))));
         }
     }
+    const char* names[3] = {"none: the front side's normal",
+                            "mirror: reflected through the "
+                            "tangent plane",
+                            "flip: negated"};
+    for (int mode : {SG_BFACE_NONE, SG_BFACE_MIRROR, SG_BFACE_FLIP}) {
+        sg::test::reportHardCase(
+            {"back-faces", std::string("L16 + L6 + L5 + L1 on a back face, mode ") + names[mode],
+             "angle to the section 2.10 answer (rad)", "<= " + sg::test::hardCaseNumber(kAngleTol),
+             sg::test::hardCaseNumber(worst[mode].value)});
+    }
+    sg::test::reportHardCase({"back-faces", "L6 on a back face, every mode",
+                              "|vT - vT front|, |vB - vB front|", "<= 1e-06",
+                              sg::test::hardCaseNumber(frameChange.value)});
 }
 
 TEST(KnownAnswers, AnalyticScreenDerivativesMatchFiniteDifferences) {
