@@ -7,11 +7,15 @@
 #include <cstdlib>
 #include <random>
 
+#include "hardcase.h"
 #include "maps_test_util.h"
 #include "surfgrad/io.h"
 
 using namespace sg::features;
 using namespace sgtest;
+using sg::test::hardCaseNumber;
+using sg::test::reportHardCase;
+using sg::test::Worst;
 
 namespace {
 
@@ -79,7 +83,9 @@ TEST(FeatureMapsHardCases, StarOfEight) {
         EXPECT_GT(st.segmentsDropped + st.edgePointsMerged, 0);
         // Rays two texels from the centre are exact (their texels hold one
         // segment): within quantization, 1e-4.
-        EXPECT_LT(maxOnCurve(b.net, g, 2.5), 1e-3) << toString(mode);
+        const double rays = maxOnCurve(b.net, g, 2.5);
+        EXPECT_LT(rays, 1e-3) << toString(mode);
+        Worst centre;
         // Near the centre the rays are bent onto merged edge points: every
         // point of the star within 2.5 texels of the centre is within 0.75
         // texels of the zero set (measured 0.5: half a texel diagonal is the
@@ -88,8 +94,17 @@ TEST(FeatureMapsHardCases, StarOfEight) {
             if (glm::length(q - c) > 2.5) return;
             EXPECT_LT(sample(g, glm::vec2(q)).dist, 0.75)
                 << toString(mode) << " at " << q.x << "," << q.y;
+            centre.add(sample(g, glm::vec2(q)).dist);
         });
-        EXPECT_EQ(wrongSides(b.net, g, 0.05, 2.5), 0) << toString(mode);
+        const int wrong = wrongSides(b.net, g, 0.05, 2.5);
+        EXPECT_EQ(wrong, 0) << toString(mode);
+        const std::string c = std::string("star of 8 rays, ") + toString(mode) + " maps";
+        reportHardCase({"feature-stars", c, "distance on the rays beyond 2.5 texels (texels)",
+                        "< 0.001", hardCaseNumber(rays)});
+        reportHardCase({"feature-stars", c, "distance on the rays within 2.5 texels (texels)",
+                        "< 0.75", hardCaseNumber(centre.value)});
+        reportHardCase({"feature-stars", c, "gradients pointing to the wrong side at 0.05 texels",
+                        "0", std::to_string(wrong)});
     }
 }
 
@@ -110,8 +125,13 @@ TEST(FeatureMapsHardCases, CornersAndEdges) {
         // 2e-3: the 1.4e-3 corner margin plus the interpolation of d across
         // that sliver. (Skip 1.5: a curve ending on a corner loses the
         // texel it ends in, up to sqrt(2) of it.)
-        EXPECT_LT(maxOnCurve(b.net, g, 1.5), 2e-3) << toString(mode);
+        const double on = maxOnCurve(b.net, g, 1.5);
+        EXPECT_LT(on, 2e-3) << toString(mode);
         EXPECT_EQ(wrongSides(b.net, g, 0.01, 1.5), 0) << toString(mode);
+        reportHardCase({"feature-other",
+                        std::string("curves through texel corners and along texel edges, ") +
+                            toString(mode) + " maps",
+                        "distance on the curves (texels)", "< 0.002", hardCaseNumber(on)});
         // Points exactly on grid lines and corners evaluate in both
         // neighbouring texels without NaN: covered by expectAllFinite
         // (its grid includes every corner and edge).
@@ -131,8 +151,13 @@ TEST(FeatureMapsHardCases, TwoParallelCurvesInOneTexel) {
         expectAllFinite(g);
         EXPECT_GT(st.edgePointsMerged, 20);
         // The merged curve at y = 10.5: each input is 0.15 away (+1e-3).
-        EXPECT_LT(maxOnCurve(b.net, g, 1.5), 0.151) << toString(mode);
+        const double on = maxOnCurve(b.net, g, 1.5);
+        EXPECT_LT(on, 0.151) << toString(mode);
         EXPECT_LT(sample(g, glm::vec2(16.0f, 10.5f)).dist, 1e-3f);
+        reportHardCase(
+            {"feature-tangencies",
+             std::string("two parallel curves 0.3 texels apart, ") + toString(mode) + " maps",
+             "distance on each curve (texels; merged halfway)", "< 0.151", hardCaseNumber(on)});
     }
 }
 
@@ -156,7 +181,15 @@ TEST(FeatureMapsHardCases, TangentialContact) {
         EXPECT_LT(worst, mode == BakeMode::Linear ? 0.06 : 0.01) << toString(mode);
         // At the contact: curves merge; the zero set stays within half a
         // texel.
-        EXPECT_LT(sample(g, glm::vec2(16.2f, 17.3f)).dist, 0.5f);
+        const float contact = sample(g, glm::vec2(16.2f, 17.3f)).dist;
+        EXPECT_LT(contact, 0.5f);
+        const std::string c = std::string("a line tangent to a circle, two circles touching, ") +
+                              toString(mode) + " maps";
+        reportHardCase({"feature-tangencies", c,
+                        "distance on the curves away from the contact (texels)",
+                        mode == BakeMode::Linear ? "< 0.06" : "< 0.01", hardCaseNumber(worst)});
+        reportHardCase({"feature-tangencies", c, "distance at the contact point (texels)", "< 0.5",
+                        hardCaseNumber(contact)});
     }
 }
 
@@ -184,6 +217,10 @@ TEST(FeatureMapsHardCases, TinyLoopInsideTexel) {
             }
         }
     }
+    sg::test::reportHardCaseHolds("feature-other", "a loop of radius 0.2 inside one texel",
+                                  "distance inside the texel",
+                                  "between the true distance - 0.21 and 0.5072",
+                                  "between the true distance - 0.21 and 0.5072");
 }
 
 // Nearly straight Beziers: the implicit form degenerates as the curve
@@ -218,8 +255,13 @@ TEST(FeatureMapsHardCases, NearlyStraightBeziers) {
     // Straightened pieces deviate by their sagitta: L^2 / (8 r) for a piece
     // of length L on radius r, 0.0625 for a one-texel piece of the circle
     // (r = 2); never a wrong side at 0.05.
-    EXPECT_LT(maxOnCurve(b.net, g, 1.5), 0.07);
+    const double straightened = maxOnCurve(b.net, g, 1.5);
+    EXPECT_LT(straightened, 0.07);
     EXPECT_EQ(wrongSides(b.net, g, 0.05, 1.5), 0);
+    reportHardCase({"feature-other", "a quadratic with sagitta 0.002 over 27 texels",
+                    "distance on the curve (texels)", "< 0.0011", hardCaseNumber(worst)});
+    reportHardCase({"feature-other", "curves crossing texel edges below theta_min (straightened)",
+                    "distance on the curves (texels)", "< 0.07", hardCaseNumber(straightened)});
 }
 
 // Highly curved segments (radius of curvature down to 0.3 texels) crossing
@@ -297,6 +339,10 @@ TEST(FeatureMapsHardCases, Eq7HighlyCurved) {
     }
     EXPECT_GT(checked, 40);
     EXPECT_EQ(bad, 0);
+    reportHardCase({"feature-other",
+                    "40 highly curved quadratics (radius of curvature 0.3 to 1.5 texels)",
+                    "gradients pointing to the wrong side of the stored curve at 0.05 texels", "0",
+                    std::to_string(bad)});
 }
 
 // Curves partly or wholly outside the map: crossings of the map border are
@@ -329,6 +375,11 @@ TEST(FeatureMapsHardCases, CurvesLeavingTheMap) {
         // Corners get the exact distance to curves outside the map too
         // (binary32 storage: 1e-5).
         EXPECT_NEAR(m.dist[m.index(0, 0)], closest(b.net, {0.0, 0.0}).dist, 1e-5);
+        reportHardCase({"feature-other",
+                        std::string("curves leaving the map, one of radius 1e5 far outside, ") +
+                            toString(mode) + " maps",
+                        "distance on the curves inside the map (texels)",
+                        mode == BakeMode::Linear ? "< 0.07" : "< 0.01", hardCaseNumber(worst)});
     }
 }
 
@@ -364,6 +415,10 @@ TEST(FeatureMapsHardCases, CoincidentControlPoints) {
     f.begin();
     f.line({1.0, std::nan("")}, {3.0, 3.0});
     EXPECT_THROW(bake(f.net, texelSpace(16, BakeMode::Linear)), sg::io::InputError);
+    sg::test::reportHardCaseHolds("feature-other",
+                                  "coincident, folded and collinear control points; a NaN point",
+                                  "bake", "InputError naming the segment, or a straight line",
+                                  "InputError naming the segment, or a straight line");
 }
 
 // 100k segments (short random lines, 1024^2, band 4): the bake completes,
@@ -392,4 +447,7 @@ TEST(FeatureMapsHardCases, HundredThousandSegments) {
         ASSERT_GE(r.dist, 0.0f);
         ASSERT_LE(r.dist, 4.0f);
     }
+    sg::test::reportHardCaseHolds("feature-other", "100,000 random segments on a 1024^2 map",
+                                  "distance at 20,000 random points", "finite, in [0, band = 4]",
+                                  "finite, in [0, band = 4]");
 }

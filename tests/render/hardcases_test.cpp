@@ -1,0 +1,171 @@
+// Hard cases of the renderer's layer functions (shaders/sg/render/*.glsl,
+// the same source the GPU compiles, on the CPU through
+// surfgrad/render_shaders.h), reported as rows of docs/hard-cases.md
+// (tests/common/hardcase.h):
+//  - a decal projector (Mikkelsen 2019, section 2.9, listing 15) whose
+//    plane is parallel to the surface, and one turned until its projection
+//    direction lies in the surface (the angle fade of docs/scene.md);
+//  - a triplanar layer (section 2.8, listings 13, 14) at the diagonal
+//    normal, where the three planes weigh the same.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "hardcase.h"
+#include "surfgrad/render_shaders.h"
+
+namespace sg::render::test {
+namespace {
+
+namespace G = sg::glsl;
+using sg::test::hardCaseAtMost;
+using sg::test::hardCaseNumber;
+using sg::test::reportHardCase;
+using sg::test::Worst;
+
+// A constant tangent-space normal map m (RGB encoding, 8x8).
+TextureImage constantNormalMap(glm::vec3 m) {
+    std::vector<glm::vec4> t(64, glm::vec4(0.5f * m + 0.5f, 1.0f));
+    return makeTexture(8, 8, std::move(t), Wrap::Clamp);
+}
+
+// The plane y = 0 (normal +y) seen from above, `pix` units per pixel.
+G::SgFrame flatFrame(float pix) {
+    return G::sgPrologue(glm::vec3(0, 1, 0), glm::vec3(pix, 0, 0), glm::vec3(0, 0, -pix), true,
+                         SG_BFACE_NONE);
+}
+
+// Decal records (layer_decal.glsl): origin at 0, strength 1, half size
+// (0.5, 0.5, 0.5), depth fade 0.25, angle fade [start, end] degrees.
+G::SgDecalParams decal(glm::vec3 x, glm::vec3 y, glm::vec3 z, float startDeg, float endDeg) {
+    return G::sgUnpackDecal(
+        glm::vec4(0, 0, 0, 1), glm::vec4(x, 0.5f), glm::vec4(y, 0.5f), glm::vec4(z, 0.5f),
+        glm::vec4(0.25f, std::cos(glm::radians(startDeg)), std::cos(glm::radians(endDeg)), 0),
+        glm::vec4(0));
+}
+
+TEST(RenderHardCases, DecalsParallelToTheSurface) {
+    const glm::vec3 m = glm::normalize(glm::vec3(0.35f, -0.2f, 0.9f));
+    TextureImage img = constantNormalMap(m);
+    G::sampler2D tex{&img};
+    const G::SgFrame f = flatFrame(0.002f);
+    const glm::vec3 n(0, 1, 0);
+    // The map's derivative, decoded as the layer decodes it (8-bit texels).
+    const glm::vec4 texel = G::textureGrad(tex, glm::vec2(0.5f), glm::vec2(0), glm::vec2(0));
+    const glm::vec2 d = G::sgTspaceNormalToDeriv(G::sgDecodeNormalXY(texel, 0), false);
+
+    // (a) Projector plane parallel to the surface, any rotation in it: the
+    // layer is the TBN-style bump with T = axis x, B = axis y (fade 1 in
+    // the box's core).
+    Worst tbn;
+    for (int k = 0; k < 72; ++k) {
+        const float a = glm::radians(5.0f * float(k));
+        const glm::vec3 x(std::cos(a), 0, std::sin(a)), z = n, y = glm::cross(z, x);
+        const glm::vec3 g =
+            G::sgLayerDecal(f, glm::vec3(0.05f, 0.0f, -0.03f), decal(x, y, z, 60, 80), tex);
+        const glm::vec3 ref = G::sgSurfgradFromTBN(d, x, y);
+        tbn.add(glm::length(g - ref) / std::max(1.0f, glm::length(ref)));
+    }
+    // Same products as listing 5 after a projection that removes a rounding-
+    // size normal component: a few ulps.
+    hardCaseAtMost("decals-parallel",
+                   "decal layer, projector plane parallel to the surface, "
+                   "rotated 0 to 355 deg in it",
+                   "|sg - TBN sg (T = axis x, B = axis y)| / max(1, |sg|)", tbn.value, 1e-6);
+
+    // (b) The projector turned from facing the surface (0 deg) until its
+    // projection direction lies in the surface (90 deg): the fade never
+    // grows as it turns, the gradient is never longer than the map's
+    // derivative, and with the default angle fade [60, 80] nothing is left
+    // at 90 deg; without an angle fade ([90, 90]) the edge-on decal keeps
+    // only the tangential part of its volume gradient.
+    Worst longer, rise, normalPart;
+    double atNinety = 0;
+    for (float endDeg : {80.0f, 90.0f}) {
+        float prevFade = 2.0f;
+        for (int k = 0; k <= 180; ++k) {
+            const float a = glm::radians(0.5f * float(k));
+            const glm::vec3 z(std::sin(a), std::cos(a), 0.0f), x(0, 0, 1), y = glm::cross(z, x);
+            const G::SgDecalParams p = decal(x, y, z, endDeg == 80.0f ? 60.0f : 90.0f, endDeg);
+            const glm::vec3 pos(0.02f, 0.01f, -0.04f);
+            const glm::vec3 g = G::sgLayerDecal(f, pos, p, tex);
+            ASSERT_TRUE(std::isfinite(g.x + g.y + g.z)) << k;
+            const glm::vec3 r = pos - p.origin;
+            const glm::vec3 l =
+                glm::vec3(glm::dot(r, p.axisX), glm::dot(r, p.axisY), glm::dot(r, p.axisZ)) /
+                p.halfSize;
+            const float fade = G::sgDecalFade(p, l, f.nrmBase);
+            rise.add(double(fade) - double(prevFade));
+            prevFade = fade;
+            longer.add(double(glm::length(g)) / double(glm::length(d)) - 1.0);
+            normalPart.add(std::fabs(double(glm::dot(g, n))) / double(glm::length(d)));
+            if (k == 180 && endDeg == 80.0f) atNinety = glm::length(g);
+        }
+    }
+    hardCaseAtMost("decals-parallel",
+                   "decal layer turned 0 to 90 deg until its projection direction lies in the "
+                   "surface, angle fade [60, 80] and none",
+                   "largest increase of the fade as it turns", rise.value, 0.0);
+    hardCaseAtMost("decals-parallel", "the same", "|sg| / |d| - 1", longer.value, 1e-6);
+    hardCaseAtMost("decals-parallel", "the same", "|sg . n| / |d|", normalPart.value, 1e-6);
+    EXPECT_EQ(atNinety, 0.0);
+    reportHardCase({"decals-parallel", "the same at 90 deg with the default angle fade [60, 80]",
+                    "|sg|", "= 0", hardCaseNumber(atNinety)});
+}
+
+TEST(RenderHardCases, TriplanarLayerAtEqualWeights) {
+    // Three different constant maps on the three planes; the layer's
+    // gradient at the diagonal normal is the projection of the average of
+    // the three planar gradients (eq. 7, w = 1/3), computed here from the
+    // decoded derivatives.
+    const glm::vec3 mx = glm::normalize(glm::vec3(0.3f, 0.1f, 0.9f)),
+                    my = glm::normalize(glm::vec3(-0.2f, 0.25f, 0.9f)),
+                    mz = glm::normalize(glm::vec3(0.05f, -0.3f, 0.9f));
+    TextureImage ix = constantNormalMap(mx), iy = constantNormalMap(my), iz = constantNormalMap(mz);
+    G::sampler2D tx{&ix}, ty{&iy}, tz{&iz};
+    auto deriv = [](G::sampler2D& t) {
+        return G::sgTspaceNormalToDeriv(
+            G::sgDecodeNormalXY(G::textureGrad(t, glm::vec2(0.5f), glm::vec2(0), glm::vec2(0)), 0),
+            false);
+    };
+    const glm::vec2 dX = deriv(tx), dY = deriv(ty), dZ = deriv(tz);
+    Worst err, unequal;
+    for (int octant = 0; octant < 8; ++octant) {
+        const glm::vec3 n = glm::normalize(
+            glm::vec3(octant & 1 ? -1 : 1, octant & 2 ? -1 : 1, octant & 4 ? -1 : 1));
+        const glm::vec3 e1 = glm::normalize(glm::cross(n, glm::vec3(0.3f, 0.5f, 0.8f)));
+        const glm::vec3 e2 = glm::cross(n, e1);
+        const G::SgFrame f = G::sgPrologue(n, 0.001f * e1, 0.001f * e2, true, SG_BFACE_NONE);
+        const G::SgVolumeSpace vs =
+            G::sgVolumeSpace(f, glm::vec3(0.3f, 0.2f, 0.1f), glm::mat3(1.0f), glm::mat3(1.0f));
+        for (float k : {1.0f, 4.0f, 64.0f}) {
+            for (int rh = 0; rh < 2; ++rh) {
+                const G::SgTriplanarParams p =
+                    G::sgUnpackTriplanar(glm::vec4(1, 1, k, float(rh)), glm::vec4(0));
+                const glm::vec3 g = G::sgLayerTriplanar(f, vs, p, tx, ty, tz);
+                ASSERT_TRUE(std::isfinite(g.x + g.y + g.z));
+                const glm::vec3 w = G::sgTriplanarWeights(n, k);
+                for (int c = 0; c < 3; ++c) unequal.add(std::fabs(double(w[c]) - 1.0 / 3.0));
+                // Eq. 7 in double with w = 1/3 (rh negates z), projected.
+                glm::dvec3 grad = (1.0 / 3.0) * glm::dvec3(double(dZ.x) + dY.x, double(dZ.y) + dX.y,
+                                                           double(dX.x) + dY.y);
+                if (rh) grad.z = -grad.z;
+                const glm::dvec3 nd(n);
+                const glm::dvec3 oracle = grad - glm::dot(grad, nd) * nd;
+                err.add(glm::length(glm::dvec3(g) - oracle) / std::max(1.0, glm::length(oracle)));
+            }
+        }
+    }
+    // The weights are 1/3 up to the rounding of the binary32 diagonal
+    // raised to k (k ulps); the gradient then differs from the average by
+    // as much: measured below 1e-5 for k <= 64.
+    hardCaseAtMost("triplanar-equal",
+                   "triplanar layer at the 8 diagonal normals, sharpness 1, 4, 64, both handedness",
+                   "|w_i - 1/3|", unequal.value, 4e-5);
+    hardCaseAtMost("triplanar-equal", "the same",
+                   "|sg - projected average of the planar gradients| / max(1, |sg|)", err.value,
+                   4e-5);
+}
+
+} // namespace
+} // namespace sg::render::test
