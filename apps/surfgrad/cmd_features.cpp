@@ -39,7 +39,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
 #include "surfgrad/curves.h"
@@ -170,40 +169,6 @@ bool parseNumber(std::string_view tok, double& v) {
     return r.ec == std::errc() && r.ptr == tok.data() + tok.size() && std::isfinite(v);
 }
 
-std::vector<glm::vec2> readPoints(const std::string& file) {
-    std::string text = io::readFile(file, std::size_t(1) << 30);
-    std::vector<glm::vec2> pts;
-    std::istringstream in(text);
-    std::string line;
-    size_t lineNo = 0;
-    while (std::getline(in, line)) {
-        ++lineNo;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        std::vector<std::string_view> tok;
-        std::string_view rest(line);
-        while (!rest.empty()) {
-            size_t b = rest.find_first_not_of(" \t");
-            if (b == std::string_view::npos) break;
-            rest.remove_prefix(b);
-            size_t e = rest.find_first_of(" \t");
-            tok.push_back(rest.substr(0, e));
-            rest.remove_prefix(e == std::string_view::npos ? rest.size() : e);
-        }
-        if (tok.empty()) continue;
-        double x = 0, y = 0;
-        if (tok.size() != 2 || !parseNumber(tok[0], x) || !parseNumber(tok[1], y)) {
-            throw io::InputError(file, "line " + std::to_string(lineNo),
-                                 "expected two finite numbers \"x y\"");
-        }
-        if (std::fabs(x) > 1e30 || std::fabs(y) > 1e30) {
-            throw io::InputError(file, "line " + std::to_string(lineNo),
-                                 "coordinate outside float range");
-        }
-        pts.emplace_back(float(x), float(y));
-    }
-    return pts;
-}
-
 std::string fmt(float v) {
     char buf[32];
     auto r = std::to_chars(buf, buf + sizeof buf, v);
@@ -215,7 +180,7 @@ void runSample(const std::string& mapsFile, const std::string& pointsFile,
     const NearMode near = parseNear("sample", nearArg);
     FeatureMaps maps = load(mapsFile);
     GpuFeatureMaps gpu = maps.packGpu();
-    std::vector<glm::vec2> pts = readPoints(pointsFile);
+    std::vector<glm::vec2> pts = loadSamplePoints(pointsFile);
     std::string out;
     for (const auto& p : pts) {
         glsl::SgFeatResult r = sample(gpu, p, near);

@@ -324,6 +324,16 @@ glsl::SgFeatResult sample(const GpuFeatureMaps& maps, glm::vec2 texelPos,
 // folds back on itself, a size outside 1..kMaxFeatureMapSize.
 FeatureMaps bake(const CurveNetwork& net, const BakeOptions& options, BakeStats* stats = nullptr);
 
+// Point files of `surfgrad features sample`: one "x y" per line (texel
+// space), separated by spaces or tabs; blank lines are skipped, a trailing
+// CR is ignored. Throws sg::io::InputError naming the file and the line for
+// anything else: not exactly two numbers, a number that is not finite
+// (after from_chars: "nan", "inf", overflow) or beyond +-1e30.
+// parseSamplePoints takes the text (fuzzing; `name` appears in messages),
+// loadSamplePoints reads a file of at most 1 GiB.
+std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::string& name);
+std::vector<glm::vec2> loadSamplePoints(const std::filesystem::path& path);
+
 // OpenEXR storage (atomic write; load validates every channel, value and
 // metadata field and throws sg::io::InputError naming what is wrong).
 void save(const FeatureMaps& maps, const std::filesystem::path& path);
