@@ -98,13 +98,14 @@ TEST(FeatureMapsHardCases, StarOfEight) {
         });
         const int wrong = wrongSides(b.net, g, 0.05, 2.5);
         EXPECT_EQ(wrong, 0) << toString(mode);
-        const std::string c = std::string("star of 8 rays, ") + toString(mode) + " maps";
-        reportHardCase({"feature-stars", c, "distance on the rays beyond 2.5 texels (texels)",
+        const std::string name = std::string("star of 8 rays, ") + toString(mode) + " maps";
+        reportHardCase({"feature-stars", name, "distance on the rays beyond 2.5 texels (texels)",
                         "< 0.001", hardCaseNumber(rays)});
-        reportHardCase({"feature-stars", c, "distance on the rays within 2.5 texels (texels)",
+        reportHardCase({"feature-stars", name, "distance on the rays within 2.5 texels (texels)",
                         "< 0.75", hardCaseNumber(centre.value)});
-        reportHardCase({"feature-stars", c, "gradients pointing to the wrong side at 0.05 texels",
-                        "0", std::to_string(wrong)});
+        reportHardCase({"feature-stars", name,
+                        "gradients pointing to the wrong side at 0.05 texels", "0",
+                        std::to_string(wrong)});
     }
 }
 
