@@ -34,6 +34,10 @@ function(_ctest_names out)
     set(_names "")
     foreach(_l IN LISTS _lines)
         string(REGEX REPLACE "^Test +#[0-9]+: " "" _n "${_l}")
+        # gtest_discover_tests names a value-parameterised case
+        # "Suite.Case/param  # GetParam() = ..."; the report file is named
+        # after the gtest name alone.
+        string(REGEX REPLACE "  # GetParam\\(\\) = .*$" "" _n "${_n}")
         string(STRIP "${_n}" _n)
         list(APPEND _names "${_n}")
     endforeach()

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "analytic_fields.h"
+#include "hardcase.h"
 
 namespace {
 
@@ -155,6 +156,11 @@ TEST(Poisson, DegenerateSizesAndFlatFields) {
     // A flat map integrates to a flat height.
     const ScalarField flat = toHeight(DerivField(64, 48, glm::vec2(0.0f)), Wrap::Clamp);
     EXPECT_EQ(range(flat), 0.0);
+    sg::test::reportHardCaseHolds("normal-map-images",
+                                  "to-height of 1x1, 1x7, 5x1, 2x2 maps, repeat and clamp",
+                                  "heights", "finite, >= 0", "holds");
+    sg::test::reportHardCase({"normal-map-images", "to-height of a flat 64x48 map", "height range",
+                              "0", sg::test::hardCaseNumber(range(flat))});
 }
 
 } // namespace

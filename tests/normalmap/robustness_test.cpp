@@ -13,6 +13,7 @@
 #include <limits>
 
 #include "analytic_fields.h"
+#include "hardcase.h"
 #include "surfgrad/io.h"
 
 namespace {
@@ -53,18 +54,24 @@ Image hardMap(int W, int H) {
     return img;
 }
 
+// The worst values the checks below saw in the running test (reported as
+// rows of docs/hard-cases.md at its end; NaN sticks).
+sg::test::Worst worstSlope, worstUnit;
+
 // Listing 4 bounds every slope by 128; the ops combine a few such slopes
 // with O(1) factors, so 1e5 is far above any ordinary result.
 void expectFinite(const DerivField& d, const char* what, float bound = 1e5f) {
     for (const auto& v : d.v) {
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y)) << what;
         ASSERT_LT(std::max(std::abs(v.x), std::abs(v.y)), bound) << what;
+        worstSlope.add(std::max(std::abs(v.x), std::abs(v.y)));
     }
 }
 void expectUnit(const NormalField& n, const char* what) {
     for (const auto& v : n.v) {
         ASSERT_TRUE(std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z)) << what;
         ASSERT_NEAR(glm::length(v), 1.0f, 1e-5f) << what;
+        worstUnit.add(std::abs(double(glm::length(v)) - 1.0));
     }
 }
 
@@ -110,6 +117,14 @@ TEST(Robustness, HardTexelsThroughEveryOpStayFinite) {
         for (const auto& L : toks)
             for (float v : L.texels) ASSERT_TRUE(std::isfinite(v) && v >= -1.0f);
     }
+    const std::string c = "flat, horizon, beyond-the-rim, inward and zero texels, every op";
+    sg::test::reportHardCase({"normal-map-images", c, "largest |slope| of the correct ops",
+                              "finite, < 1e+05", sg::test::hardCaseNumber(worstSlope.value)});
+    sg::test::reportHardCase({"normal-map-images", c, "| |n| - 1 | of the naive ops", "<= 1e-05",
+                              sg::test::hardCaseNumber(worstUnit.value)});
+    sg::test::reportHardCaseHolds("normal-map-images", c,
+                                  "to-height, encoded results, LEAN/Toksvig MIP levels",
+                                  "finite (Toksvig >= -1)", "holds");
 }
 
 TEST(Robustness, ExtremeValuesAndSizes) {
@@ -128,6 +143,11 @@ TEST(Robustness, ExtremeValuesAndSizes) {
     ScalarField big(16, 16, 0.0f);
     big.at(8, 8) = 1e30f;
     expectFinite(scale(fromHeight(big, 1.0f, Wrap::Clamp), 1e-30f), "huge height");
+    sg::test::reportHardCaseHolds(
+        "normal-map-images", "1x1 and 17x1 maps under a sine warp of slope 1e12",
+        "warped slopes; MIP chain down to 1x1", "finite, < 1e+21", "holds");
+    sg::test::reportHardCaseHolds("normal-map-images", "a height spike of 1e30, scaled by 1e-30",
+                                  "slopes", "finite, < 1e+05", "holds");
 }
 
 TEST(Robustness, BadFilesAreInputErrors) {
