@@ -32,29 +32,32 @@ void checkLayer(const sg::render::Layer& L) {
     check(std::isfinite(L.strength), "finite strength");
     check(L.uvSet >= 0 && L.uvSet < kMaxUvSets, "uv set in range");
     check(L.modifiers.size() <= size_t(kMaxModifiers), "modifier count");
-    if (L.kind == LayerKind::Decal) {
-        check(finite3(L.decalAxisX) && finite3(L.decalAxisY) && finite3(L.decalAxisZ),
-              "finite decal axes");
-        check(std::abs(glm::length(L.decalAxisX) - 1.0f) < 1e-3f, "unit decal x");
-        check(std::abs(glm::length(L.decalAxisZ) - 1.0f) < 1e-3f, "unit decal z");
-        check(std::abs(glm::dot(L.decalAxisX, L.decalAxisZ)) < 1e-3f, "orthogonal decal frame");
-        check(L.decalHalfSize.x > 0 && L.decalHalfSize.y > 0 && L.decalHalfSize.z > 0,
-              "positive decal size");
+    if (L.is("decal")) {
+        const DecalParams& d = L.params<DecalParams>();
+        check(finite3(d.axisX) && finite3(d.axisY) && finite3(d.axisZ), "finite decal axes");
+        check(std::abs(glm::length(d.axisX) - 1.0f) < 1e-3f, "unit decal x");
+        check(std::abs(glm::length(d.axisZ) - 1.0f) < 1e-3f, "unit decal z");
+        check(std::abs(glm::dot(d.axisX, d.axisZ)) < 1e-3f, "orthogonal decal frame");
+        check(d.halfSize.x > 0 && d.halfSize.y > 0 && d.halfSize.z > 0, "positive decal size");
     }
-    if (L.kind == LayerKind::Noise) {
-        check(L.noiseFrequency > 0 && std::isfinite(L.noiseFrequency), "noise frequency");
-        check(L.noiseOctaves >= 1 && L.noiseOctaves <= 12, "octaves");
-        check(L.noiseExponent >= 1.0f, "exponent >= 1");
+    if (L.is("noise")) {
+        const NoiseParams& n = L.params<NoiseParams>();
+        check(n.frequency > 0 && std::isfinite(n.frequency), "noise frequency");
+        check(n.octaves >= 1 && n.octaves <= 12, "octaves");
+        check(n.exponent >= 1.0f, "exponent >= 1");
     }
-    if (L.kind == LayerKind::Triplanar) {
+    if (L.is("triplanar")) {
         check(L.maps.size() == 1 || L.maps.size() == 3, "triplanar maps");
-        check(L.triScale > 0 && L.triSharpness > 0, "triplanar scale/sharpness");
+        const TriplanarParams& t = L.params<TriplanarParams>();
+        check(t.scale > 0 && t.sharpness > 0, "triplanar scale/sharpness");
     }
-    if (L.kind == LayerKind::Feature)
-        check(L.featWidth > L.featW0 && L.feature.has_value(), "feature widths");
-    if (L.kind == LayerKind::PostResolve) {
+    if (L.is("feature")) {
+        const FeatureParams& f = L.params<FeatureParams>();
+        check(f.width > f.w0 && f.source.has_value(), "feature widths");
+    }
+    if (L.is("post_resolve")) {
         for (const auto& c : L.children) {
-            check(c.kind != LayerKind::PostResolve, "no nested groups");
+            check(!c.is("post_resolve"), "no nested groups");
             checkLayer(c);
         }
     } else {

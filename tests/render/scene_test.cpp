@@ -277,17 +277,18 @@ TEST(SceneValidation, ValidSceneParsesAsWritten) {
     EXPECT_EQ(m.doubleSided, DoubleSided::Flip);
     ASSERT_EQ(m.layers.size(), 3u);
     EXPECT_EQ(m.layers[0].uvSet, 1);
-    EXPECT_TRUE(m.layers[0].flipV);
-    EXPECT_EQ(m.layers[0].encoding, NormalEncoding::Ag);
+    EXPECT_TRUE(m.layers[0].params<UvNormalParams>().flipV);
+    EXPECT_EQ(m.layers[0].params<UvNormalParams>().encoding, NormalEncoding::Ag);
     EXPECT_FLOAT_EQ(m.layers[0].strength, 0.5f);
     // Decal frame: z points against the projection direction, x = up x z.
-    EXPECT_NEAR(glm::length(m.layers[1].decalAxisZ - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
-    EXPECT_NEAR(glm::length(m.layers[1].decalAxisY - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
-    EXPECT_NEAR(glm::length(m.layers[1].decalHalfSize - glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
+    const DecalParams& decal = m.layers[1].params<DecalParams>();
+    EXPECT_NEAR(glm::length(decal.axisZ - glm::vec3(0, 1, 0)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(decal.axisY - glm::vec3(0, 0, -1)), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::length(decal.halfSize - glm::vec3(1, 2, 3)), 0.0f, 1e-6f);
     EXPECT_EQ(m.layers[1].maps[0].wrap, Wrap::Clamp); // decals do not repeat
-    EXPECT_EQ(m.layers[2].kind, LayerKind::PostResolve);
+    EXPECT_EQ(m.layers[2].kind, findLayerKind("post_resolve"));
     ASSERT_EQ(m.layers[2].children.size(), 1u);
-    EXPECT_EQ(m.layers[2].children[0].noiseType, NoiseType::Fbm);
+    EXPECT_EQ(m.layers[2].children[0].params<NoiseParams>().type, NoiseType::Fbm);
     EXPECT_EQ(s.meshes[0].material, 0);
     const auto& uvs = s.meshes[0].derivedUvSets;
     ASSERT_EQ(uvs.size(), 2u);
@@ -311,7 +312,7 @@ TEST(SceneValidation, ValidSceneParsesAsWritten) {
 TEST(SceneValidation, DefaultSceneIsValidAndUsesManyLayerKinds) {
     Scene s = defaultScene();
     EXPECT_GE(s.meshes.size(), 3u);
-    std::set<LayerKind> kinds;
+    std::set<const LayerKind*> kinds;
     for (const auto& m : s.materials)
         for (const auto& L : m.layers) {
             kinds.insert(L.kind);

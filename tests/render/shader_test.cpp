@@ -214,7 +214,7 @@ TEST(EffectsOnDemand, ProgramsAreCachedByEffectSignature) {
     gl.render(s, a, v);
     EXPECT_EQ(gl.stats().programsCompiled, 0);
     MaterialPlan p0 = planMaterial(s, a, 0, 0);
-    s.materials[0].layers[0].noiseAmplitude = 0.5f;
+    s.materials[0].layers[0].params<NoiseParams>().amplitude = 0.5f;
     EXPECT_EQ(planMaterial(s, a, 0, 0).signature, p0.signature);
     s.materials[0].layers[0].enabled = false; // a disabled layer is not compiled in
     EXPECT_NE(planMaterial(s, a, 0, 0).signature, p0.signature);

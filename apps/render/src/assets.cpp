@@ -13,6 +13,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "layer_kind.h"
 #include "render_internal.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/image_header.h"
@@ -174,9 +175,10 @@ void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, g
 
 namespace {
 
+// Enabled layers whose kind reads feature maps.
 void collectFeatures(const Layer& L, std::vector<const Layer*>& out) {
     if (!L.enabled) return;
-    if (L.kind == LayerKind::Feature && L.feature) out.push_back(&L);
+    if (L.kind->featureSource && L.kind->featureSource(L)) out.push_back(&L);
     for (const auto& c : L.children) collectFeatures(c, out);
 }
 
@@ -227,46 +229,13 @@ struct TextureUse {
     const char* why; // for messages: what reads them
 };
 
-constexpr uint32_t kR = 1, kG = 2, kB = 4, kA = 8;
-
-// Components of a layer's maps its shader function reads
-// (shaders/sg/render/common.glsl: sgDecodeNormalXY/XYZ, sgTexelChannel).
-uint32_t mapChannels(const Layer& L, const char*& why) {
-    const uint32_t xy = L.encoding == NormalEncoding::Ag ? (kG | kA) : (kR | kG);
-    const uint32_t height = L.heightChannel >= 0 ? 1u << L.heightChannel : 0u;
-    switch (L.kind) {
-    case LayerKind::UvNormal:
-        why = L.heightChannel >= 0 ? "the normal encoding and the height channel"
-                                   : "the normal encoding";
-        return xy | height;
-    case LayerKind::Triplanar:
-    case LayerKind::Decal:
-    case LayerKind::Feature:
-        why = "the normal encoding";
-        return xy;
-    case LayerKind::DerivMap:
-        why = L.heightChannel >= 0 ? "the derivative (r, g) and the height channel"
-                                   : "the derivative (r, g)";
-        return kR | kG | height;
-    case LayerKind::ObjectNormal:
-        why = "the normal (r, g, b)";
-        return kR | kG | kB;
-    case LayerKind::Height:
-        why = "the height channel";
-        return 1u << L.channel;
-    default:
-        why = "the layer";
-        return kR | kG | kB | kA;
-    }
-}
-
 void collectTextures(const Layer& L, std::vector<TextureUse>& out) {
     if (!L.enabled) return; // effects on demand: nothing for disabled layers
-    const char* why = "";
-    const uint32_t channels = mapChannels(L, why);
+    const char* why = "the layer";
+    const uint32_t channels = L.kind->mapChannels ? L.kind->mapChannels(L, why) : kRgbaChannels;
     for (const auto& m : L.maps) out.push_back({&m, channels, why});
     for (const auto& md : L.modifiers)
-        if (md.kind == ModifierKind::Modulate && md.mask)
+        if (md.mask) // modulate: the mask channel it reads
             out.push_back({&*md.mask, 1u << md.channel, "the modulate channel"});
     for (const auto& c : L.children) collectTextures(c, out);
 }
@@ -594,40 +563,21 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     for (int mIdx : usedMaterials) {
         const Material& mat = scene.materials[size_t(mIdx)];
         if (mat.baseColorMap)
-            textureUses.push_back({&*mat.baseColorMap, kR | kG | kB, "the colour"});
+            textureUses.push_back({&*mat.baseColorMap, kChannelR | kChannelG | kChannelB, "the colour"});
         for (const Layer& L : mat.layers) collectTextures(L, textureUses);
     }
     std::vector<const Layer*> features;
     for (int mIdx : usedMaterials)
         for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectFeatures(L, features);
     for (const Layer* L : features) {
-        std::string key = L->feature->key();
+        const FeatureSource& src = *L->kind->featureSource(*L);
+        std::string key = src.key();
         if (!assets.featureMaps.count(key)) {
-            assets.featureMaps[key] = loadFeatureMaps(*L->feature, scene.sourceName);
+            assets.featureMaps[key] = loadFeatureMaps(src, scene.sourceName);
             assets.log.push_back("feature maps " + key + ": " +
                                  std::to_string(assets.featureMaps[key]->gpu.size) + "^2 texels");
         }
-        // The profile must fit the band where distances are exact.
-        double band = assets.featureMaps[key]->bandTexels;
-        if (double(L->featWidth) > band - 1.5) {
-            throw io::InputError(scene.sourceName, L->fieldPath + ".width",
-                                 "the profile width must be at most " + std::to_string(band - 1.5) +
-                                     " texels (the maps hold exact distances up to " +
-                                     std::to_string(band) + ")");
-        }
-        // The exact near field: the maps must have one covering the width.
-        const double nearBand = assets.featureMaps[key]->nearBandTexels;
-        if (L->featNearExact && nearBand <= 0.0) {
-            throw io::InputError(scene.sourceName, L->fieldPath + ".near",
-                                 "\"exact\" needs maps baked with the near field (surfgrad "
-                                 "features bake --near exact)");
-        }
-        if (L->featNearExact && double(L->featWidth) > nearBand) {
-            throw io::InputError(scene.sourceName, L->fieldPath + ".width",
-                                 "the profile width must be at most the near field's band " +
-                                     std::to_string(nearBand) +
-                                     " texels (bake with a larger --near-width)");
-        }
+        if (L->kind->checkAssets) L->kind->checkAssets(*L, assets, scene.sourceName);
     }
     // Meshes whose enabled layers now read the basis of a UV set they ask
     // vertex tangents for, but do not have them: rebuilt (MikkTSpace may
@@ -715,8 +665,7 @@ Scene sceneForModel(const fs::path& model) {
             m.baseColorUvSet = std::clamp(gm.baseColorTexCoord, 0, kMaxUvSets - 1);
         }
         if (!gm.normalTexture.empty()) {
-            Layer L;
-            L.kind = LayerKind::UvNormal;
+            Layer L = makeLayer("uv_normal");
             L.fieldPath = m.fieldPath + ".normalTexture";
             TextureSource t;
             t.file = gm.normalTexture;

@@ -12,7 +12,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "layer_kind.h"
 #include "render_internal.h"
+#include "scene_node.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
@@ -21,30 +23,6 @@ namespace sg::render {
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
-
-const char* layerKindName(LayerKind k) {
-    switch (k) {
-    case LayerKind::UvNormal:
-        return "uv_normal";
-    case LayerKind::ObjectNormal:
-        return "object_normal";
-    case LayerKind::Height:
-        return "height";
-    case LayerKind::DerivMap:
-        return "deriv_map";
-    case LayerKind::Triplanar:
-        return "triplanar";
-    case LayerKind::Decal:
-        return "decal";
-    case LayerKind::Noise:
-        return "noise";
-    case LayerKind::Feature:
-        return "feature";
-    case LayerKind::PostResolve:
-        return "post_resolve";
-    }
-    return "?";
-}
 
 const char* aovName(Aov a) {
     switch (a) {
@@ -92,209 +70,55 @@ std::string TextureSource::key() const {
            (wrap == Wrap::Clamp ? ":clamp" : ":repeat") + (srgb ? ":srgb" : "");
 }
 
-namespace {
+namespace detail {
 
-// A JSON value with its field path, reading typed, range-checked fields.
-class Node {
-public:
-    Node(const json& j, std::string path, const std::string& file)
-        : j_(j), path_(std::move(path)), file_(file) {}
+fs::path SceneReader::resolvePath(const SceneNode& n, const std::string& p) const {
+    if (p.empty()) n.fail("expected a file path");
+    if (p.rfind("data:", 0) == 0) return dataDirectory() / p.substr(5);
+    fs::path fp(p);
+    return fp.is_absolute() ? fp : baseDir / fp;
+}
 
-    const json& value() const { return j_; }
-    const std::string& path() const { return path_; }
-
-    [[noreturn]] void fail(const std::string& reason) const {
-        throw io::InputError(file_, path_.empty() ? "(root)" : path_, reason);
-    }
-    [[noreturn]] void failField(const std::string& key, const std::string& reason) const {
-        throw io::InputError(file_, sub(key), reason);
-    }
-    std::string sub(const std::string& key) const {
-        return path_.empty() ? key : path_ + "." + key;
-    }
-
-    void requireObject() const {
-        if (!j_.is_object()) fail("expected an object");
-    }
-    // Every key must be in `allowed`.
-    void allowOnly(std::initializer_list<const char*> allowed) const {
-        requireObject();
-        for (auto it = j_.begin(); it != j_.end(); ++it) {
-            bool ok = false;
-            for (const char* a : allowed) ok = ok || it.key() == a;
-            if (!ok) {
-                std::string list;
-                for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
-                failField(it.key(), "unknown field (expected one of: " + list + ")");
-            }
-        }
-    }
-    bool has(const char* key) const { return j_.is_object() && j_.contains(key); }
-    Node child(const char* key) const { return Node(j_.at(key), sub(key), file_); }
-    Node item(size_t i) const {
-        return Node(j_.at(i), path_ + "[" + std::to_string(i) + "]", file_);
-    }
-
-    // A finite number in [lo, hi] ((lo, hi] when loOpen). Bounds at or
-    // beyond +-kHuge (1e6) mean "no bound" in messages.
-    double number(const char* key, double def, double lo, double hi, bool loOpen = false) const {
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        const bool hugeLo = lo <= -1e6, hugeHi = hi >= 1e6;
-        std::string range = rangeText(hugeLo ? -1e300 : lo, hugeHi ? 1e300 : hi, loOpen);
-        if (!v.is_number()) failField(key, "expected a number" + range);
-        double x = v.get<double>();
-        if (!std::isfinite(x) || x < lo || x > hi || (loOpen && x == lo)) {
-            bool tooBig = (x > hi && hugeHi) || (x < lo && hugeLo);
-            failField(key,
-                      "expected a number" + range + (tooBig ? " of magnitude at most 1e6" : ""));
-        }
-        return x;
-    }
-    float num(const char* key, double def, double lo, double hi, bool loOpen = false) const {
-        return float(number(key, def, lo, hi, loOpen));
-    }
-    int integer(const char* key, int def, int lo, int hi) const {
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        std::string range = " in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-        if (!v.is_number_integer() &&
-            !(v.is_number() && std::floor(v.get<double>()) == v.get<double>())) {
-            failField(key, "expected an integer" + range);
-        }
-        double x = v.get<double>();
-        if (!(x >= lo && x <= hi)) failField(key, "expected an integer" + range);
-        return int(x);
-    }
-    bool boolean(const char* key, bool def) const {
-        if (!has(key)) return def;
-        if (!j_.at(key).is_boolean()) failField(key, "expected true or false");
-        return j_.at(key).get<bool>();
-    }
-    std::string string(const char* key, const std::string& def) const {
-        if (!has(key)) return def;
-        if (!j_.at(key).is_string()) failField(key, "expected a string");
-        return j_.at(key).get<std::string>();
-    }
-    // One of `choices`; returns its index.
-    int choice(const char* key, int def, std::initializer_list<const char*> choices) const {
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        std::string list;
-        for (const char* c : choices)
-            list += std::string(list.empty() ? "" : ", ") + "\"" + c + "\"";
-        if (!v.is_string()) failField(key, "expected one of " + list);
-        int i = 0;
-        for (const char* c : choices) {
-            if (v.get<std::string>() == c) return i;
-            ++i;
-        }
-        failField(key, "expected one of " + list + ", got \"" + v.get<std::string>() + "\"");
-    }
-    glm::vec3 vec3(const char* key, glm::vec3 def, double lo = -1e9, double hi = 1e9) const {
-        if (!has(key)) return def;
-        const json& v = j_.at(key);
-        std::string what = "expected an array of 3 numbers" + rangeText(lo, hi, false);
-        if (!v.is_array() || v.size() != 3) failField(key, what);
-        glm::vec3 r;
-        for (int i = 0; i < 3; ++i) {
-            if (!v[size_t(i)].is_number()) failField(key, what);
-            double x = v[size_t(i)].get<double>();
-            if (!std::isfinite(x) || x < lo || x > hi) failField(key, what);
-            r[i] = float(x);
-        }
-        return r;
-    }
-    std::vector<float> floats(const char* key, double lo, double hi, size_t maxCount) const {
-        std::vector<float> out;
-        if (!has(key)) return out;
-        const json& v = j_.at(key);
-        std::string what = "expected an array of numbers" + rangeText(lo, hi, false);
-        if (!v.is_array() || v.size() > maxCount) {
-            failField(key, what + " (at most " + std::to_string(maxCount) + ")");
-        }
-        for (const auto& x : v) {
-            if (!x.is_number() || !std::isfinite(x.get<double>()) || x.get<double>() < lo ||
-                x.get<double>() > hi) {
-                failField(key, what);
-            }
-            out.push_back(x.get<float>());
-        }
-        return out;
-    }
-    void requireArray(const char* key, size_t maxCount) const {
-        if (!j_.at(key).is_array()) failField(key, "expected an array");
-        if (j_.at(key).size() > maxCount) {
-            failField(key, "too many entries (at most " + std::to_string(maxCount) + ")");
-        }
-    }
-
-private:
-    static std::string fmt(double x) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%g", x);
-        return buf;
-    }
-    static std::string rangeText(double lo, double hi, bool loOpen) {
-        bool hasLo = lo > -1e8, hasHi = hi < 1e8;
-        if (hasLo && hasHi)
-            return std::string(" in ") + (loOpen ? "(" : "[") + fmt(lo) + ", " + fmt(hi) + "]";
-        if (hasLo) return std::string(loOpen ? " > " : " >= ") + fmt(lo);
-        if (hasHi) return " <= " + fmt(hi);
-        return "";
-    }
-
-    const json& j_;
-    std::string path_;
-    const std::string& file_;
-};
-
-constexpr double kHuge = 1e6; // largest sensible coordinate/size
-
-struct Parser {
-    std::string file;
-    fs::path baseDir;
-
-    fs::path resolvePath(const Node& n, const std::string& p) const {
-        if (p.empty()) n.fail("expected a file path");
-        if (p.rfind("data:", 0) == 0) return dataDirectory() / p.substr(5);
-        fs::path fp(p);
-        return fp.is_absolute() ? fp : baseDir / fp;
-    }
-
-    TextureSource texture(const Node& n, Wrap defaultWrap) const {
-        TextureSource t;
-        t.fieldPath = n.path();
-        t.wrap = defaultWrap;
-        if (n.value().is_string()) {
-            t.file = resolvePath(n, n.value().get<std::string>());
-            return t;
-        }
-        if (!n.value().is_object()) n.fail("expected a file path or a texture object");
-        n.allowOnly({"file", "procedural", "output", "size", "bump_height", "wrap"});
-        if (n.has("file") == n.has("procedural"))
-            n.fail("expected exactly one of \"file\" or \"procedural\"");
-        if (n.has("file")) {
-            t.file = resolvePath(n.child("file"), n.string("file", ""));
-            if (n.has("output") || n.has("size") || n.has("bump_height")) {
-                n.fail(
-                    "\"output\", \"size\" and \"bump_height\" apply to procedural textures only");
-            }
-        } else {
-            static const char* kinds[] = {"bricks", "tiles", "bumps", "weave", "scratches"};
-            int k = n.choice("procedural", 0, {"bricks", "tiles", "bumps", "weave", "scratches"});
-            t.procedural = kinds[k];
-            static const char* outs[] = {"normal", "height", "derivative"};
-            t.output = outs[n.choice("output", 0, {"normal", "height", "derivative"})];
-            t.size = n.integer("size", 256, 4, 4096);
-            t.bumpHeight = n.num("bump_height", 0.04, 0.0, 10.0);
-        }
-        t.wrap = n.choice("wrap", defaultWrap == Wrap::Clamp ? 1 : 0, {"repeat", "clamp"}) == 1
-                     ? Wrap::Clamp
-                     : Wrap::Repeat;
+TextureSource SceneReader::texture(const SceneNode& n, Wrap defaultWrap) const {
+    TextureSource t;
+    t.fieldPath = n.path();
+    t.wrap = defaultWrap;
+    if (n.value().is_string()) {
+        t.file = resolvePath(n, n.value().get<std::string>());
         return t;
     }
+    if (!n.value().is_object()) n.fail("expected a file path or a texture object");
+    n.allowOnly({"file", "procedural", "output", "size", "bump_height", "wrap"});
+    if (n.has("file") == n.has("procedural"))
+        n.fail("expected exactly one of \"file\" or \"procedural\"");
+    if (n.has("file")) {
+        t.file = resolvePath(n.child("file"), n.string("file", ""));
+        if (n.has("output") || n.has("size") || n.has("bump_height")) {
+            n.fail("\"output\", \"size\" and \"bump_height\" apply to procedural textures only");
+        }
+    } else {
+        static const char* kinds[] = {"bricks", "tiles", "bumps", "weave", "scratches"};
+        int k = n.choice("procedural", 0, {"bricks", "tiles", "bumps", "weave", "scratches"});
+        t.procedural = kinds[k];
+        static const char* outs[] = {"normal", "height", "derivative"};
+        t.output = outs[n.choice("output", 0, {"normal", "height", "derivative"})];
+        t.size = n.integer("size", 256, 4, 4096);
+        t.bumpHeight = n.num("bump_height", 0.04, 0.0, 10.0);
+    }
+    t.wrap = n.choice("wrap", defaultWrap == Wrap::Clamp ? 1 : 0, {"repeat", "clamp"}) == 1
+                 ? Wrap::Clamp
+                 : Wrap::Repeat;
+    return t;
+}
 
+} // namespace detail
+
+namespace {
+
+using detail::kHuge;
+using Node = detail::SceneNode;
+
+struct Parser : detail::SceneReader {
     // [s, t]: two finite numbers in [lo, hi] (`what` names the accepted forms).
     static glm::vec2 vec2(const Node& n, const char* key, glm::vec2 def, double lo, double hi,
                           const char* what = "an array of 2 numbers") {
@@ -314,278 +138,25 @@ struct Parser {
         return r;
     }
 
-    static int channelIndex(const Node& n, const char* key, int def) {
-        return n.choice(key, def, {"r", "g", "b", "a"});
-    }
-
-    void heightChannel(const Node& n, Layer& L) const {
-        if (!n.has("height")) return;
-        Node h = n.child("height");
-        h.allowOnly({"channel", "scale"});
-        L.heightChannel = channelIndex(h, "channel", 3);
-        L.heightScale = h.num("scale", 1.0, -kHuge, kHuge);
-    }
-
-    void modifiers(const Node& n, Layer& L) const {
-        if (!n.has("modifiers")) return;
-        n.requireArray("modifiers", size_t(kMaxModifiers));
-        Node arr = n.child("modifiers");
-        for (size_t i = 0; i < arr.value().size(); ++i) {
-            Node m = arr.item(i);
-            m.requireObject();
-            Modifier mod;
-            int kind = m.choice("type", -1, {"scale", "curve", "modulate", "deform"});
-            if (kind < 0) m.fail("missing \"type\" (scale, curve, modulate or deform)");
-            mod.kind = ModifierKind(kind + 1);
-            switch (mod.kind) {
-            case ModifierKind::Scale:
-                m.allowOnly({"type", "alpha"});
-                mod.a = m.num("alpha", 1.0, -kHuge, kHuge);
-                break;
-            case ModifierKind::Curve:
-                m.allowOnly({"type", "boost", "center"});
-                mod.a = m.num("boost", 1.0, 0.0, kHuge);
-                mod.b = m.num("center", 0.0, -kHuge, kHuge);
-                break;
-            case ModifierKind::Modulate:
-                m.allowOnly({"type", "mask", "channel", "gain"});
-                if (!m.has("mask")) m.fail("missing \"mask\" (the texture to modulate by)");
-                mod.mask = texture(m.child("mask"), Wrap::Repeat);
-                mod.channel = channelIndex(m, "channel", 0);
-                mod.a = m.num("gain", 1.0, -kHuge, kHuge);
-                break;
-            case ModifierKind::Deform:
-                m.allowOnly({"type", "amplitude", "frequency"});
-                if (i != 0) m.fail("a deform modifier warps the lookup and must come first");
-                mod.a = m.num("amplitude", 0.02, -kHuge, kHuge);
-                mod.b = m.num("frequency", 20.0, -kHuge, kHuge);
-                break;
-            }
-            L.modifiers.push_back(std::move(mod));
-        }
-    }
-
-    static NormalEncoding encoding(const Node& n, bool allowTwoChannel) {
-        int e = n.choice("encoding", 0, {"rgb", "rg", "ag", "float"});
-        if (!allowTwoChannel && (e == 1 || e == 2)) {
-            n.failField("encoding",
-                        "this layer needs all three components: expected \"rgb\" or \"float\"");
-        }
-        return NormalEncoding(e);
-    }
-
-    Layer layer(const Node& n, bool nested) const {
+    Layer parseLayer(const Node& n, bool nestedLayer) const {
         n.requireObject();
-        Layer L;
+        const auto& kinds = layerKinds();
+        std::vector<const char*> names;
+        std::string list;
+        for (size_t k = 0; k < kinds.size(); ++k) {
+            names.push_back(kinds[k]->name);
+            list += std::string(k == 0                  ? ""
+                                : k + 1 == kinds.size() ? " or "
+                                                        : ", ") +
+                    kinds[k]->name;
+        }
+        if (!n.has("type")) n.fail("missing \"type\" (" + list + ")");
+        Layer L = makeLayer(*kinds[size_t(n.choice("type", 0, names))]);
         L.fieldPath = n.path();
-        if (!n.has("type")) {
-            n.fail("missing \"type\" (uv_normal, object_normal, height, deriv_map, triplanar, "
-                   "decal, noise, feature or post_resolve)");
-        }
-        int kind = n.choice("type", 0,
-                            {"uv_normal", "object_normal", "height", "deriv_map", "triplanar",
-                             "decal", "noise", "feature", "post_resolve"});
-        L.kind = LayerKind(kind);
         L.enabled = n.boolean("enabled", true);
-        auto requireMap = [&](const char* key, Wrap wrap) {
-            if (!n.has(key)) n.fail(std::string("missing \"") + key + "\"");
-            L.maps.push_back(texture(n.child(key), wrap));
-        };
-        switch (L.kind) {
-        case LayerKind::UvNormal:
-            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "green", "strength",
-                         "height", "modifiers"});
-            requireMap("map", Wrap::Repeat);
-            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
-            L.encoding = encoding(n, true);
-            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            heightChannel(n, L);
-            modifiers(n, L);
-            break;
-        case LayerKind::ObjectNormal:
-            n.allowOnly({"type", "enabled", "map", "uv_set", "space", "encoding", "strength"});
-            requireMap("map", Wrap::Repeat);
-            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
-            L.space = n.choice("space", 0, {"object", "world"}) == 0 ? Space::Object : Space::World;
-            L.encoding = encoding(n, false);
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            break;
-        case LayerKind::Height:
-            n.allowOnly({"type", "enabled", "map", "uv_set", "channel", "scale"});
-            requireMap("map", Wrap::Repeat);
-            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
-            L.channel = channelIndex(n, "channel", 0);
-            L.heightWorld = n.num("scale", 0.05, -kHuge, kHuge);
-            break;
-        case LayerKind::DerivMap:
-            n.allowOnly({"type", "enabled", "map", "uv_set", "encoding", "range", "space", "green",
-                         "strength", "height", "modifiers"});
-            requireMap("map", Wrap::Repeat);
-            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
-            L.derivSigned = n.choice("encoding", 0, {"float", "unorm"}) == 0;
-            L.derivRange = n.num("range", 1.0, 0.0, kHuge, true);
-            L.derivTexelSpace = n.choice("space", 0, {"tbn", "texel"}) == 1;
-            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            heightChannel(n, L);
-            modifiers(n, L);
-            break;
-        case LayerKind::Triplanar: {
-            n.allowOnly({"type", "enabled", "map", "maps", "scale", "sharpness", "handedness",
-                         "space", "encoding", "green", "strength"});
-            if (n.has("map") == n.has("maps")) {
-                n.fail("expected exactly one of \"map\" (one map for all planes) or \"maps\" "
-                       "([x, y, z] plane maps)");
-            }
-            if (n.has("map")) {
-                L.maps.push_back(texture(n.child("map"), Wrap::Repeat));
-            } else {
-                Node ms = n.child("maps");
-                if (!ms.value().is_array() || ms.value().size() != 3) {
-                    ms.fail("expected an array of 3 maps (x, y and z planes)");
-                }
-                for (size_t i = 0; i < 3; ++i) L.maps.push_back(texture(ms.item(i), Wrap::Repeat));
-            }
-            L.triScale = n.num("scale", 1.0, 0.0, kHuge, true);
-            L.triSharpness = n.num("sharpness", 4.0, 0.0, 64.0, true);
-            L.triRightHanded = n.choice("handedness", 0, {"right", "left"}) == 0;
-            L.space = n.choice("space", 1, {"object", "world"}) == 0 ? Space::Object : Space::World;
-            L.encoding = encoding(n, true);
-            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            break;
-        }
-        case LayerKind::Decal: {
-            n.allowOnly({"type", "enabled", "map", "position", "direction", "up", "size", "fade",
-                         "angle_fade_deg", "encoding", "green", "strength"});
-            requireMap("map", Wrap::Clamp);
-            L.decalPosition = n.vec3("position", glm::vec3(0.0f), -kHuge, kHuge);
-            glm::vec3 dir = n.vec3("direction", glm::vec3(0, 0, -1), -kHuge, kHuge);
-            glm::vec3 up = n.vec3("up", glm::vec3(0, 1, 0), -kHuge, kHuge);
-            if (glm::length(dir) < 1e-6f) n.failField("direction", "expected a non-zero vector");
-            glm::vec3 z = -glm::normalize(dir);
-            glm::vec3 x = glm::cross(up, z);
-            if (glm::length(x) < 1e-6f * std::max(glm::length(up), 1e-30f) ||
-                glm::length(up) < 1e-6f) {
-                n.failField("up", "expected a non-zero vector not parallel to \"direction\"");
-            }
-            x = glm::normalize(x);
-            L.decalAxisX = x;
-            L.decalAxisY = glm::cross(z, x);
-            L.decalAxisZ = z;
-            glm::vec3 size = n.vec3("size", glm::vec3(1.0f), 0.0, kHuge);
-            if (!(size.x > 0 && size.y > 0 && size.z > 0)) {
-                n.failField("size", "expected an array of 3 numbers > 0 (width, height, depth)");
-            }
-            L.decalHalfSize = 0.5f * size;
-            L.decalFade = n.num("fade", 0.25, 0.0, 1.0);
-            std::vector<float> ang = n.floats("angle_fade_deg", 0.0, 180.0, 2);
-            if (n.has("angle_fade_deg")) {
-                if (ang.size() != 2 || !(ang[0] <= ang[1])) {
-                    n.failField("angle_fade_deg",
-                                "expected [start, end] in degrees with start <= end");
-                }
-                L.decalCosStart = std::cos(glm::radians(ang[0]));
-                L.decalCosEnd = std::cos(glm::radians(ang[1]));
-            }
-            L.encoding = encoding(n, true);
-            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            break;
-        }
-        case LayerKind::Noise:
-            n.allowOnly({"type", "enabled", "noise", "amplitude", "frequency", "octaves",
-                         "lacunarity", "gain", "exponent", "offset", "space", "antialias"});
-            L.noiseType = NoiseType(n.choice("noise", 1, {"perlin", "turbulence", "fbm"}));
-            L.noiseAmplitude = n.num("amplitude", 0.02, -kHuge, kHuge);
-            L.noiseFrequency = n.num("frequency", 4.0, 0.0, kHuge, true);
-            L.noiseOctaves = n.integer("octaves", 5, 1, 12);
-            L.noiseLacunarity = n.num("lacunarity", 2.0, 1.0, 8.0);
-            L.noiseGain = n.num("gain", 0.5, 0.0, 1.0);
-            L.noiseExponent = n.num("exponent", 1.0, 1.0, 16.0);
-            L.noiseOffset = n.vec3("offset", glm::vec3(0.0f), -kHuge, kHuge);
-            L.space = n.choice("space", 0, {"object", "world"}) == 0 ? Space::Object : Space::World;
-            L.noiseAntialias = n.boolean("antialias", true);
-            break;
-        case LayerKind::Feature: {
-            n.allowOnly({"type", "enabled", "maps", "curves", "uv_set", "tiling", "offset",
-                         "profile", "depth", "width", "w0", "mode", "strength", "base_map",
-                         "encoding", "green", "near"});
-            if (n.has("maps") == n.has("curves")) {
-                n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features "
-                       "bake`) or "
-                       "\"curves\" (baked when the scene loads)");
-            }
-            FeatureSource fsrc;
-            fsrc.fieldPath = n.sub(n.has("maps") ? "maps" : "curves");
-            if (n.has("maps")) {
-                fsrc.mapsFile = resolvePath(n.child("maps"), n.string("maps", ""));
-            } else {
-                Node c = n.child("curves");
-                c.allowOnly({"svg", "json", "font", "text", "size", "mode", "margin"});
-                int kinds = int(c.has("svg")) + int(c.has("json")) + int(c.has("font"));
-                if (kinds != 1) c.fail("expected exactly one of \"svg\", \"json\" or \"font\"");
-                fsrc.curvesKind = c.has("svg") ? "svg" : c.has("json") ? "json" : "font";
-                fsrc.curvesFile = resolvePath(c.child(fsrc.curvesKind.c_str()),
-                                              c.string(fsrc.curvesKind.c_str(), ""));
-                if (fsrc.curvesKind == "font") {
-                    fsrc.text = c.string("text", "");
-                    if (fsrc.text.empty())
-                        c.failField("text",
-                                    "expected the characters to lay out (a non-empty string)");
-                } else if (c.has("text")) {
-                    c.failField("text", "applies to fonts only");
-                }
-                fsrc.size = c.integer("size", 256, 8, 4096);
-                fsrc.quadratic = c.choice("mode", 0, {"linear", "quadratic"}) == 1;
-                fsrc.marginTexels = c.number("margin", 8.0, 0.0, 1024.0);
-            }
-            L.feature = fsrc;
-            L.uvSet = n.integer("uv_set", 0, 0, kMaxUvSets - 1);
-            L.featTiling = n.num("tiling", 1.0, 0.0, kHuge, true);
-            if (n.has("offset")) {
-                std::vector<float> o = n.floats("offset", -kHuge, kHuge, 2);
-                if (o.size() != 2) n.failField("offset", "expected [s, t]");
-                L.featOffset = glm::vec2(o[0], o[1]);
-            }
-            L.featProfile = n.string("profile", "crease");
-            L.featDepth = n.num("depth", 1.0, -1024.0, 1024.0);
-            L.featWidth = n.num("width", 3.0, 0.0, 1024.0, true);
-            L.featW0 = n.num("w0", 0.0, 0.0, 1024.0);
-            if (!(L.featW0 < L.featWidth)) n.failField("w0", "expected a number < width");
-            L.featPaperMode = n.choice("mode", 0, {"surfgrad", "paper"}) == 1;
-            // --- exact near field (docs/features.md): baked with the curves, or
-            // required of the maps file; the band covers the layer's width.
-            L.featNearExact = n.choice("near", 0, {"paper", "exact"}) == 1;
-            if (L.featNearExact && L.feature) {
-                L.feature->nearField = true;
-                L.feature->nearWidthTexels = L.featWidth;
-            }
-            // --- end exact near field
-            L.strength = n.num("strength", 1.0, -kHuge, kHuge);
-            if (n.has("base_map")) L.maps.push_back(texture(n.child("base_map"), Wrap::Repeat));
-            L.encoding = encoding(n, true);
-            L.flipV = n.choice("green", 0, {"gl", "dx"}) == 1;
-            try {
-                (void)sg::features::makeProfile(L.featProfile, L.featDepth, L.featW0, L.featWidth);
-            } catch (const io::InputError& e) {
-                n.failField("profile", e.reason());
-            }
-            break;
-        }
-        case LayerKind::PostResolve: {
-            n.allowOnly({"type", "enabled", "layers"});
-            if (nested)
-                n.fail("post_resolve groups cannot be nested (list them one after another)");
-            if (!n.has("layers")) n.fail("missing \"layers\"");
-            n.requireArray("layers", size_t(kMaxLayers));
-            Node arr = n.child("layers");
-            for (size_t i = 0; i < arr.value().size(); ++i)
-                L.children.push_back(layer(arr.item(i), true));
-            break;
-        }
-        }
+        detail::SceneReader reader = *this;
+        reader.nested = nestedLayer;
+        parseLayerParams(*L.kind, n, L, reader);
         return L;
     }
 
@@ -612,9 +183,9 @@ struct Parser {
             size_t total = 0;
             bool sawGroup = false;
             for (size_t i = 0; i < arr.value().size(); ++i) {
-                m.layers.push_back(layer(arr.item(i), false));
+                m.layers.push_back(parseLayer(arr.item(i), false));
                 total += 1 + m.layers.back().children.size();
-                bool isGroup = m.layers.back().kind == LayerKind::PostResolve;
+                bool isGroup = m.layers.back().kind->group;
                 if (sawGroup && !isGroup) {
                     arr.item(i).fail("a layer after a post_resolve group belongs inside a group or "
                                      "before the first one (groups resolve in order)");
@@ -936,7 +507,10 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName,
                              "invalid JSON: " +
                                  (p == std::string::npos ? what : what.substr(p + 2)));
     }
-    Parser p{sourceName, baseDir};
+    Parser p;
+    p.file = sourceName;
+    p.baseDir = baseDir;
+    p.layer = [&p](const Node& n, bool nested) { return p.parseLayer(n, nested); };
     return p.scene(root);
 }
 

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "layer_kind.h"
 #include "render_internal.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/io.h"
@@ -123,32 +124,29 @@ struct ImGuiScope {
     }
 };
 
-// The per-layer controls; returns true when the program set may change
-// (a layer toggled), so missing textures are loaded.
+// The per-layer controls: an on/off box per layer, then a slider per entry
+// of the kind's parameter table that has one (the doc line as tooltip);
+// groups list their layers indented. Returns true when the program set may
+// change (a layer toggled), so missing textures are loaded.
 bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
     bool toggled = false;
     for (size_t i = 0; i < layers.size(); ++i) {
         Layer& L = layers[i];
         ImGui::PushID((idPrefix + std::to_string(i)).c_str());
-        toggled |= ImGui::Checkbox(layerKindName(L.kind), &L.enabled);
-        if (L.kind == LayerKind::PostResolve) {
+        toggled |= ImGui::Checkbox(L.kind->name, &L.enabled);
+        if (L.kind->group) {
             ImGui::Indent();
             toggled |= layerControls(L.children, idPrefix + std::to_string(i) + "/");
             ImGui::Unindent();
-        } else if (L.kind == LayerKind::Noise) {
-            ImGui::SameLine();
+        }
+        bool first = true;
+        for (const ParamSpec& p : L.kind->params) {
+            if (!p.slider) continue;
+            if (first) ImGui::SameLine();
+            first = false;
             ImGui::SetNextItemWidth(140);
-            ImGui::SliderFloat("amplitude", &L.noiseAmplitude, -0.1f, 0.1f, "%.4f");
-            ImGui::SetNextItemWidth(140);
-            ImGui::SliderFloat("frequency", &L.noiseFrequency, 0.1f, 50.0f);
-        } else if (L.kind == LayerKind::Height) {
-            ImGui::SameLine();
-            ImGui::SetNextItemWidth(140);
-            ImGui::SliderFloat("scale", &L.heightWorld, -0.1f, 0.1f, "%.4f");
-        } else {
-            ImGui::SameLine();
-            ImGui::SetNextItemWidth(140);
-            ImGui::SliderFloat("strength", &L.strength, -3.0f, 3.0f);
+            ImGui::SliderFloat(p.json, p.floatRef(L), p.slider->lo, p.slider->hi, p.slider->format);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.doc);
         }
         ImGui::PopID();
     }

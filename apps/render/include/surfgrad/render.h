@@ -25,6 +25,7 @@
 //
 // The API is split by stage; this header includes them all:
 //   surfgrad/render/scene.h     schema types, parseScene, loadScene, defaultScene
+//   surfgrad/render/layer_params.h  parameters of the built-in layer kinds
 //   surfgrad/render/assets.h    SceneAssets, loadAssets, applyFrame, loadTexture
 //   surfgrad/render/view.h      View, makeView, makeOrbitView
 //   surfgrad/render/plan.h      MaterialPlan, planMaterial, assembleProgram
@@ -34,6 +35,7 @@
 
 #include "surfgrad/render/assets.h"
 #include "surfgrad/render/image.h"
+#include "surfgrad/render/layer_params.h"
 #include "surfgrad/render/plan.h"
 #include "surfgrad/render/renderer.h"
 #include "surfgrad/render/scene.h"

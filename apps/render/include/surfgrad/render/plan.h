@@ -33,8 +33,8 @@ struct PlanLayer {
     int record = 0; // first vec4 record in the material's uLayerData
     int recordCount = 0;
     int tex[3] = {-1, -1, -1}; // texture slots
-    int featureSlot = -1;      // feature layers: index into MaterialPlan::featureKeys
-    int featureIndex = -1;     // feature layers: index among the plan's feature layers
+    int featureSlot = -1;      // layers reading feature maps: index into MaterialPlan::featureKeys
+    int featureIndex = -1;     // layers reading feature maps: index among them in the plan
     int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
     bool hasModifiers = false;
     int modRecord = -1; // first modifier record (one per modifier)
@@ -49,12 +49,13 @@ struct MaterialPlan {
     int lightCount = 1;
     bool uber = false;                          // every kind compiled in, enabled by uniforms
     std::vector<std::vector<PlanLayer>> groups; // [0] base layers, then post-resolve groups
+    std::vector<const LayerKind*> kinds;        // kinds of the plan's layers, registry order
     std::vector<const Layer*> groupLayers; // the post_resolve layer of each group (nullptr for 0)
     std::vector<int> groupUberIndex;       // uber plans: flag of each group (-1 for 0)
     std::vector<std::string> textureKeys;  // slot -> TextureSource::key()
     std::vector<const TextureSource*> textureSources; // slot -> source
     std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
-    int featureLayerCount = 0;                        // feature layers (all groups)
+    int featureLayerCount = 0;                        // layers reading feature maps (all groups)
     bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
     bool featureNear = false;   // some feature layer uses an exact near field (SG_FEAT_NEAR)
     int recordCount = 0;
@@ -73,9 +74,9 @@ struct MaterialPlan {
 // Throws InputError if a layer reads a UV set the mesh does not have.
 MaterialPlan planMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,
                           int materialIndex);
-// The same material with every layer kind compiled in (one stand-in layer of
-// each kind the material lacks), each enabled by a uniform flag: the
-// "uber-shader" baseline of bench/render_bench.
+// The same material with every layer kind compiled in (the stand-in layers
+// each registered kind provides, after the material's own), each enabled by
+// a uniform flag: the "uber-shader" baseline of bench/render_bench.
 MaterialPlan planUberMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,
                               int materialIndex);
 

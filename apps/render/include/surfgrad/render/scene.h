@@ -15,14 +15,17 @@
 // axis; texture coordinates have (0,0) at the lower-left image corner, t up.
 #pragma once
 
+#include <any>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/glsl_texture.h"
 
 namespace sg::render {
@@ -37,22 +40,15 @@ inline constexpr int kMaxImageSize = 8192;  // output width/height
 enum class TangentSource { Pixel, MikkTSpace, Limit };
 // "off" culls back faces; none/mirror/flip are Mikkelsen 2019 section 2.10.
 enum class DoubleSided { Off, None, Mirror, Flip };
-enum class LayerKind {
-    UvNormal,     // tangent-space normal map on a UV set (listings 4, 5, 6)
-    ObjectNormal, // object/world-space normal map (listing 7)
-    Height,       // height map, displacement style (listings 8, 9)
-    DerivMap,     // derivative map, TBN style or texel space (listings 5, 8)
-    Triplanar,    // triplanar projection (listings 13, 14)
-    Decal,        // decal projector (listing 15)
-    Noise,        // volume noise with analytic gradient (listing 12, section 4)
-    Feature,      // feature-curve maps (Parilov-Zorin 2008) as a TBN-style layer
-    PostResolve,  // group resolved on top of the previous result (section 3)
-};
-const char* layerKindName(LayerKind k); // the schema's "type" string
+// A layer kind: one entry of the layer-kind registry (its parameter table,
+// records, GLSL emission and CPU call; apps/render/src/layer_kind.h and
+// docs/architecture.md, "Adding a layer kind"). Compared by address.
+struct LayerKind;
+// A derivative-space modifier kind (shaders/sg/render/deriv_mods.cpp).
+struct ModifierKind;
 enum class Space { World, Object };
-enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 };           // SG_ENC_*
-enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 };               // SG_NOISE_*
-enum class ModifierKind { Scale = 1, Curve = 2, Modulate = 3, Deform = 4 }; // SG_MOD_*
+enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 }; // SG_ENC_*
+enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 };     // SG_NOISE_*
 
 // Where a texture's texels come from: a file (PNG, EXR, ... through
 // OpenImageIO) or a built-in procedural pattern (tileable over [0,1]^2).
@@ -88,64 +84,59 @@ struct FeatureSource {
 };
 
 struct Modifier {
-    ModifierKind kind = ModifierKind::Scale;
+    const ModifierKind* kind = nullptr; // findModifierKind("scale"), ...
     float a = 1.0f;  // scale: alpha; curve: P; deform: amplitude A; modulate: gain
     float b = 0.0f;  // curve: centre H; deform: frequency B
     int channel = 0; // modulate: mask channel
     std::optional<TextureSource> mask; // modulate
+
+    bool is(std::string_view kindName) const; // kind's schema name, e.g. "deform"
 };
 
+// One bump layer. The fields every kind shares are members; the kind's own
+// parameters (a struct of the kind's, e.g. DecalParams of
+// surfgrad/render/layer_params.h) are held type-erased and read with
+// params<DecalParams>(). A layer made by makeLayer(kind) holds the kind's
+// defaults; a default-constructed Layer has no kind and is not valid.
 struct Layer {
-    LayerKind kind = LayerKind::UvNormal;
+    const LayerKind* kind = nullptr;
     std::string fieldPath; // e.g. "materials[0].layers[2]"
     bool enabled = true;
-    float strength = 1.0f; // bump scale (listing 2); noise: see amplitude
-
-    // Maps: uv_normal, object_normal, height, deriv_map, decal use map[0];
-    // triplanar uses map[0..2] (x, y, z planes; one map repeated when given once).
+    float strength = 1.0f; // bump scale (listing 2)
+    // Maps: one per texture the kind reads (triplanar: x, y, z planes, one
+    // map repeated when given once; feature: the optional base map).
     std::vector<TextureSource> maps;
-    int uvSet = 0;
-    NormalEncoding encoding = NormalEncoding::Rgb;
-    bool flipV = false;       // green convention "dx"
-    int heightChannel = -1;   // uv_normal/deriv_map height channel for modifiers
-    float heightScale = 1.0f; // height channel -> height per st unit
-    std::vector<Modifier> modifiers;
+    int uvSet = 0;                   // kinds that read a UV set
+    std::vector<Modifier> modifiers; // kinds that take derivative-space modifiers
+    std::vector<Layer> children;     // groups (post_resolve)
+    std::any kindParams;             // the kind's parameter struct
 
-    Space space = Space::Object; // object_normal, triplanar, noise
-    int channel = 0;             // height: channel of the height
-    float heightWorld = 0.05f;   // height: world units per unit of the channel
-    bool derivSigned = true;     // deriv_map: float texels (else unorm * range)
-    float derivRange = 1.0f;
-    bool derivTexelSpace = false; // deriv_map: texel-space (scale dependent)
-
-    float triScale = 1.0f;     // triplanar: repeats per domain unit
-    float triSharpness = 4.0f; // listing 14's k
-    bool triRightHanded = true;
-
-    glm::vec3 decalPosition{0.0f}; // decal centre (world)
-    glm::vec3 decalAxisX{1, 0, 0}, decalAxisY{0, 1, 0},
-        decalAxisZ{0, 0, 1}; // z toward the surface it lands on
-    glm::vec3 decalHalfSize{0.5f};
-    float decalFade = 0.25f;
-    float decalCosStart = 0.5f, decalCosEnd = 0.17f;
-
-    NoiseType noiseType = NoiseType::Turbulence;
-    float noiseAmplitude = 0.02f, noiseFrequency = 4.0f, noiseLacunarity = 2.0f, noiseGain = 0.5f,
-          noiseExponent = 1.0f;
-    int noiseOctaves = 5;
-    glm::vec3 noiseOffset{0.0f};
-    bool noiseAntialias = true;
-
-    std::optional<FeatureSource> feature; // feature: the maps (maps[0] is the optional base map)
-    std::string featProfile = "crease";   // sg::features::makeProfile name
-    float featDepth = 1.0f, featW0 = 0.0f, featWidth = 3.0f; // texels
-    bool featPaperMode = false;
-    bool featNearExact = false; // "near": "exact": the maps' exact near field, per-curve profiles
-    float featTiling = 1.0f;
-    glm::vec2 featOffset{0.0f};
-
-    std::vector<Layer> children; // post_resolve group
+    // The kind's parameters. Contract: P is the kind's parameter type.
+    template <class P>
+    P& params() {
+        P* p = std::any_cast<P>(&kindParams);
+        SG_EXPECTS(p != nullptr, "Layer::params<P>: P is the layer kind's parameter type");
+        return *p;
+    }
+    template <class P>
+    const P& params() const {
+        const P* p = std::any_cast<P>(&kindParams);
+        SG_EXPECTS(p != nullptr, "Layer::params<P>: P is the layer kind's parameter type");
+        return *p;
+    }
+    bool is(std::string_view kindName) const; // kind's schema name, e.g. "decal"
 };
+
+// The registry (apps/render/src/layer_registry.cpp): the kind named `name`
+// (the schema's "type"), or nullptr.
+const LayerKind* findLayerKind(std::string_view name);
+const char* layerKindName(const LayerKind* kind); // "?" for nullptr
+// Names of every layer kind, in schema order.
+std::vector<std::string> layerKindNames();
+// A layer of the named kind with the kind's default parameters.
+// Contract: findLayerKind(kindName) != nullptr.
+Layer makeLayer(std::string_view kindName);
+const ModifierKind* findModifierKind(std::string_view name);
 
 struct Material {
     std::string name;

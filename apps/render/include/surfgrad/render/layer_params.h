@@ -1,0 +1,105 @@
+// Parameters of the built-in layer kinds: the C++ side of each kind's
+// scene fields, read with Layer::params<P>() (e.g.
+// layer.params<DecalParams>().axisZ). Each struct belongs to its kind's unit
+// (shaders/sg/render/layer_<kind>.{glsl,cpp}): the kind's parameter table
+// there maps scene fields to these members, validates them and packs them
+// into the records its GLSL unpacker reads. The fields every kind shares
+// (strength, maps, uv_set, modifiers, ...) are members of Layer itself.
+// Defaults are the member initializers (makeLayer() gives them; the scene
+// parser keeps them for absent fields). A kind added later may keep its
+// parameter struct in its own .cpp when nothing else reads it.
+//
+// Spaces and units as in docs/scene.md: world space right-handed, y up;
+// st with t up.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "surfgrad/render/scene.h"
+
+namespace sg::render {
+
+// uv_normal: tangent-space normal map on a UV set (listings 4, 5, 6).
+struct UvNormalParams {
+    NormalEncoding encoding = NormalEncoding::Rgb;
+    bool flipV = false;       // green convention "dx"
+    int heightChannel = -1;   // height channel read by modifiers (-1: none)
+    float heightScale = 1.0f; // height channel -> height per st unit
+};
+
+// object_normal: object/world-space normal map (listing 7).
+struct ObjectNormalParams {
+    Space space = Space::Object;
+    NormalEncoding encoding = NormalEncoding::Rgb; // Rgb or Float
+};
+
+// height: height map, displacement style (listings 8, 9).
+struct HeightParams {
+    int channel = 0;     // channel holding the height (0 r .. 3 a)
+    float scale = 0.05f; // world units per unit of the channel
+};
+
+// deriv_map: derivative map, TBN style or texel space (section 2.1).
+struct DerivMapParams {
+    bool signedTexels = true; // float texels (else unorm: (2 rg - 1) * range)
+    float range = 1.0f;
+    bool texelSpace = false; // texel-space derivatives (scale dependent)
+    bool flipV = false;
+    int heightChannel = -1;
+    float heightScale = 1.0f;
+};
+
+// triplanar: projection on three planes (listings 13, 14).
+struct TriplanarParams {
+    float scale = 1.0f;     // repeats per domain unit
+    float sharpness = 4.0f; // listing 14's k
+    bool rightHanded = true;
+    Space space = Space::World;
+    NormalEncoding encoding = NormalEncoding::Rgb;
+    bool flipV = false;
+};
+
+// decal: projector (listing 15). position, direction, up and size are the
+// scene's fields; the frame and half size are derived from them when the
+// scene is read (z toward the surface the decal lands on, x = up x z).
+struct DecalParams {
+    glm::vec3 position{0.0f};               // centre (world)
+    glm::vec3 direction{0.0f, 0.0f, -1.0f}; // projection direction
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    glm::vec3 axisX{1, 0, 0}, axisY{0, 1, 0}, axisZ{0, 0, 1}; // unit, orthogonal
+    glm::vec3 halfSize{0.5f};                                 // world units, > 0
+    float fade = 0.25f;                                       // of the half depth
+    float cosStart = 0.5f, cosEnd = 0.17f;                    // angle fade (cosines)
+    NormalEncoding encoding = NormalEncoding::Rgb;
+    bool flipV = false;
+};
+
+// noise: volume noise with analytic gradient (listing 12, section 4).
+struct NoiseParams {
+    NoiseType type = NoiseType::Turbulence;
+    float amplitude = 0.02f, frequency = 4.0f; // domain units, per domain unit
+    int octaves = 5;
+    float lacunarity = 2.0f, gain = 0.5f, exponent = 1.0f;
+    glm::vec3 offset{0.0f};
+    Space space = Space::Object;
+    bool antialias = true;
+};
+
+// feature: feature-curve maps (Parilov-Zorin 2008) as a TBN-style layer.
+// Layer::maps holds the optional base map.
+struct FeatureParams {
+    std::optional<FeatureSource> source;         // the maps (always set by the parser)
+    std::string profile = "crease";              // sg::features::makeProfile name
+    float depth = 1.0f, w0 = 0.0f, width = 3.0f; // texels
+    bool paperMode = false;
+    bool nearExact = false; // "near": "exact": the maps' exact near field, per-curve profiles
+    float tiling = 1.0f;
+    glm::vec2 offset{0.0f};
+    NormalEncoding encoding = NormalEncoding::Rgb; // base map
+    bool flipV = false;
+};
+
+} // namespace sg::render

@@ -1,0 +1,572 @@
+// Layer kinds as units: the interface every bump layer kind implements.
+//
+// A layer kind is two files side by side in shaders/sg/render/ plus one
+// line in the registry (layer_registry.cpp):
+//   layer_<kind>.glsl  the shared GLSL/C++ function (sgLayer<Kind>), its
+//                      parameter struct and its record unpacker sgUnpack<Kind>;
+//   layer_<kind>.cpp   the LayerKind entry below: the parameter table (scene
+//                      fields, validation, viewer sliders, docs), the record
+//                      layout (the packer, slot by slot beside the GLSL
+//                      unpacker it must match), the GLSL statement the
+//                      assembler emits and the CPU call that mirrors it.
+// Everything else (scene parser, planner, assembler, CPU twin, viewer,
+// asset loader, uber-shader stand-ins, the record round-trip test) iterates
+// the registry. docs/architecture.md, "Adding a layer kind", walks through
+// an example.
+//
+// Derivative-space modifiers (Loviscach 2008) are units of the same shape,
+// one ModifierKind each (shaders/sg/render/deriv_mods.cpp).
+//
+// Internal to surfgrad_render (the kind files are compiled by it).
+#pragma once
+
+#include <any>
+#include <array>
+#include <cstring>
+#include <functional>
+#include <optional>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "render_internal.h"
+#include "scene_node.h"
+#include "surfgrad/contract.h"
+#include "surfgrad/render.h"
+#include "surfgrad/render_shaders.h"
+
+namespace sg::render {
+
+// ---------------------------------------------------------------------------
+// 1. Parameters: one declarative table per kind.
+//
+// Each entry is one scene field: its JSON name, the member it sets, its type
+// and validation range (the parser's messages name the field path, e.g.
+// "materials[0].layers[2].strength: expected a number"), an optional viewer
+// slider and a doc line (the viewer's tooltip; tests/render checks that
+// docs/scene.md names every field of every kind). The table's order is the
+// order fields are read (and listed in "unknown field" messages). Bespoke
+// code only where a kind needs it: a Custom entry parses its field itself,
+// `check` validates after the value is stored (and runs when it is absent).
+
+enum class ParamType { Number, Integer, Boolean, Choice, Vec3, String, Map, Custom };
+
+struct SliderRange {
+    float lo = 0.0f, hi = 1.0f;
+    const char* format = "%.3f";
+};
+
+using ParamParse = std::function<void(const detail::SceneNode& layerNode, const char* key,
+                                      Layer& layer, const detail::SceneReader& reader)>;
+using ParamCheck =
+    std::function<void(const detail::SceneNode& layerNode, const char* key, const Layer& layer)>;
+
+struct ParamSpec {
+    const char* json = "";
+    ParamType type = ParamType::Custom;
+    const char* doc = "";
+    double lo = -detail::kHuge, hi = detail::kHuge;   // Number, Integer, Vec3
+    bool loOpen = false;                              // Number: (lo, hi]
+    std::vector<std::pair<const char*, int>> choices; // Choice: name -> value
+    Wrap wrap = Wrap::Repeat;                         // Map
+    bool required = false;                            // Map
+    std::optional<SliderRange> slider;                // viewer (Number only)
+    // Typed access, made by the param:: helpers below.
+    std::function<void(Layer&, double)> setNumber; // Number, Integer, Boolean, Choice
+    std::function<void(Layer&, glm::vec3)> setVec3;
+    std::function<void(Layer&, std::string)> setString;
+    std::function<float*(Layer&)> floatRef; // Number: the member (viewer sliders)
+    ParamParse parse;                       // Custom
+    ParamCheck check;                       // optional, any type
+};
+
+namespace param {
+
+// The struct P's member of a layer: P is Layer for the shared fields
+// (strength, uv_set), else the kind's parameter struct.
+template <class P>
+P& owner(Layer& L) {
+    if constexpr (std::is_same_v<P, Layer>)
+        return L;
+    else
+        return L.params<P>();
+}
+
+struct Range {
+    double lo = -detail::kHuge, hi = detail::kHuge;
+    bool loOpen = false; // (lo, hi]
+};
+
+template <class P>
+ParamSpec number(const char* json, float P::*m, Range r, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Number;
+    s.doc = doc;
+    s.lo = r.lo;
+    s.hi = r.hi;
+    s.loOpen = r.loOpen;
+    s.setNumber = [m](Layer& L, double v) { owner<P>(L).*m = float(v); };
+    s.floatRef = [m](Layer& L) { return &(owner<P>(L).*m); };
+    return s;
+}
+
+template <class P>
+ParamSpec integer(const char* json, int P::*m, int lo, int hi, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Integer;
+    s.doc = doc;
+    s.lo = lo;
+    s.hi = hi;
+    s.setNumber = [m](Layer& L, double v) { owner<P>(L).*m = int(v); };
+    return s;
+}
+
+template <class P>
+ParamSpec boolean(const char* json, bool P::*m, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Boolean;
+    s.doc = doc;
+    s.setNumber = [m](Layer& L, double v) { owner<P>(L).*m = v != 0.0; };
+    return s;
+}
+
+// One of named values, stored as T (an enum, bool or int).
+template <class P, class T>
+ParamSpec choice(const char* json, T P::*m,
+                 std::initializer_list<std::pair<const char*, std::type_identity_t<T>>> values,
+                 const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Choice;
+    s.doc = doc;
+    for (const auto& [name, v] : values) s.choices.emplace_back(name, int(v));
+    s.setNumber = [m](Layer& L, double v) { owner<P>(L).*m = static_cast<T>(int(v)); };
+    return s;
+}
+
+template <class P>
+ParamSpec vec3(const char* json, glm::vec3 P::*m, Range r, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Vec3;
+    s.doc = doc;
+    s.lo = r.lo;
+    s.hi = r.hi;
+    s.setVec3 = [m](Layer& L, glm::vec3 v) { owner<P>(L).*m = v; };
+    return s;
+}
+
+template <class P>
+ParamSpec string(const char* json, std::string P::*m, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::String;
+    s.doc = doc;
+    s.setString = [m](Layer& L, std::string v) { owner<P>(L).*m = std::move(v); };
+    return s;
+}
+
+// A required texture, appended to Layer::maps.
+ParamSpec map(const char* json, Wrap wrap, const char* doc);
+// An optional texture, appended to Layer::maps when given.
+ParamSpec optionalMap(const char* json, Wrap wrap, const char* doc);
+// A field the kind parses itself (or that another entry's parser reads).
+ParamSpec custom(const char* json, ParamParse parse, const char* doc);
+// The entry with a viewer slider (Number entries).
+ParamSpec slider(ParamSpec s, float lo, float hi, const char* format = "%.3f");
+// The entry with a check run after it is read.
+ParamSpec checked(ParamSpec s, ParamCheck check);
+
+// Shared fields of several kinds.
+ParamSpec strength(); // bump scale, slider -3..3
+ParamSpec uvSet();    // "uv_set", 0..kMaxUvSets-1
+// A texture channel: "r", "g", "b", "a" -> 0..3.
+template <class P>
+ParamSpec channel(const char* json, int P::*m, const char* doc) {
+    return choice(json, m, {{"r", 0}, {"g", 1}, {"b", 2}, {"a", 3}}, doc);
+}
+// "encoding": rgb, rg, ag, float; twoChannel false: rgb or float only.
+template <class P>
+ParamSpec encoding(NormalEncoding P::*m, bool twoChannel) {
+    ParamSpec s = choice("encoding", m,
+                         {{"rgb", NormalEncoding::Rgb},
+                          {"rg", NormalEncoding::Rg},
+                          {"ag", NormalEncoding::Ag},
+                          {"float", NormalEncoding::Float}},
+                         "normal-map encoding");
+    if (!twoChannel) {
+        s.check = [m](const detail::SceneNode& n, const char*, const Layer& L) {
+            NormalEncoding e = L.params<P>().*m;
+            if (e == NormalEncoding::Rg || e == NormalEncoding::Ag) {
+                n.failField("encoding",
+                            "this layer needs all three components: expected \"rgb\" or \"float\"");
+            }
+        };
+    }
+    return s;
+}
+// "green": "gl" (up) or "dx" (down: listing 4's flip).
+template <class P>
+ParamSpec green(bool P::*m) {
+    return choice("green", m, {{"gl", false}, {"dx", true}}, "normal-map green convention");
+}
+// "height": {"channel": "a", "scale": 1}, the height channel modifiers read.
+template <class P>
+ParamSpec heightChannel(int P::*channelMember, float P::*scaleMember) {
+    return custom(
+        "height",
+        [channelMember, scaleMember](const detail::SceneNode& n, const char* key, Layer& L,
+                                     const detail::SceneReader&) {
+            if (!n.has(key)) return;
+            detail::SceneNode h = n.child(key);
+            h.allowOnly({"channel", "scale"});
+            L.params<P>().*channelMember = h.choice("channel", 3, {"r", "g", "b", "a"});
+            L.params<P>().*scaleMember = h.num("scale", 1.0, -detail::kHuge, detail::kHuge);
+        },
+        "height channel and scale (read by modifiers)");
+}
+// "modifiers": derivative-space modifiers (deriv_mods.cpp).
+ParamSpec modifiers();
+
+} // namespace param
+
+// ---------------------------------------------------------------------------
+// 2. Records: the packer, one declarative layout per GLSL unpacker.
+//
+// A kind's parameters reach the GPU as vec4 records (uLayerData) that its
+// sgUnpack* function reads; the CPU reads the same records. A RecordLayout
+// names the unpacker and, per field of its GLSL struct, the slots it reads
+// ("r0.xyz", "r1.w r2.w r3.w") and the value packed there, computed from the
+// layer. Packing writes exactly these slots (other slots stay 0). The
+// round-trip test (tests/render/layer_records_test.cpp) packs random values
+// for every field of every layout, unpacks them through the GLSL function on
+// the GPU and through its C++ build, and compares field by field: a layout
+// and an unpacker that disagree on a slot fail it.
+
+// What a field's value is computed from.
+struct PackInput {
+    const Layer& layer;
+    const View& view;          // decal origins are packed relative to the camera
+    const SceneAssets* assets; // nullptr when packing without assets
+    const std::any& prepared;  // RecordLayout::prepare's result (or empty)
+    template <class P>
+    const P& params() const {
+        return layer.params<P>();
+    }
+};
+
+enum class FieldType { Float, Int, Bool, Vec2, Vec3 };
+int componentCount(FieldType t);
+
+struct Slot {
+    int record = 0;    // relative to the layout's first record
+    int component = 0; // 0 x .. 3 w
+};
+
+struct RecordField {
+    std::string glsl; // member of the GLSL struct, e.g. "origin", "table[3]"
+    FieldType type = FieldType::Float;
+    std::vector<Slot> slots;                          // one per component
+    std::function<glm::vec3(const PackInput&)> value; // ints and bools as exact floats
+    // The member of the C++ build's unpacked struct (std::any holding it) as
+    // 32-bit words: float bits, int as two's complement, bool 0/1.
+    std::function<void(const std::any& unpacked, uint32_t* words)> read;
+};
+
+struct RecordLayout {
+    std::string structType; // e.g. "SgDecalParams"
+    std::string unpack;     // e.g. "sgUnpackDecal"
+    int first = 0;          // first record, relative to the layer's
+    int count = 0;          // vec4 arguments of the unpacker
+    std::vector<RecordField> fields;
+    std::function<std::any(const Layer&)> prepare;               // optional: computed once per pack
+    std::function<std::any(const glm::vec4* records)> unpackCpu; // the C++ build
+};
+
+// Slots "r<i>.<components>" separated by spaces, e.g. "r1.w r2.w r3.w".
+std::vector<Slot> parseSlots(const char* text);
+
+// Builds a RecordLayout for the GLSL struct S unpacked by `fn` from N records.
+template <class S, int N>
+class Records {
+public:
+    template <class F>
+    Records(const char* structType, const char* unpack, F fn, int first = 0) {
+        l_.structType = structType;
+        l_.unpack = unpack;
+        l_.first = first;
+        l_.count = N;
+        l_.unpackCpu = [fn](const glm::vec4* r) {
+            return std::any(call(fn, r, std::make_integer_sequence<int, N>{}));
+        };
+    }
+    // Member `m` of S at `slots`, packed from get(PackInput) (a T).
+    template <class T, class G>
+    Records& field(const char* glsl, T S::*m, const char* slots, G get) {
+        return add(
+            glsl, typeOf<T>(), slots, [get](const PackInput& in) { return toVec3(T(get(in))); },
+            [m](const S& s) { return s.*m; });
+    }
+    // Element i of the array member `m` of S.
+    template <class T, size_t K, class G>
+    Records& element(const char* glsl, T (S::*m)[K], size_t i, const char* slots, G get) {
+        return add(
+            glsl, typeOf<T>(), slots, [get](const PackInput& in) { return toVec3(T(get(in))); },
+            [m, i](const S& s) { return (s.*m)[i]; });
+    }
+    Records& prepare(std::function<std::any(const Layer&)> p) {
+        l_.prepare = std::move(p);
+        return *this;
+    }
+    RecordLayout done() const { return l_; }
+
+private:
+    template <class F, int... I>
+    static S call(F fn, const glm::vec4* r, std::integer_sequence<int, I...>) {
+        return fn(r[I]...);
+    }
+    template <class T>
+    static FieldType typeOf() {
+        if constexpr (std::is_same_v<T, float>) return FieldType::Float;
+        if constexpr (std::is_same_v<T, int>) return FieldType::Int;
+        if constexpr (std::is_same_v<T, bool>) return FieldType::Bool;
+        if constexpr (std::is_same_v<T, glm::vec2>) return FieldType::Vec2;
+        if constexpr (std::is_same_v<T, glm::vec3>) return FieldType::Vec3;
+    }
+    static glm::vec3 toVec3(float x) { return glm::vec3(x, 0.0f, 0.0f); }
+    static glm::vec3 toVec3(int x) { return glm::vec3(float(x), 0.0f, 0.0f); }
+    static glm::vec3 toVec3(bool x) { return glm::vec3(x ? 1.0f : 0.0f, 0.0f, 0.0f); }
+    static glm::vec3 toVec3(glm::vec2 x) { return glm::vec3(x, 0.0f); }
+    static glm::vec3 toVec3(glm::vec3 x) { return x; }
+    static void words(float x, uint32_t* w) { std::memcpy(w, &x, 4); }
+    static void words(int x, uint32_t* w) { w[0] = uint32_t(x); }
+    static void words(bool x, uint32_t* w) { w[0] = x ? 1u : 0u; }
+    static void words(glm::vec2 x, uint32_t* w) { std::memcpy(w, &x[0], 8); }
+    static void words(glm::vec3 x, uint32_t* w) { std::memcpy(w, &x[0], 12); }
+    template <class R>
+    Records& add(const char* glsl, FieldType type, const char* slots,
+                 std::function<glm::vec3(const PackInput&)> value, R readMember) {
+        RecordField f;
+        f.glsl = glsl;
+        f.type = type;
+        f.slots = parseSlots(slots);
+        SG_ASSERT(int(f.slots.size()) == componentCount(type), "one slot per component");
+        f.value = std::move(value);
+        f.read = [readMember](const std::any& u, uint32_t* w) {
+            words(readMember(std::any_cast<const S&>(u)), w);
+        };
+        l_.fields.push_back(std::move(f));
+        return *this;
+    }
+    RecordLayout l_;
+};
+
+// Writes one field's value into its slots (the packer; records[0] is the
+// layout's first record).
+void packField(const RecordField& f, glm::vec3 value, glm::vec4* records);
+// Packs every field of every layout of the layer's kind into `records`
+// (the layer's first record).
+void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm::vec4* records);
+
+// ---------------------------------------------------------------------------
+// 3. Emission: the GLSL statement and the CPU call, side by side.
+//
+// The assembled main() (assemble.cpp) holds these variables, and the CPU
+// twin the same ones in CpuShadeState: `frame` (SgFrame: the prologue,
+// listing 16, or the re-prologue of a post-resolve group), `uv0`..`uv3`
+// (SgUvFrame of each UV set the plan reads), `volWorld`, `volObject`
+// (SgVolumeSpace, when a layer uses them), `surfGrad` (the group's sum).
+// A kind's statement adds its surface gradient to surfGrad; a kind may also
+// replace frames for the layers after it (e.g. assign uv<k> a corrected
+// coordinate, or `frame` a virtual surface followed by sgReprologue), as
+// long as its CPU call does the same to the state. One statement: a block
+// `{ ... }` when it needs locals (the assembler may guard it with an `if`
+// in uber-shaders).
+
+struct GlslLayerContext {
+    const MaterialPlan& plan;
+    const PlanLayer& pl;
+    std::string indent; // of the statement; lines inside a block add 4 spaces
+
+    const Layer& layer() const { return *pl.layer; }
+    std::string rec(int i) const;                    // "uLayerData[n]", i relative to the layer
+    std::string unpack(const RecordLayout& l) const; // "sgUnpackX(uLayerData[a], ...)"
+    std::string tex(int i) const;                    // "uTex<slot>" of the layer's i-th texture
+    std::string uv() const;                          // "uv<k>": the layer's UV frame
+    std::string vol(Space s) const;                  // "volWorld" | "volObject"
+};
+
+// The main()'s variables on the CPU.
+struct CpuShadeState {
+    sg::glsl::SgFrame frame{};
+    std::array<sg::glsl::SgUvFrame, kMaxUvSets> uv{};
+    sg::glsl::SgVolumeSpace volWorld{}, volObject{};
+    glm::vec3 surfGrad{0.0f};
+    const sg::glsl::SgVolumeSpace& vol(Space s) const {
+        return s == Space::World ? volWorld : volObject;
+    }
+};
+
+struct CpuLayerContext {
+    const MaterialPlan& plan;
+    const PlanLayer& pl;
+    const detail::DrawUniforms& u;
+    const std::vector<sg::glsl::sampler2D>& samplers;
+    const std::vector<detail::FeatureSamplers>& featureSamplers;
+    const detail::PixelInputs& in;
+
+    const Layer& layer() const { return *pl.layer; }
+    const glm::vec4* rec() const { return &u.records[size_t(pl.record)]; }
+    sg::glsl::sampler2D tex(int i) const {
+        int slot = pl.tex[i];
+        return slot >= 0 ? samplers[size_t(slot)] : sg::glsl::sampler2D{};
+    }
+    const sg::glsl::SgUvFrame& uv(const CpuShadeState& s) const {
+        return s.uv[size_t(pl.layer->uvSet)];
+    }
+};
+
+// Kinds emitted together per group rather than one statement per layer
+// (feature: one loop, so the large evaluator is compiled once). The CPU
+// twin calls shadeCpu per layer in the loop's order: after the group's
+// other layers, batched kinds in registry order, each kind's layers in
+// plan order.
+struct LayerBatch {
+    std::string (*groupStatements)(const MaterialPlan& plan,
+                                   const std::vector<const PlanLayer*>& layers,
+                                   const std::string& indent) = nullptr;
+};
+
+// ---------------------------------------------------------------------------
+// 4. Derivative-space modifiers (shaders/sg/render/deriv_mods.cpp).
+
+// A kind that takes modifiers samples its map as a height and derivative,
+// lets the modifiers edit them, then turns the derivative into its surface
+// gradient; these are its three steps.
+struct DerivModTarget {
+    const char* glslFile; // the kind's file with the HD sampler
+    // GLSL: "SgXParams p = sgUnpackX(...);", the sampler's name, the
+    // surface-gradient expression of `hd` (p, st, dx, dy in scope).
+    std::string (*glslParams)(const GlslLayerContext&);
+    const char* glslSample; // e.g. "sgSampleUvNormalHD" (tex, st, dx, dy, p)
+    std::string (*glslSurfgrad)(const GlslLayerContext&);
+    // CPU: the same three steps.
+    sg::glsl::SgHeightDeriv (*sampleCpu)(const CpuLayerContext&, glm::vec2 st, glm::vec2 dx,
+                                         glm::vec2 dy);
+    glm::vec3 (*surfgradCpu)(const CpuLayerContext&, const CpuShadeState&,
+                             const sg::glsl::SgHeightDeriv&);
+};
+
+// The block statement of a layer with modifiers, and its CPU twin.
+std::string derivModBlock(const GlslLayerContext& c, const DerivModTarget& t);
+glm::vec3 derivModCpu(const CpuLayerContext& c, const CpuShadeState& s, const DerivModTarget& t);
+
+// What a modifier's statement reads besides hd and its record: GLSL
+// expressions in the block derivModBlock writes, values on the CPU.
+struct ModifierGlslInputs {
+    std::string op;   // the record, e.g. "uLayerData[7]"
+    std::string mask; // the mask's sampler ("" when the modifier has none)
+    std::string jac;  // the lookup warp's Jacobian: "jac", or "mat2(1.0f)" without a warp
+};
+
+struct ModifierCpuInputs {
+    glm::mat2 jac{1.0f};        // the lookup warp's Jacobian (identity without a warp)
+    sg::glsl::sampler2D mask{}; // the modifier's mask texture
+    glm::vec2 st{0.0f}, dx{0.0f}, dy{0.0f};
+};
+
+struct ModifierKind {
+    const char* name = "";           // the scene's "type"
+    int id = 0;                      // SG_MOD_* (record x)
+    char sigCode = '?';              // in the effect signature
+    std::vector<const char*> fields; // scene fields besides "type"
+    const char* doc = "";
+    bool warpsLookup = false; // acts on the lookup: must be the first modifier
+    void (*parse)(const detail::SceneNode& n, Modifier& m,
+                  const detail::SceneReader& reader) = nullptr;
+    glm::vec4 (*pack)(const Modifier&) = nullptr;
+    // The lookup warp (warpsLookup): GLSL lines defining st, dx, dy (and jac).
+    std::string (*glslWarp)(const std::string& op, const std::string& uv,
+                            const std::string& indent) = nullptr;
+    glm::vec2 (*warpCpu)(const glm::vec4& op, glm::vec2 st, glm::mat2& jac) = nullptr;
+    // "hd = sgModX(hd, op...);" and its CPU twin.
+    std::string (*glsl)(const ModifierGlslInputs& in) = nullptr;
+    sg::glsl::SgHeightDeriv (*cpu)(const sg::glsl::SgHeightDeriv& hd, const glm::vec4& op,
+                                   const ModifierCpuInputs& in) = nullptr;
+};
+
+const std::vector<const ModifierKind*>& modifierKinds();
+
+// Texture components as LayerKind::mapChannels bits.
+constexpr uint32_t kChannelR = 1, kChannelG = 2, kChannelB = 4, kChannelA = 8;
+constexpr uint32_t kRgbaChannels = kChannelR | kChannelG | kChannelB | kChannelA;
+// The components a tangent-space normal encoding stores x and y in
+// (sgDecodeNormalXY: z is rebuilt, ag maps keep x in alpha).
+constexpr uint32_t normalXyChannels(NormalEncoding e) {
+    return e == NormalEncoding::Ag ? (kChannelG | kChannelA) : (kChannelR | kChannelG);
+}
+// One component 0..3 (r..a) as a mask; none for a negative channel.
+constexpr uint32_t channelBit(int channel) { return channel >= 0 ? 1u << channel : 0u; }
+
+// ---------------------------------------------------------------------------
+// 5. The kind.
+
+struct LayerKind {
+    const char* name = "";    // the scene's "type"
+    const char* sigCode = ""; // the kind in the effect signature
+    const char* doc = "";     // one line: what it is, which listing
+    std::vector<ParamSpec> params;
+    std::any (*makeParams)() = nullptr; // default parameters (nullptr: none)
+    // Cross-field validation after every entry was read (optional).
+    void (*check)(const detail::SceneNode& n, const Layer& L) = nullptr;
+
+    // What the planner needs.
+    bool group = false;   // a post-resolve group of layers (post_resolve)
+    bool readsUv = false; // reads Layer::uvSet's frame
+    bool (*readsTangentBasis)(const Layer&) = nullptr; // the frame's vT, vB (vertex tangents)
+    int textureSlots = 0; // Layer::maps[i] -> slot i (missing maps repeat the last)
+    // The components of its maps the kind's shader reads (bit c: component
+    // c of RGBA; sgDecodeNormalXY/XYZ and sgTexelChannel in common.glsl) and
+    // what reads them, for messages. Textures are decoded with only these
+    // (assets.cpp); nullptr: all four.
+    uint32_t (*mapChannels)(const Layer&, const char*& why) = nullptr;
+    std::optional<Space> (*volume)(const Layer&) = nullptr; // a volume domain
+    const char* glslFile = nullptr;                         // #included when used
+    const DerivModTarget* modifiers = nullptr;              // takes derivative-space modifiers
+    // Feature maps the layer reads (assets load them; the plan gives them slots).
+    const FeatureSource* (*featureSource)(const Layer&) = nullptr;
+    std::vector<RecordLayout> records;
+
+    // Emission (section 3).
+    std::string (*glsl)(const GlslLayerContext&) = nullptr;
+    void (*cpu)(const CpuLayerContext&, CpuShadeState&) = nullptr;
+    const LayerBatch* batch = nullptr;
+    // Once per program when the plan has layers of this kind: declarations
+    // after the texture uniforms, #defines, and a part of the signature.
+    std::string (*programDeclarations)(const MaterialPlan&) = nullptr;
+    void (*programDefines)(const MaterialPlan&, std::vector<std::string>&) = nullptr;
+    std::string (*programSignature)(const MaterialPlan&) = nullptr;
+
+    // The uber-shader baseline's stand-ins (disabled layers of this kind).
+    std::vector<Layer> (*uberStandIns)(const LayerKind& self, int uvCount) = nullptr;
+    // After the assets were loaded: checks against them (InputError).
+    void (*checkAssets)(const Layer&, const SceneAssets&, const std::string& sceneName) = nullptr;
+
+    int recordCount() const;
+};
+
+// The registry, in schema order (layer_registry.cpp).
+const std::vector<const LayerKind*>& layerKinds();
+Layer makeLayer(const LayerKind& kind);
+// A stand-in of an uber plan: a disabled layer of the kind with its defaults.
+Layer uberStandIn(const LayerKind& kind);
+
+// Reads a layer's kind-specific fields (the table, then the kind's check).
+void parseLayerParams(const LayerKind& kind, const detail::SceneNode& n, Layer& L,
+                      const detail::SceneReader& reader);
+
+} // namespace sg::render

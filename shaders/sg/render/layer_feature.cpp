@@ -1,0 +1,333 @@
+// Layer kind `feature`: feature-curve maps (creases, grooves, seams that
+// stay sharp at any magnification; Parilov, Rosenberg, Zorin TR2005-872 and
+// Parilov, Zorin TOG 2008) as a TBN-style layer (layer_feature.glsl).
+// Batched: the feature layers of a group run in one loop, so the large
+// evaluator (shaders/sg/features/) is compiled once however many there are.
+#include "layer_kind.h"
+
+#include <algorithm>
+
+namespace sg::render {
+
+namespace {
+
+namespace G = sg::glsl;
+using P = FeatureParams;
+using detail::kHuge;
+using detail::SceneNode;
+using detail::SceneReader;
+
+// ---------------------------------------------------------------------------
+// Scene fields
+
+// "maps" (a file from `surfgrad features bake`) or "curves" (baked when the
+// scene loads): the layer's FeatureSource.
+void parseSource(const SceneNode& n, const char*, Layer& L, const SceneReader& reader) {
+    if (n.has("maps") == n.has("curves")) {
+        n.fail("expected exactly one of \"maps\" (feature maps from `surfgrad features bake`) or "
+               "\"curves\" (baked when the scene loads)");
+    }
+    FeatureSource fsrc;
+    fsrc.fieldPath = n.sub(n.has("maps") ? "maps" : "curves");
+    if (n.has("maps")) {
+        fsrc.mapsFile = reader.resolvePath(n.child("maps"), n.string("maps", ""));
+    } else {
+        SceneNode c = n.child("curves");
+        c.allowOnly({"svg", "json", "font", "text", "size", "mode", "margin"});
+        int kinds = int(c.has("svg")) + int(c.has("json")) + int(c.has("font"));
+        if (kinds != 1) c.fail("expected exactly one of \"svg\", \"json\" or \"font\"");
+        fsrc.curvesKind = c.has("svg") ? "svg" : c.has("json") ? "json" : "font";
+        fsrc.curvesFile = reader.resolvePath(c.child(fsrc.curvesKind.c_str()),
+                                             c.string(fsrc.curvesKind.c_str(), ""));
+        if (fsrc.curvesKind == "font") {
+            fsrc.text = c.string("text", "");
+            if (fsrc.text.empty())
+                c.failField("text", "expected the characters to lay out (a non-empty string)");
+        } else if (c.has("text")) {
+            c.failField("text", "applies to fonts only");
+        }
+        fsrc.size = c.integer("size", 256, 8, 4096);
+        fsrc.quadratic = c.choice("mode", 0, {"linear", "quadratic"}) == 1;
+        fsrc.marginTexels = c.number("margin", 8.0, 0.0, 1024.0);
+    }
+    L.params<P>().source = fsrc;
+}
+
+void parseOffset(const SceneNode& n, const char* key, Layer& L, const SceneReader&) {
+    if (!n.has(key)) return;
+    std::vector<float> o = n.floats(key, -kHuge, kHuge, 2);
+    if (o.size() != 2) n.failField(key, "expected [s, t]");
+    L.params<P>().offset = glm::vec2(o[0], o[1]);
+}
+
+// "near": "paper" (default) or "exact" (docs/features.md): curves are then
+// baked with the exact near field, its band covering the layer's width; a
+// maps file must have one (checkAssets). Read last (after "width").
+void parseNear(const SceneNode& n, const char* key, Layer& L, const SceneReader&) {
+    P& p = L.params<P>();
+    p.nearExact = n.choice(key, 0, {"paper", "exact"}) == 1;
+    if (p.nearExact && p.source) {
+        p.source->nearField = true;
+        p.source->nearWidthTexels = p.width;
+    }
+}
+
+void checkProfile(const SceneNode& n, const Layer& L) {
+    const P& p = L.params<P>();
+    try {
+        (void)sg::features::makeProfile(p.profile, p.depth, p.w0, p.width);
+    } catch (const io::InputError& e) {
+        n.failField("profile", e.reason());
+    }
+}
+
+// ---------------------------------------------------------------------------
+// Records
+
+// sgUnpackFeatureLayer(r0, r1, r2), layer_feature.glsl:
+//   r0 = (strength, paperMode, map size N (texels), tiling);
+//   r1 = (offset.xy, hasBase, base encoding); r2 = (base flipV, nearExact, 0, 0).
+// The map size comes from the assets (0 when packed without them).
+RecordLayout layerRecords() {
+    using S = G::SgFeatureLayerParams;
+    return Records<S, 3>("SgFeatureLayerParams", "sgUnpackFeatureLayer", G::sgUnpackFeatureLayer)
+        .field("strength", &S::strength, "r0.x",
+               [](const PackInput& in) { return in.layer.strength; })
+        .field("paperMode", &S::paperMode, "r0.y",
+               [](const PackInput& in) { return in.params<P>().paperMode; })
+        .field("mapSize", &S::mapSize, "r0.z",
+               [](const PackInput& in) {
+                   const auto& src = in.params<P>().source;
+                   if (!in.assets || !src) return 0.0f;
+                   auto it = in.assets->featureMaps.find(src->key());
+                   return it != in.assets->featureMaps.end() ? float(it->second->gpu.size) : 0.0f;
+               })
+        .field("tiling", &S::tiling, "r0.w",
+               [](const PackInput& in) { return in.params<P>().tiling; })
+        .field("offset", &S::offset, "r1.xy",
+               [](const PackInput& in) { return in.params<P>().offset; })
+        .field("hasBase", &S::hasBase, "r1.z",
+               [](const PackInput& in) { return !in.layer.maps.empty(); })
+        .field("baseEncoding", &S::baseEncoding, "r1.w",
+               [](const PackInput& in) { return int(in.params<P>().encoding); })
+        .field("baseFlipV", &S::baseFlipV, "r2.x",
+               [](const PackInput& in) { return in.params<P>().flipV; })
+        .field("nearExact", &S::nearExact, "r2.y",
+               [](const PackInput& in) { return in.params<P>().nearExact; })
+        .done();
+}
+
+// sgUnpackFeatProfile(p0, p1, t0..t3), layer_feature.glsl, records 3..8 of
+// the layer: p0 = (kind SG_FEAT_PROFILE_*, depth, w0, w) in texels,
+// p1 = (table count, 0, 0, 0), t0..t3 = the 16 table heights.
+RecordLayout profileRecords() {
+    using S = G::SgFeatProfile;
+    auto pr = [](const PackInput& in) -> const S& { return std::any_cast<const S&>(in.prepared); };
+    Records<S, 6> r("SgFeatProfile", "sgUnpackFeatProfile", G::sgUnpackFeatProfile, 3);
+    r.prepare([](const Layer& L) {
+         const P& p = L.params<P>();
+         return std::any(sg::features::makeProfile(p.profile, p.depth, p.w0, p.width));
+     })
+        .field("kind", &S::kind, "r0.x", [pr](const PackInput& in) { return pr(in).kind; })
+        .field("depth", &S::depth, "r0.y", [pr](const PackInput& in) { return pr(in).depth; })
+        .field("w0", &S::w0, "r0.z", [pr](const PackInput& in) { return pr(in).w0; })
+        .field("w", &S::w, "r0.w", [pr](const PackInput& in) { return pr(in).w; })
+        .field("tableCount", &S::tableCount, "r1.x",
+               [pr](const PackInput& in) { return pr(in).tableCount; });
+    for (int i = 0; i < 16; ++i) {
+        std::string name = "table[" + std::to_string(i) + "]";
+        std::string slot = "r" + std::to_string(2 + i / 4) + "." + "xyzw"[i % 4];
+        r.element(name.c_str(), &S::table, size_t(i), slot.c_str(),
+                  [pr, i](const PackInput& in) { return pr(in).table[i]; });
+    }
+    return r.done();
+}
+
+// ---------------------------------------------------------------------------
+// Emission: one loop per group over the group's feature layers; per-layer
+// data come from constant arrays indexed by the (dynamically uniform) loop
+// counter. llvmpipe's compile time grows faster than linearly with program
+// size (two inlined copies of the evaluator took 40x the time of one).
+
+std::string declarations(const MaterialPlan& plan) {
+    std::vector<int> rec(size_t(plan.featureLayerCount)), uvs(rec.size()), flags(rec.size());
+    for (const auto& g : plan.groups)
+        for (const auto& pl : g) {
+            if (pl.featureIndex < 0) continue;
+            rec[size_t(pl.featureIndex)] = pl.record;
+            uvs[size_t(pl.featureIndex)] = pl.layer->uvSet;
+            flags[size_t(pl.featureIndex)] = pl.uberIndex;
+        }
+    std::string o;
+    auto arr = [&](const char* name, const std::vector<int>& v) {
+        o += "const int " + std::string(name) + "[" + std::to_string(v.size()) + "] = int[" +
+             std::to_string(v.size()) + "](";
+        for (size_t i = 0; i < v.size(); ++i) o += (i ? ", " : "") + std::to_string(v[i]);
+        o += ");\n";
+    };
+    const std::string n = std::to_string(plan.featureLayerCount);
+    o += "uniform usampler2D uFeatCorners[" + n + "];\n" + "uniform usampler2D uFeatEdges[" + n +
+         "];\n" + "uniform sampler2D uFeatBase[" + n + "];\n";
+    if (plan.featureNear) {
+        o += "uniform usampler2D uFeatNear[" + n + "];   // exact near field: lists\n" +
+             "uniform usampler2D uFeatPieces[" + n + "]; // exact near field: pieces\n";
+    }
+    arr("kFeatRecord", rec);
+    arr("kFeatUvSet", uvs);
+    if (plan.uber) arr("kFeatFlag", flags);
+    return o;
+}
+
+std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLayer*>& layers,
+                      const std::string& indent) {
+    const int first = layers.front()->featureIndex, count = int(layers.size());
+    uint32_t uvMask = 0;
+    for (const PlanLayer* pl : layers) uvMask |= 1u << pl->layer->uvSet;
+    std::string o = indent + "// feature layers " + std::to_string(first) + ".." +
+                    std::to_string(first + count - 1) +
+                    " (one loop: the evaluator is compiled once)\n" + indent +
+                    "for (int fi = " + std::to_string(first) + "; fi < " +
+                    std::to_string(first + count) + "; ++fi) {\n";
+    if (plan.uber) o += indent + "    if (!(uLayerOn[kFeatFlag[fi]] > 0.5)) continue;\n";
+    o += indent + "    int r = kFeatRecord[fi];\n";
+    bool firstUv = true;
+    for (int k = 0; k < plan.uvCount; ++k) {
+        if (!(uvMask >> k & 1u)) continue;
+        const std::string uv = "uv" + std::to_string(k);
+        if (firstUv) {
+            o += indent + "    SgUvFrame fuv = " + uv + ";\n";
+            firstUv = false;
+        } else {
+            o +=
+                indent + "    if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
+        }
+    }
+    o += indent +
+         "    surfGrad += " + (plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature") +
+         "(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + "
+         "1], uLayerData[r + 2]),\n" +
+         indent +
+         "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
+         "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n" +
+         indent + "        uFeatCorners[fi], uFeatEdges[fi], " +
+         (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]);\n" +
+         indent + "}\n";
+    return o;
+}
+
+const LayerBatch kBatch{groupLoop};
+
+void cpu(const CpuLayerContext& c, CpuShadeState& s) {
+    if (c.pl.featureSlot < 0 || !c.featureSamplers[size_t(c.pl.featureSlot)].corners.rgba)
+        return; // maps not loaded: nothing to add
+    const detail::FeatureSamplers& fs = c.featureSamplers[size_t(c.pl.featureSlot)];
+    const glm::vec4* r = c.rec();
+    if (fs.nearLists.rgba) {
+        s.surfGrad +=
+            G::sgLayerFeatureNear(c.uv(s), G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
+                                  G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
+                                  fs.corners, fs.edges, fs.nearLists, fs.pieces, c.tex(0));
+        return;
+    }
+    s.surfGrad += G::sgLayerFeature(c.uv(s), G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
+                                    G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
+                                    fs.corners, fs.edges, c.tex(0));
+}
+
+// ---------------------------------------------------------------------------
+// Assets: the profile must fit the band where the maps' distances are exact,
+// and, with "near": "exact", the maps' near field must cover it.
+
+void checkAssets(const Layer& L, const SceneAssets& assets, const std::string& sceneName) {
+    const P& p = L.params<P>();
+    double band = assets.featureMaps.at(p.source->key())->bandTexels;
+    if (double(p.width) > band - 1.5) {
+        throw io::InputError(sceneName, L.fieldPath + ".width",
+                             "the profile width must be at most " + std::to_string(band - 1.5) +
+                                 " texels (the maps hold exact distances up to " +
+                                 std::to_string(band) + ")");
+    }
+    const double nearBand = assets.featureMaps.at(p.source->key())->nearBandTexels;
+    if (p.nearExact && nearBand <= 0.0) {
+        throw io::InputError(sceneName, L.fieldPath + ".near",
+                             "\"exact\" needs maps baked with the near field (surfgrad "
+                             "features bake --near exact)");
+    }
+    if (p.nearExact && double(p.width) > nearBand) {
+        throw io::InputError(sceneName, L.fieldPath + ".width",
+                             "the profile width must be at most the near field's band " +
+                                 std::to_string(nearBand) +
+                                 " texels (bake with a larger --near-width)");
+    }
+}
+
+uint32_t mapChannels(const Layer& L, const char*& why) {
+    why = "the normal encoding";
+    return normalXyChannels(L.params<FeatureParams>().encoding);
+}
+
+} // namespace
+
+const LayerKind& featureLayerKind() {
+    static const LayerKind kind{
+        .name = "feature",
+        .sigCode = "fea",
+        .doc = "feature-curve maps (Parilov-Zorin 2008) as a TBN-style gradient",
+        .params =
+            {
+                param::custom("maps", parseSource,
+                              "feature maps (EXR from `surfgrad features bake`)"),
+                param::custom("curves", nullptr, "curves baked when the scene loads"),
+                param::uvSet(),
+                param::number("tiling", &P::tiling, {0.0, kHuge, true}, "map repeats per st unit"),
+                param::custom("offset", parseOffset, "[s, t] added after tiling"),
+                param::string("profile", &P::profile, "the profile h(d): vgroove, crease, ..."),
+                param::number("depth", &P::depth, {-1024.0, 1024.0}, "profile depth, texels"),
+                param::number("width", &P::width, {0.0, 1024.0, true},
+                              "profile half-width, texels"),
+                param::checked(param::number("w0", &P::w0, {0.0, 1024.0},
+                                             "band where only the profile acts, texels"),
+                               [](const SceneNode& n, const char* key, const Layer& L) {
+                                   if (!(L.params<P>().w0 < L.params<P>().width))
+                                       n.failField(key, "expected a number < width");
+                               }),
+                param::choice("mode", &P::paperMode, {{"surfgrad", false}, {"paper", true}},
+                              "slopes blend (surfgrad) or the papers' Eq. 1"),
+                param::strength(),
+                param::optionalMap("base_map", Wrap::Repeat, "normal map under the features"),
+                param::encoding(&P::encoding, true),
+                param::green(&P::flipV),
+                param::custom("near", parseNear,
+                              "\"exact\": the maps' exact near field, per-curve profiles"),
+            },
+        .makeParams = [] { return std::any(P{}); },
+        .check = checkProfile,
+        .readsUv = true,
+        .readsTangentBasis = [](const Layer&) { return true; },
+        .textureSlots = 1,
+        .mapChannels = mapChannels,
+        .glslFile = "sg/render/layer_feature.glsl",
+        .featureSource = [](const Layer& L) -> const FeatureSource* {
+            const auto& s = L.params<P>().source;
+            return s ? &*s : nullptr;
+        },
+        .records = {layerRecords(), profileRecords()},
+        .cpu = cpu,
+        .batch = &kBatch,
+        .programDeclarations = declarations,
+        .programDefines =
+            [](const MaterialPlan& plan, std::vector<std::string>& defs) {
+                defs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
+                if (plan.featureNear) defs.push_back("SG_FEAT_NEAR 1"); // effects on demand
+            },
+        .programSignature =
+            [](const MaterialPlan& plan) {
+                return std::string(plan.featureCurved ? "|featcurved" : "|featstraight") +
+                       (plan.featureNear ? "|featnear" : "");
+            },
+        .checkAssets = checkAssets,
+    };
+    return kind;
+}
+
+} // namespace sg::render

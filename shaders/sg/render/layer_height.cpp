@@ -1,0 +1,68 @@
+// Layer kind `height`: a height map, displacement style (layer_height.glsl:
+// Mikkelsen 2019, section 2.5, listings 8 and 9).
+#include "layer_kind.h"
+
+namespace sg::render {
+
+namespace {
+
+namespace G = sg::glsl;
+using P = HeightParams;
+
+// sgUnpackHeight(r0), layer_height.glsl: r0 = (scale, channel, 0, 0).
+RecordLayout records() {
+    using S = G::SgHeightParams;
+    return Records<S, 1>("SgHeightParams", "sgUnpackHeight", G::sgUnpackHeight)
+        .field("scale", &S::scale, "r0.x", [](const PackInput& in) { return in.params<P>().scale; })
+        .field("channel", &S::channel, "r0.y",
+               [](const PackInput& in) { return in.params<P>().channel; })
+        .done();
+}
+
+std::string glsl(const GlslLayerContext& c) {
+    return "surfGrad += sgLayerHeight(frame, " + c.uv() + ", " +
+           c.unpack(c.layer().kind->records[0]) + ", " + c.tex(0) + ");\n";
+}
+
+void cpu(const CpuLayerContext& c, CpuShadeState& s) {
+    s.surfGrad += G::sgLayerHeight(s.frame, c.uv(s), G::sgUnpackHeight(c.rec()[0]), c.tex(0));
+}
+
+uint32_t mapChannels(const Layer& L, const char*& why) {
+    why = "the height channel";
+    return channelBit(L.params<HeightParams>().channel);
+}
+
+} // namespace
+
+const LayerKind& heightLayerKind() {
+    static const LayerKind kind{
+        .name = "height",
+        .sigCode = "hgt",
+        .doc = "height map, displacement style (listings 8, 9)",
+        .params =
+            {
+                param::map("map", Wrap::Repeat, "the height map"),
+                param::uvSet(),
+                param::channel("channel", &P::channel, "the channel holding the height"),
+                param::slider(
+                    param::number("scale", &P::scale, {}, "world units per unit of the channel"),
+                    -0.1f, 0.1f, "%.4f"),
+            },
+        .makeParams = [] { return std::any(P{}); },
+        .readsUv = true,
+        .textureSlots = 1,
+        .mapChannels = mapChannels,
+        .glslFile = "sg/render/layer_height.glsl",
+        .records = {records()},
+        .glsl = glsl,
+        .cpu = cpu,
+        .uberStandIns =
+            [](const LayerKind& k, int uvCount) {
+                return uvCount > 0 ? std::vector<Layer>{uberStandIn(k)} : std::vector<Layer>{};
+            },
+    };
+    return kind;
+}
+
+} // namespace sg::render
