@@ -519,6 +519,9 @@ struct LayerKind {
     const char* name = "";    // the scene's "type"
     const char* sigCode = ""; // the kind in the effect signature
     const char* doc = "";     // one line: what it is, which listing
+    // A minimal layer of the kind: its required fields as JSON object
+    // members (without "type"), e.g. "\"map\": \"n.png\"" (tests, docs).
+    const char* example = "";
     std::vector<ParamSpec> params;
     std::any (*makeParams)() = nullptr; // default parameters (nullptr: none)
     // Cross-field validation after every entry was read (optional).

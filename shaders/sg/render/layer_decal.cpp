@@ -102,6 +102,7 @@ const LayerKind& decalLayerKind() {
         .name = "decal",
         .sigCode = "dec",
         .doc = "decal projector (listing 15, section 2.9)",
+        .example = R"("map": {"procedural": "scratches", "size": 16})",
         .params =
             {
                 param::map("map", Wrap::Clamp, "the decal's normal map (clamped)"),

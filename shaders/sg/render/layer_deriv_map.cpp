@@ -92,6 +92,7 @@ const LayerKind& derivMapLayerKind() {
         .name = "deriv_map",
         .sigCode = "drv",
         .doc = "derivative map, TBN style or texel space (section 2.1)",
+        .example = R"("map": {"procedural": "weave", "output": "derivative", "size": 16})",
         .params =
             {
                 param::map("map", Wrap::Repeat, "the derivative map"),

@@ -273,6 +273,7 @@ const LayerKind& featureLayerKind() {
         .name = "feature",
         .sigCode = "fea",
         .doc = "feature-curve maps (Parilov-Zorin 2008) as a TBN-style gradient",
+        .example = R"("curves": {"svg": "data:svg/flame.svg", "size": 32})",
         .params =
             {
                 param::custom("maps", parseSource,

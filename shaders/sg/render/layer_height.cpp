@@ -40,6 +40,7 @@ const LayerKind& heightLayerKind() {
         .name = "height",
         .sigCode = "hgt",
         .doc = "height map, displacement style (listings 8, 9)",
+        .example = R"("map": {"procedural": "bumps", "output": "height", "size": 16})",
         .params =
             {
                 param::map("map", Wrap::Repeat, "the height map"),

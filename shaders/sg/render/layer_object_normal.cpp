@@ -45,6 +45,7 @@ const LayerKind& objectNormalLayerKind() {
         .name = "object_normal",
         .sigCode = "osn",
         .doc = "object/world-space normal map (listing 7)",
+        .example = R"("map": {"procedural": "bumps", "size": 16})",
         .params =
             {
                 param::map("map", Wrap::Repeat, "the normal map"),

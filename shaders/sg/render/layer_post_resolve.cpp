@@ -38,6 +38,7 @@ const LayerKind& postResolveLayerKind() {
         .name = "post_resolve",
         .sigCode = "grp",
         .doc = "group resolved on top of the previous result (section 3)",
+        .example = R"("layers": [{"type": "noise"}])",
         .params = {param::custom("layers", parseLayers, "the group's layers (no nesting)")},
         .group = true,
         .uberStandIns = uberStandIns,

@@ -78,6 +78,7 @@ const LayerKind& triplanarLayerKind() {
         .name = "triplanar",
         .sigCode = "tri",
         .doc = "triplanar projection (listings 13, 14, section 2.8)",
+        .example = R"("map": {"procedural": "tiles", "size": 16})",
         .params =
             {
                 param::custom("map", parseMaps, "one map for all three planes"),

@@ -84,6 +84,7 @@ const LayerKind& uvNormalLayerKind() {
         .name = "uv_normal",
         .sigCode = "uvn",
         .doc = "tangent-space normal map on a UV set (listings 4, 5, 6)",
+        .example = R"("map": {"procedural": "bumps", "size": 16})",
         .params =
             {
                 param::map("map", Wrap::Repeat, "the normal map"),
