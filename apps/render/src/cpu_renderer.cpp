@@ -70,6 +70,231 @@ bool topLeft(glm::dvec2 a, glm::dvec2 b) {
     return (e.y == 0.0 && e.x < 0.0) || e.y < 0.0;
 }
 
+// World-space vertex data of one mesh instance, exactly as the vertex
+// program computes it.
+struct MeshData {
+    std::vector<glm::vec3> rel, world, obj, normal;
+    std::vector<glm::vec4> tangent[kMaxUvSets];
+    std::vector<glm::vec4> clip;
+    const sg::mesh::RenderMesh* mesh = nullptr;
+    float detSign = 1.0f;
+};
+
+MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& view) {
+    const auto& m = a.mesh;
+    MeshData d;
+    d.mesh = &m;
+    const glm::mat4& M = inst.transform;
+    glm::mat3 nm = detail::normalMatrix(M);
+    d.detSign = glm::determinant(glm::mat3(M)) < 0.0f ? -1.0f : 1.0f;
+    size_t nv = m.vertexCount();
+    d.rel.resize(nv);
+    d.world.resize(nv);
+    d.obj = m.positions;
+    d.normal.resize(nv);
+    d.clip.resize(nv);
+    for (size_t v = 0; v < nv; ++v) {
+        glm::vec4 wp = M * glm::vec4(m.positions[v], 1.0f);
+        d.world[v] = glm::vec3(wp);
+        d.rel[v] = glm::vec3(wp) - view.cameraPos;
+        d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
+        d.clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
+    }
+    for (int k = 0; k < kMaxUvSets && size_t(k) < a.vertexTangents.size(); ++k) {
+        const auto& t = a.vertexTangents[size_t(k)];
+        d.tangent[k].resize(t.size());
+        for (size_t v = 0; v < t.size(); ++v) {
+            d.tangent[k][v] = glm::vec4(glm::mat3(M) * glm::vec3(t[v]), t[v].w * d.detSign);
+        }
+    }
+    return d;
+}
+
+// Depth-tested visibility: which screen triangle covers each pixel.
+struct Raster {
+    int W = 0, H = 0;
+    std::vector<float> depth;
+    std::vector<int32_t> visible;
+    std::vector<ScreenTri> tris;
+
+    Raster(int w, int h)
+        : W(w), H(h), depth(size_t(w) * size_t(h), 1.0f), visible(size_t(w) * size_t(h), -1) {}
+
+    // Window coordinates, depth and orientation of a clipped triangle;
+    // false when it is degenerate, behind the eye or culled.
+    bool setup(const ClipVert* const cv[3], bool cull, float detSign, ScreenTri& st,
+               double zw[3]) const {
+        for (int i = 0; i < 3; ++i) {
+            glm::dvec4 c(cv[i]->clip);
+            if (!(c.w > 0.0)) return false;
+            st.invW[i] = 1.0 / c.w;
+            st.win[i] =
+                glm::dvec2((c.x * st.invW[i] * 0.5 + 0.5) * W, (c.y * st.invW[i] * 0.5 + 0.5) * H);
+            zw[i] = c.z * st.invW[i] * 0.5 + 0.5;
+            st.bary[i] = cv[i]->bary;
+        }
+        const auto& p = st.win;
+        st.area = (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
+        if (st.area == 0.0 || !std::isfinite(st.area)) return false;
+        st.front = (st.area > 0.0) == (detSign > 0.0f);
+        return !(cull && !st.front);
+    }
+
+    // Coverage at pixel centres (top-left rule) and the depth test; the
+    // triangle is kept when it wins some pixel.
+    void cover(const ScreenTri& st, const double zw[3]) {
+        const auto& p = st.win;
+        // Orient counter-clockwise for the coverage test.
+        double s = st.area > 0.0 ? 1.0 : -1.0;
+        int32_t triIndex = int32_t(tris.size());
+        int x0 = std::max(0, int(std::floor(std::min({p[0].x, p[1].x, p[2].x}))));
+        int x1 = std::min(W - 1, int(std::ceil(std::max({p[0].x, p[1].x, p[2].x}))));
+        int y0 = std::max(0, int(std::floor(std::min({p[0].y, p[1].y, p[2].y}))));
+        int y1 = std::min(H - 1, int(std::ceil(std::max({p[0].y, p[1].y, p[2].y}))));
+        bool any = false;
+        // Edge e_i is opposite vertex i: (i+1) -> (i+2).
+        for (int y = y0; y <= y1; ++y) {
+            for (int x = x0; x <= x1; ++x) {
+                glm::dvec2 c(x + 0.5, y + 0.5);
+                double b[3];
+                bool inside = true;
+                for (int i = 0; i < 3 && inside; ++i) {
+                    glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
+                    double e = s * ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x));
+                    b[i] = e;
+                    glm::dvec2 from = s > 0 ? a0 : a1, to = s > 0 ? a1 : a0;
+                    inside = e > 0.0 || (e == 0.0 && topLeft(from, to));
+                }
+                if (!inside) continue;
+                double sum = b[0] + b[1] + b[2];
+                double z = (b[0] * zw[0] + b[1] * zw[1] + b[2] * zw[2]) / sum;
+                if (!(z <= 1.0) || !(z >= 0.0)) continue; // outside the depth range (far plane)
+                size_t pix = size_t(y) * size_t(W) + size_t(x);
+                if (!(float(z) < depth[pix])) continue;
+                depth[pix] = float(z);
+                visible[pix] = triIndex;
+                any = true;
+            }
+        }
+        if (any) tris.push_back(st);
+    }
+
+    // Every triangle of one mesh: near clipping, setup, coverage.
+    void mesh(int meshIndex, const MeshData& d, bool cull) {
+        const auto& m = *d.mesh;
+        for (size_t t = 0; t < m.triangleCount(); ++t) {
+            uint32_t idx[3] = {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]};
+            std::vector<ClipVert> poly = {{d.clip[idx[0]], {1, 0, 0}},
+                                          {d.clip[idx[1]], {0, 1, 0}},
+                                          {d.clip[idx[2]], {0, 0, 1}}};
+            poly = clipNear(poly);
+            for (size_t f = 1; f + 1 < poly.size(); ++f) {
+                const ClipVert* cv[3] = {&poly[0], &poly[f], &poly[f + 1]};
+                ScreenTri st;
+                st.mesh = meshIndex;
+                st.prim = uint32_t(t);
+                std::copy(idx, idx + 3, st.vtx);
+                double zw[3];
+                if (setup(cv, cull, d.detSign, st, zw)) cover(st, zw);
+            }
+        }
+    }
+};
+
+// Perspective-correct weights of the original triangle's vertices at
+// window position c: screen barycentrics b_i (affine in c), q_i = b_i / w_i,
+// lambda_i = q_i / sum q; their exact d/dx, d/dy by the quotient rule.
+glm::dvec3 perspectiveWeights(const ScreenTri& st, glm::dvec2 c, glm::dvec3* dx, glm::dvec3* dy) {
+    const auto& p = st.win;
+    double b[3], bx[3], by[3];
+    for (int i = 0; i < 3; ++i) {
+        glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
+        b[i] = ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x)) / st.area;
+        bx[i] = -(a1.y - a0.y) / st.area;
+        by[i] = (a1.x - a0.x) / st.area;
+    }
+    double q[3], qx[3], qy[3], D = 0, Dx = 0, Dy = 0;
+    for (int i = 0; i < 3; ++i) {
+        q[i] = b[i] * st.invW[i];
+        qx[i] = bx[i] * st.invW[i];
+        qy[i] = by[i] * st.invW[i];
+        D += q[i];
+        Dx += qx[i];
+        Dy += qy[i];
+    }
+    glm::dvec3 mu(0.0), mux(0.0), muy(0.0);
+    for (int i = 0; i < 3; ++i) {
+        glm::dvec3 B(st.bary[i]);
+        mu += (q[i] / D) * B;
+        mux += ((qx[i] * D - q[i] * Dx) / (D * D)) * B;
+        muy += ((qy[i] * D - q[i] * Dy) / (D * D)) * B;
+    }
+    if (dx) *dx = mux;
+    if (dy) *dy = muy;
+    return mu;
+}
+
+// The fragment program's inputs at pixel (x, y) of a visible triangle.
+detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, int y,
+                                CpuDerivatives derivatives) {
+    glm::dvec3 mux, muy;
+    glm::dvec3 mu = perspectiveWeights(st, glm::dvec2(x + 0.5, y + 0.5), &mux, &muy);
+    if (derivatives == CpuDerivatives::Quad) {
+        // dFdxFine/dFdyFine: differences across the pixel's 2x2 quad,
+        // the triangle's interpolants extrapolated to helper pixels.
+        int qx0 = x & ~1, qy0 = y & ~1;
+        mux = perspectiveWeights(st, glm::dvec2(qx0 + 1.5, y + 0.5), nullptr, nullptr) -
+              perspectiveWeights(st, glm::dvec2(qx0 + 0.5, y + 0.5), nullptr, nullptr);
+        muy = perspectiveWeights(st, glm::dvec2(x + 0.5, qy0 + 1.5), nullptr, nullptr) -
+              perspectiveWeights(st, glm::dvec2(x + 0.5, qy0 + 0.5), nullptr, nullptr);
+    }
+    auto interp = [&](const auto& arr, glm::dvec3 w) {
+        using T = std::decay_t<decltype(arr[0])>;
+        return T(float(w.x) * arr[st.vtx[0]] + float(w.y) * arr[st.vtx[1]] +
+                 float(w.z) * arr[st.vtx[2]]);
+    };
+    detail::PixelInputs in;
+    in.relPos = interp(d.rel, mu);
+    in.dPdx = interp(d.rel, mux);
+    in.dPdy = interp(d.rel, muy);
+    in.worldPos = interp(d.world, mu);
+    in.objPos = interp(d.obj, mu);
+    in.normal = interp(d.normal, mu);
+    for (size_t k = 0; k < d.mesh->uvSets.size() && k < size_t(kMaxUvSets); ++k) {
+        in.uv[k] = interp(d.mesh->uvSets[k], mu);
+        in.dUVdx[k] = interp(d.mesh->uvSets[k], mux);
+        in.dUVdy[k] = interp(d.mesh->uvSets[k], muy);
+        if (!d.tangent[k].empty()) in.tangent[k] = interp(d.tangent[k], mu);
+    }
+    in.frontFacing = st.front;
+    in.primId = float(st.prim);
+    return in;
+}
+
+// Plans, uniforms and samplers of one draw (the GPU's per-draw state).
+struct DrawState {
+    MaterialPlan plan;
+    detail::DrawUniforms uniforms;
+    std::vector<sg::glsl::sampler2D> samplers;
+    std::vector<detail::FeatureSamplers> featureSamplers;
+};
+
+std::vector<DrawState> drawStates(const Scene& scene, const SceneAssets& assets, const View& view,
+                                  const CpuOptions& options) {
+    std::vector<DrawState> draws;
+    float primBase = 0.0f;
+    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
+        DrawState d;
+        d.plan = planMaterial(scene, assets, int(mi), scene.meshes[mi].material);
+        d.uniforms = detail::drawUniforms(scene, assets, d.plan, view, int(mi), primBase);
+        d.featureSamplers = detail::planFeatureSamplers(d.plan, assets);
+        d.samplers = detail::planSamplers(d.plan, assets, options.textureLod);
+        draws.push_back(std::move(d));
+        primBase += float(assets.meshes[mi].mesh.triangleCount());
+    }
+    return draws;
+}
+
 } // namespace
 
 Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
@@ -81,206 +306,30 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     glm::vec4 bg =
         view.aov == Aov::Color ? glm::vec4(scene.output.background, 1.0f) : glm::vec4(0.0f);
     img.pixels.assign(size_t(W) * size_t(H), bg);
-    std::vector<float> depth(size_t(W) * size_t(H), 1.0f);
-    std::vector<int32_t> visible(size_t(W) * size_t(H), -1);
-    std::vector<ScreenTri> tris;
 
-    // World-space vertex data per mesh, exactly as the vertex program
-    // computes it.
-    struct MeshData {
-        std::vector<glm::vec3> rel, world, obj, normal;
-        std::vector<glm::vec4> tangent[kMaxUvSets];
-        const sg::mesh::RenderMesh* mesh = nullptr;
-    };
+    // Vertex stage and rasterisation, mesh by mesh in draw order.
+    Raster raster(W, H);
     std::vector<MeshData> md(scene.meshes.size());
-
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const MeshInstance& inst = scene.meshes[mi];
-        const MeshAsset& a = assets.meshes[mi];
-        const auto& m = a.mesh;
-        MeshData& d = md[mi];
-        d.mesh = &m;
-        const glm::mat4& M = inst.transform;
-        glm::mat3 nm = detail::normalMatrix(M);
-        float detSign = glm::determinant(glm::mat3(M)) < 0.0f ? -1.0f : 1.0f;
-        size_t nv = m.vertexCount();
-        d.rel.resize(nv);
-        d.world.resize(nv);
-        d.obj = m.positions;
-        d.normal.resize(nv);
-        std::vector<glm::vec4> clip(nv);
-        for (size_t v = 0; v < nv; ++v) {
-            glm::vec4 wp = M * glm::vec4(m.positions[v], 1.0f);
-            d.world[v] = glm::vec3(wp);
-            d.rel[v] = glm::vec3(wp) - view.cameraPos;
-            d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
-            clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
-        }
-        for (int k = 0; k < kMaxUvSets && size_t(k) < a.vertexTangents.size(); ++k) {
-            const auto& t = a.vertexTangents[size_t(k)];
-            d.tangent[k].resize(t.size());
-            for (size_t v = 0; v < t.size(); ++v) {
-                d.tangent[k][v] = glm::vec4(glm::mat3(M) * glm::vec3(t[v]), t[v].w * detSign);
-            }
-        }
+        md[mi] = vertexStage(inst, assets.meshes[mi], view);
         const bool cull = scene.materials[size_t(inst.material)].doubleSided == DoubleSided::Off;
-        for (size_t t = 0; t < m.triangleCount(); ++t) {
-            uint32_t idx[3] = {m.indices[3 * t], m.indices[3 * t + 1], m.indices[3 * t + 2]};
-            std::vector<ClipVert> poly = {
-                {clip[idx[0]], {1, 0, 0}}, {clip[idx[1]], {0, 1, 0}}, {clip[idx[2]], {0, 0, 1}}};
-            poly = clipNear(poly);
-            for (size_t f = 1; f + 1 < poly.size(); ++f) {
-                const ClipVert* cv[3] = {&poly[0], &poly[f], &poly[f + 1]};
-                ScreenTri st;
-                st.mesh = int(mi);
-                st.prim = uint32_t(t);
-                std::copy(idx, idx + 3, st.vtx);
-                bool ok = true;
-                double zw[3];
-                for (int i = 0; i < 3; ++i) {
-                    glm::dvec4 c(cv[i]->clip);
-                    if (!(c.w > 0.0)) ok = false;
-                    st.invW[i] = 1.0 / c.w;
-                    st.win[i] = glm::dvec2((c.x * st.invW[i] * 0.5 + 0.5) * W,
-                                           (c.y * st.invW[i] * 0.5 + 0.5) * H);
-                    zw[i] = c.z * st.invW[i] * 0.5 + 0.5;
-                    st.bary[i] = cv[i]->bary;
-                }
-                if (!ok) continue;
-                const auto& p = st.win;
-                st.area =
-                    (p[1].x - p[0].x) * (p[2].y - p[0].y) - (p[2].x - p[0].x) * (p[1].y - p[0].y);
-                if (st.area == 0.0 || !std::isfinite(st.area)) continue;
-                st.front = (st.area > 0.0) == (detSign > 0.0f);
-                if (cull && !st.front) continue;
-                // Orient counter-clockwise for the coverage test.
-                double s = st.area > 0.0 ? 1.0 : -1.0;
-                int32_t triIndex = int32_t(tris.size());
-                int x0 = std::max(0, int(std::floor(std::min({p[0].x, p[1].x, p[2].x}))));
-                int x1 = std::min(W - 1, int(std::ceil(std::max({p[0].x, p[1].x, p[2].x}))));
-                int y0 = std::max(0, int(std::floor(std::min({p[0].y, p[1].y, p[2].y}))));
-                int y1 = std::min(H - 1, int(std::ceil(std::max({p[0].y, p[1].y, p[2].y}))));
-                bool any = false;
-                // Edge e_i is opposite vertex i: (i+1) -> (i+2).
-                for (int y = y0; y <= y1; ++y) {
-                    for (int x = x0; x <= x1; ++x) {
-                        glm::dvec2 c(x + 0.5, y + 0.5);
-                        double b[3];
-                        bool inside = true;
-                        for (int i = 0; i < 3 && inside; ++i) {
-                            glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
-                            double e =
-                                s * ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x));
-                            b[i] = e;
-                            glm::dvec2 from = s > 0 ? a0 : a1, to = s > 0 ? a1 : a0;
-                            inside = e > 0.0 || (e == 0.0 && topLeft(from, to));
-                        }
-                        if (!inside) continue;
-                        double sum = b[0] + b[1] + b[2];
-                        double z = (b[0] * zw[0] + b[1] * zw[1] + b[2] * zw[2]) / sum;
-                        if (!(z <= 1.0) || !(z >= 0.0))
-                            continue; // outside the depth range (far plane)
-                        size_t pix = size_t(y) * size_t(W) + size_t(x);
-                        if (!(float(z) < depth[pix])) continue;
-                        depth[pix] = float(z);
-                        visible[pix] = triIndex;
-                        any = true;
-                    }
-                }
-                if (any) tris.push_back(st);
-            }
-        }
+        raster.mesh(int(mi), md[mi], cull);
     }
+    const std::vector<DrawState> draws = drawStates(scene, assets, view, options);
 
-    // Plans, uniforms and samplers per mesh (the GPU's per-draw state).
-    std::vector<MaterialPlan> plans;
-    std::vector<detail::DrawUniforms> uniforms;
-    std::vector<std::vector<sg::glsl::sampler2D>> samplers;
-    std::vector<std::vector<detail::FeatureSamplers>> featureSamplers;
-    float primBase = 0.0f;
-    for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
-        plans.push_back(planMaterial(scene, assets, int(mi), scene.meshes[mi].material));
-        uniforms.push_back(
-            detail::drawUniforms(scene, assets, plans.back(), view, int(mi), primBase));
-        featureSamplers.push_back(detail::planFeatureSamplers(plans.back(), assets));
-        samplers.push_back(detail::planSamplers(plans.back(), assets, options.textureLod));
-        primBase += float(assets.meshes[mi].mesh.triangleCount());
-    }
-
+    // Fragment stage: the visible triangle's inputs at each pixel, shaded.
     tbb::parallel_for(0, H, [&](int y) {
         for (int x = 0; x < W; ++x) {
             size_t pix = size_t(y) * size_t(W) + size_t(x);
-            int32_t ti = visible[pix];
+            int32_t ti = raster.visible[pix];
             if (ti < 0) continue;
-            const ScreenTri& st = tris[size_t(ti)];
-            const MeshData& d = md[size_t(st.mesh)];
-            const auto& p = st.win;
-            // Perspective-correct weights of the original triangle's vertices
-            // at window position c: screen barycentrics b_i (affine in c),
-            // q_i = b_i / w_i, lambda_i = q_i / sum q; their exact d/dx, d/dy
-            // by the quotient rule.
-            auto weights = [&](glm::dvec2 c, glm::dvec3* dx, glm::dvec3* dy) {
-                double b[3], bx[3], by[3];
-                for (int i = 0; i < 3; ++i) {
-                    glm::dvec2 a0 = p[(i + 1) % 3], a1 = p[(i + 2) % 3];
-                    b[i] = ((a1.x - a0.x) * (c.y - a0.y) - (a1.y - a0.y) * (c.x - a0.x)) / st.area;
-                    bx[i] = -(a1.y - a0.y) / st.area;
-                    by[i] = (a1.x - a0.x) / st.area;
-                }
-                double q[3], qx[3], qy[3], D = 0, Dx = 0, Dy = 0;
-                for (int i = 0; i < 3; ++i) {
-                    q[i] = b[i] * st.invW[i];
-                    qx[i] = bx[i] * st.invW[i];
-                    qy[i] = by[i] * st.invW[i];
-                    D += q[i];
-                    Dx += qx[i];
-                    Dy += qy[i];
-                }
-                glm::dvec3 mu(0.0), mux(0.0), muy(0.0);
-                for (int i = 0; i < 3; ++i) {
-                    glm::dvec3 B(st.bary[i]);
-                    mu += (q[i] / D) * B;
-                    mux += ((qx[i] * D - q[i] * Dx) / (D * D)) * B;
-                    muy += ((qy[i] * D - q[i] * Dy) / (D * D)) * B;
-                }
-                if (dx) *dx = mux;
-                if (dy) *dy = muy;
-                return mu;
-            };
-            glm::dvec3 mux, muy;
-            glm::dvec3 mu = weights(glm::dvec2(x + 0.5, y + 0.5), &mux, &muy);
-            if (options.derivatives == CpuDerivatives::Quad) {
-                // dFdxFine/dFdyFine: differences across the pixel's 2x2 quad,
-                // the triangle's interpolants extrapolated to helper pixels.
-                int qx0 = x & ~1, qy0 = y & ~1;
-                mux = weights(glm::dvec2(qx0 + 1.5, y + 0.5), nullptr, nullptr) -
-                      weights(glm::dvec2(qx0 + 0.5, y + 0.5), nullptr, nullptr);
-                muy = weights(glm::dvec2(x + 0.5, qy0 + 1.5), nullptr, nullptr) -
-                      weights(glm::dvec2(x + 0.5, qy0 + 0.5), nullptr, nullptr);
-            }
-            auto interp = [&](const auto& arr, glm::dvec3 w) {
-                using T = std::decay_t<decltype(arr[0])>;
-                return T(float(w.x) * arr[st.vtx[0]] + float(w.y) * arr[st.vtx[1]] +
-                         float(w.z) * arr[st.vtx[2]]);
-            };
-            detail::PixelInputs in;
-            in.relPos = interp(d.rel, mu);
-            in.dPdx = interp(d.rel, mux);
-            in.dPdy = interp(d.rel, muy);
-            in.worldPos = interp(d.world, mu);
-            in.objPos = interp(d.obj, mu);
-            in.normal = interp(d.normal, mu);
-            for (size_t k = 0; k < d.mesh->uvSets.size() && k < size_t(kMaxUvSets); ++k) {
-                in.uv[k] = interp(d.mesh->uvSets[k], mu);
-                in.dUVdx[k] = interp(d.mesh->uvSets[k], mux);
-                in.dUVdy[k] = interp(d.mesh->uvSets[k], muy);
-                if (!d.tangent[k].empty()) in.tangent[k] = interp(d.tangent[k], mu);
-            }
-            in.frontFacing = st.front;
-            in.primId = float(st.prim);
-            img.pixels[pix] = detail::shadePixelCpu(
-                plans[size_t(st.mesh)], uniforms[size_t(st.mesh)], samplers[size_t(st.mesh)],
-                featureSamplers[size_t(st.mesh)], in);
+            const ScreenTri& st = raster.tris[size_t(ti)];
+            const DrawState& d = draws[size_t(st.mesh)];
+            detail::PixelInputs in =
+                pixelInputs(st, md[size_t(st.mesh)], x, y, options.derivatives);
+            img.pixels[pix] =
+                detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.featureSamplers, in);
         }
     });
     return img;

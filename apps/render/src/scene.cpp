@@ -234,6 +234,69 @@ struct Parser : detail::SceneReader {
         return glm::scale(m, s);
     }
 
+    // "tangents": a source, or one per UV set.
+    void tangents(const Node& n, MeshInstance& m) const {
+        const json& t = n.value().at("tangents");
+        auto parseOne = [&](const json& v, const std::string& path) {
+            if (!v.is_string())
+                throw io::InputError(file, path, "expected \"pixel\", \"mikktspace\" or \"limit\"");
+            std::string s = v.get<std::string>();
+            if (s == "pixel") return TangentSource::Pixel;
+            if (s == "mikktspace") return TangentSource::MikkTSpace;
+            if (s == "limit") return TangentSource::Limit;
+            throw io::InputError(
+                file, path, "expected \"pixel\", \"mikktspace\" or \"limit\", got \"" + s + "\"");
+        };
+        if (t.is_string()) {
+            m.tangents.assign(1, parseOne(t, n.sub("tangents")));
+        } else if (t.is_array() && t.size() <= size_t(kMaxUvSets)) {
+            for (size_t i = 0; i < t.size(); ++i) {
+                m.tangents.push_back(
+                    parseOne(t[i], n.sub("tangents") + "[" + std::to_string(i) + "]"));
+            }
+        } else {
+            n.failField(
+                "tangents",
+                "expected a tangent source or an array of them, one per UV set (at most 4)");
+        }
+        for (auto s : m.tangents) {
+            if (s == TangentSource::Limit && !m.subdivLimit) {
+                n.failField("tangents",
+                            "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+            }
+        }
+    }
+
+    // "morph": weights and their animation keys.
+    void morph(const Node& n, MeshInstance& m) const {
+        Node mo = n.child("morph");
+        mo.allowOnly({"weights", "animation"});
+        m.morphWeights = mo.floats("weights", -kHuge, kHuge, 64);
+        if (mo.has("animation")) {
+            Node an = mo.child("animation");
+            an.allowOnly({"keys", "loop"});
+            m.morphLoop = an.boolean("loop", true);
+            if (!an.has("keys")) an.fail("missing \"keys\"");
+            an.requireArray("keys", 4096);
+            Node keys = an.child("keys");
+            if (keys.value().empty()) keys.fail("expected at least one key");
+            for (size_t i = 0; i < keys.value().size(); ++i) {
+                Node k = keys.item(i);
+                k.allowOnly({"time", "weights"});
+                MorphKey key;
+                key.time = k.num("time", 0.0, 0.0, kHuge);
+                key.weights = k.floats("weights", -kHuge, kHuge, 64);
+                if (!m.morphKeys.empty() && !(key.time > m.morphKeys.back().time)) {
+                    k.failField("time", "key times must increase");
+                }
+                if (!m.morphKeys.empty() && key.weights.size() != m.morphKeys[0].weights.size()) {
+                    k.failField("weights", "every key needs the same number of weights");
+                }
+                m.morphKeys.push_back(std::move(key));
+            }
+        }
+    }
+
     MeshInstance mesh(const Node& n, const std::vector<Material>& materials) const {
         n.allowOnly({"name", "file", "procedural", "subdivision", "uv_sets", "tangents", "morph",
                      "transform", "material"});
@@ -298,68 +361,8 @@ struct Parser : detail::SceneReader {
                 m.derivedUvSets.push_back(u);
             }
         }
-        if (n.has("tangents")) {
-            const json& t = n.value().at("tangents");
-            auto parseOne = [&](const json& v, const std::string& path) {
-                if (!v.is_string())
-                    throw io::InputError(file, path,
-                                         "expected \"pixel\", \"mikktspace\" or \"limit\"");
-                std::string s = v.get<std::string>();
-                if (s == "pixel") return TangentSource::Pixel;
-                if (s == "mikktspace") return TangentSource::MikkTSpace;
-                if (s == "limit") return TangentSource::Limit;
-                throw io::InputError(file, path,
-                                     "expected \"pixel\", \"mikktspace\" or \"limit\", got \"" + s +
-                                         "\"");
-            };
-            if (t.is_string()) {
-                m.tangents.assign(1, parseOne(t, n.sub("tangents")));
-            } else if (t.is_array() && t.size() <= size_t(kMaxUvSets)) {
-                for (size_t i = 0; i < t.size(); ++i) {
-                    m.tangents.push_back(
-                        parseOne(t[i], n.sub("tangents") + "[" + std::to_string(i) + "]"));
-                }
-            } else {
-                n.failField(
-                    "tangents",
-                    "expected a tangent source or an array of them, one per UV set (at most 4)");
-            }
-            for (auto s : m.tangents) {
-                if (s == TangentSource::Limit && !m.subdivLimit) {
-                    n.failField("tangents",
-                                "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
-                }
-            }
-        }
-        if (n.has("morph")) {
-            Node mo = n.child("morph");
-            mo.allowOnly({"weights", "animation"});
-            m.morphWeights = mo.floats("weights", -kHuge, kHuge, 64);
-            if (mo.has("animation")) {
-                Node an = mo.child("animation");
-                an.allowOnly({"keys", "loop"});
-                m.morphLoop = an.boolean("loop", true);
-                if (!an.has("keys")) an.fail("missing \"keys\"");
-                an.requireArray("keys", 4096);
-                Node keys = an.child("keys");
-                if (keys.value().empty()) keys.fail("expected at least one key");
-                for (size_t i = 0; i < keys.value().size(); ++i) {
-                    Node k = keys.item(i);
-                    k.allowOnly({"time", "weights"});
-                    MorphKey key;
-                    key.time = k.num("time", 0.0, 0.0, kHuge);
-                    key.weights = k.floats("weights", -kHuge, kHuge, 64);
-                    if (!m.morphKeys.empty() && !(key.time > m.morphKeys.back().time)) {
-                        k.failField("time", "key times must increase");
-                    }
-                    if (!m.morphKeys.empty() &&
-                        key.weights.size() != m.morphKeys[0].weights.size()) {
-                        k.failField("weights", "every key needs the same number of weights");
-                    }
-                    m.morphKeys.push_back(std::move(key));
-                }
-            }
-        }
+        if (n.has("tangents")) tangents(n, m);
+        if (n.has("morph")) morph(n, m);
         if (n.has("transform")) m.transform = transform(n.child("transform"));
         if (n.has("material")) {
             const json& mv = n.value().at("material");

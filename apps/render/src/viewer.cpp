@@ -153,6 +153,170 @@ bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
     return toggled;
 }
 
+// Orbit camera from the mouse (unless ImGui wants it): left drag orbits,
+// right drag and the wheel zoom, middle drag pans.
+void orbitFromMouse(Orbit& orbit, const Orbit& home, int fbw, int fbh) {
+    ImGuiIO& io = ImGui::GetIO();
+    if (io.WantCaptureMouse) return;
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+        orbit.azimuthDeg -= 0.3f * io.MouseDelta.x;
+        orbit.elevationDeg = std::clamp(orbit.elevationDeg + 0.3f * io.MouseDelta.y, -89.0f, 89.0f);
+    }
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Right))
+        orbit.distance *= std::exp(0.01f * io.MouseDelta.y);
+    if (io.MouseWheel != 0.0f) orbit.distance *= std::exp(-0.1f * io.MouseWheel);
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
+        View v = orbitView(orbit, fbw, fbh, Aov::Color);
+        glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]),
+            up(v.view[0][1], v.view[1][1], v.view[2][1]);
+        float k = orbit.distance * 0.002f;
+        orbit.target += k * (-io.MouseDelta.x * right + io.MouseDelta.y * up);
+    }
+    orbit.distance = std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
+}
+
+// The renderer's float target through the display transform.
+struct DisplayPass {
+    sg::gl::Program program;
+    GLuint emptyVao = 0;
+
+    DisplayPass()
+        : program(
+              {{sg::gl::Stage::Vertex, sg::shaders::assemble(kDisplayVs, "(viewer display vs)")},
+               {sg::gl::Stage::Fragment,
+                sg::shaders::assemble(kDisplayFs, "(viewer display fs)")}}) {
+        glCreateVertexArrays(1, &emptyVao);
+    }
+    ~DisplayPass() { glDeleteVertexArrays(1, &emptyVao); }
+    DisplayPass(const DisplayPass&) = delete;
+    DisplayPass& operator=(const DisplayPass&) = delete;
+
+    void draw(GLuint tex, int fbw, int fbh, int aovIndex, float exposure) const {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glViewport(0, 0, fbw, fbh);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_CULL_FACE);
+        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        if (!tex) return;
+        glUseProgram(program.id());
+        glBindTextureUnit(0, tex);
+        glUniform1i(program.uniform("uImage"), 0);
+        glUniform1i(program.uniform("uAov"), aovIndex);
+        glUniform1f(program.uniform("uExposure"), exposure);
+        glBindVertexArray(emptyVao);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glBindVertexArray(0);
+        glUseProgram(0);
+    }
+};
+
+// What the panel edits besides the scene.
+struct ViewerState {
+    Orbit orbit, home;
+    int aovIndex = 0;
+    bool playing = false;
+    float time = 0.0f;
+    bool morphOverride = false;
+    std::vector<std::vector<float>> morphWeights;
+    std::string status;
+    double frameMs = 0.0;
+    bool screenshotNow = false;
+};
+
+// Materials: double-sided mode, base colour, roughness, the layers.
+// Returns true when a layer was toggled.
+bool materialControls(Scene& scene) {
+    bool toggled = false;
+    for (size_t m = 0; m < scene.materials.size(); ++m) {
+        Material& mat = scene.materials[m];
+        ImGui::PushID(int(m));
+        if (ImGui::CollapsingHeader(("material " + mat.name).c_str(),
+                                    ImGuiTreeNodeFlags_DefaultOpen)) {
+            int ds = int(mat.doubleSided);
+            static const char* modes[] = {"off (cull)", "none", "mirror", "flip"};
+            if (ImGui::Combo("double-sided", &ds, modes, IM_ARRAYSIZE(modes)))
+                mat.doubleSided = DoubleSided(ds);
+            ImGui::ColorEdit3("base colour", &mat.baseColor[0]);
+            ImGui::SliderFloat("roughness", &mat.roughness, 0.02f, 1.0f);
+            toggled |= layerControls(mat.layers, "L");
+        }
+        ImGui::PopID();
+    }
+    return toggled;
+}
+
+// Blendshapes: playback, time, weights by hand.
+void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
+    bool anyMorph = false;
+    for (const auto& a : assets.meshes) anyMorph |= !a.mesh.morphTargets.empty();
+    if (!anyMorph || !ImGui::CollapsingHeader("blendshapes", ImGuiTreeNodeFlags_DefaultOpen))
+        return;
+    ImGui::Checkbox("play", &st.playing);
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(160);
+    ImGui::SliderFloat("time (s)", &st.time, 0.0f,
+                       std::max(1.0f, float(scene.frameCount) / scene.fps));
+    ImGui::Checkbox("set weights by hand", &st.morphOverride);
+    for (size_t i = 0; i < scene.meshes.size(); ++i) {
+        auto& w = st.morphWeights[i];
+        for (size_t t = 0; t < w.size(); ++t) {
+            ImGui::PushID(int(i * 1000 + t));
+            std::string label =
+                scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
+            if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && st.morphOverride) {
+                scene.meshes[i].morphKeys.clear();
+                scene.meshes[i].morphWeights = w;
+            }
+            ImGui::PopID();
+        }
+    }
+    if (st.morphOverride) applyFrame(scene, assets, st.time);
+}
+
+// The panel; returns true when a layer was toggled.
+bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, ViewerState& st,
+           int fbh) {
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))), ImGuiCond_FirstUseEver);
+    ImGui::Begin("surfgrad");
+    ImGui::Text("%s", scene.sourceName.c_str());
+    ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", st.frameMs,
+                renderer.stats().gpuMs, renderer.stats().drawCalls);
+    ImGui::Text("%zu programs cached", renderer.cachedPrograms());
+    static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
+                                 "bitangent", "basenormal", "uv",       "primid"};
+    ImGui::Combo("AOV", &st.aovIndex, aovs, IM_ARRAYSIZE(aovs));
+    ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
+                       ImGuiSliderFlags_Logarithmic);
+    if (ImGui::Button("reset camera")) st.orbit = st.home;
+    ImGui::SameLine();
+    if (ImGui::Button("screenshot")) st.screenshotNow = true;
+    bool toggled = materialControls(scene);
+    morphControls(scene, assets, st);
+    if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+    ImGui::End();
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    return toggled;
+}
+
+// --screenshot with --frames: the whole window as shown (render, display
+// pass and panel), read from the back buffer.
+void windowScreenshot(const std::filesystem::path& file, int fbw, int fbh) {
+    Image img;
+    img.width = fbw;
+    img.height = fbh;
+    img.pixels.resize(size_t(fbw) * size_t(fbh));
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_FLOAT, img.pixels.data());
+    writeDisplayImage(file, img);
+}
+
 } // namespace
 
 int runViewer(Scene scene, const ViewerOptions& opt) {
@@ -162,28 +326,18 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
     SceneAssets assets = loadAssets(scene, assetOptions);
     GlRenderer renderer;
     ImGuiScope imgui(glfw.window);
-
-    auto vs = sg::shaders::assemble(kDisplayVs, "(viewer display vs)");
-    auto fs = sg::shaders::assemble(kDisplayFs, "(viewer display fs)");
-    sg::gl::Program display({{sg::gl::Stage::Vertex, vs}, {sg::gl::Stage::Fragment, fs}});
-    GLuint emptyVao = 0;
-    glCreateVertexArrays(1, &emptyVao);
+    DisplayPass display;
 
     int fbw = 0, fbh = 0;
     glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
-    Orbit orbit = orbitFromScene(scene, assets, std::max(fbw, 1), std::max(fbh, 1));
-    const Orbit home = orbit;
-    int aovIndex = 0;
-    bool playing = scene.frameCount > 1;
-    float time = 0.0f;
-    bool morphOverride = false;
-    std::vector<std::vector<float>> morphWeights(scene.meshes.size());
+    ViewerState st;
+    st.orbit = orbitFromScene(scene, assets, std::max(fbw, 1), std::max(fbh, 1));
+    st.home = st.orbit;
+    st.playing = scene.frameCount > 1;
+    st.morphWeights.resize(scene.meshes.size());
     for (size_t i = 0; i < scene.meshes.size(); ++i)
-        morphWeights[i] = assets.meshes[i].appliedWeights;
-    std::string status;
-    double frameMs = 0.0;
+        st.morphWeights[i] = assets.meshes[i].appliedWeights;
     auto last = std::chrono::steady_clock::now();
-    bool screenshotNow = false;
     std::filesystem::path screenshotPath =
         opt.screenshot.empty() ? std::filesystem::path("out/view.png") : opt.screenshot;
 
@@ -192,159 +346,44 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         glfwPollEvents();
         auto now = std::chrono::steady_clock::now();
         float dt = std::chrono::duration<float>(now - last).count();
-        frameMs = 1000.0 * double(dt);
+        st.frameMs = 1000.0 * double(dt);
         last = now;
         glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
         if (fbw < 1 || fbh < 1) continue; // minimised
-
-        // Orbit camera from the mouse (unless ImGui wants it).
-        ImGuiIO& io = ImGui::GetIO();
-        if (!io.WantCaptureMouse) {
-            if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
-                orbit.azimuthDeg -= 0.3f * io.MouseDelta.x;
-                orbit.elevationDeg =
-                    std::clamp(orbit.elevationDeg + 0.3f * io.MouseDelta.y, -89.0f, 89.0f);
-            }
-            if (ImGui::IsMouseDragging(ImGuiMouseButton_Right))
-                orbit.distance *= std::exp(0.01f * io.MouseDelta.y);
-            if (io.MouseWheel != 0.0f) orbit.distance *= std::exp(-0.1f * io.MouseWheel);
-            if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle)) {
-                View v = orbitView(orbit, fbw, fbh, Aov::Color);
-                glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]),
-                    up(v.view[0][1], v.view[1][1], v.view[2][1]);
-                float k = orbit.distance * 0.002f;
-                orbit.target += k * (-io.MouseDelta.x * right + io.MouseDelta.y * up);
-            }
-            orbit.distance =
-                std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
-        }
+        orbitFromMouse(st.orbit, st.home, fbw, fbh);
 
         // Animation.
-        if (playing) time += dt;
-        if (!morphOverride) {
-            applyFrame(scene, assets, time);
+        if (st.playing) st.time += dt;
+        if (!st.morphOverride) {
+            applyFrame(scene, assets, st.time);
             for (size_t i = 0; i < scene.meshes.size(); ++i)
-                morphWeights[i] = assets.meshes[i].appliedWeights;
+                st.morphWeights[i] = assets.meshes[i].appliedWeights;
         }
 
-        View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
+        View view = orbitView(st.orbit, fbw, fbh, Aov(st.aovIndex));
         GLuint tex = 0;
         try {
             tex = renderer.renderToTexture(scene, assets, view);
         } catch (const std::exception& e) {
-            status = e.what();
+            st.status = e.what();
         }
-        double gpuMs = renderer.stats().gpuMs;
-
-        if (screenshotNow) { // the panel's button: the render, without the panel
+        if (st.screenshotNow) { // the panel's button: the render, without the panel
             Image img = renderer.render(scene, assets, view);
             writeImage(screenshotPath, img, view.aov, scene.output.exposure);
-            status = "wrote " + screenshotPath.string();
-            screenshotNow = false;
+            st.status = "wrote " + screenshotPath.string();
+            st.screenshotNow = false;
         }
-
-        // Display pass.
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, fbw, fbh);
-        glDisable(GL_DEPTH_TEST);
-        glDisable(GL_CULL_FACE);
-        glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT);
-        if (tex) {
-            glUseProgram(display.id());
-            glBindTextureUnit(0, tex);
-            glUniform1i(display.uniform("uImage"), 0);
-            glUniform1i(display.uniform("uAov"), aovIndex);
-            glUniform1f(display.uniform("uExposure"), scene.output.exposure);
-            glBindVertexArray(emptyVao);
-            glDrawArrays(GL_TRIANGLES, 0, 3);
-            glBindVertexArray(0);
-            glUseProgram(0);
-        }
-
-        // Panel.
-        ImGui_ImplOpenGL3_NewFrame();
-        ImGui_ImplGlfw_NewFrame();
-        ImGui::NewFrame();
-        ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-        ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))),
-                                 ImGuiCond_FirstUseEver);
-        ImGui::Begin("surfgrad");
-        ImGui::Text("%s", scene.sourceName.c_str());
-        ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", frameMs, gpuMs,
-                    renderer.stats().drawCalls);
-        ImGui::Text("%zu programs cached", renderer.cachedPrograms());
-        static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
-                                     "bitangent", "basenormal", "uv",       "primid"};
-        ImGui::Combo("AOV", &aovIndex, aovs, IM_ARRAYSIZE(aovs));
-        ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
-                           ImGuiSliderFlags_Logarithmic);
-        if (ImGui::Button("reset camera")) orbit = home;
-        ImGui::SameLine();
-        if (ImGui::Button("screenshot")) screenshotNow = true;
-        bool toggled = false;
-        for (size_t m = 0; m < scene.materials.size(); ++m) {
-            Material& mat = scene.materials[m];
-            ImGui::PushID(int(m));
-            if (ImGui::CollapsingHeader(("material " + mat.name).c_str(),
-                                        ImGuiTreeNodeFlags_DefaultOpen)) {
-                int ds = int(mat.doubleSided);
-                static const char* modes[] = {"off (cull)", "none", "mirror", "flip"};
-                if (ImGui::Combo("double-sided", &ds, modes, IM_ARRAYSIZE(modes)))
-                    mat.doubleSided = DoubleSided(ds);
-                ImGui::ColorEdit3("base colour", &mat.baseColor[0]);
-                ImGui::SliderFloat("roughness", &mat.roughness, 0.02f, 1.0f);
-                toggled |= layerControls(mat.layers, "L");
-            }
-            ImGui::PopID();
-        }
-        bool anyMorph = false;
-        for (const auto& a : assets.meshes) anyMorph |= !a.mesh.morphTargets.empty();
-        if (anyMorph && ImGui::CollapsingHeader("blendshapes", ImGuiTreeNodeFlags_DefaultOpen)) {
-            ImGui::Checkbox("play", &playing);
-            ImGui::SameLine();
-            ImGui::SetNextItemWidth(160);
-            ImGui::SliderFloat("time (s)", &time, 0.0f,
-                               std::max(1.0f, float(scene.frameCount) / scene.fps));
-            ImGui::Checkbox("set weights by hand", &morphOverride);
-            for (size_t i = 0; i < scene.meshes.size(); ++i) {
-                auto& w = morphWeights[i];
-                for (size_t t = 0; t < w.size(); ++t) {
-                    ImGui::PushID(int(i * 1000 + t));
-                    std::string label =
-                        scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
-                    if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && morphOverride) {
-                        scene.meshes[i].morphKeys.clear();
-                        scene.meshes[i].morphWeights = w;
-                    }
-                    ImGui::PopID();
-                }
-            }
-            if (morphOverride) applyFrame(scene, assets, time);
-        }
-        if (!status.empty()) ImGui::TextWrapped("%s", status.c_str());
-        ImGui::End();
-        ImGui::Render();
-        ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-        if (frame + 1 == opt.maxFrames && !opt.screenshot.empty()) {
-            // --screenshot with --frames: the whole window as shown (render,
-            // display pass and panel), read from the back buffer.
-            Image img;
-            img.width = fbw;
-            img.height = fbh;
-            img.pixels.resize(size_t(fbw) * size_t(fbh));
-            glReadBuffer(GL_BACK);
-            glPixelStorei(GL_PACK_ALIGNMENT, 4);
-            glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_FLOAT, img.pixels.data());
-            writeDisplayImage(opt.screenshot, img);
-        }
+        display.draw(tex, fbw, fbh, st.aovIndex, scene.output.exposure);
+        bool toggled = panel(scene, assets, renderer, st, fbh);
+        if (frame + 1 == opt.maxFrames && !opt.screenshot.empty())
+            windowScreenshot(opt.screenshot, fbw, fbh);
         glfwSwapBuffers(glfw.window);
 
         if (toggled) {
             try {
                 loadMissingAssets(scene, assets);
             } catch (const std::exception& e) {
-                status = e.what();
+                st.status = e.what();
             }
         }
     }
@@ -352,12 +391,11 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
         // Closed by the user: the last view goes to the screenshot file.
         glfwGetFramebufferSize(glfw.window, &fbw, &fbh);
         if (fbw > 0 && fbh > 0) {
-            View view = orbitView(orbit, fbw, fbh, Aov(aovIndex));
+            View view = orbitView(st.orbit, fbw, fbh, Aov(st.aovIndex));
             writeImage(opt.screenshot, renderer.render(scene, assets, view), view.aov,
                        scene.output.exposure);
         }
     }
-    glDeleteVertexArrays(1, &emptyVao);
     return 0;
 }
 
