@@ -539,7 +539,11 @@ struct LayerKind {
     uint32_t (*mapChannels)(const Layer&, const char*& why) = nullptr;
     std::optional<Space> (*volume)(const Layer&) = nullptr; // a volume domain
     const char* glslFile = nullptr;                         // #included when used
-    const DerivModTarget* modifiers = nullptr;              // takes derivative-space modifiers
+    // What else the layer's GLSL statement depends on besides its records
+    // (compile-time options): appended to its code in the effect signature,
+    // so programs that differ are cached apart (optional).
+    std::string (*signature)(const Layer&) = nullptr;
+    const DerivModTarget* modifiers = nullptr; // takes derivative-space modifiers
     // Feature maps the layer reads (assets load them; the plan gives them slots).
     const FeatureSource* (*featureSource)(const Layer&) = nullptr;
     std::vector<RecordLayout> records;

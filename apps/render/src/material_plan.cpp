@@ -27,6 +27,7 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
              ((plan.vertexTangentMask >> L.uvSet) & 1u ? "v" : "p");
     }
     if (L.kind->volume) s += *L.kind->volume(L) == Space::World ? "@w" : "@o";
+    if (L.kind->signature) s += L.kind->signature(L);
     if (pl.hasModifiers) {
         s += "+mods[";
         for (size_t i = 0; i < L.modifiers.size(); ++i) {
