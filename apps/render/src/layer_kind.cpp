@@ -207,12 +207,6 @@ const char* layerKindName(const LayerKind* kind) {
     return kind ? kind->name : "?";
 }
 
-std::vector<std::string> layerKindNames() {
-    std::vector<std::string> v;
-    for (const LayerKind* k : layerKinds()) v.emplace_back(k->name);
-    return v;
-}
-
 Layer makeLayer(const LayerKind& kind) {
     Layer L;
     L.kind = &kind;

@@ -402,10 +402,15 @@ struct CpuShader {
             }
             s.surfGrad = glm::vec3(0.0f);
         }
-        GroupOrder order = groupOrder(plan, plan.groups[g]);
-        for (const PlanLayer* pl : order.single) layer(*pl, s);
-        for (const auto& batch : order.batches)
-            for (const PlanLayer* pl : batch.second) layer(*pl, s);
+        // groupOrder() without allocating per pixel.
+        const std::vector<PlanLayer>& layers = plan.groups[g];
+        for (const PlanLayer& pl : layers)
+            if (!pl.layer->kind->batch) layer(pl, s);
+        for (const LayerKind* k : plan.kinds) {
+            if (!k->batch) continue;
+            for (const PlanLayer& pl : layers)
+                if (pl.layer->kind == k) layer(pl, s);
+        }
         return G::sgResolve(s.frame, s.surfGrad);
     }
 };

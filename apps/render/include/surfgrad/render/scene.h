@@ -131,8 +131,6 @@ struct Layer {
 // (the schema's "type"), or nullptr.
 const LayerKind* findLayerKind(std::string_view name);
 const char* layerKindName(const LayerKind* kind); // "?" for nullptr
-// Names of every layer kind, in schema order.
-std::vector<std::string> layerKindNames();
 // A layer of the named kind with the kind's default parameters.
 // Contract: findLayerKind(kindName) != nullptr.
 Layer makeLayer(std::string_view kindName);
