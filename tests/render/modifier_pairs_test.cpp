@@ -96,7 +96,7 @@ double transformed(const std::vector<Kind>& mods, double s, double t) {
     return h;
 }
 
-// The modifier chain as modifierBlock() emits it.
+// The modifier chain as derivModBlock() (shaders/sg/render/deriv_mods.cpp) emits it.
 glm::vec2 chain(const std::vector<Kind>& mods, G::sampler2D map, G::sampler2D maskSmp,
                 glm::vec2 st0) {
     G::SgUvNormalParams p;

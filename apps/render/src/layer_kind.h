@@ -375,7 +375,7 @@ void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm:
 // ---------------------------------------------------------------------------
 // 3. Emission: the GLSL statement and the CPU call, side by side.
 //
-// The assembled main() (assemble.cpp) holds these variables, and the CPU
+// The assembled main() (plan.cpp, fragmentBody) holds these variables, and the CPU
 // twin the same ones in CpuShadeState: `frame` (SgFrame: the prologue,
 // listing 16, or the re-prologue of a post-resolve group), `uv0`..`uv3`
 // (SgUvFrame of each UV set the plan reads), `volWorld`, `volObject`

@@ -3,7 +3,7 @@
 // mesh uses, its effect signature (the program cache key), and the uniform
 // records its layers read. Everything a layer kind contributes comes from
 // its registry entry (layer_kind.h); the GLSL program and its CPU twin are
-// assembled from the plan in assemble.cpp.
+// assembled from the plan in plan.cpp.
 #include <algorithm>
 #include <map>
 #include <sstream>
