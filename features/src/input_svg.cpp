@@ -782,169 +782,191 @@ private:
         builder_.arcTo(arc);
     }
 
+    // A path's d attribute while it is read (SVG 1.1 8.3): the scanner,
+    // the current point and subpath start (user space; startF in the
+    // output space), the last control point for S/T, the current command
+    // and its name for messages.
+    struct PathCursor {
+        explicit PathCursor(std::string_view d) : sc(d) {}
+        Scanner sc;
+        glm::dvec2 cur{0.0}, start{0.0}, startF{0.0}, lastCtrl{0.0};
+        char cmd = 0, prevCmd = 0;
+        int cmdIndex = 0;
+        std::string cel; // e.g. "path 3 command 2 'L'"
+    };
+
+    double pathNumber(PathCursor& p, const char* what) {
+        p.sc.skipCommaSpace();
+        double v = 0.0;
+        const auto r = p.sc.number(v);
+        if (r == Scanner::Num::Range)
+            fail(p.cel,
+                 std::string(what) + " is out of range (d[" + std::to_string(p.sc.pos()) + "])");
+        if (r != Scanner::Num::Ok) {
+            fail(p.cel, std::string("expected a number (") + what + ") at d[" +
+                            std::to_string(p.sc.pos()) + "]");
+        }
+        if (std::abs(v) > kMaxAbsCoord)
+            fail(p.cel, std::string(what) + " exceeds the coordinate limit 1e12");
+        return v;
+    }
+
+    bool pathFlag(PathCursor& p, const char* what) {
+        p.sc.skipCommaSpace();
+        const char c = p.sc.peek();
+        if (c != '0' && c != '1')
+            fail(p.cel, std::string("expected a flag 0 or 1 (") + what + ") at d[" +
+                            std::to_string(p.sc.pos()) + "]");
+        p.sc.advance();
+        return c == '1';
+    }
+
+    // A coordinate pair, relative to the current point for lower-case commands.
+    glm::dvec2 pathPoint(PathCursor& p, bool rel) {
+        const double x = pathNumber(p, "x");
+        const double y = pathNumber(p, "y");
+        return rel ? p.cur + glm::dvec2(x, y) : glm::dvec2(x, y);
+    }
+
+    // The command of the next segment: a letter, or the previous command
+    // repeated by further numbers. False at the end of the data.
+    bool readPathCommand(PathCursor& p, const std::string& el) {
+        p.sc.skipSpace();
+        if (p.sc.atEnd()) return false;
+        const char c = p.sc.peek();
+        if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z')) {
+            p.cmd = c;
+            p.sc.advance();
+            ++p.cmdIndex;
+            p.cel = el + " command " + std::to_string(p.cmdIndex) + " '" + std::string(1, c) + "'";
+            if (p.cmdIndex == 1 && c != 'M' && c != 'm')
+                fail(p.cel, "path data must start with M or m");
+            if (std::string_view("MmLlHhVvCcSsQqTtAaZz").find(c) == std::string_view::npos) {
+                fail(p.cel, "unknown path command");
+            }
+        } else if (p.sc.atNumberStart() && p.cmd != 0 && p.cmd != 'Z' && p.cmd != 'z') {
+            // Implicit repetition: after a moveto, further pairs are
+            // linetos of the same relativity.
+            if (p.cmd == 'M')
+                p.cmd = 'L';
+            else if (p.cmd == 'm')
+                p.cmd = 'l';
+        } else if (p.cmd == 0) {
+            fail(el + " command 1", "path data must start with M or m");
+        } else {
+            fail(p.cel, "unexpected character '" + std::string(1, c) + "' at d[" +
+                            std::to_string(p.sc.pos()) + "]");
+        }
+        return true;
+    }
+
+    // A drawing command right after Z starts a new subpath at the closed
+    // subpath's start (SVG 1.1 8.3.3).
+    void ensureSubpath(const PathCursor& p, const CurveInfo& ci, const std::string& el) {
+        if (!builder_.hasSubpath()) builder_.moveTo(p.startF, ci, el);
+    }
+
+    // C/c/S/s and Q/q/T/t: the smooth forms reflect the previous control
+    // point when the previous command was of the same family.
+    void pathCurve(PathCursor& p, const CurveInfo& ci, const std::string& el, const Affine& ctm,
+                   bool rel) {
+        const bool cubic = std::string_view("CcSs").find(p.cmd) != std::string_view::npos;
+        const bool smooth = p.cmd == 'S' || p.cmd == 's' || p.cmd == 'T' || p.cmd == 't';
+        const std::string_view family = cubic ? "CcSs" : "QqTt";
+        glm::dvec2 c1 = p.cur;
+        if (!smooth)
+            c1 = pathPoint(p, rel);
+        else if (family.find(p.prevCmd) != std::string_view::npos)
+            c1 = 2.0 * p.cur - p.lastCtrl;
+        if (cubic) {
+            const glm::dvec2 c2 = pathPoint(p, rel);
+            const glm::dvec2 end = pathPoint(p, rel);
+            ensureSubpath(p, ci, el);
+            builder_.cubicTo(ctm.apply(c1), ctm.apply(c2), ctm.apply(end));
+            p.lastCtrl = c2;
+            p.cur = end;
+        } else {
+            const glm::dvec2 end = pathPoint(p, rel);
+            ensureSubpath(p, ci, el);
+            builder_.quadTo(ctm.apply(c1), ctm.apply(end));
+            p.lastCtrl = c1;
+            p.cur = end;
+        }
+    }
+
+    // One segment of the current command.
+    void drawPathCommand(PathCursor& p, const CurveInfo& ci, const std::string& el,
+                         const Affine& ctm) {
+        const bool rel = p.cmd >= 'a';
+        switch (p.cmd) {
+        case 'M':
+        case 'm':
+            p.cur = pathPoint(p, rel);
+            p.start = p.cur;
+            p.startF = ctm.apply(p.cur);
+            builder_.moveTo(p.startF, ci, el);
+            break;
+        case 'Z':
+        case 'z':
+            builder_.close();
+            p.cur = p.start;
+            break;
+        case 'L':
+        case 'l':
+        case 'H':
+        case 'h':
+        case 'V':
+        case 'v': {
+            glm::dvec2 end;
+            if (p.cmd == 'L' || p.cmd == 'l') {
+                end = pathPoint(p, rel);
+            } else if (p.cmd == 'H' || p.cmd == 'h') {
+                const double x = pathNumber(p, "x");
+                end = {rel ? p.cur.x + x : x, p.cur.y};
+            } else {
+                const double y = pathNumber(p, "y");
+                end = {p.cur.x, rel ? p.cur.y + y : y};
+            }
+            ensureSubpath(p, ci, el);
+            builder_.lineTo(ctm.apply(end));
+            p.cur = end;
+            break;
+        }
+        case 'C':
+        case 'c':
+        case 'S':
+        case 's':
+        case 'Q':
+        case 'q':
+        case 'T':
+        case 't':
+            pathCurve(p, ci, el, ctm, rel);
+            break;
+        case 'A':
+        case 'a': {
+            const double rx = pathNumber(p, "rx"), ry = pathNumber(p, "ry"),
+                         phi = pathNumber(p, "x-axis-rotation");
+            const bool large = pathFlag(p, "large-arc-flag"), sweep = pathFlag(p, "sweep-flag");
+            const glm::dvec2 end = pathPoint(p, rel);
+            ensureSubpath(p, ci, el);
+            arcTo(p.cur, rx, ry, phi, large, sweep, end, ctm, p.cel);
+            p.cur = end;
+            break;
+        }
+        default:
+            break;
+        }
+    }
+
     void emitPath(const XmlTag& tag, const std::string& el, const Affine& ctm) {
         const std::string* d = tag.attr("d");
         if (!d) return; // no d: renders nothing
         const CurveInfo ci = info(tag, el);
-        Scanner sc(*d);
-        glm::dvec2 cur{0.0}, start{0.0}, startF{0.0};
-        glm::dvec2 lastCtrl{0.0};
-        char cmd = 0, prevCmd = 0;
-        int cmdIndex = 0;
-        std::string cel;
-        auto num = [&](const char* what) {
-            sc.skipCommaSpace();
-            double v = 0.0;
-            const auto r = sc.number(v);
-            if (r == Scanner::Num::Range)
-                fail(cel,
-                     std::string(what) + " is out of range (d[" + std::to_string(sc.pos()) + "])");
-            if (r != Scanner::Num::Ok) {
-                fail(cel, std::string("expected a number (") + what + ") at d[" +
-                              std::to_string(sc.pos()) + "]");
-            }
-            if (std::abs(v) > kMaxAbsCoord)
-                fail(cel, std::string(what) + " exceeds the coordinate limit 1e12");
-            return v;
-        };
-        auto flag = [&](const char* what) {
-            sc.skipCommaSpace();
-            const char c = sc.peek();
-            if (c != '0' && c != '1')
-                fail(cel, std::string("expected a flag 0 or 1 (") + what + ") at d[" +
-                              std::to_string(sc.pos()) + "]");
-            sc.advance();
-            return c == '1';
-        };
-        auto point = [&](bool rel) {
-            const double x = num("x");
-            const double y = num("y");
-            return rel ? cur + glm::dvec2(x, y) : glm::dvec2(x, y);
-        };
-        auto ensureSubpath = [&] {
-            // A drawing command right after Z starts a new subpath at the
-            // closed subpath's start (SVG 1.1 8.3.3).
-            if (!builder_.hasSubpath()) builder_.moveTo(startF, ci, el);
-        };
-        for (;;) {
-            sc.skipSpace();
-            if (sc.atEnd()) break;
-            const char c = sc.peek();
-            if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z')) {
-                cmd = c;
-                sc.advance();
-                ++cmdIndex;
-                cel =
-                    el + " command " + std::to_string(cmdIndex) + " '" + std::string(1, cmd) + "'";
-                if (cmdIndex == 1 && cmd != 'M' && cmd != 'm')
-                    fail(cel, "path data must start with M or m");
-                if (std::string_view("MmLlHhVvCcSsQqTtAaZz").find(cmd) == std::string_view::npos) {
-                    fail(cel, "unknown path command");
-                }
-            } else if (sc.atNumberStart() && cmd != 0 && cmd != 'Z' && cmd != 'z') {
-                // Implicit repetition: after a moveto, further pairs are
-                // linetos of the same relativity.
-                if (cmd == 'M')
-                    cmd = 'L';
-                else if (cmd == 'm')
-                    cmd = 'l';
-            } else if (cmd == 0) {
-                fail(el + " command 1", "path data must start with M or m");
-            } else {
-                fail(cel, "unexpected character '" + std::string(1, c) + "' at d[" +
-                              std::to_string(sc.pos()) + "]");
-            }
-            const bool rel = cmd >= 'a';
-            switch (cmd) {
-            case 'M':
-            case 'm': {
-                cur = point(rel);
-                start = cur;
-                startF = ctm.apply(cur);
-                builder_.moveTo(startF, ci, el);
-                break;
-            }
-            case 'Z':
-            case 'z':
-                builder_.close();
-                cur = start;
-                break;
-            case 'L':
-            case 'l': {
-                const glm::dvec2 p = point(rel);
-                ensureSubpath();
-                builder_.lineTo(ctm.apply(p));
-                cur = p;
-                break;
-            }
-            case 'H':
-            case 'h': {
-                const double x = num("x");
-                const glm::dvec2 p{rel ? cur.x + x : x, cur.y};
-                ensureSubpath();
-                builder_.lineTo(ctm.apply(p));
-                cur = p;
-                break;
-            }
-            case 'V':
-            case 'v': {
-                const double y = num("y");
-                const glm::dvec2 p{cur.x, rel ? cur.y + y : y};
-                ensureSubpath();
-                builder_.lineTo(ctm.apply(p));
-                cur = p;
-                break;
-            }
-            case 'C':
-            case 'c':
-            case 'S':
-            case 's': {
-                const bool smooth = cmd == 'S' || cmd == 's';
-                glm::dvec2 c1 = cur;
-                if (!smooth)
-                    c1 = point(rel);
-                else if (std::string_view("CcSs").find(prevCmd) != std::string_view::npos)
-                    c1 = 2.0 * cur - lastCtrl;
-                const glm::dvec2 c2 = point(rel);
-                const glm::dvec2 p = point(rel);
-                ensureSubpath();
-                builder_.cubicTo(ctm.apply(c1), ctm.apply(c2), ctm.apply(p));
-                lastCtrl = c2;
-                cur = p;
-                break;
-            }
-            case 'Q':
-            case 'q':
-            case 'T':
-            case 't': {
-                const bool smooth = cmd == 'T' || cmd == 't';
-                glm::dvec2 c1 = cur;
-                if (!smooth)
-                    c1 = point(rel);
-                else if (std::string_view("QqTt").find(prevCmd) != std::string_view::npos)
-                    c1 = 2.0 * cur - lastCtrl;
-                const glm::dvec2 p = point(rel);
-                ensureSubpath();
-                builder_.quadTo(ctm.apply(c1), ctm.apply(p));
-                lastCtrl = c1;
-                cur = p;
-                break;
-            }
-            case 'A':
-            case 'a': {
-                const double rx = num("rx"), ry = num("ry"), phi = num("x-axis-rotation");
-                const bool large = flag("large-arc-flag"), sweep = flag("sweep-flag");
-                const glm::dvec2 p = point(rel);
-                ensureSubpath();
-                arcTo(cur, rx, ry, phi, large, sweep, p, ctm, cel);
-                cur = p;
-                break;
-            }
-            default:
-                break;
-            }
-            prevCmd = cmd;
-            sc.skipCommaSpace();
+        PathCursor p(*d);
+        while (readPathCommand(p, el)) {
+            drawPathCommand(p, ci, el, ctm);
+            p.prevCmd = p.cmd;
+            p.sc.skipCommaSpace();
         }
         builder_.endSubpath();
     }

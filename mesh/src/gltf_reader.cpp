@@ -145,8 +145,21 @@ private:
     std::vector<uint32_t> readIndices(int idx, size_t vertexCount, const std::string& what) const;
     const unsigned char* viewData(int viewIdx, size_t byteOffset, size_t elemSize, size_t stride,
                                   size_t count, const std::string& what) const;
+    // One primitive as a scene instance, in the steps below.
     void primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx, int nodeIdx,
                    const glm::mat4& world, const std::vector<double>& nodeWeights, Scene& scene);
+    // POSITION, NORMAL (unit; zero ones flagged as 0), TANGENT, TEXCOORD_n
+    // (st = (u, 1 - v)); returns the vertex count.
+    size_t vertexAttributes(const tinygltf::Primitive& prim, const std::string& el, RenderMesh& rm);
+    // Indices (or 0..n-1) as a triangle list; strips and fans unrolled with
+    // their winding kept.
+    void triangleList(const tinygltf::Primitive& prim, int mode, size_t nV, const std::string& el,
+                      RenderMesh& rm) const;
+    // Morph targets, their names (extras.targetNames) and default weights
+    // (the node's, else the mesh's).
+    void morphTargets(const tinygltf::Mesh& mesh, const tinygltf::Primitive& prim,
+                      const std::vector<double>& nodeWeights, size_t nV, const std::string& el,
+                      RenderMesh& rm) const;
     void materials(Scene& scene);
     void animations(Scene& scene);
     std::string texturePath(int textureIdx, const std::string& what) const;
@@ -417,35 +430,37 @@ glm::mat4 localMatrix(const tinygltf::Node& n, const std::string& file, int node
     return m;
 }
 
-void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx, int nodeIdx,
-                           const glm::mat4& world, const std::vector<double>& nodeWeights,
-                           Scene& scene) {
-    const tinygltf::Primitive& prim = mesh.primitives[size_t(primIdx)];
-    std::string el = "mesh " + std::to_string(meshIdx) + " primitive " + std::to_string(primIdx);
-    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        note(el + ": mode " + std::to_string(mode) + " (points/lines) skipped");
-        return;
+// Normals flagged as zero (absent or zero-length in the file) become the
+// normalised area-weighted sum of their triangles' normals (+z when that is
+// zero too).
+void fillZeroNormals(RenderMesh& rm) {
+    std::vector<glm::vec3> acc;
+    for (size_t i = 0; i < rm.normals.size(); ++i) {
+        if (rm.normals[i] != glm::vec3(0.0f)) continue;
+        if (acc.empty()) {
+            acc.assign(rm.normals.size(), glm::vec3(0.0f));
+            for (size_t k = 0; k + 2 < rm.indices.size(); k += 3) {
+                const glm::vec3 &a = rm.positions[rm.indices[k]],
+                                &b = rm.positions[rm.indices[k + 1]],
+                                &c = rm.positions[rm.indices[k + 2]];
+                glm::vec3 n = glm::cross(b - a, c - a);
+                for (int j = 0; j < 3; ++j) acc[rm.indices[k + size_t(j)]] += n;
+            }
+        }
+        float len = glm::length(acc[i]);
+        rm.normals[i] =
+            len > 0.0f && std::isfinite(len) ? acc[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
     }
+}
+
+size_t GltfReader::vertexAttributes(const tinygltf::Primitive& prim, const std::string& el,
+                                    RenderMesh& rm) {
     auto attr = [&](const std::string& name) -> int {
         auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -1 : it->second;
     };
     int posIdx = attr("POSITION");
     if (posIdx < 0) fail(el, "has no POSITION attribute");
-    SceneInstance inst;
-    inst.node = nodeIdx;
-    inst.meshIndex = meshIdx;
-    inst.primitive = primIdx;
-    inst.objectToWorld = world;
-    inst.material = prim.material;
-    if (prim.material >= 0 && size_t(prim.material) >= m_.materials.size())
-        fail(el, "material " + std::to_string(prim.material) + " does not exist");
-    RenderMesh& rm = inst.mesh;
-    rm.name = mesh.name.empty() ? "mesh" + std::to_string(meshIdx) : mesh.name;
-    if (mesh.primitives.size() > 1) rm.name += "#" + std::to_string(primIdx);
-
     std::vector<float> pos = readFloats(posIdx, 3, false, el + " POSITION");
     const size_t nV = pos.size() / 3;
     totalVertices_ += nV;
@@ -479,7 +494,7 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
             rm.normals[i] = v;
         }
         if (zero) {
-            // Fill zero normals from the geometry (after indices are known).
+            // Filled from the geometry once the indices are known (fillZeroNormals).
             note(el + ": " + std::to_string(zero) +
                  " zero-length normals replaced by face normals");
         }
@@ -508,7 +523,11 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
         for (size_t i = 0; i < nV; ++i) st[i] = glm::vec2(uv[2 * i], 1.0f - uv[2 * i + 1]);
         rm.uvSets.push_back(std::move(st));
     }
-    // Triangle list.
+    return nV;
+}
+
+void GltfReader::triangleList(const tinygltf::Primitive& prim, int mode, size_t nV,
+                              const std::string& el, RenderMesh& rm) const {
     std::vector<uint32_t> idx;
     if (prim.indices >= 0) {
         idx = readIndices(prim.indices, nV, el + " indices");
@@ -534,11 +553,11 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
             }
         }
     }
-    if (rm.indices.empty()) {
-        note(el + ": no triangles; skipped");
-        return;
-    }
-    // Morph targets.
+}
+
+void GltfReader::morphTargets(const tinygltf::Mesh& mesh, const tinygltf::Primitive& prim,
+                              const std::vector<double>& nodeWeights, size_t nV,
+                              const std::string& el, RenderMesh& rm) const {
     if (prim.targets.size() > limits_.maxMorphTargets)
         fail(el, std::to_string(prim.targets.size()) + " morph targets; the limit is " +
                      std::to_string(limits_.maxMorphTargets));
@@ -562,51 +581,65 @@ void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx,
         if (rm.tangents.empty()) mt.tangentDeltas.clear();
         rm.morphTargets.push_back(std::move(mt));
     }
-    if (!rm.morphTargets.empty()) {
-        // Names from mesh.extras.targetNames (a common exporter convention).
-        if (mesh.extras.Has("targetNames") && mesh.extras.Get("targetNames").IsArray()) {
-            const tinygltf::Value& names = mesh.extras.Get("targetNames");
-            for (size_t t = 0; t < rm.morphTargets.size() && t < names.ArrayLen(); ++t) {
-                if (names.Get(int(t)).IsString())
-                    rm.morphTargets[t].name = names.Get(int(t)).Get<std::string>();
-            }
-        }
-        const std::vector<double>& w = !nodeWeights.empty() ? nodeWeights : mesh.weights;
-        if (!w.empty() && w.size() != rm.morphTargets.size()) {
-            fail(el, std::to_string(w.size()) + " default weights for " +
-                         std::to_string(rm.morphTargets.size()) + " morph targets");
-        }
-        rm.morphWeights.assign(rm.morphTargets.size(), 0.0f);
-        for (size_t t = 0; t < w.size(); ++t) {
-            if (!std::isfinite(w[t])) fail(el, "non-finite default morph weight");
-            rm.morphWeights[t] = float(w[t]);
+    if (rm.morphTargets.empty()) return;
+    // Names from mesh.extras.targetNames (a common exporter convention).
+    if (mesh.extras.Has("targetNames") && mesh.extras.Get("targetNames").IsArray()) {
+        const tinygltf::Value& names = mesh.extras.Get("targetNames");
+        for (size_t t = 0; t < rm.morphTargets.size() && t < names.ArrayLen(); ++t) {
+            if (names.Get(int(t)).IsString())
+                rm.morphTargets[t].name = names.Get(int(t)).Get<std::string>();
         }
     }
+    const std::vector<double>& w = !nodeWeights.empty() ? nodeWeights : mesh.weights;
+    if (!w.empty() && w.size() != rm.morphTargets.size()) {
+        fail(el, std::to_string(w.size()) + " default weights for " +
+                     std::to_string(rm.morphTargets.size()) + " morph targets");
+    }
+    rm.morphWeights.assign(rm.morphTargets.size(), 0.0f);
+    for (size_t t = 0; t < w.size(); ++t) {
+        if (!std::isfinite(w[t])) fail(el, "non-finite default morph weight");
+        rm.morphWeights[t] = float(w[t]);
+    }
+}
+
+void GltfReader::primitive(const tinygltf::Mesh& mesh, int meshIdx, int primIdx, int nodeIdx,
+                           const glm::mat4& world, const std::vector<double>& nodeWeights,
+                           Scene& scene) {
+    const tinygltf::Primitive& prim = mesh.primitives[size_t(primIdx)];
+    std::string el = "mesh " + std::to_string(meshIdx) + " primitive " + std::to_string(primIdx);
+    int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        note(el + ": mode " + std::to_string(mode) + " (points/lines) skipped");
+        return;
+    }
+    if (prim.attributes.find("POSITION") == prim.attributes.end())
+        fail(el, "has no POSITION attribute");
+    SceneInstance inst;
+    inst.node = nodeIdx;
+    inst.meshIndex = meshIdx;
+    inst.primitive = primIdx;
+    inst.objectToWorld = world;
+    inst.material = prim.material;
+    if (prim.material >= 0 && size_t(prim.material) >= m_.materials.size())
+        fail(el, "material " + std::to_string(prim.material) + " does not exist");
+    RenderMesh& rm = inst.mesh;
+    rm.name = mesh.name.empty() ? "mesh" + std::to_string(meshIdx) : mesh.name;
+    if (mesh.primitives.size() > 1) rm.name += "#" + std::to_string(primIdx);
+
+    const size_t nV = vertexAttributes(prim, el, rm);
+    triangleList(prim, mode, nV, el, rm);
+    if (rm.indices.empty()) {
+        note(el + ": no triangles; skipped");
+        return;
+    }
+    morphTargets(mesh, prim, nodeWeights, nV, el, rm);
     // Material: tangents belong to the normal texture's UV set.
     if (prim.material >= 0 && !rm.tangents.empty()) {
         const tinygltf::Material& mat = m_.materials[size_t(prim.material)];
         if (mat.normalTexture.index >= 0) rm.tangentUvSet = mat.normalTexture.texCoord;
     }
-    if (!rm.normals.empty()) {
-        // Replace zero-length normals (flagged as 0) by area-weighted face normals.
-        std::vector<glm::vec3> acc;
-        for (size_t i = 0; i < nV; ++i) {
-            if (rm.normals[i] != glm::vec3(0.0f)) continue;
-            if (acc.empty()) {
-                acc.assign(nV, glm::vec3(0.0f));
-                for (size_t k = 0; k + 2 < rm.indices.size(); k += 3) {
-                    const glm::vec3 &a = rm.positions[rm.indices[k]],
-                                    &b = rm.positions[rm.indices[k + 1]],
-                                    &c = rm.positions[rm.indices[k + 2]];
-                    glm::vec3 n = glm::cross(b - a, c - a);
-                    for (int j = 0; j < 3; ++j) acc[rm.indices[k + size_t(j)]] += n;
-                }
-            }
-            float len = glm::length(acc[i]);
-            rm.normals[i] =
-                len > 0.0f && std::isfinite(len) ? acc[i] / len : glm::vec3(0.0f, 0.0f, 1.0f);
-        }
-    }
+    fillZeroNormals(rm);
     scene.instances.push_back(std::move(inst));
 }
 
