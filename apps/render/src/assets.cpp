@@ -563,7 +563,8 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     for (int mIdx : usedMaterials) {
         const Material& mat = scene.materials[size_t(mIdx)];
         if (mat.baseColorMap)
-            textureUses.push_back({&*mat.baseColorMap, kChannelR | kChannelG | kChannelB, "the colour"});
+            textureUses.push_back(
+                {&*mat.baseColorMap, kChannelR | kChannelG | kChannelB, "the colour"});
         for (const Layer& L : mat.layers) collectTextures(L, textureUses);
     }
     std::vector<const Layer*> features;

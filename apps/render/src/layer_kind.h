@@ -510,7 +510,9 @@ constexpr uint32_t normalXyChannels(NormalEncoding e) {
     return e == NormalEncoding::Ag ? (kChannelG | kChannelA) : (kChannelR | kChannelG);
 }
 // One component 0..3 (r..a) as a mask; none for a negative channel.
-constexpr uint32_t channelBit(int channel) { return channel >= 0 ? 1u << channel : 0u; }
+constexpr uint32_t channelBit(int channel) {
+    return channel >= 0 ? 1u << channel : 0u;
+}
 
 // ---------------------------------------------------------------------------
 // 5. The kind.

@@ -81,7 +81,8 @@ std::vector<Layer> uberStandIns(const LayerKind& k, int uvCount) {
 
 uint32_t mapChannels(const Layer& L, const char*& why) {
     const int heightChannel = L.params<DerivMapParams>().heightChannel;
-    why = heightChannel >= 0 ? "the derivative (r, g) and the height channel" : "the derivative (r, g)";
+    why = heightChannel >= 0 ? "the derivative (r, g) and the height channel"
+                             : "the derivative (r, g)";
     return kChannelR | kChannelG | channelBit(heightChannel);
 }
 

@@ -72,8 +72,8 @@ std::vector<Layer> uberStandIns(const LayerKind& k, int uvCount) {
 
 uint32_t mapChannels(const Layer& L, const char*& why) {
     const P& p = L.params<P>();
-    why = p.heightChannel >= 0 ? "the normal encoding and the height channel"
-                               : "the normal encoding";
+    why =
+        p.heightChannel >= 0 ? "the normal encoding and the height channel" : "the normal encoding";
     return normalXyChannels(p.encoding) | channelBit(p.heightChannel);
 }
 
