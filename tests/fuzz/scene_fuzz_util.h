@@ -42,7 +42,10 @@ inline void boundCost(sg::render::Scene& s) {
         for (auto& t : L.maps) t.size = std::min(t.size, 32);
         for (auto& md : L.modifiers)
             if (md.mask) md.mask->size = std::min(md.mask->size, 32);
-        if (L.feature) L.feature->size = std::min(L.feature->size, 32);
+        if (L.is("feature")) {
+            auto& source = L.params<sg::render::FeatureParams>().source;
+            if (source) source->size = std::min(source->size, 32);
+        }
         for (auto& c : L.children) self(self, c);
     };
     for (auto& mat : s.materials) {
