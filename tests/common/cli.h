@@ -17,6 +17,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+// SG_TEST_ASAN: defined in an AddressSanitizer build (GCC and Clang), where
+// tests that limit memory or provoke std::bad_alloc behave differently.
+#if defined(__SANITIZE_ADDRESS__)
+#define SG_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SG_TEST_ASAN 1
+#endif
+#endif
+
 namespace sg::test {
 
 struct CommandResult {
@@ -79,6 +89,30 @@ inline CommandResult runCommand(const std::string& command, const CommandOptions
 // Runs the built `surfgrad` with `args` (already shell-quoted where needed).
 inline CommandResult runSurfgrad(const std::string& args, const CommandOptions& options = {}) {
     return runCommand(shellQuote(surfgradBinary()) + " " + args, options);
+}
+
+// Runs the built `surfgrad` with `args` in `cwd` with at most `limitMiB` of
+// memory, so that a test can prove a refusal allocates nothing large: the
+// shell's `ulimit -v` in a plain build; in a sanitizer build (ASan reserves
+// terabytes of address space, which an address-space limit would refuse)
+// ASan's own per-allocation limit, appended to the run's ASAN_OPTIONS
+// (scripts/test-sanitize sets some) with allocator_may_return_null so a
+// refused allocation surfaces as std::bad_alloc, which the tests look for.
+inline CommandResult runSurfgradMemoryLimited(const std::string& args,
+                                              const std::filesystem::path& cwd,
+                                              unsigned limitMiB = 1500) {
+#ifdef SG_TEST_ASAN
+    constexpr bool kAsan = true;
+#else
+    constexpr bool kAsan = false;
+#endif
+    const std::string limit =
+        kAsan ? "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}max_allocation_size_mb=" +
+                    std::to_string(limitMiB) + ":allocator_may_return_null=1 exec "
+              : "ulimit -v " + std::to_string(limitMiB * 1000) + " && exec ";
+    CommandOptions options;
+    options.cwd = cwd;
+    return runCommand(limit + shellQuote(surfgradBinary()) + " " + args, options);
 }
 
 } // namespace sg::test

@@ -14,16 +14,8 @@
 #include <sstream>
 
 #include "cli.h"
+#include "giga_images.h"
 #include "surfgrad/normalmap.h"
-
-#ifdef __has_feature
-#if __has_feature(address_sanitizer)
-#define SG_TEST_ASAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define SG_TEST_ASAN 1
-#endif
 
 namespace {
 
@@ -188,43 +180,17 @@ TEST(NormalmapCli, BadInputIsAnErrorWithoutOutput) {
     }
 }
 
-// The files of issue 16 and headers of other formats declaring gigabytes
-// (tests/fuzz/corpus/texture), as `surfgrad normalmap` inputs with at most
-// 1.5 GB of memory: refused by the header scan with the file and the
-// reason, exit 1, no output, no std::bad_alloc. The limit proves nothing
-// large is allocated (`ulimit -v`; in a sanitizer build, which reserves
-// terabytes of address space, ASan's own allocation limit).
+// Every image header of tests/common/giga_images.h as a `surfgrad
+// normalmap` input with at most 1.5 GB of memory: refused by the header scan
+// with the file and the reason, exit 1, no output, no std::bad_alloc.
 TEST(NormalmapCli, HeadersPromisingGigabytesAreRefusedUnderAMemoryLimit) {
-#ifdef SG_TEST_ASAN
-    const std::string limit = "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}"
-                              "max_allocation_size_mb=1500:allocator_may_return_null=1 exec ";
-#else
-    const std::string limit = "ulimit -v 1500000 && exec ";
-#endif
-    const fs::path corpus = fs::path(kSrc) / "tests/fuzz/corpus/texture";
-    struct Case {
-        const char* file;
-        const char* reason;
-    };
-    const Case cases[] = {
-        {"issue16_huge_dims.png", "PNG IDAT: 16384x16384 pixels, 4 channels of 8 bits (1.00 GiB)"},
-        {"issue16_huge_64ch.tif",
-         "TIFF strips: 16384x16384 pixels, 64 channels of 8 bits (16.0 GiB)"},
-        {"giga_progressive.jpg", "JPEG scan data: 16384x16384 pixels, 3 channels of 8 bits"},
-        {"giga_none.exr", "EXR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
-        {"giga.hdr", "HDR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
-    };
     const fs::path dir = scratch("giga");
     const size_t before = fileCount(dir);
-    for (const Case& c : cases) {
+    for (const sg::test::GigaImage& c : sg::test::gigaImages()) {
         SCOPED_TRACE(c.file);
-        const std::string file = (corpus / c.file).string();
-        sg::test::CommandOptions options;
-        options.cwd = dir;
-        const sg::test::CommandResult r = sg::test::runCommand(
-            limit + sg::test::shellQuote(sg::test::surfgradBinary()) + " normalmap scale " +
-                sg::test::shellQuote(file) + " -o out.png --alpha 2",
-            options);
+        const std::string file = (sg::test::gigaImageDir() / c.file).string();
+        const sg::test::CommandResult r = sg::test::runSurfgradMemoryLimited(
+            "normalmap scale " + sg::test::shellQuote(file) + " -o out.png --alpha 2", dir);
         EXPECT_EQ(r.exitCode, 1) << r.output();
         EXPECT_EQ(r.output().rfind("surfgrad: error: " + file + ": " + c.reason, 0), 0u)
             << r.output();

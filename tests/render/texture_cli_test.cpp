@@ -13,16 +13,8 @@
 #include <string>
 
 #include "cli.h"
+#include "giga_images.h"
 #include "render_test_util.h"
-
-#ifdef __has_feature
-#if __has_feature(address_sanitizer)
-#define SG_TEST_ASAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define SG_TEST_ASAN 1
-#endif
 
 namespace sg::render::test {
 namespace {
@@ -33,17 +25,7 @@ using sg::test::CommandResult;
 
 // Runs `surfgrad ARGS` in `cwd` with at most 1.5 GB of memory.
 CommandResult runLimited(const std::string& args, const fs::path& cwd) {
-#ifdef SG_TEST_ASAN
-    // Appended to the run's own options (scripts/test-sanitize sets some).
-    const std::string limit = "ASAN_OPTIONS=${ASAN_OPTIONS:+$ASAN_OPTIONS:}"
-                              "max_allocation_size_mb=1500:allocator_may_return_null=1 exec ";
-#else
-    const std::string limit = "ulimit -v 1500000 && exec ";
-#endif
-    sg::test::CommandOptions options;
-    options.cwd = cwd;
-    return sg::test::runCommand(
-        limit + sg::test::shellQuote(sg::test::surfgradBinary()) + " " + args, options);
+    return sg::test::runSurfgradMemoryLimited(args, cwd);
 }
 
 fs::path scratch(const std::string& name) {
@@ -62,30 +44,10 @@ void writeScene(const fs::path& file, const std::string& map, const std::string&
 }
 
 TEST(TextureLimits, HeadersPromisingGigabytesAreRefusedUnderAMemoryLimit) {
-    const fs::path corpus = fs::path(SURFGRAD_SOURCE_DIR) / "tests/fuzz/corpus/texture";
-    struct Case {
-        const char* file;
-        const char* reason;
-    };
-    // The two files of issue 16, then JPEG (baseline, progressive: libjpeg
-    // would decode the whole file on open), OpenEXR, Radiance HDR, TGA and
-    // Deflate TIFF headers declaring gigabytes.
-    const Case cases[] = {
-        {"issue16_huge_dims.png", "PNG IDAT: 16384x16384 pixels, 4 channels of 8 bits (1.00 GiB)"},
-        {"issue16_huge_64ch.tif",
-         "TIFF strips: 16384x16384 pixels, 64 channels of 8 bits (16.0 GiB)"},
-        {"giga_baseline.jpg", "JPEG scan data: 16384x16384 pixels, 3 channels of 8 bits"},
-        {"giga_progressive.jpg", "JPEG scan data: 16384x16384 pixels, 3 channels of 8 bits"},
-        {"giga_none.exr", "EXR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
-        {"giga_zip.exr", "EXR pixel data: 16384x16384 pixels"},
-        {"giga.hdr", "HDR pixel data: 16384x16384 pixels, 3 channels of 32 bits (3.00 GiB)"},
-        {"giga_rgba.tga", "TGA pixel data: 65535x65535 pixels, 4 channels of 8 bits (16.0 GiB)"},
-        {"giga_deflate.tif", "TIFF strips: 16384x16384 pixels, 3 channels of 8 bits"},
-    };
     const fs::path dir = scratch("giga");
-    for (const Case& c : cases) {
+    for (const sg::test::GigaImage& c : sg::test::gigaImages()) {
         SCOPED_TRACE(c.file);
-        const std::string map = (corpus / c.file).string();
+        const std::string map = (sg::test::gigaImageDir() / c.file).string();
         writeScene(dir / "scene.json", map);
         const CommandResult r = runLimited("render scene.json -o out.png", dir);
         EXPECT_EQ(r.exitCode, 1) << r.output();
