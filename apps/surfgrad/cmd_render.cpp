@@ -10,6 +10,7 @@
 //   view [SCENE.json | MODEL]      the interactive viewer (GLFW + Dear ImGui).
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -85,12 +86,23 @@ constexpr const char* kBudgetHelp =
     "refused before it is decoded. Default: a quarter of physical memory, at most 8G, at "
     "most half of the process's memory limit (ulimit -v)";
 
+// --tbn: the scene field "tangents" for every UV set whose basis an
+// enabled layer reads, one rule for both. "limit" is the same request as
+// "tangents": "limit": it applies to meshes with "subdivision": {"limit":
+// true} and changes only their tangents (never the geometry); the other
+// meshes keep their own tangents and are named in a note on stderr. A scene
+// without such a mesh is an error naming its meshes.
 void overrideTangents(Scene& scene, const std::string& tbn) {
     if (tbn.empty()) return;
     TangentSource src = tbn == "pixel"        ? TangentSource::Pixel
                         : tbn == "mikktspace" ? TangentSource::MikkTSpace
                                               : TangentSource::Limit;
+    std::string skipped;
     for (auto& m : scene.meshes) {
+        if (src == TangentSource::Limit && !m.subdivLimit) {
+            skipped += (skipped.empty() ? "" : ", ") + m.fieldPath;
+            continue;
+        }
         // Every UV set whose tangent basis an enabled layer reads gets the
         // source (pixel resets them all; vertex tangents are generated only
         // for those sets anyway).
@@ -101,16 +113,31 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
         for (int k = 0; k < kMaxUvSets; ++k) {
             if (sets >> k & 1u) m.tangents[size_t(k)] = src;
         }
-        if (src == TangentSource::Limit && !m.subdivLimit) {
-            if (!m.file.empty()) {
-                m.subdivLimit = true;
-                m.subdivide = true;
-            } else {
-                throw CliError("--tbn limit: mesh " + m.fieldPath +
-                               " is procedural (limit frames need a subdivision mesh file)");
-            }
-        }
     }
+    if (skipped.empty()) return;
+    const char* rule = "limit tangents need \"subdivision\": {\"limit\": true}";
+    bool none = std::none_of(scene.meshes.begin(), scene.meshes.end(),
+                             [](const MeshInstance& m) { return m.subdivLimit; });
+    if (none) throw CliError("--tbn limit: " + skipped + ": " + rule);
+    std::fprintf(stderr, "surfgrad: note: --tbn limit: %s keep their tangents (%s)\n",
+                 skipped.c_str(), rule);
+}
+
+// "OpenGL, N programs compiled, draw W ms wall, GPU draw time (timer
+// query) G ms": the wall time of the frame's draws (ended by glFinish) and,
+// only when the driver's timer query measured them, the GPU time.
+std::string glTimes(const RenderStats& st) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "OpenGL, %d program%s compiled, draw %.4g ms wall, ",
+                  st.programsCompiled, st.programsCompiled == 1 ? "" : "s", st.drawWallMs);
+    std::string s = buf;
+    if (st.gpuMeasured) {
+        std::snprintf(buf, sizeof buf, "GPU draw time (timer query) %.4g ms", st.gpuMs);
+        s += buf;
+    } else {
+        s += "GPU draw time (timer query) not measured";
+    }
+    return s;
 }
 
 } // namespace
@@ -138,7 +165,10 @@ void addRenderCommands(CLI::App& app, int& status) {
         ->check(CLI::Range(0.0, 1e7));
     render
         ->add_option("--tbn", ro->tbn,
-                     "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit")
+                     "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit "
+                     "(the scene field \"tangents\" on every mesh; limit applies to meshes "
+                     "with \"subdivision\": {\"limit\": true} only and never changes the "
+                     "geometry, other meshes keep their tangents)")
         ->check(CLI::IsMember({"pixel", "mikktspace", "limit"}));
     render->add_flag("--cpu", ro->cpu, "Use the CPU reference renderer instead of OpenGL");
     render
@@ -237,14 +267,9 @@ void addRenderCommands(CLI::App& app, int& status) {
             }
             double secs =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::printf("wrote %s (%dx%d, %s, %s%s, %.2f s)\n", target.string().c_str(), img.width,
-                        img.height, aovName(*aov), gl ? "OpenGL" : "CPU reference",
-                        gl ? (", " + std::to_string(gl->stats().programsCompiled) +
-                              " programs compiled, GPU " +
-                              std::to_string(gl->stats().gpuMs).substr(0, 6) + " ms")
-                                 .c_str()
-                           : "",
-                        secs);
+            std::printf("wrote %s (%dx%d, %s, %s, %.2f s elapsed)\n", target.string().c_str(),
+                        img.width, img.height, aovName(*aov),
+                        gl ? glTimes(gl->stats()).c_str() : "CPU reference", secs);
         }
         status = 0;
     });

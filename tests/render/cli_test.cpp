@@ -6,7 +6,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <set>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "cli.h"
 #include "render_test_util.h"
@@ -100,6 +104,130 @@ TEST(Cli, ExrOutputKeepsRawAovValues) {
     const glm::vec4& c = n.at(16, 12);
     EXPECT_NEAR(c.y, 1.0f, 1e-5f);
     EXPECT_NEAR(c.x, 0.0f, 1e-5f);
+}
+
+// The "mesh NAME: N vertices, ..." lines of `render -v`.
+std::vector<std::string> meshLines(const std::string& out) {
+    std::vector<std::string> lines;
+    std::istringstream in(out);
+    for (std::string l; std::getline(in, l);)
+        if (l.rfind("mesh ", 0) == 0) lines.push_back(l);
+    return lines;
+}
+
+// `--tbn limit` is the same request as the scene field "tangents": "limit":
+// it changes only the tangents of meshes with limit subdivision (same
+// geometry, same image as the field), leaves the other meshes of the scene
+// alone (named in a note), and a scene without such a mesh is an error
+// naming its meshes.
+TEST(Cli, TbnLimitChangesOnlyTheTangentsOfLimitMeshes) {
+    fs::path dir = scratch("tbn_limit");
+    const std::string spot =
+        (fs::path(SURFGRAD_DATA_DIR) / "meshes/spot/spot_control_mesh.obj").string();
+    auto scene = [&](const std::string& limitTangents) {
+        return R"({"output": {"width": 96, "height": 64},
+            "materials": [{"layers": [{"type": "uv_normal", "map": {"procedural": "bumps"}}]}],
+            "meshes": [{"file": ")" +
+               spot + R"(", "subdivision": {"level": 1, "limit": true})" + limitTangents + R"(},
+                       {"file": ")" +
+               spot + R"(", "transform": {"translate": [1.5, 0, 0]}},
+                       {"procedural": {"type": "plane", "size": 4}, "transform": {"translate": [0, -1, 0]}}]})";
+    };
+    std::ofstream(dir / "s.json") << scene("");
+    std::ofstream(dir / "field.json") << scene(R"(, "tangents": "limit")");
+    CmdResult plain = run("render s.json -v --aov normal -o plain.exr", dir);
+    ASSERT_EQ(plain.exitCode, 0) << plain.output();
+    CmdResult cli = run("render s.json -v --tbn limit --aov normal -o cli.exr", dir);
+    ASSERT_EQ(cli.exitCode, 0) << cli.output();
+    CmdResult field = run("render field.json --aov normal -o field.exr", dir);
+    ASSERT_EQ(field.exitCode, 0) << field.output();
+    // Same vertex and triangle counts for every mesh (no mesh gets refined).
+    EXPECT_EQ(meshLines(cli.out), meshLines(plain.out));
+    EXPECT_EQ(meshLines(cli.out).size(), 3u) << cli.out;
+    EXPECT_NE(cli.err.find("--tbn limit: meshes[1], meshes[2] keep their tangents"),
+              std::string::npos)
+        << cli.err;
+    // The same request as the field: the same image, bit for bit (same
+    // program, same inputs, same driver).
+    Image a = readImage(dir / "cli.exr"), b = readImage(dir / "field.exr");
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+    EXPECT_EQ(differ, 0u);
+    // Without a limit mesh: an error naming the meshes, and no image.
+    std::ofstream(dir / "none.json") << R"({"meshes": [{"file": ")" + spot +
+                                            R"(", "subdivision": {"level": 1}},
+        {"procedural": {"type": "sphere"}}]})";
+    CmdResult none = run("render none.json --tbn limit -o none.png", dir);
+    EXPECT_EQ(none.exitCode, 1);
+    EXPECT_NE(none.err.find("surfgrad: error: --tbn limit: meshes[0], meshes[1]: limit tangents "
+                            "need \"subdivision\": {\"limit\": true}"),
+              std::string::npos)
+        << none.output();
+    EXPECT_FALSE(fs::exists(dir / "none.png"));
+}
+
+// The summary line says what each time is: the wall time of the draws and
+// the GPU draw time only when the timer query measured the frame (every
+// frame of --all-frames has its own); no timing values are asserted.
+TEST(Cli, RenderPrintsLabelledTimes) {
+    fs::path dir = scratch("times");
+    std::ofstream(dir / "a.json") << R"({"output": {"width": 48, "height": 32},
+        "meshes": [{"procedural": {"type": "sphere"}}], "frames": {"count": 3, "fps": 24}})";
+    CmdResult r = run("render a.json --all-frames -o a.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    const std::regex line(
+        R"(wrote a_000[0-2]\.png \(48x32, color, OpenGL, [0-9]+ programs? compiled, draw [0-9.e+-]+ ms wall, GPU draw time \(timer query\) ([0-9.e+-]+ ms|not measured), [0-9.]+ s elapsed\))");
+    std::istringstream in(r.out);
+    int lines = 0;
+    for (std::string l; std::getline(in, l); ++lines) {
+        EXPECT_TRUE(std::regex_match(l, line)) << l;
+        // A printed GPU time is one the query measured: never a zero.
+        EXPECT_EQ(l.find("(timer query) 0 ms"), std::string::npos) << l;
+    }
+    EXPECT_EQ(lines, 3);
+    CmdResult cpu = run("render a.json --cpu -o c.png", dir);
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.output();
+    EXPECT_TRUE(std::regex_match(
+        cpu.out,
+        std::regex(R"(wrote c\.png \(48x32, color, CPU reference, [0-9.]+ s elapsed\)\n)")))
+        << cpu.out;
+}
+
+// Errors in files a scene references keep the scene's context: the scene
+// file, the JSON path of the field naming the file, the file (lexically
+// normal), then the loader's reason; no image is written.
+TEST(Cli, ReferencedFileErrorsNameTheSceneField) {
+    fs::path dir = scratch("referenced");
+    fs::create_directories(dir / "sub");
+    auto expectError = [&](const std::string& json, const std::string& prefix) {
+        std::ofstream(dir / "scene.json") << json;
+        CmdResult r = run("render scene.json --size 16x16 -o x.png", dir);
+        EXPECT_EQ(r.exitCode, 1);
+        EXPECT_EQ(r.err.rfind("surfgrad: error: " + prefix, 0), 0u) << r.err;
+        EXPECT_EQ(r.err.find("/../"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("sub/.."), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "x.png"));
+    };
+    // A missing mesh, named through a path that is not normal.
+    expectError(
+        R"({"meshes": [{"procedural": {"type": "sphere"}}, {"procedural": {"type": "plane"}},
+                                {"file": "sub/../missing.obj"}]})",
+        "scene.json: meshes[2].file: missing.obj: ");
+    // A non-manifold mesh: three triangles share the edge 1-2.
+    std::ofstream(dir / "sub/fan.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                                          "f 1 2 3\nf 2 1 4\nf 1 2 5\n";
+    expectError(R"({"meshes": [{"file": "./sub/fan.obj", "subdivision": {"level": 1}}]})",
+                "scene.json: meshes[0].file: sub/fan.obj: ");
+    // A bad SVG curve file of a feature layer.
+    std::ofstream(dir / "bad.svg") << "<svg><path d=\"M 0 0 L x y\"/></svg>";
+    expectError(R"({"meshes": [{"procedural": {"type": "plane"}}],
+        "materials": [{"layers": [{"type": "feature", "curves": {"svg": "sub/../bad.svg"}}]}]})",
+                "scene.json: materials[0].layers[0].curves.svg: bad.svg: ");
+    // A missing texture: the same shape.
+    expectError(R"({"meshes": [{"procedural": {"type": "plane"}}],
+        "materials": [{"layers": [{"type": "uv_normal", "map": "sub/../none.png"}]}]})",
+                "scene.json: materials[0].layers[0].map: none.png: does not exist");
 }
 
 TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {

@@ -171,6 +171,15 @@ void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, g
     if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
 }
 
+io::InputError referencedFileError(const std::string& sceneName, const std::string& field,
+                                   const io::InputError& e) {
+    const std::string scene = fs::path(sceneName).lexically_normal().string();
+    const std::string file = fs::path(e.file()).lexically_normal().string();
+    if (file == scene) return e;
+    return io::InputError(
+        scene, field, file + ": " + (e.element().empty() ? "" : e.element() + ": ") + e.reason());
+}
+
 } // namespace detail
 
 namespace {
@@ -190,20 +199,20 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
     static std::atomic<uint64_t> nextUid{1};
     sf::FeatureMaps maps;
     if (!f.mapsFile.empty()) {
-        std::error_code ec;
-        if (!fs::is_regular_file(f.mapsFile, ec)) {
-            throw io::InputError(sceneName, f.fieldPath,
-                                 "feature maps file " + f.mapsFile.string() + " does not exist");
-        }
-        try {
-            maps = sf::load(f.mapsFile); // EXR: the image header scan first
-        } catch (const io::InputError& e) {
-            throw io::InputError(sceneName, f.fieldPath, e.what());
-        }
+        maps = detail::fromReferencedFile(sceneName, f.fieldPath, [&] {
+            std::error_code ec;
+            if (!fs::is_regular_file(f.mapsFile, ec)) {
+                throw io::InputError(f.mapsFile.string(), "", "does not exist");
+            }
+            return sf::load(f.mapsFile);
+        });
     } else {
-        sf::CurveNetwork net = f.curvesKind == "svg"    ? sf::loadSvg(f.curvesFile)
-                               : f.curvesKind == "json" ? sf::loadCurvesJson(f.curvesFile)
-                                                        : sf::loadFont(f.curvesFile, f.text);
+        sf::CurveNetwork net =
+            detail::fromReferencedFile(sceneName, f.fieldPath + "." + f.curvesKind, [&] {
+                return f.curvesKind == "svg"    ? sf::loadSvg(f.curvesFile)
+                       : f.curvesKind == "json" ? sf::loadCurvesJson(f.curvesFile)
+                                                : sf::loadFont(f.curvesFile, f.text);
+            });
         sf::BakeOptions opt;
         opt.size = f.size;
         opt.mode = f.quadratic ? sf::BakeMode::Quadratic : sf::BakeMode::Linear;
@@ -436,38 +445,44 @@ uint64_t nextLayoutId() {
     return next++;
 }
 
+// The mesh of a file instance: as stored, or refined (and its limit frame
+// when asked). Errors of the file name the file.
+sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCache& files,
+                            sm::LimitFrame& limit) {
+    if (!mi.subdivide) {
+        if (mi.fileInstance < 0) return sm::loadRenderMesh(mi.file);
+        const sm::Scene& fs = files.scene(mi.file);
+        if (size_t(mi.fileInstance) >= fs.instances.size()) {
+            throw io::InputError(scene.sourceName, elementOf(mi, "file"),
+                                 "the file has no mesh instance " +
+                                     std::to_string(mi.fileInstance));
+        }
+        return fs.instances[size_t(mi.fileInstance)].mesh;
+    }
+    // Effects on demand: refined exactly to the level asked, with limit
+    // evaluation only when asked.
+    sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
+    sm::SubdivisionSettings st;
+    st.level = mi.subdivLevel;
+    st.options = cage.options;
+    if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, st.options.scheme)) {
+        throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
+                             "unknown scheme");
+    }
+    st.limit = mi.subdivLimit;
+    sm::Subdivider sub(cage, st, mi.file.string());
+    if (mi.subdivLimit) limit = sub.limitFrame();
+    return sub.renderMesh();
+}
+
 MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& files) {
     MeshAsset a;
     sm::LimitFrame limit;
     if (mi.procedural) {
         a.mesh = detail::makeProceduralMesh(*mi.procedural);
-    } else if (!mi.subdivide) {
-        if (mi.fileInstance >= 0) {
-            const sm::Scene& fs = files.scene(mi.file);
-            if (size_t(mi.fileInstance) >= fs.instances.size()) {
-                throw io::InputError(scene.sourceName, elementOf(mi, "file"),
-                                     "the file has no mesh instance " +
-                                         std::to_string(mi.fileInstance));
-            }
-            a.mesh = fs.instances[size_t(mi.fileInstance)].mesh;
-        } else {
-            a.mesh = sm::loadRenderMesh(mi.file);
-        }
     } else {
-        // Effects on demand: refined exactly to the level asked, with limit
-        // evaluation only when asked.
-        sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
-        sm::SubdivisionSettings st;
-        st.level = mi.subdivLevel;
-        st.options = cage.options;
-        if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, st.options.scheme)) {
-            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
-                                 "unknown scheme");
-        }
-        st.limit = mi.subdivLimit;
-        sm::Subdivider sub(cage, st, mi.file.string());
-        a.mesh = sub.renderMesh();
-        if (mi.subdivLimit) limit = sub.limitFrame();
+        a.mesh = detail::fromReferencedFile(scene.sourceName, elementOf(mi, "file"),
+                                            [&] { return loadMeshFile(scene, mi, files, limit); });
     }
     if (a.mesh.normals.size() != a.mesh.positions.size()) sm::computeVertexNormals(a.mesh);
     addDerivedUvSets(scene, mi, a.mesh, limit);

@@ -8,6 +8,7 @@
 
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/glsl_texture.h"
+#include "surfgrad/io.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {
@@ -86,5 +87,23 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
 // Samplers of a plan's texture slots.
 std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,
                                               sg::glsl::LodRule lodRule = sg::glsl::LodRule::Exact);
+
+// Errors from a file the scene references keep the scene's context, one
+// rule for meshes, textures, curve files and feature maps:
+//   "<scene>: <field>: <file>: [<element>: ]<reason>"
+// with both paths lexically normal (`field` is the JSON path of the field
+// naming the file). An error about the scene file itself (a model loaded as
+// its own scene) passes unchanged.
+io::InputError referencedFileError(const std::string& sceneName, const std::string& field,
+                                   const io::InputError& e);
+template <class Load>
+auto fromReferencedFile(const std::string& sceneName, const std::string& field, Load&& load)
+    -> decltype(load()) {
+    try {
+        return load();
+    } catch (const io::InputError& e) {
+        throw referencedFileError(sceneName, field, e);
+    }
+}
 
 } // namespace sg::render::detail

@@ -134,19 +134,15 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
         }
         return std::make_shared<TextureImage>(detail::makeProceduralTexture(src));
     }
-    const std::string name = src.file.string();
-    std::error_code ec;
-    if (!fs::is_regular_file(src.file, ec)) {
-        throw InputError(sceneName, src.fieldPath, "texture file " + name + " does not exist");
-    }
-    try {
+    const std::string name = src.file.lexically_normal().string();
+    // "<scene>: <field>: <image>: <element>: <reason>" (detail::fromReferencedFile).
+    return detail::fromReferencedFile(sceneName, src.fieldPath, [&] {
+        std::error_code ec;
+        if (!fs::is_regular_file(src.file, ec)) throw InputError(name, "", "does not exist");
         return std::make_shared<TextureImage>(
             toTexture(image::decodeImageFile(src.file, decodeOptions(name, src.srgb, options)),
                       name, src.srgb, src.wrap));
-    } catch (const InputError& e) {
-        // "<scene>: <field>: <image>: <element>: <reason>".
-        throw InputError(sceneName, src.fieldPath, e.what());
-    }
+    });
 }
 
 } // namespace sg::render

@@ -21,10 +21,19 @@
 namespace sg::render {
 
 struct RenderStats {
-    // GPU time of the draws (GL_TIME_ELAPSED). Meaningful on hardware; on
-    // llvmpipe rasterisation happens at the flush, outside the query, so it
-    // reads near 0 (bench/render_bench times render + glFinish instead).
+    // Times of the last renderToTexture/render call's draws (first draw to
+    // the end of the last; the clear, uploads and program compiles before
+    // them are not included, nor is render()'s read-back).
+    //   gpuMs      - GPU draw time from the GL_TIME_ELAPSED query that
+    //                bracketed this frame's draws (result waited for); valid
+    //                only when gpuMeasured: the driver has a timer that
+    //                covers its rasterisation (not llvmpipe/softpipe, which
+    //                rasterise outside the query; docs/platform.md).
+    //   drawWallMs - wall-clock time of the same span, ended by glFinish
+    //                (CPU submission plus the GPU finishing the draws).
     double gpuMs = 0.0;
+    bool gpuMeasured = false;
+    double drawWallMs = 0.0;
     int programsCompiled = 0; // programs compiled by this call (cache misses)
     int drawCalls = 0;
 };
