@@ -7,7 +7,8 @@
 //     Without a scene: the built-in default scene to out/default.png.
 //   shader SCENE.json [--mesh I]   prints the assembled GLSL of every
 //                                  distinct program (or of mesh I).
-//   view [SCENE.json | MODEL]      the interactive viewer (GLFW + Dear ImGui).
+//   view [SCENE.json | MODEL] [--size WxH] [--frames N] [--screenshot PNG] [--no-ui]
+//                                  the interactive viewer (GLFW + Dear ImGui).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -320,6 +321,7 @@ void addRenderCommands(CLI::App& app, int& status) {
     struct ViewOpts {
         std::string scene, screenshot, size, budget;
         int frames = 0;
+        bool noUi = false;
     };
     auto vo = std::make_shared<ViewOpts>();
     view->add_option("scene", vo->scene, "Scene JSON or model file (default: the built-in scene)");
@@ -328,11 +330,15 @@ void addRenderCommands(CLI::App& app, int& status) {
     view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
     view->add_option("--size", vo->size, "Window size WxH (default 1280x720)");
     view->add_option("--texture-budget", vo->budget, kBudgetHelp);
+    view->add_flag("--no-ui", vo->noUi,
+                   "No panel: the window shows the render alone, and so does --screenshot "
+                   "(else the panel, docked at the right edge, is in the screenshot)");
     view->callback([vo, &status] {
 #if SURFGRAD_HAVE_VIEWER
         ViewerOptions opt;
         opt.maxFrames = vo->frames;
         opt.screenshot = vo->screenshot;
+        opt.panel = !vo->noUi;
         if (!vo->size.empty()) parseSize(vo->size, opt.width, opt.height);
         if (!vo->budget.empty())
             opt.textureBudgetBytes = parseBytes("--texture-budget", vo->budget);

@@ -4,6 +4,7 @@
 // `surfgrad view` opens a window under xvfb-run and screenshots it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -243,6 +244,47 @@ TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
     EXPECT_EQ(shot.height, 300);
     // The render, the display pass and the panel: many colours.
     EXPECT_GT(distinctColours(shot), 100u);
+}
+
+// Fraction of the pixels in columns [x0, x1) whose 8-bit RGB values differ
+// by more than `levels` in some channel.
+double differingFraction(const Image& a, const Image& b, int x0, int x1, int levels) {
+    size_t n = 0, bad = 0;
+    for (int y = 0; y < a.height; ++y)
+        for (int x = x0; x < x1; ++x, ++n) {
+            const glm::vec4 d = glm::abs(a.at(x, y) - b.at(x, y)) * 255.0f;
+            bad += std::max({d.x, d.y, d.z}) > float(levels) + 0.5f;
+        }
+    return n ? double(bad) / double(n) : 0.0;
+}
+
+// `view --no-ui --screenshot`: the window without the panel, i.e. the image
+// `surfgrad render` writes for the same scene and size; with the panel, the
+// panel's region (the right viewerPanelWidth(400) = 200 px) differs.
+TEST(Viewer, CleanScreenshotHasNoPanel) {
+    fs::path dir = scratch("viewer_clean");
+    const std::string view = "xvfb-run -a -s '-screen 0 1280x1024x24' " +
+                             sg::test::shellQuote(sg::test::surfgradBinary()) +
+                             " view --frames 3 --size 400x300 --screenshot ";
+    CmdResult clean = sg::test::runCommand(view + "clean.png --no-ui", {.cwd = dir});
+    ASSERT_EQ(clean.exitCode, 0) << clean.output();
+    CmdResult ui = sg::test::runCommand(view + "ui.png", {.cwd = dir});
+    ASSERT_EQ(ui.exitCode, 0) << ui.output();
+    CmdResult cli = run("render --size 400x300 -o cli.png", dir);
+    ASSERT_EQ(cli.exitCode, 0) << cli.output();
+    Image c = readImage(dir / "clean.png"), u = readImage(dir / "ui.png"),
+          r = readImage(dir / "cli.png");
+    ASSERT_EQ(c.width, 400);
+    ASSERT_EQ(c.height, 300);
+    ASSERT_EQ(r.width, 400);
+    // The same render through the same sgToneMap, once into the 8-bit
+    // window and once into the PNG: within 2 levels (rounding of each
+    // path), except where the viewer's orbit near/far planes (not the
+    // scene camera's) flip a depth test at silhouettes: under 1% of pixels.
+    EXPECT_LT(differingFraction(c, r, 0, 400, 2), 0.01);
+    // The panel covers its region: most of it differs from the render.
+    EXPECT_GT(differingFraction(u, r, 200, 400, 2), 0.5);
+    EXPECT_LT(differingFraction(u, r, 0, 200, 2), 0.01);
 }
 
 } // namespace

@@ -124,6 +124,12 @@ struct ImGuiScope {
     }
 };
 
+// Width of a slider next to a checkbox in the narrow panel: the rest of
+// the row less room for its label.
+float sliderWidth() {
+    return std::clamp(ImGui::GetContentRegionAvail().x - 80.0f, 40.0f, 140.0f);
+}
+
 // The per-layer controls: an on/off box per layer, then a slider per entry
 // of the kind's parameter table that has one (the doc line as tooltip);
 // groups list their layers indented. Returns true when the program set may
@@ -144,7 +150,7 @@ bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
             if (!p.slider) continue;
             if (first) ImGui::SameLine();
             first = false;
-            ImGui::SetNextItemWidth(140);
+            ImGui::SetNextItemWidth(sliderWidth());
             ImGui::SliderFloat(p.json, p.floatRef(L), p.slider->lo, p.slider->hi, p.slider->format);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.doc);
         }
@@ -246,7 +252,8 @@ bool materialControls(Scene& scene) {
     return toggled;
 }
 
-// Blendshapes: playback, time, weights by hand.
+// Blendshapes: playback, time, weights by hand (the mesh once, then one
+// slider per target, by its name).
 void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
     bool anyMorph = false;
     for (const auto& a : assets.meshes) anyMorph |= !a.mesh.morphTargets.empty();
@@ -260,10 +267,13 @@ void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
     ImGui::Checkbox("set weights by hand", &st.morphOverride);
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         auto& w = st.morphWeights[i];
+        if (!w.empty())
+            ImGui::TextWrapped("%s", (scene.meshes[i].name.empty() ? scene.meshes[i].fieldPath
+                                                                   : scene.meshes[i].name)
+                                         .c_str());
         for (size_t t = 0; t < w.size(); ++t) {
             ImGui::PushID(int(i * 1000 + t));
-            std::string label =
-                scene.meshes[i].name + " " + assets.meshes[i].mesh.morphTargets[t].name;
+            std::string label = morphTargetLabel(assets.meshes[i].mesh, t);
             if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && st.morphOverride) {
                 scene.meshes[i].morphKeys.clear();
                 scene.meshes[i].morphWeights = w;
@@ -274,38 +284,45 @@ void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
     if (st.morphOverride) applyFrame(scene, assets, st.time);
 }
 
-// The panel; returns true when a layer was toggled.
-bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, ViewerState& st,
-           int fbh) {
+// The panel, docked narrow at the right edge, full height, collapsible to
+// its title bar (viewerPanelWidth: 288 px of a 960 px window); nothing when
+// `show` is false (--no-ui). Returns true when a layer was toggled.
+bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, ViewerState& st, int fbw,
+           int fbh, bool show) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380, float(std::min(fbh - 16, 700))), ImGuiCond_FirstUseEver);
-    ImGui::Begin("surfgrad");
-    ImGui::Text("%s", scene.sourceName.c_str());
-    ImGui::Text("frame %.1f ms | GPU %.2f ms (timer query) | %d draws", st.frameMs,
-                renderer.stats().gpuMs, renderer.stats().drawCalls);
-    ImGui::Text("%zu programs cached", renderer.cachedPrograms());
-    static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
-                                 "bitangent", "basenormal", "uv",       "primid"};
-    ImGui::Combo("AOV", &st.aovIndex, aovs, IM_ARRAYSIZE(aovs));
-    ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
-                       ImGuiSliderFlags_Logarithmic);
-    if (ImGui::Button("reset camera")) st.orbit = st.home;
-    ImGui::SameLine();
-    if (ImGui::Button("screenshot")) st.screenshotNow = true;
-    bool toggled = materialControls(scene);
-    morphControls(scene, assets, st);
-    if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
-    ImGui::End();
+    const float panelW = viewerPanelWidth(fbw);
+    ImGui::SetNextWindowPos(ImVec2(float(fbw) - panelW, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(panelW, float(fbh)), ImGuiCond_Always);
+    bool toggled = false;
+    if (show &&
+        ImGui::Begin("surfgrad", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize)) {
+        ImGui::PushItemWidth(-100.0f); // room for the labels
+        ImGui::TextWrapped("%s", scene.sourceName.c_str());
+        ImGui::TextWrapped("%s", viewerTimingText(st.frameMs, renderer.stats()).c_str());
+        ImGui::Text("%zu programs cached", renderer.cachedPrograms());
+        static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
+                                     "bitangent", "basenormal", "uv",       "primid"};
+        ImGui::Combo("AOV", &st.aovIndex, aovs, IM_ARRAYSIZE(aovs));
+        ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
+                           ImGuiSliderFlags_Logarithmic);
+        if (ImGui::Button("reset camera")) st.orbit = st.home;
+        ImGui::SameLine();
+        if (ImGui::Button("screenshot")) st.screenshotNow = true;
+        toggled = materialControls(scene);
+        morphControls(scene, assets, st);
+        if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
+        ImGui::PopItemWidth();
+    }
+    if (show) ImGui::End();
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     return toggled;
 }
 
 // --screenshot with --frames: the whole window as shown (render, display
-// pass and panel), read from the back buffer.
+// pass and, unless --no-ui, the panel), read from the back buffer.
 void windowScreenshot(const std::filesystem::path& file, int fbw, int fbh) {
     Image img;
     img.width = fbw;
@@ -374,7 +391,7 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
             st.screenshotNow = false;
         }
         display.draw(tex, fbw, fbh, st.aovIndex, scene.output.exposure);
-        bool toggled = panel(scene, assets, renderer, st, fbh);
+        bool toggled = panel(scene, assets, renderer, st, fbw, fbh, opt.panel);
         if (frame + 1 == opt.maxFrames && !opt.screenshot.empty())
             windowScreenshot(opt.screenshot, fbw, fbh);
         glfwSwapBuffers(glfw.window);
