@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
+#include <functional>
 #include <iostream>
 #include <set>
 
@@ -124,6 +125,29 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
                  skipped.c_str(), rule);
 }
 
+// Progress of long work on stderr, a line per report (stdout keeps the
+// results): subdivision to high levels before the assets load, bands of
+// large GPU renders (GlRenderer::setProgress), rows of CPU reference renders
+// of at least 512^2 pixels, and the read-back and write of large images.
+constexpr int kSubdivNoticeLevel = 4;
+constexpr long kCpuProgressPixels = 512L * 512L;
+constexpr long kLargeImagePixels = 2048L * 2048L;
+
+void noteSubdivision(const Scene& scene) {
+    for (const auto& m : scene.meshes) {
+        if (!m.subdivide || m.subdivLevel < kSubdivNoticeLevel) continue;
+        std::fprintf(stderr, "surfgrad: %s: subdividing to level %d%s (each level ~4x the faces)\n",
+                     m.fieldPath.c_str(), m.subdivLevel,
+                     m.subdivLimit ? " with limit evaluation" : "");
+    }
+}
+
+std::function<void(int, int)> progressLine(const std::string& what, const char* unit) {
+    return [what, unit](int done, int total) {
+        std::fprintf(stderr, "surfgrad: %s: %d/%d %s\n", what.c_str(), done, total, unit);
+    };
+}
+
 // "OpenGL, N programs compiled, draw W ms wall, GPU draw time (timer
 // query) G ms": the wall time of the frame's draws (ended by glFinish) and,
 // only when the driver's timer query measured them, the GPU time.
@@ -216,6 +240,7 @@ void addRenderCommands(CLI::App& app, int& status) {
         if (!ro->budget.empty())
             assetOptions.textureBudgetBytes = parseBytes("--texture-budget", ro->budget);
         auto t0 = std::chrono::steady_clock::now();
+        noteSubdivision(scene);
         SceneAssets assets = loadAssets(scene, assetOptions);
         if (ro->verbose) {
             for (const auto& l : assets.log) std::printf("%s\n", l.c_str());
@@ -241,6 +266,12 @@ void addRenderCommands(CLI::App& app, int& status) {
             applyFrame(scene, assets, frame / scene.fps);
             if (gl) gl->invalidateMeshes();
             View view = makeView(scene, assets, w, h, *aov);
+            const std::string size = std::to_string(view.width) + "x" + std::to_string(view.height);
+            const long pixels = long(view.width) * long(view.height);
+            if (gl) gl->setProgress(progressLine("drawing " + size, "bands"));
+            cpuOpt.progress = pixels >= kCpuProgressPixels
+                                  ? progressLine("CPU reference " + size, "rows")
+                                  : nullptr;
             Image img =
                 gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
             fs::path target = out;
@@ -250,8 +281,12 @@ void addRenderCommands(CLI::App& app, int& status) {
                 target =
                     out.parent_path() / (out.stem().string() + suffix + out.extension().string());
             }
+            if (pixels >= kLargeImagePixels)
+                std::fprintf(stderr, "surfgrad: writing %s\n", target.string().c_str());
             writeImage(target, img, *aov, scene.output.exposure);
             if (ro->compare && gl) {
+                gl->setProgress(nullptr);
+                cpuOpt.progress = nullptr;
                 View nv = view, pv = view;
                 nv.aov = Aov::Normal;
                 pv.aov = Aov::PrimId;
@@ -344,7 +379,9 @@ void addRenderCommands(CLI::App& app, int& status) {
             opt.textureBudgetBytes = parseBytes("--texture-budget", vo->budget);
         if (!opt.screenshot.empty() && !vo->scene.empty())
             io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
-        status = runViewer(sceneFromArg(vo->scene), opt);
+        Scene scene = sceneFromArg(vo->scene);
+        noteSubdivision(scene);
+        status = runViewer(std::move(scene), opt);
 #else
         (void)vo;
         (void)status;

@@ -195,6 +195,34 @@ TEST(Cli, RenderPrintsLabelledTimes) {
         << cpu.out;
 }
 
+// Long work shows progress on stderr, a line per step ending with a
+// newline: subdivision to high levels, the bands of a large GPU render, the
+// rows of a CPU reference render, the write of a large image.
+TEST(Cli, LongRendersShowProgress) {
+    fs::path dir = scratch("progress");
+    const std::string spot =
+        (fs::path(SURFGRAD_DATA_DIR) / "meshes/spot/spot_control_mesh.obj").string();
+    std::ofstream(dir / "s.json") << R"({"meshes": [{"file": ")" + spot +
+                                         R"(", "subdivision": {"level": 4}}]})";
+    CmdResult gl = run("render s.json --size 2048x2048 -o big.png", dir);
+    ASSERT_EQ(gl.exitCode, 0) << gl.output();
+    EXPECT_NE(gl.err.find("surfgrad: meshes[0]: subdividing to level 4"), std::string::npos)
+        << gl.err;
+    for (int b = 1; b <= 4; ++b) {
+        EXPECT_NE(gl.err.find("surfgrad: drawing 2048x2048: " + std::to_string(b) + "/4 bands\n"),
+                  std::string::npos)
+            << gl.err;
+    }
+    EXPECT_NE(gl.err.find("surfgrad: writing big.png\n"), std::string::npos) << gl.err;
+    std::ofstream(dir / "c.json")
+        << R"({"meshes": [{"procedural": {"type": "sphere", "segments": 8}}]})";
+    CmdResult cpu = run("render c.json --cpu --size 512x512 -o c.png", dir);
+    ASSERT_EQ(cpu.exitCode, 0) << cpu.output();
+    EXPECT_NE(cpu.err.find("surfgrad: CPU reference 512x512: 512/512 rows\n"), std::string::npos)
+        << cpu.err;
+    EXPECT_EQ(cpu.err.back(), '\n');
+}
+
 // Errors in files a scene references keep the scene's context: the scene
 // file, the JSON path of the field naming the file, the file (lexically
 // normal), then the loader's reason; no image is written.

@@ -18,6 +18,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <atomic>
+#include <mutex>
 #include <cmath>
 #include <limits>
 
@@ -295,6 +297,17 @@ std::vector<DrawState> drawStates(const Scene& scene, const SceneAssets& assets,
     return draws;
 }
 
+// One more row shaded: calls options.progress after every 1/16 of the rows
+// and at the last, one call at a time.
+void reportRow(const CpuOptions& options, std::atomic<int>& rowsDone, std::mutex& lock, int rows) {
+    const int done = ++rowsDone;
+    if (!options.progress) return;
+    const int step = std::max(rows / 16, 1);
+    if (done % step != 0 && done != rows) return;
+    std::lock_guard<std::mutex> guard(lock);
+    options.progress(done, rows);
+}
+
 } // namespace
 
 Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
@@ -318,7 +331,10 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     }
     const std::vector<DrawState> draws = drawStates(scene, assets, view, options);
 
-    // Fragment stage: the visible triangle's inputs at each pixel, shaded.
+    // Fragment stage: the visible triangle's inputs at each pixel, shaded;
+    // rows done go to options.progress.
+    std::atomic<int> rowsDone{0};
+    std::mutex progressLock;
     tbb::parallel_for(0, H, [&](int y) {
         for (int x = 0; x < W; ++x) {
             size_t pix = size_t(y) * size_t(W) + size_t(x);
@@ -331,6 +347,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             img.pixels[pix] =
                 detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.featureSamplers, in);
         }
+        reportRow(options, rowsDone, progressLock, H);
     });
     return img;
 }

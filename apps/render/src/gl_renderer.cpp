@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <unordered_map>
@@ -21,6 +22,11 @@
 namespace sg::render {
 
 namespace {
+
+// Images of at least this many pixels are drawn in bands of kBandRows rows
+// when a progress callback is set (GlRenderer::setProgress).
+constexpr int64_t kBandedPixels = int64_t(2048) * 2048;
+constexpr int kBandRows = 512;
 
 struct GpuMesh {
     GLuint vao = 0;
@@ -295,80 +301,100 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
     glFinish(); // uploads done: the wall time starts with an idle GPU
     const auto wallStart = std::chrono::steady_clock::now();
     glBeginQuery(GL_TIME_ELAPSED, I.query);
-    float primBase = 0.0f;
-    for (size_t i = 0; i < scene.meshes.size(); ++i) {
-        const MeshInstance& mi = scene.meshes[i];
-        const MaterialPlan& plan = plans[i];
-        GpuProgram& gp = *progs[i];
-        detail::DrawUniforms u = detail::drawUniforms(scene, assets, plan, view, int(i), primBase);
-        GLuint id = gp.program.id();
-        glUseProgram(id);
-        glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
-        glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
-        glUniform1f(gp.loc("uDetSign"), u.detSign);
-        glUniform3fv(gp.loc("uCamPos"), 1, &view.cameraPos[0]);
-        glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
-        glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
-        glUniform1i(gp.loc("uAov"), u.aov);
-        glUniform1f(gp.loc("uPrimBase"), u.primBase);
-        glUniform3fv(gp.loc("uBaseColor"), 1, &u.baseColor[0]);
-        glUniform1f(gp.loc("uRoughness"), u.roughness);
-        glUniform3fv(gp.loc("uAmbient"), 1, &u.ambient[0]);
-        glUniformMatrix3fv(gp.loc("uModel3"), 1, GL_FALSE, &u.model3[0][0]);
-        glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
-        glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
-        glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
-        if (plan.uber)
-            glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()), u.uberFlags.data());
-        for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
-            auto it = assets.textures.find(plan.textureKeys[s]);
-            GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;
-            glBindTextureUnit(GLuint(s), t);
-            std::string name = "uTex" + std::to_string(s);
-            glUniform1i(gp.loc(name.c_str()), GLint(s));
-        }
-        // Feature maps: corner pairs and edges (and, when the plan uses the
-        // exact near field, its lists and pieces; all RGBA32UI), read with
-        // texelFetch only, on the units after the regular textures; the
-        // per-layer sampler arrays point at them (and at the base maps).
-        const int unitsPerMap = plan.featureNear ? 4 : 2;
-        for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
-            GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
-            auto it = assets.featureMaps.find(plan.featureKeys[f]);
-            std::array<GLuint, 4> t{0, 0, 0, 0};
-            if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
-            // Maps without a near field: their corner texture stands in for the
-            // near textures, which such layers never read (an integer sampler
-            // needs an integer texture bound).
-            if (!t[2]) t[2] = t[3] = t[0];
-            for (int k = 0; k < unitsPerMap; ++k) glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
-        }
-        for (const auto& g : plan.groups)
-            for (const auto& pl : g) {
-                if (pl.featureIndex < 0) continue;
-                std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
-                GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
-                glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
-                glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
-                if (plan.featureNear) {
-                    glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
-                    glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
-                }
-                glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
+    // Large images with a progress callback: drawn in horizontal bands
+    // (scissored, so every pixel is shaded exactly as in one pass), each
+    // finished and reported.
+    const int bands = progress_ && int64_t(view.width) * view.height >= kBandedPixels
+                          ? (view.height + kBandRows - 1) / kBandRows
+                          : 1;
+    if (bands > 1) glEnable(GL_SCISSOR_TEST);
+    for (int band = 0; band < bands; ++band) {
+        if (bands > 1)
+            glScissor(0, band * kBandRows, view.width,
+                      std::min(kBandRows, view.height - band * kBandRows));
+        float primBase = 0.0f;
+        for (size_t i = 0; i < scene.meshes.size(); ++i) {
+            const MeshInstance& mi = scene.meshes[i];
+            const MaterialPlan& plan = plans[i];
+            GpuProgram& gp = *progs[i];
+            detail::DrawUniforms u =
+                detail::drawUniforms(scene, assets, plan, view, int(i), primBase);
+            GLuint id = gp.program.id();
+            glUseProgram(id);
+            glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
+            glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
+            glUniform1f(gp.loc("uDetSign"), u.detSign);
+            glUniform3fv(gp.loc("uCamPos"), 1, &view.cameraPos[0]);
+            glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
+            glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
+            glUniform1i(gp.loc("uAov"), u.aov);
+            glUniform1f(gp.loc("uPrimBase"), u.primBase);
+            glUniform3fv(gp.loc("uBaseColor"), 1, &u.baseColor[0]);
+            glUniform1f(gp.loc("uRoughness"), u.roughness);
+            glUniform3fv(gp.loc("uAmbient"), 1, &u.ambient[0]);
+            glUniformMatrix3fv(gp.loc("uModel3"), 1, GL_FALSE, &u.model3[0][0]);
+            glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
+            glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
+            glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
+            if (plan.uber)
+                glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()),
+                             u.uberFlags.data());
+            for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
+                auto it = assets.textures.find(plan.textureKeys[s]);
+                GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;
+                glBindTextureUnit(GLuint(s), t);
+                std::string name = "uTex" + std::to_string(s);
+                glUniform1i(gp.loc(name.c_str()), GLint(s));
             }
-        const Material& mat = scene.materials[size_t(mi.material)];
-        if (mat.doubleSided == DoubleSided::Off) {
-            glEnable(GL_CULL_FACE);
-            glCullFace(GL_BACK);
-        } else {
-            glDisable(GL_CULL_FACE);
+            // Feature maps: corner pairs and edges (and, when the plan uses the
+            // exact near field, its lists and pieces; all RGBA32UI), read with
+            // texelFetch only, on the units after the regular textures; the
+            // per-layer sampler arrays point at them (and at the base maps).
+            const int unitsPerMap = plan.featureNear ? 4 : 2;
+            for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
+                GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
+                auto it = assets.featureMaps.find(plan.featureKeys[f]);
+                std::array<GLuint, 4> t{0, 0, 0, 0};
+                if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
+                // Maps without a near field: their corner texture stands in for the
+                // near textures, which such layers never read (an integer sampler
+                // needs an integer texture bound).
+                if (!t[2]) t[2] = t[3] = t[0];
+                for (int k = 0; k < unitsPerMap; ++k)
+                    glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
+            }
+            for (const auto& g : plan.groups)
+                for (const auto& pl : g) {
+                    if (pl.featureIndex < 0) continue;
+                    std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
+                    GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
+                    glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
+                    glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
+                    if (plan.featureNear) {
+                        glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
+                        glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
+                    }
+                    glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
+                }
+            const Material& mat = scene.materials[size_t(mi.material)];
+            if (mat.doubleSided == DoubleSided::Off) {
+                glEnable(GL_CULL_FACE);
+                glCullFace(GL_BACK);
+            } else {
+                glDisable(GL_CULL_FACE);
+            }
+            glFrontFace(u.detSign < 0.0f ? GL_CW : GL_CCW); // mirroring transforms flip the winding
+            glBindVertexArray(I.meshes[i].vao);
+            glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
+            ++stats_.drawCalls;
+            primBase += float(assets.meshes[i].mesh.triangleCount());
         }
-        glFrontFace(u.detSign < 0.0f ? GL_CW : GL_CCW); // mirroring transforms flip the winding
-        glBindVertexArray(I.meshes[i].vao);
-        glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
-        ++stats_.drawCalls;
-        primBase += float(assets.meshes[i].mesh.triangleCount());
+        if (bands > 1) {
+            glFinish();
+            progress_(band + 1, bands);
+        }
     }
+    glDisable(GL_SCISSOR_TEST);
     // glFinish inside the bracket: drivers that rasterise at the flush
     // (llvmpipe) do the frame's work before the query ends, so the query and
     // the wall time both cover the whole frame.

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 
 #include "surfgrad/glsl_texture.h"
@@ -63,12 +64,19 @@ public:
     void invalidateMeshes();
     const RenderStats& stats() const { return stats_; }
     size_t cachedPrograms() const;
+    // Progress of long renders: images of at least 2048^2 pixels are drawn
+    // in bands of 512 rows, each finished (glFinish) and then reported as
+    // progress(bandsDone, bandCount) on the calling thread. Empty: one pass.
+    void setProgress(std::function<void(int done, int total)> progress) {
+        progress_ = std::move(progress);
+    }
 
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
     RenderStats stats_;
     bool uber_ = false;
+    std::function<void(int, int)> progress_;
 };
 
 // The CPU reference renderer: rasterises the same triangles (GL coverage
@@ -88,6 +96,9 @@ struct CpuOptions {
     // Texture LOD: the GL specification's log2 (reference), or llvmpipe's
     // piecewise-linear approximation (sg::glsl::LodRule::FastLog2).
     sg::glsl::LodRule textureLod = sg::glsl::LodRule::Exact;
+    // Progress: progress(rowsDone, rowCount) after every 1/16 of the rows
+    // (and at the end); called from the worker threads, one call at a time.
+    std::function<void(int done, int total)> progress;
 };
 Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                 const CpuOptions& options = {});
