@@ -157,7 +157,7 @@ if SURFGRAD_DATA_DIR="$src/data" "$prefix/bin/surfgrad" render "$src/tests/insta
     -o sentinel2.png >override.out 2>&1; then
     fail "\$SURFGRAD_DATA_DIR did not override the installed data directory"
 fi
-grep -qF "$src/data/install-test/only-installed.png does not exist" override.out ||
+grep -qF "$src/data/install-test/only-installed.png: does not exist" override.out ||
     fail "override: $(cat override.out)"
 [ ! -e sentinel2.png ] || fail "a failed render left an output file"
 step "passed"
