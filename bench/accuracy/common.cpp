@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstddef>
+#include <cstdlib>
+#include <stdexcept>
 
 #include "surfgrad/shader_files.h"
 
@@ -108,6 +110,68 @@ void Table::print(bool markdown) const {
     // Markdown: one list item per note (consecutive lines would merge).
     for (const auto& n : notes) std::printf("%s%s\n", markdown ? "- " : "  ", n.c_str());
     std::fflush(stdout);
+}
+
+void Table::print(const Options& o) const {
+    print(o.markdown);
+    if (!o.plotDataDir.empty()) writePlotData(o.plotDataDir);
+}
+
+namespace {
+
+// A table cell as a number: "1.23x", "**3.03x**", "1.5e-03"; false for
+// anything else (empty, "(same)", "n/a").
+bool cellNumber(std::string cell, double& out) {
+    std::string s;
+    for (char c : cell)
+        if (c != '*' && c != ' ') s += c;
+    if (!s.empty() && s.back() == 'x') s.pop_back();
+    if (s.empty()) return false;
+    char* end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && std::isfinite(out);
+}
+
+std::string tsvCell(std::string s) {
+    for (char& c : s)
+        if (c == '\t' || c == '\n') c = ' ';
+    std::string t;
+    for (char c : s)
+        if (c != '*') t += c;
+    return t;
+}
+
+} // namespace
+
+void Table::writePlotData(const std::string& dir) const {
+    if (plot.id.empty() || plot.xColumn < 0 || plot.yColumn < 0) return;
+    const std::string path = dir + "/" + plot.id + ".tsv";
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f) throw std::runtime_error("cannot write " + path);
+    auto head = [&](int c) { return c >= 0 && size_t(c) < header.size() ? header[size_t(c)] : ""; };
+    std::fprintf(f, "#title\t%s\n", tsvCell(title).c_str());
+    std::fprintf(f, "#x\t%s\n",
+                 tsvCell(plot.xLabel.empty() ? head(plot.xColumn) : plot.xLabel).c_str());
+    std::fprintf(f, "#y\t%s\n",
+                 tsvCell(plot.yLabel.empty() ? head(plot.yColumn) : plot.yLabel).c_str());
+    std::fprintf(f, "#log\t%d\t%d\n", plot.logX ? 1 : 0, plot.logY ? 1 : 0);
+    std::fprintf(f, "#series\t%d\n", plot.seriesColumn >= 0 ? 1 : 0);
+    for (const auto& r : rows) {
+        auto cell = [&](int c) { return c >= 0 && size_t(c) < r.size() ? r[size_t(c)] : ""; };
+        double x = 0, y = 0;
+        if (!cellNumber(cell(plot.xColumn), x) || !cellNumber(cell(plot.yColumn), y)) continue;
+        if ((plot.logX && x <= 0) || (plot.logY && y <= 0)) continue;
+        std::string label;
+        for (int c : plot.labelColumns) {
+            // A label column of numbers reads "level 3"; of words, just the word.
+            double unused = 0;
+            const std::string v = cellNumber(cell(c), unused) ? head(c) + " " + cell(c) : cell(c);
+            label += (label.empty() ? "" : ", ") + v;
+        }
+        std::fprintf(f, "%s\t%s\t%.9g\t%.9g\n", tsvCell(cell(plot.seriesColumn)).c_str(),
+                     tsvCell(label).c_str(), x, y);
+    }
+    if (std::fclose(f) != 0) throw std::runtime_error("cannot write " + path);
 }
 
 // ---------------------------------------------------------------------------

@@ -41,14 +41,34 @@ double angleDeg(const glm::dvec3& a, const glm::dvec3& b);
 // ---------------------------------------------------------------------------
 // Tables
 
+struct Options;
+
+// What bench/run plots of a table: one figure per table, error (y) against
+// cost (x), one point per row whose two cells are numbers ("1.23x" and
+// "**1.2**" read as numbers; empty or "(as ...)" cells drop the row), rows
+// with the same series cell joined by a line. Columns are header indexes.
+struct PlotSpec {
+    std::string id; // data file <id>.tsv, figure docs/images/accuracy/<id>.png; empty: no plot
+    int xColumn = -1, yColumn = -1;
+    int seriesColumn = -1;          // -1: every row its own point, labelled
+    std::vector<int> labelColumns;  // point labels (joined by a space)
+    bool logX = false, logY = true; // log-log where both span decades
+    std::string xLabel, yLabel;     // default: the header cells
+};
+
 struct Table {
     std::string title;
     std::vector<std::string> header;
     std::vector<std::vector<std::string>> rows;
     std::vector<std::string> notes; // printed under the table
     void add(std::vector<std::string> row) { rows.push_back(std::move(row)); }
+    PlotSpec plot;
     // Plain: aligned columns. Markdown: a pipe table (docs/accuracy-cost.md).
     void print(bool markdown) const;
+    // print(o.markdown), and with o.plotDataDir set, the plot data of
+    // `plot` as <plotDataDir>/<plot.id>.tsv (bench/run turns it into a PNG).
+    void print(const Options& o) const;
+    void writePlotData(const std::string& dir) const;
 };
 
 // Fixed-point or scientific, whichever reads better for error magnitudes.
@@ -61,11 +81,12 @@ std::string fmtRatio(double v); // "1.23x"
 
 struct Options {
     bool markdown = false;
-    int runs = 7;         // timing runs per variant (interleaved)
-    int frames = 8;       // frames per run; each = clear + draw + glFinish
-    int size = 1024;      // render size for timings (square)
-    bool quick = false;   // smaller sizes and fewer runs (tests, smoke runs)
-    std::string renderer; // GL_RENDERER of the context the tables run in (for the notes)
+    int runs = 7;            // timing runs per variant (interleaved)
+    int frames = 8;          // frames per run; each = clear + draw + glFinish
+    int size = 1024;         // render size for timings (square)
+    bool quick = false;      // smaller sizes and fewer runs (tests, smoke runs)
+    std::string renderer;    // GL_RENDERER of the context the tables run in (for the notes)
+    std::string plotDataDir; // --plot-data: where Table::print(Options) writes plot data
 };
 
 // ---------------------------------------------------------------------------

@@ -9,7 +9,9 @@
 //   LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
 //   build/bin/bench_accuracy_cost [--table NAME|all] [--markdown] [--runs N]
 //                                 [--frames N] [--size N] [--quick]
-// NAME: frames, subdiv, blend, features, deriv, precision.
+//                                 [--plot-data DIR] [--list]
+// NAME: a registered table (tables.h; --list prints them). bench/run drives
+// this executable to regenerate docs/accuracy-cost.md and its plots.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -26,8 +28,9 @@ namespace {
 int usage() {
     std::fprintf(
         stderr,
-        "usage: bench_accuracy_cost [--table frames|subdiv|blend|features|deriv|precision|all]\n"
-        "                           [--markdown] [--runs N] [--frames N] [--size N] [--quick]\n");
+        "usage: bench_accuracy_cost [--table NAME|all] [--markdown] [--runs N] [--frames N]\n"
+        "                           [--size N] [--quick] [--plot-data DIR] [--list]\n"
+        "NAME: one of --list\n");
     return 2;
 }
 
@@ -51,6 +54,12 @@ int main(int argc, char** argv) {
             o.markdown = true;
         else if (a == "--quick")
             o.quick = true;
+        else if (a == "--list") {
+            for (const study::TableEntry& e : study::registeredTables())
+                std::printf("%s\t%s\n", e.name, e.title);
+            return 0;
+        } else if (a == "--plot-data" && hasValue)
+            o.plotDataDir = argv[++i];
         else if (a == "--table" && hasValue)
             table = argv[++i];
         else if (a == "--runs" && hasValue) {
@@ -68,16 +77,8 @@ int main(int argc, char** argv) {
         o.frames = std::min(o.frames, 3);
         o.size = std::min(o.size, 256);
     }
-    struct Entry {
-        const char* name;
-        void (*fn)(const study::Options&);
-    };
-    const Entry entries[] = {
-        {"frames", study::tableFrames},     {"subdiv", study::tableSubdivision},
-        {"blend", study::tableBlend},       {"features", study::tableFeatures},
-        {"deriv", study::tableDerivatives}, {"precision", study::tablePrecision}};
     bool found = table == "all";
-    for (const Entry& e : entries) found = found || table == e.name;
+    for (const study::TableEntry& e : study::registeredTables()) found = found || table == e.name;
     if (!found) return usage();
     // Load average: the machine's other work shows in every timing (ratios
     // within one table are measured interleaved, so they suffer less).
@@ -96,8 +97,8 @@ int main(int argc, char** argv) {
         sg::gl::HeadlessContext ctx;
         o.renderer = ctx.renderer();
         std::printf("renderer: %s, OpenGL %s\n", o.renderer.c_str(), ctx.version().c_str());
-        for (const Entry& e : entries) {
-            if (table == "all" || table == e.name) e.fn(o);
+        for (const study::TableEntry& e : study::registeredTables()) {
+            if (table == "all" || table == e.name) e.run(o);
         }
     } catch (const std::exception& e) {
         std::fprintf(stderr, "bench_accuracy_cost: %s\n", e.what());

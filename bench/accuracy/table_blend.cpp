@@ -240,7 +240,16 @@ void tableBlend(const Options& o) {
     t.notes.push_back("Cost: " + std::to_string(tw) + "^2 full-screen pass on " + o.renderer +
                       ", " + std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratios to the surface-gradient method in the same run.");
-    t.print(o.markdown);
+    t.plot = {"blend",
+              9,
+              4,
+              -1,
+              {0},
+              false,
+              true,
+              "1 blend per pixel, ratio to surface gradient",
+              "max error, moderate slopes, degrees"};
+    t.print(o);
 }
 
 } // namespace study

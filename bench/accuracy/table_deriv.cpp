@@ -382,7 +382,16 @@ void tableDerivatives(const Options& o) {
                       "variant), " +
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the first row.");
-    t.print(o.markdown);
+    t.plot = {"deriv",
+              8,
+              3,
+              -1,
+              {0},
+              false,
+              true,
+              "frame time, ratio to dFdxFine",
+              "normal error p99, degrees"};
+    t.print(o);
 }
 
 } // namespace study

@@ -190,7 +190,16 @@ void tableFrames(const Options& o) {
         "surface at the pixel's UV (double). Timing: " +
         std::to_string(o.size) + "^2, RGBA8 target, " + std::to_string(o.runs) + " runs x " +
         std::to_string(o.frames) + " frames, medians; same vertex buffer layout for all sources.");
-    t.print(o.markdown);
+    t.plot = {"frames",
+              8,
+              5,
+              1,
+              {0},
+              false,
+              true,
+              "frame time, ratio to MikkTSpace (same run)",
+              "normal error p99, degrees"};
+    t.print(o);
 }
 
 } // namespace study

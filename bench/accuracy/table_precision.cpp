@@ -253,7 +253,17 @@ void tablePrecision(const Options& o) {
         " exposes no 16-bit float arithmetic to GLSL (no float16_t "
         "extension) and desktop GLSL ignores mediump, so binary16 runs at binary32 speed here; on "
         "GPUs with double-rate fp16 the ALU part of this path could run up to 2x faster.");
-    t.print(o.markdown);
+    // No cost on llvmpipe (see the notes): precision alone against the whole error.
+    t.plot = {"precision",
+              2,
+              5,
+              -1,
+              {0},
+              true,
+              true,
+              "error vs binary64 p99, degrees (precision alone)",
+              "error vs truth p99, degrees"};
+    t.print(o);
 }
 
 } // namespace study

@@ -196,7 +196,16 @@ void tableSubdivision(const Options& o) {
                       std::to_string(o.size) + "^2 Lambert pass on " + o.renderer + ", " +
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, ratio to level 0 (limit meshes have the same triangles).");
-    t.print(o.markdown);
+    t.plot = {"subdiv-torus",
+              8,
+              6,
+              1,
+              {0},
+              true,
+              true,
+              "Subdivider::build ms (levels 0-5)",
+              "normal error p99, degrees"};
+    t.print(o);
 
     // b) Spot.
     const std::filesystem::path spotFile =
@@ -267,7 +276,16 @@ void tableSubdivision(const Options& o) {
     u.notes.push_back("Vertex distances relative to the bounding-box diagonal; normal errors in "
                       "degrees (area-weighted "
                       "normal of the refined mesh vs the limit normal, at the vertices).");
-    u.print(o.markdown);
+    u.plot = {"subdiv-spot",
+              7,
+              5,
+              -1,
+              {0},
+              true,
+              true,
+              "Subdivider::build ms (levels 0-5)",
+              "normal error p99 vs OpenSubdiv limit, degrees"};
+    u.print(o);
 }
 
 } // namespace study

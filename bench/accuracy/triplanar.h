@@ -1,0 +1,9 @@
+// The triplanar methods of triplanar.glsl compiled as C++
+// (sg::glsl::studyTriplanar*), next to the shared bump math (surfgrad/bump.h).
+#pragma once
+
+#include "surfgrad/bump.h"
+
+namespace sg::glsl {
+#include "triplanar.glsl"
+} // namespace sg::glsl
