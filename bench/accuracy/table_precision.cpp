@@ -26,10 +26,14 @@
 #include <epoxy/gl.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "precision_path.h"
 #include "surfgrad/bump.h"
+#include "surfgrad/render/view.h"
 #include "tables.h"
 #include "torus_bump.h"
 
@@ -55,6 +59,39 @@ void main() {
     oDy = vec4(dPdy, dSTdx.y);
     oTan = vTangent;
     oDerivDy = vec4(texture(uDeriv, vUv).xy, dSTdy);
+}
+)";
+
+// Vertex stage of the distance study (table 6b): the torus moved `uModel`'s
+// translation away from the origin with the camera, as the renderer's
+// vertex program did it before (world position in binary32, then minus
+// the camera) and does it now (CAMERA_RELATIVE: one object ->
+// camera-relative matrix composed in double on the CPU,
+// sg::render::modelToCameraRelative; shaders/sg/render/surface_vs.glsl).
+const char* kFarVertex = R"(
+layout(location = 0) in vec3 aPos;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec2 aUv;
+layout(location = 3) in vec4 aTangent;
+uniform mat4 uModel;       // object -> world
+uniform vec3 uCamPos;      // world position of the camera (binary32)
+uniform mat4 uModelRel;    // object -> camera-relative world
+uniform mat4 uViewProjRel; // camera-relative world -> clip
+out vec3 vRelPos;
+out vec3 vNormal;
+out vec4 vTangent;
+out vec2 vUv;
+void main() {
+#ifdef CAMERA_RELATIVE
+    vRelPos = (uModelRel * vec4(aPos, 1.0)).xyz;
+#else
+    vec4 worldPos = uModel * vec4(aPos, 1.0);
+    vRelPos = worldPos.xyz - uCamPos;
+#endif
+    vNormal = aNormal;
+    vTangent = aTangent;
+    vUv = aUv;
+    gl_Position = uViewProjRel * vec4(vRelPos, 1.0);
 }
 )";
 
@@ -127,6 +164,97 @@ glm::dvec3 sharedPixelPath(const PixelInputs& in) {
         sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(vec2(in.m), false), t, b)));
 }
 
+// Table 6b: the per-pixel path (binary32) on the torus moved `distance`
+// units from the origin along (1, 1, 1) / sqrt 3 together with the camera,
+// its inputs produced by the two vertex stages of kFarVertex; error against
+// table 1's truth (the same at every distance: the view is the same).
+void tableFarFromOrigin(const TorusBump& scene, const GpuMesh& mesh, unsigned tex, int size,
+                        const Options& o) {
+    const std::string fs = std::string(torusFragmentHead()) + kInputs;
+    const sg::gl::Program before = makeProgram(kFarVertex, fs, "precision_far_world");
+    const sg::gl::Program after =
+        makeProgram(kFarVertex, fs, "precision_far_relative", {"CAMERA_RELATIVE"});
+    // Table 1's projection and view rotation (its camera is within 0.2 of
+    // the snapped one below).
+    const glm::mat4 viewProjRel = scene.viewProj * glm::translate(glm::mat4(1.0f), scene.camPos);
+    Table t;
+    t.title = "Table 6b: far from the origin (table 1's torus, level " +
+              std::string(o.quick ? "1" : "3") +
+              ", and its camera moved away from the world origin; per-pixel frame, binary32)";
+    t.header = {"distance", "vertex stage", "pixels", "p50 deg", "p99 deg", "max deg"};
+    Target target(size, size, 6);
+    glBindTextureUnit(0, tex);
+    // The camera snapped to multiples of 0.5 and the offsets to integers:
+    // object and camera positions are then exact in binary32 up to 1e7
+    // (components below 2^23), so every distance renders the same view and
+    // only the vertex stage's rounding differs.
+    const glm::dvec3 cam = glm::round(glm::dvec3(scene.camPos) * 2.0) * 0.5;
+    for (double distance : {1.0, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7}) {
+        const glm::dvec3 offset = glm::round(distance * glm::normalize(glm::dvec3(1.0)));
+        const glm::mat4 model = glm::translate(glm::mat4(1.0f), glm::vec3(offset));
+        const glm::vec3 camWorld(cam + offset);
+        const glm::mat4 modelRel = sg::render::modelToCameraRelative(model, camWorld);
+        for (int relative = 0; relative < 2; ++relative) {
+            const sg::gl::Program& p = relative ? after : before;
+            target.bind();
+            target.clear(glm::vec4(0.0f, 0.0f, 0.0f, -1.0f));
+            glEnable(GL_DEPTH_TEST);
+            glEnable(GL_CULL_FACE);
+            glUseProgram(p.id());
+            glUniformMatrix4fv(p.uniform("uViewProjRel"), 1, GL_FALSE, &viewProjRel[0][0]);
+            if (relative) {
+                glUniformMatrix4fv(p.uniform("uModelRel"), 1, GL_FALSE, &modelRel[0][0]);
+            } else {
+                glUniformMatrix4fv(p.uniform("uModel"), 1, GL_FALSE, &model[0][0]);
+                glUniform3fv(p.uniform("uCamPos"), 1, &camWorld[0]);
+            }
+            glUniform1i(p.uniform("uDeriv"), 0);
+            mesh.draw();
+            std::vector<std::vector<glm::vec4>> out;
+            for (int i = 0; i < 6; ++i) out.push_back(target.read(i));
+            std::vector<double> err;
+            for (size_t i = 0; i < out[0].size(); ++i) {
+                if (out[1][i].w < 0.0f) continue; // not covered
+                PixelInputs in;
+                in.relPos = glm::dvec3(out[0][i]);
+                in.uv = {out[0][i].w, out[1][i].w};
+                in.normal = glm::dvec3(out[1][i]);
+                in.dPdx = glm::dvec3(out[2][i]);
+                in.dSTdx = {out[2][i].w, out[3][i].w};
+                in.dPdy = glm::dvec3(out[3][i]);
+                in.dSTdy = {out[5][i].z, out[5][i].w};
+                const glm::dvec3 mn = glm::normalize(glm::dvec3(-out[5][i].x, -out[5][i].y, 1.0));
+                in.m = {mn.x, mn.y};
+                err.push_back(angleDeg(pixelPath<float>(in), scene.truthNormal(in.uv.x, in.uv.y)));
+            }
+            const ErrorStats e = errorStats(err);
+            char d[32];
+            std::snprintf(d, sizeof d, "%.0e", distance);
+            t.add({d, relative ? "camera-relative (double on the CPU)" : "world, then minus camera",
+                   std::to_string(e.count), e.count ? fmtErr(e.p50) : "-",
+                   e.count ? fmtErr(e.p99) : "-", e.count ? fmtErr(e.max) : "-"});
+        }
+    }
+    t.notes.push_back(
+        "'world, then minus camera': the vertex stage as the renderer had it (world position in "
+        "binary32, camera subtracted after); 'camera-relative': the renderer's vertex stage now "
+        "(object -> camera-relative matrix with the camera subtracted in binary64, "
+        "sg::render::modelToCameraRelative). Object and camera positions exact in binary32 (the "
+        "camera snapped to multiples of 0.5), so the view is the same at every distance; error "
+        "against table 1's truth (Blinn's normal on the exact surface), " +
+        std::to_string(size) + "^2.");
+    t.plot = {"precision-far",
+              0,
+              4,
+              1,
+              {},
+              true,
+              true,
+              "distance from the world origin",
+              "normal error p99, degrees"};
+    t.print(o);
+}
+
 } // namespace
 
 void tablePrecision(const Options& o) {
@@ -149,7 +277,6 @@ void tablePrecision(const Options& o) {
     mesh.draw();
     std::vector<std::vector<glm::vec4>> out;
     for (int i = 0; i < 6; ++i) out.push_back(target.read(i));
-    deleteTexture(tex);
 
     enum Row { PixF32, PixF16, PixF16Vary, PixF32Abs, PixF32Rg8, VtxF32, VtxF16, RowCount };
     const char* names[RowCount] = {
@@ -264,6 +391,8 @@ void tablePrecision(const Options& o) {
               "error vs binary64 p99, degrees (precision alone)",
               "error vs truth p99, degrees"};
     t.print(o);
+    tableFarFromOrigin(scene, mesh, tex, size, o);
+    deleteTexture(tex);
 }
 
 } // namespace study

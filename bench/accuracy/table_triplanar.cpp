@@ -49,7 +49,9 @@ struct Convention {
     const char* name;
 };
 
-glm::dvec3 axisS(int p, bool rh) { return p == 0 ? glm::dvec3(0, 0, rh ? -1 : 1) : glm::dvec3(1, 0, 0); }
+glm::dvec3 axisS(int p, bool rh) {
+    return p == 0 ? glm::dvec3(0, 0, rh ? -1 : 1) : glm::dvec3(1, 0, 0);
+}
 glm::dvec3 axisT(int p, bool rh, bool ul) {
     const double v = ul ? -1 : 1;
     return p == 1 ? glm::dvec3(0, 0, v * (rh ? -1 : 1)) : glm::dvec3(0, v, 0);
@@ -71,10 +73,12 @@ struct Field {
     double h(double s, double t) const { return amp * std::sin(kTwoPi * s) * std::sin(kTwoPi * t); }
     glm::dvec2 dh(double s, double t) const { // d/ds, d/dt in map units
         return amp * kTwoPi *
-               glm::dvec2(std::cos(kTwoPi * s) * std::sin(kTwoPi * t), std::sin(kTwoPi * s) * std::cos(kTwoPi * t));
+               glm::dvec2(std::cos(kTwoPi * s) * std::sin(kTwoPi * t),
+                          std::sin(kTwoPi * s) * std::cos(kTwoPi * t));
     }
     glm::dvec2 st(int p, const glm::dvec3& pos) const {
-        return kScale * glm::dvec2(glm::dot(pos, axisS(p, c.rightHanded)), glm::dot(pos, axisT(p, c.rightHanded, c.upperLeft)));
+        return kScale * glm::dvec2(glm::dot(pos, axisS(p, c.rightHanded)),
+                                   glm::dot(pos, axisT(p, c.rightHanded, c.upperLeft)));
     }
     // The map's tangent-space normal of plane p at pos (unit, z up): the
     // slope per unit of length on the surface, as normal maps store it.
@@ -82,7 +86,8 @@ struct Field {
         const glm::dvec2 q = st(p, pos), d = kScale * dh(q.x, q.y);
         return glm::normalize(glm::dvec3(-d.x, -d.y, 1.0));
     }
-    double blended(const glm::dvec3& pos, const glm::dvec3& n, bool frozen, const glm::dvec3& w0) const {
+    double blended(const glm::dvec3& pos, const glm::dvec3& n, bool frozen,
+                   const glm::dvec3& w0) const {
         const glm::dvec3 w = frozen ? w0 : weights(n, k);
         double sum = 0;
         for (int p = 0; p < 3; ++p) {
@@ -113,9 +118,10 @@ struct Surface {
             p = glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
         } else {
             const int nu = int(std::sqrt(double(count) * 2.2)), nv = std::max(1, count / nu);
-            const double u = kTwoPi * ((i % nu) + 0.5) / nu, v = kTwoPi * ((i / nu % nv) + 0.5) / nv;
-            p = glm::dvec3((1.0 + 0.45 * std::cos(v)) * std::cos(u), (1.0 + 0.45 * std::cos(v)) * std::sin(u),
-                           0.45 * std::sin(v));
+            const double u = kTwoPi * ((i % nu) + 0.5) / nu,
+                         v = kTwoPi * ((i / nu % nv) + 0.5) / nv;
+            p = glm::dvec3((1.0 + 0.45 * std::cos(v)) * std::cos(u),
+                           (1.0 + 0.45 * std::cos(v)) * std::sin(u), 0.45 * std::sin(v));
         }
         return p;
     }
@@ -126,10 +132,12 @@ struct Surface {
 glm::dvec3 rotate(const glm::dvec3& p, bool inverse) {
     const double a = 20.0 * M_PI / 180, b = 35.0 * M_PI / 180;
     if (!inverse) {
-        const glm::dvec3 q(p.x, std::cos(a) * p.y - std::sin(a) * p.z, std::sin(a) * p.y + std::cos(a) * p.z);
+        const glm::dvec3 q(p.x, std::cos(a) * p.y - std::sin(a) * p.z,
+                           std::sin(a) * p.y + std::cos(a) * p.z);
         return {std::cos(b) * q.x - std::sin(b) * q.y, std::sin(b) * q.x + std::cos(b) * q.y, q.z};
     }
-    const glm::dvec3 q(std::cos(b) * p.x + std::sin(b) * p.y, -std::sin(b) * p.x + std::cos(b) * p.y, p.z);
+    const glm::dvec3 q(std::cos(b) * p.x + std::sin(b) * p.y,
+                       -std::sin(b) * p.x + std::cos(b) * p.y, p.z);
     return {q.x, std::cos(a) * q.y + std::sin(a) * q.z, -std::sin(a) * q.y + std::cos(a) * q.z};
 }
 
@@ -142,7 +150,9 @@ Errors measure(const Surface& surf, const Field& f, int count) {
     Errors e;
     e.method.assign(STUDY_TRI_COUNT, {});
     e.full.assign(STUDY_TRI_COUNT, {});
-    auto normalField = [&](const glm::dvec3& p) { return rotate(surf.normalAt(rotate(p, true)), false); };
+    auto normalField = [&](const glm::dvec3& p) {
+        return rotate(surf.normalAt(rotate(p, true)), false);
+    };
     const double eps = 1e-5;
     for (int i = 0; i < count; ++i) {
         const glm::dvec3 pos = rotate(surf.point(i, count), false);
@@ -153,8 +163,10 @@ Errors measure(const Surface& surf, const Field& f, int count) {
             glm::dvec3 d(0.0);
             d[a] = eps;
             g[a] = (f.blended(pos + d, normalField(pos + d), false, w0) -
-                    f.blended(pos - d, normalField(pos - d), false, w0)) / (2 * eps);
-            gFrozen[a] = (f.blended(pos + d, n, true, w0) - f.blended(pos - d, n, true, w0)) / (2 * eps);
+                    f.blended(pos - d, normalField(pos - d), false, w0)) /
+                   (2 * eps);
+            gFrozen[a] =
+                (f.blended(pos + d, n, true, w0) - f.blended(pos - d, n, true, w0)) / (2 * eps);
         }
         const glm::dvec3 truth = glm::normalize(n - (g - glm::dot(n, g) * n));
         const glm::dvec3 frozen = glm::normalize(n - (gFrozen - glm::dot(n, gFrozen) * n));
@@ -162,7 +174,8 @@ Errors measure(const Surface& surf, const Field& f, int count) {
         const glm::vec3 wf = sg::glsl::sgTriplanarWeights(nf, float(f.k));
         const glm::vec3 tx(f.sample(0, pos)), ty(f.sample(1, pos)), tz(f.sample(2, pos));
         for (int m = 0; m < STUDY_TRI_COUNT; ++m) {
-            const glm::vec3 r = sg::glsl::studyTriplanar(m, nf, wf, tx, ty, tz, f.c.rightHanded, f.c.upperLeft);
+            const glm::vec3 r =
+                sg::glsl::studyTriplanar(m, nf, wf, tx, ty, tz, f.c.rightHanded, f.c.upperLeft);
             e.method[size_t(m)].push_back(angleDeg(glm::dvec3(r), frozen));
             e.full[size_t(m)].push_back(angleDeg(glm::dvec3(r), truth));
         }
@@ -226,7 +239,8 @@ void tableTriplanar(const Options& o) {
         for (int i = 0; i < tw; ++i) {
             const glm::dvec2 d = kScale * f.dh((i + 0.5) / tw, (j + 0.5) / tw);
             const glm::dvec3 m = glm::normalize(glm::dvec3(-d.x, -d.y, 1.0));
-            for (int c = 0; c < 3; ++c) texels[(size_t(j) * size_t(tw) + size_t(i)) * 4 + size_t(c)] = float(m[c]);
+            for (int c = 0; c < 3; ++c)
+                texels[(size_t(j) * size_t(tw) + size_t(i)) * 4 + size_t(c)] = float(m[c]);
         }
     }
     const unsigned tex = makeFloatTexture(tw, tw, 4, texels, true, true);
@@ -261,14 +275,14 @@ void tableTriplanar(const Options& o) {
     Table t;
     t.title = "Table 7: triplanar method (one height map projected on 3 planes, slopes up to 45 "
               "deg, blended by listing 14 at k = 4 unless stated; truth in double)";
-    t.header = {"method",    "sphere p50",      "sphere p99",       "torus p50",        "torus p99",
-                "torus max", "k=1 p99",         "k=2 p99",          "k=8 p99",          "k=32 p99",
-                "RH+UL p99", "height p50",      "height p99",       "frame ms",         "ratio"};
+    t.header = {"method",    "sphere p50", "sphere p99", "torus p50", "torus p99",
+                "torus max", "k=1 p99",    "k=2 p99",    "k=8 p99",   "k=32 p99",
+                "RH+UL p99", "height p50", "height p99", "frame ms",  "ratio"};
     for (size_t m = 0; m < size_t(STUDY_TRI_COUNT); ++m) {
         const ErrorStats a = errorStats(sph.method[m]), b = errorStats(tor.method[m]),
                          c = errorStats(torRh.method[m]), h = errorStats(tor.full[m]);
-        std::vector<std::string> r = {kMethodNames[m], fmtErr(a.p50), fmtErr(a.p99), fmtErr(b.p50),
-                                      fmtErr(b.p99),   fmtErr(b.max)};
+        std::vector<std::string> r = {kMethodNames[m], fmtErr(a.p50), fmtErr(a.p99),
+                                      fmtErr(b.p50),   fmtErr(b.p99), fmtErr(b.max)};
         for (const Errors& e : sweep) r.push_back(fmtErr(errorStats(e.method[m]).p99));
         r.push_back(fmtErr(c.p99));
         r.push_back(fmtErr(h.p50));
@@ -277,23 +291,32 @@ void tableTriplanar(const Options& o) {
         r.push_back(fmtRatio(ms[m] / ms[0]));
         t.add(r);
     }
-    t.notes.push_back("Degrees; " + std::to_string(count) +
-                      " samples per surface (sphere: area-uniform; torus R = 1, r = 0.45: uniform in its "
-                      "angles), both rotated (20 deg about x, 35 about z) off the projection planes. "
-                      "Map: h = A sin(2 pi s) sin(2 pi t), " +
-                      fmt(kScale, 0) + " repeats per unit, A = " + fmtErr(amp) +
-                      ". Truth: the normal of the blend sum_i w_i h_i with the weights held constant "
-                      "(what every method approximates); 'height': of the blended height including the "
-                      "weights' own gradient (a displaced surface would show it; no method has it). "
-                      "Up to 'torus max' and 'height' at k = 4, left-handed, lower-left origin; k "
-                      "columns: torus, same convention; RH+UL: torus, right-handed, upper-left origin.");
-    t.notes.push_back("Every method gets the exact base normal and exact map normals (binary32), no "
-                      "filtering; the C++ build of triplanar.glsl, the code the GPU pass runs.");
+    t.notes.push_back(
+        "Degrees; " + std::to_string(count) +
+        " samples per surface (sphere: area-uniform; torus R = 1, r = 0.45: uniform in its "
+        "angles), both rotated (20 deg about x, 35 about z) off the projection planes. "
+        "Map: h = A sin(2 pi s) sin(2 pi t), " +
+        fmt(kScale, 0) + " repeats per unit, A = " + fmtErr(amp) +
+        ". Truth: the normal of the blend sum_i w_i h_i with the weights held constant "
+        "(what every method approximates); 'height': of the blended height including the "
+        "weights' own gradient (a displaced surface would show it; no method has it). "
+        "Up to 'torus max' and 'height' at k = 4, left-handed, lower-left origin; k "
+        "columns: torus, same convention; RH+UL: torus, right-handed, upper-left origin.");
+    t.notes.push_back(
+        "Every method gets the exact base normal and exact map normals (binary32), no "
+        "filtering; the C++ build of triplanar.glsl, the code the GPU pass runs.");
     t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer +
                       " (ray-traced unit sphere, 3 fetches of a 64^2 RGBA32F map, k = 4), " +
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the surface-gradient row.");
-    t.plot = {"triplanar", 14, 4, -1, {0}, false, true, "frame time, ratio to surface gradient (same run)",
+    t.plot = {"triplanar",
+              14,
+              4,
+              -1,
+              {0},
+              false,
+              true,
+              "frame time, ratio to surface gradient (same run)",
               "normal error p99 on the torus (k = 4), degrees"};
     t.print(o);
 }

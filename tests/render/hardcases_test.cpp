@@ -6,12 +6,17 @@
 //    plane is parallel to the surface, and one turned until its projection
 //    direction lies in the surface (the angle fade of docs/scene.md);
 //  - a triplanar layer (section 2.8, listings 13, 14) at the diagonal
-//    normal, where the three planes weigh the same.
+//    normal, where the three planes weigh the same;
+//  - a bumped sphere and its camera 1e5, 1e6 and 1e7 units from the world
+//    origin (listing 16's camera-relative positions, composed in binary64
+//    by sg::render::modelToCameraRelative): the same normals as at the
+//    origin, on the CPU reference renderer and on the GPU.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "hardcase.h"
+#include "render_test_util.h"
 #include "surfgrad/render_shaders.h"
 
 namespace sg::render::test {
@@ -165,6 +170,72 @@ TEST(RenderHardCases, TriplanarLayerAtEqualWeights) {
     hardCaseAtMost("triplanar-equal", "the same",
                    "|sg - projected average of the planar gradients| / max(1, |sg|)", err.value,
                    4e-5);
+}
+
+// The scene of the far-from-origin case: a sphere with a tangent-space
+// normal map (the per-pixel frame from dPdx and dUVdx) at (c, c, c), its
+// camera 3 units away along +z. c is an integer below 2^24, so the object
+// and camera positions are exact in binary32 and the view is the same at
+// every distance.
+Scene farScene(long c) {
+    const std::string t = std::to_string(c), tz = std::to_string(c + 3);
+    return sceneFromJson(oneMaterialScene(
+        R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}})",
+        R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}, "transform": {"translate": [)" +
+            t + ", " + t + ", " + t + "]}}",
+        "", 96, 72,
+        R"(, "camera": {"position": [)" + t + ", " + t + ", " + tz + R"(], "target": [)" + t +
+            ", " + t + ", " + t + R"(], "up": [0, 1, 0], "fov_deg": 38, "near": 0.5, "far": 10})"));
+}
+
+// Largest angle (degrees) between the normal AOVs of two renders over the
+// pixels both cover; coverage must match.
+double maxNormalAngleDeg(const Image& a, const Image& b) {
+    EXPECT_EQ(a.pixels.size(), b.pixels.size());
+    double worst = 0.0;
+    size_t covered = 0;
+    for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
+        const glm::dvec3 u(a.pixels[i]), v(b.pixels[i]);
+        const bool ca = glm::length(u) > 0.5, cb = glm::length(v) > 0.5;
+        EXPECT_EQ(ca, cb) << "pixel " << i;
+        if (!ca || !cb) continue;
+        ++covered;
+        const double ang =
+            std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * (180.0 / 3.141592653589793);
+        if (!(ang <= worst)) worst = ang;
+    }
+    EXPECT_GT(covered, 1000u);
+    return worst;
+}
+
+TEST(RenderHardCases, FarFromOriginCameraRelative) {
+    const Scene origin = farScene(0);
+    const SceneAssets originAssets = loadAssets(origin);
+    const View originView = makeView(origin, originAssets, 0, 0, Aov::Normal);
+    const Image cpu0 = renderCpu(origin, originAssets, originView);
+    const Image gpu0 = gpu().render(origin, originAssets, originView);
+    Worst cpuWorst, gpuWorst;
+    // 1e5, 1e6, 1e7 units from the origin (|(c, c, c)| = c sqrt 3).
+    for (long c : {57735L, 577350L, 5773503L}) {
+        const Scene far = farScene(c);
+        const SceneAssets assets = loadAssets(far);
+        const View view = makeView(far, assets, 0, 0, Aov::Normal);
+        cpuWorst.add(maxNormalAngleDeg(renderCpu(far, assets, view), cpu0));
+        gpuWorst.add(maxNormalAngleDeg(gpu().render(far, assets, view), gpu0));
+    }
+    // The camera-relative transform of every distance is the origin's
+    // (translation (0, 0, -3) exactly), so the relative positions and every
+    // shading input are bit for bit those at the origin; the bound leaves
+    // room for a view matrix rounded differently at large magnitudes (a
+    // hundredth of a degree; world positions minus the camera in binary32
+    // were off by degrees at 1e6).
+    hardCaseAtMost("far-from-origin-render",
+                   "bumped sphere (uv_normal) and camera 1e5, 1e6, 1e7 units from the origin, CPU "
+                   "reference renderer",
+                   "normal AOV angle vs the same view at the origin, deg", cpuWorst.value, 0.01);
+    hardCaseAtMost("far-from-origin-render", "the same, GPU (llvmpipe)",
+                   "normal AOV angle vs the same view at the origin, deg", gpuWorst.value, 0.01,
+                   false);
 }
 
 } // namespace

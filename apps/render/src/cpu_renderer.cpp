@@ -87,6 +87,7 @@ MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& v
     MeshData d;
     d.mesh = &m;
     const glm::mat4& M = inst.transform;
+    const glm::mat4 rel = modelToCameraRelative(M, view.cameraPos);
     glm::mat3 nm = detail::normalMatrix(M);
     d.detSign = glm::determinant(glm::mat3(M)) < 0.0f ? -1.0f : 1.0f;
     size_t nv = m.vertexCount();
@@ -98,7 +99,7 @@ MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& v
     for (size_t v = 0; v < nv; ++v) {
         glm::vec4 wp = M * glm::vec4(m.positions[v], 1.0f);
         d.world[v] = glm::vec3(wp);
-        d.rel[v] = glm::vec3(wp) - view.cameraPos;
+        d.rel[v] = glm::vec3(rel * glm::vec4(m.positions[v], 1.0f));
         d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
         d.clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
     }

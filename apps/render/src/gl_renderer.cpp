@@ -322,9 +322,9 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             GLuint id = gp.program.id();
             glUseProgram(id);
             glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
+            glUniformMatrix4fv(gp.loc("uModelRel"), 1, GL_FALSE, &u.modelRel[0][0]);
             glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
             glUniform1f(gp.loc("uDetSign"), u.detSign);
-            glUniform3fv(gp.loc("uCamPos"), 1, &view.cameraPos[0]);
             glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
             glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
             glUniform1i(gp.loc("uAov"), u.aov);

@@ -294,6 +294,12 @@ std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view) {
     return r;
 }
 
+glm::mat4 modelToCameraRelative(const glm::mat4& model, const glm::vec3& cameraPos) {
+    glm::mat4 rel = model;
+    for (int i = 0; i < 3; ++i) rel[3][i] = float(double(model[3][i]) - double(cameraPos[i]));
+    return rel;
+}
+
 namespace detail {
 
 glm::mat3 normalMatrix(const glm::mat4& model) {
@@ -336,6 +342,7 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
     u.roughness = mat.roughness;
     u.ambient = scene.ambient;
     u.model = mi.transform;
+    u.modelRel = modelToCameraRelative(mi.transform, view.cameraPos);
     u.model3 = glm::mat3(mi.transform);
     u.modelInv3 = glm::inverse(u.model3);
     u.normalMat = normalMatrix(mi.transform);

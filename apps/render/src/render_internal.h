@@ -47,6 +47,7 @@ struct DrawUniforms {
     float roughness = 0.5f;
     glm::vec3 ambient{0.0f};
     glm::mat4 model{1.0f};
+    glm::mat4 modelRel{1.0f}; // modelToCameraRelative(model, view.cameraPos)
     glm::mat3 model3{1.0f}, modelInv3{1.0f}, normalMat{1.0f};
     float detSign = 1.0f;
     std::vector<glm::vec4> lights;  // packLightRecords

@@ -5,7 +5,12 @@
 //                          (mikktspace or limit frames) as an attribute.
 // Positions reach the fragment program relative to the camera (Mikkelsen
 // 2019, listing 16: "NO TRANSLATION" in the derivatives, so dFdx of the
-// position keeps its precision far from the origin).
+// position keeps its precision far from the origin). The relative position
+// comes from uModelRel, composed on the CPU with the camera subtracted in
+// binary64 (sg::render::modelToCameraRelative, render/view.h): it is never
+// the difference of two large binary32 world positions. vWorldPos stays
+// the absolute world position (world-space volume layers), rounded at its
+// distance from the origin.
 #ifndef SG_UV_COUNT
 #define SG_UV_COUNT 0
 #endif
@@ -46,9 +51,9 @@ out vec4 vTangent3;
 #endif
 
 uniform mat4 uModel;       // object -> world
+uniform mat4 uModelRel;    // object -> camera-relative world (translation minus camera, binary64)
 uniform mat3 uNormalMat;   // inverse transpose of uModel's 3x3 part
 uniform float uDetSign;    // sign of det(uModel's 3x3): mirrors flip tangent handedness
-uniform vec3 uCamPos;      // world-space camera position
 uniform mat4 uViewProjRel; // camera-relative world -> clip (view rotation and projection)
 
 out vec3 vRelPos;   // world position minus camera position
@@ -59,7 +64,7 @@ out vec3 vNormal;   // world normal, unnormalized (normalized per pixel, listing
 void main() {
     vec4 worldPos = uModel * vec4(aPosition, 1.0);
     vWorldPos = worldPos.xyz;
-    vRelPos = worldPos.xyz - uCamPos;
+    vRelPos = (uModelRel * vec4(aPosition, 1.0)).xyz;
     vObjPos = aPosition;
     vNormal = uNormalMat * aNormal;
 #if SG_UV_COUNT > 0

@@ -26,6 +26,20 @@ struct View {
 // at the given output size (0: the scene's).
 View makeView(const Scene& scene, const SceneAssets& assets, int width = 0, int height = 0,
               Aov aov = Aov::Color);
+// The object -> camera-relative world transform of a draw (Mikkelsen 2019,
+// listing 16 carried into the vertex stage): model's linear part unchanged,
+// its translation minus the camera position, subtracted in binary64 and
+// rounded once. The vertex stage applies it to object positions, so a vertex
+// is rounded at its distance from the camera, not from the world origin:
+// an object 1e6 units out keeps the position (and dPdx) precision it has at
+// the origin. Error bound of the relative position of a vertex p: about
+// |linear part| |p| 2^-23 + |translation - camera| 2^-24 (binary32 products
+// and sums of small values), against |model translation| 2^-24 + |camera|
+// 2^-24 for world position minus camera in binary32 (4 units at 1e8, 0.03
+// at 1e6).
+// `model` is affine (last row 0, 0, 0, 1).
+glm::mat4 modelToCameraRelative(const glm::mat4& model, const glm::vec3& cameraPos);
+
 // An orbit view around `target` (viewer).
 View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg,
                    float fovDeg, float nearPlane, float farPlane, int width, int height, Aov aov);
