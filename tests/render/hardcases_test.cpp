@@ -15,6 +15,8 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "hardcase.h"
 #include "render_test_util.h"
 #include "surfgrad/render_shaders.h"
@@ -174,18 +176,20 @@ TEST(RenderHardCases, TriplanarLayerAtEqualWeights) {
 
 // The scene of the far-from-origin case: a sphere with a tangent-space
 // normal map (the per-pixel frame from dPdx and dUVdx) at (c, c, c), its
-// camera 3 units away along +z. c is an integer below 2^24, so the object
+// camera 3 units away along +z. c is an integer below 2^23, so the object
 // and camera positions are exact in binary32 and the view is the same at
-// every distance.
-Scene farScene(long c) {
-    const std::string t = std::to_string(c), tz = std::to_string(c + 3);
-    return sceneFromJson(oneMaterialScene(
+// every distance. (Scene files bound translations to 1e6 per component;
+// the scene is moved after parsing.)
+Scene farScene(float c) {
+    Scene scene = sceneFromJson(oneMaterialScene(
         R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}})",
-        R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}, "transform": {"translate": [)" +
-            t + ", " + t + ", " + t + "]}}",
-        "", 96, 72,
-        R"(, "camera": {"position": [)" + t + ", " + t + ", " + tz + R"(], "target": [)" + t +
-            ", " + t + ", " + t + R"(], "up": [0, 1, 0], "fov_deg": 38, "near": 0.5, "far": 10})"));
+        R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}})", "", 96, 72,
+        R"(, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 38, "near": 0.5, "far": 10})"));
+    const glm::vec3 offset(c);
+    scene.meshes[0].transform = glm::translate(glm::mat4(1.0f), offset);
+    scene.camera.position += offset;
+    scene.camera.target += offset;
+    return scene;
 }
 
 // Largest angle (degrees) between the normal AOVs of two renders over the
@@ -209,14 +213,14 @@ double maxNormalAngleDeg(const Image& a, const Image& b) {
 }
 
 TEST(RenderHardCases, FarFromOriginCameraRelative) {
-    const Scene origin = farScene(0);
+    const Scene origin = farScene(0.0f);
     const SceneAssets originAssets = loadAssets(origin);
     const View originView = makeView(origin, originAssets, 0, 0, Aov::Normal);
     const Image cpu0 = renderCpu(origin, originAssets, originView);
     const Image gpu0 = gpu().render(origin, originAssets, originView);
     Worst cpuWorst, gpuWorst;
     // 1e5, 1e6, 1e7 units from the origin (|(c, c, c)| = c sqrt 3).
-    for (long c : {57735L, 577350L, 5773503L}) {
+    for (float c : {57735.0f, 577350.0f, 5773503.0f}) {
         const Scene far = farScene(c);
         const SceneAssets assets = loadAssets(far);
         const View view = makeView(far, assets, 0, 0, Aov::Normal);
