@@ -11,11 +11,16 @@
 //    (vertex) frames converge quadratically with the level, per-pixel frames
 //    (L16 + L6, screen derivatives of flat triangles) only linearly;
 //  - binary16 emulation (table 6): correct rounding (known answers) and a
-//    binary32 transcription of the path that matches the shared C++ build.
+//    binary32 transcription of the path that matches the shared C++ build;
+//  - triplanar (table 7): the surface-gradient triplanar is the bump of the
+//    blended maps (weights held constant) to binary32 rounding in both
+//    handedness/origin conventions; every engine method misses it by degrees.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "blend.h"
 #include "common.h"
@@ -23,6 +28,7 @@
 #include "surfgrad/gl.h"
 #include "torus.h"
 #include "torus_bump.h"
+#include "triplanar.h"
 
 namespace {
 
@@ -171,6 +177,42 @@ TEST(StudyHalf, Binary32TranscriptionMatchesSharedBuild) {
         worst = std::max(worst, angleDeg(glm::dvec3(shared), glm::dvec3(r.x, r.y, r.z)));
     }
     EXPECT_LT(worst, 1e-3);
+}
+
+TEST(StudyTriplanar, SurfaceGradientIsTheBlendedBumpEngineMethodsAreNot) {
+    std::mt19937 rng(7);
+    std::normal_distribution<double> gauss;
+    std::uniform_real_distribution<double> slope(-0.7, 0.7); // per axis: up to 45 deg
+    for (bool rh : {false, true}) {
+        const bool ul = rh;
+        std::vector<double> worst(STUDY_TRI_COUNT, 0.0);
+        for (int i = 0; i < 4000; ++i) {
+            const glm::vec3 n(glm::normalize(glm::dvec3(gauss(rng), gauss(rng), gauss(rng))));
+            const glm::vec3 w = sg::glsl::sgTriplanarWeights(n, 4.0f);
+            glm::vec3 tn[3];
+            glm::dvec3 grad(0.0);
+            for (int p = 0; p < 3; ++p) {
+                // Each plane's map: slope d per unit length along its (s, t) axes.
+                const glm::dvec2 d(slope(rng), slope(rng));
+                tn[p] = glm::vec3(glm::normalize(glm::dvec3(-d.x, -d.y, 1.0)));
+                const glm::dvec2 dm(-double(tn[p].x) / tn[p].z, -double(tn[p].y) / tn[p].z);
+                grad += double(w[p]) * (dm.x * glm::dvec3(sg::glsl::studyTriAxisS(p, rh)) +
+                                        dm.y * glm::dvec3(sg::glsl::studyTriAxisT(p, rh, ul)));
+            }
+            const glm::dvec3 nd(n);
+            const glm::dvec3 truth = glm::normalize(nd - (grad - glm::dot(nd, grad) * nd));
+            for (int m = 0; m < STUDY_TRI_COUNT; ++m) {
+                const glm::vec3 r = sg::glsl::studyTriplanar(m, n, w, tn[0], tn[1], tn[2], rh, ul);
+                worst[size_t(m)] = std::max(worst[size_t(m)], angleDeg(glm::dvec3(r), truth));
+            }
+        }
+        // binary32 evaluation of a unit vector from O(1) inputs: a few ulps,
+        // 1e-5 deg in table 7; 1e-3 leaves room for other compilers' FMA.
+        EXPECT_LT(worst[STUDY_TRI_SURFGRAD], 1e-3) << "rightHanded/upperLeft " << rh;
+        // Table 7's engine rows are off by 8-50 deg p99 at these slopes.
+        for (int m = 1; m < STUDY_TRI_COUNT; ++m)
+            EXPECT_GT(worst[size_t(m)], 1.0) << "method " << m;
+    }
 }
 
 } // namespace
