@@ -1,6 +1,7 @@
 // Input/output policy helpers (see surfgrad/io.h).
 #include "surfgrad/io.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -14,9 +15,80 @@ namespace sg::io {
 
 namespace fs = std::filesystem;
 
+std::string printable(std::string_view text, std::size_t maxBytes) {
+    std::string out;
+    out.reserve(std::min(text.size(), maxBytes) + 8);
+    auto escape = [&](unsigned char b) {
+        static const char* kHex = "0123456789abcdef";
+        out += "\\x";
+        out += kHex[b >> 4];
+        out += kHex[b & 15];
+    };
+    // Length of the well-formed UTF-8 sequence at i that is not a C1
+    // control character (U+0080..U+009F), or 0 (RFC 3629, sec. 4).
+    auto sequence = [&](std::size_t i) -> std::size_t {
+        const auto at = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+        const unsigned char b = at(i);
+        std::size_t n = 0;
+        unsigned char lo = 0x80, hi = 0xbf; // range of the second byte
+        if (b >= 0xc2 && b <= 0xdf) {
+            n = 2;
+            if (b == 0xc2) lo = 0xa0; // U+0080..U+009F are C1 controls
+        } else if (b >= 0xe0 && b <= 0xef) {
+            n = 3;
+            if (b == 0xe0) lo = 0xa0; // overlong
+            if (b == 0xed) hi = 0x9f; // surrogates
+        } else if (b >= 0xf0 && b <= 0xf4) {
+            n = 4;
+            if (b == 0xf0) lo = 0x90; // overlong
+            if (b == 0xf4) hi = 0x8f; // above U+10FFFF
+        } else {
+            return 0;
+        }
+        if (i + n > text.size() || at(i + 1) < lo || at(i + 1) > hi) return 0;
+        for (std::size_t k = 2; k < n; ++k) {
+            if (at(i + k) < 0x80 || at(i + k) > 0xbf) return 0;
+        }
+        return n;
+    };
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const unsigned char b = static_cast<unsigned char>(text[i]);
+        const std::size_t n = b >= 0x80 ? sequence(i) : 1;
+        if (i + std::max<std::size_t>(n, 1) > maxBytes) {
+            out += "...";
+            break;
+        }
+        if (b >= 0x20 && b < 0x7f) {
+            out += char(b);
+        } else if (n > 1) {
+            out.append(text.substr(i, n));
+        } else {
+            escape(b);
+        }
+        i += std::max<std::size_t>(n, 1);
+    }
+    return out;
+}
+
 InputError::InputError(std::string file, std::string element, std::string reason)
-    : std::runtime_error(file + ": " + (element.empty() ? "" : element + ": ") + reason),
+    : std::runtime_error(printable(file + ": " + (element.empty() ? "" : element + ": ") + reason,
+                                   std::string::npos)),
       file_(std::move(file)), element_(std::move(element)), reason_(std::move(reason)) {}
+
+namespace {
+
+// `text` with every occurrence of `from` replaced by `to`.
+std::string replaceAll(std::string text, const std::string& from, const std::string& to) {
+    if (from.empty()) return text;
+    for (std::size_t at = text.find(from); at != std::string::npos;
+         at = text.find(from, at + to.size())) {
+        text.replace(at, from.size(), to);
+    }
+    return text;
+}
+
+} // namespace
 
 void writeAtomically(const fs::path& path, const std::function<void(const fs::path&)>& write) {
     std::error_code ec;
@@ -32,8 +104,20 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
     // from it.
     fs::path tmp = dir / ("." + path.stem().string() + ".tmp" + std::to_string(::getpid()) + "_" +
                           std::to_string(counter++) + path.extension().string());
+    // Error messages name the destination, never the temporary file: the
+    // full temporary path first, then its bare file name.
+    auto destination = [&](std::string text) {
+        text = replaceAll(std::move(text), tmp.string(), path.string());
+        return replaceAll(std::move(text), tmp.filename().string(), path.filename().string());
+    };
     try {
         write(tmp);
+    } catch (const InputError& e) {
+        fs::remove(tmp, ec);
+        throw InputError(destination(e.file()), destination(e.element()), destination(e.reason()));
+    } catch (const std::exception& e) {
+        fs::remove(tmp, ec);
+        throw InputError(path.string(), "", destination(e.what()));
     } catch (...) {
         fs::remove(tmp, ec);
         throw;

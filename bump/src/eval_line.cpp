@@ -6,6 +6,8 @@
 #include <charconv>
 #include <cmath>
 
+#include "surfgrad/io.h"
+
 namespace sg::eval {
 
 namespace {
@@ -37,7 +39,12 @@ std::vector<float> parseLine(const Entry& e, std::string_view line) {
     try {
         j = nlohmann::json::parse(line);
     } catch (const nlohmann::json::exception& ex) {
-        throw LineError(std::string("invalid JSON: ") + ex.what());
+        throw LineError("invalid JSON: " + io::printable(ex.what(), 256));
+    }
+    try {
+        io::checkJsonKeysUnique(line, "");
+    } catch (const io::InputError& ex) {
+        throw LineError(ex.reason()); // `duplicate key "k"` (records are flat objects)
     }
     if (!j.is_object()) throw LineError("expected a JSON object");
     std::vector<float> rec(size_t(inStride()), 0.0f);
@@ -47,7 +54,8 @@ std::vector<float> parseLine(const Entry& e, std::string_view line) {
         if (!known) {
             std::string keys;
             for (const auto& f : e.inputs) keys += (keys.empty() ? "" : ", ") + f.key;
-            throw LineError("unknown key '" + it.key() + "' (" + e.name + " takes " + keys + ")");
+            throw LineError("unknown key '" + io::printable(it.key(), 64) + "' (" + e.name +
+                            " takes " + keys + ")");
         }
     }
     for (const auto& f : e.inputs) {

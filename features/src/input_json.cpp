@@ -389,6 +389,7 @@ void readCurve(const json& c, const std::string& el, CurveNetwork& net, const Re
 
 CurveNetwork parseCurvesJson(std::string_view text, const std::string& source) {
     const json root = parseText(text, source);
+    io::checkJsonKeysUnique(text, source);
     Reader rd(source);
     const json& curves = curvesOf(root, rd);
     CurveNetwork net;

@@ -93,13 +93,15 @@ bool keepImageUndecoded(tinygltf::Image*, const int, std::string*, std::string*,
     return true;
 }
 
+uint32_t readU32(std::string_view bytes, size_t at) {
+    uint32_t v;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return v;
+}
+
 // GLB container check (glTF 2.0 sec. 4.4) before tinygltf sees it.
 void checkGlbHeader(std::string_view bytes, const std::string& file) {
-    auto u32 = [&](size_t at) {
-        uint32_t v;
-        std::memcpy(&v, bytes.data() + at, 4);
-        return v;
-    };
+    auto u32 = [&](size_t at) { return readU32(bytes, at); };
     if (bytes.size() < 20)
         throw InputError(file, "GLB header",
                          "truncated (" + std::to_string(bytes.size()) + " bytes)");
@@ -817,6 +819,8 @@ Scene parseGltf(std::string_view bytes, const std::string& file,
     bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     if (binary) checkGlbHeader(bytes, file);
     if (bytes.empty()) throw InputError(file, "", "empty file");
+    // tinygltf keeps one of two equal keys silently.
+    io::checkJsonKeysUnique(binary ? bytes.substr(20, size_t(readU32(bytes, 12))) : bytes, file);
     tinygltf::TinyGLTF loader;
     FsContext ctx{baseDir, &limits, {}};
     tinygltf::FsCallbacks fs{&fsFileExists, &fsExpand, &fsRead, &fsWrite, &ctx};

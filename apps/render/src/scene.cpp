@@ -510,6 +510,7 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName,
                              "invalid JSON: " +
                                  (p == std::string::npos ? what : what.substr(p + 2)));
     }
+    io::checkJsonKeysUnique(jsonText, sourceName);
     Parser p;
     p.file = sourceName;
     p.baseDir = baseDir;

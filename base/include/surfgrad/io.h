@@ -7,6 +7,8 @@
 //  - sg::io::InputError for bad untrusted input: the message names the file,
 //    the element (line, key, face index, ...) and the reason;
 //  - never a crash, a hang or a silent NaN;
+//  - messages that quote input quote it through printable(): bytes a
+//    terminal would act on never reach it raw;
 //  - outputs are written to a temporary file in the destination directory
 //    and renamed over the destination only when complete; an output path
 //    that names one of the inputs is refused.
@@ -18,12 +20,22 @@
 #include <initializer_list>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace sg::io {
 
+// `text` made safe to show on a terminal, for messages that quote input:
+// bytes that are not printable ASCII or part of a well-formed UTF-8
+// sequence (control characters, DEL, stray or overlong bytes) become
+// "\xNN"; at most maxBytes bytes of `text` are kept, with "..." appended
+// when it was cut (never inside a UTF-8 sequence).
+std::string printable(std::string_view text, std::size_t maxBytes = 64);
+
 class InputError : public std::runtime_error {
 public:
-    // what() == "<file>: <element>: <reason>" (element omitted when empty).
+    // what() == "<file>: <element>: <reason>" (element omitted when empty),
+    // passed through printable() without a length limit; file(), element()
+    // and reason() are the arguments as given.
     InputError(std::string file, std::string element, std::string reason);
     const std::string& file() const { return file_; }
     const std::string& element() const { return element_; }
@@ -35,8 +47,10 @@ private:
 
 // Writes `path` atomically: `write(tmpPath)` must write the complete file to
 // tmpPath (same directory as path, so the rename is atomic); it is renamed
-// over path when `write` returns, and removed if `write` throws (the
-// exception propagates). Throws InputError if path is a directory or its
+// over path when `write` returns, and removed if `write` throws. The
+// exception propagates as an InputError about `path`: a message that names
+// the temporary file (third-party writers quote the name they were given)
+// names `path` instead. Throws InputError if path is a directory or its
 // directory does not exist.
 void writeAtomically(const std::filesystem::path& path,
                      const std::function<void(const std::filesystem::path& tmpPath)>& write);
@@ -53,5 +67,14 @@ void checkNotInput(const std::filesystem::path& output,
 // a regular file, or larger than maxBytes.
 std::string readFile(const std::filesystem::path& path, std::size_t maxBytes = std::size_t(1)
                                                                                << 30);
+
+// Refuses JSON text in which an object has the same key twice (JSON
+// parsers keep one of them silently): throws InputError(file, path, reason)
+// with the JSON Pointer (RFC 6901) of the object ("/meshes/0"; "/" for the
+// top level) and the key ("duplicate key \"name\""). Text that is not
+// well-formed JSON is left to the caller's parser (no error here). Every
+// reader of JSON input calls it (scenes, curve networks, eval records,
+// glTF).
+void checkJsonKeysUnique(std::string_view text, const std::string& file);
 
 } // namespace sg::io

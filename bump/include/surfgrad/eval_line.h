@@ -25,7 +25,7 @@ struct LineError : std::runtime_error {
 inline constexpr double kMaxInputMagnitude = 1e18;
 
 // Parses one JSON line into an input record of inStride() floats for entry
-// e. Rejects (LineError): invalid JSON, a non-object, unknown keys, missing
+// e. Rejects (LineError): invalid JSON, a non-object, unknown or repeated keys, missing
 // required keys, wrong types or array lengths, non-finite numbers or
 // numbers beyond kMaxInputMagnitude, integers outside their field's range
 // (Field::minValue..maxValue: bface_mode 0..2, count 0..4) and lines over

@@ -1,0 +1,84 @@
+// `surfgrad mesh ...` from outside, where users meet the mesh pipeline:
+// runs the built binary (tests/common/cli.h) on small files and checks the
+// message, the exit status and what was (or was not) written.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cli.h"
+#include "mesh_test_util.h"
+#include "surfgrad/mesh_io.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using sg::test::runSurfgrad;
+using sg::test::shellQuote;
+using sg::test::TempDir;
+using sg::test::writeText;
+
+std::string binaryStlWithNan() {
+    std::string b(80, '\0');
+    const uint32_t n = 1;
+    b.append(reinterpret_cast<const char*>(&n), 4);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    const float record[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, nan, 1, 0};
+    b.append(reinterpret_cast<const char*>(record), sizeof record);
+    b.append(2, '\0');
+    return b;
+}
+
+// A NaN coordinate in any format: "FILE: vertex N: non-finite coordinate",
+// exit status 1, nothing written (it used to be a dropped face or a wrong
+// reason for OFF, PLY and STL).
+TEST(MeshCli, NonFiniteCoordinatesInEveryFormat) {
+    TempDir dir;
+    writeText(dir / "a.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+    writeText(dir / "a.off", "OFF\n3 1 0\n0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n");
+    writeText(dir / "a.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nelement face 1\n"
+                             "property list uchar int vertex_indices\nend_header\n"
+                             "0 0 0\n1 0 0\nnan 1 0\n3 0 1 2\n");
+    writeText(dir / "a.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                             "vertex 1 0 0\nvertex nan 1 0\nendloop\nendfacet\nendsolid t\n");
+    writeText(dir / "b.stl", binaryStlWithNan());
+    // The vertex as each format numbers it: OBJ's v statements from 1,
+    // OFF/PLY indices and STL corners in file order from 0.
+    for (const auto& [name, vertex] : std::vector<std::pair<std::string, int>>{
+             {"a.obj", 3}, {"a.off", 2}, {"a.ply", 2}, {"a.stl", 2}, {"b.stl", 2}}) {
+        SCOPED_TRACE(name);
+        const fs::path in = dir / name;
+        std::vector<std::string> commands = {"mesh info " + shellQuote(in)};
+        if (name == "a.stl")
+            commands.push_back("mesh subdivide " + shellQuote(in) + " --level 1 -o " +
+                               shellQuote(dir / "o.obj"));
+        for (const std::string& cmd : commands) {
+            const sg::test::CommandResult r = runSurfgrad(cmd);
+            EXPECT_EQ(r.exitCode, 1) << r.err;
+            EXPECT_NE(r.err.find("surfgrad: error: " + in.string() + ": vertex " +
+                                 std::to_string(vertex) + ": non-finite coordinate"),
+                      std::string::npos)
+                << r.err;
+            EXPECT_FALSE(fs::exists(dir / "o.obj"));
+        }
+    }
+}
+
+// OBJ errors name faces and vertices with the file's own numbers (from 1):
+// catmark_nonman_edges' line 161 is "f 41/48 42/49 52/60 52/59".
+TEST(MeshCli, ObjErrorsUseTheFilesNumbers) {
+    const fs::path in = sg::test::dataPath("osd-shapes/catmark_nonman_edges.obj");
+    TempDir dir;
+    const sg::test::CommandResult r =
+        runSurfgrad("mesh subdivide " + shellQuote(in) + " --level 1 -o " + shellQuote(dir / "o.obj"));
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.err.find(in.string() + ": face 25 (line 161): uses vertex 52 twice"),
+              std::string::npos)
+        << r.err;
+}
+
+} // namespace
