@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -30,9 +31,16 @@ inline bool finite(const glm::vec2& v) {
     return std::isfinite(v.x) && std::isfinite(v.y);
 }
 
+// "(x, y, z)" in the shortest form that reads back exactly ("nan", "inf").
 inline std::string vecString(const glm::vec3& v) {
-    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) +
-           ")";
+    std::string s = "(";
+    for (int i = 0; i < 3; ++i) {
+        char buf[32];
+        auto r = std::to_chars(buf, buf + sizeof buf, v[i]);
+        s.append(buf, r.ptr);
+        s += i < 2 ? ", " : ")";
+    }
+    return s;
 }
 
 // Union-find with path halving; indices are uint32_t.
@@ -94,7 +102,9 @@ struct Topology {
     uint32_t firstBadVertex = UINT32_MAX;
     size_t firstBadVertexFans = 0;
 };
-Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets);
+// Reasons name faces as face + indexBase (1 for OBJ files, see validateImpl).
+Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
+                         uint32_t indexBase = 0);
 
 // Face index of each global corner.
 std::vector<uint32_t> cornerFaces(const std::vector<uint32_t>& offsets);
@@ -123,6 +133,9 @@ void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& o
 
 PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
                          LoadReport* report, std::vector<uint32_t>* faceLines);
+// faceLines (OBJ files: the line of each face) also switches messages to
+// the file's own numbering: vertices and faces from 1, faces with their
+// line ("face 25 (line 161): uses vertex 52 twice"); without it, 0-based.
 void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadReport* report,
                   const InputLimits& limits, bool allowNonManifold,
                   const std::vector<uint32_t>* faceLines);

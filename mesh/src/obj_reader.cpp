@@ -11,7 +11,9 @@
 // facevaryinginterpolateboundary k; creasemethod normal|chaikin;
 // smoothtriangles catmark; and our own "scheme catmark|loop|bilinear".
 // Indices in tags are 0-based; in v/vt/vn/f statements 1-based or negative
-// (relative to the end of the list so far), as OBJ defines.
+// (relative to the end of the list so far), as OBJ defines. Messages name
+// vertices and faces as the file numbers them: v statements and faces from
+// 1 (the face with its line), tag indices as written.
 //
 // Untrusted input: every count is bounded by InputLimits, every number is
 // parsed with std::from_chars (no locale, no exceptions), and every error
@@ -104,9 +106,14 @@ void ObjParser::vertex(Tokenizer& t) {
     std::string_view tok;
     for (int i = 0; i < 3; ++i) {
         if (!t.next(tok)) fail("vertex with fewer than 3 coordinates");
-        if (!parseFloat(tok, p[i])) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
+        if (!parseFloat(tok, p[i])) fail("bad number '" + io::printable(tok, 32) + "'");
     }
-    if (!detail::finite(p)) fail("non-finite vertex coordinate " + detail::vecString(p));
+    if (!detail::finite(p)) {
+        // Named as the file numbers it (v statements count from 1).
+        throw InputError(file_, "vertex " + std::to_string(mesh_.positions.size() + 1),
+                         "non-finite coordinate " + detail::vecString(p) + " (line " +
+                             std::to_string(lineNo_) + ")");
+    }
     if (mesh_.positions.size() >= limits_.maxVertices) {
         fail("more than " + std::to_string(limits_.maxVertices) + " vertices (limit)");
     }
@@ -117,9 +124,8 @@ void ObjParser::texcoord(Tokenizer& t) {
     glm::vec2 uv(0.0f);
     std::string_view tok;
     if (!t.next(tok)) fail("vt without coordinates");
-    if (!parseFloat(tok, uv.x)) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
-    if (t.next(tok) && !parseFloat(tok, uv.y))
-        fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
+    if (!parseFloat(tok, uv.x)) fail("bad number '" + io::printable(tok, 32) + "'");
+    if (t.next(tok) && !parseFloat(tok, uv.y)) fail("bad number '" + io::printable(tok, 32) + "'");
     if (!detail::finite(uv)) fail("non-finite texture coordinate");
     if (uvs_.size() >= limits_.maxCorners)
         fail("more than " + std::to_string(limits_.maxCorners) + " texture coordinates (limit)");
@@ -131,7 +137,7 @@ void ObjParser::normal(Tokenizer& t) {
     std::string_view tok;
     for (int i = 0; i < 3; ++i) {
         if (!t.next(tok)) fail("vn with fewer than 3 coordinates");
-        if (!parseFloat(tok, n[i])) fail("bad number '" + std::string(tok.substr(0, 32)) + "'");
+        if (!parseFloat(tok, n[i])) fail("bad number '" + io::printable(tok, 32) + "'");
     }
     if (!detail::finite(n)) fail("non-finite normal");
     if (normals_.size() >= limits_.maxCorners)
@@ -155,23 +161,20 @@ void ObjParser::face(Tokenizer& t) {
         for (size_t i = 0; i <= tok.size(); ++i) {
             if (i == tok.size() || tok[i] == '/') {
                 if (nParts == 3)
-                    fail("corner '" + std::string(tok.substr(0, 32)) + "' has more than 3 parts");
+                    fail("corner '" + io::printable(tok, 32) + "' has more than 3 parts");
                 parts[nParts++] = tok.substr(b, i - b);
                 b = i + 1;
             }
         }
         int64_t v = 0, vt = -1, vn = -1;
-        if (!parseInt(parts[0], v))
-            fail("bad vertex index '" + std::string(tok.substr(0, 32)) + "'");
+        if (!parseInt(parts[0], v)) fail("bad vertex index '" + io::printable(tok, 32) + "'");
         v = resolve(v, mesh_.positions.size(), "vertex");
         if (nParts > 1 && !parts[1].empty()) {
-            if (!parseInt(parts[1], vt))
-                fail("bad texture index '" + std::string(tok.substr(0, 32)) + "'");
+            if (!parseInt(parts[1], vt)) fail("bad texture index '" + io::printable(tok, 32) + "'");
             vt = resolve(vt, uvs_.size(), "texture coordinate");
         }
         if (nParts > 2 && !parts[2].empty()) {
-            if (!parseInt(parts[2], vn))
-                fail("bad normal index '" + std::string(tok.substr(0, 32)) + "'");
+            if (!parseInt(parts[2], vn)) fail("bad normal index '" + io::printable(tok, 32) + "'");
             vn = resolve(vn, normals_.size(), "normal");
         }
         cornerV_.push_back(v);
@@ -191,7 +194,7 @@ void ObjParser::tag(Tokenizer& t) {
     std::string_view name, counts, tok;
     if (!t.next(name)) fail("'t' without a tag name");
     if (!t.next(counts))
-        fail("tag '" + std::string(name.substr(0, 32)) +
+        fail("tag '" + io::printable(name, 32) +
              "' without counts (expected nInts/nFloats/nStrings)");
     int64_t n[3] = {0, 0, 0};
     {
@@ -200,7 +203,7 @@ void ObjParser::tag(Tokenizer& t) {
         for (size_t i = 0; i <= counts.size(); ++i) {
             if (i == counts.size() || counts[i] == '/') {
                 if (k == 3 || !parseInt(counts.substr(b, i - b), n[k]) || n[k] < 0) {
-                    fail("tag counts '" + std::string(counts.substr(0, 32)) +
+                    fail("tag counts '" + io::printable(counts, 32) +
                          "' are not nInts/nFloats/nStrings");
                 }
                 ++k;
@@ -208,8 +211,7 @@ void ObjParser::tag(Tokenizer& t) {
             }
         }
         if (k != 3)
-            fail("tag counts '" + std::string(counts.substr(0, 32)) +
-                 "' are not nInts/nFloats/nStrings");
+            fail("tag counts '" + io::printable(counts, 32) + "' are not nInts/nFloats/nStrings");
     }
     // Every value is one token on this line, so the counts are bounded by
     // the line length; check before reserving anything.
@@ -300,7 +302,7 @@ void ObjParser::tag(Tokenizer& t) {
             fail("scheme '" + s.substr(0, 32) + "' (expected catmark, loop or bilinear)");
         mesh_.explicitTags |= kTagScheme;
     } else {
-        std::string tagName(name.substr(0, 40));
+        std::string tagName = io::printable(name, 40);
         if (std::find(unknownTags_.begin(), unknownTags_.end(), tagName) == unknownTags_.end() &&
             unknownTags_.size() < 16) {
             unknownTags_.push_back(tagName);
@@ -331,7 +333,7 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
         else if (kw == "t")
             tag(t);
         else {
-            if (ignored_++ == 0) firstIgnored_ = std::string(kw.substr(0, 16));
+            if (ignored_++ == 0) firstIgnored_ = io::printable(kw, 16);
         }
     }
     // Resolve corners now that every list is complete.

@@ -14,6 +14,9 @@
 #include <OpenMesh/Core/System/omstream.hh>
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <cctype>
 #include <iterator>
 #include <string_view>
@@ -30,6 +33,30 @@ using io::InputError;
 namespace OM = OpenMesh;
 
 namespace {
+
+// A number token as OpenMesh's readers take it: they read every value with
+// `stream >> float`, which fails on "nan" and "inf" and on values beyond
+// float range (and then reads zeros for the rest of the item), so those
+// must be refused here with the right reason.
+enum class NumberToken { Finite, NotANumber, NonFinite };
+NumberToken parseNumberToken(std::string_view t) {
+    double x = 0.0;
+    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
+    if (t.empty() || p != t.data() + t.size() ||
+        (ec != std::errc() && ec != std::errc::result_out_of_range))
+        return NumberToken::NotANumber;
+    if (ec == std::errc::result_out_of_range) {
+        // Overflow or underflow: strtod tells which (underflow is a zero).
+        x = std::strtod(std::string(t).c_str(), nullptr);
+    }
+    return std::isfinite(x) && std::fabs(x) <= double(std::numeric_limits<float>::max())
+               ? NumberToken::Finite
+               : NumberToken::NonFinite;
+}
+
+std::string nonFiniteCoordinate(std::string_view token) {
+    return "non-finite coordinate '" + io::printable(token, 32) + "'";
+}
 
 class RecordingImporter final : public OM::IO::BaseImporter {
 public:
@@ -157,6 +184,7 @@ int plyTypeBytes(const std::string& t) {
 struct PlyProperty {
     bool list = false;
     std::string countType, itemType; // itemType: the scalar type of non-lists
+    std::string name;
 };
 struct PlyElement {
     std::string name;
@@ -244,15 +272,15 @@ void checkPlyHeader(std::istream& in, const std::string& file, uint64_t fileSize
                 fail(lineNo, "a list count must have an integer type");
             }
             ++props;
-            elements.back().props.push_back(list ? PlyProperty{true, rest[1], rest[2]}
-                                                 : PlyProperty{false, "", rest[0]});
+            elements.back().props.push_back(list ? PlyProperty{true, rest[1], rest[2], rest[3]}
+                                                 : PlyProperty{false, "", rest[0], rest[1]});
         } else if (kw == "end_header") {
             if (!format) fail(lineNo, "no format line");
             checkCount();
             checkPlyBody(in, file, fileSize, formatName, elements, limits);
             return;
         } else {
-            fail(lineNo, "unknown header keyword '" + kw.substr(0, 32) + "'");
+            fail(lineNo, "unknown header keyword '" + io::printable(kw, 32) + "'");
         }
     }
     throw InputError(file, "header",
@@ -274,7 +302,16 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
     std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     (void)fileSize; // data.size() is what is left of it
     const uint64_t maxList = limits.maxFaceDegree;
-    auto where = [&](const PlyElement& e, uint64_t i) { return e.name + " " + std::to_string(i); };
+    auto where = [&](const PlyElement& e, uint64_t i) {
+        return io::printable(e.name, 32) + " " + std::to_string(i);
+    };
+    // A vertex's x, y, z are its coordinates; anything else is named.
+    auto nonFiniteValue = [](const PlyElement& e, const PlyProperty& pr, std::string_view value) {
+        if (e.name == "vertex" && (pr.name == "x" || pr.name == "y" || pr.name == "z"))
+            return "non-finite coordinate " + pr.name + " = '" + io::printable(value, 32) + "'";
+        return "non-finite value '" + io::printable(value, 32) + "' of property '" +
+               io::printable(pr.name, 32) + "'";
+    };
     if (format == "ascii") {
         size_t at = 0;
         for (const PlyElement& e : elements) {
@@ -299,6 +336,7 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
                     if (p > q) tok.push_back(lineText.substr(q, p - q));
                 }
                 size_t k = 0;
+                const PlyProperty* property = nullptr;
                 auto number = [&](bool integerOnly, uint64_t* value) {
                     if (k >= tok.size())
                         throw InputError(file, where(e, i), "too few values on its line");
@@ -309,23 +347,25 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
                         if (ec != std::errc() || p != t.data() + t.size() || v < 0 ||
                             uint64_t(v) > maxList) {
                             throw InputError(file, where(e, i),
-                                             "list size '" + std::string(t.substr(0, 32)) +
+                                             "list size '" + io::printable(t, 32) +
                                                  "' is not an integer in [0, " +
                                                  std::to_string(maxList) + "]");
                         }
                         *value = uint64_t(v);
                         return;
                     }
-                    double x = 0.0;
-                    auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-                    if (p != t.data() + t.size() ||
-                        (ec != std::errc() && ec != std::errc::result_out_of_range)) {
+                    switch (parseNumberToken(t)) {
+                    case NumberToken::Finite:
+                        return;
+                    case NumberToken::NotANumber:
                         throw InputError(file, where(e, i),
-                                         "expected a number, found '" +
-                                             std::string(t.substr(0, 32)) + "'");
+                                         "expected a number, found '" + io::printable(t, 32) + "'");
+                    case NumberToken::NonFinite:
+                        throw InputError(file, where(e, i), nonFiniteValue(e, *property, t));
                     }
                 };
                 for (const PlyProperty& pr : e.props) {
+                    property = &pr;
                     uint64_t n = 1;
                     if (pr.list) number(true, &n);
                     for (uint64_t j = 0; j < n; ++j) number(false, nullptr);
@@ -365,9 +405,35 @@ void checkPlyBody(std::istream& in, const std::string& file, uint64_t fileSize,
                     }
                     n = raw;
                 }
-                const uint64_t bytes = n * uint64_t(plyTypeBytes(pr.itemType));
+                const int itemBytes = plyTypeBytes(pr.itemType);
+                const uint64_t bytes = n * uint64_t(itemBytes);
                 if (data.size() - at < bytes)
                     throw InputError(file, where(e, i), "the file ends inside the item");
+                const bool real = pr.itemType == "float" || pr.itemType == "float32" ||
+                                  pr.itemType == "double" || pr.itemType == "float64";
+                for (uint64_t j = 0; real && j < n; ++j) {
+                    unsigned char raw[8];
+                    for (int b = 0; b < itemBytes; ++b)
+                        raw[b] = static_cast<unsigned char>(
+                            data[at + size_t(j) * size_t(itemBytes) +
+                                 size_t(bigEndian ? itemBytes - 1 - b : b)]);
+                    double x = 0.0;
+                    if (itemBytes == 4) {
+                        float f;
+                        std::memcpy(&f, raw, 4);
+                        x = f;
+                    } else {
+                        std::memcpy(&x, raw, 8);
+                    }
+                    if (!std::isfinite(x) ||
+                        std::fabs(x) > double(std::numeric_limits<float>::max())) {
+                        char text[32];
+                        auto r = std::to_chars(text, text + sizeof text, x);
+                        throw InputError(
+                            file, where(e, i),
+                            nonFiniteValue(e, pr, std::string_view(text, size_t(r.ptr - text))));
+                    }
+                }
                 at += size_t(bytes);
             }
         }
@@ -413,7 +479,7 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
         uint64_t v = 0;
         auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
         if (t.empty() || ec != std::errc() || p != t.data() + t.size() || v > maxValue) {
-            fail(element, "expected " + what + ", found '" + std::string(t.substr(0, 32)) + "'");
+            fail(element, "expected " + what + ", found '" + io::printable(t, 32) + "'");
         }
         return v;
     };
@@ -433,8 +499,7 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     if (prefix == "4" || prefix == "n" || prefix == "4n")
         fail("header",
              "OFF of dimension other than 3 (" + std::string(magic) + ") is not supported");
-    if (!prefix.empty())
-        fail("header", "unknown OFF keyword '" + std::string(magic.substr(0, 32)) + "'");
+    if (!prefix.empty()) fail("header", "unknown OFF keyword '" + io::printable(magic, 32) + "'");
     {
         // The rest of the keyword line: nothing, or BINARY.
         const size_t eol = text.find('\n', at);
@@ -444,8 +509,8 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
         if (rest >> word) {
             if (word == "BINARY")
                 fail("header", "binary OFF is not supported (use ASCII OFF or PLY)");
-            fail("header",
-                 "expected the OFF keyword alone on line 1, found '" + word.substr(0, 32) + "'");
+            fail("header", "expected the OFF keyword alone on line 1, found '" +
+                               io::printable(word, 32) + "'");
         }
         skipLine();
     }
@@ -469,12 +534,19 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
     for (uint64_t v = 0; v < nV; ++v) {
         for (int k = 0; k < coords; ++k) {
             const std::string_view t = token();
-            double x = 0.0;
-            auto [p, ec] = std::from_chars(t.data(), t.data() + t.size(), x);
-            if (t.empty() || p != t.data() + t.size() ||
-                (ec != std::errc() && ec != std::errc::result_out_of_range)) {
-                fail("vertex " + std::to_string(v), lineName() + ": expected a number, found '" +
-                                                        std::string(t.substr(0, 32)) + "'");
+            switch (parseNumberToken(t)) {
+            case NumberToken::Finite:
+                break;
+            case NumberToken::NotANumber:
+                fail("vertex " + std::to_string(v),
+                     lineName() + ": expected a number, found '" + io::printable(t, 32) + "'");
+                break;
+            case NumberToken::NonFinite:
+                fail("vertex " + std::to_string(v),
+                     (k < 3 ? nonFiniteCoordinate(t)
+                            : "non-finite normal component '" + io::printable(t, 32) + "'") +
+                         " (" + lineName() + ")");
+                break;
             }
         }
         skipLine();
@@ -498,43 +570,121 @@ void checkOff(const std::filesystem::path& path, const std::string& file, uint64
             auto [p, ec] = std::from_chars(idx.data(), idx.data() + idx.size(), value);
             if (idx.empty() || ec != std::errc() || p != idx.data() + idx.size()) {
                 fail(element, lineName() + ": expected " + std::to_string(k) +
-                                  " vertex indices, found '" + std::string(idx.substr(0, 32)) +
-                                  "'");
+                                  " vertex indices, found '" + io::printable(idx, 32) + "'");
             }
         }
     }
 }
 
+// STL, checked the way OpenMesh's reader takes it, before that reader sees
+// the file. Binary when the size is exactly 84 + 50 n for the count n at
+// byte 80 (OpenMesh's own test), else ASCII, where a line containing
+// "outer" (or "OUTER") starts a facet and each of the next three lines is
+// a vertex: a keyword and three numbers. That reader welds equal corners
+// through a std::map and drops the facets whose corners then coincide, so
+// a NaN (which it reads as NaN in binary and as 0 in ASCII) turns into a
+// silently dropped face; every coordinate is checked here instead.
+// Vertices are numbered in file order (3 per facet, from 0); the error
+// names that number and the facet. Returns the number of facets.
+uint64_t checkStl(const std::filesystem::path& path, const std::string& file, uint64_t fileSize) {
+    std::ifstream in(path, std::ios::binary);
+    std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    auto vertexName = [](uint64_t facet, int corner) {
+        return "vertex " + std::to_string(3 * facet + uint64_t(corner));
+    };
+    uint32_t n = 0;
+    if (data.size() >= 84) std::memcpy(&n, data.data() + 80, 4);
+    if (data.size() >= 84 && 84 + 50 * uint64_t(n) == fileSize) {
+        for (uint64_t f = 0; f < n; ++f) {
+            for (int corner = 0; corner < 3; ++corner) {
+                for (int k = 0; k < 3; ++k) {
+                    float x = 0.0f;
+                    std::memcpy(&x, data.data() + 84 + 50 * f + 12 * (1 + corner) + 4 * k, 4);
+                    if (!std::isfinite(x)) {
+                        char text[32];
+                        auto r = std::to_chars(text, text + sizeof text, x);
+                        throw InputError(
+                            file, vertexName(f, corner),
+                            nonFiniteCoordinate(std::string_view(text, size_t(r.ptr - text))) +
+                                " (facet " + std::to_string(f) + ")");
+                    }
+                }
+            }
+        }
+        return n;
+    }
+    if (data.size() >= 84 && std::string_view(data.data(), 5) != "solid") {
+        // Neither a binary file of the declared size nor ASCII.
+        throw InputError(file, "header",
+                         "declares " + std::to_string(n) + " triangles (" +
+                             std::to_string(84 + 50 * uint64_t(n)) + " bytes) but the file has " +
+                             std::to_string(fileSize) + " bytes");
+    }
+    uint64_t facets = 0;
+    size_t at = 0, lineNo = 0;
+    auto nextLine = [&](std::string_view& line) {
+        if (at >= data.size()) return false;
+        size_t eol = data.find('\n', at);
+        if (eol == std::string::npos) eol = data.size();
+        line = std::string_view(data).substr(at, eol - at);
+        at = eol + 1;
+        ++lineNo;
+        return true;
+    };
+    std::string_view line;
+    while (nextLine(line)) {
+        if (line.find("outer") == std::string_view::npos &&
+            line.find("OUTER") == std::string_view::npos)
+            continue;
+        for (int corner = 0; corner < 3; ++corner) {
+            const std::string element = vertexName(facets, corner);
+            if (!nextLine(line))
+                throw InputError(file, element,
+                                 "the file ends inside facet " + std::to_string(facets));
+            std::vector<std::string_view> tok;
+            for (size_t p = 0; p < line.size();) {
+                while (p < line.size() && std::isspace(static_cast<unsigned char>(line[p]))) ++p;
+                const size_t q = p;
+                while (p < line.size() && !std::isspace(static_cast<unsigned char>(line[p]))) ++p;
+                if (p > q) tok.push_back(line.substr(q, p - q));
+            }
+            const std::string where =
+                " (facet " + std::to_string(facets) + ", line " + std::to_string(lineNo) + ")";
+            if (tok.size() < 4) throw InputError(file, element, "expected 'vertex x y z'" + where);
+            for (int k = 1; k <= 3; ++k) {
+                switch (parseNumberToken(tok[size_t(k)])) {
+                case NumberToken::Finite:
+                    break;
+                case NumberToken::NotANumber:
+                    throw InputError(file, element,
+                                     "expected a number, found '" +
+                                         io::printable(tok[size_t(k)], 32) + "'" + where);
+                case NumberToken::NonFinite:
+                    throw InputError(file, element, nonFiniteCoordinate(tok[size_t(k)]) + where);
+                }
+            }
+        }
+        ++facets;
+    }
+    return facets;
+}
+
 // Header counts against the file size: every vertex and face takes at
 // least a few bytes (3 coordinates of >= 2 characters in ASCII, 4 bytes in
 // binary; a face at least 4 numbers), so a count beyond that is a lie.
-void checkHeaderCounts(const std::filesystem::path& path, const std::string& ext, uint64_t fileSize,
-                       const InputLimits& limits) {
-    std::ifstream in(path, std::ios::binary);
+// Returns the number of faces the file declares (STL: facets), or 0 when
+// the format does not say.
+uint64_t checkHeaderCounts(const std::filesystem::path& path, const std::string& ext,
+                           uint64_t fileSize, const InputLimits& limits) {
     std::string file = path.string();
-    auto tooMany = [&](const std::string& what, uint64_t n) {
-        throw InputError(file, "header",
-                         "declares " + std::to_string(n) + " " + what + " but the file has only " +
-                             std::to_string(fileSize) + " bytes");
-    };
-    if (ext == ".stl") {
-        char header[84];
-        in.read(header, 84);
-        if (in.gcount() < 84) return; // short: ASCII or broken, OpenMesh decides
-        if (std::string_view(header, 5) == "solid")
-            return; // ASCII (binary files may start so too; size check below)
-        uint32_t n = 0;
-        std::memcpy(&n, header + 80, 4);
-        if (84 + 50 * uint64_t(n) > fileSize) tooMany("triangles", n);
-        return;
-    }
-    std::string line;
+    if (ext == ".stl") return checkStl(path, file, fileSize);
     if (ext == ".off") {
-        in.close();
         checkOff(path, file, fileSize, limits);
-        return;
+        return 0;
     }
+    std::ifstream in(path, std::ios::binary);
     if (ext == ".ply") checkPlyHeader(in, file, fileSize, limits);
+    return 0;
 }
 
 } // namespace
@@ -553,7 +703,7 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
                              std::to_string(limits.maxFileBytes));
     }
     std::string ext = meshFormat(path);
-    checkHeaderCounts(path, ext, size, limits);
+    const uint64_t declaredFaces = checkHeaderCounts(path, ext, size, limits);
 
     RecordingImporter importer(limits);
     OM::IO::Options opt = OM::IO::Options::VertexTexCoord | OM::IO::Options::VertexNormal;
@@ -597,6 +747,10 @@ PolygonMesh readWithOpenMesh(const std::filesystem::path& path, const InputLimit
         } else if (report) {
             report->notes.push_back("normals on some vertices only: ignored (recomputed)");
         }
+    }
+    if (ext == ".stl" && declaredFaces > mesh.faceSizes.size() && report) {
+        report->notes.push_back(std::to_string(declaredFaces - mesh.faceSizes.size()) +
+                                " degenerate facets (two equal corners) dropped by the STL reader");
     }
     if (importer.ignoredFaceTexcoords && report) {
         report->notes.push_back(

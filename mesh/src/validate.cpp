@@ -46,7 +46,9 @@ std::vector<FaceEdge> sortedFaceEdges(const PolygonMesh& mesh,
     return edges;
 }
 
-Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets) {
+Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
+                         uint32_t indexBase) {
+    auto face = [&](uint32_t f) { return std::to_string(uint64_t(f) + indexBase); };
     Topology topo;
     const size_t nCorners = mesh.faceVertices.size();
     std::vector<FaceEdge> edges = sortedFaceEdges(mesh, offsets);
@@ -77,8 +79,7 @@ Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& o
         } else if (n == 2) {
             const FaceEdge& b = edges[i + 1];
             if (a.forward == b.forward) {
-                badEdge("faces " + std::to_string(faceOf[a.corner]) + " and " +
-                        std::to_string(faceOf[b.corner]) +
+                badEdge("faces " + face(faceOf[a.corner]) + " and " + face(faceOf[b.corner]) +
                         " traverse it in the same direction (inconsistent orientation or a Moebius "
                         "strip)");
             } else {
@@ -89,7 +90,7 @@ Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& o
         } else {
             std::string faces;
             for (size_t k = i; k < j && k < i + 4; ++k) {
-                faces += (faces.empty() ? "" : ", ") + std::to_string(faceOf[edges[k].corner]);
+                faces += (faces.empty() ? "" : ", ") + face(faceOf[edges[k].corner]);
             }
             if (n > 4) faces += ", ...";
             badEdge("shared by " + std::to_string(n) + " faces (" + faces + "); non-manifold edge");
@@ -120,21 +121,32 @@ Topology analyzeTopology(const PolygonMesh& mesh, const std::vector<uint32_t>& o
 
 namespace {
 
+// Vertex and face numbers in messages: 0-based, or for OBJ files (with
+// faceLines) as the file numbers them, from 1 (see validateImpl).
+uint32_t indexBase(const std::vector<uint32_t>* faceLines) {
+    return faceLines ? 1u : 0u;
+}
+
+std::string number(uint32_t i, const std::vector<uint32_t>* faceLines) {
+    return std::to_string(uint64_t(i) + indexBase(faceLines));
+}
+
 std::string faceName(uint32_t f, const std::vector<uint32_t>* faceLines) {
-    std::string s = "face " + std::to_string(f);
+    std::string s = "face " + number(f, faceLines);
     if (faceLines && f < faceLines->size()) s += " (line " + std::to_string((*faceLines)[f]) + ")";
     return s;
 }
 
 // Why face f is degenerate, or empty when it is not.
 std::string degenerateReason(const PolygonMesh& mesh, uint32_t begin, uint32_t count,
-                             std::vector<uint32_t>& scratch) {
+                             std::vector<uint32_t>& scratch,
+                             const std::vector<uint32_t>* faceLines) {
     if (count < 3) return "has " + std::to_string(count) + " corners (a face needs 3)";
     scratch.assign(mesh.faceVertices.begin() + begin, mesh.faceVertices.begin() + begin + count);
     std::sort(scratch.begin(), scratch.end());
     auto dup = std::adjacent_find(scratch.begin(), scratch.end());
     if (dup != scratch.end())
-        return "uses vertex " + std::to_string(*dup) + " twice (degenerate face)";
+        return "uses vertex " + number(*dup, faceLines) + " twice (degenerate face)";
     // Newell normal in double: the cross products of float inputs are exact,
     // so zero means the corners are exactly collinear or coincident.
     double nx = 0, ny = 0, nz = 0;
@@ -187,7 +199,7 @@ void checkFaces(const PolygonMesh& mesh, const std::string& file, const InputLim
     }
     for (size_t v = 0; v < nV; ++v) {
         if (!detail::finite(mesh.positions[v])) {
-            throw InputError(file, "vertex " + std::to_string(v),
+            throw InputError(file, "vertex " + number(uint32_t(v), faceLines),
                              "non-finite coordinate " + detail::vecString(mesh.positions[v]));
         }
     }
@@ -448,7 +460,8 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         std::vector<uint32_t> scratch;
         size_t dropped = 0;
         for (uint32_t f = 0; f < mesh.faceSizes.size(); ++f) {
-            std::string why = degenerateReason(mesh, offsets[f], mesh.faceSizes[f], scratch);
+            std::string why =
+                degenerateReason(mesh, offsets[f], mesh.faceSizes[f], scratch, faceLines);
             if (why.empty()) continue;
             if (!repair)
                 throw InputError(file, faceName(f, faceLines), why + " (--repair drops it)");
@@ -469,11 +482,11 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
     }
     std::vector<uint32_t> offsets = faceOffsets(mesh);
     if (!allowNonManifold) {
-        detail::Topology topo = detail::analyzeTopology(mesh, offsets);
+        detail::Topology topo = detail::analyzeTopology(mesh, offsets, indexBase(faceLines));
         if (topo.nonManifoldEdges) {
             throw InputError(file,
-                             "edge (" + std::to_string(topo.firstBadEdgeV0) + ", " +
-                                 std::to_string(topo.firstBadEdgeV1) + ")",
+                             "edge (" + number(topo.firstBadEdgeV0, faceLines) + ", " +
+                                 number(topo.firstBadEdgeV1, faceLines) + ")",
                              topo.firstBadEdgeReason +
                                  (topo.nonManifoldEdges > 1
                                       ? "; " + std::to_string(topo.nonManifoldEdges) + " such edges"
@@ -481,7 +494,7 @@ void validateImpl(PolygonMesh& mesh, const std::string& file, bool repair, LoadR
         }
         if (topo.nonManifoldVertices) {
             throw InputError(
-                file, "vertex " + std::to_string(topo.firstBadVertex),
+                file, "vertex " + number(topo.firstBadVertex, faceLines),
                 "the faces around it form " + std::to_string(topo.firstBadVertexFans) +
                     " separate fans (non-manifold vertex)" +
                     (topo.nonManifoldVertices > 1

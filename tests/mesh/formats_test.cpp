@@ -2,7 +2,10 @@
 // counts checked), the writers (round trips), and the OpenMesh view.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cstring>
+#include <limits>
 #include <fstream>
 
 #include "hardcase.h"
@@ -30,6 +33,134 @@ TEST(Formats, OffThroughOpenMesh) {
     EXPECT_EQ(m.faceCount(), 6u);
     EXPECT_EQ(m.positions[6], glm::vec3(1, 1, 1));
     EXPECT_EQ(describe(m).eulerCharacteristic, 2);
+}
+
+// Binary STL of `triangles` (3 corners each), little-endian.
+std::string binaryStl(const std::vector<std::array<glm::vec3, 3>>& triangles) {
+    std::string b(80, '\0');
+    const uint32_t n = uint32_t(triangles.size());
+    b.append(reinterpret_cast<const char*>(&n), 4);
+    for (const auto& t : triangles) {
+        const float normal[3] = {0, 0, 1};
+        b.append(reinterpret_cast<const char*>(normal), 12);
+        for (const glm::vec3& v : t) b.append(reinterpret_cast<const char*>(&v), 12);
+        b.append(2, '\0');
+    }
+    return b;
+}
+
+// Binary PLY of a square (4 vertices, 2 triangles) whose vertex 2 has x = `x2`.
+std::string binaryPly(bool bigEndian, double x2, bool doubles) {
+    std::string h = std::string("ply\nformat ") +
+                    (bigEndian ? "binary_big_endian" : "binary_little_endian") +
+                    " 1.0\nelement vertex 4\n";
+    for (const char* c : {"x", "y", "z"})
+        h += std::string("property ") + (doubles ? "double " : "float ") + c + "\n";
+    h += "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
+    auto put = [&](const void* p, size_t n) {
+        std::string bytes(static_cast<const char*>(p), n);
+        if (bigEndian) std::reverse(bytes.begin(), bytes.end());
+        h += bytes;
+    };
+    const double v[4][3] = {{0, 0, 0}, {1, 0, 0}, {x2, 1, 0}, {0, 1, 0}};
+    for (const auto& p : v) {
+        for (double c : p) {
+            if (doubles) {
+                put(&c, 8);
+            } else {
+                const float f = float(c);
+                put(&f, 4);
+            }
+        }
+    }
+    for (const auto& f : {std::array<int32_t, 3>{0, 1, 2}, std::array<int32_t, 3>{0, 2, 3}}) {
+        h += char(3);
+        for (int32_t i : f) put(&i, 4);
+    }
+    return h;
+}
+
+// NaN, infinite or out-of-float-range coordinates are refused in every
+// format as "vertex N: non-finite coordinate", N the file's own vertex
+// number. OpenMesh's readers take them as zeros (ASCII: `stream >> float`
+// fails on "nan") or weld them away (STL), so they used to surface as a
+// degenerate face, a face of 0 corners, a bad index or a silently dropped
+// facet.
+TEST(Formats, NonFiniteCoordinatesAreNamedInEveryFormat) {
+    TempDir dir;
+    const double nan = std::numeric_limits<double>::quiet_NaN(),
+                 inf = std::numeric_limits<double>::infinity();
+    for (const char* value : {"nan", "inf", "-inf", "1e39", "-NaN", "infinity"}) {
+        SCOPED_TRACE(value);
+        const std::string v = value;
+        writeText(dir / "a.off",
+                  "OFF\n4 2 0\n0 0 0\n1 0 0\n" + v + " 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+        expectInputError([&] { loadPolygonMesh(dir / "a.off"); }, "vertex 2",
+                         "non-finite coordinate '" + v + "' (line 5)");
+        writeText(dir / "a.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\n"
+                                 "property float y\nproperty float z\nelement face 2\n"
+                                 "property list uchar int vertex_indices\nend_header\n"
+                                 "0 0 0\n1 0 0\n1 " +
+                                     v + " 0\n0 1 0\n3 0 1 2\n3 0 2 3\n");
+        expectInputError([&] { loadPolygonMesh(dir / "a.ply"); }, "vertex 2",
+                         "non-finite coordinate y = '" + v + "'");
+        writeText(dir / "a.stl", "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+                                 "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\n"
+                                 "facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n"
+                                 "   vertex 0 1 " +
+                                     v +
+                                     "\n   vertex -1 0 0\n  endloop\n"
+                                     "endfacet\nendsolid t\n");
+        expectInputError([&] { loadPolygonMesh(dir / "a.stl"); }, "vertex 4",
+                         "non-finite coordinate '" + v + "' (facet 1, line 12)");
+    }
+    // A normal of an NOFF file, and any other PLY property.
+    writeText(dir / "n.off", "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 nan\n0 1 0 0 0 1\n3 0 1 2\n");
+    expectInputError([&] { loadPolygonMesh(dir / "n.off"); }, "vertex 1",
+                     "non-finite normal component 'nan'");
+    writeText(dir / "n.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                             "property float y\nproperty float z\nproperty float nx\n"
+                             "element face 1\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0 0\n1 0 0 inf\n0 1 0 0\n3 0 1 2\n");
+    expectInputError([&] { loadPolygonMesh(dir / "n.ply"); }, "vertex 1",
+                     "non-finite value 'inf' of property 'nx'");
+    // Binary PLY, both byte orders, float and double (a double beyond float
+    // range would become inf).
+    for (bool big : {false, true}) {
+        for (bool doubles : {false, true}) {
+            SCOPED_TRACE(std::to_string(big) + std::to_string(doubles));
+            writeText(dir / "b.ply", binaryPly(big, nan, doubles));
+            expectInputError([&] { loadPolygonMesh(dir / "b.ply"); }, "vertex 2",
+                             "non-finite coordinate x = 'nan'");
+            writeText(dir / "b.ply", binaryPly(big, doubles ? 1e300 : -inf, doubles));
+            expectInputError([&] { loadPolygonMesh(dir / "b.ply"); }, "vertex 2",
+                             doubles ? "x = '1e+300'" : "x = '-inf'");
+            writeText(dir / "b.ply", binaryPly(big, 1.0, doubles));
+            EXPECT_EQ(loadPolygonMesh(dir / "b.ply").positions[2], glm::vec3(1, 1, 0));
+        }
+    }
+    // Binary STL: vertices numbered 3 per facet in file order.
+    const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(-1, 0, 0);
+    writeText(dir / "b.stl", binaryStl({{a, b, c}, {a, c, glm::vec3(float(nan), 0, 0)}}));
+    expectInputError([&] { loadPolygonMesh(dir / "b.stl"); }, "vertex 5",
+                     "non-finite coordinate 'nan' (facet 1)");
+    writeText(dir / "b.stl", binaryStl({{a, b, c}, {a, c, d}}));
+    EXPECT_EQ(loadPolygonMesh(dir / "b.stl").faceCount(), 2u);
+    // Underflow is a zero, not an error.
+    writeText(dir / "u.off", "OFF\n3 1 0\n0 0 1e-999\n1 0 0\n0 1 0\n3 0 1 2\n");
+    EXPECT_EQ(loadPolygonMesh(dir / "u.off").positions[0], glm::vec3(0.0f));
+}
+
+// OpenMesh's STL reader drops facets whose corners coincide without a
+// word; the loader counts and notes them.
+TEST(Formats, StlFacetsDroppedByOpenMeshAreNoted) {
+    TempDir dir;
+    const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    writeText(dir / "d.stl", binaryStl({{a, b, c}, {a, b, b}}));
+    LoadReport report;
+    EXPECT_EQ(loadPolygonMesh(dir / "d.stl", {}, &report).faceCount(), 1u);
+    ASSERT_EQ(report.notes.size(), 1u);
+    EXPECT_EQ(report.notes[0], "1 degenerate facets (two equal corners) dropped by the STL reader");
 }
 
 TEST(Formats, NonManifoldOffIsNamedNotDropped) {

@@ -73,8 +73,8 @@ TEST(MeshCli, NonFiniteCoordinatesInEveryFormat) {
 TEST(MeshCli, ObjErrorsUseTheFilesNumbers) {
     const fs::path in = sg::test::dataPath("osd-shapes/catmark_nonman_edges.obj");
     TempDir dir;
-    const sg::test::CommandResult r =
-        runSurfgrad("mesh subdivide " + shellQuote(in) + " --level 1 -o " + shellQuote(dir / "o.obj"));
+    const sg::test::CommandResult r = runSurfgrad("mesh subdivide " + shellQuote(in) +
+                                                  " --level 1 -o " + shellQuote(dir / "o.obj"));
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.err.find(in.string() + ": face 25 (line 161): uses vertex 52 twice"),
               std::string::npos)

@@ -78,7 +78,8 @@ TEST(Obj, ReadsOpenSubdivTags) {
 TEST(Obj, ErrorsNameTheLine) {
     expectInputError([] { parseObj("v 0 0 0\nv 1 0\n", "a.obj"); }, "line 2",
                      "fewer than 3 coordinates");
-    expectInputError([] { parseObj("v 0 0 nan\n", "a.obj"); }, "line 1", "non-finite");
+    expectInputError([] { parseObj("v 0 0 0\nv 0 0 nan\n", "a.obj"); }, "vertex 2",
+                     "non-finite coordinate (0, 0, nan) (line 2)");
     expectInputError([] { parseObj("v 0 0 1e39\n", "a.obj"); }, "line 1", "bad number");
     expectInputError([] { parseObj("v 0 0 0\nf 1 2 0\n", "a.obj"); }, "line 2", "index 0");
     expectInputError([] { parseObj("v 0 0 0\nf 1 2 -5\n", "a.obj"); }, "line 2",
@@ -129,6 +130,26 @@ TEST(Obj, MixedUvCornersGetAFallbackValue) {
     EXPECT_TRUE(noted);
 }
 
+// Non-manifold edges and vertices of an OBJ file are named with the
+// file's own vertex and face numbers (from 1), not the 0-based indices of
+// the loaded mesh.
+TEST(Obj, TopologyErrorsUseTheFilesNumbers) {
+    sg::test::TempDir dir;
+    // Three triangles on the edge between v 1 and v 2.
+    sg::test::writeText(dir / "fin.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\n"
+                                         "f 1 2 3\nf 2 1 4\nf 1 2 5\n");
+    expectInputError([&] { loadPolygonMesh(dir / "fin.obj"); }, "edge (1, 2)",
+                     "shared by 3 faces (1, 2, 3)");
+    // Two triangles touching at v 1 only.
+    sg::test::writeText(dir / "bowtie.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv -1 0 0\nv -1 -1 0\n"
+                                            "f 1 2 3\nf 1 4 5\n");
+    expectInputError([&] { loadPolygonMesh(dir / "bowtie.obj"); }, "vertex 1", "2 separate fans");
+    // Two faces traversing v 2 -> v 3 the same way.
+    sg::test::writeText(dir / "flip.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n");
+    expectInputError([&] { loadPolygonMesh(dir / "flip.obj"); }, "edge (2, 3)",
+                     "faces 1 and 2 traverse it in the same direction");
+}
+
 TEST(Obj, LoadNamesTheFileAndTheFaceLine) {
     sg::test::TempDir dir;
     sg::test::writeText(dir / "bad.obj",
@@ -139,9 +160,10 @@ TEST(Obj, LoadNamesTheFileAndTheFaceLine) {
         FAIL() << "expected InputError";
     } catch (const sg::io::InputError& e) {
         EXPECT_EQ(e.file(), file);
-        EXPECT_EQ(e.element(), "face 1 (line 6)");
-        EXPECT_NE(e.reason().find("uses vertex 0 twice"),
-                  std::string::npos); // indices in messages are 0-based
+        // Named as the file numbers them: the second face, and the vertex
+        // its line names ("f 1 1 2"), both counted from 1.
+        EXPECT_EQ(e.element(), "face 2 (line 6)");
+        EXPECT_NE(e.reason().find("uses vertex 1 twice"), std::string::npos) << e.what();
     }
     // --repair drops it and says so.
     LoadOptions o;
