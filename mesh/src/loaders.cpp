@@ -39,6 +39,31 @@ Scene readGltf(const std::filesystem::path& path, const LoadOptions& options, Lo
     return parseGltf(bytes, path.string(), base, options.limits, report);
 }
 
+// "TEXCOORD_1" or "TEXCOORD_1..TEXCOORD_3" (sets first..last).
+std::string uvSetRange(size_t first, size_t last) {
+    std::string s = "TEXCOORD_" + std::to_string(first);
+    if (last > first) s += "..TEXCOORD_" + std::to_string(last);
+    return s;
+}
+
+// Why the merged mesh has only `kept` UV sets while some primitive has
+// `most`: which sets are gone and the first primitive that lacks them.
+std::string droppedUvSetsNote(const Scene& scene, size_t kept, size_t most) {
+    std::string where;
+    for (const SceneInstance& inst : scene.instances) {
+        if (inst.mesh.uvSets.size() != kept) continue;
+        where = "primitive " + std::to_string(inst.primitive) + " of mesh " +
+                std::to_string(inst.meshIndex) +
+                (inst.mesh.name.empty() ? "" : " '" + io::printable(inst.mesh.name, 40) + "'") +
+                (inst.node >= 0 ? " (node " + std::to_string(inst.node) + ")" : "");
+        break;
+    }
+    return "UV sets " + uvSetRange(kept, most - 1) + " dropped from every primitive: " + where +
+           (kept == 0 ? " has no texture coordinates" : " has only " + uvSetRange(0, kept - 1)) +
+           ", and a merged mesh keeps only the sets every primitive has (loadScene and "
+           "`surfgrad render` keep each primitive's own)";
+}
+
 // World-space merge of every instance (see loadRenderMesh).
 RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
     RenderMesh out;
@@ -52,13 +77,10 @@ RenderMesh mergeScene(const Scene& scene, LoadReport* report) {
     }
     if (!sameTargets) nTargets = 0;
     if (report) {
-        for (const SceneInstance& inst : scene.instances) {
-            if (inst.mesh.uvSets.size() > nSets) {
-                report->notes.push_back("UV sets beyond " + std::to_string(nSets) +
-                                        " dropped: not every primitive has them");
-                break;
-            }
-        }
+        size_t maxSets = 0;
+        for (const SceneInstance& inst : scene.instances)
+            maxSets = std::max(maxSets, inst.mesh.uvSets.size());
+        if (maxSets > nSets) report->notes.push_back(droppedUvSetsNote(scene, nSets, maxSets));
         if (!sameTargets)
             report->notes.push_back(
                 "morph targets dropped: primitives have different numbers of targets");

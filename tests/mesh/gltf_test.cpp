@@ -177,10 +177,16 @@ TEST(Gltf, TextureCoordinateTestMergesInWorldSpace) {
     for (const auto& inst : scene.instances) total += inst.mesh.vertexCount();
     EXPECT_EQ(merged.vertexCount(), total);
     EXPECT_TRUE(merged.uvSets.empty()); // the back plane has no TEXCOORD_0
-    bool noted = false;
-    for (const auto& n : report.notes)
-        noted |= n.find("UV sets beyond 0 dropped") != std::string::npos;
-    EXPECT_TRUE(noted);
+    // The note says which sets went and why: set 0 too, because one
+    // primitive has none.
+    std::string note;
+    for (const auto& n : report.notes) {
+        if (n.find("UV sets") != std::string::npos) note = n;
+    }
+    EXPECT_EQ(note.substr(0, note.find(", and")),
+              "UV sets TEXCOORD_0 dropped from every primitive: primitive 0 of mesh 3 "
+              "'BackPlaneMesh' (node 0) has no texture coordinates")
+        << note;
 }
 
 // A one-triangle glTF written by our writer, as JSON, for corruption.

@@ -81,4 +81,20 @@ TEST(MeshCli, ObjErrorsUseTheFilesNumbers) {
         << r.err;
 }
 
+// A glTF whose primitives have different UV sets: the note says which
+// sets were dropped (set 0 too when a primitive has none) and why, not
+// "UV sets beyond 0 dropped".
+TEST(MeshCli, DroppedUvSetsAreNamedWithTheReason) {
+    const fs::path in =
+        sg::test::dataPath("gltf/TextureCoordinateTest/glTF/TextureCoordinateTest.gltf");
+    const sg::test::CommandResult r = runSurfgrad("mesh info " + shellQuote(in));
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("surfgrad: note: UV sets TEXCOORD_0 dropped from every primitive: "
+                         "primitive 0 of mesh 3 'BackPlaneMesh' (node 0) has no texture "
+                         "coordinates, and a merged mesh keeps only the sets every primitive has"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(r.err.find("beyond"), std::string::npos) << r.err;
+}
+
 } // namespace
