@@ -210,50 +210,9 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
     return out;
 }
 
-std::string objBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
-    std::string out = "# written by surfgrad\n";
-    const bool hasUv = !mesh.uvSets.empty(), hasN = !mesh.normals.empty();
-    auto line3 = [&](const char* kw, const glm::vec3& v) {
-        out += kw;
-        for (int i = 0; i < 3; ++i) {
-            out += ' ';
-            appendFloat(out, v[i]);
-        }
-        out += '\n';
-    };
-    for (const glm::vec3& p : mesh.positions) line3("v", p);
-    if (hasUv) {
-        for (const glm::vec2& t : mesh.uvSets[0]) {
-            out += "vt ";
-            appendFloat(out, t.x);
-            out += ' ';
-            appendFloat(out, t.y);
-            out += '\n';
-        }
-    }
-    if (hasN) {
-        for (const glm::vec3& n : mesh.normals) line3("vn", n);
-    }
-    for (size_t k = 0; k + 2 < mesh.indices.size(); k += 3) {
-        out += 'f';
-        for (int j = 0; j < 3; ++j) {
-            std::string i = std::to_string(mesh.indices[k + size_t(j)] + 1);
-            out += ' ' + i;
-            if (hasUv || hasN) out += '/' + (hasUv ? i : std::string());
-            if (hasN) out += '/' + i;
-        }
-        out += '\n';
-    }
-    if (mesh.uvSets.size() > 1)
-        notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) +
-                        " dropped");
-    if (!mesh.tangents.empty())
-        notes.push_back("OBJ has no tangents: dropped (write .gltf/.glb to keep them)");
-    if (!mesh.morphTargets.empty()) notes.push_back("OBJ has no morph targets: dropped");
-    return out;
-}
-
-std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
+// tags = false for a render mesh (triangles to display, not a cage): no
+// subdivision options are written.
+std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes, bool tags = true) {
     std::string out = "# written by surfgrad\n";
     for (const glm::vec3& p : mesh.positions) {
         out += 'v';
@@ -295,6 +254,13 @@ std::string objBytes(const PolygonMesh& mesh, std::vector<std::string>& notes) {
         }
         out += '\n';
     }
+    if (!tags) {
+        if (mesh.uvSets.size() > 1)
+            notes.push_back("OBJ holds one UV set: " + std::to_string(mesh.uvSets.size() - 1) +
+                            " dropped");
+        if (!mesh.morphTargets.empty()) notes.push_back("OBJ has no morph targets: dropped");
+        return out;
+    }
     // Tags: every option explicitly, so a round trip is exact.
     static const int kBoundaryTag[3] = {0, 2, 1}; // None, EdgeOnly, EdgeAndCorner
     out += "t scheme 0/0/1 " + std::string(toString(mesh.options.scheme)) + "\n";
@@ -335,39 +301,6 @@ struct PlyBuilder {
         body.append(reinterpret_cast<const char*>(&v), sizeof v);
     }
 };
-
-std::string plyBytes(const RenderMesh& mesh, std::vector<std::string>& notes) {
-    PlyBuilder b;
-    const size_t nV = mesh.positions.size();
-    b.header += "element vertex " + std::to_string(nV) +
-                "\nproperty float x\nproperty float y\nproperty float z\n";
-    if (!mesh.normals.empty())
-        b.header += "property float nx\nproperty float ny\nproperty float nz\n";
-    for (size_t s = 0; s < mesh.uvSets.size(); ++s) {
-        std::string suffix = s == 0 ? "" : std::to_string(s);
-        b.header += "property float s" + suffix + "\nproperty float t" + suffix + "\n";
-    }
-    b.header += "element face " + std::to_string(mesh.triangleCount()) +
-                "\nproperty list uchar int vertex_indices\nend_header\n";
-    for (size_t v = 0; v < nV; ++v) {
-        for (int i = 0; i < 3; ++i) b.put(mesh.positions[v][i]);
-        if (!mesh.normals.empty()) {
-            for (int i = 0; i < 3; ++i) b.put(mesh.normals[v][i]);
-        }
-        for (const auto& set : mesh.uvSets) {
-            b.put(set[v].x);
-            b.put(set[v].y);
-        }
-    }
-    for (size_t k = 0; k + 2 < mesh.indices.size(); k += 3) {
-        b.put(uint8_t(3));
-        for (int j = 0; j < 3; ++j) b.put(int32_t(mesh.indices[k + size_t(j)]));
-    }
-    if (!mesh.tangents.empty())
-        notes.push_back("PLY output has no tangents: dropped (write .gltf/.glb to keep them)");
-    if (!mesh.morphTargets.empty()) notes.push_back("PLY has no morph targets: dropped");
-    return b.header + b.body;
-}
 
 // Per-vertex values of a face-varying channel when every vertex has one
 // value (no seams); empty otherwise.
@@ -461,11 +394,19 @@ std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, cons
     std::string bytes;
     if (ext == ".gltf" || ext == ".glb")
         bytes = gltfBytes(path, mesh, options, ext == ".glb");
-    else if (ext == ".obj")
-        bytes = objBytes(mesh, notes);
-    else if (ext == ".ply")
-        bytes = plyBytes(mesh, notes);
-    else
+    else if (ext == ".obj" || ext == ".ply") {
+        // The render mesh's vertices are split at UV seams and hard edges;
+        // OBJ and PLY have their own means (per-corner vt/vn indices, or
+        // nothing), so the split copies are welded back first
+        // (toPolygonMesh: equal positions and morph deltas): a cube stays
+        // one closed surface instead of six separate squares.
+        const PolygonMesh welded = toPolygonMesh(mesh);
+        bytes =
+            ext == ".obj" ? objBytes(welded, notes, /*tags=*/false) : plyBytes(path, welded, notes);
+        if (!mesh.tangents.empty())
+            notes.push_back(std::string(ext == ".obj" ? "OBJ" : "PLY") +
+                            " has no tangents: dropped (write .gltf/.glb to keep them)");
+    } else
         throw InputError(path.string(), "",
                          "unknown output format '" + ext +
                              "' (expected .gltf, .glb, .obj or .ply)");

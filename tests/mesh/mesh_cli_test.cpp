@@ -97,4 +97,34 @@ TEST(MeshCli, DroppedUvSetsAreNamedWithTheReason) {
     EXPECT_EQ(r.err.find("beyond"), std::string::npos) << r.err;
 }
 
+// `mesh morph ... -o out.obj|.ply` keeps the topology: the morphed cube
+// reads back as one closed surface of 8 vertices (it used to come back as
+// six separate squares: the render mesh's vertices, split at UV seams,
+// were written as they were).
+TEST(MeshCli, MorphToObjAndPlyKeepsTheTopology) {
+    TempDir dir;
+    writeText(dir / "cube.obj", sg::test::kCubeObj);
+    sg::mesh::RenderMesh cube = sg::mesh::loadRenderMesh(dir / "cube.obj");
+    ASSERT_GT(cube.vertexCount(), 8u); // split at the UV seams
+    sg::mesh::MorphTarget grow;
+    grow.name = "grow";
+    for (const glm::vec3& p : cube.positions) grow.positionDeltas.push_back(0.5f * p);
+    cube.morphTargets = {grow};
+    cube.morphWeights = {0.0f};
+    sg::mesh::writeRenderMesh(dir / "cube.glb", cube);
+    for (const char* out : {"out.obj", "out.ply"}) {
+        SCOPED_TRACE(out);
+        const sg::test::CommandResult r = runSurfgrad("mesh morph " + shellQuote(dir / "cube.glb") +
+                                                      " --weights 1 -o " + shellQuote(dir / out));
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        const sg::mesh::PolygonMesh back = sg::mesh::loadPolygonMesh(dir / out);
+        EXPECT_EQ(back.vertexCount(), 8u);
+        EXPECT_EQ(back.faceCount(), 12u);
+        const sg::mesh::MeshInfo info = sg::mesh::describe(back);
+        EXPECT_EQ(info.boundaryEdges, 0u);
+        EXPECT_EQ(info.eulerCharacteristic, 2);
+        for (const glm::vec3& p : back.positions) EXPECT_EQ(glm::abs(p), glm::vec3(1.5f));
+    }
+}
+
 } // namespace

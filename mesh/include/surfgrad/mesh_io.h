@@ -218,11 +218,17 @@ struct WriteOptions {
     bool writeMorphTargets = true;             // glTF
 };
 
-// .gltf (one file, buffer embedded as a base64 data URI), .glb, .obj (UV set
-// 0 as vt; OBJ holds one set), .ply (binary little-endian; per-vertex normals
-// and UV sets as s/t, s1/t1, ...). Returns one note per kind of data the
-// format cannot hold (empty when nothing was lost). glTF gets POSITION (with min/max), NORMAL,
-// TANGENT (when present), TEXCOORD_n (t flipped back to glTF's v), morph targets and weights.
+// .gltf (one file, buffer embedded as a base64 data URI), .glb, .obj, .ply
+// (binary little-endian). Returns one note per kind of data the format
+// cannot hold (empty when nothing was lost). glTF gets POSITION (with
+// min/max), NORMAL, TANGENT (when present), TEXCOORD_n (t flipped back to
+// glTF's v), morph targets and weights, as split vertices (glTF's own
+// model; readers weld them by position). OBJ and PLY keep the topology:
+// split copies of a vertex are welded back first (toPolygonMesh), so the
+// file has one vertex per position and the surface stays connected; OBJ
+// then holds UV set 0 and the normals per corner (vt/vn indices), PLY the
+// normals and UV sets per vertex where they have no seams (else dropped,
+// noted); neither holds tangents or morph targets (noted).
 std::vector<std::string> writeRenderMesh(const std::filesystem::path& path, const RenderMesh& mesh,
                                          const WriteOptions& options = {});
 
