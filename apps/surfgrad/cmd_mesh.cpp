@@ -7,14 +7,17 @@
 //       refused).
 //   mesh subdivide FILE --level N [--scheme catmark|loop|bilinear]
 //       [--boundary none|edge-only|edge-and-corner] [--fvar smooth|...|all]
-//       [--limit] -o OUT [--json] [--repair]
+//       [--limit] [--max-memory SIZE] -o OUT [--json] [--repair]
 //       OUT .obj/.ply: the refined polygons (OBJ keeps crease tags); .gltf/.glb:
 //       the triangulated render mesh with normals. Flags override the file's
 //       tags, tags override the defaults.
 //   mesh morph FILE --weights w0,w1,... -o OUT [--normals recompute|blend]
-//       [--level N [--limit]] [--json] [--repair]
+//       [--level N [--limit]] [--max-memory SIZE] [--json] [--repair]
 //       Level 0: the morph is applied to the file's own vertices; level N:
 //       to the cage, which is then subdivided.
+// A subdivision whose estimated peak memory is above --max-memory (default:
+// sg::mesh::defaultSubdivisionBudget) is refused before it allocates,
+// naming the level, the face count and the bytes needed.
 //
 // Other files attach more `mesh` subcommands to the group this returns
 // (see commands.h). Notes about dropped or converted data go to stderr as
@@ -76,6 +79,13 @@ struct SchemeFlags {
         return o;
     }
 };
+
+SubdivisionSettings budgeted(uint64_t maxMemory) {
+    SubdivisionSettings s;
+    s.memoryBudget = maxMemory;
+    s.memoryBudgetHint = kMaxMemoryHint;
+    return s;
+}
 
 json optionsJson(const SubdivOptions& o) {
     return {{"scheme", toString(o.scheme)},
@@ -152,7 +162,7 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
 }
 
 void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, bool limit,
-                  const std::string& out, bool asJson, bool repair) {
+                  const std::string& out, bool asJson, bool repair, uint64_t maxMemory) {
     io::checkNotInput(out, {file});
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions lo;
@@ -160,7 +170,7 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
     LoadReport report;
     PolygonMesh cage = loadPolygonMesh(file, lo, &report);
     double loadSeconds = secondsSince(t0);
-    SubdivisionSettings s;
+    SubdivisionSettings s = budgeted(maxMemory);
     s.level = level;
     s.limit = limit;
     s.options = flags.resolve(cage);
@@ -232,7 +242,7 @@ std::vector<float> parseWeights(const std::string& text) {
 
 void runMorph(const std::string& file, const std::string& weightsText,
               const std::string& normalsMode, int level, bool limit, const std::string& out,
-              bool asJson, bool repair) {
+              bool asJson, bool repair, uint64_t maxMemory) {
     io::checkNotInput(out, {file});
     std::vector<float> weights = parseWeights(weightsText);
     MorphNormals mode = normalsMode == "blend" ? MorphNormals::Blend : MorphNormals::Recompute;
@@ -271,7 +281,7 @@ void runMorph(const std::string& file, const std::string& weightsText,
         morphCagePositions(cage, weights, morphed.positions);
         morphed.morphTargets.clear();
         morphed.morphWeights.clear();
-        SubdivisionSettings s;
+        SubdivisionSettings s = budgeted(maxMemory);
         s.level = level;
         s.limit = limit;
         s.options = cage.options;
@@ -306,8 +316,9 @@ void runMorph(const std::string& file, const std::string& weightsText,
 } // namespace
 
 CLI::App* addMeshCommands(CLI::App& app, int& status) {
-    CLI::App* mesh = app.add_subcommand(
-        "mesh", "mesh pipeline: inspect, subdivide, morph (OBJ/OFF/PLY/STL/glTF)");
+    // The description names the subcommands: describeMeshGroup, once all
+    // are attached.
+    CLI::App* mesh = app.add_subcommand("mesh");
     mesh->require_subcommand(1);
 
     {
@@ -316,7 +327,8 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto file = std::make_shared<std::string>();
         auto asJson = std::make_shared<bool>(false);
         auto repair = std::make_shared<bool>(false);
-        cmd->add_option("FILE", *file, "mesh file (.obj .off .ply .stl .gltf .glb)")->required();
+        cmd->add_option("FILE", *file, "mesh file (" + std::string(kMeshFormatsText) + ")")
+            ->required();
         cmd->add_flag("--json", *asJson, "print JSON");
         cmd->add_flag("--repair", *repair,
                       "drop degenerate faces and weld exact duplicate vertices first");
@@ -335,12 +347,15 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto asJson = std::make_shared<bool>(false);
         auto repair = std::make_shared<bool>(false);
         auto flags = std::make_shared<SchemeFlags>();
-        cmd->add_option("FILE", *file, "control cage")->required();
+        auto maxMemory = std::make_shared<uint64_t>(0);
+        cmd->add_option("FILE", *file, "control cage (" + std::string(kMeshFormatsText) + ")")
+            ->required();
         cmd->add_option("--level", *level, "uniform refinement level")
             ->required()
             ->check(CLI::Range(0, kMaxSubdivisionLevel));
         flags->add(cmd);
         cmd->add_flag("--limit", *limit, "positions, normals and UVs on the limit surface");
+        addMaxMemoryOption(cmd, *maxMemory);
         cmd->add_option("-o,--output", *out,
                         "output .obj/.ply (polygons) or .gltf/.glb (triangles with normals)")
             ->required();
@@ -349,7 +364,7 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         cmd->add_flag("--repair", *repair,
                       "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
-            runSubdivide(*file, *level, *flags, *limit, *out, *asJson, *repair);
+            runSubdivide(*file, *level, *flags, *limit, *out, *asJson, *repair, *maxMemory);
             status = 0;
         });
     }
@@ -364,7 +379,11 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto limit = std::make_shared<bool>(false);
         auto asJson = std::make_shared<bool>(false);
         auto repair = std::make_shared<bool>(false);
-        cmd->add_option("FILE", *file, "mesh with morph targets (glTF)")->required();
+        auto maxMemory = std::make_shared<uint64_t>(0);
+        cmd->add_option("FILE", *file,
+                        "mesh with morph targets (" + std::string(kMeshFormatsText) +
+                            "; only glTF files carry morph targets)")
+            ->required();
         cmd->add_option("--weights", *weights, "one weight per target: w0,w1,...")->required();
         cmd->add_option("-o,--output", *out, "output .gltf/.glb/.obj/.ply")->required();
         cmd->add_option(
@@ -374,15 +393,30 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         cmd->add_option("--level", *level, "subdivide the morphed cage to this level")
             ->check(CLI::Range(0, kMaxSubdivisionLevel));
         cmd->add_flag("--limit", *limit, "evaluate the limit surface of the morphed cage");
+        addMaxMemoryOption(cmd, *maxMemory);
         cmd->add_flag("--json", *asJson, "print JSON");
         cmd->add_flag("--repair", *repair,
                       "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
-            runMorph(*file, *weights, *normals, *level, *limit, *out, *asJson, *repair);
+            runMorph(*file, *weights, *normals, *level, *limit, *out, *asJson, *repair, *maxMemory);
             status = 0;
         });
     }
     return mesh;
+}
+
+void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes) {
+    cmd->add_option("--max-memory", bytes,
+                    "refuse a subdivision whose estimated peak memory is above SIZE (e.g. 12G, "
+                    "800MiB; default: half the physical memory, at most 3/4 of ulimit -v)")
+        ->transform(CLI::AsSizeValue(false));
+}
+
+void describeMeshGroup(CLI::App& mesh) {
+    std::string names;
+    for (const CLI::App* sub : mesh.get_subcommands([](CLI::App*) { return true; }))
+        names += (names.empty() ? "" : ", ") + sub->get_name();
+    mesh.description("mesh pipeline: " + names + " (reads " + std::string(kMeshFormatsText) + ")");
 }
 
 } // namespace sg::cli

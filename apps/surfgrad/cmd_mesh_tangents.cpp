@@ -38,6 +38,7 @@ struct TangentsOptions {
     int uvSet = 0;
     int level = 0;
     bool json = false;
+    uint64_t maxMemory = 0; // SubdivisionSettings::memoryBudget
 };
 
 // The mesh comes from an untrusted file: what the tangent generators take
@@ -70,6 +71,8 @@ void runTangents(const TangentsOptions& o, int& status) {
     if (subdivide) {
         const mesh::PolygonMesh cage = mesh::loadPolygonMesh(o.input);
         mesh::SubdivisionSettings settings;
+        settings.memoryBudget = o.maxMemory;
+        settings.memoryBudgetHint = kMaxMemoryHint;
         settings.level = o.level;
         settings.options = cage.options;
         if (!o.scheme.empty() && !mesh::parseScheme(o.scheme, settings.options.scheme))
@@ -136,7 +139,8 @@ void addMeshTangentsCommand(CLI::App& meshGroup, int& status) {
     auto opts = std::make_shared<TangentsOptions>();
     CLI::App* cmd = meshGroup.add_subcommand(
         "tangents", "Write a glTF with TANGENT (xyz + handedness w) for one UV set");
-    cmd->add_option("file", opts->input, "Input mesh (.obj .off .ply .stl .gltf .glb)")->required();
+    cmd->add_option("file", opts->input, "Input mesh (" + std::string(mesh::kMeshFormatsText) + ")")
+        ->required();
     cmd->add_option("--method", opts->method,
                     "mikktspace (MikkTSpace-compatible vertex tangents) or limit (exact frame "
                     "of the subdivision limit surface)")
@@ -147,6 +151,7 @@ void addMeshTangentsCommand(CLI::App& meshGroup, int& status) {
                     "Uniform subdivision level first (limit: the level whose vertices get limit "
                     "frames; 0 = the cage's own vertices)")
         ->capture_default_str();
+    addMaxMemoryOption(cmd, opts->maxMemory);
     cmd->add_option("--scheme", opts->scheme,
                     "catmark, loop or bilinear (default: the file's tag)");
     cmd->add_option("-o,--output", opts->output, "Output .gltf or .glb")->required();

@@ -1,7 +1,8 @@
 // `surfgrad render`, `surfgrad shader` and `surfgrad view`: the renderer's
 // subcommands (apps/render, surfgrad/render.h).
 //
-//   render [SCENE.json | MODEL.gltf | MODEL.glb | MODEL.obj] [-o OUT.png|.exr]
+//   render [SCENE.json | MODEL] [-o OUT.png|.exr]   MODEL: any mesh format
+//          (sg::mesh::kMeshFormats)
 //          [--size WxH] [--aov NAME] [--frame F] [--tbn pixel|mikktspace|limit]
 //          [--cpu] [--all-frames]
 //     Without a scene: the built-in default scene to out/default.png.
@@ -23,6 +24,7 @@
 #include "commands.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/io.h"
+#include "surfgrad/mesh_io.h"
 #include "surfgrad/render.h"
 #if SURFGRAD_HAVE_VIEWER
 #include "surfgrad/viewer.h"
@@ -41,14 +43,17 @@ std::string lowerExt(const fs::path& p) {
     return e;
 }
 
+// What `render`, `shader` and `view` take: a scene, or a model in any mesh
+// format the loaders read (sg::mesh::kMeshFormats).
+const std::string kSceneOrModel =
+    "a scene (.json) or a model (" + std::string(sg::mesh::kMeshFormatsText) + ")";
+
 Scene sceneFromArg(const std::string& arg) {
     if (arg.empty()) return defaultScene();
     std::string ext = lowerExt(arg);
     if (ext == ".json") return loadScene(arg);
-    if (ext == ".gltf" || ext == ".glb" || ext == ".obj" || ext == ".ply" || ext == ".off") {
-        return sceneForModel(arg);
-    }
-    throw CliError(arg + ": expected a scene (.json) or a model (.gltf, .glb, .obj, .ply, .off)");
+    if (sg::mesh::isMeshFormat(arg)) return sceneForModel(arg);
+    throw CliError(arg + ": expected " + kSceneOrModel);
 }
 
 void parseSize(const std::string& s, int& w, int& h) {
@@ -179,7 +184,9 @@ void addRenderCommands(CLI::App& app, int& status) {
     };
     auto ro = std::make_shared<RenderOpts>();
     render->add_option("scene", ro->scene,
-                       "Scene JSON, or a model file (glTF/OBJ) to frame automatically");
+                       "SCENE.json, or a model to frame automatically (" +
+                           std::string(sg::mesh::kMeshFormatsText) +
+                           "); default: the built-in scene");
     render->add_option("-o,--output", ro->out,
                        "Output image (.png tone-mapped, .exr linear); default out/<name>.png");
     render->add_option("--size", ro->size, "Image size WxH (default: the scene's output size)");
@@ -318,7 +325,9 @@ void addRenderCommands(CLI::App& app, int& status) {
         bool vertex = false, body = false;
     };
     auto so = std::make_shared<ShaderOpts>();
-    shader->add_option("scene", so->scene, "Scene JSON (default: the built-in scene)");
+    shader->add_option("scene", so->scene,
+                       "SCENE.json or a model (" + std::string(sg::mesh::kMeshFormatsText) +
+                           "); default: the built-in scene");
     shader->add_option("--mesh", so->mesh, "Only the program of mesh I");
     shader->add_flag("--vertex", so->vertex, "Print the vertex programs too");
     shader->add_flag("--body", so->body, "Print the generated body before #include expansion");
@@ -359,7 +368,9 @@ void addRenderCommands(CLI::App& app, int& status) {
         bool noUi = false;
     };
     auto vo = std::make_shared<ViewOpts>();
-    view->add_option("scene", vo->scene, "Scene JSON or model file (default: the built-in scene)");
+    view->add_option("scene", vo->scene,
+                     "SCENE.json or a model (" + std::string(sg::mesh::kMeshFormatsText) +
+                         "); default: the built-in scene");
     view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")
         ->check(CLI::Range(0, 1000000));
     view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");

@@ -33,5 +33,13 @@ void addNormalmapCommands(CLI::App& app, int& status);
 CLI::App* addMeshCommands(CLI::App& app, int& status);
 // `surfgrad mesh tangents ...` (cmd_mesh_tangents.cpp), attached to the mesh group.
 void addMeshTangentsCommand(CLI::App& mesh, int& status);
+// `--max-memory SIZE` (CLI11 size syntax: 12G, 800MiB, bytes) into `bytes`,
+// for every command that subdivides (SubdivisionSettings::memoryBudget;
+// 0: the default budget). kMaxMemoryHint: how refusals name the option.
+inline constexpr const char* kMaxMemoryHint = "--max-memory SIZE";
+void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes);
+// Sets the mesh group's description from the subcommands attached to it
+// (main.cpp calls it after the last one).
+void describeMeshGroup(CLI::App& mesh);
 
 } // namespace sg::cli

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     CLI::App* meshGroup =
         sg::cli::addMeshCommands(app, status); // more mesh subcommands attach here
     sg::cli::addMeshTangentsCommand(*meshGroup, status);
+    sg::cli::describeMeshGroup(*meshGroup);
     sg::cli::addFeaturesCommands(app, status);
     sg::cli::addNormalmapCommands(app, status);
     try {

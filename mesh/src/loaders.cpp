@@ -20,6 +20,14 @@ std::string meshFormat(const std::filesystem::path& path) {
     return ext;
 }
 
+bool isMeshFormat(const std::filesystem::path& path) {
+    const std::string ext = meshFormat(path);
+    for (std::string_view f : kMeshFormats) {
+        if (ext == f) return true;
+    }
+    return false;
+}
+
 namespace {
 
 bool isGltf(const std::string& ext) {
@@ -28,8 +36,8 @@ bool isGltf(const std::string& ext) {
 
 [[noreturn]] void unknownFormat(const std::filesystem::path& path, const std::string& ext) {
     throw InputError(path.string(), "",
-                     "unknown mesh format '" + ext +
-                         "' (expected .obj, .off, .ply, .stl, .gltf or .glb)");
+                     "unknown mesh format '" + io::printable(ext, 16) + "' (expected " +
+                         std::string(kMeshFormatsText) + ")");
 }
 
 Scene readGltf(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {

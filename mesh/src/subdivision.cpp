@@ -530,6 +530,7 @@ struct Subdivider::Impl {
     void build(const PolygonMesh& cage);
     void checkBuildable(const PolygonMesh& cage) const;
     void keepTopologyKey(const PolygonMesh& cage);
+    void checkMemoryBudget(const PolygonMesh& cage) const;
     bool sameTopology(const PolygonMesh& cage) const;
     // far: the uniform Far refiner, or nullptr for the specialised one.
     void recordUniformStencils(const Far::TopologyRefiner* far, const PolygonMesh& cage);
@@ -1457,6 +1458,25 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     }
 }
 
+// Refuses a build whose estimated peak memory is above the budget, before
+// OpenSubdiv or the specialised refiner allocates (the estimate and its
+// test: subdivision_budget.cpp, tests/mesh/subdivision_budget_test.cpp).
+void Subdivider::Impl::checkMemoryBudget(const PolygonMesh& cage) const {
+    const uint64_t budget =
+        settings.memoryBudget ? settings.memoryBudget : defaultSubdivisionBudget();
+    const SubdivisionCost cost = estimateSubdivisionCost(cage, settings);
+    if (cost.bytes <= budget) return;
+    std::string what = std::to_string(cost.faces) + " faces";
+    if (settings.limit) what += " with limit evaluation";
+    if (settings.animate) what += " and animation stencils";
+    throw InputError(file, "level " + std::to_string(settings.level),
+                     "would make " + what + " and need about " + formatByteSize(cost.bytes) +
+                         " of memory; the limit is " + formatByteSize(budget) +
+                         (settings.memoryBudgetHint.empty()
+                              ? std::string()
+                              : " (raise it with " + settings.memoryBudgetHint + ")"));
+}
+
 // What build() refuses before refining: a level out of range, an empty
 // cage, non-triangles under Loop, and refinements beyond
 // settings.maxRefinedFaces.
@@ -1518,6 +1538,7 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
         rebuildValues(cage);
         return;
     }
+    checkMemoryBudget(cage);
     keyValid = false;
     stencilsRecorded = false;
     renderValid = false;

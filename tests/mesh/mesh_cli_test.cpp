@@ -128,3 +128,72 @@ TEST(MeshCli, MorphToObjAndPlyKeepsTheTopology) {
 }
 
 } // namespace
+
+// A subdivision too large for the memory: refused before anything is
+// allocated, naming the level, the face count, the bytes needed and the
+// option that raises the limit; exit 1, nothing written (it used to die
+// after seconds with "std::bad_alloc"). Under `ulimit -v` the default
+// budget (3/4 of the limit) refuses spot at level 7 with limit evaluation
+// (3 M faces, about 4 GiB).
+TEST(MeshCli, SubdivisionAboveTheMemoryBudgetIsRefused) {
+    TempDir dir;
+    const std::string spot =
+        shellQuote(sg::test::dataPath("meshes/spot/spot_control_mesh.obj").string());
+    const fs::path out = dir / "out.glb";
+    {
+        const sg::test::CommandResult r = runSurfgrad(
+            "mesh subdivide " + spot + " --level 4 --limit --max-memory 64M -o " + shellQuote(out));
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.err.find("surfgrad: error: "), std::string::npos) << r.err;
+        EXPECT_NE(r.err.find("level 4: would make 46848 faces with limit evaluation and need "
+                             "about "),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("the limit is 64.0 MiB (raise it with --max-memory SIZE)"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+    // The same build within a raised limit.
+    {
+        const sg::test::CommandResult r = runSurfgrad(
+            "mesh subdivide " + spot + " --level 2 --limit --max-memory 1G -o " + shellQuote(out));
+        EXPECT_EQ(r.exitCode, 0) << r.output();
+        EXPECT_TRUE(fs::exists(out));
+    }
+    // The default budget follows the address-space limit.
+    {
+        const sg::test::CommandResult r = sg::test::runCommand(
+            "ulimit -v 3000000 && " + shellQuote(sg::test::surfgradBinary()) + " mesh subdivide " +
+            spot + " --level 7 --limit -o " + shellQuote(dir / "big.glb"));
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.err.find("level 7: would make 2998272 faces with limit evaluation"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_NE(r.err.find("the limit is 2.1 GiB"), std::string::npos) << r.err;
+        EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+    }
+    // Every subdividing command takes the option (a cube with one morph
+    // target for `mesh morph`).
+    fs::remove(out);
+    writeText(dir / "cube.obj", sg::test::kCubeObj);
+    sg::mesh::RenderMesh cube = sg::mesh::loadRenderMesh(dir / "cube.obj");
+    sg::mesh::MorphTarget grow;
+    grow.name = "grow";
+    grow.positionDeltas = cube.positions;
+    cube.morphTargets = {grow};
+    cube.morphWeights = {0.0f};
+    sg::mesh::writeRenderMesh(dir / "cube.glb", cube);
+    for (const std::string& cmd :
+         {"mesh tangents " + spot + " --method limit --level 4 -o " + shellQuote(out),
+          "mesh morph " + shellQuote(dir / "cube.glb") + " --weights 1 --level 6 -o " +
+              shellQuote(out)}) {
+        const sg::test::CommandResult r = runSurfgrad(cmd + " --max-memory 1M");
+        EXPECT_EQ(r.exitCode, 1) << cmd << "\n" << r.output();
+        EXPECT_NE(r.err.find("the limit is 1.0 MiB (raise it with --max-memory SIZE)"),
+                  std::string::npos)
+            << cmd << "\n"
+            << r.err;
+        EXPECT_FALSE(fs::exists(out));
+    }
+}

@@ -95,6 +95,84 @@ TEST(Cli, ShaderPrintsOnlyWhatTheSceneUses) {
     EXPECT_EQ(r.output().find("sgLayerUvNormal"), std::string::npos);
 }
 
+// One list of model formats everywhere: `render MODEL` and `shader MODEL`
+// take every mesh format the loaders read (an STL model used to be refused
+// by `render` while scenes and `mesh` took it), and every --help, the
+// README and docs/scene.md give the same list.
+TEST(Cli, EveryMeshFormatIsAModelAndListedTheSameWay) {
+    fs::path dir = scratch("formats");
+    // A closed tetrahedron, outward facets.
+    std::ofstream(dir / "t.stl") << R"(solid t
+facet normal 0 0 -1
+outer loop
+vertex 0 0 0
+vertex 0 1 0
+vertex 1 0 0
+endloop
+endfacet
+facet normal 0 -1 0
+outer loop
+vertex 0 0 0
+vertex 1 0 0
+vertex 0 0 1
+endloop
+endfacet
+facet normal -1 0 0
+outer loop
+vertex 0 0 0
+vertex 0 0 1
+vertex 0 1 0
+endloop
+endfacet
+facet normal 1 1 1
+outer loop
+vertex 1 0 0
+vertex 0 1 0
+vertex 0 0 1
+endloop
+endfacet
+endsolid t
+)";
+    CmdResult r = run("render t.stl --size 64x48 -o t.png", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    EXPECT_GT(distinctColours(readImage(dir / "t.png")), 2u);
+    CmdResult sh = run("shader t.stl", dir);
+    EXPECT_EQ(sh.exitCode, 0) << sh.output();
+    EXPECT_NE(sh.out.find("#version 450"), std::string::npos);
+
+    const std::string list = ".obj, .off, .ply, .stl, .gltf or .glb";
+    CmdResult unknown = run("render t.xyz", dir);
+    EXPECT_NE(unknown.exitCode, 0);
+    EXPECT_NE(unknown.err.find("a model (" + list + ")"), std::string::npos) << unknown.err;
+    for (const char* cmd :
+         {"render --help", "shader --help", "view --help", "mesh --help", "mesh info --help",
+          "mesh subdivide --help", "mesh morph --help", "mesh tangents --help"}) {
+        CmdResult help = run(cmd, dir);
+        EXPECT_EQ(help.exitCode, 0) << cmd;
+        EXPECT_NE(help.out.find(list), std::string::npos) << cmd << ":\n" << help.out;
+    }
+    for (const char* doc : {"README.md", "docs/scene.md"}) {
+        std::ifstream in(fs::path(SURFGRAD_SOURCE_DIR) / doc);
+        const std::string text((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
+        EXPECT_NE(text.find(list), std::string::npos) << doc;
+    }
+}
+
+// `mesh --help` and the top-level --help name every mesh subcommand
+// (tangents was missing from the group's description).
+TEST(Cli, MeshHelpNamesEveryMeshSubcommand) {
+    fs::path dir = scratch("meshhelp");
+    for (const char* cmd : {"--help", "mesh --help"}) {
+        CmdResult help = run(cmd, dir);
+        EXPECT_EQ(help.exitCode, 0);
+        EXPECT_NE(help.out.find("mesh pipeline: info, subdivide, morph, tangents"),
+                  std::string::npos)
+            << cmd << ":\n"
+            << help.out;
+    }
+}
+
 TEST(Cli, ExrOutputKeepsRawAovValues) {
     fs::path dir = scratch("exr");
     std::ofstream(dir / "p.json") << R"({"meshes": [{"procedural": {"type": "plane"}}],

@@ -156,6 +156,9 @@ std::vector<BadCase> badCases() {
          "meshes[0].subdivision", "mesh files only"},
         {"subdivision level", R"({"meshes": [{"file": "m.obj", "subdivision": {"level": 9}}]})",
          "meshes[0].subdivision.level", "expected an integer in [0, 6]"},
+        {"subdivision memory limit",
+         R"({"meshes": [{"file": "m.obj", "subdivision": {"level": 2, "max_memory_mib": 0}}]})",
+         "meshes[0].subdivision.max_memory_mib", "expected an integer in [1, 16777216]"},
         {"morph key times",
          R"({"meshes": [{"file": "m.gltf", "morph": {"animation": {"keys": [{"time": 1, "weights": [0]}, {"time": 0.5, "weights": [1]}]}}}]})",
          "meshes[0].morph.animation.keys[1].time", "must increase"},
@@ -319,6 +322,37 @@ TEST(SceneValidation, DefaultSceneIsValidAndUsesManyLayerKinds) {
             for (const auto& c : L.children) kinds.insert(c.kind);
         }
     EXPECT_GE(kinds.size(), 6u) << "the default scene should show most layer kinds";
+}
+
+// A scene whose subdivision would need more memory than its limit (the
+// default budget, or subdivision.max_memory_mib): refused before the
+// refinement allocates, naming the level, the faces, the bytes needed and
+// the field that raises the limit; within a raised limit the same mesh
+// loads.
+TEST(SceneAssets, SubdivisionAboveTheMemoryLimitIsRefused) {
+    const std::string spot = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
+    auto scene = [&](int level, int mib) {
+        return sceneFromJson(R"({"meshes": [{"file": ")" + spot +
+                             R"(", "subdivision": {"level": )" + std::to_string(level) +
+                             R"(, "max_memory_mib": )" + std::to_string(mib) + "}}]}");
+    };
+    try {
+        loadAssets(scene(5, 16));
+        ADD_FAILURE() << "expected InputError";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.element(), "level 5");
+        EXPECT_NE(std::string(e.reason()).find("would make 187392 faces and need about "),
+                  std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.reason())
+                      .find("the limit is 16.0 MiB (raise it with the scene field "
+                            "meshes[0].subdivision.max_memory_mib)"),
+                  std::string::npos)
+            << e.what();
+    }
+    const SceneAssets a = loadAssets(scene(1, 64));
+    ASSERT_EQ(a.meshes.size(), 1u);
+    EXPECT_EQ(a.meshes[0].mesh.triangleCount(), 732u * 2);
 }
 
 } // namespace

@@ -470,6 +470,8 @@ sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCach
                              "unknown scheme");
     }
     st.limit = mi.subdivLimit;
+    st.memoryBudget = mi.subdivMaxMemory;
+    st.memoryBudgetHint = "the scene field " + elementOf(mi, "subdivision.max_memory_mib");
     sm::Subdivider sub(cage, st, mi.file.string());
     if (mi.subdivLimit) limit = sub.limitFrame();
     return sub.renderMesh();

@@ -323,13 +323,15 @@ struct Parser : detail::SceneReader {
         }
         if (n.has("subdivision")) {
             Node s = n.child("subdivision");
-            s.allowOnly({"scheme", "level", "limit"});
+            s.allowOnly({"scheme", "level", "limit", "max_memory_mib"});
             static const char* schemes[] = {"catmark", "loop", "bilinear"};
             m.subdivide = true;
             if (s.has("scheme"))
                 m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
             m.subdivLevel = s.integer("level", 2, 0, 6);
             m.subdivLimit = s.boolean("limit", false);
+            if (s.has("max_memory_mib"))
+                m.subdivMaxMemory = uint64_t(s.integer("max_memory_mib", 0, 1, 1 << 24)) << 20;
             if (m.procedural)
                 n.failField("subdivision",
                             "applies to mesh files only (procedural meshes take \"segments\")");

@@ -245,4 +245,13 @@ std::vector<std::string> writePolygonMesh(const std::filesystem::path& path,
 // Lower-case extension with the dot (".obj"); the loaders' and writers' switch.
 std::string meshFormat(const std::filesystem::path& path);
 
+// The mesh formats the loaders read, by extension: the one list every
+// command (render, view, mesh ...), scene field and document names.
+inline constexpr std::string_view kMeshFormats[] = {".obj", ".off",  ".ply",
+                                                    ".stl", ".gltf", ".glb"};
+// The same list as text: ".obj, .off, .ply, .stl, .gltf or .glb".
+inline constexpr std::string_view kMeshFormatsText = ".obj, .off, .ply, .stl, .gltf or .glb";
+// Whether meshFormat(path) is one of kMeshFormats.
+bool isMeshFormat(const std::filesystem::path& path);
+
 } // namespace sg::mesh

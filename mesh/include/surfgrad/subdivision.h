@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -40,8 +41,16 @@ struct SubdivisionSettings {
     // more refinement; only worth it for animated cages).
     bool animate = false;
     // Refused (InputError) before refining when the level-N face count
-    // would exceed this.
+    // would exceed this (keeps every index within 32 bits).
     size_t maxRefinedFaces = size_t(1) << 24;
+    // Bytes build() may take at its peak (estimateSubdivisionCost): a build
+    // that needs more is refused before anything is allocated, with an
+    // InputError naming the level, the face count and the bytes needed.
+    // 0: defaultSubdivisionBudget().
+    uint64_t memoryBudget = 0;
+    // How the caller's user raises memoryBudget, quoted in that refusal
+    // ("--max-memory SIZE"); empty: not quoted.
+    std::string memoryBudgetHint;
     // A build whose cage has the same topology, tags, level and options as
     // the previous uniform build of this Subdivider reuses its refiner and
     // applies factored stencils to the new positions/UVs (recorded on the
@@ -85,7 +94,8 @@ public:
     // its refined topology when only values changed (see reuseTopology).
     // Throws InputError (file, element, reason) when OpenSubdiv cannot take
     // the cage: Loop with a non-triangle face, a level outside
-    // 0..kMaxSubdivisionLevel, a refined size above maxRefinedFaces. Holes:
+    // 0..kMaxSubdivisionLevel, a refined size above maxRefinedFaces, an
+    // estimated peak memory above memoryBudget (element "level N"). Holes:
     // hole faces and their descendants are left out of every output.
     void build(const PolygonMesh& cage, const SubdivisionSettings& settings,
                const std::string& file = {});
@@ -143,6 +153,38 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// What Subdivider::build(cage, settings) will take, estimated from the
+// cage alone before anything is allocated (mesh/src/subdivision_budget.cpp).
+// The counts of level N are exact for every scheme, face kind and UV
+// layout (each scheme's growth per level); `bytes` is the peak of live heap
+// bytes of build(), from per-element coefficients of every stage (all
+// levels' topology, level N's values, the render mesh, the limit patches,
+// stencils and samples, the animation stencils): on the test cages within
+// [1, 2.5] times the measured peak (tests/mesh/subdivision_budget_test.cpp).
+// Costs O(C log C) for a cage of C face corners.
+struct SubdivisionCost {
+    int level = 0;
+    int isolation = 0; // limit: adaptive isolation level (0 without limit)
+    // Level N of the uniform refinement (faces: before holes are removed).
+    uint64_t faces = 0, vertices = 0, edges = 0, corners = 0;
+    uint64_t fvarValues = 0;     // level-N UV values, all sets
+    uint64_t renderVertices = 0; // vertices of renderMesh() (split at UV seams)
+    uint64_t irregular = 0;      // limit: cage features isolated adaptively
+    uint64_t bytes = 0;          // peak heap bytes of build()
+    // Sums over levels 0..N (the topology every refiner keeps).
+    double sumV = 0, sumE = 0, sumF = 0, sumC = 0, sumFV = 0;
+};
+SubdivisionCost estimateSubdivisionCost(const PolygonMesh& cage,
+                                        const SubdivisionSettings& settings);
+
+// The memory budget of a build when SubdivisionSettings::memoryBudget is 0:
+// half the machine's physical memory, and at most three quarters of the
+// process's address-space or data limit (ulimit -v / -d) when one is set.
+uint64_t defaultSubdivisionBudget();
+
+// "1.5 GiB", "640 MiB", "12 KiB", "100 B": byte counts in messages.
+std::string formatByteSize(uint64_t bytes);
 
 // Area-weighted vertex normals of a triangle mesh, accumulated over all
 // render vertices that share `smoothGroup[v]` (pass an empty span to treat

@@ -186,6 +186,10 @@ struct MeshInstance {
     std::string subdivScheme; // "" (the file's tags, else catmark), "catmark", "loop", "bilinear"
     int subdivLevel = 0;
     bool subdivLimit = false;
+    // "subdivision.max_memory_mib" in bytes: the refusal threshold of the
+    // estimated peak memory (sg::mesh::SubdivisionSettings::memoryBudget;
+    // 0: sg::mesh::defaultSubdivisionBudget()).
+    uint64_t subdivMaxMemory = 0;
     std::vector<DerivedUvSet> derivedUvSets; // appended after the mesh's own UV sets
     std::vector<TangentSource> tangents;     // per UV set; missing = pixel
     std::vector<float> morphWeights;         // empty: the file's defaults
