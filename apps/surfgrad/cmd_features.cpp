@@ -1,24 +1,28 @@
 // `surfgrad features ...`: feature-curve maps (Parilov, Rosenberg, Zorin 2005;
 // Parilov, Zorin 2008), surfgrad/feature_maps.h.
 //
-//   features bake (--json F | --svg F | --font F --text STR [--face I])
+//   features bake (--curves F | --svg F | --font F --text STR [--face I])
 //                 --size N [--mode linear|quadratic] [--margin T] [--band T]
 //                 [--smooth K] [--near exact|paper] [--near-width T]
-//                 -o MAPS.exr [--json]
-//     Bakes a curve network into feature maps (OpenEXR). Texel space: x
-//     right, y up, texel (i, j) covers [i, i+1] x [j, j+1]; the input is
-//     scaled uniformly and centred into [T, N - T]^2 (T = --margin, default
-//     8). --json prints the statistics as one JSON object (size,
-//     texels_with_features, seconds, input_to_texel {scale, offset}, ...).
-//     Bakes longer than a second report progress on stderr. --near exact
-//     keeps the exact near field (the input pieces with their per-curve
-//     profiles and widths; curves without a width count as --near-width,
-//     default 3 texels); paper (default) stores the papers' maps only.
+//                 -o MAPS.exr [--json] [--progress]
+//     Bakes a curve network (--curves: JSON, docs/features-input.md) into
+//     feature maps (OpenEXR only). Texel space: x right, y up, texel (i, j)
+//     covers [i, i+1] x [j, j+1]; the input is scaled uniformly and centred
+//     into [T, N - T]^2 (T = --margin, default 8). --json prints the
+//     statistics as one JSON object (size, texels_with_features, seconds,
+//     input_to_texel {scale, offset}, ...). Bakes longer than a second (or
+//     any, with --progress) report progress on stderr, each phase up to
+//     100%. --near exact keeps the exact near field (the input pieces with
+//     their per-curve profiles and widths; curves without a width count as
+//     --near-width, default 3 texels); paper (default) stores the papers'
+//     maps only.
 //   features sample MAPS.exr --points F [--near exact|paper]
-//     F holds one "x y" (texel space) per line; prints "x y d gx gy" per
-//     line: the distance (texels) and unit gradient exactly as the shader
-//     computes them (the C++ build of sgFeatSample / sgFeatSampleNear; maps
-//     with a near field use it unless --near paper).
+//     F holds one "x y" (texel space) per line; prints the header line
+//     "x y dist grad_x grad_y", then one line per point: the distance
+//     (texels) and unit gradient exactly as the shader computes them (the
+//     C++ build of sgFeatSample / sgFeatSampleNear; maps with a near field
+//     use it unless --near paper). A point outside the map ([0, N]^2) is an
+//     error naming its line.
 //   features render MAPS.exr --profile NAME [--width W] [--depth D]
 //                 [--blend W0] [--zoom K] [--center x,y] [--size WxH]
 //                 [--composition surfgrad|paper] [--compare bilinear]
@@ -35,6 +39,9 @@
 
 #include <charconv>
 #include <chrono>
+#include <memory>
+#include <string>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,6 +70,34 @@ struct BakeArgs {
     std::string near = "paper";
     double nearWidth = 3.0;
     bool printJson = false;
+    bool progress = false; // report progress however short the bake
+};
+
+// Progress lines "features bake: PHASE NN%" on stderr; every phase that
+// was reported ends with its 100% line (the bake reports phases at
+// intervals, the last one before the end).
+class BakeProgress {
+public:
+    explicit BakeProgress(bool always) : always_(always) {}
+    void report(const char* phase, double fraction) {
+        if (!always_ && std::chrono::steady_clock::now() - start_ < std::chrono::seconds(1)) return;
+        if (phase_ != phase) finishPhase();
+        phase_ = phase;
+        fraction_ = fraction;
+        std::fprintf(stderr, "features bake: %s %3.0f%%\n", phase, 100.0 * fraction);
+    }
+    // The last phase reported, at 100% (call when the bake returned).
+    void finishPhase() {
+        if (!phase_.empty() && fraction_ < 1.0)
+            std::fprintf(stderr, "features bake: %s 100%%\n", phase_.c_str());
+        phase_.clear();
+    }
+
+private:
+    bool always_;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+    std::string phase_;
+    double fraction_ = 0;
 };
 
 NearMode parseNear(const std::string& cmd, const std::string& v) {
@@ -73,7 +108,11 @@ NearMode parseNear(const std::string& cmd, const std::string& v) {
 
 void runBake(const BakeArgs& a) {
     int inputs = int(!a.json.empty()) + int(!a.svg.empty()) + int(!a.font.empty());
-    if (inputs != 1) throw CliError("features bake: give exactly one of --json, --svg, --font");
+    if (inputs != 1) throw CliError("features bake: give exactly one of --curves, --svg, --font");
+    if (fs::path(a.out).extension() != ".exr") {
+        throw CliError("features bake: -o " + a.out +
+                       ": feature maps are .exr (OpenEXR keeps their 8 float channels)");
+    }
     if (!a.font.empty() && a.text.empty()) throw CliError("features bake: --font needs --text");
     if (a.font.empty() && (!a.text.empty() || a.face != 0)) {
         throw CliError("features bake: --text and --face apply to --font only");
@@ -101,13 +140,13 @@ void runBake(const BakeArgs& a) {
     opt.smoothIterations = a.smooth;
     opt.nearField = parseNear("bake", a.near) == NearMode::Exact;
     opt.nearWidthTexels = a.nearWidth;
-    auto start = std::chrono::steady_clock::now();
-    opt.progress = [start](const char* phase, double fraction) {
-        if (std::chrono::steady_clock::now() - start < std::chrono::seconds(1)) return;
-        std::fprintf(stderr, "features bake: %s %3.0f%%\n", phase, 100.0 * fraction);
+    auto progress = std::make_shared<BakeProgress>(a.progress);
+    opt.progress = [progress](const char* phase, double fraction) {
+        progress->report(phase, fraction);
     };
     BakeStats st;
     FeatureMaps maps = bake(net, opt, &st);
+    progress->finishPhase();
     save(maps, a.out);
     std::error_code ec;
     double fileBytes = double(fs::file_size(a.out, ec));
@@ -180,8 +219,21 @@ void runSample(const std::string& mapsFile, const std::string& pointsFile,
     const NearMode near = parseNear("sample", nearArg);
     FeatureMaps maps = load(mapsFile);
     GpuFeatureMaps gpu = maps.packGpu();
-    std::vector<glm::vec2> pts = loadSamplePoints(pointsFile);
-    std::string out;
+    std::vector<size_t> lines;
+    std::vector<glm::vec2> pts = loadSamplePoints(pointsFile, &lines);
+    // Outside the map the reconstruction extrapolates the border texels:
+    // plausible-looking values that mean nothing.
+    const float extent = float(maps.size);
+    for (size_t i = 0; i < pts.size(); ++i) {
+        const glm::vec2 p = pts[i];
+        if (!(p.x >= 0.0f && p.x <= extent && p.y >= 0.0f && p.y <= extent)) {
+            throw io::InputError(pointsFile, "line " + std::to_string(lines[i]),
+                                 "point (" + fmt(p.x) + ", " + fmt(p.y) +
+                                     ") is outside the map (texel space [0, " + fmt(extent) +
+                                     "]^2)");
+        }
+    }
+    std::string out = "x y dist grad_x grad_y\n";
     for (const auto& p : pts) {
         glsl::SgFeatResult r = sample(gpu, p, near);
         out += fmt(p.x) + " " + fmt(p.y) + " " + fmt(r.dist) + " " + fmt(r.grad.x) + " " +
@@ -348,15 +400,11 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     auto bakeArgs = std::make_shared<BakeArgs>();
     auto* bakeCmd =
         features->add_subcommand("bake", "Bake a curve network into feature maps (OpenEXR)");
-    // --json F names a JSON input; a bare --json (anywhere) asks for the
-    // statistics as JSON (both spellings are documented uses).
-    auto jsonArgs = std::make_shared<std::vector<std::string>>();
-    auto* jsonOpt = bakeCmd
-                        ->add_option("--json", *jsonArgs,
-                                     "--json F: curve network as JSON (docs/features-input.md); "
-                                     "bare --json: print the statistics as JSON")
-                        ->expected(0, 1)
-                        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+    bakeCmd->add_option("--curves", bakeArgs->json,
+                        "Curve network as JSON (docs/features-input.md)");
+    bakeCmd->add_flag("--json", bakeArgs->printJson, "Print the statistics as JSON");
+    bakeCmd->add_flag("--progress", bakeArgs->progress,
+                      "Report progress on stderr however short the bake (default: after 1 s)");
     bakeCmd->add_option("--svg", bakeArgs->svg, "SVG drawing");
     bakeCmd->add_option("--font", bakeArgs->font, "TrueType/OpenType font");
     bakeCmd->add_option("--text", bakeArgs->text, "UTF-8 text to take from the font");
@@ -376,17 +424,7 @@ void addFeaturesCommands(CLI::App& app, int& status) {
                         "Profile width (texels) of curves without their own, for the near "
                         "field's band (default 3)");
     bakeCmd->add_option("-o,--output", bakeArgs->out, "Output maps (.exr)")->required();
-    bakeCmd->callback([bakeArgs, jsonArgs, jsonOpt] {
-        size_t files = 0;
-        for (const auto& v : *jsonArgs) {
-            if (v.empty()) continue;
-            bakeArgs->json = v;
-            ++files;
-        }
-        if (files > 1) throw CliError("features bake: more than one --json input");
-        bakeArgs->printJson = jsonOpt->count() > files;
-        runBake(*bakeArgs);
-    });
+    bakeCmd->callback([bakeArgs] { runBake(*bakeArgs); });
 
     auto sampleMaps = std::make_shared<std::string>();
     auto samplePoints = std::make_shared<std::string>();

@@ -25,7 +25,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <optional>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -186,6 +188,8 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
     t0 = std::chrono::steady_clock::now();
     WriteOptions wo;
     wo.inputs = {file};
+    const std::optional<Material> material = inputMaterial(file, gltf, report.notes);
+    if (material) wo.material = &*material;
     std::vector<std::string> notes = gltf ? writeRenderMesh(out, sub.renderMesh(), wo)
                                           : writePolygonMesh(out, sub.refined(), wo);
     double writeSeconds = secondsSince(t0);
@@ -292,6 +296,10 @@ void runMorph(const std::string& file, const std::string& weightsText,
                 "--normals blend needs the file's normal deltas; subdivided meshes recompute them");
     }
     double seconds = secondsSince(t0);
+    const std::string outExt = meshFormat(out);
+    const std::optional<Material> material =
+        inputMaterial(file, outExt == ".gltf" || outExt == ".glb", report.notes);
+    if (material) wo.material = &*material;
     std::vector<std::string> notes = writeRenderMesh(out, result, wo);
     std::vector<std::string> all = report.notes;
     all.insert(all.end(), notes.begin(), notes.end());
@@ -403,6 +411,32 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         });
     }
     return mesh;
+}
+
+std::optional<Material> inputMaterial(const std::string& file, bool gltfOutput,
+                                      std::vector<std::string>& notes) {
+    const std::string ext = meshFormat(file);
+    if (ext != ".gltf" && ext != ".glb") return std::nullopt;
+    const Scene scene = loadScene(file);
+    std::vector<int> used;
+    for (const SceneInstance& inst : scene.instances) {
+        if (inst.material >= 0 && std::find(used.begin(), used.end(), inst.material) == used.end())
+            used.push_back(inst.material);
+    }
+    if (used.empty()) return std::nullopt;
+    const Material& m = scene.materials[size_t(used[0])];
+    const std::string name = "'" + io::printable(m.name.empty() ? "material" : m.name) + "'";
+    if (!gltfOutput) {
+        notes.push_back("the material " + name + " of " + file +
+                        " is not written: OBJ and PLY outputs keep no material (write .gltf or "
+                        ".glb to keep it)");
+        return std::nullopt;
+    }
+    if (used.size() > 1) {
+        notes.push_back(file + " has " + std::to_string(used.size()) +
+                        " materials on the merged mesh; the output keeps the first, " + name);
+    }
+    return m;
 }
 
 void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes) {

@@ -100,7 +100,11 @@ void runTangents(const TangentsOptions& o, int& status) {
 
     mesh::WriteOptions write;
     write.inputs = {o.input};
-    const std::vector<std::string> notes = mesh::writeRenderMesh(o.output, result, write);
+    std::vector<std::string> notes;
+    const std::optional<mesh::Material> material = inputMaterial(o.input, true, notes);
+    if (material) write.material = &*material;
+    const std::vector<std::string> written = mesh::writeRenderMesh(o.output, result, write);
+    notes.insert(notes.end(), written.begin(), written.end());
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 

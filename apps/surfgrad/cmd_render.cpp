@@ -236,9 +236,8 @@ void addRenderCommands(CLI::App& app, int& status) {
         }
         std::string outExt = lowerExt(out);
         if (outExt != ".png" && outExt != ".exr") {
-            throw io::InputError(out.string(), "",
-                                 "unsupported image format \"" + outExt +
-                                     "\" (expected .png or .exr)");
+            throw CliError(out.string() + ": unsupported image format \"" + outExt +
+                           "\" (expected .png or .exr)");
         }
         if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
         int w = 0, h = 0;
@@ -328,12 +327,17 @@ void addRenderCommands(CLI::App& app, int& status) {
     shader->add_option("scene", so->scene,
                        "SCENE.json or a model (" + std::string(sg::mesh::kMeshFormatsText) +
                            "); default: the built-in scene");
-    shader->add_option("--mesh", so->mesh, "Only the program of mesh I");
+    shader->add_option("--mesh", so->mesh, "Only the program of mesh I (0-based)")
+        ->check(CLI::NonNegativeNumber);
     shader->add_flag("--vertex", so->vertex, "Print the vertex programs too");
     shader->add_flag("--body", so->body, "Print the generated body before #include expansion");
     shader->add_option("--texture-budget", so->budget, kBudgetHelp);
     shader->callback([so, &status] {
         Scene scene = sceneFromArg(so->scene);
+        if (so->mesh >= 0 && size_t(so->mesh) >= scene.meshes.size()) {
+            throw CliError("--mesh " + std::to_string(so->mesh) + ": the scene has " +
+                           std::to_string(scene.meshes.size()) + " meshes");
+        }
         AssetOptions assetOptions;
         if (!so->budget.empty())
             assetOptions.textureBudgetBytes = parseBytes("--texture-budget", so->budget);
@@ -352,10 +356,6 @@ void addRenderCommands(CLI::App& app, int& status) {
                 std::printf("// ==== %s: vertex program\n", scene.meshes[i].fieldPath.c_str());
                 std::fputs(src.vertex.c_str(), stdout);
             }
-        }
-        if (so->mesh >= 0 && size_t(so->mesh) >= scene.meshes.size()) {
-            throw CliError("--mesh " + std::to_string(so->mesh) + ": the scene has " +
-                           std::to_string(scene.meshes.size()) + " meshes");
         }
         status = 0;
     });

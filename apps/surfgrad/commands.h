@@ -1,11 +1,20 @@
 // Subcommands of build/bin/surfgrad. Each module registers its own
 // subcommands; a subcommand's callback stores its exit status in `status`.
-// Errors are reported by throwing sg::cli::CliError (or any std::exception):
-// main prints "surfgrad: error: <message>" and exits 1.
+// Errors are reported by throwing: sg::cli::CliError for a command line
+// that is wrong (main prints "surfgrad: error: <message>" and a pointer to
+// the subcommand's --help, exit kExitUsage, as for CLI11's own parse
+// errors); sg::io::InputError or any other std::exception for bad input
+// or a failure (main prints "surfgrad: error: <message>", exit
+// kExitFailure).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "surfgrad/mesh_io.h"
 
 namespace CLI {
 class App;
@@ -13,6 +22,16 @@ class App;
 
 namespace sg::cli {
 
+// Exit statuses of every subcommand (also printed by --help).
+inline constexpr int kExitFailure = 1; // bad input (file, scene, mesh, ...) or a failure
+inline constexpr int kExitUsage = 2;   // the command line: unknown, missing or invalid option
+inline constexpr const char* kExitStatusHelp =
+    "Exit status: 0 success; 1 bad input (a malformed or invalid file, scene or mesh; the "
+    "message names the file, the element and the reason) or another failure; 2 a wrong "
+    "command line (unknown, missing or invalid option or value).";
+
+// The command line is wrong (an option's value, a combination of options,
+// an option that does not fit the input given): exit kExitUsage.
 struct CliError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
@@ -38,6 +57,14 @@ void addMeshTangentsCommand(CLI::App& mesh, int& status);
 // 0: the default budget). kMaxMemoryHint: how refusals name the option.
 inline constexpr const char* kMaxMemoryHint = "--max-memory SIZE";
 void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes);
+// The glTF material of a mesh command's input, for its glTF output
+// (WriteOptions::material; texture paths are rewritten relative to the
+// output): the material of the file's first primitive that has one, with a
+// note when the merged mesh had several (one mesh, one material) or when
+// `gltfOutput` is false (OBJ/PLY outputs keep no material). Other formats:
+// none.
+std::optional<sg::mesh::Material> inputMaterial(const std::string& file, bool gltfOutput,
+                                                std::vector<std::string>& notes);
 // Sets the mesh group's description from the subcommands attached to it
 // (main.cpp calls it after the last one).
 void describeMeshGroup(CLI::App& mesh);

@@ -1,6 +1,9 @@
 // surfgrad command-line entry point: parses the command line (CLI11) and
-// runs one subcommand. Every failure ends with a one-line message naming
-// what failed and a non-zero exit status; no partial outputs are left.
+// runs one subcommand. Every failure ends with one line
+//   surfgrad: error: <message>
+// on stderr and a non-zero exit status (kExitUsage, kExitFailure in
+// commands.h); no partial outputs are left. Messages pass through
+// sg::io::printable, so bytes quoted from input never reach the terminal raw.
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -10,10 +13,52 @@
 
 #include "commands.h"
 #include "surfgrad/bump.h"
+#include "surfgrad/io.h"
 
 #ifndef SURFGRAD_VERSION
 #define SURFGRAD_VERSION "0.0.0"
 #endif
+
+namespace {
+
+// "mesh subdivide": the deepest subcommand the command line selected.
+std::string selectedCommand(const CLI::App& app) {
+    std::string path;
+    const CLI::App* at = &app;
+    for (;;) {
+        const std::vector<CLI::App*> subs = at->get_subcommands();
+        if (subs.empty()) return path;
+        at = subs.back();
+        path += (path.empty() ? "" : " ") + at->get_name();
+    }
+}
+
+// The exit statuses under every --help.
+void addFooter(CLI::App& app) {
+    app.footer(sg::cli::kExitStatusHelp);
+    for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) addFooter(*sub);
+}
+
+void printError(const std::string& message) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "surfgrad: error: %s\n",
+                 sg::io::printable(message, std::string::npos).c_str());
+}
+
+// A usage error: the message (prefixed by the subcommand), a pointer to the
+// subcommand's --help, and kExitUsage.
+int usageError(const CLI::App& app, const std::string& message) {
+    const std::string command = selectedCommand(app);
+    // Messages of the subcommands start with their name already.
+    const std::string first = command.substr(0, command.find(' '));
+    const bool prefixed = !command.empty() && message.rfind(first, 0) != 0;
+    printError((prefixed ? command + ": " : std::string()) + message);
+    std::fprintf(stderr, "Run 'surfgrad %s%s--help' for usage.\n", command.c_str(),
+                 command.empty() ? "" : " ");
+    return sg::cli::kExitUsage;
+}
+
+} // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"surfgrad: surface-gradient bump mapping on subdivision meshes"};
@@ -31,26 +76,27 @@ int main(int argc, char** argv) {
     sg::cli::describeMeshGroup(*meshGroup);
     sg::cli::addFeaturesCommands(app, status);
     sg::cli::addNormalmapCommands(app, status);
+    addFooter(app);
     try {
         app.parse(argc, argv);
+    } catch (const CLI::Success& e) {
+        return app.exit(e); // --help, --version
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        return usageError(app, e.what());
+    } catch (const sg::cli::CliError& e) {
+        return usageError(app, e.what());
     } catch (const std::bad_alloc&) {
         // Loaders check declared sizes against limits and the texture
         // budget before they allocate, and name the input when memory runs
         // out all the same; this is the last line for anything else.
         std::string args;
         for (int i = 1; i < argc; ++i) args += std::string(i > 1 ? " " : "") + argv[i];
-        std::fflush(stdout);
-        std::fprintf(stderr,
-                     "surfgrad: error: out of memory (std::bad_alloc) running `surfgrad %s`: an "
-                     "input declares more data than this machine can hold\n",
-                     args.c_str());
-        return 1;
+        printError("out of memory (std::bad_alloc) running `surfgrad " + args +
+                   "`: an input declares more data than this machine can hold");
+        return sg::cli::kExitFailure;
     } catch (const std::exception& e) {
-        std::fflush(stdout);
-        std::fprintf(stderr, "surfgrad: error: %s\n", e.what());
-        return 1;
+        printError(e.what());
+        return sg::cli::kExitFailure;
     }
     return status;
 }

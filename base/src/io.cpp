@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -130,6 +131,39 @@ void writeAtomically(const fs::path& path, const std::function<void(const fs::pa
         fs::remove(tmp, ec);
         throw InputError(path.string(), "", "cannot rename temporary file: " + ec.message());
     }
+}
+
+std::string captureStderr(const std::function<void()>& run) {
+    std::fflush(stderr);
+    FILE* sink = std::tmpfile();
+    const int saved = sink ? ::dup(2) : -1;
+    if (saved < 0 || ::dup2(::fileno(sink), 2) < 0) {
+        // Nothing to capture into: run as is.
+        if (saved >= 0) ::close(saved);
+        if (sink) std::fclose(sink);
+        run();
+        return {};
+    }
+    auto restore = [&] {
+        std::fflush(stderr);
+        ::dup2(saved, 2);
+        ::close(saved);
+    };
+    try {
+        run();
+    } catch (...) {
+        restore();
+        std::fclose(sink);
+        throw;
+    }
+    restore();
+    std::string text;
+    std::rewind(sink);
+    char buf[4096];
+    for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, sink)) > 0;) text.append(buf, n);
+    std::fclose(sink);
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    return text;
 }
 
 void writeFileAtomically(const fs::path& path, const std::string& bytes) {

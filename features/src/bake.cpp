@@ -569,6 +569,8 @@ void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const B
             }
         }
     }
+    // Every phase reports its end (its intermediate reports are throttled).
+    if (opt.progress) opt.progress("scan", 1.0);
     g.hPos.assign(nc, -1.0);
     g.vPos.assign(nc, -1.0);
     g.hAng.assign(nc, 0.0);

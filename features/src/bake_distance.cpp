@@ -158,6 +158,7 @@ void computeDistances(const std::vector<TexelPiece>& pieces, double band, Featur
             last = std::chrono::steady_clock::now();
         }
     }
+    if (progress) progress("distance", 1.0); // the end, whatever the throttle skipped
 }
 
 void smoothGradients(double band, int iterations, FeatureMaps& maps) {

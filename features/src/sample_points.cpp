@@ -22,8 +22,10 @@ bool parseNumber(std::string_view tok, double& v) {
 
 } // namespace
 
-std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::string& name) {
+std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::string& name,
+                                         std::vector<size_t>* lineNumbers) {
     std::vector<glm::vec2> pts;
+    if (lineNumbers) lineNumbers->clear();
     size_t lineNo = 0;
     while (!text.empty()) {
         const size_t eol = text.find('\n');
@@ -53,12 +55,14 @@ std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::strin
                                  "coordinate outside float range");
         }
         pts.emplace_back(float(x), float(y));
+        if (lineNumbers) lineNumbers->push_back(lineNo);
     }
     return pts;
 }
 
-std::vector<glm::vec2> loadSamplePoints(const std::filesystem::path& path) {
-    return parseSamplePoints(io::readFile(path, std::size_t(1) << 30), path.string());
+std::vector<glm::vec2> loadSamplePoints(const std::filesystem::path& path,
+                                        std::vector<size_t>* lineNumbers) {
+    return parseSamplePoints(io::readFile(path, std::size_t(1) << 30), path.string(), lineNumbers);
 }
 
 } // namespace sg::features

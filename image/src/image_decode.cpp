@@ -12,7 +12,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <new>
+#include <optional>
+#include <string_view>
 
 #include "surfgrad/image_decode.h"
 #include "surfgrad/io.h"
@@ -222,6 +225,16 @@ std::string oneLine(std::string msg) {
     return msg.size() > 300 ? msg.substr(0, 300) + "..." : msg;
 }
 
+// Stands for a decoder's message when OpenImageIO passed on none;
+// decodeGuarded puts what the decoder printed to stderr in its place.
+constexpr std::string_view kNoDecoderMessage = "the decoder gave no reason";
+
+// OpenImageIO's error message on one line, or kNoDecoderMessage.
+std::string decoderMessage(const std::string& msg) {
+    const std::string line = oneLine(msg);
+    return line.empty() ? std::string(kNoDecoderMessage) : line;
+}
+
 // Decoder settings: channel values as stored. OpenImageIO multiplies the
 // colour channels of PNG, TGA and TIFF files with unassociated alpha by
 // alpha unless told not to, which would scale a normal map carrying a
@@ -247,7 +260,7 @@ int seekLevel(OIIO::ImageInput& in, const DecodeOptions& opt, const std::string&
     }
     if (!in.seek_subimage(0, opt.level)) {
         throw InputError(name, "level " + std::to_string(opt.level),
-                         "cannot read: " + oneLine(in.geterror()));
+                         "cannot read: " + decoderMessage(in.geterror()));
     }
     return levels;
 }
@@ -273,7 +286,7 @@ void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows, const 
                                     oiioType(plan.type), band.data());
         if (!ok) {
             throw InputError(name, "row " + std::to_string(y0),
-                             "cannot decode: " + oneLine(in.geterror()));
+                             "cannot decode: " + decoderMessage(in.geterror()));
         }
         checkBand(band.data(), rows, w, k, plan.type, y0, opt, name);
         out.insert(out.end(), band.begin(), band.begin() + long(size_t(rows) * rowBytes));
@@ -359,16 +372,15 @@ DecodedImage decode(const io::ByteSource& bytes, const std::string& name, const 
     checkMemory(name, opt, plan);
     std::unique_ptr<OIIO::ImageInput> in = open(pluginOf(hdr.format));
     if (!in) {
-        std::string err = oneLine(OIIO::geterror());
         throw InputError(name, "",
-                         std::string("cannot read ") + io::imageFormatName(hdr.format) + " image" +
-                             (err.empty() ? "" : ": " + err));
+                         std::string("cannot read ") + io::imageFormatName(hdr.format) +
+                             " image: " + decoderMessage(OIIO::geterror()));
     }
     return decodeOpened(*in, hdr, name, opt);
 }
 
-DecodedImage decodeGuarded(const io::ByteSource& bytes, const std::string& name,
-                           const DecodeOptions& opt, const OpenFn& open) {
+DecodedImage decodeCatching(const io::ByteSource& bytes, const std::string& name,
+                            const DecodeOptions& opt, const OpenFn& open) {
     try {
         return decode(bytes, name, opt, open);
     } catch (const InputError&) {
@@ -378,6 +390,37 @@ DecodedImage decodeGuarded(const io::ByteSource& bytes, const std::string& name,
     } catch (const std::exception& e) {
         // Exceptions escaping a decoder library (OpenImageIO catches most).
         throw InputError(name, "", std::string("decoder error: ") + e.what());
+    }
+}
+
+// libpng prints its own "libpng error: ..." line to stderr before
+// OpenImageIO reports the error: the decoder runs with stderr captured
+// (io::captureStderr), so that the user sees one error line, ours. What the
+// decoder printed replaces kNoDecoderMessage when OpenImageIO passed on no
+// message, and is dropped otherwise (OpenImageIO's message repeats it).
+DecodedImage decodeGuarded(const io::ByteSource& bytes, const std::string& name,
+                           const DecodeOptions& opt, const OpenFn& open) {
+    std::optional<DecodedImage> image;
+    std::exception_ptr failure;
+    const std::string printed = io::captureStderr([&] {
+        try {
+            image.emplace(decodeCatching(bytes, name, opt, open));
+        } catch (...) {
+            failure = std::current_exception();
+        }
+    });
+    if (!failure) return std::move(*image);
+    try {
+        std::rethrow_exception(failure);
+    } catch (const InputError& e) {
+        const size_t at = e.reason().find(kNoDecoderMessage);
+        std::string said;
+        for (char c : printed) said += c == '\n' ? std::string("; ") : std::string(1, c);
+        said = oneLine(said.substr(0, said.size() > 2 ? said.size() - 2 : 0));
+        if (at == std::string::npos || said.empty()) throw;
+        std::string reason = e.reason();
+        reason.replace(at, kNoDecoderMessage.size(), said);
+        throw InputError(e.file(), e.element(), reason);
     }
 }
 

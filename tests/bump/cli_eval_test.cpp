@@ -82,7 +82,7 @@ TEST(CliEval, BadLinesGetErrorLinesAndExitOne) {
     EXPECT_NE(p.out.find("bface_mode"), std::string::npos);
 
     const CliRun u = surfgrad("eval no-such-entry", "");
-    EXPECT_EQ(u.exitCode, 1);
+    EXPECT_EQ(u.exitCode, 2); // a wrong command line
     EXPECT_NE(u.err.find("unknown entry 'no-such-entry'"), std::string::npos) << u.err;
 }
 

@@ -8,6 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "mesh_test_util.h"
@@ -196,4 +200,49 @@ TEST(MeshCli, SubdivisionAboveTheMemoryBudgetIsRefused) {
             << r.err;
         EXPECT_FALSE(fs::exists(out));
     }
+}
+
+// `mesh subdivide|tangents|morph` with glTF in and out keep the material
+// and its textures (they used to be dropped); OBJ output says it keeps no
+// material; several materials on the merged mesh: the first, with a note.
+TEST(MeshCli, GltfMaterialsAndTexturesAreKept) {
+    TempDir dir;
+    const std::string box =
+        shellQuote(sg::test::dataPath("gltf/BoxTextured/glTF/BoxTextured.gltf").string());
+    const std::string morph = shellQuote(
+        sg::test::dataPath("gltf/MorphPrimitivesTest/glTF/MorphPrimitivesTest.gltf").string());
+    const fs::path out = dir / "out.gltf";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"mesh subdivide " + box + " --level 1 -o " + shellQuote(out), "CesiumLogoFlat.png"},
+        {"mesh tangents " + box + " -o " + shellQuote(out), "CesiumLogoFlat.png"},
+        {"mesh morph " + morph + " --weights 0.5 -o " + shellQuote(out), "uv_texture.jpg"},
+    };
+    for (const auto& [cmd, image] : cases) {
+        SCOPED_TRACE(cmd);
+        fs::remove(out);
+        const sg::test::CommandResult r = runSurfgrad(cmd);
+        ASSERT_EQ(r.exitCode, 0) << r.output();
+        const nlohmann::json doc = nlohmann::json::parse(sg::io::readFile(out));
+        ASSERT_TRUE(doc.contains("materials")) << doc.dump();
+        ASSERT_EQ(doc["materials"].size(), 1u);
+        EXPECT_EQ(doc["meshes"][0]["primitives"][0]["material"], 0);
+        const nlohmann::json& tex = doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"];
+        ASSERT_TRUE(tex.is_object()) << doc["materials"].dump();
+        const std::string uri =
+            doc["images"][size_t(doc["textures"][size_t(tex["index"])]["source"])]["uri"];
+        EXPECT_EQ(fs::path(uri).filename(), image);
+        EXPECT_TRUE(fs::exists(dir.path() / uri)) << uri;
+        if (image == "uv_texture.jpg") {
+            EXPECT_EQ(doc["materials"][0]["name"], "red");
+            EXPECT_NE(r.err.find("has 2 materials on the merged mesh; the output keeps the first, "
+                                 "'red'"),
+                      std::string::npos)
+                << r.err;
+        }
+    }
+    const sg::test::CommandResult obj =
+        runSurfgrad("mesh subdivide " + box + " --level 1 -o " + shellQuote(dir / "out.obj"));
+    ASSERT_EQ(obj.exitCode, 0) << obj.output();
+    EXPECT_NE(obj.err.find("the material 'Texture' of "), std::string::npos) << obj.err;
+    EXPECT_NE(obj.err.find("OBJ and PLY outputs keep no material"), std::string::npos) << obj.err;
 }

@@ -150,23 +150,26 @@ TEST_F(TangentsCli, LimitFramesAreUnitAndOrthogonalToTheNormal) {
 
 TEST_F(TangentsCli, BadArgumentsFailWithoutOutput) {
     const std::string in = kData + "/meshes/spot/spot_control_mesh.obj";
+    // Exit status 2 for a wrong command line, 1 for bad input.
     struct Case {
         std::string args, message;
+        int exitCode;
     };
     const std::vector<Case> cases = {
-        {"mesh tangents '" + in + "' --uv-set 2 -o '" + path("a.glb") + "'", "UV set"},
-        {"mesh tangents '" + in + "' -o '" + path("a.obj") + "'", "glTF output"},
+        {"mesh tangents '" + in + "' --uv-set 2 -o '" + path("a.glb") + "'", "UV set", 1},
+        {"mesh tangents '" + in + "' -o '" + path("a.obj") + "'", "glTF output", 2},
         {"mesh tangents '" + in + "' --method pixel -o '" + path("a.glb") + "'",
-         "built by the shader"},
+         "built by the shader", 2},
         {"mesh tangents '" + in + "' --method nope -o '" + path("a.glb") + "'",
-         "expected mikktspace or limit"},
-        {"mesh tangents '" + in + "' --level 99 -o '" + path("a.glb") + "'", "--level"},
-        {"mesh tangents '" + path("missing.obj") + "' -o '" + path("a.glb") + "'", "missing.obj"},
-        {"mesh tangents '" + in + "' -o '" + in + "'", ""}, // never over the input
+         "expected mikktspace or limit", 2},
+        {"mesh tangents '" + in + "' --level 99 -o '" + path("a.glb") + "'", "--level", 2},
+        {"mesh tangents '" + path("missing.obj") + "' -o '" + path("a.glb") + "'", "missing.obj",
+         1},
+        {"mesh tangents '" + in + "' -o '" + in + "'", "", 2}, // .obj (and never over the input)
     };
     for (const Case& c : cases) {
         const CliRun r = surfgrad(c.args);
-        EXPECT_EQ(r.exitCode, 1) << c.args << "\n" << r.err;
+        EXPECT_EQ(r.exitCode, c.exitCode) << c.args << "\n" << r.err;
         EXPECT_NE(r.err.find("surfgrad: error:"), std::string::npos) << c.args << "\n" << r.err;
         EXPECT_NE(r.err.find(c.message), std::string::npos) << c.args << "\n" << r.err;
         EXPECT_FALSE(fs::exists(path("a.glb"))) << c.args;

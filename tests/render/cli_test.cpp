@@ -72,14 +72,14 @@ TEST(Cli, BadInputFailsWithTheFieldAndNoOutput) {
     // and an output that would overwrite the input.
     EXPECT_EQ(run("shader bad.json", dir).exitCode, 1);
     CmdResult aov = run("render --aov normals -o x.png", dir);
-    EXPECT_EQ(aov.exitCode, 1);
+    EXPECT_EQ(aov.exitCode, 2); // a usage error
     EXPECT_NE(aov.output().find("--aov"), std::string::npos);
     EXPECT_NE(run("render --size 0x10 -o x.png", dir).exitCode, 0);
     CmdResult fmt = run("render --size 8x8 -o x.bmp", dir);
-    EXPECT_EQ(fmt.exitCode, 1);
+    EXPECT_EQ(fmt.exitCode, 2); // a usage error
     EXPECT_NE(fmt.output().find("unsupported image format"), std::string::npos);
     std::ofstream(dir / "ok.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}]})";
-    EXPECT_EQ(run("render ok.json -o ok.json", dir).exitCode, 1);
+    EXPECT_EQ(run("render ok.json -o ok.json", dir).exitCode, 2); // not an image format
     EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
@@ -171,6 +171,149 @@ TEST(Cli, MeshHelpNamesEveryMeshSubcommand) {
             << cmd << ":\n"
             << help.out;
     }
+}
+
+// Lines of a text, without their "\n".
+std::vector<std::string> lines(const std::string& text) {
+    std::vector<std::string> out;
+    size_t at = 0;
+    while (at < text.size()) {
+        size_t end = text.find('\n', at);
+        if (end == std::string::npos) end = text.size();
+        out.push_back(text.substr(at, end - at));
+        at = end + 1;
+    }
+    return out;
+}
+
+// A wrong command line, in every subcommand: exit 2 and two lines on
+// stderr, "surfgrad: error: <subcommand>: <what>" and a pointer to that
+// subcommand's --help (CLI11's own messages used to exit 105/106 in
+// another format); bad input stays exit 1 with one line; --help states
+// the exit statuses.
+TEST(Cli, UsageErrorsExit2InOneFormat) {
+    fs::path dir = scratch("usage");
+    std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}]})";
+    const std::vector<std::pair<std::string, std::string>> cases = {
+        {"--bogus", ""},
+        {"render --bogus", "render"},
+        {"render --aov normals", "render"},
+        {"render --size 8x8 --frame x", "render"},
+        {"shader --mesh -1", "shader"},
+        {"shader s.json --mesh 3", "shader"},
+        {"view --frames -2", "view"},
+        {"mesh", "mesh"},
+        {"mesh info", "mesh info"},
+        {"mesh subdivide s.obj -o x.obj", "mesh subdivide"},
+        {"mesh subdivide s.obj --level 99 -o x.obj", "mesh subdivide"},
+        {"mesh morph s.glb -o x.glb", "mesh morph"},
+        {"mesh tangents", "mesh tangents"},
+        {"features bake --size 16 -o x.exr", "features bake"},
+        {"features sample", "features sample"},
+        {"features render --profile crease -o x.png", "features render"},
+        {"eval", "eval"},
+        {"selftest --only nope", "selftest"},
+        {"normalmap --bogus", "normalmap"},
+    };
+    for (const auto& [args, command] : cases) {
+        SCOPED_TRACE(args);
+        CmdResult r = run(args, dir);
+        EXPECT_EQ(r.exitCode, 2) << r.output();
+        const std::vector<std::string> err = lines(r.err);
+        ASSERT_EQ(err.size(), 2u) << r.err;
+        const std::string prefix =
+            "surfgrad: error: " + (command.empty() ? std::string() : command);
+        EXPECT_EQ(err[0].rfind(prefix, 0), 0u) << err[0];
+        EXPECT_EQ(err[1],
+                  "Run 'surfgrad " + command + (command.empty() ? "" : " ") + "--help' for usage.");
+    }
+    CmdResult bad = run("render missing.json -o x.png", dir);
+    EXPECT_EQ(bad.exitCode, 1) << bad.output();
+    EXPECT_EQ(lines(bad.err).size(), 1u) << bad.err;
+    EXPECT_EQ(bad.err.rfind("surfgrad: error: ", 0), 0u) << bad.err;
+    for (const char* help : {"--help", "render --help", "mesh subdivide --help"}) {
+        CmdResult h = run(help, dir);
+        EXPECT_EQ(h.exitCode, 0);
+        EXPECT_NE(h.out.find("Exit status: 0 success; 1 bad input"), std::string::npos) << help;
+    }
+}
+
+// A PNG texture whose data is corrupt: our one error line only (libpng's
+// own "libpng error: ..." line used to be printed before it).
+TEST(Cli, CorruptPngTextureGivesOneErrorLine) {
+    fs::path dir = scratch("corrupt_png");
+    // A valid 4x4 RGB PNG, then its compressed data overwritten.
+    Image img;
+    img.width = img.height = 4;
+    img.pixels.assign(16, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+    writeImage(dir / "good.png", img, Aov::Color, 1.0f);
+    std::ifstream in(dir / "good.png", std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const size_t idat = bytes.find("IDAT");
+    ASSERT_NE(idat, std::string::npos);
+    for (size_t i = idat + 4; i < bytes.size() - 16; ++i) bytes[i] = char(0xA5 ^ i);
+    std::ofstream(dir / "bad.png", std::ios::binary) << bytes;
+    std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
+        "materials": [{"layers": [{"type": "uv_normal", "map": "bad.png"}]}]})";
+    CmdResult r = run("render s.json --size 16x16 -o x.png", dir);
+    EXPECT_EQ(r.exitCode, 1) << r.output();
+    EXPECT_EQ(r.err.find("libpng error"), std::string::npos) << r.err;
+    const std::vector<std::string> err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << r.err;
+    EXPECT_EQ(err[0].rfind("surfgrad: error: ", 0), 0u);
+    EXPECT_NE(err[0].find("bad.png"), std::string::npos);
+    EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// `features bake`: the curve network comes with --curves, --json only asks
+// for the statistics (it used to mean both), the output must be .exr (a
+// .png got OpenImageIO's "PNG only supports 1-4 channels"), and progress
+// reaches 100% in every phase it reports (it stopped at "distance 90%").
+TEST(FeaturesCli, BakeTakesCurvesWritesExrAndEndsProgressAt100) {
+    fs::path dir = scratch("features_bake");
+    std::ofstream(dir / "net.json")
+        << R"({"version": 1, "curves": [{"points": [[0, 0], [10, 0], [10, 5]]}]})";
+    CmdResult png = run("features bake --curves net.json --size 64 -o m.png", dir);
+    EXPECT_EQ(png.exitCode, 2) << png.output();
+    EXPECT_NE(png.err.find("-o m.png: feature maps are .exr"), std::string::npos) << png.err;
+    EXPECT_FALSE(fs::exists(dir / "m.png"));
+    CmdResult r = run("features bake --curves net.json --size 64 -o m.exr --json --progress", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    EXPECT_NE(r.out.find("\"size\":64"), std::string::npos) << r.out;
+    const std::vector<std::string> progress = lines(r.err);
+    ASSERT_FALSE(progress.empty());
+    std::set<std::string> phases, finished;
+    for (const std::string& l : progress) {
+        ASSERT_EQ(l.rfind("features bake: ", 0), 0u) << l;
+        const std::string phase = l.substr(15, l.find(' ', 15) - 15);
+        phases.insert(phase);
+        if (l.size() >= 4 && l.substr(l.size() - 4) == "100%") finished.insert(phase);
+    }
+    EXPECT_EQ(phases, finished) << r.err;
+    EXPECT_EQ(progress.back().substr(progress.back().size() - 4), "100%");
+    EXPECT_EQ(r.err.back(), '\n');
+}
+
+// `features sample`: a header line names the columns; a point outside the
+// map is an error naming its line (it used to get plausible values).
+TEST(FeaturesCli, SampleHasAHeaderAndRefusesPointsOutsideTheMap) {
+    fs::path dir = scratch("features_sample");
+    std::ofstream(dir / "net.json")
+        << R"({"version": 1, "curves": [{"points": [[0, 0], [10, 0], [10, 5]]}]})";
+    ASSERT_EQ(run("features bake --curves net.json --size 64 -o m.exr", dir).exitCode, 0);
+    std::ofstream(dir / "in.txt") << "10 10\n32.5 20.25\n";
+    CmdResult r = run("features sample m.exr --points in.txt", dir);
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    const std::vector<std::string> out = lines(r.out);
+    ASSERT_EQ(out.size(), 3u) << r.out;
+    EXPECT_EQ(out[0], "x y dist grad_x grad_y");
+    EXPECT_EQ(out[1].rfind("10 10 ", 0), 0u) << out[1];
+    std::ofstream(dir / "out.txt") << "10 10\n70 10\n";
+    CmdResult bad = run("features sample m.exr --points out.txt", dir);
+    EXPECT_EQ(bad.exitCode, 1) << bad.output();
+    EXPECT_TRUE(bad.out.empty()) << bad.out;
+    EXPECT_NE(bad.err.find("out.txt: line 2: point (70, 10) is outside the map"), std::string::npos)
+        << bad.err;
 }
 
 TEST(Cli, ExrOutputKeepsRawAovValues) {

@@ -150,7 +150,7 @@ TEST(TextureLimits, TheBudgetOptionIsParsedAndNamedInMessages) {
         << tiny.output();
     EXPECT_EQ(runLimited("shader scene.json --texture-budget 2MiB", dir).exitCode, 0);
     const CommandResult bad = runLimited("render scene.json -o out.png --texture-budget 1X", dir);
-    EXPECT_EQ(bad.exitCode, 1);
+    EXPECT_EQ(bad.exitCode, 2) << bad.output(); // a malformed option: a usage error
     EXPECT_NE(bad.output().find("--texture-budget: expected a size such as 512M"),
               std::string::npos)
         << bad.output();

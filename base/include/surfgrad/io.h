@@ -68,6 +68,15 @@ void checkNotInput(const std::filesystem::path& output,
 std::string readFile(const std::filesystem::path& path, std::size_t maxBytes = std::size_t(1)
                                                                                << 30);
 
+// Runs `run` with the process's stderr (file descriptor 2) sent to a
+// temporary file, restores it (also when `run` throws; the exception
+// propagates) and returns what was written there, each line ended by "\n".
+// For third-party decoders that print their own error lines before
+// reporting the error to their caller (libpng's "libpng error: ..."
+// through OpenImageIO): the caller's message is the one the user sees.
+// Process-wide: output of other threads meanwhile is captured too.
+std::string captureStderr(const std::function<void()>& run);
+
 // Refuses JSON text in which an object has the same key twice (JSON
 // parsers keep one of them silently): throws InputError(file, path, reason)
 // with the JSON Pointer (RFC 6901) of the object ("/meshes/0"; "/" for the

@@ -330,9 +330,13 @@ FeatureMaps bake(const CurveNetwork& net, const BakeOptions& options, BakeStats*
 // anything else: not exactly two numbers, a number that is not finite
 // (after from_chars: "nan", "inf", overflow) or beyond +-1e30.
 // parseSamplePoints takes the text (fuzzing; `name` appears in messages),
-// loadSamplePoints reads a file of at most 1 GiB.
-std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::string& name);
-std::vector<glm::vec2> loadSamplePoints(const std::filesystem::path& path);
+// loadSamplePoints reads a file of at most 1 GiB. `lineNumbers`, when given,
+// receives each point's line in the file (from 1), for messages about a
+// point.
+std::vector<glm::vec2> parseSamplePoints(std::string_view text, const std::string& name,
+                                         std::vector<size_t>* lineNumbers = nullptr);
+std::vector<glm::vec2> loadSamplePoints(const std::filesystem::path& path,
+                                        std::vector<size_t>* lineNumbers = nullptr);
 
 // OpenEXR storage (atomic write; load validates every channel, value and
 // metadata field and throws sg::io::InputError naming what is wrong).
