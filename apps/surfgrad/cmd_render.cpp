@@ -170,18 +170,109 @@ std::string glTimes(const RenderStats& st) {
     return s;
 }
 
-} // namespace
+// `surfgrad render`'s options.
+struct RenderOpts {
+    std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact",
+                                  budget;
+    double frame = 0.0;
+    bool cpu = false, allFrames = false, verbose = false, compare = false;
+};
 
-void addRenderCommands(CLI::App& app, int& status) {
-    // ---- render
+// `surfgrad render`: loads the scene, renders each requested frame (OpenGL
+// or the CPU reference) and writes it; --compare-cpu prints the normal AOV's
+// differences between the two.
+void runRender(const RenderOpts& ro) {
+    auto aov = parseAov(ro.aov);
+    if (!aov) throw CliError("--aov: unknown output \"" + ro.aov + "\"");
+    Scene scene = sceneFromArg(ro.scene);
+    overrideTangents(scene, ro.tbn);
+    fs::path out = ro.out;
+    if (out.empty()) {
+        std::string stem = ro.scene.empty() ? "default" : fs::path(ro.scene).stem().string();
+        if (stem == "scene" && !ro.scene.empty()) {
+            stem = fs::absolute(ro.scene).parent_path().filename().string();
+        }
+        fs::create_directories("out");
+        out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro.aov) + ".png");
+    }
+    std::string outExt = lowerExt(out);
+    if (outExt != ".png" && outExt != ".exr") {
+        throw CliError(out.string() + ": unsupported image format \"" + outExt +
+                       "\" (expected .png or .exr)");
+    }
+    if (!ro.scene.empty()) io::checkNotInput(out, {fs::path(ro.scene)});
+    int w = 0, h = 0;
+    if (!ro.size.empty()) parseSize(ro.size, w, h);
+    AssetOptions assetOptions;
+    if (!ro.budget.empty())
+        assetOptions.textureBudgetBytes = parseBytes("--texture-budget", ro.budget);
+    auto t0 = std::chrono::steady_clock::now();
+    noteSubdivision(scene);
+    SceneAssets assets = loadAssets(scene, assetOptions);
+    if (ro.verbose) {
+        for (const auto& l : assets.log) std::printf("%s\n", l.c_str());
+    }
+    std::unique_ptr<sg::gl::HeadlessContext> ctx;
+    std::unique_ptr<GlRenderer> gl;
+    if (!ro.cpu) {
+        ctx = std::make_unique<sg::gl::HeadlessContext>();
+        gl = std::make_unique<GlRenderer>();
+    }
+    CpuOptions cpuOpt;
+    cpuOpt.derivatives = ro.cpuDeriv == "quad" ? CpuDerivatives::Quad : CpuDerivatives::Analytic;
+    cpuOpt.textureLod =
+        ro.cpuLod == "llvmpipe" ? sg::glsl::LodRule::FastLog2 : sg::glsl::LodRule::Exact;
+    int first = int(ro.frame), count = 1;
+    if (ro.allFrames) {
+        first = 0;
+        count = scene.frameCount;
+    }
+    for (int f = 0; f < count; ++f) {
+        float frame = ro.allFrames ? float(first + f) : float(ro.frame);
+        applyFrame(scene, assets, frame / scene.fps);
+        if (gl) gl->invalidateMeshes();
+        View view = makeView(scene, assets, w, h, *aov);
+        const std::string size = std::to_string(view.width) + "x" + std::to_string(view.height);
+        const long pixels = long(view.width) * long(view.height);
+        if (gl) gl->setProgress(progressLine("drawing " + size, "bands"));
+        cpuOpt.progress =
+            pixels >= kCpuProgressPixels ? progressLine("CPU reference " + size, "rows") : nullptr;
+        Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
+        fs::path target = out;
+        if (ro.allFrames) {
+            char suffix[16];
+            std::snprintf(suffix, sizeof suffix, "_%04d", first + f);
+            target = out.parent_path() / (out.stem().string() + suffix + out.extension().string());
+        }
+        if (pixels >= kLargeImagePixels)
+            std::fprintf(stderr, "surfgrad: writing %s\n", target.string().c_str());
+        writeImage(target, img, *aov, scene.output.exposure);
+        if (ro.compare && gl) {
+            gl->setProgress(nullptr);
+            cpuOpt.progress = nullptr;
+            View nv = view, pv = view;
+            nv.aov = Aov::Normal;
+            pv.aov = Aov::PrimId;
+            Image gn = gl->render(scene, assets, nv), gp = gl->render(scene, assets, pv);
+            Image cn = renderCpu(scene, assets, nv, cpuOpt),
+                  cp = renderCpu(scene, assets, pv, cpuOpt);
+            VectorImageDiff d = compareVectorImages(gn, cn, gp, cp);
+            std::printf("normal AOV, OpenGL vs CPU reference: %zu pixels compared, %zu coverage "
+                        "mismatches, %zu non-finite\n  angle (deg): mean %.4g  p50 %.4g  p90 %.4g  "
+                        "p99 %.4g  p99.9 %.4g  max %.4g at (%d, %d)\n",
+                        d.compared, d.coverageMismatch, d.nonFinite, d.meanDeg, d.p50Deg, d.p90Deg,
+                        d.p99Deg, d.p999Deg, d.maxDeg, d.maxX, d.maxY);
+        }
+        double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        std::printf("wrote %s (%dx%d, %s, %s, %.2f s elapsed)\n", target.string().c_str(),
+                    img.width, img.height, aovName(*aov),
+                    gl ? glTimes(gl->stats()).c_str() : "CPU reference", secs);
+    }
+}
+
+void addRenderCommand(CLI::App& app, int& status) {
     auto* render =
         app.add_subcommand("render", "Render a scene (or the built-in default scene) to an image");
-    struct RenderOpts {
-        std::string scene, out, size, aov = "color", tbn, cpuDeriv = "analytic", cpuLod = "exact",
-                                      budget;
-        double frame = 0.0;
-        bool cpu = false, allFrames = false, verbose = false, compare = false;
-    };
     auto ro = std::make_shared<RenderOpts>();
     render->add_option("scene", ro->scene,
                        "SCENE.json, or a model to frame automatically (" +
@@ -221,102 +312,12 @@ void addRenderCommands(CLI::App& app, int& status) {
         "Also render the normal AOV with the CPU reference and print the per-pixel angle "
         "differences (pixels covered by the same primitive in both)");
     render->callback([ro, &status] {
-        auto aov = parseAov(ro->aov);
-        if (!aov) throw CliError("--aov: unknown output \"" + ro->aov + "\"");
-        Scene scene = sceneFromArg(ro->scene);
-        overrideTangents(scene, ro->tbn);
-        fs::path out = ro->out;
-        if (out.empty()) {
-            std::string stem = ro->scene.empty() ? "default" : fs::path(ro->scene).stem().string();
-            if (stem == "scene" && !ro->scene.empty()) {
-                stem = fs::absolute(ro->scene).parent_path().filename().string();
-            }
-            fs::create_directories("out");
-            out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro->aov) + ".png");
-        }
-        std::string outExt = lowerExt(out);
-        if (outExt != ".png" && outExt != ".exr") {
-            throw CliError(out.string() + ": unsupported image format \"" + outExt +
-                           "\" (expected .png or .exr)");
-        }
-        if (!ro->scene.empty()) io::checkNotInput(out, {fs::path(ro->scene)});
-        int w = 0, h = 0;
-        if (!ro->size.empty()) parseSize(ro->size, w, h);
-        AssetOptions assetOptions;
-        if (!ro->budget.empty())
-            assetOptions.textureBudgetBytes = parseBytes("--texture-budget", ro->budget);
-        auto t0 = std::chrono::steady_clock::now();
-        noteSubdivision(scene);
-        SceneAssets assets = loadAssets(scene, assetOptions);
-        if (ro->verbose) {
-            for (const auto& l : assets.log) std::printf("%s\n", l.c_str());
-        }
-        std::unique_ptr<sg::gl::HeadlessContext> ctx;
-        std::unique_ptr<GlRenderer> gl;
-        if (!ro->cpu) {
-            ctx = std::make_unique<sg::gl::HeadlessContext>();
-            gl = std::make_unique<GlRenderer>();
-        }
-        CpuOptions cpuOpt;
-        cpuOpt.derivatives =
-            ro->cpuDeriv == "quad" ? CpuDerivatives::Quad : CpuDerivatives::Analytic;
-        cpuOpt.textureLod =
-            ro->cpuLod == "llvmpipe" ? sg::glsl::LodRule::FastLog2 : sg::glsl::LodRule::Exact;
-        int first = int(ro->frame), count = 1;
-        if (ro->allFrames) {
-            first = 0;
-            count = scene.frameCount;
-        }
-        for (int f = 0; f < count; ++f) {
-            float frame = ro->allFrames ? float(first + f) : float(ro->frame);
-            applyFrame(scene, assets, frame / scene.fps);
-            if (gl) gl->invalidateMeshes();
-            View view = makeView(scene, assets, w, h, *aov);
-            const std::string size = std::to_string(view.width) + "x" + std::to_string(view.height);
-            const long pixels = long(view.width) * long(view.height);
-            if (gl) gl->setProgress(progressLine("drawing " + size, "bands"));
-            cpuOpt.progress = pixels >= kCpuProgressPixels
-                                  ? progressLine("CPU reference " + size, "rows")
-                                  : nullptr;
-            Image img =
-                gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
-            fs::path target = out;
-            if (ro->allFrames) {
-                char suffix[16];
-                std::snprintf(suffix, sizeof suffix, "_%04d", first + f);
-                target =
-                    out.parent_path() / (out.stem().string() + suffix + out.extension().string());
-            }
-            if (pixels >= kLargeImagePixels)
-                std::fprintf(stderr, "surfgrad: writing %s\n", target.string().c_str());
-            writeImage(target, img, *aov, scene.output.exposure);
-            if (ro->compare && gl) {
-                gl->setProgress(nullptr);
-                cpuOpt.progress = nullptr;
-                View nv = view, pv = view;
-                nv.aov = Aov::Normal;
-                pv.aov = Aov::PrimId;
-                Image gn = gl->render(scene, assets, nv), gp = gl->render(scene, assets, pv);
-                Image cn = renderCpu(scene, assets, nv, cpuOpt),
-                      cp = renderCpu(scene, assets, pv, cpuOpt);
-                VectorImageDiff d = compareVectorImages(gn, cn, gp, cp);
-                std::printf(
-                    "normal AOV, OpenGL vs CPU reference: %zu pixels compared, %zu coverage "
-                    "mismatches, %zu non-finite\n  angle (deg): mean %.4g  p50 %.4g  p90 %.4g  "
-                    "p99 %.4g  p99.9 %.4g  max %.4g at (%d, %d)\n",
-                    d.compared, d.coverageMismatch, d.nonFinite, d.meanDeg, d.p50Deg, d.p90Deg,
-                    d.p99Deg, d.p999Deg, d.maxDeg, d.maxX, d.maxY);
-            }
-            double secs =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-            std::printf("wrote %s (%dx%d, %s, %s, %.2f s elapsed)\n", target.string().c_str(),
-                        img.width, img.height, aovName(*aov),
-                        gl ? glTimes(gl->stats()).c_str() : "CPU reference", secs);
-        }
+        runRender(*ro);
         status = 0;
     });
+}
 
-    // ---- shader
+void addShaderCommand(CLI::App& app, int& status) {
     auto* shader = app.add_subcommand("shader", "Print the assembled GLSL programs of a scene");
     struct ShaderOpts {
         std::string scene, budget;
@@ -359,8 +360,9 @@ void addRenderCommands(CLI::App& app, int& status) {
         }
         status = 0;
     });
+}
 
-    // ---- view
+void addViewCommand(CLI::App& app, int& status) {
     auto* view = app.add_subcommand("view", "Interactive viewer (GLFW window + Dear ImGui)");
     struct ViewOpts {
         std::string scene, screenshot, size, budget;
@@ -400,6 +402,14 @@ void addRenderCommands(CLI::App& app, int& status) {
             "view: this build has no viewer (configure with -DSURFGRAD_BUILD_VIEWER=ON)");
 #endif
     });
+}
+
+} // namespace
+
+void addRenderCommands(CLI::App& app, int& status) {
+    addRenderCommand(app, status);
+    addShaderCommand(app, status);
+    addViewCommand(app, status);
 }
 
 } // namespace sg::cli
