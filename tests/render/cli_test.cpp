@@ -376,13 +376,15 @@ TEST(Cli, TbnLimitChangesOnlyTheTangentsOfLimitMeshes) {
     size_t differ = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
     EXPECT_EQ(differ, 0u);
-    // Without a limit mesh: an error naming the meshes, and no image.
+    // Without a limit mesh: a usage error (exit 2: the option does not fit
+    // the scene) naming the meshes, and no image.
     std::ofstream(dir / "none.json") << R"({"meshes": [{"file": ")" + spot +
                                             R"(", "subdivision": {"level": 1}},
         {"procedural": {"type": "sphere"}}]})";
     CmdResult none = run("render none.json --tbn limit -o none.png", dir);
-    EXPECT_EQ(none.exitCode, 1);
-    EXPECT_NE(none.err.find("surfgrad: error: --tbn limit: meshes[0], meshes[1]: limit tangents "
+    EXPECT_EQ(none.exitCode, 2);
+    EXPECT_NE(none.err.find("surfgrad: error: render: --tbn limit: meshes[0], meshes[1]: limit "
+                            "tangents "
                             "need \"subdivision\": {\"limit\": true}"),
               std::string::npos)
         << none.output();
