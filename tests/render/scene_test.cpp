@@ -327,8 +327,9 @@ TEST(SceneValidation, DefaultSceneIsValidAndUsesManyLayerKinds) {
 // A scene whose subdivision would need more memory than its limit (the
 // default budget, or subdivision.max_memory_mib): refused before the
 // refinement allocates, naming the level, the faces, the bytes needed and
-// the field that raises the limit; within a raised limit the same mesh
-// loads.
+// the field that raises the limit; as every error of a referenced file it
+// keeps the scene context (field meshes[0].file, then the mesh file and its
+// element); within a raised limit the same mesh loads.
 TEST(SceneAssets, SubdivisionAboveTheMemoryLimitIsRefused) {
     const std::string spot = std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
     auto scene = [&](int level, int mib) {
@@ -340,8 +341,10 @@ TEST(SceneAssets, SubdivisionAboveTheMemoryLimitIsRefused) {
         loadAssets(scene(5, 16));
         ADD_FAILURE() << "expected InputError";
     } catch (const io::InputError& e) {
-        EXPECT_EQ(e.element(), "level 5");
-        EXPECT_NE(std::string(e.reason()).find("would make 187392 faces and need about "),
+        EXPECT_EQ(e.element(), "meshes[0].file");
+        EXPECT_NE(std::string(e.reason())
+                      .find("spot_control_mesh.obj: level 5: would make 187392 "
+                            "faces and need about "),
                   std::string::npos)
             << e.what();
         EXPECT_NE(std::string(e.reason())
