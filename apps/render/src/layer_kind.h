@@ -379,7 +379,9 @@ void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm:
 // twin the same ones in CpuShadeState: `frame` (SgFrame: the prologue,
 // listing 16, or the re-prologue of a post-resolve group), `uv0`..`uv3`
 // (SgUvFrame of each UV set the plan reads), `volWorld`, `volObject`
-// (SgVolumeSpace, when a layer uses them), `surfGrad` (the group's sum).
+// (SgVolumeSpace, when a layer uses them), `surfGrad` (the group's sum),
+// and in plans that antialias, `slopeCov` (mat3: the frame-space slope
+// covariances of the layers so far, every group's, sg/render/antialias.glsl).
 // A kind's statement adds its surface gradient to surfGrad; a kind may also
 // replace frames for the layers after it (e.g. assign uv<k> a corrected
 // coordinate, or `frame` a virtual surface followed by sgReprologue), as
@@ -406,6 +408,7 @@ struct CpuShadeState {
     std::array<sg::glsl::SgUvFrame, kMaxUvSets> uv{};
     sg::glsl::SgVolumeSpace volWorld{}, volObject{};
     glm::vec3 surfGrad{0.0f};
+    glm::mat3 slopeCov{0.0f}; // antialiasing plans: the sum of the layers' slope covariances
     const sg::glsl::SgVolumeSpace& vol(Space s) const {
         return s == Space::World ? volWorld : volObject;
     }
@@ -534,6 +537,9 @@ struct LayerKind {
     bool readsUv = false; // reads Layer::uvSet's frame
     bool (*readsTangentBasis)(const Layer&) = nullptr; // the frame's vT, vB (vertex tangents)
     int textureSlots = 0; // Layer::maps[i] -> slot i (missing maps repeat the last)
+    // The layer's slot count when it depends on its options (optional;
+    // overrides textureSlots; at most 3, PlanLayer::tex).
+    int (*textureSlotsOf)(const Layer&) = nullptr;
     // The components of its maps the kind's shader reads (bit c: component
     // c of RGBA; sgDecodeNormalXY/XYZ and sgTexelChannel in common.glsl) and
     // what reads them, for messages. Textures are decoded with only these
@@ -541,6 +547,13 @@ struct LayerKind {
     uint32_t (*mapChannels)(const Layer&, const char*& why) = nullptr;
     std::optional<Space> (*volume)(const Layer&) = nullptr; // a volume domain
     const char* glslFile = nullptr;                         // #included when used
+    // The file a layer with these options includes instead (optional, e.g.
+    // its antialiased variant; nullptr: glslFile).
+    const char* (*glslFileOf)(const Layer&) = nullptr;
+    // The layer adds the covariance of its slopes to `slopeCov` (bump
+    // antialiasing, sg/render/antialias.glsl): the program then declares
+    // slopeCov and widens the shading lobe by it (optional).
+    bool (*antialias)(const Layer&) = nullptr;
     // What else the layer's GLSL statement depends on besides its records
     // (compile-time options): appended to its code in the effect signature,
     // so programs that differ are cached apart (optional).

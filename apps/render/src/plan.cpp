@@ -81,9 +81,12 @@ void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
     for (const auto& g : plan.groups)
         for (const auto& pl : g) {
             const LayerKind& k = *pl.layer->kind;
-            std::string f = pl.hasModifiers ? k.modifiers->glslFile : k.glslFile;
+            std::string f = pl.hasModifiers ? k.modifiers->glslFile
+                            : k.glslFileOf  ? k.glslFileOf(*pl.layer)
+                                            : k.glslFile;
             if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
         }
+    if (plan.antialias) files.push_back("sg/render/antialias.glsl");
     for (const auto& f : files) o << "#include \"" << f << "\"\n";
     for (size_t i = 0; i < plan.textureKeys.size(); ++i) {
         o << "uniform sampler2D uTex" << i << "; // "
@@ -131,6 +134,10 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
           << uv << ".dSTdx, " << uv << ".dSTdy).xyz; // base colour map (linear)\n";
     }
     o << "    vec3 surfGrad = vec3(0.0);\n";
+    if (plan.antialias) {
+        o << "    mat3 slopeCov = mat3(0.0); // the layers' slope covariances "
+             "(sg/render/antialias.glsl)\n";
+    }
 }
 
 // One group: the re-prologue (groups after the first), the layers, the resolve.
@@ -176,10 +183,17 @@ void emitGroup(const MaterialPlan& plan, size_t g, std::ostringstream& o) {
 
 // Lights and the output variable.
 void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
+    std::string roughness = "uRoughness";
+    if (plan.antialias) {
+        o << "    float roughness = sgAaRoughness(uRoughness, slopeCov); // lobe widened by the "
+             "bumps\n";
+        roughness = "roughness";
+    }
     o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
       << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], "
-         "baseColor, uRoughness);\n"
+         "baseColor, "
+      << roughness << ");\n"
       << "    }\n";
     if (plan.uvCount > 0) {
         o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, uv0.vT, uv0.vB, baseNormal, "
@@ -431,10 +445,12 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
         if (plan.uber && !(u.uberFlags[size_t(plan.groupUberIndex[g])] > 0.5f)) continue;
         nrm = sh.group(g, s, nrm);
     }
+    const float roughness =
+        plan.antialias ? G::sgAaRoughness(u.roughness, s.slopeCov) : u.roughness;
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
     for (int i = 0; i < plan.lightCount; ++i) {
         color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)],
-                                 u.lights[size_t(2 * i + 1)], baseColor, u.roughness);
+                                 u.lights[size_t(2 * i + 1)], baseColor, roughness);
     }
     const bool hasUv0 = plan.uvCount > 0;
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);

@@ -32,6 +32,13 @@ sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p);
 // [0,1]^2 converted to the requested output (see TextureSource).
 TextureImage makeProceduralTexture(const TextureSource& src);
 
+// The moment texture `moments` (not None) of a normal map in `encoding`
+// (layer_uv_normal.cpp: level 0 by sgUvNormalMomentTexel, then the usual
+// box-filtered mip chain, so every level holds the footprint's moments).
+// Same size and wrap as `map`; float RGBA.
+TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
+                                 NormalEncoding encoding);
+
 glm::mat3 normalMatrix(const glm::mat4& model);
 
 // World-space bounds of every mesh instance.

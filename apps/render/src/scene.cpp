@@ -62,6 +62,12 @@ std::string FeatureSource::key() const {
 }
 
 std::string TextureSource::key() const {
+    if (moments != TexMoments::None) {
+        TextureSource base = *this;
+        base.moments = TexMoments::None;
+        return base.key() + ":moments" + std::to_string(int(moments)) + ":enc" +
+               std::to_string(int(momentsEncoding));
+    }
     if (!procedural.empty()) {
         return "proc:" + procedural + ":" + output + ":" + std::to_string(size) + ":" +
                std::to_string(bumpHeight) + (wrap == Wrap::Clamp ? ":clamp" : ":repeat");

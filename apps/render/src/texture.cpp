@@ -235,8 +235,8 @@ vec4 textureGrad(sampler2D s, vec2 st, vec2 dSTdx, vec2 dSTdy) {
     vec2 dx = dSTdx * size, dy = dSTdy * size;
     float rho2 = std::max(dot(dx, dx), dot(dy, dy));
     float lambda;
-    if (!(rho2 > 0.0f)) {
-        lambda = -1e9f; // zero or NaN footprint: magnification
+    if (!(rho2 > 0.0f) || s.lodRule == LodRule::Level0) {
+        lambda = -1e9f; // zero or NaN footprint (or no filtering): magnification
     } else if (!std::isfinite(rho2)) {
         lambda = 1e9f;
     } else if (s.lodRule == LodRule::FastLog2) {

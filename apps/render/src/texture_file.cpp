@@ -123,6 +123,23 @@ TextureImage decodeTextureImage(std::string_view bytes, const std::string& name,
 std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
                                                 const std::string& sceneName,
                                                 const TextureLoadOptions& options) {
+    if (src.moments != TexMoments::None) {
+        // The normal map itself, then its moments (float RGBA, own mips).
+        TextureSource base = src;
+        base.moments = TexMoments::None;
+        std::shared_ptr<const TextureImage> map = loadTexture(base, sceneName, options);
+        try {
+            checkBudget("moments of " + base.key(), options,
+                        std::to_string(map->width()) + "x" + std::to_string(map->height()) +
+                            " pixels, 4 channels as float",
+                        textureBytes(map->width(), map->height(), 4, TexelType::Float),
+                        map->bytes());
+        } catch (const InputError& e) {
+            throw InputError(sceneName, src.fieldPath, e.what());
+        }
+        return std::make_shared<TextureImage>(
+            detail::normalMomentTexture(*map, src.moments, src.momentsEncoding));
+    }
     if (!src.procedural.empty()) {
         try {
             checkBudget("procedural texture " + src.procedural, options,

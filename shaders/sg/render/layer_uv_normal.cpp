@@ -2,9 +2,36 @@
 // (layer_uv_normal.glsl: Mikkelsen 2019, listings 4, 5, 6; the vertex or
 // limit basis of section 2.2 when the UV set has vertex tangents). Takes
 // derivative-space modifiers (layer_uv_normal_mods.glsl).
+#include <cstring>
+
 #include "layer_kind.h"
 
 namespace sg::render {
+
+namespace detail {
+
+TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
+                                 NormalEncoding encoding) {
+    SG_EXPECTS(moments != TexMoments::None && !map.levels.empty(), "a moment texture of a map");
+    const TextureLevel& L0 = map.levels[0];
+    const int mode = moments == TexMoments::Toksvig ? SG_AA_TOKSVIG : SG_AA_LEAN;
+    std::vector<glm::vec4> texels(size_t(L0.width) * size_t(L0.height));
+    std::vector<glm::vec4> row(size_t(L0.width));
+    for (int y = 0; y < L0.height; ++y) {
+        L0.expandRows(y, 1, row.data());
+        for (int x = 0; x < L0.width; ++x) {
+            glm::vec4 a, b;
+            sg::glsl::sgUvNormalMomentTexel(row[size_t(x)], int(encoding), mode, a, b);
+            texels[size_t(y) * size_t(L0.width) + size_t(x)] = moments == TexMoments::LeanB ? b : a;
+        }
+    }
+    TextureImage img = makeTexture(L0.width, L0.height, std::move(texels), map.wrap);
+    img.channelMask = map.channelMask;
+    img.sourceChannels = map.sourceChannels;
+    return img;
+}
+
+} // namespace detail
 
 namespace {
 
@@ -46,10 +73,25 @@ const DerivModTarget kModifiers = {
     },
 };
 
+int antialiasOf(const Layer& L) {
+    return L.params<P>().antialias;
+}
+
+// Antialiased (layer_uv_normal_aa.glsl): the moment textures in slots 0
+// (and 1 for LEAN), the covariance added to slopeCov.
 std::string glsl(const GlslLayerContext& c) {
     if (c.pl.hasModifiers) return derivModBlock(c, kModifiers);
-    return "surfGrad += sgLayerUvNormal(" + c.uv() + ", " + c.unpack(c.layer().kind->records[0]) +
-           ", " + c.tex(0) + ");\n";
+    const std::string p = c.unpack(c.layer().kind->records[0]);
+    const int aa = antialiasOf(c.layer());
+    if (aa == SG_AA_LEAN) {
+        return "surfGrad += sgLayerUvNormalLean(" + c.uv() + ", " + p + ", " + c.tex(0) + ", " +
+               c.tex(1) + ", slopeCov);\n";
+    }
+    if (aa == SG_AA_TOKSVIG) {
+        return "surfGrad += sgLayerUvNormalToksvig(" + c.uv() + ", " + p + ", " + c.tex(0) +
+               ", slopeCov);\n";
+    }
+    return "surfGrad += sgLayerUvNormal(" + c.uv() + ", " + p + ", " + c.tex(0) + ");\n";
 }
 
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
@@ -58,7 +100,47 @@ void cpu(const CpuLayerContext& c, CpuShadeState& s) {
         return;
     }
     const glm::vec4* r = c.rec();
-    s.surfGrad += G::sgLayerUvNormal(c.uv(s), G::sgUnpackUvNormal(r[0], r[1]), c.tex(0));
+    const G::SgUvNormalParams p = G::sgUnpackUvNormal(r[0], r[1]);
+    const int aa = antialiasOf(c.layer());
+    if (aa == SG_AA_LEAN) {
+        s.surfGrad += G::sgLayerUvNormalLean(c.uv(s), p, c.tex(0), c.tex(1), s.slopeCov);
+    } else if (aa == SG_AA_TOKSVIG) {
+        s.surfGrad += G::sgLayerUvNormalToksvig(c.uv(s), p, c.tex(0), s.slopeCov);
+    } else {
+        s.surfGrad += G::sgLayerUvNormal(c.uv(s), p, c.tex(0));
+    }
+}
+
+// "antialias": reads the choice and puts the map's moment textures in
+// place of the map (read after "map", "encoding" and "modifiers").
+ParamSpec antialiasParam() {
+    return param::custom(
+        "antialias",
+        [](const detail::SceneNode& n, const char* key, Layer& L, const detail::SceneReader&) {
+            if (!n.has(key)) return;
+            P& p = L.params<P>();
+            p.antialias = n.choice(key, 0, {"none", "lean", "toksvig"});
+            if (p.antialias == 0) return;
+            if (!L.modifiers.empty()) {
+                n.failField(key, "antialiasing does not combine with modifiers: expected "
+                                 "\"none\" or no modifiers");
+            }
+            if (L.maps.empty()) return; // the map's own message
+            TextureSource map = L.maps[0];
+            map.momentsEncoding = p.encoding;
+            L.maps.clear();
+            if (p.antialias == SG_AA_LEAN) {
+                map.moments = TexMoments::LeanA;
+                L.maps.push_back(map);
+                map.moments = TexMoments::LeanB;
+                L.maps.push_back(map);
+            } else {
+                map.moments = TexMoments::Toksvig;
+                L.maps.push_back(map);
+            }
+        },
+        "bump antialiasing: \"none\" (default), \"lean\" or \"toksvig\" (slope covariance "
+        "of the footprint widens the lobe)");
 }
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int uvCount) {
@@ -94,13 +176,25 @@ const LayerKind& uvNormalLayerKind() {
                 param::strength(),
                 param::heightChannel(&P::heightChannel, &P::heightScale),
                 param::modifiers(),
+                antialiasParam(),
             },
         .makeParams = [] { return std::any(P{}); },
         .readsUv = true,
         .readsTangentBasis = [](const Layer&) { return true; },
         .textureSlots = 1,
+        .textureSlotsOf = [](const Layer& L) { return antialiasOf(L) == SG_AA_LEAN ? 2 : 1; },
         .mapChannels = mapChannels,
         .glslFile = "sg/render/layer_uv_normal.glsl",
+        .glslFileOf =
+            [](const Layer& L) {
+                return antialiasOf(L) != 0 ? "sg/render/layer_uv_normal_aa.glsl"
+                                           : "sg/render/layer_uv_normal.glsl";
+            },
+        .antialias = [](const Layer& L) { return antialiasOf(L) != 0; },
+        .signature = [](const Layer& L) -> std::string {
+            const int aa = antialiasOf(L);
+            return aa == SG_AA_LEAN ? "~lean" : aa == SG_AA_TOKSVIG ? "~toksvig" : "";
+        },
         .modifiers = &kModifiers,
         .records = {records()},
         .glsl = glsl,

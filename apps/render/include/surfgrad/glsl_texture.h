@@ -106,7 +106,9 @@ float srgbToLinear(float encoded);
 
 namespace sg::glsl {
 
-enum class LodRule { Exact, FastLog2 };
+// Level0: no filtering across levels, always bilinear on level 0 (the
+// ground truth of supersampled renders: bench/antialias_bench.cpp).
+enum class LodRule { Exact, FastLog2, Level0 };
 
 struct sampler2D {
     const sg::render::TextureImage* image = nullptr;

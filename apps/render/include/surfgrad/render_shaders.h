@@ -14,6 +14,8 @@ namespace sg::glsl {
 #include "sg/render/common.glsl"
 #include "sg/render/noise.glsl"
 #include "sg/render/layer_uv_normal.glsl"
+#include "sg/render/antialias.glsl"
+#include "sg/render/layer_uv_normal_aa.glsl"
 #include "sg/render/layer_object_normal.glsl"
 #include "sg/render/layer_height.glsl"
 #include "sg/render/layer_deriv_map.glsl"

@@ -28,6 +28,10 @@ struct UvNormalParams {
     bool flipV = false;       // green convention "dx"
     int heightChannel = -1;   // height channel read by modifiers (-1: none)
     float heightScale = 1.0f; // height channel -> height per st unit
+    // "antialias": 0 "none", SG_AA_LEAN 1 "lean", SG_AA_TOKSVIG 2 "toksvig"
+    // (layer_uv_normal_aa.glsl). With it, Layer::maps holds the map's
+    // moment textures (TextureSource::moments) instead of the map.
+    int antialias = 0;
 };
 
 // object_normal: object/world-space normal map (listing 7).

@@ -64,6 +64,9 @@ struct MaterialPlan {
     int baseColorTex = -1;   // texture slot of the base colour map (-1: none)
     int baseColorUvSet = 0;
     bool usesWorldVolume = false, usesObjectVolume = false;
+    // Some layer antialiases (LayerKind::antialias): the program sums the
+    // layers' slope covariances and widens the lobe (sg/render/antialias.glsl).
+    bool antialias = false;
     // Uber plans: the disabled stand-in layers (shared so copies of the
     // plan stay valid). Other layer and texture pointers point into the Scene,
     // which must outlive the plan.

@@ -94,7 +94,8 @@ enum class CpuDerivatives { Analytic, Quad };
 struct CpuOptions {
     CpuDerivatives derivatives = CpuDerivatives::Analytic;
     // Texture LOD: the GL specification's log2 (reference), or llvmpipe's
-    // piecewise-linear approximation (sg::glsl::LodRule::FastLog2).
+    // piecewise-linear approximation (sg::glsl::LodRule::FastLog2), or
+    // level 0 always (LodRule::Level0: no filtering, for supersampled truths).
     sg::glsl::LodRule textureLod = sg::glsl::LodRule::Exact;
     // Progress: progress(rowsDone, rowCount) after every 1/16 of the rows
     // (and at the end); called from the worker threads, one call at a time.

@@ -48,7 +48,10 @@ struct LayerKind;
 struct ModifierKind;
 enum class Space { World, Object };
 enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 }; // SG_ENC_*
-enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 };     // SG_NOISE_*
+// Moment textures of a normal map (layer_uv_normal_aa.glsl): LEAN's
+// (E[d], E[d.x^2], E[d.y^2]) and (E[d.x d.y]), Toksvig's E[n].
+enum class TexMoments { None = 0, LeanA = 1, LeanB = 2, Toksvig = 3 };
+enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 }; // SG_NOISE_*
 
 // Where a texture's texels come from: a file (PNG, EXR, ... through
 // OpenImageIO) or a built-in procedural pattern (tileable over [0,1]^2).
@@ -59,8 +62,13 @@ struct TextureSource {
     int size = 256;                // procedural resolution
     float bumpHeight = 0.04f;      // procedural: height per unit st (slope scale)
     Wrap wrap = Wrap::Repeat;
-    bool srgb = false;       // colour texture: sRGB-decoded to linear on load
-    std::string fieldPath;   // for messages, e.g. "materials[0].layers[1].map"
+    bool srgb = false;     // colour texture: sRGB-decoded to linear on load
+    std::string fieldPath; // for messages, e.g. "materials[0].layers[1].map"
+    // Antialiasing: not the file's texels but the slope moments of the
+    // normal map they encode (momentsEncoding), with their own mip chain
+    // (shaders/sg/render/layer_uv_normal_aa.glsl, sgUvNormalMomentTexel).
+    TexMoments moments = TexMoments::None;
+    NormalEncoding momentsEncoding = NormalEncoding::Rgb;
     std::string key() const; // identity: equal keys share one texture
 };
 
