@@ -1,5 +1,5 @@
 // Bump antialiasing against a supersampled ground truth (docs/accuracy-cost.md,
-// table 7; bench/README.md, "Antialiasing"). A plane seen straight on, so
+// table 8; bench/README.md, "Antialiasing"). A plane seen straight on, so
 // every pixel covers the same number of texels (the minification m), lit by
 // one directional light near the mirror direction, black base colour and no
 // ambient: the image is the GGX highlight alone, the radiance that aliases.
@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,11 +37,37 @@ constexpr int kSuper = 16;         // samples per pixel along each axis (truth)
 constexpr double kFovDeg = 60.0;   // camera
 constexpr double kHeight = 1.0;    // camera above the plane
 constexpr double kPlaneSize = 1.3; // covers the view
-constexpr int kMapTexels = 128;    // procedural map size
+constexpr int kMapTexels = 128;    // normal-map size
+
+// A smooth tiling height field (sum of periodic sines, st units) written as
+// a float tangent-space normal map: n = normalize(-dh/ds, -dh/dt, 1).
+// `phase` varies the pattern between layers.
+std::string writeSineMap(const std::string& path, double amplitude, double phase) {
+    const int n = kMapTexels;
+    const double tau = 6.283185307179586;
+    Image img;
+    img.width = img.height = n;
+    img.pixels.resize(size_t(n) * size_t(n));
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const double s = (i + 0.5) / n, t = (j + 0.5) / n;
+            // h = sin(3 tau s) sin(5 tau t) + 0.5 sin(tau (7s + 4t) + phase)
+            //     + 0.3 sin(tau (13s - 11t) + 2 phase), times amplitude.
+            const double a = 3 * tau * s, b = 5 * tau * t;
+            const double c = tau * (7 * s + 4 * t) + phase, e = tau * (13 * s - 11 * t) + 2 * phase;
+            const double ds = 3 * tau * std::cos(a) * std::sin(b) + 0.5 * 7 * tau * std::cos(c) +
+                              0.3 * 13 * tau * std::cos(e);
+            const double dt = 5 * tau * std::sin(a) * std::cos(b) + 0.5 * 4 * tau * std::cos(c) -
+                              0.3 * 11 * tau * std::cos(e);
+            const glm::dvec3 m = glm::normalize(glm::dvec3(-amplitude * ds, -amplitude * dt, 1.0));
+            img.pixels[size_t(j) * size_t(n) + size_t(i)] = glm::vec4(glm::vec3(m), 1.0f);
+        }
+    writeImage(path, img, Aov::Normal, 1.0f);
+    return path;
+}
 
 struct LayerSpec {
-    const char* map;  // procedural pattern
-    float bumpHeight; // its slope scale
+    std::string map; // float normal-map file
     float strength;
     float scaleFactor; // of the UV tiling rate relative to the first layer
     float rotateDeg;
@@ -72,9 +99,7 @@ std::string sceneJson(const SceneSpec& spec, double m, int w, const std::vector<
         layers += std::string(i ? ", " : "") +
                   "{\"type\": \"uv_normal\", \"uv_set\": " + std::to_string(i + 1) +
                   ", \"strength\": " + std::to_string(L.strength) + ", \"antialias\": \"" + aa[i] +
-                  "\", \"map\": {\"procedural\": \"" + L.map +
-                  "\", \"size\": " + std::to_string(kMapTexels) +
-                  ", \"bump_height\": " + std::to_string(L.bumpHeight) + "}}";
+                  "\", \"encoding\": \"float\", \"map\": {\"file\": \"" + L.map + "\"}}";
     }
     const int rw = renderWidth > 0 ? renderWidth : w;
     return R"({"output": {"width": )" + std::to_string(rw) + R"(, "height": )" +
@@ -273,10 +298,12 @@ int main(int argc, char** argv) {
         GlRenderer gl;
         std::printf("antialias_bench: renderer %s\n",
                     reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
-        const SceneSpec tiled{"tiled normal map", {{"bumps", 0.35f, 1.0f, 1.0f, 0.0f}}};
-        const SceneSpec composed{
-            "two maps composed (bumps + weave at 1.7x, 30 deg)",
-            {{"bumps", 0.35f, 1.0f, 1.0f, 0.0f}, {"weave", 0.25f, 0.8f, 1.7f, 30.0f}}};
+        const std::string dir = std::filesystem::temp_directory_path().string();
+        const std::string mapA = writeSineMap(dir + "/antialias_bench_a.exr", 0.012, 0.0);
+        const std::string mapB = writeSineMap(dir + "/antialias_bench_b.exr", 0.008, 1.3);
+        const SceneSpec tiled{"tiled normal map", {{mapA, 1.0f, 1.0f, 0.0f}}};
+        const SceneSpec composed{"two maps composed (second at 1.7x the rate, turned 30 deg)",
+                                 {{mapA, 1.0f, 1.0f, 0.0f}, {mapB, 1.0f, 1.7f, 30.0f}}};
         std::vector<double> ms = {1, 2, 4, 8, 16, 32, 64};
         if (quick) ms = {1, 8, 64};
         accuracyTable(gl, tiled, w, ms);
