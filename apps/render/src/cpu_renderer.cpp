@@ -263,6 +263,9 @@ detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, i
     in.worldPos = interp(d.world, mu);
     in.objPos = interp(d.obj, mu);
     in.normal = interp(d.normal, mu);
+    in.dNdx = interp(d.normal, mux);
+    in.dNdy = interp(d.normal, muy);
+    in.fragCoord = glm::vec2(float(x) + 0.5f, float(y) + 0.5f);
     for (size_t k = 0; k < d.mesh->uvSets.size() && k < size_t(kMaxUvSets); ++k) {
         in.uv[k] = interp(d.mesh->uvSets[k], mu);
         in.dUVdx[k] = interp(d.mesh->uvSets[k], mux);

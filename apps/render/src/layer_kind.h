@@ -388,6 +388,18 @@ void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm:
 // long as its CPU call does the same to the state. One statement: a block
 // `{ ... }` when it needs locals (the assembler may guard it with an `if`
 // in uber-shaders).
+//
+// Moving the surface (LayerKind::movesSurface: parallax, POM; Mikkelsen
+// 2019, sections 2.6 and 3): main() then also holds `surfOffset` (vec3,
+// frame space, initially 0), the offset of the virtual surface from the
+// mesh surface, which such a kind's statement adds to; the base colour is
+// sampled after group 0's layers (so it reads corrected coordinates); and
+// the re-prologue of every later group is the `reprologue` statement of the
+// last such layer before it (nrm, the resolved normal, in scope) instead of
+// the default sgReprologue(frame, nrm, frame.dPdx, frame.dPdy): it sets
+// `frame` to the virtual surface (e.g. listing 17's analytic derivatives at
+// vRelPos + surfOffset) and rebuilds volWorld/volObject there (when the plan
+// uses them). The UV frames of the group are rebuilt after it as usual.
 
 struct GlslLayerContext {
     const MaterialPlan& plan;
@@ -409,6 +421,7 @@ struct CpuShadeState {
     sg::glsl::SgVolumeSpace volWorld{}, volObject{};
     glm::vec3 surfGrad{0.0f};
     glm::mat3 slopeCov{0.0f}; // antialiasing plans: the sum of the layers' slope covariances
+    glm::vec3 surfOffset{0.0f}; // the virtual surface (LayerKind::movesSurface)
     const sg::glsl::SgVolumeSpace& vol(Space s) const {
         return s == Space::World ? volWorld : volObject;
     }
@@ -567,6 +580,13 @@ struct LayerKind {
     std::string (*glsl)(const GlslLayerContext&) = nullptr;
     void (*cpu)(const CpuLayerContext&, CpuShadeState&) = nullptr;
     const LayerBatch* batch = nullptr;
+    // The statement moves the surface (section 3 above): surfOffset, late
+    // base colour, and `reprologue` (optional) for the groups after it; the
+    // CPU twin sets the state's frame and volumes the same way (nrm: the
+    // resolved normal of the group before).
+    bool movesSurface = false;
+    std::string (*reprologue)(const GlslLayerContext&) = nullptr;
+    void (*reprologueCpu)(const CpuLayerContext&, CpuShadeState&, glm::vec3 nrm) = nullptr;
     // Once per program when the plan has layers of this kind: declarations
     // after the texture uniforms, #defines, and a part of the signature.
     std::string (*programDeclarations)(const MaterialPlan&) = nullptr;

@@ -9,6 +9,8 @@
     X(uvNormal)                                                                                    \
     X(objectNormal)                                                                                \
     X(height)                                                                                      \
+    X(parallax)                                                                                    \
+    X(pom)                                                                                         \
     X(derivMap)                                                                                    \
     X(triplanar)                                                                                   \
     X(decal)                                                                                       \

@@ -47,6 +47,23 @@ struct GroupOrder {
     std::vector<std::pair<const LayerKind*, std::vector<const PlanLayer*>>> batches;
 };
 
+// A layer of the plan moves the surface (LayerKind::movesSurface): main()
+// holds surfOffset and samples the base colour after group 0's layers.
+bool movesSurface(const MaterialPlan& plan) {
+    return std::any_of(plan.kinds.begin(), plan.kinds.end(),
+                       [](const LayerKind* k) { return k->movesSurface; });
+}
+
+// The layer whose re-prologue group g uses: the last one before the group
+// with a `reprologue` (nullptr: the default re-prologue).
+const PlanLayer* reprologueLayer(const MaterialPlan& plan, size_t g) {
+    const PlanLayer* last = nullptr;
+    for (size_t h = 0; h < g; ++h)
+        for (const PlanLayer& pl : plan.groups[h])
+            if (pl.layer->kind->reprologue) last = &pl;
+    return last;
+}
+
 GroupOrder groupOrder(const MaterialPlan& plan, const std::vector<PlanLayer>& group) {
     GroupOrder o;
     for (const PlanLayer& pl : group)
@@ -97,6 +114,17 @@ void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
     if (plan.uber) o << "uniform float uLayerOn[" << std::max(plan.uberFlagCount, 1) << "];\n";
 }
 
+// The base colour: after the prologue, or after group 0's layers when a
+// layer moves the surface (they may correct the UV coordinates).
+void emitBaseColor(const MaterialPlan& plan, std::ostringstream& o) {
+    o << "    vec3 baseColor = uBaseColor;\n";
+    if (plan.baseColorTex >= 0) {
+        std::string uv = uvVar(plan.baseColorUvSet);
+        o << "    baseColor *= textureGrad(" << tex(plan.baseColorTex) << ", " << uv << ".st, "
+          << uv << ".dSTdx, " << uv << ".dSTdy).xyz; // base colour map (linear)\n";
+    }
+}
+
 // main() up to the first layer: prologue, UV frames, volume domains, base colour.
 void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
     o << "\nvoid main() {\n"
@@ -127,17 +155,14 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
     if (plan.usesObjectVolume) {
         o << "    SgVolumeSpace volObject = sgVolumeSpace(frame, vObjPos, uModel3, uModelInv3);\n";
     }
-    o << "    vec3 baseColor = uBaseColor;\n";
-    if (plan.baseColorTex >= 0) {
-        std::string uv = uvVar(plan.baseColorUvSet);
-        o << "    baseColor *= textureGrad(" << tex(plan.baseColorTex) << ", " << uv << ".st, "
-          << uv << ".dSTdx, " << uv << ".dSTdy).xyz; // base colour map (linear)\n";
-    }
+    if (!movesSurface(plan)) emitBaseColor(plan, o);
     o << "    vec3 surfGrad = vec3(0.0);\n";
     if (plan.antialias) {
         o << "    mat3 slopeCov = mat3(0.0); // the layers' slope covariances "
              "(sg/render/antialias.glsl)\n";
     }
+    if (movesSurface(plan))
+        o << "    vec3 surfOffset = vec3(0.0); // the virtual surface (parallax, section 3)\n";
 }
 
 // One group: the re-prologue (groups after the first), the layers, the resolve.
@@ -150,7 +175,19 @@ void emitGroup(const MaterialPlan& plan, size_t g, std::ostringstream& o) {
             o << "    if (uLayerOn[" << plan.groupUberIndex[g] << "] > 0.5) {\n";
             indent = "        ";
         }
-        o << indent << "frame = sgReprologue(frame, nrm, frame.dPdx, frame.dPdy);\n";
+        if (const PlanLayer* rp = reprologueLayer(plan, g)) {
+            // The virtual surface of a layer that moved it (section 3).
+            GlslLayerContext c{plan, *rp, indent};
+            if (plan.uber) {
+                o << indent << "if (uLayerOn[" << rp->uberIndex << "] > 0.5) ";
+                o << rp->layer->kind->reprologue(c);
+                o << indent << "else frame = sgReprologue(frame, nrm, frame.dPdx, frame.dPdy);\n";
+            } else {
+                o << indent << rp->layer->kind->reprologue(c);
+            }
+        } else {
+            o << indent << "frame = sgReprologue(frame, nrm, frame.dPdx, frame.dPdy);\n";
+        }
         uint32_t m = groupUvMask(plan.groups[g]);
         for (int k = 0; k < plan.uvCount; ++k) {
             if (m >> k & 1u) {
@@ -173,6 +210,7 @@ void emitGroup(const MaterialPlan& plan, size_t g, std::ostringstream& o) {
     for (const auto& [kind, layers] : order.batches)
         o << kind->batch->groupStatements(plan, layers, indent);
     if (g == 0) {
+        if (movesSurface(plan)) emitBaseColor(plan, o);
         o << "    vec3 nrm = sgResolve(frame, surfGrad); // listing 1\n"
           << "    vec3 surfGradOut = surfGrad;\n";
     } else {
@@ -404,9 +442,15 @@ struct CpuShader {
     }
 
     // emitGroup(): layers in the GLSL's order, then the resolve.
-    glm::vec3 group(size_t g, CpuShadeState& s, glm::vec3 nrm) const {
+    glm::vec3 group(size_t g, CpuShadeState& s, glm::vec3 nrm,
+                    glm::vec3* lateBaseColor = nullptr) const {
         if (g > 0) {
-            s.frame = G::sgReprologue(s.frame, nrm, s.frame.dPdx, s.frame.dPdy);
+            const PlanLayer* rp = reprologueLayer(plan, g);
+            if (rp && on(*rp))
+                rp->layer->kind->reprologueCpu(CpuLayerContext{plan, *rp, u, smp, fsmp, in}, s,
+                                               nrm);
+            else
+                s.frame = G::sgReprologue(s.frame, nrm, s.frame.dPdx, s.frame.dPdy);
             uint32_t m = groupUvMask(plan.groups[g]);
             for (int k = 0; k < plan.uvCount; ++k) {
                 size_t kk = size_t(k);
@@ -425,6 +469,7 @@ struct CpuShader {
             for (const PlanLayer& pl : layers)
                 if (pl.layer->kind == k) layer(pl, s);
         }
+        if (lateBaseColor) *lateBaseColor = baseColor(s);
         return G::sgResolve(s.frame, s.surfGrad);
     }
 };
@@ -437,8 +482,9 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
     const CpuShader sh{plan, u, smp, fsmp, in};
     CpuShadeState s = sh.prologue();
     const glm::vec3 baseNormal = s.frame.nrmBase;
-    const glm::vec3 baseColor = sh.baseColor(s);
-    glm::vec3 nrm = sh.group(0, s, glm::vec3(0.0f));
+    const bool lateBaseColor = movesSurface(plan);
+    glm::vec3 baseColor = lateBaseColor ? glm::vec3(0.0f) : sh.baseColor(s);
+    glm::vec3 nrm = sh.group(0, s, glm::vec3(0.0f), lateBaseColor ? &baseColor : nullptr);
     const glm::vec3 surfGradOut = s.surfGrad;
     glm::vec3 tangentOut = s.uv[0].vT, bitangentOut = s.uv[0].vB;
     for (size_t g = 1; g < plan.groups.size(); ++g) {

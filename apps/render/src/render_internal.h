@@ -72,6 +72,8 @@ struct PixelInputs {
     std::array<glm::vec2, kMaxUvSets> uv{}, dUVdx{}, dUVdy{};
     std::array<glm::vec4, kMaxUvSets> tangent{};
     glm::vec3 dPdx{0.0f}, dPdy{0.0f}; // of relPos
+    glm::vec3 dNdx{0.0f}, dNdy{0.0f}; // of normal (interpolated, unnormalized)
+    glm::vec2 fragCoord{0.0f};        // gl_FragCoord.xy: window position of the pixel centre
     bool frontFacing = true;
     float primId = 0.0f; // gl_PrimitiveID
 };

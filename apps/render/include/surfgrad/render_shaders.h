@@ -18,6 +18,7 @@ namespace sg::glsl {
 #include "sg/render/layer_uv_normal_aa.glsl"
 #include "sg/render/layer_object_normal.glsl"
 #include "sg/render/layer_height.glsl"
+#include "sg/render/layer_parallax.glsl"
 #include "sg/render/layer_deriv_map.glsl"
 #include "sg/render/layer_triplanar.glsl"
 #include "sg/render/layer_decal.glsl"
