@@ -153,8 +153,9 @@ std::vector<Pixel> pixels(int count) {
     std::vector<Pixel> v;
     for (int i = 0; i < count; ++i) {
         double a = az(rng), e = glm::radians(el(rng));
-        v.push_back({glm::dvec2(pos(rng), pos(rng)),
-                     glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e))});
+        v.push_back(
+            {glm::dvec2(pos(rng), pos(rng)),
+             glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e))});
     }
     return v;
 }

@@ -28,9 +28,9 @@ namespace {
 namespace G = sg::glsl;
 
 struct ParallaxParams {
-    int channel = 0;      // the channel holding the relief height H in [0, 1]
-    float scale = 0.02f;  // world units of relief depth (H = 0 lies scale below the mesh)
-    int steps = 16;       // pom: linear search steps
+    int channel = 0;     // the channel holding the relief height H in [0, 1]
+    float scale = 0.02f; // world units of relief depth (H = 0 lies scale below the mesh)
+    int steps = 16;      // pom: linear search steps
     bool correctNormal = true;
     bool bump = true;
 };
@@ -134,8 +134,7 @@ void cpuCall(const CpuLayerContext& c, CpuShadeState& s, bool occlusion) {
         s.frame = G::sgReprologue(s.frame, n, s.frame.dPdx, s.frame.dPdy);
     }
     uv.st += corr;
-    if (prm.bump)
-        s.surfGrad += G::sgLayerHeight(s.frame, uv, G::sgUnpackHeight(c.rec()[0]), t);
+    if (prm.bump) s.surfGrad += G::sgLayerHeight(s.frame, uv, G::sgUnpackHeight(c.rec()[0]), t);
 }
 
 std::string glslParallax(const GlslLayerContext& c) {
@@ -163,8 +162,8 @@ std::string reprologue(const GlslLayerContext& c) {
          "), gl_FragCoord.x, gl_FragCoord.y);\n";
     o += in + "frame = sgReprologue(frame, nrm, dPdxV, dPdyV);\n";
     if (c.plan.usesWorldVolume) {
-        o += in +
-             "volWorld = sgVolumeSpace(frame, vWorldPos + surfOffset, mat3(1.0), mat3(1.0));\n";
+        o +=
+            in + "volWorld = sgVolumeSpace(frame, vWorldPos + surfOffset, mat3(1.0), mat3(1.0));\n";
     }
     if (c.plan.usesObjectVolume) {
         o += in + "volObject = sgVolumeSpace(frame, vObjPos + uModelInv3 * surfOffset, uModel3, "
