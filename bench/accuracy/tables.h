@@ -29,7 +29,8 @@ void tableFeatures(const Options& o);    // 4: feature-curve mode
 void tableDerivatives(const Options& o); // 5: derivative method
 void tablePrecision(const Options& o);   // 6: precision
 void tableTriplanar(const Options& o);   // 7: triplanar method
-void tableParallax(const Options& o);    // 9: parallax and POM (8, antialiasing: bench/antialias_bench)
+void tableParallax(
+    const Options& o); // 9: parallax and POM (8, antialiasing: bench/antialias_bench)
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {

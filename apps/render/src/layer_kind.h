@@ -420,7 +420,7 @@ struct CpuShadeState {
     std::array<sg::glsl::SgUvFrame, kMaxUvSets> uv{};
     sg::glsl::SgVolumeSpace volWorld{}, volObject{};
     glm::vec3 surfGrad{0.0f};
-    glm::mat3 slopeCov{0.0f}; // antialiasing plans: the sum of the layers' slope covariances
+    glm::mat3 slopeCov{0.0f};   // antialiasing plans: the sum of the layers' slope covariances
     glm::vec3 surfOffset{0.0f}; // the virtual surface (LayerKind::movesSurface)
     const sg::glsl::SgVolumeSpace& vol(Space s) const {
         return s == Space::World ? volWorld : volObject;
