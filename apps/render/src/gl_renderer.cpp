@@ -88,6 +88,8 @@ struct GlRenderer::Impl {
     // worker threads their query does not cover: 17.6 ms of a 580 ms
     // 4096^2 frame (wall time, glFinish inside the query), so no GPU time
     // is reported there (docs/platform.md).
+    void bindDraw(GpuProgram& gp, const MaterialPlan& plan, const detail::DrawUniforms& u,
+                  const View& view, const SceneAssets& assets);
     bool timerMeasures() {
         if (timerOk < 0) {
             GLint bits = 0;
@@ -263,6 +265,70 @@ size_t GlRenderer::cachedPrograms() const {
     return impl_->programs.size();
 }
 
+// One draw's state: the program, its uniforms (transforms, material,
+// lights, layer records), the regular textures and the feature maps on the
+// units after them.
+void GlRenderer::Impl::bindDraw(GpuProgram& gp, const MaterialPlan& plan,
+                                const detail::DrawUniforms& u, const View& view,
+                                const SceneAssets& assets) {
+    Impl& I = *this;
+    GLuint id = gp.program.id();
+    glUseProgram(id);
+    glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
+    glUniformMatrix4fv(gp.loc("uModelRel"), 1, GL_FALSE, &u.modelRel[0][0]);
+    glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
+    glUniform1f(gp.loc("uDetSign"), u.detSign);
+    glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
+    glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
+    glUniform1i(gp.loc("uAov"), u.aov);
+    glUniform1f(gp.loc("uPrimBase"), u.primBase);
+    glUniform3fv(gp.loc("uBaseColor"), 1, &u.baseColor[0]);
+    glUniform1f(gp.loc("uRoughness"), u.roughness);
+    glUniform3fv(gp.loc("uAmbient"), 1, &u.ambient[0]);
+    glUniformMatrix3fv(gp.loc("uModel3"), 1, GL_FALSE, &u.model3[0][0]);
+    glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
+    glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
+    glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
+    if (plan.uber)
+        glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()), u.uberFlags.data());
+    for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
+        auto it = assets.textures.find(plan.textureKeys[s]);
+        GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;
+        glBindTextureUnit(GLuint(s), t);
+        std::string name = "uTex" + std::to_string(s);
+        glUniform1i(gp.loc(name.c_str()), GLint(s));
+    }
+    // Feature maps: corner pairs and edges (and, when the plan uses the
+    // exact near field, its lists and pieces; all RGBA32UI), read with
+    // texelFetch only, on the units after the regular textures; the
+    // per-layer sampler arrays point at them (and at the base maps).
+    const int unitsPerMap = plan.featureNear ? 4 : 2;
+    for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
+        GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
+        auto it = assets.featureMaps.find(plan.featureKeys[f]);
+        std::array<GLuint, 4> t{0, 0, 0, 0};
+        if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
+        // Maps without a near field: their corner texture stands in for the
+        // near textures, which such layers never read (an integer sampler
+        // needs an integer texture bound).
+        if (!t[2]) t[2] = t[3] = t[0];
+        for (int k = 0; k < unitsPerMap; ++k) glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
+    }
+    for (const auto& g : plan.groups)
+        for (const auto& pl : g) {
+            if (pl.featureIndex < 0) continue;
+            std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
+            GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
+            glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
+            glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
+            if (plan.featureNear) {
+                glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
+                glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
+            }
+            glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
+        }
+}
+
 unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& assets,
                                      const View& view) {
     Impl& I = *impl_;
@@ -319,63 +385,7 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             GpuProgram& gp = *progs[i];
             detail::DrawUniforms u =
                 detail::drawUniforms(scene, assets, plan, view, int(i), primBase);
-            GLuint id = gp.program.id();
-            glUseProgram(id);
-            glUniformMatrix4fv(gp.loc("uModel"), 1, GL_FALSE, &u.model[0][0]);
-            glUniformMatrix4fv(gp.loc("uModelRel"), 1, GL_FALSE, &u.modelRel[0][0]);
-            glUniformMatrix3fv(gp.loc("uNormalMat"), 1, GL_FALSE, &u.normalMat[0][0]);
-            glUniform1f(gp.loc("uDetSign"), u.detSign);
-            glUniformMatrix4fv(gp.loc("uViewProjRel"), 1, GL_FALSE, &view.viewProjRel[0][0]);
-            glUniform1i(gp.loc("uBfaceMode"), u.bfaceMode);
-            glUniform1i(gp.loc("uAov"), u.aov);
-            glUniform1f(gp.loc("uPrimBase"), u.primBase);
-            glUniform3fv(gp.loc("uBaseColor"), 1, &u.baseColor[0]);
-            glUniform1f(gp.loc("uRoughness"), u.roughness);
-            glUniform3fv(gp.loc("uAmbient"), 1, &u.ambient[0]);
-            glUniformMatrix3fv(gp.loc("uModel3"), 1, GL_FALSE, &u.model3[0][0]);
-            glUniformMatrix3fv(gp.loc("uModelInv3"), 1, GL_FALSE, &u.modelInv3[0][0]);
-            glUniform4fv(gp.loc("uLights[0]"), GLsizei(u.lights.size()), &u.lights[0][0]);
-            glUniform4fv(gp.loc("uLayerData[0]"), GLsizei(u.records.size()), &u.records[0][0]);
-            if (plan.uber)
-                glUniform1fv(gp.loc("uLayerOn[0]"), GLsizei(u.uberFlags.size()),
-                             u.uberFlags.data());
-            for (size_t s = 0; s < plan.textureKeys.size(); ++s) {
-                auto it = assets.textures.find(plan.textureKeys[s]);
-                GLuint t = it != assets.textures.end() ? I.texture(it->second.get()) : 0;
-                glBindTextureUnit(GLuint(s), t);
-                std::string name = "uTex" + std::to_string(s);
-                glUniform1i(gp.loc(name.c_str()), GLint(s));
-            }
-            // Feature maps: corner pairs and edges (and, when the plan uses the
-            // exact near field, its lists and pieces; all RGBA32UI), read with
-            // texelFetch only, on the units after the regular textures; the
-            // per-layer sampler arrays point at them (and at the base maps).
-            const int unitsPerMap = plan.featureNear ? 4 : 2;
-            for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
-                GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
-                auto it = assets.featureMaps.find(plan.featureKeys[f]);
-                std::array<GLuint, 4> t{0, 0, 0, 0};
-                if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
-                // Maps without a near field: their corner texture stands in for the
-                // near textures, which such layers never read (an integer sampler
-                // needs an integer texture bound).
-                if (!t[2]) t[2] = t[3] = t[0];
-                for (int k = 0; k < unitsPerMap; ++k)
-                    glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
-            }
-            for (const auto& g : plan.groups)
-                for (const auto& pl : g) {
-                    if (pl.featureIndex < 0) continue;
-                    std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
-                    GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
-                    glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
-                    glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
-                    if (plan.featureNear) {
-                        glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
-                        glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
-                    }
-                    glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
-                }
+            I.bindDraw(gp, plan, u, view, assets);
             const Material& mat = scene.materials[size_t(mi.material)];
             if (mat.doubleSided == DoubleSided::Off) {
                 glEnable(GL_CULL_FACE);
