@@ -38,6 +38,7 @@
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/ptexIndices.h>
 #include <opensubdiv/far/stencilTable.h>
+#include <opensubdiv/far/stencilTableFactory.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
@@ -1729,6 +1730,93 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
     for (size_t r = 0; r < nR; ++r) out.positions[r] = glm::vec3(levelN[m.renderToLevel[r]]);
     if (recomputeNormals)
         m.polygonNormals(out.positions.data(), out.normals.data(), m.normalScratch);
+}
+
+} // namespace sg::mesh
+
+// ---- Adaptive patches ----------------------------------------------------------
+
+namespace sg::mesh {
+
+AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
+                                     int isolation, const std::string& file) {
+    if (options.scheme != Scheme::Catmark)
+        throw InputError(file, "scheme",
+                         std::string("adaptive patches need Catmull-Clark (catmark), not ") +
+                             toString(options.scheme) + "; use the uniform mode");
+    if (isolation < 1 || isolation > 10)
+        throw InputError(file, "isolation",
+                         "adaptive isolation " + std::to_string(isolation) + " is outside 1..10");
+    Descriptor d;
+    d.build(cage);
+    d.desc.numFVarChannels = 0; // UVs are not carried by the patch arrays yet
+    d.desc.fvarChannels = nullptr;
+    std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(d, options, file);
+    Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
+    popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    popt.useInfSharpPatch = true;
+    popt.generateFVarTables = false;
+    popt.generateVaryingTables = false;
+    popt.generateLegacySharpCornerPatches = false;
+    refiner->RefineAdaptive(popt.GetRefineAdaptiveOptions());
+    std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, popt));
+    if (!table) throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
+
+    // Stencils: cage -> every vertex of every level, then the local points,
+    // all factorised down to the cage.
+    Far::StencilTableFactoryReal<float>::Options sopt;
+    sopt.generateIntermediateLevels = true;
+    sopt.factorizeIntermediateLevels = true;
+    sopt.generateControlVerts = true;
+    sopt.generateOffsets = true;
+    std::unique_ptr<const Far::StencilTableReal<float>> base(
+        Far::StencilTableFactoryReal<float>::Create(*refiner, sopt));
+    std::unique_ptr<const Far::StencilTableReal<float>> all;
+    if (const Far::StencilTableReal<float>* local = table->GetLocalPointStencilTable<float>()) {
+        all.reset(Far::StencilTableFactoryReal<float>::AppendLocalPointStencilTable(
+            *refiner, base.get(), local, true));
+    }
+    const Far::StencilTableReal<float>& st = all ? *all : *base;
+
+    AdaptivePatches out;
+    out.isolation = isolation;
+    out.cagePointCount = uint32_t(cage.positions.size());
+    const int n = st.GetNumStencils();
+    out.stencilOffsets.resize(size_t(n) + 1);
+    for (int i = 0; i < n; ++i)
+        out.stencilOffsets[size_t(i)] = uint32_t(st.GetOffsets()[size_t(i)]);
+    out.stencilOffsets[size_t(n)] = uint32_t(st.GetControlIndices().size());
+    out.stencilIndices.assign(st.GetControlIndices().begin(), st.GetControlIndices().end());
+    out.stencilWeights.assign(st.GetWeights().begin(), st.GetWeights().end());
+    out.points.resize(size_t(n));
+    updateAdaptivePoints(out, cage.positions);
+
+    for (int a = 0; a < table->GetNumPatchArrays(); ++a) {
+        AdaptivePatchArray arr;
+        arr.type = int(table->GetPatchArrayDescriptor(a).GetType());
+        arr.pointsPerPatch = table->GetPatchArrayDescriptor(a).GetNumControlVertices();
+        arr.patchCount = uint32_t(table->GetNumPatches(a));
+        arr.firstPatch = uint32_t(out.params.size());
+        arr.firstIndex = uint32_t(out.indices.size());
+        if (arr.patchCount == 0) continue;
+        for (Far::Index i : table->GetPatchArrayVertices(a)) out.indices.push_back(uint32_t(i));
+        for (const Far::PatchParam& p : table->GetPatchParams(a))
+            out.params.push_back(glm::uvec2(p.field0, p.field1));
+        out.arrays.push_back(arr);
+    }
+    return out;
+}
+
+void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions) {
+    SG_EXPECTS(cagePositions.size() == patches.cagePointCount,
+               "updateAdaptivePoints: one position per cage vertex");
+    const size_t n = patches.points.size();
+    for (size_t i = 0; i < n; ++i) {
+        glm::vec3 p(0.0f);
+        for (uint32_t k = patches.stencilOffsets[i]; k < patches.stencilOffsets[i + 1]; ++k)
+            p += patches.stencilWeights[k] * cagePositions[patches.stencilIndices[k]];
+        patches.points[i] = p;
+    }
 }
 
 } // namespace sg::mesh

@@ -17,7 +17,13 @@
 //                               curves (boost, Hermite points), deform,
 //                               central-difference height derivative;
 //   shaders/sg/lean.glsl        LEAN moments and covariance, Toksvig variance
-//                               and factor (antialiasing).
+//                               and factor (antialiasing);
+//   shaders/sg/patch/basis.glsl OpenSubdiv patch bases (regular B-spline
+//                               with boundary folds, Gregory basis,
+//                               bilinear) and PatchParam decoding, for
+//                               limit-surface evaluation of adaptive
+//                               patch tables (tessellation);
+//   shaders/sg/patch/tess_level.glsl screen-space edge tessellation levels.
 // Read the contracts (spaces, units, degenerate cases) there. This header
 // makes them callable from C++ as sg::glsl::sgResolve(...), etc., with GLM
 // types (sg::glsl::vec3 == glm::vec3).
@@ -30,6 +36,8 @@ namespace sg::glsl {
 #include "sg/surfgrad.glsl"
 #include "sg/deriv_edit.glsl"
 #include "sg/lean.glsl"
+#include "sg/patch/basis.glsl"
+#include "sg/patch/tess_level.glsl"
 } // namespace sg::glsl
 
 namespace sg {

@@ -194,4 +194,55 @@ std::string formatByteSize(uint64_t bytes);
 // vertex.
 void computeVertexNormals(RenderMesh& mesh, std::span<const uint32_t> smoothGroup = {});
 
+// ---- Adaptive patches (GPU tessellation) ----------------------------------
+
+// Far feature-adaptive refinement of a Catmull-Clark cage into a patch table
+// as plain arrays, for drawing the limit surface with hardware tessellation
+// (and the CPU reference of that path). Patches: regular bicubic B-spline
+// (16 points, boundaries through PatchParam's boundary mask; creases and
+// corners isolated to `isolation` and infinitely sharp ones as regular
+// patches, Far's useInfSharpPatch), Gregory-basis end caps (20 points)
+// around extraordinary vertices and unisolated semi-sharp features. The
+// bases are shaders/sg/patch/basis.glsl (shared GLSL/C++ subset).
+struct AdaptivePatchArray {
+    int type = 0;            // Far::PatchDescriptor::Type: 6 regular, 9 Gregory basis
+    int pointsPerPatch = 0;  // 16 or 20
+    uint32_t firstPatch = 0; // into params (and patchFace)
+    uint32_t patchCount = 0;
+    uint32_t firstIndex = 0; // into indices: patchCount * pointsPerPatch entries
+};
+
+struct AdaptivePatches {
+    int isolation = 0;
+    uint32_t cagePointCount = 0; // points[0, cagePointCount) are the cage's vertices
+    // Every control point, object space: the vertices of all adaptive levels
+    // (level 0 = the cage) then Far's local points (Gregory end caps).
+    std::vector<glm::vec3> points;
+    std::vector<AdaptivePatchArray> arrays;
+    std::vector<uint32_t> indices;  // control points of each patch, Far's order per type
+    std::vector<glm::uvec2> params; // Far::PatchParam (field0, field1) per patch
+    // points = S * cage positions: a sparse matrix in rows (one per point,
+    // factorised down to the cage: an animated cage needs only this and
+    // its own positions). stencilOffsets has points.size() + 1 entries.
+    std::vector<uint32_t> stencilOffsets;
+    std::vector<uint32_t> stencilIndices;
+    std::vector<float> stencilWeights;
+
+    size_t patchCount() const { return params.size(); }
+};
+
+// Builds the adaptive patches of `cage` (validated) at the given isolation
+// level (1..10, OpenSubdiv's limit). Throws InputError (file, element,
+// reason) for a scheme other than Catmark (element "scheme": Loop and
+// bilinear cages take the uniform path), an isolation outside 1..10
+// (element "isolation"), or a cage OpenSubdiv refuses. Holes: hole faces
+// get no patches. UV sets are not carried yet.
+AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
+                                     int isolation, const std::string& file = {});
+
+// Recomputes patches.points from new cage positions (cagePointCount
+// entries) with the stencils: what an animated cage needs per frame (the
+// GPU applies the same rows in a compute stage).
+void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions);
+
 } // namespace sg::mesh

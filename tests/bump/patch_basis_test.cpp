@@ -1,0 +1,357 @@
+// The shared patch basis (shaders/sg/patch/basis.glsl, compiled as C++)
+// against OpenSubdiv's own Far::PatchTable::EvaluateBasis on every patch of
+// every Catmull-Clark osd-shape, the adaptive patch arrays of
+// sg::mesh::buildAdaptivePatches against Far's table and against the limit
+// positions of the existing limit evaluation (Subdivider with limit), and
+// the shared screen-space tessellation level (shaders/sg/patch/
+// tess_level.glsl): symmetric bit for bit, bounded, finite in the hard
+// cases (behind the camera, zero length, edge-on, huge and tiny on screen).
+#include <gtest/gtest.h>
+
+#include <opensubdiv/far/patchTable.h>
+#include <opensubdiv/far/patchTableFactory.h>
+#include <opensubdiv/far/topologyDescriptor.h>
+#include <opensubdiv/far/topologyRefinerFactory.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+#include <vector>
+
+#include "surfgrad/bump.h"
+#include "surfgrad/io.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/subdivision.h"
+
+namespace {
+
+namespace g = sg::glsl;
+namespace Far = OpenSubdiv::Far;
+namespace Sdc = OpenSubdiv::Sdc;
+using sg::mesh::PolygonMesh;
+
+std::filesystem::path dataPath(const std::string& rel) {
+    const char* env = std::getenv("SURFGRAD_DATA_DIR");
+    return (env && *env ? std::filesystem::path(env) : std::filesystem::path(SURFGRAD_DATA_DIR)) /
+           rel;
+}
+
+// Far's table for the same cage and options buildAdaptivePatches uses (the
+// test builds its own to call EvaluateBasis; the arrays must come out in
+// the same order).
+std::unique_ptr<Far::PatchTable> farTable(const PolygonMesh& cage, int isolation,
+                                          std::unique_ptr<Far::TopologyRefiner>& refiner) {
+    std::vector<int> creasePairs, corners;
+    std::vector<float> creaseW, cornerW;
+    for (const auto& c : cage.creases) {
+        creasePairs.push_back(int(c.v0));
+        creasePairs.push_back(int(c.v1));
+        creaseW.push_back(c.sharpness);
+    }
+    for (const auto& c : cage.corners) {
+        corners.push_back(int(c.vertex));
+        cornerW.push_back(c.sharpness);
+    }
+    std::vector<int> holes(cage.holes.begin(), cage.holes.end());
+    Far::TopologyDescriptor d;
+    d.numVertices = int(cage.positions.size());
+    d.numFaces = int(cage.faceSizes.size());
+    d.numVertsPerFace = reinterpret_cast<const int*>(cage.faceSizes.data());
+    d.vertIndicesPerFace = reinterpret_cast<const Far::Index*>(cage.faceVertices.data());
+    d.numCreases = int(creaseW.size());
+    d.creaseVertexIndexPairs = creasePairs.data();
+    d.creaseWeights = creaseW.data();
+    d.numCorners = int(cornerW.size());
+    d.cornerVertexIndices = corners.data();
+    d.cornerWeights = cornerW.data();
+    d.numHoles = int(holes.size());
+    d.holeIndices = holes.data();
+    Sdc::Options o;
+    static constexpr Sdc::Options::VtxBoundaryInterpolation kVtx[3] = {
+        Sdc::Options::VTX_BOUNDARY_NONE, Sdc::Options::VTX_BOUNDARY_EDGE_ONLY,
+        Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER};
+    o.SetVtxBoundaryInterpolation(kVtx[int(cage.options.boundary)]);
+    o.SetCreasingMethod(cage.options.creaseMethod == sg::mesh::CreaseMethod::Chaikin
+                            ? Sdc::Options::CREASE_CHAIKIN
+                            : Sdc::Options::CREASE_UNIFORM);
+    o.SetTriangleSubdivision(cage.options.triangles == sg::mesh::TriangleRule::Smooth
+                                 ? Sdc::Options::TRI_SUB_SMOOTH
+                                 : Sdc::Options::TRI_SUB_CATMARK);
+    using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
+    refiner.reset(Factory::Create(d, Factory::Options(Sdc::SCHEME_CATMARK, o)));
+    Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
+    popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
+    popt.useInfSharpPatch = true;
+    popt.generateLegacySharpCornerPatches = false;
+    refiner->RefineAdaptive(popt.GetRefineAdaptiveOptions());
+    return std::unique_ptr<Far::PatchTable>(Far::PatchTableFactory::Create(*refiner, popt));
+}
+
+// The Catmull-Clark osd-shapes the mesh module accepts (the others are
+// listed with their reasons in tests/mesh/osd_shapes_expected.inc).
+std::vector<std::pair<std::string, PolygonMesh>> catmarkShapes() {
+    std::vector<std::pair<std::string, PolygonMesh>> out;
+    for (const auto& e : std::filesystem::directory_iterator(dataPath("osd-shapes"))) {
+        const std::string name = e.path().stem().string();
+        if (e.path().extension() != ".obj" || name.rfind("loop_", 0) == 0 ||
+            name.rfind("bilinear_", 0) == 0)
+            continue;
+        try {
+            PolygonMesh cage = sg::mesh::loadPolygonMesh(e.path());
+            if (cage.options.scheme != sg::mesh::Scheme::Catmark) continue;
+            out.emplace_back(name, std::move(cage));
+        } catch (const sg::io::InputError&) {
+        }
+    }
+    std::sort(out.begin(), out.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    return out;
+}
+
+// Patch-local sample points: corners, edge midpoints, interior.
+constexpr float kSamples[][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f},
+                                 {0.5f, 0.0f}, {0.3f, 0.7f}, {0.5f, 0.5f}, {0.9f, 0.15f}};
+
+TEST(PatchBasis, MatchesFarEvaluateBasisOnEveryCatmarkShape) {
+    const auto shapes = catmarkShapes();
+    ASSERT_GE(shapes.size(), 35u); // the accepted Catmark shapes of data/osd-shapes
+    size_t patchesSeen = 0, gregorySeen = 0, boundarySeen = 0;
+    for (const auto& [name, cage] : shapes) {
+        SCOPED_TRACE(name);
+        const int isolation = 3;
+        sg::mesh::AdaptivePatches ours =
+            sg::mesh::buildAdaptivePatches(cage, cage.options, isolation, name);
+        std::unique_ptr<Far::TopologyRefiner> refiner;
+        std::unique_ptr<Far::PatchTable> far = farTable(cage, isolation, refiner);
+        ASSERT_TRUE(far);
+        ASSERT_EQ(ours.patchCount(), size_t(far->GetNumPatchesTotal()));
+        ASSERT_EQ(ours.points.size(), size_t(refiner->GetNumVerticesTotal() +
+                                             far->GetNumLocalPoints()));
+        size_t arrayOut = 0;
+        for (int a = 0; a < far->GetNumPatchArrays(); ++a) {
+            if (far->GetNumPatches(a) == 0) continue;
+            const sg::mesh::AdaptivePatchArray& arr = ours.arrays[arrayOut++];
+            ASSERT_EQ(arr.type, int(far->GetPatchArrayDescriptor(a).GetType()));
+            ASSERT_TRUE(arr.type == SG_PATCH_REGULAR || arr.type == SG_PATCH_GREGORY_BASIS)
+                << arr.type;
+            for (uint32_t p = 0; p < arr.patchCount; ++p) {
+                const glm::uvec2 param = ours.params[arr.firstPatch + p];
+                Far::PatchTable::PatchHandle h;
+                h.arrayIndex = a;
+                h.patchIndex = int(arr.firstPatch + p);
+                h.vertIndex = int(arr.firstIndex + p * uint32_t(arr.pointsPerPatch));
+                const Far::PatchParam& fp = far->GetPatchParam(h);
+                ASSERT_EQ(param.x, fp.field0);
+                ASSERT_EQ(param.y, fp.field1);
+                boundarySeen += fp.GetBoundary() != 0;
+                const float depthScale = float(1 << fp.GetDepth());
+                for (const auto& s : kSamples) {
+                    float u = s[0], v = s[1];
+                    fp.Unnormalize(u, v);
+                    float w[20], wu[20], wv[20];
+                    far->EvaluateBasis(h, u, v, w, wu, wv);
+                    const g::SgPatchBasis b = g::sgPatchBasis(arr.type, param.y, g::vec2(u, v));
+                    ASSERT_EQ(b.count, arr.pointsPerPatch);
+                    for (int i = 0; i < b.count; ++i) {
+                        // Weights are within [-1, 1] (derivatives within
+                        // [-3, 3] times 2^depth); the two codes group the
+                        // same products differently and Gregory's rational
+                        // factors divide once vs multiply by a reciprocal:
+                        // a few ulp of the largest term.
+                        EXPECT_NEAR(b.point.v[i], w[i], 2e-6f) << "point weight " << i;
+                        EXPECT_NEAR(b.du.v[i], wu[i], 8e-6f * depthScale) << "du weight " << i;
+                        EXPECT_NEAR(b.dv.v[i], wv[i], 8e-6f * depthScale) << "dv weight " << i;
+                    }
+                }
+                ++patchesSeen;
+                gregorySeen += arr.type == SG_PATCH_GREGORY_BASIS;
+            }
+        }
+    }
+    // Both patch kinds and boundary masks were exercised.
+    // (14158, 1355 and 1282 at isolation 3 on the shapes of data/.)
+    EXPECT_GE(patchesSeen, 14000u);
+    EXPECT_GE(gregorySeen, 1300u);
+    EXPECT_GE(boundarySeen, 1200u);
+}
+
+// Position on a patch from the exported arrays with the shared basis.
+glm::vec3 evalPatch(const sg::mesh::AdaptivePatches& ap, const sg::mesh::AdaptivePatchArray& arr,
+                    uint32_t p, glm::vec2 patchUv, glm::vec3* du = nullptr) {
+    const glm::uvec2 param = ap.params[arr.firstPatch + p];
+    const g::SgPatchBasis b =
+        g::sgPatchBasis(arr.type, param.y, g::sgPatchUnnormalizeUv(param.y, patchUv));
+    glm::vec3 pos(0.0f), d(0.0f);
+    for (int i = 0; i < b.count; ++i) {
+        const glm::vec3 cp = ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) + uint32_t(i)]];
+        pos += b.point.v[i] * cp;
+        d += b.du.v[i] * cp;
+    }
+    if (du) *du = d;
+    return pos;
+}
+
+TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
+    // Shapes without semi-sharp features deeper than the isolation (whose
+    // unisolated corners are approximations, not limit points: catmark_helmet,
+    // sharpness 7, is 3.5e-3 of its size off at isolation 3) and without an
+    // infinitely sharp crease ending in an extraordinary vertex
+    // (catmark_inf_crease0: Far's Gregory end cap there is 3.8e-4 off).
+    for (const char* name : {"catmark_cube", "catmark_torus", "catmark_pyramid", "catmark_pole8",
+                             "catmark_hole_test1", "catmark_xord_interior", "catmark_xord_boundary",
+                             "catmark_nonquads", "catmark_gregory_test1",
+                             "catmark_edgeonly", "catmark_tent"}) {
+        SCOPED_TRACE(name);
+        const auto path = dataPath(std::string("osd-shapes/") + name + ".obj");
+        ASSERT_TRUE(std::filesystem::exists(path));
+        PolygonMesh cage = sg::mesh::loadPolygonMesh(path);
+        const int isolation = 3;
+        sg::mesh::AdaptivePatches ap =
+            sg::mesh::buildAdaptivePatches(cage, cage.options, isolation, name);
+        sg::mesh::SubdivisionSettings s;
+        s.options = cage.options;
+        s.level = isolation;
+        s.limit = true;
+        s.buildRenderMesh = false;
+        sg::mesh::Subdivider sub(cage, s, name);
+        std::vector<glm::vec3> limit = sub.refined().positions;
+        std::sort(limit.begin(), limit.end(),
+                  [](const glm::vec3& a, const glm::vec3& b) { return a.x < b.x; });
+        float extent = 0.0f;
+        for (const glm::vec3& p : cage.positions) extent = std::max(extent, g::sgMaxAbs3(p));
+        // Both are OpenSubdiv's limit in binary32, through different
+        // stencil factorisations and isolation depths (5 in the limit
+        // evaluation): a few ulp of the coordinates' magnitude, times the
+        // sum of |weights| of a Gregory corner (~10).
+        const float tol = 2e-5f * extent;
+        size_t checked = 0;
+        for (const auto& arr : ap.arrays) {
+            for (uint32_t p = 0; p < arr.patchCount; ++p) {
+                for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1),
+                                    glm::vec2(0, 1)}) {
+                    const glm::vec3 q = evalPatch(ap, arr, p, c);
+                    auto lo = std::lower_bound(
+                        limit.begin(), limit.end(), q.x - tol,
+                        [](const glm::vec3& a, float x) { return a.x < x; });
+                    float best = INFINITY;
+                    for (auto it = lo; it != limit.end() && it->x <= q.x + tol; ++it)
+                        best = std::min(best, glm::length(*it - q));
+                    EXPECT_LE(best, tol) << "patch " << arr.firstPatch + p << " corner (" << c.x
+                                         << "," << c.y << ")";
+                    ++checked;
+                }
+            }
+        }
+        EXPECT_GT(checked, 0u);
+    }
+}
+
+TEST(PatchBasis, AnimatedPointsFollowTheCageThroughTheStencils) {
+    PolygonMesh cage = sg::mesh::loadPolygonMesh(dataPath("osd-shapes/catmark_torus.obj"));
+    sg::mesh::AdaptivePatches ap = sg::mesh::buildAdaptivePatches(cage, cage.options, 3);
+    // A rigid motion of the cage moves every control point with it (the
+    // rows of the stencil matrix sum to 1 and are linear).
+    std::vector<glm::vec3> moved = cage.positions;
+    const glm::vec3 shift(0.5f, -2.0f, 3.0f);
+    for (glm::vec3& p : moved) p = glm::vec3(-p.y, p.x, p.z) + shift;
+    const std::vector<glm::vec3> before = ap.points;
+    sg::mesh::updateAdaptivePoints(ap, moved);
+    for (size_t i = 0; i < before.size(); ++i) {
+        const glm::vec3 want = glm::vec3(-before[i].y, before[i].x, before[i].z) + shift;
+        // Rows of up to ~100 weights applied to unit-size coordinates.
+        EXPECT_LE(glm::length(ap.points[i] - want), 1e-5f) << i;
+    }
+}
+
+TEST(PatchBasis, AdaptiveRefusesLoopAndBadIsolation) {
+    PolygonMesh cage = sg::mesh::loadPolygonMesh(dataPath("osd-shapes/catmark_cube.obj"));
+    sg::mesh::SubdivOptions loop = cage.options;
+    loop.scheme = sg::mesh::Scheme::Loop;
+    try {
+        sg::mesh::buildAdaptivePatches(cage, loop, 3, "cube.obj");
+        FAIL() << "Loop accepted";
+    } catch (const sg::io::InputError& e) {
+        EXPECT_EQ(e.element(), "scheme");
+        EXPECT_NE(e.reason().find("uniform"), std::string::npos) << e.what();
+    }
+    for (int iso : {0, 11}) {
+        try {
+            sg::mesh::buildAdaptivePatches(cage, cage.options, iso, "cube.obj");
+            FAIL() << "isolation " << iso << " accepted";
+        } catch (const sg::io::InputError& e) {
+            EXPECT_EQ(e.element(), "isolation");
+        }
+    }
+}
+
+// ---- Tessellation levels -------------------------------------------------------
+
+TEST(PatchTessLevel, SymmetricBitForBit) {
+    // The two patches of an edge pass its end points in either order.
+    uint32_t state = 12345u;
+    auto rnd = [&] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24) * 20.0f - 10.0f;
+    };
+    for (int i = 0; i < 10000; ++i) {
+        const g::vec3 a(rnd(), rnd(), rnd()), b(rnd(), rnd(), rnd());
+        const float lab = g::sgPatchEdgeTessLevel(a, b, 800.0f, 3.0f, 64.0f);
+        const float lba = g::sgPatchEdgeTessLevel(b, a, 800.0f, 3.0f, 64.0f);
+        ASSERT_EQ(lab, lba) << i;
+        ASSERT_EQ(lab, std::floor(lab)); // an integer level (equal_spacing)
+        ASSERT_GE(lab, 1.0f);
+        ASSERT_LE(lab, 64.0f);
+    }
+}
+
+TEST(PatchTessLevel, FollowsTheScreenLength) {
+    // A 1-unit edge 10 units away, focal 1000 px: 100 px; 4 px per edge.
+    const float l = g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -10), g::vec3(0.5f, 0, -10),
+                                            1000.0f, 4.0f, 64.0f);
+    // The midpoint distance is 10, the chord 1: ceil(1 * 1000 / 10 / 4).
+    EXPECT_EQ(l, 25.0f);
+    // Twice as far: half as many.
+    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -20), g::vec3(0.5f, 0, -20), 1000.0f,
+                                      4.0f, 64.0f),
+              13.0f);
+    // Very small on screen: 1; very large: the cap.
+    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(0, 0, -1e6f), g::vec3(1e-3f, 0, -1e6f), 1000.0f,
+                                      4.0f, 64.0f),
+              1.0f);
+    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(-100, 0, -1), g::vec3(100, 0, -1), 1000.0f, 4.0f,
+                                      64.0f),
+              64.0f);
+    EXPECT_EQ(g::sgPatchFocalPx(1.0f, 600.0f), 300.0f); // 90 degrees vertical field of view
+}
+
+TEST(PatchTessLevel, HardCasesStayBounded) {
+    const float big = 1e30f, nan = std::nanf(""), inf = INFINITY;
+    struct Case {
+        const char* what;
+        g::vec3 a, b;
+        float expected; // < 0: anything within [1, max]
+    };
+    const Case cases[] = {
+        {"zero length", g::vec3(1, 2, -3), g::vec3(1, 2, -3), 1.0f},
+        {"zero length at the camera", g::vec3(0), g::vec3(0), 1.0f},
+        {"through the camera", g::vec3(-1, 0, 0), g::vec3(1, 0, 0), 64.0f},
+        {"behind the camera", g::vec3(-1, 0, 5), g::vec3(1, 0, 5), -1.0f},
+        {"edge-on (along the view ray)", g::vec3(0, 0, -5), g::vec3(0, 0, -6), -1.0f},
+        {"huge coordinates", g::vec3(-big, 0, -big), g::vec3(big, 0, -big), -1.0f},
+        {"NaN", g::vec3(nan, 0, -1), g::vec3(1, 0, -1), 1.0f},
+        {"infinity", g::vec3(inf, 0, -1), g::vec3(1, 0, -1), 1.0f},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.what);
+        const float l = g::sgPatchEdgeTessLevel(c.a, c.b, 1000.0f, 4.0f, 64.0f);
+        EXPECT_TRUE(std::isfinite(l));
+        EXPECT_GE(l, 1.0f);
+        EXPECT_LE(l, 64.0f);
+        if (c.expected > 0.0f) {
+            EXPECT_EQ(l, c.expected);
+        }
+    }
+}
+
+} // namespace
