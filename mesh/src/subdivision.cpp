@@ -42,6 +42,7 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <array>
 #include <cstring>
 #include <mutex>
 #include <stdexcept>
@@ -1738,6 +1739,93 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
 
 namespace sg::mesh {
 
+namespace {
+
+// The refined vertices at the corners of a patch's domain: descends from
+// the patch's ptex face (a base quad, or the level-1 child k of a non-quad
+// base face) through the child faces that contain the patch's square,
+// tracking every vertex's position in the ptex face in integer units of
+// the patch's size (2^depth per face side; exact). The child of a face
+// containing the square is found by those positions, not by the order of
+// child faces or of their vertices. Returns false if the descent leaves
+// the refined hierarchy (a contract of Far's tables, never seen).
+bool patchCorners(const Far::TopologyRefiner& refiner, const std::vector<int>& ptexToFace,
+                  const Far::PtexIndices& ptex, const std::vector<uint32_t>& levelBase,
+                  const Far::PatchParam& pp, glm::uvec4& out) {
+    const int depth = pp.GetDepth();
+    const int ptexId = pp.GetFaceId();
+    if (ptexId < 0 || size_t(ptexId) >= ptexToFace.size()) return false;
+    const int base = ptexToFace[size_t(ptexId)];
+    int level = 0, face = base;
+    const int res = 1 << (depth - (pp.NonQuadRoot() ? 1 : 0)); // face side in patch units
+    std::array<Far::Index, 4> fv{};
+    std::array<glm::ivec2, 4> pc = {glm::ivec2(0, 0), glm::ivec2(res, 0), glm::ivec2(res, res),
+                                    glm::ivec2(0, res)};
+    const Far::TopologyLevel& l0 = refiner.GetLevel(0);
+    if (pp.NonQuadRoot()) {
+        const int k = ptexId - ptex.GetFaceId(base);
+        Far::ConstIndexArray cv = l0.GetFaceVertices(base), ce = l0.GetFaceEdges(base);
+        const int n = cv.size();
+        if (refiner.GetNumLevels() < 2 || k < 0 || k >= n) return false;
+        face = l0.GetFaceChildFaces(base)[k];
+        fv = {l0.GetVertexChildVertex(cv[k]), l0.GetEdgeChildVertex(ce[k]),
+              l0.GetFaceChildVertex(base), l0.GetEdgeChildVertex(ce[(k + n - 1) % n])};
+        level = 1;
+    } else {
+        Far::ConstIndexArray cv = l0.GetFaceVertices(base);
+        if (cv.size() != 4) return false;
+        for (int j = 0; j < 4; ++j) fv[size_t(j)] = cv[j];
+    }
+    const glm::ivec2 lo(int(pp.GetU()), int(pp.GetV()));
+    for (; level < depth; ++level) {
+        if (face == Far::INDEX_INVALID || level + 1 >= refiner.GetNumLevels()) return false;
+        const Far::TopologyLevel& lv = refiner.GetLevel(level);
+        const Far::TopologyLevel& next = refiner.GetLevel(level + 1);
+        Far::ConstIndexArray fe = lv.GetFaceEdges(face);
+        // The nine level+1 vertices of this face and their positions.
+        std::array<std::pair<Far::Index, glm::ivec2>, 9> known;
+        for (int j = 0; j < 4; ++j) {
+            known[size_t(j)] = {lv.GetVertexChildVertex(fv[size_t(j)]), pc[size_t(j)]};
+            known[size_t(4 + j)] = {lv.GetEdgeChildVertex(fe[j]),
+                                    (pc[size_t(j)] + pc[size_t((j + 1) % 4)]) / 2};
+        }
+        known[8] = {lv.GetFaceChildVertex(face), (pc[0] + pc[2]) / 2};
+        bool found = false;
+        for (Far::Index child : lv.GetFaceChildFaces(face)) {
+            if (child == Far::INDEX_INVALID) continue;
+            Far::ConstIndexArray cv = next.GetFaceVertices(child);
+            std::array<glm::ivec2, 4> cp{};
+            glm::ivec2 mn(INT32_MAX), mx(INT32_MIN);
+            bool ok = cv.size() == 4;
+            for (int j = 0; ok && j < 4; ++j) {
+                auto it = std::find_if(known.begin(), known.end(),
+                                       [&](const auto& k) { return k.first == cv[j]; });
+                ok = it != known.end();
+                if (ok) cp[size_t(j)] = it->second;
+                if (ok) mn = glm::min(mn, it->second), mx = glm::max(mx, it->second);
+            }
+            if (!ok || lo.x < mn.x || lo.y < mn.y || lo.x + 1 > mx.x || lo.y + 1 > mx.y) continue;
+            face = child;
+            for (int j = 0; j < 4; ++j) fv[size_t(j)] = cv[j];
+            pc = cp;
+            found = true;
+            break;
+        }
+        if (!found) return false;
+    }
+    const glm::ivec2 want[4] = {lo, lo + glm::ivec2(1, 0), lo + glm::ivec2(1, 1),
+                                lo + glm::ivec2(0, 1)};
+    for (int c = 0; c < 4; ++c) {
+        int j = 0;
+        while (j < 4 && pc[size_t(j)] != want[c]) ++j;
+        if (j == 4) return false;
+        out[c] = levelBase[size_t(depth)] + uint32_t(fv[size_t(j)]);
+    }
+    return true;
+}
+
+} // namespace
+
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
                                      int isolation, const std::string& file) {
     if (options.scheme != Scheme::Catmark)
@@ -1803,6 +1891,25 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
         for (const Far::PatchParam& p : table->GetPatchParams(a))
             out.params.push_back(glm::uvec2(p.field0, p.field1));
         out.arrays.push_back(arr);
+    }
+    // Corner vertices of every patch.
+    Far::PtexIndices ptex(*refiner);
+    std::vector<int> ptexToFace(size_t(ptex.GetNumFaces()), -1);
+    for (int f = 0; f < refiner->GetLevel(0).GetNumFaces(); ++f) {
+        const int sides = refiner->GetLevel(0).GetFaceVertices(f).size();
+        for (int k = 0; k < (sides == 4 ? 1 : sides); ++k)
+            ptexToFace[size_t(ptex.GetFaceId(f) + k)] = f;
+    }
+    std::vector<uint32_t> levelBase(size_t(refiner->GetNumLevels()) + 1, 0);
+    for (int l = 0; l < refiner->GetNumLevels(); ++l)
+        levelBase[size_t(l) + 1] =
+            levelBase[size_t(l)] + uint32_t(refiner->GetLevel(l).GetNumVertices());
+    out.cornerVertices.resize(out.params.size());
+    const Far::PatchParamTable& pt = table->GetPatchParamTable();
+    for (size_t p = 0; p < out.params.size(); ++p) {
+        if (!patchCorners(*refiner, ptexToFace, ptex, levelBase, pt[p], out.cornerVertices[p]))
+            throw InputError(file, "patch " + std::to_string(p),
+                             "the refined face of an adaptive patch was not found");
     }
     return out;
 }

@@ -126,8 +126,8 @@ TEST(PatchBasis, MatchesFarEvaluateBasisOnEveryCatmarkShape) {
         std::unique_ptr<Far::PatchTable> far = farTable(cage, isolation, refiner);
         ASSERT_TRUE(far);
         ASSERT_EQ(ours.patchCount(), size_t(far->GetNumPatchesTotal()));
-        ASSERT_EQ(ours.points.size(), size_t(refiner->GetNumVerticesTotal() +
-                                             far->GetNumLocalPoints()));
+        ASSERT_EQ(ours.points.size(),
+                  size_t(refiner->GetNumVerticesTotal() + far->GetNumLocalPoints()));
         size_t arrayOut = 0;
         for (int a = 0; a < far->GetNumPatchArrays(); ++a) {
             if (far->GetNumPatches(a) == 0) continue;
@@ -144,6 +144,14 @@ TEST(PatchBasis, MatchesFarEvaluateBasisOnEveryCatmarkShape) {
                 const Far::PatchParam& fp = far->GetPatchParam(h);
                 ASSERT_EQ(param.x, fp.field0);
                 ASSERT_EQ(param.y, fp.field1);
+                // The corner vertices found by descending the refinement are
+                // a regular patch's own middle points.
+                if (arr.type == SG_PATCH_REGULAR) {
+                    const uint32_t* cv = &ours.indices[arr.firstIndex + p * 16u];
+                    EXPECT_EQ(ours.cornerVertices[arr.firstPatch + p],
+                              glm::uvec4(cv[5], cv[6], cv[10], cv[9]))
+                        << "patch " << arr.firstPatch + p;
+                }
                 boundarySeen += fp.GetBoundary() != 0;
                 const float depthScale = float(1 << fp.GetDepth());
                 for (const auto& s : kSamples) {
@@ -184,7 +192,8 @@ glm::vec3 evalPatch(const sg::mesh::AdaptivePatches& ap, const sg::mesh::Adaptiv
         g::sgPatchBasis(arr.type, param.y, g::sgPatchUnnormalizeUv(param.y, patchUv));
     glm::vec3 pos(0.0f), d(0.0f);
     for (int i = 0; i < b.count; ++i) {
-        const glm::vec3 cp = ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) + uint32_t(i)]];
+        const glm::vec3 cp =
+            ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) + uint32_t(i)]];
         pos += b.point.v[i] * cp;
         d += b.du.v[i] * cp;
     }
@@ -198,10 +207,10 @@ TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
     // sharpness 7, is 3.5e-3 of its size off at isolation 3) and without an
     // infinitely sharp crease ending in an extraordinary vertex
     // (catmark_inf_crease0: Far's Gregory end cap there is 3.8e-4 off).
-    for (const char* name : {"catmark_cube", "catmark_torus", "catmark_pyramid", "catmark_pole8",
-                             "catmark_hole_test1", "catmark_xord_interior", "catmark_xord_boundary",
-                             "catmark_nonquads", "catmark_gregory_test1",
-                             "catmark_edgeonly", "catmark_tent"}) {
+    for (const char* name :
+         {"catmark_cube", "catmark_torus", "catmark_pyramid", "catmark_pole8", "catmark_hole_test1",
+          "catmark_xord_interior", "catmark_xord_boundary", "catmark_nonquads",
+          "catmark_gregory_test1", "catmark_edgeonly", "catmark_tent"}) {
         SCOPED_TRACE(name);
         const auto path = dataPath(std::string("osd-shapes/") + name + ".obj");
         ASSERT_TRUE(std::filesystem::exists(path));
@@ -228,12 +237,11 @@ TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
         size_t checked = 0;
         for (const auto& arr : ap.arrays) {
             for (uint32_t p = 0; p < arr.patchCount; ++p) {
-                for (glm::vec2 c : {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1),
-                                    glm::vec2(0, 1)}) {
+                for (glm::vec2 c :
+                     {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
                     const glm::vec3 q = evalPatch(ap, arr, p, c);
-                    auto lo = std::lower_bound(
-                        limit.begin(), limit.end(), q.x - tol,
-                        [](const glm::vec3& a, float x) { return a.x < x; });
+                    auto lo = std::lower_bound(limit.begin(), limit.end(), q.x - tol,
+                                               [](const glm::vec3& a, float x) { return a.x < x; });
                     float best = INFINITY;
                     for (auto it = lo; it != limit.end() && it->x <= q.x + tol; ++it)
                         best = std::min(best, glm::length(*it - q));
@@ -307,21 +315,21 @@ TEST(PatchTessLevel, SymmetricBitForBit) {
 
 TEST(PatchTessLevel, FollowsTheScreenLength) {
     // A 1-unit edge 10 units away, focal 1000 px: 100 px; 4 px per edge.
-    const float l = g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -10), g::vec3(0.5f, 0, -10),
-                                            1000.0f, 4.0f, 64.0f);
+    const float l = g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -10), g::vec3(0.5f, 0, -10), 1000.0f,
+                                            4.0f, 64.0f);
     // The midpoint distance is 10, the chord 1: ceil(1 * 1000 / 10 / 4).
     EXPECT_EQ(l, 25.0f);
     // Twice as far: half as many.
-    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -20), g::vec3(0.5f, 0, -20), 1000.0f,
-                                      4.0f, 64.0f),
+    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(-0.5f, 0, -20), g::vec3(0.5f, 0, -20), 1000.0f, 4.0f,
+                                      64.0f),
               13.0f);
     // Very small on screen: 1; very large: the cap.
-    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(0, 0, -1e6f), g::vec3(1e-3f, 0, -1e6f), 1000.0f,
-                                      4.0f, 64.0f),
-              1.0f);
-    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(-100, 0, -1), g::vec3(100, 0, -1), 1000.0f, 4.0f,
+    EXPECT_EQ(g::sgPatchEdgeTessLevel(g::vec3(0, 0, -1e6f), g::vec3(1e-3f, 0, -1e6f), 1000.0f, 4.0f,
                                       64.0f),
-              64.0f);
+              1.0f);
+    EXPECT_EQ(
+        g::sgPatchEdgeTessLevel(g::vec3(-100, 0, -1), g::vec3(100, 0, -1), 1000.0f, 4.0f, 64.0f),
+        64.0f);
     EXPECT_EQ(g::sgPatchFocalPx(1.0f, 600.0f), 300.0f); // 90 degrees vertical field of view
 }
 

@@ -221,6 +221,14 @@ struct AdaptivePatches {
     std::vector<AdaptivePatchArray> arrays;
     std::vector<uint32_t> indices;  // control points of each patch, Far's order per type
     std::vector<glm::uvec2> params; // Far::PatchParam (field0, field1) per patch
+    // Per patch, the refined vertices (indices into points) at its domain's
+    // corners (0,0), (1,0), (1,1), (0,1), at the patch's depth: the vertices
+    // of the refined face the patch covers. Two patches of the same depth
+    // that share an edge share its two vertices, so anything computed from
+    // them alone (the edge's tessellation level) is the same bit for bit on
+    // both sides. For a regular patch these are its control points 5, 6,
+    // 10, 9; for a Gregory patch they are not among its control points.
+    std::vector<glm::uvec4> cornerVertices;
     // points = S * cage positions: a sparse matrix in rows (one per point,
     // factorised down to the cage: an animated cage needs only this and
     // its own positions). stencilOffsets has points.size() + 1 entries.
