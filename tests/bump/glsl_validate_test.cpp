@@ -3,6 +3,7 @@
 // assembled standalone by the same include expander the programs use
 // (sg::shaders::assemble, #version 450 first) and validated for its stage:
 //   *.comp.glsl -> compute; *_vs.glsl / *.vert.glsl -> vertex;
+//   *_tcs.glsl / *_tes.glsl -> tessellation control / evaluation;
 //   everything else -> fragment (library files get an empty main()).
 // A file that needs defines to compile standalone lists them in a comment
 // line `// glslang-validate: NAME VALUE[, NAME VALUE...]`.
@@ -51,6 +52,8 @@ std::string stageOf(const std::string& path) {
     };
     if (ends(".comp.glsl")) return "comp";
     if (ends("_vs.glsl") || ends(".vert.glsl")) return "vert";
+    if (ends("_tcs.glsl")) return "tesc";
+    if (ends("_tes.glsl")) return "tese";
     return "frag";
 }
 
