@@ -1824,6 +1824,30 @@ bool patchCorners(const Far::TopologyRefiner& refiner, const std::vector<int>& p
     return true;
 }
 
+// AdaptivePatches::edgeOwners and cornerOwners from cornerVertices.
+void assignOwners(AdaptivePatches& ap) {
+    const size_t n = ap.cornerVertices.size();
+    // Edge k of a patch runs from corner kEdgeFrom[k] to corner kEdgeTo[k].
+    static constexpr int kEdgeFrom[4] = {0, 0, 1, 3}, kEdgeTo[4] = {3, 1, 2, 2};
+    std::unordered_map<uint64_t, uint32_t> edgeFirst;   // vertex pair -> (patch << 2) | edge
+    std::unordered_map<uint32_t, uint32_t> cornerFirst; // vertex -> (patch << 2) | corner
+    ap.edgeOwners.assign(n, glm::uvec4(0));
+    ap.cornerOwners.assign(n, glm::uvec4(0));
+    for (uint32_t p = 0; p < uint32_t(n); ++p) {
+        const glm::uvec4 c = ap.cornerVertices[p];
+        for (int k = 0; k < 4; ++k) {
+            const uint32_t a = c[kEdgeFrom[k]], b = c[kEdgeTo[k]];
+            const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+            const uint32_t first = edgeFirst.try_emplace(key, (p << 2) | uint32_t(k)).first->second;
+            const uint32_t owner = first >> 2, ownerEdge = first & 3u;
+            const uint32_t ownerFrom = ap.cornerVertices[owner][kEdgeFrom[ownerEdge]];
+            ap.edgeOwners[p][k] = (owner << 3) | (ownerEdge << 1) | (ownerFrom != a ? 1u : 0u);
+            ap.cornerOwners[p][k] =
+                cornerFirst.try_emplace(c[k], (p << 2) | uint32_t(k)).first->second;
+        }
+    }
+}
+
 } // namespace
 
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
@@ -1911,6 +1935,7 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
             throw InputError(file, "patch " + std::to_string(p),
                              "the refined face of an adaptive patch was not found");
     }
+    assignOwners(out);
     return out;
 }
 

@@ -363,3 +363,58 @@ TEST(PatchTessLevel, HardCasesStayBounded) {
 }
 
 } // namespace
+
+namespace {
+
+// ---- Evaluation sites of shared edges and corners ---------------------------
+
+TEST(PatchWatertight, EdgeAndCornerPointsGoToTheirOwner) {
+    // Patch 5: its edge v = 0 (1) is owned by patch 2's edge v = 1 (3),
+    // run the other way; its corner (1,1) by patch 3's corner (0,0).
+    const glm::uvec4 edges((5u << 3) | (0u << 1), (2u << 3) | (3u << 1) | 1u, (5u << 3) | (2u << 1),
+                           (5u << 3) | (3u << 1));
+    const glm::uvec4 corners((5u << 2) | 0u, (5u << 2) | 1u, (3u << 2) | 0u, (5u << 2) | 3u);
+    const g::vec4 outer(3.0f, 4.0f, 5.0f, 6.0f);
+    // An edge point a tessellator put slightly off 1/4 (fixed point).
+    g::SgPatchSite s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(0.25002f, 0.0f));
+    EXPECT_EQ(s.patchIndex, 2u);
+    EXPECT_EQ(s.uv, g::vec2(3.0f / 4.0f, 1.0f)); // i = 1 of 4, flipped: 3/4, exactly
+    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(1.0f, 1.0f));
+    EXPECT_EQ(s.patchIndex, 3u);
+    EXPECT_EQ(s.uv, g::vec2(0.0f, 0.0f));
+    // Own edge u = 1, level 5: snapped to 2/5 on the patch itself.
+    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(1.0f, 0.39998f));
+    EXPECT_EQ(s.patchIndex, 5u);
+    EXPECT_EQ(s.uv, g::vec2(1.0f, 2.0f / 5.0f));
+    // Interior points stay where they are.
+    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(0.3f, 0.7f));
+    EXPECT_EQ(s.patchIndex, 5u);
+    EXPECT_EQ(s.uv, g::vec2(0.3f, 0.7f));
+}
+
+TEST(PatchWatertight, OwnersAreConsistentOnEveryCatmarkShape) {
+    // Every shared edge and corner has one owner, seen the same way from
+    // each patch that has it (the owner's own entry points to itself).
+    for (const auto& [name, cage] : catmarkShapes()) {
+        SCOPED_TRACE(name);
+        const sg::mesh::AdaptivePatches ap =
+            sg::mesh::buildAdaptivePatches(cage, cage.options, 3, name);
+        ASSERT_EQ(ap.edgeOwners.size(), ap.patchCount());
+        static constexpr int kFrom[4] = {0, 0, 1, 3}, kTo[4] = {3, 1, 2, 2};
+        for (uint32_t p = 0; p < ap.patchCount(); ++p) {
+            for (int k = 0; k < 4; ++k) {
+                const uint32_t e = ap.edgeOwners[p][k], owner = e >> 3, oe = (e >> 1) & 3u;
+                ASSERT_LE(owner, p);
+                EXPECT_EQ(ap.edgeOwners[owner][int(oe)] >> 1, (owner << 2) | oe);
+                const glm::uvec4 c = ap.cornerVertices[p], oc = ap.cornerVertices[owner];
+                const bool flip = (e & 1u) != 0u;
+                EXPECT_EQ(c[kFrom[k]], flip ? oc[kTo[oe]] : oc[kFrom[oe]]);
+                EXPECT_EQ(c[kTo[k]], flip ? oc[kFrom[oe]] : oc[kTo[oe]]);
+                const uint32_t co = ap.cornerOwners[p][k];
+                EXPECT_EQ(ap.cornerVertices[co >> 2][int(co & 3u)], c[k]);
+            }
+        }
+    }
+}
+
+} // namespace

@@ -23,7 +23,9 @@
 //                               bilinear) and PatchParam decoding, for
 //                               limit-surface evaluation of adaptive
 //                               patch tables (tessellation);
-//   shaders/sg/patch/tess_level.glsl screen-space edge tessellation levels.
+//   shaders/sg/patch/tess_level.glsl screen-space edge tessellation levels;
+//   shaders/sg/patch/watertight.glsl where a tessellated point is evaluated
+//                               (shared edges and corners by their owner).
 // Read the contracts (spaces, units, degenerate cases) there. This header
 // makes them callable from C++ as sg::glsl::sgResolve(...), etc., with GLM
 // types (sg::glsl::vec3 == glm::vec3).
@@ -38,6 +40,7 @@ namespace sg::glsl {
 #include "sg/lean.glsl"
 #include "sg/patch/basis.glsl"
 #include "sg/patch/tess_level.glsl"
+#include "sg/patch/watertight.glsl"
 } // namespace sg::glsl
 
 namespace sg {

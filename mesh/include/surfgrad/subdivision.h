@@ -229,6 +229,18 @@ struct AdaptivePatches {
     // both sides. For a regular patch these are its control points 5, 6,
     // 10, 9; for a Gregory patch they are not among its control points.
     std::vector<glm::uvec4> cornerVertices;
+    // Crack-freedom between patches of the same depth: every point on a
+    // shared edge (or corner) is evaluated from one patch, its owner (the
+    // patch of lowest index among those that have it, by cornerVertices),
+    // at a parameter both sides derive from the same integers. Per patch and
+    // edge (0: u = 0, 1: v = 0, 2: u = 1, 3: v = 1; the edge runs along +v
+    // or +u): (owner << 3) | (owner's edge << 1) | flip, flip = 1 when the
+    // owner runs the edge the other way. Per patch and corner ((0,0), (1,0),
+    // (1,1), (0,1)): (owner << 2) | owner's corner. A patch owns its
+    // unshared edges and corners. Edges between patches of different depths
+    // (transitions) are not shared this way.
+    std::vector<glm::uvec4> edgeOwners;
+    std::vector<glm::uvec4> cornerOwners;
     // points = S * cage positions: a sparse matrix in rows (one per point,
     // factorised down to the cage: an animated cage needs only this and
     // its own positions). stencilOffsets has points.size() + 1 entries.

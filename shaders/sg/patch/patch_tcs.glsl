@@ -24,7 +24,8 @@ patch out uint tcPatchIndex;
 layout(std430, binding = 0) readonly buffer SgPatchPoints {
     float sgPoints[];
 };
-// Per patch: PatchParam field1, then the four corner vertices.
+// Per patch, 16 words (layout in patch_tes.glsl): PatchParam field1, the
+// four corner vertices, ...
 layout(std430, binding = 1) readonly buffer SgPatchData {
     uint sgPatchData[];
 };
@@ -47,7 +48,7 @@ void main() {
     tcCtrlObj[gl_InvocationID] = vCtrlObj[gl_InvocationID];
     if (gl_InvocationID == 0) {
         tcPatchIndex = vPatchIndex[0];
-        uint base = 5u * vPatchIndex[0];
+        uint base = 16u * vPatchIndex[0];
         vec3 c00 = cornerRel(sgPatchData[base + 1u]);
         vec3 c10 = cornerRel(sgPatchData[base + 2u]);
         vec3 c11 = cornerRel(sgPatchData[base + 3u]);

@@ -5,12 +5,24 @@
 // camera-relative through uModelRel, Mikkelsen 2019 listing 16), so the
 // fragment stage is unchanged. Integer (equal) spacing: the CPU knows the
 // levels exactly (sgPatchEdgeTessLevel returns integers).
+//
+// Crack-freedom between patches of the same depth (they share an edge's two
+// corner vertices, hence its level): a point on a patch edge is evaluated
+// from the edge's owner patch (AdaptivePatches::edgeOwners), at the
+// parameter i / n of the owner's edge, with i recovered from GL's domain
+// coordinate as an integer (round(t n), flipped as n - i when the owner runs
+// the edge the other way) and n the edge's integer level. Both sides then
+// run the same instructions on the same inputs (`precise`: no
+// reassociation or fusing that could differ between the two programs), so
+// the two positions are equal bit for bit. Corners likewise from their
+// owner (cornerOwners). Interior points use this patch's own control points.
 // Defines set by the host program:
 //   SG_PATCH_CAPTURE (0/1)  also append (patch, u, v, object position) of
 //                           every evaluated point to the capture buffer
 //                           (binding 2; tests of parity and crack-freedom).
 // glslang-validate: SG_PATCH_CAPTURE 1
 #include "sg/patch/basis.glsl"
+#include "sg/patch/watertight.glsl"
 
 #ifndef SG_PATCH_CAPTURE
 #define SG_PATCH_CAPTURE 0
@@ -21,8 +33,17 @@ layout(quads, equal_spacing, ccw) in;
 in vec3 tcCtrlObj[];
 patch in uint tcPatchIndex;
 
+layout(std430, binding = 0) readonly buffer SgPatchPoints {
+    float sgPoints[]; // xyz per control point, object space
+};
+// Per patch, 16 words: field1, four corner vertices, type, first entry of
+// its control points in sgPatchIndices, unused, four edge owners, four
+// corner owners (AdaptivePatches).
 layout(std430, binding = 1) readonly buffer SgPatchData {
     uint sgPatchData[];
+};
+layout(std430, binding = 3) readonly buffer SgPatchIndices {
+    uint sgPatchIndices[];
 };
 #if SG_PATCH_CAPTURE
 // count, then 6 words per point: patch, u, v (float bits), x, y, z.
@@ -33,7 +54,6 @@ layout(std430, binding = 2) buffer SgPatchCapture {
 };
 #endif
 
-uniform int uPatchType; // SG_PATCH_REGULAR or SG_PATCH_GREGORY_BASIS
 uniform mat4 uModel;
 uniform mat4 uModelRel;
 uniform mat3 uNormalMat;
@@ -44,16 +64,61 @@ out vec3 vWorldPos;
 out vec3 vObjPos;
 out vec3 vNormal;
 
+#define SG_PATCH_DATA_STRIDE 16u
+
+vec3 controlPoint(uint first, int i) {
+    uint v = sgPatchIndices[first + uint(i)];
+    return vec3(sgPoints[3u * v], sgPoints[3u * v + 1u], sgPoints[3u * v + 2u]);
+}
+
+// Position and derivatives of patch p at (u,v) of its own square, control
+// points from the buffers (the owner of a shared edge or corner).
+void evalFromBuffers(uint p, vec2 uv, out vec3 pos, out vec3 du, out vec3 dv) {
+    uint base = SG_PATCH_DATA_STRIDE * p;
+    uint field1 = sgPatchData[base];
+    SgPatchBasis b = sgPatchBasis(int(sgPatchData[base + 5u]), field1,
+                                  sgPatchUnnormalizeUv(field1, uv));
+    uint first = sgPatchData[base + 6u];
+    precise vec3 sp = vec3(0.0), su = vec3(0.0), sv = vec3(0.0);
+    for (int i = 0; i < b.count; ++i) {
+        vec3 c = controlPoint(first, i);
+        sp += b.point.v[i] * c;
+        su += b.du.v[i] * c;
+        sv += b.dv.v[i] * c;
+    }
+    pos = sp;
+    du = su;
+    dv = sv;
+}
+
 void main() {
     uint patchIndex = tcPatchIndex;
-    uint field1 = sgPatchData[5u * patchIndex];
-    vec2 faceUv = sgPatchUnnormalizeUv(field1, gl_TessCoord.xy);
-    SgPatchBasis b = sgPatchBasis(uPatchType, field1, faceUv);
-    vec3 pos = vec3(0.0), du = vec3(0.0), dv = vec3(0.0);
-    for (int i = 0; i < b.count; ++i) {
-        pos += b.point.v[i] * tcCtrlObj[i];
-        du += b.du.v[i] * tcCtrlObj[i];
-        dv += b.dv.v[i] * tcCtrlObj[i];
+    uint base = SG_PATCH_DATA_STRIDE * patchIndex;
+    vec2 uv = gl_TessCoord.xy;
+    uvec4 edgeOwners = uvec4(sgPatchData[base + 8u], sgPatchData[base + 9u],
+                             sgPatchData[base + 10u], sgPatchData[base + 11u]);
+    uvec4 cornerOwners = uvec4(sgPatchData[base + 12u], sgPatchData[base + 13u],
+                               sgPatchData[base + 14u], sgPatchData[base + 15u]);
+    vec4 outer = vec4(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2],
+                      gl_TessLevelOuter[3]);
+    SgPatchSite site = sgPatchEvalSite(patchIndex, edgeOwners, cornerOwners, outer, uv);
+    vec3 pos, du, dv;
+    // Every boundary point takes the buffers' path (also when this patch is
+    // the owner): the same instructions as on the other side.
+    if (uv.x == 0.0 || uv.x == 1.0 || uv.y == 0.0 || uv.y == 1.0) {
+        evalFromBuffers(site.patchIndex, site.uv, pos, du, dv);
+    } else {
+        uint field1 = sgPatchData[base];
+        SgPatchBasis b = sgPatchBasis(int(sgPatchData[base + 5u]), field1,
+                                      sgPatchUnnormalizeUv(field1, uv));
+        pos = vec3(0.0);
+        du = vec3(0.0);
+        dv = vec3(0.0);
+        for (int i = 0; i < b.count; ++i) {
+            pos += b.point.v[i] * tcCtrlObj[i];
+            du += b.du.v[i] * tcCtrlObj[i];
+            dv += b.dv.v[i] * tcCtrlObj[i];
+        }
     }
     vec3 nObj = sgSafeNormalize(cross(du, dv), vec3(0.0, 0.0, 1.0));
     vObjPos = pos;
