@@ -30,6 +30,7 @@
 // with plain loops (Osd's CpuEvaluator takes a slow path for stride-3 data,
 // docs/platform.md).
 #include "surfgrad/subdivision.h"
+#include "surfgrad/adaptive_patches.h"
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/patchMap.h>

@@ -19,7 +19,8 @@
 #include <memory>
 #include <vector>
 
-#include "surfgrad/bump.h"
+#include "surfgrad/adaptive_patches.h"
+#include "surfgrad/patch_basis.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -415,6 +416,58 @@ TEST(PatchWatertight, OwnersAreConsistentOnEveryCatmarkShape) {
             }
         }
     }
+}
+
+} // namespace
+
+namespace {
+
+// ---- Hard cases ---------------------------------------------------------------
+
+// Every patch of `ap` evaluated at the sample points: all finite.
+bool allFinite(const sg::mesh::AdaptivePatches& ap) {
+    for (const auto& arr : ap.arrays) {
+        for (uint32_t p = 0; p < arr.patchCount; ++p) {
+            for (const auto& s : kSamples) {
+                glm::vec3 du;
+                const glm::vec3 q = evalPatch(ap, arr, p, glm::vec2(s[0], s[1]), &du);
+                if (!std::isfinite(q.x + q.y + q.z + du.x + du.y + du.z)) return false;
+            }
+        }
+    }
+    return true;
+}
+
+TEST(PatchHardCases, ZeroAreaAndFarFromTheOriginStayFinite) {
+    const PolygonMesh cube = sg::mesh::loadPolygonMesh(dataPath("osd-shapes/catmark_pole8.obj"));
+    // Every cage vertex at one point: every patch has zero area.
+    PolygonMesh collapsed = cube;
+    for (glm::vec3& p : collapsed.positions) p = glm::vec3(0.25f, -1.0f, 3.0f);
+    sg::mesh::AdaptivePatches ap = sg::mesh::buildAdaptivePatches(collapsed, collapsed.options, 3);
+    EXPECT_TRUE(allFinite(ap));
+    for (const auto& arr : ap.arrays) {
+        for (uint32_t p = 0; p < arr.patchCount; ++p) {
+            glm::vec3 du;
+            const glm::vec3 q = evalPatch(ap, arr, p, glm::vec2(0.5f), &du);
+            // Weights sum to 1: the point itself, up to rounding of the
+            // stencils (rows of ~50 weights) and of the basis.
+            EXPECT_LE(glm::length(q - glm::vec3(0.25f, -1.0f, 3.0f)), 2e-5f);
+            // The normal the TES derives falls back to +z (no direction).
+            EXPECT_LE(g::sgMaxAbs3(du), 1e-3f);
+        }
+    }
+    // 1e6 from the origin at a size of 1: finite patches, and a bounded
+    // level for an edge seen from 5 units away (camera-relative end points
+    // rounded at 1e6: 0.06 steps).
+    PolygonMesh far = cube;
+    for (glm::vec3& p : far.positions) p += glm::vec3(1e6f, -1e6f, 1e6f);
+    ap = sg::mesh::buildAdaptivePatches(far, far.options, 3);
+    EXPECT_TRUE(allFinite(ap));
+    const glm::vec3 a = ap.points[ap.cornerVertices[0].x], b = ap.points[ap.cornerVertices[0].y];
+    const glm::vec3 eye = glm::vec3(1e6f, -1e6f, 1e6f) + glm::vec3(0.0f, 0.0f, 5.0f);
+    const float lv = g::sgPatchEdgeTessLevel(a - eye, b - eye, 1000.0f, 4.0f, 64.0f);
+    EXPECT_GE(lv, 1.0f);
+    EXPECT_LE(lv, 64.0f);
 }
 
 } // namespace

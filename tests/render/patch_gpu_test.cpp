@@ -24,7 +24,8 @@
 #include <map>
 #include <vector>
 
-#include "surfgrad/bump.h"
+#include "surfgrad/adaptive_patches.h"
+#include "surfgrad/patch_basis.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"

@@ -17,15 +17,7 @@
 //                               curves (boost, Hermite points), deform,
 //                               central-difference height derivative;
 //   shaders/sg/lean.glsl        LEAN moments and covariance, Toksvig variance
-//                               and factor (antialiasing);
-//   shaders/sg/patch/basis.glsl OpenSubdiv patch bases (regular B-spline
-//                               with boundary folds, Gregory basis,
-//                               bilinear) and PatchParam decoding, for
-//                               limit-surface evaluation of adaptive
-//                               patch tables (tessellation);
-//   shaders/sg/patch/tess_level.glsl screen-space edge tessellation levels;
-//   shaders/sg/patch/watertight.glsl where a tessellated point is evaluated
-//                               (shared edges and corners by their owner).
+//                               and factor (antialiasing).
 // Read the contracts (spaces, units, degenerate cases) there. This header
 // makes them callable from C++ as sg::glsl::sgResolve(...), etc., with GLM
 // types (sg::glsl::vec3 == glm::vec3).
@@ -38,9 +30,6 @@ namespace sg::glsl {
 #include "sg/surfgrad.glsl"
 #include "sg/deriv_edit.glsl"
 #include "sg/lean.glsl"
-#include "sg/patch/basis.glsl"
-#include "sg/patch/tess_level.glsl"
-#include "sg/patch/watertight.glsl"
 } // namespace sg::glsl
 
 namespace sg {

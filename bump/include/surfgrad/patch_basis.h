@@ -1,0 +1,23 @@
+// The patch math of GPU tessellation compiled for the CPU from the shader
+// source (shared GLSL/C++ subset, surfgrad/glsl_cpp.h):
+//   shaders/sg/patch/basis.glsl       OpenSubdiv patch bases (regular
+//                                     B-spline with PatchParam boundary
+//                                     folds, Gregory basis, bilinear) and
+//                                     PatchParam decoding;
+//   shaders/sg/patch/tess_level.glsl  integer screen-space tessellation
+//                                     level of a patch edge;
+//   shaders/sg/patch/watertight.glsl  where a tessellated point is
+//                                     evaluated (shared edges and corners
+//                                     by their owner patch).
+// Read the contracts there. Callable as sg::glsl::sgPatchBasis(...), etc.
+// The patch tables themselves come from surfgrad/adaptive_patches.h (mesh).
+#pragma once
+
+#include "surfgrad/glsl_cpp.h"
+
+namespace sg::glsl {
+#include "sg/compat.glsl"
+#include "sg/patch/basis.glsl"
+#include "sg/patch/tess_level.glsl"
+#include "sg/patch/watertight.glsl"
+} // namespace sg::glsl

@@ -1,0 +1,96 @@
+// Feature-adaptive patches of a Catmull-Clark cage for GPU tessellation:
+// OpenSubdiv's Far::PatchTable (Niessner, Loop, Meyer & DeRose,
+// "Feature-adaptive GPU rendering of Catmull-Clark subdivision surfaces",
+// ACM TOG 31(1), 2012; Gregory-basis end caps, Loop et al. 2009) as plain
+// arrays, the refined face each patch covers, and which patch evaluates the
+// points of shared edges and corners (crack-freedom). The bases are
+// shaders/sg/patch/*.glsl (shared GLSL/C++ subset, surfgrad/patch_basis.h
+// of the bump module); the mesh module has no shader math.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include "surfgrad/polygon_mesh.h"
+
+namespace sg::mesh {
+
+// ---- Adaptive patches (GPU tessellation) ----------------------------------
+
+// Far feature-adaptive refinement of a Catmull-Clark cage into a patch table
+// as plain arrays, for drawing the limit surface with hardware tessellation
+// (and the CPU reference of that path). Patches: regular bicubic B-spline
+// (16 points, boundaries through PatchParam's boundary mask; creases and
+// corners isolated to `isolation` and infinitely sharp ones as regular
+// patches, Far's useInfSharpPatch), Gregory-basis end caps (20 points)
+// around extraordinary vertices and unisolated semi-sharp features. The
+// bases are shaders/sg/patch/basis.glsl (shared GLSL/C++ subset).
+struct AdaptivePatchArray {
+    int type = 0;            // Far::PatchDescriptor::Type: 6 regular, 9 Gregory basis
+    int pointsPerPatch = 0;  // 16 or 20
+    uint32_t firstPatch = 0; // into params (and patchFace)
+    uint32_t patchCount = 0;
+    uint32_t firstIndex = 0; // into indices: patchCount * pointsPerPatch entries
+};
+
+struct AdaptivePatches {
+    int isolation = 0;
+    uint32_t cagePointCount = 0; // points[0, cagePointCount) are the cage's vertices
+    // Every control point, object space: the vertices of all adaptive levels
+    // (level 0 = the cage) then Far's local points (Gregory end caps).
+    std::vector<glm::vec3> points;
+    std::vector<AdaptivePatchArray> arrays;
+    std::vector<uint32_t> indices;  // control points of each patch, Far's order per type
+    std::vector<glm::uvec2> params; // Far::PatchParam (field0, field1) per patch
+    // Per patch, the refined vertices (indices into points) at its domain's
+    // corners (0,0), (1,0), (1,1), (0,1), at the patch's depth: the vertices
+    // of the refined face the patch covers. Two patches of the same depth
+    // that share an edge share its two vertices, so anything computed from
+    // them alone (the edge's tessellation level) is the same bit for bit on
+    // both sides. For a regular patch these are its control points 5, 6,
+    // 10, 9; for a Gregory patch they are not among its control points.
+    std::vector<glm::uvec4> cornerVertices;
+    // Crack-freedom between patches of the same depth: every point on a
+    // shared edge (or corner) is evaluated from one patch, its owner (the
+    // patch of lowest index among those that have it, by cornerVertices),
+    // at a parameter both sides derive from the same integers. Per patch and
+    // edge (0: u = 0, 1: v = 0, 2: u = 1, 3: v = 1; the edge runs along +v
+    // or +u): (owner << 3) | (owner's edge << 1) | flip, flip = 1 when the
+    // owner runs the edge the other way. Per patch and corner ((0,0), (1,0),
+    // (1,1), (0,1)): (owner << 2) | owner's corner. A patch owns its
+    // unshared edges and corners. Edges between patches of different depths
+    // (transitions) are not shared this way.
+    std::vector<glm::uvec4> edgeOwners;
+    std::vector<glm::uvec4> cornerOwners;
+    // points = S * cage positions: a sparse matrix in rows (one per point,
+    // factorised down to the cage: an animated cage needs only this and
+    // its own positions). stencilOffsets has points.size() + 1 entries.
+    std::vector<uint32_t> stencilOffsets;
+    std::vector<uint32_t> stencilIndices;
+    std::vector<float> stencilWeights;
+
+    size_t patchCount() const { return params.size(); }
+};
+
+// Builds the adaptive patches of `cage` (validated) at the given isolation
+// level (1..10, OpenSubdiv's limit). Throws InputError (file, element,
+// reason) for a scheme other than Catmark (element "scheme": Loop and
+// bilinear cages take the uniform path), an isolation outside 1..10
+// (element "isolation"), or a cage OpenSubdiv refuses. Holes: hole faces
+// get no patches. UV sets are not carried yet.
+AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
+                                     int isolation, const std::string& file = {});
+
+// Recomputes patches.points from new cage positions (cagePointCount
+// entries) with the stencils: what an animated cage needs per frame (the
+// GPU applies the same rows in a compute stage).
+void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions);
+
+} // namespace sg::mesh
