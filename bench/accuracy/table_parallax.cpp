@@ -127,8 +127,9 @@ std::string methodName(int steps) {
     return steps ? "POM " + std::to_string(steps) + " steps" : "offset mapping (Welsh)";
 }
 
-// a. error per field and method
-void errorRows(Table& t, int samples) {
+// a. error per field and method; returns the first field's texel p99 per
+// method (kSteps order), which table 9b plots against cost.
+std::vector<double> errorRows(Table& t, int samples) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> pos(0.4, 0.6), az(0.0, 2.0 * kPi), el(20.0, 80.0);
     std::vector<std::pair<glm::dvec2, glm::dvec3>> px;
@@ -139,7 +140,9 @@ void errorRows(Table& t, int samples) {
              glm::dvec3(std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e))});
     }
     const float foot = 0.5f / float(kTexels);
-    for (const Field& f : fields()) {
+    std::vector<double> firstFieldP99;
+    const std::vector<Field> all = fields();
+    for (const Field& f : all) {
         TextureImage img = fieldTexture(f);
         G::sampler2D tex{&img};
         std::vector<glm::dvec3> hits;
@@ -161,10 +164,12 @@ void errorRows(Table& t, int samples) {
                 }
             }
             ErrorStats a = errorStats(texel), b = errorStats(deg);
+            if (&f == &all.front()) firstFieldP99.push_back(a.p99);
             t.add({f.name, methodName(n), fmtErr(a.p50), fmtErr(a.p90), fmtErr(a.p99),
                    f.grad ? fmtErr(b.p50) : "-", f.grad ? fmtErr(b.p99) : "-"});
         }
     }
+    return firstFieldP99;
 }
 
 // b. cost through the renderer
@@ -313,7 +318,7 @@ void tableParallax(const Options& o) {
               "ray-traced in double; 256^2 map; views 20-80 degrees above the plane)";
     t.header = {"field",     "method",         "texel p50",     "texel p90",
                 "texel p99", "normal p50 deg", "normal p99 deg"};
-    errorRows(t, o.quick ? 100 : 400);
+    const std::vector<double> sinesP99 = errorRows(t, o.quick ? 100 : 400);
     t.notes.push_back("Texels: distance of the corrected coordinate to the true hit's. Normal: "
                       "angle between the field's analytic normals at the two (the step has none).");
     t.print(o.markdown);
@@ -322,13 +327,23 @@ void tableParallax(const Options& o) {
     Table c;
     c.title = "Table 9b: parallax cost (plane filling the view, bricks relief 0.04 deep, " +
               std::to_string(o.size) + "^2)";
-    c.header = {"layer", "ms", "ratio to height"};
-    c.add({"height (3 taps, no correction)", fmt(ms[0], 2), fmtRatio(1.0)});
+    c.header = {"layer", "ms", "ratio to height", "texel p99 (sines, table 9a)"};
+    c.add({"height (3 taps, no correction)", fmt(ms[0], 2), fmtRatio(1.0), ""});
     for (size_t i = 0; i < std::size(kSteps); ++i)
-        c.add({methodName(kSteps[i]), fmt(ms[i + 1], 2), fmtRatio(ms[i + 1] / ms[0])});
+        c.add({methodName(kSteps[i]), fmt(ms[i + 1], 2), fmtRatio(ms[i + 1] / ms[0]),
+               fmtErr(sinesP99[i])});
+    // The frontier: how far the corrected coordinate lands from the true hit
+    // against what the correction costs (the height layer has no correction:
+    // no point).
+    c.plot.id = "parallax";
+    c.plot.xColumn = 2;
+    c.plot.yColumn = 3;
+    c.plot.labelColumns = {0};
+    c.plot.xLabel = "cost (ratio to a height layer, same run)";
+    c.plot.yLabel = "distance to the true hit, p99 (texels, sines field)";
     c.notes.push_back("Frames interleaved; median over runs of the per-run median; renderer " +
                       o.renderer + ".");
-    c.print(o.markdown);
+    c.print(o);
 
     Table d;
     d.title = "Table 9c: re-prologue derivatives on the virtual surface (terrace relief, POM 256 "
