@@ -15,7 +15,6 @@
 #include <regex>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 #include "cli.h"
 #include "surfgrad/shader_files.h"
@@ -29,9 +28,7 @@ using RunResult = sg::test::CommandResult;
 // Writes `source` to a temporary file with the stage's extension and runs
 // glslangValidator on it.
 RunResult validate(const std::string& source, const std::string& stage, const std::string& tag) {
-    const fs::path dir =
-        fs::temp_directory_path() / ("surfgrad_glslang_" + std::to_string(::getpid()));
-    fs::create_directories(dir);
+    const fs::path& dir = sg::test::processScratchDir("surfgrad_glslang");
     std::string safe = tag;
     for (char& c : safe) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
     const fs::path file = dir / (safe + "." + stage);

@@ -52,6 +52,28 @@ inline std::string shellQuote(const std::filesystem::path& p) {
     return shellQuote(p.string());
 }
 
+// A scratch folder for this process, <temp>/<prefix>_<pid>, created on the
+// first call and removed with everything in it when the process exits (a
+// test binary run once per test by ctest would otherwise leave one folder
+// per test behind in TMPDIR). One prefix per process.
+inline const std::filesystem::path& processScratchDir(const std::string& prefix) {
+    struct Owned {
+        std::filesystem::path path;
+        explicit Owned(std::filesystem::path p) : path(std::move(p)) {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec); // a stale folder of a reused pid
+            std::filesystem::create_directories(path);
+        }
+        ~Owned() {
+            std::error_code ec;
+            std::filesystem::remove_all(path, ec);
+        }
+    };
+    static const Owned owned(std::filesystem::temp_directory_path() /
+                             (prefix + "_" + std::to_string(::getpid())));
+    return owned.path;
+}
+
 // The CLI this build produced.
 inline std::filesystem::path surfgradBinary() {
     return std::filesystem::path(SURFGRAD_BINARY_DIR) / "bin" / "surfgrad";

@@ -5,7 +5,6 @@
 #include <filesystem>
 #include <string>
 #include <vector>
-#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -19,10 +18,10 @@ using sg::test::CommandResult;
 using sg::test::runCommand;
 using sg::test::shellQuote;
 
-// A fresh per-process scratch directory for one test.
+// A fresh scratch directory for one test, inside the process's scratch
+// folder (removed when the process exits).
 inline fs::path scratchDir(const std::string& name) {
-    fs::path d =
-        fs::temp_directory_path() / ("surfgrad_examples_" + std::to_string(::getpid())) / name;
+    fs::path d = sg::test::processScratchDir("surfgrad_examples") / name;
     fs::remove_all(d);
     fs::create_directories(d);
     return d;

@@ -19,15 +19,24 @@
 
 namespace sgfuzz {
 
-// /tmp/surfgrad_fuzz_<what>_<pid>, emptied on each call.
+// <temp>/surfgrad_fuzz_<what>_<pid>, emptied on each call and removed when
+// the process exits (the replay ctests run each target once per input
+// folder and would otherwise leave one folder per run behind).
 inline std::filesystem::path scratchDir(const std::string& what) {
     namespace fs = std::filesystem;
-    const fs::path dir =
-        fs::temp_directory_path() / ("surfgrad_fuzz_" + what + "_" + std::to_string(::getpid()));
+    struct RemovedAtExit {
+        fs::path dir;
+        ~RemovedAtExit() {
+            std::error_code ec;
+            fs::remove_all(dir, ec);
+        }
+    };
+    static RemovedAtExit owned{fs::temp_directory_path() /
+                               ("surfgrad_fuzz_" + what + "_" + std::to_string(::getpid()))};
     std::error_code ec;
-    fs::remove_all(dir, ec);
-    fs::create_directories(dir);
-    return dir;
+    fs::remove_all(owned.dir, ec);
+    fs::create_directories(owned.dir);
+    return owned.dir;
 }
 
 // Keeps a parsed scene cheap: subdivision level <= 1, procedural meshes of
