@@ -31,6 +31,7 @@ void tablePrecision(const Options& o);   // 6: precision
 void tableTriplanar(const Options& o);   // 7: triplanar method
 void tableParallax(
     const Options& o); // 9: parallax and POM (8, antialiasing: bench/antialias_bench)
+void tableFeatureAa(const Options& o); // 10: feature curves antialiased
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {
@@ -43,6 +44,7 @@ inline const std::vector<TableEntry>& registeredTables() {
         {"precision", "6. precision", tablePrecision},
         {"triplanar", "7. triplanar method", tableTriplanar},
         {"parallax", "9. parallax and POM", tableParallax},
+        {"feature-aa", "10. feature curves antialiased", tableFeatureAa},
     };
     return tables;
 }

@@ -55,7 +55,8 @@ std::string wordExpr(const RecordField& f, int c) {
 // A compute program that unpacks one record set per invocation and writes
 // the fields as 32-bit words in the layout's order.
 sg::gl::Program unpackProgram(const LayerKind& kind, const RecordLayout& l) {
-    std::string body = "#include \"" + std::string(kind.glslFile) + "\"\n";
+    std::string body =
+        "#include \"" + (l.glslFile.empty() ? std::string(kind.glslFile) : l.glslFile) + "\"\n";
     body += "layout(local_size_x = " + std::to_string(sg::gl::kComputeGroupSize) +
             ") in;\n"
             "layout(std430, binding = 0) readonly buffer InRecords { vec4 inRec[]; };\n"

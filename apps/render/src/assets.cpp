@@ -282,7 +282,15 @@ void loadTextures(const Scene& scene, SceneAssets& assets, const std::vector<Tex
             opt.usedBytes += t->bytes();
             ++opt.otherTextures;
         }
-        auto tex = loadTexture(*u.src, scene.sourceName, opt);
+        std::shared_ptr<const TextureImage> tex;
+        if (u.src->featureChain) { // a feature layer's chain: from its loaded maps
+            auto fm = assets.featureMaps.find(u.src->featureChain->mapsKey);
+            SG_ASSERT(fm != assets.featureMaps.end(), "feature maps load before their chains");
+            tex = std::make_shared<const TextureImage>(
+                detail::featureChainTexture(*fm->second, *u.src->featureChain));
+        } else {
+            tex = loadTexture(*u.src, scene.sourceName, opt);
+        }
         assets.textures[key] = tex;
         const TexelType type = tex->levels[0].type;
         assets.log.push_back(

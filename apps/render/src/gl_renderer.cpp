@@ -326,6 +326,11 @@ void GlRenderer::Impl::bindDraw(GpuProgram& gp, const MaterialPlan& plan,
                 glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
             }
             glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
+            if (plan.featureLean) { // layers without the chain never read it
+                glUniform1i(gp.loc(("uFeatChainA" + idx).c_str()), GLint(pl.tex[0]));
+                glUniform1i(gp.loc(("uFeatChainB" + idx).c_str()),
+                            GLint(pl.tex[1] >= 0 ? pl.tex[1] : pl.tex[0]));
+            }
         }
 }
 

@@ -285,6 +285,7 @@ struct RecordLayout {
     std::vector<RecordField> fields;
     std::function<std::any(const Layer&)> prepare;               // optional: computed once per pack
     std::function<std::any(const glm::vec4* records)> unpackCpu; // the C++ build
+    std::string glslFile; // file defining the unpacker; empty: the kind's glslFile
 };
 
 // Slots "r<i>.<components>" separated by spaces, e.g. "r1.w r2.w r3.w".

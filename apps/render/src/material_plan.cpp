@@ -105,6 +105,8 @@ struct Planner {
         // ... and the exact near field only when a layer uses one.
         if (fm != assets.featureMaps.end() && src->nearField && fm->second->nearBandTexels > 0.0)
             plan.featureNear = true;
+        // ... and the prefiltered chain only when a layer antialiases.
+        if (L.kind->antialias && L.kind->antialias(L)) plan.featureLean = true;
     }
 
     PlanLayer add(const Layer& L, bool uber) {

@@ -39,6 +39,20 @@ TextureImage makeProceduralTexture(const TextureSource& src);
 TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
                                  NormalEncoding encoding);
 
+// The prefiltered slope chain of a feature layer with "antialias": "lean"
+// (layer_feature.cpp; layer_feature_aa.glsl describes the texels): level 0
+// texel (i, j) of an N x N map is the average of sgFeatAaMomentTexel of the
+// layer's flat-base slope (sgFeatAaSlope of the evaluator's result, the
+// profile and mode of `src`) over samplesPerAxis^2 midpoints of the texel
+// square (a texel farther than the profile's reach from every curve holds
+// zeros); smaller levels are box averages (makeTexture). Clamp wrap, float
+// RGBA, part src.part (0: texA, 1: texB). The midpoint rule's error on a
+// texel a crease crosses is at most the area of the samples' cells the
+// crease cuts, about 1/samplesPerAxis of the slope jump (tests/render).
+inline constexpr int kFeatureChainSamples = 8;
+TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChainSource& src,
+                                 int samplesPerAxis = kFeatureChainSamples);
+
 glm::mat3 normalMatrix(const glm::mat4& model);
 
 // World-space bounds of every mesh instance.

@@ -62,6 +62,13 @@ std::string FeatureSource::key() const {
 }
 
 std::string TextureSource::key() const {
+    if (featureChain) {
+        const FeatureChainSource& c = *featureChain;
+        return "featchain:" + c.mapsKey + ":" + c.profile + ":" + std::to_string(c.depth) + ":" +
+               std::to_string(c.w0) + ":" + std::to_string(c.width) +
+               (c.paperMode ? ":paper" : ":surfgrad") + (c.nearExact ? ":exact" : ":interp") +
+               ":part" + std::to_string(c.part);
+    }
     if (moments != TexMoments::None) {
         TextureSource base = *this;
         base.moments = TexMoments::None;

@@ -9,6 +9,56 @@
 
 namespace sg::render {
 
+namespace detail {
+
+TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChainSource& src,
+                                 int samplesPerAxis) {
+    SG_EXPECTS(samplesPerAxis >= 1 && maps.gpu.size >= 1, "a chain of loaded maps");
+    namespace G = sg::glsl;
+    const sg::features::GpuFeatureMaps& gpu = maps.gpu;
+    const int n = gpu.size;
+    const bool near = src.nearExact && gpu.hasNearField();
+    const G::SgFeatProfile layerProfile =
+        sg::features::makeProfile(src.profile, src.depth, src.w0, src.width);
+    // Where every profile has ended (d >= w gives the flat base's slope 0):
+    // texels whose centre is farther than that plus half a diagonal and a
+    // margin for the interpolated distance hold zero moments.
+    const float reach =
+        (near ? std::max(float(maps.nearBandTexels), layerProfile.w) : layerProfile.w) + 1.5f;
+    const auto nm = near ? sg::features::NearMode::Exact : sg::features::NearMode::Paper;
+    auto slopeAt = [&](glm::vec2 pos) {
+        G::SgFeatResult r = sg::features::sample(gpu, pos, nm);
+        G::SgFeatProfile pr =
+            near ? G::sgFeatCurveProfile(gpu.pieceSampler(), layerProfile, r) : layerProfile;
+        return G::sgFeatAaSlope(r, pr, src.paperMode);
+    };
+    std::vector<glm::vec4> texels(size_t(n) * size_t(n), glm::vec4(0.0f));
+    const double inv = 1.0 / double(samplesPerAxis);
+    const double norm = 1.0 / (double(samplesPerAxis) * double(samplesPerAxis));
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            glm::vec4& out = texels[size_t(j) * size_t(n) + size_t(i)];
+            if (sg::features::sample(gpu, glm::vec2(i + 0.5f, j + 0.5f), nm).dist > reach) {
+                out = src.part == 0 ? glm::vec4(0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+                continue;
+            }
+            // Midpoint rule over the texel square, summed in double.
+            glm::dvec4 sumA(0.0), sumB(0.0);
+            for (int b = 0; b < samplesPerAxis; ++b)
+                for (int a = 0; a < samplesPerAxis; ++a) {
+                    glm::vec2 pos(float(i + (a + 0.5) * inv), float(j + (b + 0.5) * inv));
+                    glm::vec4 ta, tb;
+                    G::sgFeatAaMomentTexel(slopeAt(pos), ta, tb);
+                    sumA += glm::dvec4(ta);
+                    sumB += glm::dvec4(tb);
+                }
+            out = glm::vec4((src.part == 0 ? sumA : sumB) * norm);
+        }
+    return makeTexture(n, n, std::move(texels), Wrap::Clamp);
+}
+
+} // namespace detail
+
 namespace {
 
 namespace G = sg::glsl;
@@ -107,7 +157,7 @@ RecordLayout layerRecords() {
         .field("offset", &S::offset, "r1.xy",
                [](const PackInput& in) { return in.params<P>().offset; })
         .field("hasBase", &S::hasBase, "r1.z",
-               [](const PackInput& in) { return !in.layer.maps.empty(); })
+               [](const PackInput& in) { return !in.layer.maps.empty() && !in.params<P>().lean; })
         .field("baseEncoding", &S::baseEncoding, "r1.w",
                [](const PackInput& in) { return int(in.params<P>().encoding); })
         .field("baseFlipV", &S::baseFlipV, "r2.x",
@@ -115,6 +165,20 @@ RecordLayout layerRecords() {
         .field("nearExact", &S::nearExact, "r2.y",
                [](const PackInput& in) { return in.params<P>().nearExact; })
         .done();
+}
+
+// sgUnpackFeatureAa(r2), layer_feature_aa.glsl: r2.z = lean (the slot
+// sgUnpackFeatureLayer leaves 0, so records of layers without it are
+// unchanged).
+RecordLayout aaRecords() {
+    using S = G::SgFeatureAaParams;
+    RecordLayout l =
+        Records<S, 1>("SgFeatureAaParams", "sgUnpackFeatureAa", G::sgUnpackFeatureAa, 2)
+            .field("lean", &S::lean, "r0.z",
+                   [](const PackInput& in) { return in.params<P>().lean; })
+            .done();
+    l.glslFile = "sg/render/layer_feature_aa.glsl";
+    return l;
 }
 
 // sgUnpackFeatProfile(p0, p1, t0..t3), layer_feature.glsl, records 3..8 of
@@ -168,6 +232,10 @@ std::string declarations(const MaterialPlan& plan) {
     const std::string n = std::to_string(plan.featureLayerCount);
     o += "uniform usampler2D uFeatCorners[" + n + "];\n" + "uniform usampler2D uFeatEdges[" + n +
          "];\n" + "uniform sampler2D uFeatBase[" + n + "];\n";
+    if (plan.featureLean) {
+        o += "uniform sampler2D uFeatChainA[" + n + "]; // prefiltered chain: E[d], E[d^2]\n" +
+             "uniform sampler2D uFeatChainB[" + n + "]; // prefiltered chain: E[d.x d.y]\n";
+    }
     if (plan.featureNear) {
         o += "uniform usampler2D uFeatNear[" + n + "];   // exact near field: lists\n" +
              "uniform usampler2D uFeatPieces[" + n + "]; // exact near field: pieces\n";
@@ -202,15 +270,18 @@ std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLaye
                 indent + "    if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
         }
     }
-    o += indent +
-         "    surfGrad += " + (plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature") +
+    const std::string fn = std::string(plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature") +
+                           (plan.featureLean ? "Aa" : "");
+    o += indent + "    surfGrad += " + fn +
          "(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + "
          "1], uLayerData[r + 2]),\n" +
+         (plan.featureLean ? indent + "        sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") +
          indent +
          "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
          "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n" +
          indent + "        uFeatCorners[fi], uFeatEdges[fi], " +
-         (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]);\n" +
+         (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]" +
+         (plan.featureLean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n" +
          indent + "}\n";
     return o;
 }
@@ -222,6 +293,21 @@ void cpu(const CpuLayerContext& c, CpuShadeState& s) {
         return; // maps not loaded: nothing to add
     const detail::FeatureSamplers& fs = c.featureSamplers[size_t(c.pl.featureSlot)];
     const glm::vec4* r = c.rec();
+    if (c.layer().params<P>().lean) {
+        // Slots 0 and 1: the chain (no base map with "lean").
+        const G::SgFeatureLayerParams p = G::sgUnpackFeatureLayer(r[0], r[1], r[2]);
+        const G::SgFeatureAaParams aa = G::sgUnpackFeatureAa(r[2]);
+        const G::SgFeatProfile pr = G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]);
+        if (fs.nearLists.rgba) {
+            s.surfGrad +=
+                G::sgLayerFeatureNearAa(c.uv(s), p, aa, pr, fs.corners, fs.edges, fs.nearLists,
+                                        fs.pieces, c.tex(0), c.tex(0), c.tex(1), s.slopeCov);
+        } else {
+            s.surfGrad += G::sgLayerFeatureAa(c.uv(s), p, aa, pr, fs.corners, fs.edges, c.tex(0),
+                                              c.tex(0), c.tex(1), s.slopeCov);
+        }
+        return;
+    }
     if (fs.nearLists.rgba) {
         s.surfGrad +=
             G::sgLayerFeatureNear(c.uv(s), G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
@@ -258,6 +344,36 @@ void checkAssets(const Layer& L, const SceneAssets& assets, const std::string& s
                              "the profile width must be at most the near field's band " +
                                  std::to_string(nearBand) +
                                  " texels (bake with a larger --near-width)");
+    }
+}
+
+// "antialias": "none" (default) or "lean": the layer's maps become the two
+// textures of its prefiltered chain (read last: after the source, the
+// profile fields, "mode" and "near").
+void parseAntialias(const SceneNode& n, const char* key, Layer& L, const SceneReader&) {
+    if (!n.has(key)) return;
+    P& p = L.params<P>();
+    p.lean = n.choice(key, 0, {"none", "lean"}) == 1;
+    if (!p.lean) return;
+    if (!L.maps.empty())
+        n.failField(key, "\"lean\" does not combine with \"base_map\" (the chain holds the "
+                         "features' slopes on a flat base): expected \"none\" or no base map");
+    if (!p.source) return; // the source's own message
+    TextureSource chain;
+    chain.fieldPath = n.sub(key);
+    chain.wrap = Wrap::Clamp;
+    FeatureChainSource c;
+    c.mapsKey = p.source->key();
+    c.profile = p.profile;
+    c.depth = p.depth;
+    c.w0 = p.w0;
+    c.width = p.width;
+    c.paperMode = p.paperMode;
+    c.nearExact = p.nearExact;
+    for (int part = 0; part < 2; ++part) {
+        c.part = part;
+        chain.featureChain = c;
+        L.maps.push_back(chain);
     }
 }
 
@@ -300,19 +416,32 @@ const LayerKind& featureLayerKind() {
                 param::green(&P::flipV),
                 param::custom("near", parseNear,
                               "\"exact\": the maps' exact near field, per-curve profiles"),
+                param::custom("antialias", parseAntialias,
+                              "\"none\" (default) or \"lean\": exact below a texel, the "
+                              "prefiltered slope chain above (widens the lobe)"),
             },
         .makeParams = [] { return std::any(P{}); },
         .check = checkProfile,
         .readsUv = true,
         .readsTangentBasis = [](const Layer&) { return true; },
         .textureSlots = 1,
+        .textureSlotsOf = [](const Layer& L) { return L.params<P>().lean ? 2 : 1; },
         .mapChannels = mapChannels,
         .glslFile = "sg/render/layer_feature.glsl",
+        .glslFileOf =
+            [](const Layer& L) {
+                return L.params<P>().lean ? "sg/render/layer_feature_aa.glsl"
+                                          : "sg/render/layer_feature.glsl";
+            },
+        .antialias = [](const Layer& L) { return L.params<P>().lean; },
+        .signature = [](const Layer& L) -> std::string {
+            return L.params<P>().lean ? "~lean" : "";
+        },
         .featureSource = [](const Layer& L) -> const FeatureSource* {
             const auto& s = L.params<P>().source;
             return s ? &*s : nullptr;
         },
-        .records = {layerRecords(), profileRecords()},
+        .records = {layerRecords(), profileRecords(), aaRecords()},
         .cpu = cpu,
         .batch = &kBatch,
         .programDeclarations = declarations,
@@ -324,7 +453,8 @@ const LayerKind& featureLayerKind() {
         .programSignature =
             [](const MaterialPlan& plan) {
                 return std::string(plan.featureCurved ? "|featcurved" : "|featstraight") +
-                       (plan.featureNear ? "|featnear" : "");
+                       (plan.featureNear ? "|featnear" : "") +
+                       (plan.featureLean ? "|featlean" : "");
             },
         .checkAssets = checkAssets,
     };

@@ -27,5 +27,6 @@ namespace sg::glsl {
 #include "sg/render/layer_uv_normal_mods.glsl"
 #include "sg/render/layer_deriv_map_mods.glsl"
 #include "sg/render/layer_feature.glsl"
+#include "sg/render/layer_feature_aa.glsl"
 #include "sg/render/shading.glsl"
 } // namespace sg::glsl

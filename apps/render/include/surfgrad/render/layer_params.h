@@ -100,6 +100,10 @@ struct FeatureParams {
     float depth = 1.0f, w0 = 0.0f, width = 3.0f; // texels
     bool paperMode = false;
     bool nearExact = false; // "near": "exact": the maps' exact near field, per-curve profiles
+    // "antialias": "lean": exact below a texel, the prefiltered chain above
+    // (layer_feature_aa.glsl); Layer::maps then holds the chain's two
+    // textures (TextureSource::featureChain) and no base map.
+    bool lean = false;
     float tiling = 1.0f;
     glm::vec2 offset{0.0f};
     NormalEncoding encoding = NormalEncoding::Rgb; // base map

@@ -58,6 +58,7 @@ struct MaterialPlan {
     int featureLayerCount = 0;                        // layers reading feature maps (all groups)
     bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
     bool featureNear = false;   // some feature layer uses an exact near field (SG_FEAT_NEAR)
+    bool featureLean = false;   // some feature layer antialiases (layer_feature_aa.glsl)
     int recordCount = 0;
     int uberFlagCount = 0;
     uint32_t uvUsedMask = 0; // UV sets read by some layer (or the base colour map)

@@ -51,6 +51,17 @@ enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 }; // SG_ENC_*
 // Moment textures of a normal map (layer_uv_normal_aa.glsl): LEAN's
 // (E[d], E[d.x^2], E[d.y^2]) and (E[d.x d.y]), Toksvig's E[n].
 enum class TexMoments { None = 0, LeanA = 1, LeanB = 2, Toksvig = 3 };
+// The prefiltered slope chain of a feature layer with "antialias": "lean"
+// (shaders/sg/render/layer_feature_aa.glsl): built when the scene loads from
+// the layer's feature maps and its profile (the slopes depend on both).
+struct FeatureChainSource {
+    std::string mapsKey; // FeatureSource::key() of the maps
+    std::string profile; // sg::features::makeProfile name
+    float depth = 1.0f, w0 = 0.0f, width = 3.0f;
+    bool paperMode = false;
+    bool nearExact = false;
+    int part = 0; // 0: texA (E[d], E[d.x^2], E[d.y^2]); 1: texB (E[d.x d.y])
+};
 enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 }; // SG_NOISE_*
 
 // Where a texture's texels come from: a file (PNG, EXR, ... through
@@ -69,6 +80,9 @@ struct TextureSource {
     // (shaders/sg/render/layer_uv_normal_aa.glsl, sgUvNormalMomentTexel).
     TexMoments moments = TexMoments::None;
     NormalEncoding momentsEncoding = NormalEncoding::Rgb;
+    // Not a file: a feature layer's prefiltered chain (the maps must be
+    // loaded first; SceneAssets::featureMaps).
+    std::optional<FeatureChainSource> featureChain;
     std::string key() const; // identity: equal keys share one texture
 };
 
