@@ -114,8 +114,8 @@ std::vector<glm::vec2> points(int k) {
     std::vector<glm::vec2> p;
     for (int j = 0; j < k; ++j)
         for (int i = 0; i < k; ++i)
-            p.push_back(glm::vec2((i + 0.5f) * kMapSize / k + 0.137f,
-                                  (j + 0.5f) * kMapSize / k + 0.291f));
+            p.push_back(
+                glm::vec2((i + 0.5f) * kMapSize / k + 0.137f, (j + 0.5f) * kMapSize / k + 0.291f));
     return p;
 }
 
@@ -139,7 +139,8 @@ std::vector<double> costs(const Options& o) {
     const int big = o.size, small = std::max(32, o.size / 8);
     std::vector<View> views;
     for (int size : {big, small})
-        for (size_t i = 0; i < 2; ++i) views.push_back(makeView(scenes[i], assets[i], size, size, Aov::Color));
+        for (size_t i = 0; i < 2; ++i)
+            views.push_back(makeView(scenes[i], assets[i], size, size, Aov::Color));
     GlRenderer gl;
     return timeVariants(
         4, [&](size_t v) { gl.renderToTexture(scenes[v % 2], assets[v % 2], views[v]); }, o);
@@ -158,8 +159,8 @@ void tableFeatureAa(const Options& o) {
               std::to_string(kMapSize) + "^2, crease 1.5 deep, 3 wide; " + std::to_string(k) +
               "^2 footprints, truth " + std::to_string(sub) + "x" + std::to_string(sub) +
               " exact samples)";
-    t.header = {"texels/px", "chain w",     "none RMSE",  "none max",   "lean RMSE",
-                "lean max",  "lean energy", "jump lean",  "jump truth"};
+    t.header = {"texels/px", "chain w",     "none RMSE", "none max",  "lean RMSE",
+                "lean max",  "lean energy", "jump lean", "jump truth"};
     const float rhos[] = {0.25f, 0.5f, 0.71f, 0.84f, 0.92f, 1.0f,  1.09f, 1.19f, 1.41f,
                           1.68f, 2.0f, 2.83f, 4.0f,  8.0f,  16.0f, 32.0f, 64.0f};
     for (float rho : rhos) {
@@ -176,10 +177,10 @@ void tableFeatureAa(const Options& o) {
             eLean += lean;
             eTruth += truth;
             // One step of the receding camera before this footprint.
-            jumpLean = std::max(jumpLean,
-                                double(std::abs(lean - layerRadiance(s, p, rho / fine, true))));
-            jumpTruth = std::max(jumpTruth,
-                                 double(std::abs(truth - truthRadiance(s, p, rho / fine, sub))));
+            jumpLean =
+                std::max(jumpLean, double(std::abs(lean - layerRadiance(s, p, rho / fine, true))));
+            jumpTruth =
+                std::max(jumpTruth, double(std::abs(truth - truthRadiance(s, p, rho / fine, sub))));
         }
         const double n = double(pts.size());
         t.add({fmt(rho, 2), fmt(G::sgFeatAaChainWeight(rho), 3), fmtErr(std::sqrt(seNone / n)),
@@ -204,12 +205,13 @@ void tableFeatureAa(const Options& o) {
     t.plot.yColumn = 4;
     t.plot.logX = true;
     t.plot.labelColumns = {0};
-    t.notes.push_back("Radiance of one directional light (3, 3, 3) and a 0.5 grey base; the mean "
-                      "truth radiance is about 0.5. chain w: the switch's weight "
-                      "(0 up to 1 texel, 1 from 2). lean energy: mean lean radiance / mean truth.");
+    t.notes.push_back("Radiance of one directional light (3, 3, 3) and a 0.5 grey base. chain w: "
+                      "the switch's weight (0 up to 1 texel, 1 from 2). lean energy: mean lean "
+                      "radiance / mean truth.");
     t.notes.push_back("jump: largest per-footprint radiance change from the previous step of a "
                       "receding camera (footprint / 2^(1/16)). Whole sweep 0.25..64 texels, "
-                      "lean: largest step " + fmtErr(worst) + " at " + fmt(worstRho, 2) +
+                      "lean: largest step " +
+                      fmtErr(worst) + " at " + fmt(worstRho, 2) +
                       " texels; across the switch (1..2 texels): " + fmtErr(worstSwitch) + ".");
     t.print(o);
 

@@ -74,8 +74,8 @@ TEST(FeatureAa, ChainLevelsAverageLevelZero) {
     asset.gpu = maps.packGpu();
     asset.bandTexels = maps.bandTexels;
     for (int part = 0; part < 2; ++part) {
-        const TextureImage t = detail::featureChainTexture(
-            asset, chainSource("crease", 1.5f, 0.0f, 3.0f, part));
+        const TextureImage t =
+            detail::featureChainTexture(asset, chainSource("crease", 1.5f, 0.0f, 3.0f, part));
         ASSERT_EQ(t.levels.size(), 7u);
         double maxAbs = 0.0;
         for (int j = 0; j < 64; ++j)
@@ -113,8 +113,10 @@ TEST(FeatureAa, StraightCreaseGivesTheTwoValuedVariance) {
     const int n = 64;
     const double x0 = 32.5, w = 4.0, s = 2.0 / w;
     const FeatureMapsAsset asset = bakeAsset(verticalLine(x0, n), n);
-    const TextureImage a = detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 0));
-    const TextureImage b = detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 1));
+    const TextureImage a =
+        detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 0));
+    const TextureImage b =
+        detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 1));
     auto overlap = [](double lo, double hi, double a0, double a1) {
         return std::max(0.0, std::min(hi, a1) - std::max(lo, a0));
     };
@@ -122,7 +124,8 @@ TEST(FeatureAa, StraightCreaseGivesTheTwoValuedVariance) {
         const int size = 1 << k;
         const int i = 32 / size, j = a.levels[k].height / 2;
         const double lo = double(i * size), hi = double((i + 1) * size);
-        const double pL = overlap(lo, hi, x0 - w, x0) / size, pR = overlap(lo, hi, x0, x0 + w) / size;
+        const double pL = overlap(lo, hi, x0 - w, x0) / size,
+                     pR = overlap(lo, hi, x0, x0 + w) / size;
         const double mean = s * (pR - pL), second = s * s * (pL + pR);
         const glm::vec4 ta = a.levels[k].texel(i, j), tb = b.levels[k].texel(i, j);
         const glm::vec3 cov =
@@ -216,8 +219,8 @@ AaSample sampleLayer(const FeatureMapsAsset& asset, const TextureImage& a, const
     G::sampler2D sa{&a}, sb{&b};
     AaSample r;
     r.cov = glm::mat3(0.0f);
-    r.surfGrad = G::sgLayerFeatureAa(uv, p, aa, pr, asset.gpu.cornerSampler(), asset.gpu.edgeSampler(),
-                                     sa, sa, sb, r.cov);
+    r.surfGrad = G::sgLayerFeatureAa(uv, p, aa, pr, asset.gpu.cornerSampler(),
+                                     asset.gpu.edgeSampler(), sa, sa, sb, r.cov);
     return r;
 }
 
@@ -230,8 +233,10 @@ TEST(FeatureAa, SwitchHasNoStep) {
     // change between levels (trilinear: linear in log2 rho).
     const int n = 64;
     const FeatureMapsAsset asset = bakeAsset(verticalLine(32.5, n), n);
-    const TextureImage a = detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 0));
-    const TextureImage b = detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 1));
+    const TextureImage a =
+        detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 0));
+    const TextureImage b =
+        detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 1));
     const G::SgFeatProfile pr = F::makeProfile("crease", 2.0f, 0.0f, 4.0f);
     const float step = std::exp2(1.0f / 64.0f);
     for (float x : {32.2f, 32.45f, 32.9f, 34.1f, 36.3f}) {
@@ -303,8 +308,8 @@ TEST(FeatureAa, NothingIsCompiledUnlessAsked) {
         return assembleProgram(planMaterial(s, a, 0, 0)).fragment;
     };
     const std::string off = fragment(featureScene("none"));
-    for (const char* marker : {"slopeCov", "sgLayerFeatureAa", "uFeatChainA", "layer_feature_aa",
-                               "sgAaRoughness"})
+    for (const char* marker :
+         {"slopeCov", "sgLayerFeatureAa", "uFeatChainA", "layer_feature_aa", "sgAaRoughness"})
         EXPECT_EQ(off.find(marker), std::string::npos) << marker;
     const std::string lean = fragment(featureScene("lean"));
     for (const char* marker : {"sgLayerFeatureAa(", "uFeatChainA", "sgAaRoughness("})
