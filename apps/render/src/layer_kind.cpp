@@ -28,6 +28,25 @@ ParamSpec optionalMap(const char* json, Wrap wrap, const char* doc) {
     return s;
 }
 
+void useMomentMaps(Layer& L, int aa, NormalEncoding enc, int planes) {
+    if (aa == 0 || L.maps.empty()) return;
+    std::vector<TextureSource> moments;
+    for (int i = 0; i < planes; ++i) {
+        TextureSource map = L.maps[std::min(size_t(i), L.maps.size() - 1)];
+        map.momentsEncoding = enc;
+        if (aa == SG_AA_LEAN) {
+            map.moments = TexMoments::LeanA;
+            moments.push_back(map);
+            map.moments = TexMoments::LeanB;
+            moments.push_back(map);
+        } else {
+            map.moments = TexMoments::Toksvig;
+            moments.push_back(map);
+        }
+    }
+    L.maps = std::move(moments);
+}
+
 ParamSpec custom(const char* json, ParamParse parse, const char* doc) {
     ParamSpec s;
     s.json = json;
@@ -65,6 +84,15 @@ namespace {
 void parseParam(const ParamSpec& p, const detail::SceneNode& n, Layer& L,
                 const detail::SceneReader& reader) {
     const char* key = p.json;
+    if (p.fromMaterial && !reader.materialAntialias.empty() && !n.has(key)) {
+        // The material's default, read as if the layer said it.
+        const std::string v = p.fromMaterial(reader.materialAntialias, L);
+        if (v.empty()) return;
+        nlohmann::json withDefault = n.value();
+        withDefault[key] = v;
+        p.parse(detail::SceneNode(withDefault, n.path(), reader.file), key, L, reader);
+        return;
+    }
     switch (p.type) {
     case ParamType::Number:
         if (n.has(key)) p.setNumber(L, n.number(key, 0.0, p.lo, p.hi, p.loOpen));

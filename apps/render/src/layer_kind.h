@@ -79,6 +79,11 @@ struct ParamSpec {
     std::function<float*(Layer&)> floatRef; // Number: the member (viewer sliders)
     ParamParse parse;                       // Custom
     ParamCheck check;                       // optional, any type
+    // A layer that does not set the field takes its material's
+    // "antialias" (SceneReader::materialAntialias: "none", "lean" or
+    // "toksvig") as the value this returns; "" leaves the default
+    // (optional: fields that follow the material's default).
+    std::function<std::string(const std::string& materialValue, const Layer&)> fromMaterial;
 };
 
 namespace param {
@@ -231,6 +236,36 @@ ParamSpec heightChannel(int P::*channelMember, float P::*scaleMember) {
 }
 // "modifiers": derivative-space modifiers (deriv_mods.cpp).
 ParamSpec modifiers();
+
+// Bump antialiasing of a kind that reads tangent-space normal maps
+// (sg/render/slope_dist.glsl): puts in place of the layer's maps their
+// moment textures, `planes` maps (a shorter list repeats its last map) of
+// encoding `enc`: per map LEAN's A and B (aa SG_AA_LEAN) or Toksvig's one
+// (SG_AA_TOKSVIG). aa 0 or no maps (their own error): unchanged.
+void useMomentMaps(Layer& L, int aa, NormalEncoding enc, int planes);
+// "antialias": "none" (0), "lean" (SG_AA_LEAN) or "toksvig" (SG_AA_TOKSVIG)
+// into P::*aaMember, then the maps become their moment textures
+// (useMomentMaps). Read after the maps and the encoding.
+template <class P>
+ParamSpec antialias(int P::*aaMember, NormalEncoding P::*encMember, int planes) {
+    ParamSpec s = custom(
+        "antialias",
+        [aaMember, encMember, planes](const detail::SceneNode& n, const char* key, Layer& L,
+                                      const detail::SceneReader&) {
+            if (!n.has(key)) return;
+            P& p = L.params<P>();
+            p.*aaMember = n.choice(key, 0, {"none", "lean", "toksvig"});
+            useMomentMaps(L, p.*aaMember, p.*encMember, planes);
+        },
+        "bump antialiasing: \"none\" (default), \"lean\" or \"toksvig\" (slope covariance "
+        "of the footprint widens the lobe; default: the material's)");
+    // The material's value, except on layers with modifiers (which do not
+    // antialias).
+    s.fromMaterial = [](const std::string& v, const Layer& L) {
+        return L.modifiers.empty() ? v : std::string();
+    };
+    return s;
+}
 
 } // namespace param
 
@@ -552,7 +587,7 @@ struct LayerKind {
     bool (*readsTangentBasis)(const Layer&) = nullptr; // the frame's vT, vB (vertex tangents)
     int textureSlots = 0; // Layer::maps[i] -> slot i (missing maps repeat the last)
     // The layer's slot count when it depends on its options (optional;
-    // overrides textureSlots; at most 3, PlanLayer::tex).
+    // overrides textureSlots; at most 6, PlanLayer::tex).
     int (*textureSlotsOf)(const Layer&) = nullptr;
     // The components of its maps the kind's shader reads (bit c: component
     // c of RGBA; sgDecodeNormalXY/XYZ and sgTexelChannel in common.glsl) and

@@ -124,7 +124,7 @@ struct Planner {
         featureMaps(L, pl);
         if (L.kind->antialias && L.kind->antialias(L)) plan.antialias = true;
         const int slots = L.kind->textureSlotsOf ? L.kind->textureSlotsOf(L) : L.kind->textureSlots;
-        SG_ASSERT(slots <= 3, "PlanLayer::tex holds 3 slots");
+        SG_ASSERT(slots <= 6, "PlanLayer::tex holds 6 slots");
         for (int i = 0; i < slots; ++i) {
             const TextureSource* src = nullptr;
             if (!L.maps.empty()) src = &L.maps[std::min(size_t(i), L.maps.size() - 1)];

@@ -151,7 +151,7 @@ struct Parser : detail::SceneReader {
         return r;
     }
 
-    Layer parseLayer(const Node& n, bool nestedLayer) const {
+    Layer parseLayer(const Node& n, bool nestedLayer, const std::string& materialAa = "") const {
         n.requireObject();
         const auto& kinds = layerKinds();
         std::vector<const char*> names;
@@ -169,13 +169,14 @@ struct Parser : detail::SceneReader {
         L.enabled = n.boolean("enabled", true);
         detail::SceneReader reader = *this;
         reader.nested = nestedLayer;
+        reader.materialAntialias = materialAa;
         parseLayerParams(*L.kind, n, L, reader);
         return L;
     }
 
     Material material(const Node& n) const {
-        n.allowOnly(
-            {"name", "base_color", "base_color_map", "roughness", "double_sided", "layers"});
+        n.allowOnly({"name", "base_color", "base_color_map", "roughness", "double_sided",
+                     "antialias", "layers"});
         Material m;
         m.fieldPath = n.path();
         m.name = n.string("name", "");
@@ -190,13 +191,17 @@ struct Parser : detail::SceneReader {
             m.baseColorMap->srgb = true;
             m.baseColorUvSet = b.integer("uv_set", 0, 0, kMaxUvSets - 1);
         }
+        // The layers' default "antialias" (ParamSpec::fromMaterial).
+        static const char* const kAa[] = {"", "none", "lean", "toksvig"};
+        const std::string aa =
+            kAa[n.has("antialias") ? 1 + n.choice("antialias", 0, {"none", "lean", "toksvig"}) : 0];
         if (n.has("layers")) {
             n.requireArray("layers", size_t(kMaxLayers));
             Node arr = n.child("layers");
             size_t total = 0;
             bool sawGroup = false;
             for (size_t i = 0; i < arr.value().size(); ++i) {
-                m.layers.push_back(parseLayer(arr.item(i), false));
+                m.layers.push_back(parseLayer(arr.item(i), false, aa));
                 total += 1 + m.layers.back().children.size();
                 bool isGroup = m.layers.back().kind->group;
                 if (sawGroup && !isGroup) {
@@ -529,7 +534,9 @@ Scene parseScene(const std::string& jsonText, const std::string& sourceName,
     Parser p;
     p.file = sourceName;
     p.baseDir = baseDir;
-    p.layer = [&p](const Node& n, bool nested) { return p.parseLayer(n, nested); };
+    p.layer = [&p](const Node& n, bool nested, const std::string& materialAa) {
+        return p.parseLayer(n, nested, materialAa);
+    };
     return p.scene(root);
 }
 

@@ -184,8 +184,12 @@ private:
 struct SceneReader {
     std::string file;              // the scene file, for messages
     std::filesystem::path baseDir; // relative paths resolve here
-    std::function<Layer(const SceneNode&, bool nested)> layer;
+    // Reads a layer (nested: inside a group; the material's "antialias").
+    std::function<Layer(const SceneNode&, bool nested, const std::string& materialAa)> layer;
     bool nested = false; // reading a layer inside a group
+    // The material's "antialias" ("" when it has none): the default of the
+    // layers' own (ParamSpec::fromMaterial).
+    std::string materialAntialias;
 
     std::filesystem::path resolvePath(const SceneNode& n, const std::string& p) const;
     TextureSource texture(const SceneNode& n, Wrap defaultWrap) const;

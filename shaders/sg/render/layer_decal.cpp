@@ -1,5 +1,7 @@
 // Layer kind `decal`: a projector, a volume bump map with fall-off
-// (layer_decal.glsl: Mikkelsen 2019, section 2.9, listing 15).
+// (layer_decal.glsl: Mikkelsen 2019, section 2.9, listing 15); antialiased
+// with "antialias" (layer_decal_aa.glsl: the map's slope covariance mapped
+// by the projector's Jacobian).
 #include "layer_kind.h"
 
 #include <algorithm>
@@ -79,15 +81,34 @@ void parseAngleFade(const SceneNode& n, const char* key, Layer& L, const detail:
     L.params<P>().cosEnd = std::cos(glm::radians(ang[1]));
 }
 
+int antialiasOf(const Layer& L) {
+    return L.params<P>().antialias;
+}
+
 std::string glsl(const GlslLayerContext& c) {
-    return "surfGrad += sgLayerDecal(frame, vRelPos, " + c.unpack(c.layer().kind->records[0]) +
-           ", " + c.tex(0) + ");\n";
+    const std::string head = "frame, vRelPos, " + c.unpack(c.layer().kind->records[0]) + ", ";
+    const int aa = antialiasOf(c.layer());
+    if (aa == SG_AA_LEAN) {
+        return "surfGrad += sgLayerDecalAa(" + head + "SG_AA_LEAN, " + c.tex(0) + ", " + c.tex(1) +
+               ", slopeCov);\n";
+    }
+    if (aa == SG_AA_TOKSVIG) {
+        return "surfGrad += sgLayerDecalAa(" + head + "SG_AA_TOKSVIG, " + c.tex(0) + ", " +
+               c.tex(0) + ", slopeCov);\n";
+    }
+    return "surfGrad += sgLayerDecal(" + head + c.tex(0) + ");\n";
 }
 
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const glm::vec4* r = c.rec();
-    s.surfGrad += G::sgLayerDecal(s.frame, c.in.relPos,
-                                  G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]), c.tex(0));
+    const G::SgDecalParams p = G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]);
+    const int aa = antialiasOf(c.layer());
+    if (aa == 0) {
+        s.surfGrad += G::sgLayerDecal(s.frame, c.in.relPos, p, c.tex(0));
+        return;
+    }
+    const int b = aa == SG_AA_LEAN ? 1 : 0;
+    s.surfGrad += G::sgLayerDecalAa(s.frame, c.in.relPos, p, aa, c.tex(0), c.tex(b), s.slopeCov);
 }
 
 uint32_t mapChannels(const Layer& L, const char*& why) {
@@ -117,11 +138,23 @@ const LayerKind& decalLayerKind() {
                 param::encoding(&P::encoding, true),
                 param::green(&P::flipV),
                 param::strength(),
+                param::antialias(&P::antialias, &P::encoding, 1),
             },
         .makeParams = [] { return std::any(P{}); },
         .textureSlots = 1,
+        .textureSlotsOf = [](const Layer& L) { return antialiasOf(L) == SG_AA_LEAN ? 2 : 1; },
         .mapChannels = mapChannels,
         .glslFile = "sg/render/layer_decal.glsl",
+        .glslFileOf =
+            [](const Layer& L) {
+                return antialiasOf(L) != 0 ? "sg/render/layer_decal_aa.glsl"
+                                           : "sg/render/layer_decal.glsl";
+            },
+        .antialias = [](const Layer& L) { return antialiasOf(L) != 0; },
+        .signature = [](const Layer& L) -> std::string {
+            const int aa = antialiasOf(L);
+            return aa == SG_AA_LEAN ? "~lean" : aa == SG_AA_TOKSVIG ? "~toksvig" : "";
+        },
         .records = {records()},
         .glsl = glsl,
         .cpu = cpu,

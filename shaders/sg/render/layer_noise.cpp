@@ -1,6 +1,8 @@
 // Layer kind `noise`: procedural volume noise with analytic gradients
 // (layer_noise.glsl: Mikkelsen 2019, section 2.7, listing 12, and section
-// 4: turbulence, frequency clamping, Gritz's x^k composite).
+// 4: turbulence, frequency clamping, Gritz's x^k composite); with
+// "antialias": "lean" the clamped octaves' slope variance widens the lobe
+// (layer_noise_aa.glsl).
 #include "layer_kind.h"
 
 namespace sg::render {
@@ -30,21 +32,57 @@ RecordLayout records() {
         .field("exponent", &S::exponent, "r1.z",
                [](const PackInput& in) { return in.params<P>().exponent; })
         .field("antialias", &S::antialias, "r1.w",
-               [](const PackInput& in) { return in.params<P>().antialias; })
+               [](const PackInput& in) { return in.params<P>().antialias != NoiseAntialias::None; })
         .field("offset", &S::offset, "r2.xyz",
                [](const PackInput& in) { return in.params<P>().offset; })
         .done();
 }
 
+bool isLean(const Layer& L) {
+    return L.params<P>().antialias == NoiseAntialias::Lean;
+}
+
 std::string glsl(const GlslLayerContext& c) {
-    return "surfGrad += sgLayerNoise(frame, " + c.vol(c.layer().params<P>().space) + ", " +
-           c.unpack(c.layer().kind->records[0]) + ");\n";
+    const std::string args = "frame, " + c.vol(c.layer().params<P>().space) + ", " +
+                             c.unpack(c.layer().kind->records[0]);
+    if (isLean(c.layer())) return "surfGrad += sgLayerNoiseLean(" + args + ", slopeCov);\n";
+    return "surfGrad += sgLayerNoise(" + args + ");\n";
 }
 
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const glm::vec4* r = c.rec();
-    s.surfGrad += G::sgLayerNoise(s.frame, s.vol(c.layer().params<P>().space),
-                                  G::sgUnpackNoise(r[0], r[1], r[2]));
+    const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
+    const G::SgNoiseParams p = G::sgUnpackNoise(r[0], r[1], r[2]);
+    if (isLean(c.layer())) {
+        s.surfGrad += G::sgLayerNoiseLean(s.frame, vs, p, s.slopeCov);
+        return;
+    }
+    s.surfGrad += G::sgLayerNoise(s.frame, vs, p);
+}
+
+// "antialias": true / "fade" (the default), false / "none", or "lean".
+void parseAntialias(const detail::SceneNode& n, const char* key, Layer& L,
+                    const detail::SceneReader&) {
+    if (!n.has(key)) return;
+    const nlohmann::json& v = n.value().at(key);
+    NoiseAntialias& aa = L.params<P>().antialias;
+    if (v.is_boolean()) {
+        aa = v.get<bool>() ? NoiseAntialias::Fade : NoiseAntialias::None;
+        return;
+    }
+    if (v.is_string()) {
+        const std::string s = v.get<std::string>();
+        if (s == "none")
+            aa = NoiseAntialias::None;
+        else if (s == "fade")
+            aa = NoiseAntialias::Fade;
+        else if (s == "lean")
+            aa = NoiseAntialias::Lean;
+        else
+            n.failField(key, "expected true, false, \"none\", \"fade\" or \"lean\"");
+        return;
+    }
+    n.failField(key, "expected true, false, \"none\", \"fade\" or \"lean\"");
 }
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int) {
@@ -52,6 +90,20 @@ std::vector<Layer> uberStandIns(const LayerKind& k, int) {
     v[0].params<P>().space = Space::Object;
     v[1].params<P>().space = Space::World;
     return v;
+}
+
+// The material's "lean" or "toksvig" make the layer "lean" (the noise's
+// covariance is analytic: there is no cheaper estimate); its "none" leaves
+// the default fade (no lobe widening, as today).
+ParamSpec antialiasParam() {
+    ParamSpec s = param::custom("antialias", parseAntialias,
+                                "true or \"fade\" (default): fade octaves finer than 2 pixels; "
+                                "\"lean\": fade and widen the lobe by their slope variance; "
+                                "false or \"none\": no fade");
+    s.fromMaterial = [](const std::string& v, const Layer&) {
+        return v == "none" ? std::string() : std::string("lean");
+    };
+    return s;
 }
 
 } // namespace
@@ -83,11 +135,17 @@ const LayerKind& noiseLayerKind() {
                 param::choice("space", &P::space,
                               {{"object", Space::Object}, {"world", Space::World}},
                               "the noise's domain"),
-                param::boolean("antialias", &P::antialias, "fade octaves finer than 2 pixels"),
+                antialiasParam(),
             },
         .makeParams = [] { return std::any(P{}); },
         .volume = [](const Layer& L) -> std::optional<Space> { return L.params<P>().space; },
         .glslFile = "sg/render/layer_noise.glsl",
+        .glslFileOf =
+            [](const Layer& L) {
+                return isLean(L) ? "sg/render/layer_noise_aa.glsl" : "sg/render/layer_noise.glsl";
+            },
+        .antialias = isLean,
+        .signature = [](const Layer& L) -> std::string { return isLean(L) ? "~lean" : ""; },
         .records = {records()},
         .glsl = glsl,
         .cpu = cpu,

@@ -18,7 +18,7 @@ void parseLayers(const SceneNode& n, const char* key, Layer& L, const detail::Sc
     n.requireArray(key, size_t(kMaxLayers));
     SceneNode arr = n.child(key);
     for (size_t i = 0; i < arr.value().size(); ++i)
-        L.children.push_back(reader.layer(arr.item(i), true));
+        L.children.push_back(reader.layer(arr.item(i), true, reader.materialAntialias));
 }
 
 // A group with one layer of detail.

@@ -1,6 +1,7 @@
 // Layer kind `triplanar`: normal maps projected on three planes as a volume
 // bump map (layer_triplanar.glsl: Mikkelsen 2019, section 2.8, listings 12,
-// 13, 14).
+// 13, 14); antialiased with "antialias" (layer_triplanar_aa.glsl: each
+// plane's slope covariance mapped by its Jacobian, weights squared).
 #include "layer_kind.h"
 
 namespace sg::render {
@@ -46,17 +47,43 @@ void parseMaps(const SceneNode& n, const char*, Layer& L, const detail::SceneRea
     }
 }
 
+int antialiasOf(const Layer& L) {
+    return L.params<P>().antialias;
+}
+
+// The texture slot of plane i's moment texture A (second: B): LEAN keeps
+// two per plane, Toksvig one (its B is A again).
+int aaSlot(int aa, int plane, bool second) {
+    return aa == SG_AA_LEAN ? 2 * plane + (second ? 1 : 0) : plane;
+}
+
 std::string glsl(const GlslLayerContext& c) {
-    return "surfGrad += sgLayerTriplanar(frame, " + c.vol(c.layer().params<P>().space) + ", " +
-           c.unpack(c.layer().kind->records[0]) + ", " + c.tex(0) + ", " + c.tex(1) + ", " +
-           c.tex(2) + ");\n";
+    const std::string head = "frame, " + c.vol(c.layer().params<P>().space) + ", " +
+                             c.unpack(c.layer().kind->records[0]) + ", ";
+    const int aa = antialiasOf(c.layer());
+    if (aa == 0) {
+        return "surfGrad += sgLayerTriplanar(" + head + c.tex(0) + ", " + c.tex(1) + ", " +
+               c.tex(2) + ");\n";
+    }
+    std::string call = "surfGrad += sgLayerTriplanarAa(" + head +
+                       (aa == SG_AA_LEAN ? "SG_AA_LEAN" : "SG_AA_TOKSVIG");
+    for (int i = 0; i < 3; ++i)
+        call += ", " + c.tex(aaSlot(aa, i, false)) + ", " + c.tex(aaSlot(aa, i, true));
+    return call + ", slopeCov);\n";
 }
 
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const glm::vec4* r = c.rec();
-    s.surfGrad +=
-        G::sgLayerTriplanar(s.frame, s.vol(c.layer().params<P>().space),
-                            G::sgUnpackTriplanar(r[0], r[1]), c.tex(0), c.tex(1), c.tex(2));
+    const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
+    const G::SgTriplanarParams p = G::sgUnpackTriplanar(r[0], r[1]);
+    const int aa = antialiasOf(c.layer());
+    if (aa == 0) {
+        s.surfGrad += G::sgLayerTriplanar(s.frame, vs, p, c.tex(0), c.tex(1), c.tex(2));
+        return;
+    }
+    auto t = [&](int plane, bool second) { return c.tex(aaSlot(aa, plane, second)); };
+    s.surfGrad += G::sgLayerTriplanarAa(s.frame, vs, p, aa, t(0, false), t(0, true), t(1, false),
+                                        t(1, true), t(2, false), t(2, true), s.slopeCov);
 }
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int) {
@@ -95,12 +122,24 @@ const LayerKind& triplanarLayerKind() {
                 param::encoding(&P::encoding, true),
                 param::green(&P::flipV),
                 param::strength(),
+                param::antialias(&P::antialias, &P::encoding, 3),
             },
         .makeParams = [] { return std::any(P{}); },
         .textureSlots = 3,
+        .textureSlotsOf = [](const Layer& L) { return antialiasOf(L) == SG_AA_LEAN ? 6 : 3; },
         .mapChannels = mapChannels,
         .volume = [](const Layer& L) -> std::optional<Space> { return L.params<P>().space; },
         .glslFile = "sg/render/layer_triplanar.glsl",
+        .glslFileOf =
+            [](const Layer& L) {
+                return antialiasOf(L) != 0 ? "sg/render/layer_triplanar_aa.glsl"
+                                           : "sg/render/layer_triplanar.glsl";
+            },
+        .antialias = [](const Layer& L) { return antialiasOf(L) != 0; },
+        .signature = [](const Layer& L) -> std::string {
+            const int aa = antialiasOf(L);
+            return aa == SG_AA_LEAN ? "~lean" : aa == SG_AA_TOKSVIG ? "~toksvig" : "";
+        },
         .records = {records()},
         .glsl = glsl,
         .cpu = cpu,

@@ -114,7 +114,7 @@ void cpu(const CpuLayerContext& c, CpuShadeState& s) {
 // "antialias": reads the choice and puts the map's moment textures in
 // place of the map (read after "map", "encoding" and "modifiers").
 ParamSpec antialiasParam() {
-    return param::custom(
+    ParamSpec s = param::custom(
         "antialias",
         [](const detail::SceneNode& n, const char* key, Layer& L, const detail::SceneReader&) {
             if (!n.has(key)) return;
@@ -125,22 +125,16 @@ ParamSpec antialiasParam() {
                 n.failField(key, "antialiasing does not combine with modifiers: expected "
                                  "\"none\" or no modifiers");
             }
-            if (L.maps.empty()) return; // the map's own message
-            TextureSource map = L.maps[0];
-            map.momentsEncoding = p.encoding;
-            L.maps.clear();
-            if (p.antialias == SG_AA_LEAN) {
-                map.moments = TexMoments::LeanA;
-                L.maps.push_back(map);
-                map.moments = TexMoments::LeanB;
-                L.maps.push_back(map);
-            } else {
-                map.moments = TexMoments::Toksvig;
-                L.maps.push_back(map);
-            }
+            param::useMomentMaps(L, p.antialias, p.encoding, 1);
         },
         "bump antialiasing: \"none\" (default), \"lean\" or \"toksvig\" (slope covariance "
-        "of the footprint widens the lobe)");
+        "of the footprint widens the lobe; default: the material's)");
+    // The material's value, except on layers with modifiers (which do not
+    // antialias).
+    s.fromMaterial = [](const std::string& v, const Layer& L) {
+        return L.modifiers.empty() ? v : std::string();
+    };
+    return s;
 }
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int uvCount) {

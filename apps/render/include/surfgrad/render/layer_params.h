@@ -64,6 +64,10 @@ struct TriplanarParams {
     Space space = Space::World;
     NormalEncoding encoding = NormalEncoding::Rgb;
     bool flipV = false;
+    // "antialias" as UvNormalParams::antialias (layer_triplanar_aa.glsl):
+    // Layer::maps holds the planes' moment textures (x A, x B, y A, ... for
+    // LEAN; x, y, z for Toksvig).
+    int antialias = 0;
 };
 
 // decal: projector (listing 15). position, direction, up and size are the
@@ -79,7 +83,15 @@ struct DecalParams {
     float cosStart = 0.5f, cosEnd = 0.17f;                    // angle fade (cosines)
     NormalEncoding encoding = NormalEncoding::Rgb;
     bool flipV = false;
+    // "antialias" as UvNormalParams::antialias (layer_decal_aa.glsl).
+    int antialias = 0;
 };
+
+// noise's "antialias": None (false, "none"): every octave at full weight;
+// Fade (true, "fade", the default): octaves above the pixel's Nyquist fade
+// out; Lean ("lean"): fade, and their slope energy widens the lobe
+// (layer_noise_aa.glsl).
+enum class NoiseAntialias { None = 0, Fade = 1, Lean = 2 };
 
 // noise: volume noise with analytic gradient (listing 12, section 4).
 struct NoiseParams {
@@ -89,7 +101,7 @@ struct NoiseParams {
     float lacunarity = 2.0f, gain = 0.5f, exponent = 1.0f;
     glm::vec3 offset{0.0f};
     Space space = Space::Object;
-    bool antialias = true;
+    NoiseAntialias antialias = NoiseAntialias::Fade;
 };
 
 // feature: feature-curve maps (Parilov-Zorin 2008) as a TBN-style layer.

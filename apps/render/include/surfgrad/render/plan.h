@@ -32,9 +32,9 @@ struct PlanLayer {
     const Layer* layer = nullptr;
     int record = 0; // first vec4 record in the material's uLayerData
     int recordCount = 0;
-    int tex[3] = {-1, -1, -1}; // texture slots
-    int featureSlot = -1;      // layers reading feature maps: index into MaterialPlan::featureKeys
-    int featureIndex = -1;     // layers reading feature maps: index among them in the plan
+    int tex[6] = {-1, -1, -1, -1, -1, -1}; // texture slots (6: LEAN triplanar)
+    int featureSlot = -1;  // layers reading feature maps: index into MaterialPlan::featureKeys
+    int featureIndex = -1; // layers reading feature maps: index among them in the plan
     int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
     bool hasModifiers = false;
     int modRecord = -1; // first modifier record (one per modifier)
