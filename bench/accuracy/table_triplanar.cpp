@@ -34,6 +34,7 @@
 #include <string>
 
 #include "tables.h"
+#include "torus.h"
 #include "triplanar.h"
 #include "triplanar_glsl.h"
 
@@ -99,31 +100,63 @@ struct Field {
 };
 
 // A closed surface: the point of a sample and the normal field around it.
+// Three kinds: a sphere, an analytic torus, and a subdivision surface, the
+// Catmull-Clark limit of table 1's torus cage (16 x 8 quads, valence 4
+// everywhere: a periodic bicubic B-spline evaluated in closed form in
+// double, torus.h), whose normal field off the surface is the limit normal
+// at the nearest point (found by Gauss-Newton on the closed form).
 struct Surface {
+    enum Kind { Sphere, Torus, Subdivision };
     const char* name;
-    bool torus;
+    Kind kind;
+    TorusCage cage; // Subdivision
+
+    // The nearest point's parameters on the limit surface, from (s, t).
+    glm::dvec2 footParams(const glm::dvec3& p, glm::dvec2 st) const {
+        for (int it = 0; it < 40; ++it) {
+            const SurfacePoint sp = cage.limit(st.x, st.y);
+            const glm::dvec3 r = p - sp.pos;
+            const double a = glm::dot(sp.dPds, sp.dPds), b = glm::dot(sp.dPds, sp.dPdt),
+                         c = glm::dot(sp.dPdt, sp.dPdt);
+            const double gs = glm::dot(sp.dPds, r), gt = glm::dot(sp.dPdt, r);
+            const double det = a * c - b * b;
+            const glm::dvec2 step((c * gs - b * gt) / det, (a * gt - b * gs) / det);
+            st += step;
+            if (std::abs(step.x) + std::abs(step.y) < 1e-15) break;
+        }
+        return st;
+    }
+    // The parameters of the torus angles of p (a start for footParams).
+    static glm::dvec2 angleParams(const glm::dvec3& p) {
+        const double u = std::atan2(p.y, p.x), ring = std::sqrt(p.x * p.x + p.y * p.y);
+        const double v = std::atan2(p.z, ring - 1.0);
+        return {u / kTwoPi, v / kTwoPi};
+    }
     glm::dvec3 normalAt(const glm::dvec3& p) const {
-        if (!torus) return glm::normalize(p);
-        const glm::dvec3 ring = glm::normalize(glm::dvec3(p.x, p.y, 0.0)); // major radius 1
-        return glm::normalize(p - ring);
+        if (kind == Sphere) return glm::normalize(p);
+        if (kind == Torus) {
+            const glm::dvec3 ring = glm::normalize(glm::dvec3(p.x, p.y, 0.0)); // major radius 1
+            return glm::normalize(p - ring);
+        }
+        const glm::dvec2 st = footParams(p, angleParams(p));
+        return cage.limit(st.x, st.y).normal;
     }
     // Sample i of count: area-uniform on the sphere (Fibonacci), a uniform
-    // (u, v) grid on the torus (major radius 1, minor 0.45), tilted so no
-    // symmetry plane of the surface is a projection plane.
+    // (u, v) grid on the torus (major radius 1, minor 0.45) and on the
+    // subdivision surface's (s, t), tilted so no symmetry plane of the
+    // surface is a projection plane.
     glm::dvec3 point(int i, int count) const {
-        glm::dvec3 p;
-        if (!torus) {
+        if (kind == Sphere) {
             const double z = 1.0 - (2.0 * i + 1.0) / count;
             const double phi = i * 2.399963229728653, r = std::sqrt(1.0 - z * z);
-            p = glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
-        } else {
-            const int nu = int(std::sqrt(double(count) * 2.2)), nv = std::max(1, count / nu);
-            const double u = kTwoPi * ((i % nu) + 0.5) / nu,
-                         v = kTwoPi * ((i / nu % nv) + 0.5) / nv;
-            p = glm::dvec3((1.0 + 0.45 * std::cos(v)) * std::cos(u),
-                           (1.0 + 0.45 * std::cos(v)) * std::sin(u), 0.45 * std::sin(v));
+            return glm::dvec3(r * std::cos(phi), r * std::sin(phi), z);
         }
-        return p;
+        const int nu = int(std::sqrt(double(count) * 2.2)), nv = std::max(1, count / nu);
+        const double s = ((i % nu) + 0.5) / nu, t = ((i / nu % nv) + 0.5) / nv;
+        if (kind == Subdivision) return cage.limit(s, t).pos;
+        const double u = kTwoPi * s, v = kTwoPi * t;
+        return glm::dvec3((1.0 + 0.45 * std::cos(v)) * std::cos(u),
+                          (1.0 + 0.45 * std::cos(v)) * std::sin(u), 0.45 * std::sin(v));
     }
 };
 
@@ -220,13 +253,15 @@ void tableTriplanar(const Options& o) {
     const double amp = slope / (kTwoPi * kScale);
     const Convention lh{false, false, "left-handed, lower-left origin"};
     const Convention rh{true, true, "right-handed, upper-left origin"};
-    const Surface sphere{"sphere", false}, torus{"torus", true};
+    const Surface sphere{"sphere", Surface::Sphere, {}}, torus{"torus", Surface::Torus, {}};
+    const Surface subd{"subdivision", Surface::Subdivision, TorusCage{}};
     const double kDefault = 4.0;
     const double ks[] = {1.0, 2.0, 8.0, 32.0};
 
     const Errors sph = measure(sphere, {amp, lh, kDefault}, count);
     const Errors tor = measure(torus, {amp, lh, kDefault}, count);
     const Errors torRh = measure(torus, {amp, rh, kDefault}, count);
+    const Errors sub = measure(subd, {amp, lh, kDefault}, count);
     std::vector<Errors> sweep;
     for (double k : ks) sweep.push_back(measure(torus, {amp, lh, k}, count));
 
@@ -275,14 +310,17 @@ void tableTriplanar(const Options& o) {
     Table t;
     t.title = "Table 7: triplanar method (one height map projected on 3 planes, slopes up to 45 "
               "deg, blended by listing 14 at k = 4 unless stated; truth in double)";
-    t.header = {"method",    "sphere p50", "sphere p99", "torus p50", "torus p99",
-                "torus max", "k=1 p99",    "k=2 p99",    "k=8 p99",   "k=32 p99",
+    t.header = {"method",    "sphere p50", "sphere p99", "torus p50", "torus p99", "torus max",
+                "subd p50",  "subd p99",   "k=1 p99",    "k=2 p99",   "k=8 p99",   "k=32 p99",
                 "RH+UL p99", "height p50", "height p99", "frame ms",  "ratio"};
     for (size_t m = 0; m < size_t(STUDY_TRI_COUNT); ++m) {
         const ErrorStats a = errorStats(sph.method[m]), b = errorStats(tor.method[m]),
                          c = errorStats(torRh.method[m]), h = errorStats(tor.full[m]);
         std::vector<std::string> r = {kMethodNames[m], fmtErr(a.p50), fmtErr(a.p99),
                                       fmtErr(b.p50),   fmtErr(b.p99), fmtErr(b.max)};
+        const ErrorStats sd = errorStats(sub.method[m]);
+        r.push_back(fmtErr(sd.p50));
+        r.push_back(fmtErr(sd.p99));
         for (const Errors& e : sweep) r.push_back(fmtErr(errorStats(e.method[m]).p99));
         r.push_back(fmtErr(c.p99));
         r.push_back(fmtErr(h.p50));
@@ -294,7 +332,9 @@ void tableTriplanar(const Options& o) {
     t.notes.push_back(
         "Degrees; " + std::to_string(count) +
         " samples per surface (sphere: area-uniform; torus R = 1, r = 0.45: uniform in its "
-        "angles), both rotated (20 deg about x, 35 about z) off the projection planes. "
+        "angles; subd: the Catmull-Clark limit of table 1's torus cage, 16 x 8 quads, "
+        "closed-form B-spline, uniform in its (s, t)), all rotated (20 deg about x, 35 about z) "
+        "off the projection planes. "
         "Map: h = A sin(2 pi s) sin(2 pi t), " +
         fmt(kScale, 0) + " repeats per unit, A = " + fmtErr(amp) +
         ". Truth: the normal of the blend sum_i w_i h_i with the weights held constant "
@@ -310,7 +350,7 @@ void tableTriplanar(const Options& o) {
                       std::to_string(o.runs) + " runs x " + std::to_string(o.frames) +
                       " frames, medians; ratio to the surface-gradient row.");
     t.plot = {"triplanar",
-              14,
+              16,
               4,
               -1,
               {0},
