@@ -283,7 +283,8 @@ void addRenderCommand(CLI::App& app, int& status) {
     render->add_option("--size", ro->size, "Image size WxH (default: the scene's output size)");
     render->add_option(
         "--aov", ro->aov,
-        "Output variable: color, normal, surfgrad, tangent, bitangent, basenormal, uv, primid");
+        "Output variable: color, normal, surfgrad, tangent, bitangent, basenormal, uv, primid, "
+        "patch");
     render->add_option("--frame", ro->frame, "Frame number (time = frame / fps)")
         ->check(CLI::Range(0.0, 1e7));
     render

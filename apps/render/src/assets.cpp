@@ -19,6 +19,7 @@
 #include "surfgrad/image_header.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/adaptive_patches.h"
 #include "surfgrad/subdivision.h"
 #include "surfgrad/tangents.h"
 #include "surfgrad/render.h"
@@ -485,7 +486,44 @@ sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCach
     return sub.renderMesh();
 }
 
+// An adaptive mesh ("subdivision": {"mode": "adaptive"}): the cage's
+// feature-adaptive patches; `mesh` keeps their control points for the
+// bounds. UV sets and morph targets are not carried by the patches yet:
+// a layer reading a UV set meets "the mesh has no UV set" (plan), and
+// morph weights are refused here.
+MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
+    if (!mi.morphWeights.empty() || !mi.morphKeys.empty()) {
+        throw io::InputError(scene.sourceName, elementOf(mi, "morph"),
+                             "morph targets are not carried by \"subdivision\": {\"mode\": "
+                             "\"adaptive\"} meshes yet (use \"mode\": \"uniform\")");
+    }
+    if (!mi.derivedUvSets.empty()) {
+        throw io::InputError(scene.sourceName, elementOf(mi, "uv_sets"),
+                             "UV sets are not carried by \"subdivision\": {\"mode\": "
+                             "\"adaptive\"} meshes yet (use \"mode\": \"uniform\")");
+    }
+    MeshAsset a;
+    auto patches = detail::fromReferencedFile(scene.sourceName, elementOf(mi, "file"), [&] {
+        sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
+        sm::SubdivOptions options = cage.options;
+        if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, options.scheme)) {
+            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
+                                 "unknown scheme");
+        }
+        return std::make_shared<sm::AdaptivePatches>(
+            sm::buildAdaptivePatches(cage, options, mi.subdivIsolation, mi.file.string()));
+    });
+    a.mesh.positions = patches->points;
+    a.mesh.normals.assign(a.mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    a.patches = std::move(patches);
+    a.basePositions = a.mesh.positions;
+    a.baseNormals = a.mesh.normals;
+    a.layoutId = nextLayoutId();
+    return a;
+}
+
 MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& files) {
+    if (mi.subdivide && mi.subdivAdaptive) return loadAdaptiveMeshAsset(scene, mi);
     MeshAsset a;
     sm::LimitFrame limit;
     if (mi.procedural) {

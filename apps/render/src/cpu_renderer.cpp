@@ -5,7 +5,8 @@
 // in homogeneous coordinates (Sutherland-Hodgman), the viewport transform,
 // coverage at pixel centres (x + 0.5, y + 0.5) with a top-left tie rule,
 // depth interpolated linearly in screen space and tested with GL_LESS,
-// back faces culled for single-sided materials.
+// back faces culled for single-sided materials. Adaptive meshes are first
+// tessellated as the GPU's tessellation stages do (patch_tessellation.cpp).
 //
 // Shading inputs are interpolated perspective-correctly and differentiated
 // ANALYTICALLY: with screen-space barycentrics b_i (affine in x, y) and
@@ -24,6 +25,7 @@
 #include <limits>
 
 #include "render_internal.h"
+#include "surfgrad/patch_basis.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {
@@ -79,6 +81,7 @@ struct MeshData {
     std::vector<glm::vec4> tangent[kMaxUvSets];
     std::vector<glm::vec4> clip;
     const sg::mesh::RenderMesh* mesh = nullptr;
+    const std::vector<glm::vec4>* patchAov = nullptr; // adaptive meshes (vPatchAov)
     float detSign = 1.0f;
 };
 
@@ -274,6 +277,7 @@ detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, i
     }
     in.frontFacing = st.front;
     in.primId = float(st.prim);
+    if (d.patchAov) in.patchAov = (*d.patchAov)[st.vtx[0]]; // flat: one patch per triangle
     return in;
 }
 
@@ -325,11 +329,26 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     img.pixels.assign(size_t(W) * size_t(H), bg);
 
     // Vertex stage and rasterisation, mesh by mesh in draw order.
+    // Adaptive meshes: their patches tessellated for this view first, at the
+    // levels the GPU's control stage computes (patch_tessellation.cpp).
     Raster raster(W, H);
     std::vector<MeshData> md(scene.meshes.size());
+    std::vector<MeshAsset> tessellated(scene.meshes.size());
+    std::vector<std::vector<glm::vec4>> patchAov(scene.meshes.size());
+    const float focalPx = sg::glsl::sgPatchFocalPx(view.proj[1][1], float(view.height));
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const MeshInstance& inst = scene.meshes[mi];
-        md[mi] = vertexStage(inst, assets.meshes[mi], view);
+        const MeshAsset* asset = &assets.meshes[mi];
+        if (asset->patches) {
+            detail::TessellatedPatches t = detail::tessellatePatches(
+                *asset->patches, modelToCameraRelative(inst.transform, view.cameraPos), focalPx,
+                inst.subdivPixelsPerEdge);
+            tessellated[mi].mesh = std::move(t.mesh);
+            patchAov[mi] = std::move(t.patchAov);
+            asset = &tessellated[mi];
+        }
+        md[mi] = vertexStage(inst, *asset, view);
+        if (!patchAov[mi].empty()) md[mi].patchAov = &patchAov[mi];
         const bool cull = scene.materials[size_t(inst.material)].doubleSided == DoubleSided::Off;
         raster.mesh(int(mi), md[mi], cull);
     }

@@ -1,6 +1,8 @@
 // The OpenGL 4.5 core renderer: one draw per mesh instance with the
 // program assembled for its material (plan.cpp), cached by effect
-// signature; meshes and textures uploaded once; an RGBA32F + 32-bit float
+// signature; adaptive meshes one tessellated draw per patch type (their
+// patch buffers uploaded once per asset, levels from the screen: the
+// shared sgPatchEdgeTessLevel); meshes and textures uploaded once; an RGBA32F + 32-bit float
 // depth framebuffer; draw wall time (ended by glFinish) and, where the
 // driver's timer covers the draws, GPU time from GL_TIME_ELAPSED. Works on any
 // current 4.5 core context (EGL surfaceless for the CLI and tests, GLFW for
@@ -16,7 +18,9 @@
 #include <unordered_map>
 
 #include "render_internal.h"
+#include "surfgrad/adaptive_patches.h"
 #include "surfgrad/gl.h"
+#include "surfgrad/patch_basis.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {
@@ -34,7 +38,44 @@ struct GpuMesh {
     GLuint ebo = 0;
     GLsizei indexCount = 0;
     uint64_t layoutId = 0; // MeshAsset::layoutId of the uploaded UVs and indices
+    // Adaptive meshes: shader storage buffers of sg/patch/patch_*.glsl:
+    // [0] control points (binding 0), [1] per-patch records (binding 1),
+    // [2] control-point indices (binding 3). 0 for triangle meshes.
+    GLuint patchBuf[3] = {};
 };
+
+// The per-patch records the tessellation stages read (binding 1; layout in
+// sg/patch/patch_tes.glsl): 16 words per patch: PatchParam field1, the four
+// corner vertices, the patch type, its first entry in the index buffer, 0,
+// the four edge owners, the four corner owners.
+std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap) {
+    std::vector<uint32_t> data;
+    data.reserve(16 * ap.patchCount());
+    for (const auto& arr : ap.arrays) {
+        for (uint32_t k = 0; k < arr.patchCount; ++k) {
+            const size_t p = size_t(arr.firstPatch) + k;
+            const glm::uvec4 c = ap.cornerVertices[p], e = ap.edgeOwners[p], o = ap.cornerOwners[p];
+            const uint32_t first = arr.firstIndex + k * uint32_t(arr.pointsPerPatch);
+            data.insert(data.end(), {ap.params[p].y, c.x, c.y, c.z, c.w, uint32_t(arr.type), first,
+                                     0u, e.x, e.y, e.z, e.w, o.x, o.y, o.z, o.w});
+        }
+    }
+    return data;
+}
+
+void uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap) {
+    if (!g.patchBuf[0]) glCreateBuffers(3, g.patchBuf);
+    std::vector<float> pts;
+    pts.reserve(3 * ap.points.size());
+    for (const glm::vec3& p : ap.points) pts.insert(pts.end(), {p.x, p.y, p.z});
+    const std::vector<uint32_t> records = patchRecords(ap);
+    glNamedBufferData(g.patchBuf[0], GLsizeiptr(pts.size() * sizeof(float)), pts.data(),
+                      GL_STATIC_DRAW);
+    glNamedBufferData(g.patchBuf[1], GLsizeiptr(records.size() * sizeof(uint32_t)), records.data(),
+                      GL_STATIC_DRAW);
+    glNamedBufferData(g.patchBuf[2], GLsizeiptr(ap.indices.size() * sizeof(uint32_t)),
+                      ap.indices.data(), GL_STATIC_DRAW);
+}
 
 struct GpuProgram {
     sg::gl::Program program;
@@ -52,6 +93,7 @@ void deleteMesh(GpuMesh& m) {
     if (m.vao) glDeleteVertexArrays(1, &m.vao);
     glDeleteBuffers(10, m.vbo);
     if (m.ebo) glDeleteBuffers(1, &m.ebo);
+    if (m.patchBuf[0]) glDeleteBuffers(3, m.patchBuf);
     m = GpuMesh{};
 }
 
@@ -151,6 +193,12 @@ struct GlRenderer::Impl {
             GpuMesh& g = meshes[i];
             bool fresh = !g.vao;
             if (fresh) glCreateVertexArrays(1, &g.vao);
+            if (a.patches) {
+                // The draw reads the patch buffers only (the VAO stays empty).
+                if (fresh || g.layoutId != a.layoutId) uploadPatches(g, *a.patches);
+                g.layoutId = a.layoutId;
+                continue;
+            }
             uploadAttrib(g.vao, g.vbo[0], 0, a.mesh.positions, 3);
             uploadAttrib(g.vao, g.vbo[1], 1, a.mesh.normals, 3);
             static const std::vector<glm::vec2> none2;
@@ -239,19 +287,54 @@ struct GlRenderer::Impl {
         return it->second;
     }
 
-    GpuProgram& program(const MaterialPlan& plan, RenderStats& stats) {
-        auto it = programs.find(plan.signature);
+    // The plan's program; adaptive plans: the one for patches of
+    // `patchPoints` control points (one per patch type).
+    GpuProgram& program(const MaterialPlan& plan, RenderStats& stats, int patchPoints = 0) {
+        const std::string key =
+            plan.adaptive ? plan.signature + "#p" + std::to_string(patchPoints) : plan.signature;
+        auto it = programs.find(key);
         if (it != programs.end()) return it->second;
         ProgramSource src = assembleProgram(plan);
         std::vector<std::pair<sg::gl::Stage, sg::shaders::Assembled>> stages;
         stages.push_back(
             {sg::gl::Stage::Vertex, sg::shaders::Assembled{src.vertex, src.vertexFiles}});
+        if (plan.adaptive) {
+            stages.push_back({sg::gl::Stage::TessControl, assemblePatchControl(patchPoints)});
+            stages.push_back({sg::gl::Stage::TessEvaluation,
+                              sg::shaders::Assembled{src.tessEval, src.tessEvalFiles}});
+        }
         stages.push_back(
             {sg::gl::Stage::Fragment, sg::shaders::Assembled{src.fragment, src.fragmentFiles}});
         GpuProgram gp;
         gp.program = sg::gl::Program(stages);
         ++stats.programsCompiled;
-        return programs.emplace(plan.signature, std::move(gp)).first->second;
+        return programs.emplace(key, std::move(gp)).first->second;
+    }
+
+    // The tessellated draws of one adaptive mesh, one per patch type, after
+    // bindDraw's uniforms on each type's program: levels from the shared
+    // sgPatchEdgeTessLevel at `pixelsPerEdge` for this view.
+    void drawPatches(const MaterialPlan& plan, const detail::DrawUniforms& u, const View& view,
+                     const SceneAssets& assets, const GpuMesh& g,
+                     const sg::mesh::AdaptivePatches& ap, float pixelsPerEdge, RenderStats& stats) {
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.patchBuf[0]);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchBuf[1]);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g.patchBuf[2]);
+        const float focalPx = sg::glsl::sgPatchFocalPx(view.proj[1][1], float(view.height));
+        for (const auto& arr : ap.arrays) {
+            if (arr.patchCount == 0) continue;
+            GpuProgram& gp = program(plan, stats, arr.pointsPerPatch);
+            bindDraw(gp, plan, u, view, assets);
+            glUniform1ui(gp.loc("uFirstIndex"), arr.firstIndex);
+            glUniform1ui(gp.loc("uFirstPatch"), arr.firstPatch);
+            glUniform1i(gp.loc("uPointsPerPatch"), arr.pointsPerPatch);
+            glUniform1f(gp.loc("uFocalPx"), focalPx);
+            glUniform1f(gp.loc("uPixelsPerEdge"), pixelsPerEdge);
+            glUniform1f(gp.loc("uMaxTessLevel"), SG_TESS_MAX_LEVEL);
+            glPatchParameteri(GL_PATCH_VERTICES, arr.pointsPerPatch);
+            glDrawArrays(GL_PATCHES, 0, GLsizei(arr.patchCount * uint32_t(arr.pointsPerPatch)));
+            ++stats.drawCalls;
+        }
     }
 };
 
@@ -358,7 +441,14 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
         const MeshInstance& mi = scene.meshes[i];
         plans.push_back(uber_ ? planUberMaterial(scene, assets, int(i), mi.material)
                               : planMaterial(scene, assets, int(i), mi.material));
-        progs.push_back(&I.program(plans.back(), stats_));
+        const MeshAsset& ma = assets.meshes[i];
+        if (ma.patches) {
+            for (const auto& arr : ma.patches->arrays)
+                if (arr.patchCount) I.program(plans.back(), stats_, arr.pointsPerPatch);
+            progs.push_back(nullptr); // one program per patch type (Impl::drawPatches)
+        } else {
+            progs.push_back(&I.program(plans.back(), stats_));
+        }
         for (const auto& key : plans.back().textureKeys) {
             auto it = assets.textures.find(key);
             if (it != assets.textures.end()) I.texture(it->second.get());
@@ -387,10 +477,8 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
         for (size_t i = 0; i < scene.meshes.size(); ++i) {
             const MeshInstance& mi = scene.meshes[i];
             const MaterialPlan& plan = plans[i];
-            GpuProgram& gp = *progs[i];
             detail::DrawUniforms u =
                 detail::drawUniforms(scene, assets, plan, view, int(i), primBase);
-            I.bindDraw(gp, plan, u, view, assets);
             const Material& mat = scene.materials[size_t(mi.material)];
             if (mat.doubleSided == DoubleSided::Off) {
                 glEnable(GL_CULL_FACE);
@@ -400,8 +488,14 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             }
             glFrontFace(u.detSign < 0.0f ? GL_CW : GL_CCW); // mirroring transforms flip the winding
             glBindVertexArray(I.meshes[i].vao);
-            glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
-            ++stats_.drawCalls;
+            if (const auto& patches = assets.meshes[i].patches) {
+                I.drawPatches(plan, u, view, assets, I.meshes[i], *patches, mi.subdivPixelsPerEdge,
+                              stats_);
+            } else {
+                I.bindDraw(*progs[i], plan, u, view, assets);
+                glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);
+                ++stats_.drawCalls;
+            }
             primBase += float(assets.meshes[i].mesh.triangleCount());
         }
         if (bands > 1) {

@@ -23,6 +23,16 @@ std::string lowerExt(const fs::path& p) {
     return e;
 }
 
+// A colour per positive integer id (0: black).
+glm::vec3 hashColour(float id) {
+    if (id <= 0.0f) return glm::vec3(0.0f);
+    uint32_t h = uint32_t(id) * 0x9e3779b1u;
+    h ^= h >> 15;
+    h *= 0x85ebca77u;
+    h ^= h >> 13;
+    return glm::vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0f;
+}
+
 // Aov(-1): already display-referred.
 glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
     if (int(aov) < 0) return glm::vec3(v);
@@ -31,13 +41,15 @@ glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
         return sg::glsl::sgToneMap(glm::vec3(v), exposure);
     case Aov::Uv:
         return glm::vec3(v.x - std::floor(v.x), v.y - std::floor(v.y), 0.0f);
-    case Aov::PrimId: {
-        if (v.x <= 0.0f) return glm::vec3(0.0f);
-        uint32_t h = uint32_t(v.x) * 0x9e3779b1u;
-        h ^= h >> 15;
-        h *= 0x85ebca77u;
-        h ^= h >> 13;
-        return glm::vec3(float(h & 255u), float((h >> 8) & 255u), float((h >> 16) & 255u)) / 255.0f;
+    case Aov::PrimId:
+        return hashColour(v.x);
+    case Aov::Patch: {
+        // Each patch its own hue, brighter with its tessellation level
+        // (level 1: a third, level 64: full); other meshes' colour as is.
+        // (z is the patch type, 6 or 9, on patch pixels.)
+        if (!(v.z == 6.0f || v.z == 9.0f)) return sg::glsl::sgToneMap(glm::vec3(v), exposure);
+        const float lit = 1.0f / 3.0f + 2.0f / 3.0f * std::log2(std::max(v.y, 1.0f)) / 6.0f;
+        return hashColour(v.x) * (0.25f + 0.75f * lit);
     }
     default:
         return 0.5f * glm::vec3(v) + glm::vec3(0.5f); // unit vectors to [0,1]

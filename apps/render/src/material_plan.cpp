@@ -176,7 +176,7 @@ struct Planner {
         plan.kinds = kinds;
         std::ostringstream sig;
         sig << "uv" << plan.uvCount << ":vt" << plan.vertexTangentMask << ":l" << plan.lightCount
-            << (plan.uber ? ":uber" : "");
+            << (plan.uber ? ":uber" : "") << (plan.adaptive ? ":patches" : "");
         for (size_t g = 0; g < plan.groups.size(); ++g) {
             sig << "|g" << g << "[";
             for (const auto& pl : plan.groups[g]) sig << sigCode(pl, plan) << ";";
@@ -202,6 +202,7 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
     const MeshAsset& ma = assets.meshes[size_t(meshIndex)];
     p.plan.materialIndex = materialIndex;
     p.plan.uber = uber;
+    p.plan.adaptive = ma.patches != nullptr;
     p.plan.uvCount = std::min(int(ma.mesh.uvSets.size()), kMaxUvSets);
     // Vertex tangents are read only where an enabled layer uses the set's
     // basis (a mesh may keep tangents of a set whose layers were switched off).

@@ -112,6 +112,10 @@ void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
     for (const LayerKind* k : plan.kinds)
         if (k->programDeclarations) o << k->programDeclarations(plan);
     if (plan.uber) o << "uniform float uLayerOn[" << std::max(plan.uberFlagCount, 1) << "];\n";
+    if (plan.adaptive) {
+        o << "#define SG_AOV_PATCH 8\n"
+          << "flat in vec4 vPatchAov; // patch AOV (sg/patch/patch_tes.glsl)\n";
+    }
 }
 
 // The base colour: after the prologue, or after group 0's layers when a
@@ -240,8 +244,9 @@ void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
         o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, vec3(0.0), vec3(0.0), "
              "baseNormal, vec2(0.0),\n";
     }
-    o << "                          float(gl_PrimitiveID) + 1.0 + uPrimBase);\n"
-      << "}\n";
+    o << "                          float(gl_PrimitiveID) + 1.0 + uPrimBase);\n";
+    if (plan.adaptive) o << "    if (uAov == SG_AOV_PATCH) outValue = vPatchAov;\n";
+    o << "}\n";
 }
 
 } // namespace
@@ -382,11 +387,33 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
     fdefs.push_back("SG_LAYER_RECORDS " + std::to_string(std::max(plan.recordCount, 1)));
     for (const LayerKind* k : plan.kinds)
         if (k->programDefines) k->programDefines(plan, fdefs);
+    auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
+    if (plan.adaptive) {
+        // Patches carry no UV sets or vertex tangents yet (MeshAsset::patches):
+        // uvCount and vertexTangentMask are 0, so the fragment program reads
+        // only what the evaluation stage writes.
+        SG_ASSERT(plan.uvCount == 0 && plan.vertexTangentMask == 0,
+                  "adaptive patches carry no UV sets");
+        const char* pvs = sg::shaders::find("sg/patch/patch_vs.glsl");
+        const char* tes = sg::shaders::find("sg/patch/patch_tes.glsl");
+        SG_ASSERT(pvs && tes, "the patch stages are embedded");
+        auto v = sg::shaders::assemble(pvs, "sg/patch/patch_vs.glsl");
+        auto e = sg::shaders::assemble(tes, "sg/patch/patch_tes.glsl");
+        return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files, e.text,
+                             e.files};
+    }
     const char* vs = sg::shaders::find("sg/render/surface_vs.glsl");
     SG_ASSERT(vs, "the vertex stage is embedded");
     auto v = sg::shaders::assemble(vs, "sg/render/surface_vs.glsl", defs);
-    auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
-    return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files};
+    return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files, {}, {}};
+}
+
+sg::shaders::Assembled assemblePatchControl(int pointsPerPatch) {
+    SG_EXPECTS(pointsPerPatch == 16 || pointsPerPatch == 20, "regular or Gregory-basis patches");
+    const char* tcs = sg::shaders::find("sg/patch/patch_tcs.glsl");
+    SG_ASSERT(tcs, "the patch stages are embedded");
+    return sg::shaders::assemble(tcs, "sg/patch/patch_tcs.glsl",
+                                 {"SG_PATCH_POINTS " + std::to_string(pointsPerPatch)});
 }
 
 // ---------------------------------------------------------------------------
@@ -500,6 +527,7 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
     }
     const bool hasUv0 = plan.uvCount > 0;
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);
+    if (plan.adaptive && u.aov == int(Aov::Patch)) return in.patchAov;
     return G::sgAovValue(u.aov, color, nrm, surfGradOut, tangentOut, bitangentOut, baseNormal,
                          hasUv0 ? in.uv[0] : glm::vec2(0.0f), in.primId + 1.0f + u.primBase);
 }

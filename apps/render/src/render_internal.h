@@ -55,6 +55,19 @@ TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChai
 
 glm::mat3 normalMatrix(const glm::mat4& model);
 
+// The triangles of adaptive patches for one view, as the GPU's
+// tessellation stages make them (patch_tessellation.cpp: the same levels,
+// from sgPatchEdgeTessLevel of the corner vertices through modelRel; GL's
+// domain points; the triangulation documented there): object-space
+// positions and limit normals per point, counter-clockwise triangles;
+// patchAov per point: the patch AOV of its patch (Aov::Patch).
+struct TessellatedPatches {
+    sg::mesh::RenderMesh mesh;
+    std::vector<glm::vec4> patchAov;
+};
+TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,
+                                     const glm::mat4& modelRel, float focalPx, float pixelsPerEdge);
+
 // World-space bounds of every mesh instance.
 void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
 
@@ -89,7 +102,8 @@ struct PixelInputs {
     glm::vec3 dNdx{0.0f}, dNdy{0.0f}; // of normal (interpolated, unnormalized)
     glm::vec2 fragCoord{0.0f};        // gl_FragCoord.xy: window position of the pixel centre
     bool frontFacing = true;
-    float primId = 0.0f; // gl_PrimitiveID
+    float primId = 0.0f;      // gl_PrimitiveID
+    glm::vec4 patchAov{0.0f}; // adaptive meshes: vPatchAov (Aov::Patch)
 };
 
 // Feature-map samplers of a plan's feature slots (CPU).

@@ -42,12 +42,14 @@ const char* aovName(Aov a) {
         return "uv";
     case Aov::PrimId:
         return "primid";
+    case Aov::Patch:
+        return "patch";
     }
     return "?";
 }
 
 std::optional<Aov> parseAov(const std::string& name) {
-    for (int i = 0; i <= int(Aov::PrimId); ++i) {
+    for (int i = 0; i <= int(Aov::Patch); ++i) {
         if (name == aovName(Aov(i))) return Aov(i);
     }
     return std::nullopt;
@@ -341,15 +343,31 @@ struct Parser : detail::SceneReader {
         }
         if (n.has("subdivision")) {
             Node s = n.child("subdivision");
-            s.allowOnly({"scheme", "level", "limit", "max_memory_mib"});
+            s.allowOnly({"scheme", "mode", "level", "limit", "max_memory_mib", "isolation",
+                         "pixels_per_edge"});
             static const char* schemes[] = {"catmark", "loop", "bilinear"};
             m.subdivide = true;
             if (s.has("scheme"))
                 m.subdivScheme = schemes[s.choice("scheme", 0, {"catmark", "loop", "bilinear"})];
+            m.subdivAdaptive = s.choice("mode", 0, {"uniform", "adaptive"}) == 1;
+            // Each mode's own fields; the other mode's are refused, not ignored.
+            const std::vector<const char*> uniformOnly = {"level", "limit", "max_memory_mib"};
+            const std::vector<const char*> adaptiveOnly = {"isolation", "pixels_per_edge"};
+            for (const char* f : m.subdivAdaptive ? uniformOnly : adaptiveOnly) {
+                if (s.has(f))
+                    s.failField(f, std::string("applies to \"mode\": \"") +
+                                       (m.subdivAdaptive ? "uniform" : "adaptive") + "\" only");
+            }
+            if (m.subdivAdaptive && !m.subdivScheme.empty() && m.subdivScheme != "catmark")
+                s.failField("scheme", "\"mode\": \"adaptive\" draws Catmull-Clark "
+                                      "(catmark) patches only; " +
+                                          m.subdivScheme + " cages take \"mode\": \"uniform\"");
             m.subdivLevel = s.integer("level", 2, 0, 6);
             m.subdivLimit = s.boolean("limit", false);
             if (s.has("max_memory_mib"))
                 m.subdivMaxMemory = uint64_t(s.integer("max_memory_mib", 0, 1, 1 << 24)) << 20;
+            m.subdivIsolation = s.integer("isolation", 3, 1, 10);
+            m.subdivPixelsPerEdge = s.num("pixels_per_edge", 8.0, 0.25, 1024.0);
             if (m.procedural)
                 n.failField("subdivision",
                             "applies to mesh files only (procedural meshes take \"segments\")");

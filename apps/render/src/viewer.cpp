@@ -302,8 +302,8 @@ bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, Viewer
         ImGui::TextWrapped("%s", scene.sourceName.c_str());
         ImGui::TextWrapped("%s", viewerTimingText(st.frameMs, renderer.stats()).c_str());
         ImGui::Text("%zu programs cached", renderer.cachedPrograms());
-        static const char* aovs[] = {"color",     "normal",     "surfgrad", "tangent",
-                                     "bitangent", "basenormal", "uv",       "primid"};
+        static const char* aovs[] = {"color",      "normal", "surfgrad", "tangent", "bitangent",
+                                     "basenormal", "uv",     "primid",   "patch"};
         ImGui::Combo("AOV", &st.aovIndex, aovs, IM_ARRAYSIZE(aovs));
         ImGui::SliderFloat("exposure", &scene.output.exposure, 0.05f, 8.0f, "%.2f",
                            ImGuiSliderFlags_Logarithmic);

@@ -63,6 +63,9 @@ out vec3 vRelPos;
 out vec3 vWorldPos;
 out vec3 vObjPos;
 out vec3 vNormal;
+// The patch AOV (Aov::Patch): 1 + patch index, tessellation level (the
+// largest outer level), Far patch type, depth.
+flat out vec4 vPatchAov;
 
 #define SG_PATCH_DATA_STRIDE 16u
 
@@ -126,6 +129,9 @@ void main() {
     vRelPos = (uModelRel * vec4(pos, 1.0)).xyz;
     vNormal = uNormalMat * nObj;
     gl_Position = uViewProjRel * vec4(vRelPos, 1.0);
+    uint field1 = sgPatchData[base];
+    vPatchAov = vec4(float(patchIndex + 1u), max(max(outer.x, outer.y), max(outer.z, outer.w)),
+                     float(sgPatchData[base + 5u]), float(sgPatchDepth(field1)));
 #if SG_PATCH_CAPTURE
     uint slot = atomicAdd(sgCaptureCount, 1u);
     if (slot < sgCaptureCapacity) {

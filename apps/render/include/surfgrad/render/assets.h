@@ -26,6 +26,10 @@
 #include "surfgrad/render/scene.h"
 #include "surfgrad/render_mesh.h"
 
+namespace sg::mesh {
+struct AdaptivePatches;
+}
+
 namespace sg::render {
 
 struct FeatureMapsAsset;
@@ -42,6 +46,12 @@ struct MeshAsset {
     std::vector<std::vector<glm::vec4>> baseTangents;  // before morphing
     std::vector<float> appliedWeights;                 // morph weights in the arrays now
     uint64_t layoutId = 0; // unique per built vertex/index layout (GPU caches key on it)
+    // "subdivision": {"mode": "adaptive"}: the cage's feature-adaptive
+    // patches (surfgrad/adaptive_patches.h), drawn by the tessellation
+    // stages; null for every other mesh. Then `mesh` holds the patches'
+    // control points as positions (bounds: the limit surface lies in their
+    // convex hull) and no triangles, no UV sets and no morph targets.
+    std::shared_ptr<const sg::mesh::AdaptivePatches> patches;
 };
 
 // UV sets whose tangent basis the enabled layers of `material` read (bit k:

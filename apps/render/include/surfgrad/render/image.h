@@ -18,10 +18,13 @@
 
 namespace sg::render {
 
-enum class Aov { Color = 0, Normal, SurfGrad, Tangent, Bitangent, BaseNormal, Uv, PrimId };
+// Patch: adaptive meshes' tessellation, (1 + patch index, tessellation
+// level (the largest outer level), Far patch type (6 regular B-spline, 9
+// Gregory basis), patch depth); other meshes show their shaded colour.
+enum class Aov { Color = 0, Normal, SurfGrad, Tangent, Bitangent, BaseNormal, Uv, PrimId, Patch };
 const char* aovName(Aov a);
 // Parses an AOV name ("color", "normal", "surfgrad", "tangent", "bitangent",
-// "basenormal", "uv", "primid"); nullopt for anything else.
+// "basenormal", "uv", "primid", "patch"); nullopt for anything else.
 std::optional<Aov> parseAov(const std::string& name);
 
 struct Image {

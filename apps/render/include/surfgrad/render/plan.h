@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "surfgrad/render/assets.h"
+#include "surfgrad/shader_files.h"
 #include "surfgrad/render/scene.h"
 #include "surfgrad/render/view.h"
 
@@ -47,7 +48,11 @@ struct MaterialPlan {
     int uvCount = 0;                // UV sets the mesh provides (vertex attributes)
     uint32_t vertexTangentMask = 0; // bit k: UV set k uses vertex tangents
     int lightCount = 1;
-    bool uber = false;                          // every kind compiled in, enabled by uniforms
+    bool uber = false; // every kind compiled in, enabled by uniforms
+    // The mesh is drawn as adaptive patches (MeshAsset::patches): the
+    // vertex stage is sg/patch/patch_vs.glsl with the tessellation stages
+    // (the fragment program is the same as for triangles).
+    bool adaptive = false;
     std::vector<std::vector<PlanLayer>> groups; // [0] base layers, then post-resolve groups
     std::vector<const LayerKind*> kinds;        // kinds of the plan's layers, registry order
     std::vector<const Layer*> groupLayers; // the post_resolve layer of each group (nullptr for 0)
@@ -88,8 +93,16 @@ struct ProgramSource {
     std::string vertex; // complete GLSL (includes expanded)
     std::string fragment;
     std::vector<std::string> vertexFiles, fragmentFiles; // #line source-string names
+    // Adaptive plans only (else empty): the tessellation evaluation stage
+    // (sg/patch/patch_tes.glsl; `vertex` is then sg/patch/patch_vs.glsl).
+    // The control stage depends on the patch type: assemblePatchControl.
+    std::string tessEval;
+    std::vector<std::string> tessEvalFiles;
 };
 ProgramSource assembleProgram(const MaterialPlan& plan);
+// The tessellation control stage (sg/patch/patch_tcs.glsl) of patches with
+// `pointsPerPatch` control points (16 regular, 20 Gregory basis).
+sg::shaders::Assembled assemblePatchControl(int pointsPerPatch);
 // The generated fragment body before include expansion (readable).
 std::string fragmentBody(const MaterialPlan& plan);
 

@@ -212,6 +212,14 @@ struct MeshInstance {
     // estimated peak memory (sg::mesh::SubdivisionSettings::memoryBudget;
     // 0: sg::mesh::defaultSubdivisionBudget()).
     uint64_t subdivMaxMemory = 0;
+    // "subdivision.mode": "uniform" (refined on the CPU to subdivLevel and
+    // drawn as triangles) or "adaptive" (OpenSubdiv feature-adaptive patches
+    // isolated to subdivIsolation, drawn by the GPU's tessellation stages at
+    // subdivPixelsPerEdge screen pixels per tessellated edge segment;
+    // sg::mesh::buildAdaptivePatches, shaders/sg/patch/).
+    bool subdivAdaptive = false;
+    int subdivIsolation = 3;                 // 1..10
+    float subdivPixelsPerEdge = 8.0f;        // > 0
     std::vector<DerivedUvSet> derivedUvSets; // appended after the mesh's own UV sets
     std::vector<TangentSource> tangents;     // per UV set; missing = pixel
     std::vector<float> morphWeights;         // empty: the file's defaults
