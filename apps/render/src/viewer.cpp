@@ -17,6 +17,7 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
+#include "surfgrad/adaptive_patches.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/io.h"
 #include "surfgrad/shader_files.h"
@@ -49,6 +50,15 @@ void main() {
     if (uAov == SG_AOV_COLOR) c = sgToneMap(v.xyz, uExposure);
     else if (uAov == SG_AOV_UV) c = vec3(fract(v.xy), 0.0);
     else if (uAov == SG_AOV_PRIM_ID) c = vec3(fract(v.x * 0.618034), fract(v.x * 0.41421), fract(v.x * 0.7320508));
+    else if (uAov == 8) { // patch AOV: a colour per patch, brighter with its level
+        if (v.z == 6.0 || v.z == 9.0) {
+            float lit = 1.0 / 3.0 + 2.0 / 3.0 * log2(max(v.y, 1.0)) / 6.0;
+            c = vec3(fract(v.x * 0.618034), fract(v.x * 0.41421), fract(v.x * 0.7320508)) *
+                (0.25 + 0.75 * lit);
+        } else {
+            c = sgToneMap(v.xyz, uExposure); // meshes drawn as triangles: their colour
+        }
+    }
     else c = 0.5 * v.xyz + 0.5;
     outColor = vec4(c, 1.0);
 }
@@ -228,7 +238,25 @@ struct ViewerState {
     std::string status;
     double frameMs = 0.0;
     bool screenshotNow = false;
+    bool wireframe = false; // polygon mode GL_LINE for the scene's draws
 };
+
+// Adaptive meshes: their patches and the tessellation target, live (the
+// levels follow it the next frame; the patch AOV shows each patch's level).
+void adaptiveControls(Scene& scene, const SceneAssets& assets) {
+    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
+        const auto& patches = assets.meshes[i].patches;
+        if (!patches) continue;
+        MeshInstance& mi = scene.meshes[i];
+        ImGui::PushID(int(1000 + i));
+        ImGui::TextWrapped("%s: adaptive, %zu patches, isolation %d",
+                           (mi.name.empty() ? mi.fieldPath : mi.name).c_str(),
+                           patches->patchCount(), mi.subdivIsolation);
+        ImGui::SliderFloat("px per edge", &mi.subdivPixelsPerEdge, 0.5f, 64.0f, "%.1f",
+                           ImGuiSliderFlags_Logarithmic);
+        ImGui::PopID();
+    }
+}
 
 // Materials: double-sided mode, base colour, roughness, the layers.
 // Returns true when a layer was toggled.
@@ -310,6 +338,8 @@ bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, Viewer
         if (ImGui::Button("reset camera")) st.orbit = st.home;
         ImGui::SameLine();
         if (ImGui::Button("screenshot")) st.screenshotNow = true;
+        ImGui::Checkbox("wireframe", &st.wireframe);
+        adaptiveControls(scene, assets);
         toggled = materialControls(scene);
         morphControls(scene, assets, st);
         if (!st.status.empty()) ImGui::TextWrapped("%s", st.status.c_str());
@@ -379,11 +409,13 @@ int runViewer(Scene scene, const ViewerOptions& opt) {
 
         View view = orbitView(st.orbit, fbw, fbh, Aov(st.aovIndex));
         GLuint tex = 0;
+        glPolygonMode(GL_FRONT_AND_BACK, st.wireframe ? GL_LINE : GL_FILL);
         try {
             tex = renderer.renderToTexture(scene, assets, view);
         } catch (const std::exception& e) {
             st.status = e.what();
         }
+        glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
         if (st.screenshotNow) { // the panel's button: the render, without the panel
             Image img = renderer.render(scene, assets, view);
             writeImage(screenshotPath, img, view.aov, scene.output.exposure);
