@@ -60,19 +60,35 @@ SG_FN float sgDecalFade(SgDecalParams p, vec3 l, vec3 n) {
     return depthFade * angleFade;
 }
 
-// relPos: the pixel's position relative to the camera (frame space).
-SG_FN vec3 sgLayerDecal(SgFrame f, vec3 relPos, SgDecalParams p, sampler2D tex) {
+// The pixel in the projector's box: l in [-1, 1]^3 inside, the fade (depth
+// and angle), the map coordinate st and its screen derivatives by the chain
+// rule (st changes by 0.5 / halfSize per unit along each axis). relPos: the
+// pixel's position relative to the camera (frame space).
+struct SgDecalHit {
+    vec3 l;
+    float fade;
+    vec2 st;
+    vec2 dSTdx;
+    vec2 dSTdy;
+};
+
+SG_FN SgDecalHit sgDecalProject(SgFrame f, vec3 relPos, SgDecalParams p) {
+    SgDecalHit h;
     vec3 r = relPos - p.origin;
     vec3 inv = vec3(1.0f) / max(p.halfSize, vec3(SG_FLT_EPSILON));
-    vec3 l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
-    float fade = sgDecalFade(p, l, f.nrmBase);
-    if (!(fade > 0.0f)) return vec3(0.0f);
-    vec2 st = 0.5f * vec2(l.x, l.y) + vec2(0.5f);
-    // Chain rule: st changes by 0.5 / halfSize per unit along each axis.
-    vec2 dSTdx = 0.5f * vec2(dot(f.dPdx, p.axisX) * inv.x, dot(f.dPdx, p.axisY) * inv.y);
-    vec2 dSTdy = 0.5f * vec2(dot(f.dPdy, p.axisX) * inv.x, dot(f.dPdy, p.axisY) * inv.y);
-    vec2 d = sgSampleTspaceDeriv(tex, st, dSTdx, dSTdy, p.encoding, p.flipV);
-    return sgBumpScale(fade * p.strength, sgSurfgradFromDecal(f, d, p.axisX, p.axisY, false));
+    h.l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
+    h.fade = sgDecalFade(p, h.l, f.nrmBase);
+    h.st = 0.5f * vec2(h.l.x, h.l.y) + vec2(0.5f);
+    h.dSTdx = 0.5f * vec2(dot(f.dPdx, p.axisX) * inv.x, dot(f.dPdx, p.axisY) * inv.y);
+    h.dSTdy = 0.5f * vec2(dot(f.dPdy, p.axisX) * inv.x, dot(f.dPdy, p.axisY) * inv.y);
+    return h;
+}
+
+SG_FN vec3 sgLayerDecal(SgFrame f, vec3 relPos, SgDecalParams p, sampler2D tex) {
+    SgDecalHit h = sgDecalProject(f, relPos, p);
+    if (!(h.fade > 0.0f)) return vec3(0.0f);
+    vec2 d = sgSampleTspaceDeriv(tex, h.st, h.dSTdx, h.dSTdy, p.encoding, p.flipV);
+    return sgBumpScale(h.fade * p.strength, sgSurfgradFromDecal(f, d, p.axisX, p.axisY, false));
 }
 
 #endif

@@ -20,17 +20,10 @@
 // plane) is faded out by the angle fade before anything is sampled.
 SG_FN vec3 sgLayerDecalAa(SgFrame f, vec3 relPos, SgDecalParams p, int mode, sampler2D texA,
                           sampler2D texB, SG_INOUT(mat3) slopeCov) {
-    vec3 r = relPos - p.origin;
-    vec3 inv = vec3(1.0f) / max(p.halfSize, vec3(SG_FLT_EPSILON));
-    vec3 l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
-    float fade = sgDecalFade(p, l, f.nrmBase);
-    if (!(fade > 0.0f)) return vec3(0.0f);
-    vec2 st = 0.5f * vec2(l.x, l.y) + vec2(0.5f);
-    // Chain rule, as sgLayerDecal.
-    vec2 dSTdx = 0.5f * vec2(dot(f.dPdx, p.axisX) * inv.x, dot(f.dPdx, p.axisY) * inv.y);
-    vec2 dSTdy = 0.5f * vec2(dot(f.dPdy, p.axisX) * inv.x, dot(f.dPdy, p.axisY) * inv.y);
-    SgSlopeDist s = sgSampleSlopes(mode, texA, texB, st, dSTdx, dSTdy, p.flipV);
-    float k = fade * p.strength;
+    SgDecalHit h = sgDecalProject(f, relPos, p);
+    if (!(h.fade > 0.0f)) return vec3(0.0f);
+    SgSlopeDist s = sgSampleSlopes(mode, texA, texB, h.st, h.dSTdx, h.dSTdy, p.flipV);
+    float k = h.fade * p.strength;
     vec3 ja = k * sgSurfgradFromVolumeGradient(f, p.axisX);
     vec3 jb = k * sgSurfgradFromVolumeGradient(f, p.axisY);
     slopeCov = slopeCov + sgSlopeCovToFrame(s.cov, ja, jb);
