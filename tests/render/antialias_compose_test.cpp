@@ -12,6 +12,7 @@
 
 #include "hardcase.h"
 #include "render_internal.h"
+#include "antialias_test_util.h"
 #include "render_test_util.h"
 #include "surfgrad/io.h"
 
@@ -23,31 +24,6 @@ using sg::test::hardCaseAtMost;
 using sg::test::Worst;
 
 constexpr double kTwoPi = 6.283185307179586;
-
-// Float-encoded slopes d = (ax cos(2 pi kx s), ay cos(2 pi ky t)) on an
-// n x n grid (as antialias_test.cpp): over the whole map var x = ax^2 / 2,
-// var y = ay^2 / 2, cov xy = 0, mean 0.
-TextureImage sineSlopeMap(int n, double ax, int kx, double ay, int ky) {
-    std::vector<glm::vec4> texels(size_t(n) * size_t(n));
-    for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i) {
-            double dx = ax * std::cos(kTwoPi * kx * (i + 0.5) / n);
-            double dy = ay * std::cos(kTwoPi * ky * (j + 0.5) / n);
-            glm::dvec3 m = glm::normalize(glm::dvec3(-dx, -dy, 1.0));
-            texels[size_t(j) * size_t(n) + size_t(i)] = glm::vec4(glm::vec3(m), 1.0f);
-        }
-    return makeTexture(n, n, std::move(texels), Wrap::Repeat);
-}
-
-struct Moments {
-    TextureImage a, b, toksvig;
-};
-
-Moments momentsOf(const TextureImage& map, NormalEncoding enc = NormalEncoding::Float) {
-    return {detail::normalMomentTexture(map, TexMoments::LeanA, enc),
-            detail::normalMomentTexture(map, TexMoments::LeanB, enc),
-            detail::normalMomentTexture(map, TexMoments::Toksvig, enc)};
-}
 
 G::SgFrame frameWithNormal(glm::vec3 n, glm::vec3 dPdx, glm::vec3 dPdy) {
     G::SgFrame f{};
