@@ -87,6 +87,7 @@ struct Options {
     bool quick = false;      // smaller sizes and fewer runs (tests, smoke runs)
     std::string renderer;    // GL_RENDERER of the context the tables run in (for the notes)
     std::string plotDataDir; // --plot-data: where Table::print(Options) writes plot data
+    std::string imageDir;    // --image-dir: where tables write their pictures; empty: none
 };
 
 // ---------------------------------------------------------------------------

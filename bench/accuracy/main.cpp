@@ -9,7 +9,7 @@
 //   LIBGL_ALWAYS_SOFTWARE=1 GALLIUM_DRIVER=llvmpipe EGL_PLATFORM=surfaceless
 //   build/bin/bench_accuracy_cost [--table NAME|all] [--markdown] [--runs N]
 //                                 [--frames N] [--size N] [--quick]
-//                                 [--plot-data DIR] [--list]
+//                                 [--plot-data DIR] [--image-dir DIR] [--list]
 // NAME: a registered table (tables.h; --list prints them). bench/run drives
 // this executable to regenerate docs/accuracy-cost.md and its plots.
 #include <cstdio>
@@ -29,7 +29,8 @@ int usage() {
     std::fprintf(
         stderr,
         "usage: bench_accuracy_cost [--table NAME|all] [--markdown] [--runs N] [--frames N]\n"
-        "                           [--size N] [--quick] [--plot-data DIR] [--list]\n"
+        "                           [--size N] [--quick] [--plot-data DIR] [--image-dir DIR]\n"
+        "                           [--list]\n"
         "NAME: one of --list\n");
     return 2;
 }
@@ -60,6 +61,8 @@ int main(int argc, char** argv) {
             return 0;
         } else if (a == "--plot-data" && hasValue)
             o.plotDataDir = argv[++i];
+        else if (a == "--image-dir" && hasValue)
+            o.imageDir = argv[++i];
         else if (a == "--table" && hasValue)
             table = argv[++i];
         else if (a == "--runs" && hasValue) {

@@ -29,9 +29,9 @@ void tableFeatures(const Options& o);    // 4: feature-curve mode
 void tableDerivatives(const Options& o); // 5: derivative method
 void tablePrecision(const Options& o);   // 6: precision
 void tableTriplanar(const Options& o);   // 7: triplanar method
-void tableParallax(
-    const Options& o); // 9: parallax and POM (8, antialiasing: bench/antialias_bench)
-void tableFeatureAa(const Options& o); // 10: feature curves antialiased
+void tableAntialias(const Options& o);   // 8: bump antialiasing
+void tableParallax(const Options& o);    // 9: parallax and POM
+void tableFeatureAa(const Options& o);   // 10: feature curves antialiased
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {
@@ -43,6 +43,7 @@ inline const std::vector<TableEntry>& registeredTables() {
         {"deriv", "5. derivative method", tableDerivatives},
         {"precision", "6. precision", tablePrecision},
         {"triplanar", "7. triplanar method", tableTriplanar},
+        {"antialias", "8. bump antialiasing", tableAntialias},
         {"parallax", "9. parallax and POM", tableParallax},
         {"feature-aa", "10. feature curves antialiased", tableFeatureAa},
     };

@@ -6,9 +6,12 @@
 // projectors parallel to the surface stay finite.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "hardcase.h"
 #include "render_internal.h"
@@ -547,6 +550,55 @@ TEST(AntialiasCompose, NoneCompilesAsBeforeAndAaWidensTheLobe) {
         maxDiff = std::max(maxDiff, double(glm::length(glm::vec3(on.pixels[i] - off.pixels[i]))));
     EXPECT_GT(maxDiff, 1e-3);
     EXPECT_EQ(countNonFinite(on), 0u);
+}
+
+// The study variant SG_AA_COV_UNMAPPED (docs/accuracy-cost.md, table 8's
+// "LEAN per layer", set through GlRenderer::setFragmentDefines) drops the
+// Jacobian and nothing else: a uv_normal layer at strength 1 has an
+// orthonormal one (listing 6's vT, vB), so its image is the composition's;
+// at strength 2 the composition's covariance is 4x the layer's own and the
+// highlight differs. Programs are keyed by their defines: switching back
+// gives the composition's image bit for bit.
+TEST(AntialiasCompose, UnmappedStudyVariantDropsOnlyTheJacobian) {
+    // 16 repeats of the 64-texel map around the sphere: minified in the
+    // 200 x 150 view, so the footprints' covariance is not small.
+    const std::string mesh = std::string(R"({"procedural": {"type": "sphere", "size": 1, )") +
+                             R"("segments": 48}, "uv_sets": [{"from": 0, "scale": 16}]})";
+    GlRenderer& gl = gpu();
+    auto render = [&](float strength, bool unmapped) {
+        Scene s = sceneFromJson(oneMaterialScene(
+            R"({"type": "uv_normal", "uv_set": 1, "antialias": "lean", "strength": )" +
+                std::to_string(strength) + R"(, "map": )" + kTiles + "}",
+            mesh, R"("roughness": 0.25,)"));
+        SceneAssets a = loadAssets(s);
+        gl.setFragmentDefines(unmapped ? std::vector<std::string>{"SG_AA_COV_UNMAPPED"}
+                                       : std::vector<std::string>{});
+        Image img = gl.render(s, a, makeView(s, a, 0, 0, Aov::Color));
+        gl.setFragmentDefines({});
+        return img;
+    };
+    auto maxDiff = [](const Image& x, const Image& y) {
+        double d = 0.0;
+        for (size_t i = 0; i < x.pixels.size(); ++i)
+            d = std::max(d, double(glm::length(glm::vec3(x.pixels[i] - y.pixels[i]))));
+        return d;
+    };
+    const size_t programsBefore = gl.cachedPrograms();
+    const Image m1 = render(1.0f, false), u1 = render(1.0f, true);
+    const Image m2 = render(2.0f, false), u2 = render(2.0f, true);
+    const Image m1Again = render(1.0f, false);
+    for (const Image* img : {&u1, &u2}) EXPECT_EQ(countNonFinite(*img), 0u);
+    // Rounding only: the outer products of unit vectors sum to the trace
+    // within a few ulps; radiances are below 10, so 1e-4 absolute is wide.
+    EXPECT_LT(maxDiff(m1, u1), 1e-4);
+    // Strength 2: the composed variance is 4x the layer's own trace, a
+    // visibly wider lobe (differences of 0.1 and more where the
+    // highlight is).
+    EXPECT_GT(maxDiff(m2, u2), 1e-2);
+    EXPECT_EQ(maxDiff(m1, m1Again), 0.0);
+    // Strength is a scene parameter, not a program's: one program with
+    // the define and one without.
+    EXPECT_EQ(gl.cachedPrograms(), programsBefore + 2);
 }
 
 TEST(AntialiasCompose, NoiseAntialiasValuesAndCompilation) {

@@ -115,6 +115,7 @@ void uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>
 
 struct GlRenderer::Impl {
     std::unordered_map<std::string, GpuProgram> programs;
+    std::string fragmentDefines; // "#define ...\n" lines (GlRenderer::setFragmentDefines)
     uint64_t meshesFor = 0, meshVersion = 0;
     std::vector<GpuMesh> meshes;
     bool meshesDirty = true;
@@ -291,10 +292,16 @@ struct GlRenderer::Impl {
     // `patchPoints` control points (one per patch type).
     GpuProgram& program(const MaterialPlan& plan, RenderStats& stats, int patchPoints = 0) {
         const std::string key =
-            plan.adaptive ? plan.signature + "#p" + std::to_string(patchPoints) : plan.signature;
+            (plan.adaptive ? plan.signature + "#p" + std::to_string(patchPoints) : plan.signature) +
+            fragmentDefines;
         auto it = programs.find(key);
         if (it != programs.end()) return it->second;
         ProgramSource src = assembleProgram(plan);
+        if (!fragmentDefines.empty()) { // after the #version line
+            const size_t eol = src.fragment.find('\n');
+            src.fragment.insert(eol == std::string::npos ? src.fragment.size() : eol + 1,
+                                fragmentDefines);
+        }
         std::vector<std::pair<sg::gl::Stage, sg::shaders::Assembled>> stages;
         stages.push_back(
             {sg::gl::Stage::Vertex, sg::shaders::Assembled{src.vertex, src.vertexFiles}});
@@ -344,6 +351,11 @@ GlRenderer::~GlRenderer() = default;
 void GlRenderer::invalidateMeshes() {
     impl_->meshesDirty = true;
 }
+void GlRenderer::setFragmentDefines(const std::vector<std::string>& defines) {
+    impl_->fragmentDefines.clear();
+    for (const std::string& d : defines) impl_->fragmentDefines += "#define " + d + "\n";
+}
+
 size_t GlRenderer::cachedPrograms() const {
     return impl_->programs.size();
 }

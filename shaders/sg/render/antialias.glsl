@@ -27,12 +27,26 @@
 
 #include "sg/compat.glsl"
 
+// SG_AA_COV_UNMAPPED (a study variant, never defined by the renderer's
+// own plans; docs/accuracy-cost.md, table 8, "LEAN per layer"): what an
+// engine without the composition does. Each layer's slope covariance stays
+// in its own texture (or noise domain) space, with no Jacobian: no
+// strength, no triplanar weight or projection, no decal fade or projector,
+// no projection onto the tangent plane; its trace (var x + var y) is added
+// as an isotropic variance. The result is a matrix with that trace, not a
+// covariance in the tangent plane: only sgSlopeCovTrace reads it.
+SG_FN mat3 sgSlopeCovUnmapped(float trace) { return mat3(trace / 3.0f); }
+
 // Frame-space covariance of d.x * a + d.y * b for a slope d of covariance
 // cov2 = (var x, var y, cov xy). a, b: the layer's Jacobian columns (e.g.
 // vT, vB of its UV frame, times its strength).
 SG_FN mat3 sgSlopeCovToFrame(vec3 cov2, vec3 a, vec3 b) {
+#ifdef SG_AA_COV_UNMAPPED
+    return sgSlopeCovUnmapped(cov2.x + cov2.y);
+#else
     return cov2.x * outerProduct(a, a) + cov2.y * outerProduct(b, b) +
            cov2.z * (outerProduct(a, b) + outerProduct(b, a));
+#endif
 }
 
 // trace(S): the sum of the principal slope variances of S (>= 0 for a

@@ -64,12 +64,18 @@ SG_FN float sgNoiseRemovedEnergy(int type, int octaves, float lacunarity, float 
 // Frame-space covariance of a domain gradient of per-axis variances var:
 // sum_k var_k (P G e_k)(P G e_k)^T (G gradToFrame, P listing 12's
 // projection).
+// Under SG_AA_COV_UNMAPPED (sg/render/antialias.glsl) the domain variances'
+// sum, untransformed.
 SG_FN mat3 sgDomainCovToFrame(SgFrame f, SgVolumeSpace vs, vec3 var) {
+#ifdef SG_AA_COV_UNMAPPED
+    return sgSlopeCovUnmapped(var.x + var.y + var.z);
+#else
     vec3 cx = sgSurfgradFromVolumeGradient(f, vs.gradToFrame * vec3(1.0f, 0.0f, 0.0f));
     vec3 cy = sgSurfgradFromVolumeGradient(f, vs.gradToFrame * vec3(0.0f, 1.0f, 0.0f));
     vec3 cz = sgSurfgradFromVolumeGradient(f, vs.gradToFrame * vec3(0.0f, 0.0f, 1.0f));
     return var.x * outerProduct(cx, cx) + var.y * outerProduct(cy, cy) +
            var.z * outerProduct(cz, cz);
+#endif
 }
 
 // The layer's surface gradient (sgLayerNoise with the fade, whatever

@@ -107,7 +107,7 @@ float srgbToLinear(float encoded);
 namespace sg::glsl {
 
 // Level0: no filtering across levels, always bilinear on level 0 (the
-// ground truth of supersampled renders: bench/antialias_bench.cpp).
+// ground truth of supersampled renders: bench/accuracy/table_antialias.cpp).
 enum class LodRule { Exact, FastLog2, Level0 };
 
 struct sampler2D {

@@ -12,6 +12,8 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "surfgrad/glsl_texture.h"
 #include "surfgrad/render/assets.h"
@@ -59,6 +61,12 @@ public:
     // While set, every material renders through its uber-shader plan
     // (planUberMaterial; the bench baseline).
     void setUber(bool uber) { uber_ = uber; }
+    // `#define` lines ("NAME" or "NAME VALUE") put after the #version line
+    // of every fragment program compiled from now on (part of the program
+    // cache key): compile-time variants of the shared code that studies
+    // switch on, e.g. SG_AA_COV_UNMAPPED (sg/render/antialias.glsl). The
+    // CPU reference renderer has none of them. Empty by default.
+    void setFragmentDefines(const std::vector<std::string>& defines);
     // Meshes are re-uploaded when SceneAssets::uid or meshVersion changes
     // (applyFrame bumps it); this forces it otherwise.
     void invalidateMeshes();
