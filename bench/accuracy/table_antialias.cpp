@@ -32,6 +32,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "surfgrad/render.h"
@@ -437,6 +438,10 @@ void tableAntialias(const Options& o) {
             t.notes.push_back("Picture written: antialias.png (all composed, m = 16, 128^2 per "
                               "panel: no AA | LEAN through composition | truth).");
         }
+    }
+    for (const std::string* f : {&maps.tiled, &maps.triplanar, &maps.decal}) {
+        std::error_code ec;
+        std::filesystem::remove(*f, ec); // scratch files; a failure leaves them in TMPDIR
     }
     t.notes.push_back("m: map texels per pixel (every layer 128 texels per world unit). Energy: "
                       "image radiance sum / the truth's (1 is right). n/a: no Toksvig for noise "
