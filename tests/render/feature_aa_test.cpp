@@ -73,9 +73,10 @@ TEST(FeatureAa, ChainLevelsAverageLevelZero) {
     FeatureMapsAsset asset;
     asset.gpu = maps.packGpu();
     asset.bandTexels = maps.bandTexels;
+    const detail::FeatureChainTextures chain =
+        detail::featureChainTextures(asset, chainSource("crease", 1.5f, 0.0f, 3.0f, 0));
     for (int part = 0; part < 2; ++part) {
-        const TextureImage t =
-            detail::featureChainTexture(asset, chainSource("crease", 1.5f, 0.0f, 3.0f, part));
+        const TextureImage& t = chain.part[part];
         ASSERT_EQ(t.levels.size(), 7u);
         double maxAbs = 0.0;
         for (int j = 0; j < 64; ++j)
@@ -113,10 +114,10 @@ TEST(FeatureAa, StraightCreaseGivesTheTwoValuedVariance) {
     const int n = 64;
     const double x0 = 32.5, w = 4.0, s = 2.0 / w;
     const FeatureMapsAsset asset = bakeAsset(verticalLine(x0, n), n);
-    const TextureImage a =
-        detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 0));
-    const TextureImage b =
-        detail::featureChainTexture(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 1));
+    const detail::FeatureChainTextures chain =
+        detail::featureChainTextures(asset, chainSource("vgroove", 2.0f, 4.0f, 4.0f, 0));
+    const TextureImage& a = chain.part[0];
+    const TextureImage& b = chain.part[1];
     auto overlap = [](double lo, double hi, double a0, double a1) {
         return std::max(0.0, std::min(hi, a1) - std::max(lo, a0));
     };
@@ -165,10 +166,10 @@ TEST(FeatureAa, FiniteAtJointsAndStarsAtEveryLevel) {
     sg::test::Worst second;
     double bad = 0.0;
     for (const char* profile : {"vgroove", "crease", "step", "seam"}) {
-        const TextureImage a =
-            detail::featureChainTexture(asset, chainSource(profile, 3.0f, 0.5f, 2.5f, 0));
-        const TextureImage b =
-            detail::featureChainTexture(asset, chainSource(profile, 3.0f, 0.5f, 2.5f, 1));
+        const detail::FeatureChainTextures chain =
+            detail::featureChainTextures(asset, chainSource(profile, 3.0f, 0.5f, 2.5f, 0));
+        const TextureImage& a = chain.part[0];
+        const TextureImage& b = chain.part[1];
         for (size_t k = 0; k < a.levels.size(); ++k)
             for (int j = 0; j < a.levels[k].height; ++j)
                 for (int i = 0; i < a.levels[k].width; ++i) {
@@ -233,10 +234,10 @@ TEST(FeatureAa, SwitchHasNoStep) {
     // change between levels (trilinear: linear in log2 rho).
     const int n = 64;
     const FeatureMapsAsset asset = bakeAsset(verticalLine(32.5, n), n);
-    const TextureImage a =
-        detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 0));
-    const TextureImage b =
-        detail::featureChainTexture(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 1));
+    const detail::FeatureChainTextures chain =
+        detail::featureChainTextures(asset, chainSource("crease", 2.0f, 0.0f, 4.0f, 0));
+    const TextureImage& a = chain.part[0];
+    const TextureImage& b = chain.part[1];
     const G::SgFeatProfile pr = F::makeProfile("crease", 2.0f, 0.0f, 4.0f);
     const float step = std::exp2(1.0f / 64.0f);
     for (float x : {32.2f, 32.45f, 32.9f, 34.1f, 36.3f}) {
@@ -260,13 +261,23 @@ TEST(FeatureAa, SwitchHasNoStep) {
         EXPECT_LT(worstJump, 0.1) << "x " << x;
         EXPECT_LT(worstAtSwitch, 0.1) << "x " << x;
     }
-    // Below one texel the layer is today's exact evaluator, no covariance.
-    AaSample fine = sampleLayer(asset, a, b, pr, n, {32.9f, 20.37f}, 0.9f);
-    G::SgFeatResult r = F::sample(asset.gpu, {32.9f, 20.37f});
+    // Below one texel the mean is today's exact evaluator; the covariance
+    // is level 0's scaled by the footprint's area, none below 1/8 texel.
+    const glm::vec2 at(32.9f, 20.37f);
+    G::SgFeatResult r = F::sample(asset.gpu, at);
     const glm::vec2 d = G::sgFeatDeriv(r, pr, glm::vec2(0.0f));
     const glm::vec3 g = G::sgSurfgradFromTBN(d, glm::vec3(1, 0, 0), glm::vec3(0, 1, 0));
+    const AaSample tiny = sampleLayer(asset, a, b, pr, n, at, 0.1f);
+    EXPECT_EQ(tiny.surfGrad, g);
+    EXPECT_EQ(tiny.cov[0][0], 0.0f);
+    const AaSample fine = sampleLayer(asset, a, b, pr, n, at, 0.9f);
+    const AaSample one = sampleLayer(asset, a, b, pr, n, at, 1.0f);
     EXPECT_EQ(fine.surfGrad, g);
-    EXPECT_EQ(fine.cov[0][0], 0.0f);
+    ASSERT_GT(one.cov[0][0], 0.0f) << "the point lies on a flank: its texel's slopes vary";
+    // (0.81 - 1/64) / (1 - 1/64) of the one-texel variance; both read level 0
+    // bilinearly at the same point, so only float rounding separates them.
+    EXPECT_NEAR(fine.cov[0][0], one.cov[0][0] * (0.81f - 1.0f / 64.0f) / (1.0f - 1.0f / 64.0f),
+                1e-5f * one.cov[0][0]);
 }
 
 // The renderer's path: a sphere with a feature layer tiled 6 x 6 over the
@@ -355,6 +366,37 @@ TEST(FeatureAa, SceneFieldIsValidated) {
             "base_map": {"procedural": "bumps", "size": 16}})",
         kSphere);
     EXPECT_THROW(sceneFromJson(withBase), sg::io::InputError);
+}
+
+// The chain counts in the scene's texture budget (2 float RGBA textures of
+// 64^2 with mips: 2 x 87,376 bytes), is refused with the layer's field when
+// it does not fit, and is built once for both of its textures.
+TEST(FeatureAa, ChainCountsInTheTextureBudget) {
+    const Scene s = sceneFromJson(featureScene("lean"));
+    const uint64_t chainBytes = 2 * textureBytes(64, 64, 4, TexelType::Float);
+    AssetOptions tight;
+    tight.textureBudgetBytes = chainBytes - 1;
+    try {
+        (void)loadAssets(s, tight);
+        ADD_FAILURE() << "a budget one byte short of the chain was accepted";
+    } catch (const sg::io::InputError& e) {
+        const std::string m = e.what();
+        EXPECT_NE(m.find("materials[0].layers[0]"), std::string::npos) << m;
+        EXPECT_NE(m.find("prefiltered chain"), std::string::npos) << m;
+        EXPECT_NE(m.find("texture budget"), std::string::npos) << m;
+    }
+    AssetOptions enough;
+    enough.textureBudgetBytes = chainBytes;
+    const SceneAssets a = loadAssets(s, enough);
+    uint64_t chains = 0;
+    int count = 0;
+    for (const auto& [key, tex] : a.textures)
+        if (key.rfind("featchain:", 0) == 0) {
+            chains += tex->bytes();
+            ++count;
+        }
+    EXPECT_EQ(count, 2);
+    EXPECT_EQ(chains, chainBytes);
 }
 
 } // namespace

@@ -257,6 +257,32 @@ std::string componentList(uint32_t mask) {
     return s;
 }
 
+// A feature layer's chain (both of its textures, built in one pass from
+// the loaded maps; the part not asked for is stored under its own key)
+// within the texture budget `opt`.
+std::shared_ptr<const TextureImage> loadFeatureChain(const Scene& scene, SceneAssets& assets,
+                                                     const TextureSource& src,
+                                                     const TextureLoadOptions& opt) {
+    const FeatureChainSource& c = *src.featureChain;
+    auto fm = assets.featureMaps.find(c.mapsKey);
+    SG_ASSERT(fm != assets.featureMaps.end(), "feature maps load before their chains");
+    const int n = fm->second->gpu.size;
+    try {
+        detail::checkTextureBudget("prefiltered chain of feature maps " + c.mapsKey, opt,
+                                   std::to_string(n) + "x" + std::to_string(n) +
+                                       " texels, 2 x 4 channels as float",
+                                   2 * textureBytes(n, n, 4, TexelType::Float), 0);
+    } catch (const io::InputError& e) {
+        throw io::InputError(scene.sourceName, src.fieldPath, e.what());
+    }
+    detail::FeatureChainTextures chain = detail::featureChainTextures(*fm->second, c);
+    TextureSource other = src;
+    other.featureChain->part = 1 - c.part;
+    assets.textures[other.key()] =
+        std::make_shared<const TextureImage>(std::move(chain.part[1 - c.part]));
+    return std::make_shared<const TextureImage>(std::move(chain.part[c.part]));
+}
+
 // Loads every texture of `uses` the assets lack, or lack components of
 // (a newly enabled layer may read more of a file than the ones before),
 // within the scene's texture budget; then refuses a layer that reads a
@@ -284,11 +310,8 @@ void loadTextures(const Scene& scene, SceneAssets& assets, const std::vector<Tex
             ++opt.otherTextures;
         }
         std::shared_ptr<const TextureImage> tex;
-        if (u.src->featureChain) { // a feature layer's chain: from its loaded maps
-            auto fm = assets.featureMaps.find(u.src->featureChain->mapsKey);
-            SG_ASSERT(fm != assets.featureMaps.end(), "feature maps load before their chains");
-            tex = std::make_shared<const TextureImage>(
-                detail::featureChainTexture(*fm->second, *u.src->featureChain));
+        if (u.src->featureChain) {
+            tex = loadFeatureChain(scene, assets, *u.src, opt);
         } else {
             tex = loadTexture(*u.src, scene.sourceName, opt);
         }

@@ -40,18 +40,29 @@ TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
                                  NormalEncoding encoding);
 
 // The prefiltered slope chain of a feature layer with "antialias": "lean"
-// (layer_feature.cpp; layer_feature_aa.glsl describes the texels): level 0
-// texel (i, j) of an N x N map is the average of sgFeatAaMomentTexel of the
-// layer's flat-base slope (sgFeatAaSlope of the evaluator's result, the
-// profile and mode of `src`) over samplesPerAxis^2 midpoints of the texel
-// square (a texel farther than the profile's reach from every curve holds
-// zeros); smaller levels are box averages (makeTexture). Clamp wrap, float
-// RGBA, part src.part (0: texA, 1: texB). The midpoint rule's error on a
-// texel a crease crosses is at most the area of the samples' cells the
-// crease cuts, about 1/samplesPerAxis of the slope jump (tests/render).
+// (layer_feature.cpp; layer_feature_aa.glsl describes the texels), both of
+// its textures in one pass: level 0 texel (i, j) of an N x N map is the
+// average of sgFeatAaMomentTexel of the layer's flat-base slope
+// (sgFeatAaSlope of the evaluator's result, the profile and mode of `src`;
+// src.part is not read) over samplesPerAxis^2 midpoints of the texel square
+// (a texel farther than the profile's reach from every curve holds zeros);
+// smaller levels are box averages (makeTexture). Clamp wrap, float RGBA:
+// part 0 texA, part 1 texB. The midpoint rule's error on a texel a crease
+// crosses is at most the area of the samples' cells the crease cuts, about
+// 1/samplesPerAxis of the slope jump (tests/render).
 inline constexpr int kFeatureChainSamples = 8;
-TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChainSource& src,
-                                 int samplesPerAxis = kFeatureChainSamples);
+struct FeatureChainTextures {
+    TextureImage part[2];
+};
+FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
+                                          const FeatureChainSource& src,
+                                          int samplesPerAxis = kFeatureChainSamples);
+
+// Refuses (InputError naming `name`) a texture of `residentBytes` (and
+// `transientBytes` more while it is built) that does not fit the budget of
+// `opt` next to the scene's other textures (texture_file.cpp).
+void checkTextureBudget(const std::string& name, const TextureLoadOptions& opt,
+                        const std::string& what, uint64_t residentBytes, uint64_t transientBytes);
 
 glm::mat3 normalMatrix(const glm::mat4& model);
 

@@ -42,8 +42,10 @@ TexelType texelType(image::SampleType t) {
     return TexelType::Float;
 }
 
-void checkBudget(const std::string& name, const TextureLoadOptions& opt, const std::string& what,
-                 uint64_t resident, uint64_t transient) {
+} // namespace
+
+void detail::checkTextureBudget(const std::string& name, const TextureLoadOptions& opt,
+                                const std::string& what, uint64_t resident, uint64_t transient) {
     const uint64_t budget = opt.budgetBytes ? opt.budgetBytes : defaultTextureBudget();
     const uint64_t need = resident + std::min(transient, ~uint64_t(0) - resident);
     if (opt.usedBytes <= budget && need <= budget - opt.usedBytes) return;
@@ -56,6 +58,10 @@ void checkBudget(const std::string& name, const TextureLoadOptions& opt, const s
     }
     throw InputError(name, "", reason + " (--texture-budget)");
 }
+
+namespace {
+
+using detail::checkTextureBudget;
 
 // What the decoder may produce for a texture read by layers that read the
 // RGBA components `opt.channels`.
@@ -72,9 +78,9 @@ image::DecodeOptions decodeOptions(const std::string& name, bool srgb,
     // overflow to infinity there.
     d.maxMagnitude = std::numeric_limits<float>::max() / 4.0f;
     d.checkMemory = [name, opt](const image::DecodePlan& p) {
-        checkBudget(name, opt, p.describe(),
-                    textureBytes(int(p.width), int(p.height), p.channels, texelType(p.type)),
-                    p.transientBytes);
+        checkTextureBudget(name, opt, p.describe(),
+                           textureBytes(int(p.width), int(p.height), p.channels, texelType(p.type)),
+                           p.transientBytes);
     };
     return d;
 }
@@ -129,11 +135,11 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
         base.moments = TexMoments::None;
         std::shared_ptr<const TextureImage> map = loadTexture(base, sceneName, options);
         try {
-            checkBudget("moments of " + base.key(), options,
-                        std::to_string(map->width()) + "x" + std::to_string(map->height()) +
-                            " pixels, 4 channels as float",
-                        textureBytes(map->width(), map->height(), 4, TexelType::Float),
-                        map->bytes());
+            checkTextureBudget("moments of " + base.key(), options,
+                               std::to_string(map->width()) + "x" + std::to_string(map->height()) +
+                                   " pixels, 4 channels as float",
+                               textureBytes(map->width(), map->height(), 4, TexelType::Float),
+                               map->bytes());
         } catch (const InputError& e) {
             throw InputError(sceneName, src.fieldPath, e.what());
         }
@@ -142,10 +148,10 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
     }
     if (!src.procedural.empty()) {
         try {
-            checkBudget("procedural texture " + src.procedural, options,
-                        std::to_string(src.size) + "x" + std::to_string(src.size) +
-                            " pixels, 4 channels as float",
-                        textureBytes(src.size, src.size, 4, TexelType::Float), 0);
+            checkTextureBudget("procedural texture " + src.procedural, options,
+                               std::to_string(src.size) + "x" + std::to_string(src.size) +
+                                   " pixels, 4 channels as float",
+                               textureBytes(src.size, src.size, 4, TexelType::Float), 0);
         } catch (const InputError& e) {
             throw InputError(sceneName, src.fieldPath, e.what());
         }

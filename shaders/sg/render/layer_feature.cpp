@@ -11,8 +11,8 @@ namespace sg::render {
 
 namespace detail {
 
-TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChainSource& src,
-                                 int samplesPerAxis) {
+FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
+                                          const FeatureChainSource& src, int samplesPerAxis) {
     SG_EXPECTS(samplesPerAxis >= 1 && maps.gpu.size >= 1, "a chain of loaded maps");
     namespace G = sg::glsl;
     const sg::features::GpuFeatureMaps& gpu = maps.gpu;
@@ -32,16 +32,15 @@ TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChai
             near ? G::sgFeatCurveProfile(gpu.pieceSampler(), layerProfile, r) : layerProfile;
         return G::sgFeatAaSlope(r, pr, src.paperMode);
     };
-    std::vector<glm::vec4> texels(size_t(n) * size_t(n), glm::vec4(0.0f));
+    std::vector<glm::vec4> texelsA(size_t(n) * size_t(n), glm::vec4(0.0f));
+    std::vector<glm::vec4> texelsB(size_t(n) * size_t(n), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const double inv = 1.0 / double(samplesPerAxis);
     const double norm = 1.0 / (double(samplesPerAxis) * double(samplesPerAxis));
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
-            glm::vec4& out = texels[size_t(j) * size_t(n) + size_t(i)];
-            if (sg::features::sample(gpu, glm::vec2(i + 0.5f, j + 0.5f), nm).dist > reach) {
-                out = src.part == 0 ? glm::vec4(0.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
-                continue;
-            }
+            const size_t at = size_t(j) * size_t(n) + size_t(i);
+            if (sg::features::sample(gpu, glm::vec2(i + 0.5f, j + 0.5f), nm).dist > reach)
+                continue; // zero moments (texB's w is 1 everywhere)
             // Midpoint rule over the texel square, summed in double.
             glm::dvec4 sumA(0.0), sumB(0.0);
             for (int b = 0; b < samplesPerAxis; ++b)
@@ -52,9 +51,11 @@ TextureImage featureChainTexture(const FeatureMapsAsset& maps, const FeatureChai
                     sumA += glm::dvec4(ta);
                     sumB += glm::dvec4(tb);
                 }
-            out = glm::vec4((src.part == 0 ? sumA : sumB) * norm);
+            texelsA[at] = glm::vec4(sumA * norm);
+            texelsB[at] = glm::vec4(sumB * norm);
         }
-    return makeTexture(n, n, std::move(texels), Wrap::Clamp);
+    return {makeTexture(n, n, std::move(texelsA), Wrap::Clamp),
+            makeTexture(n, n, std::move(texelsB), Wrap::Clamp)};
 }
 
 } // namespace detail
