@@ -1139,21 +1139,22 @@ void Subdivider::Impl::evaluatePositions(const PolygonMesh& cage) {
 
 namespace {
 
-// UV set s's values at every adaptive point: UVs are static, so they are
-// interpolated once through all adaptive levels (concatenated, as the
-// patch table indexes them), plus the local points.
-std::vector<glm::vec2> limitUvPoints(const PolygonMesh& cage, const LimitPatches& lp, size_t s) {
-    const Far::TopologyRefiner& adaptive = *lp.adaptive;
-    const int ch = int(s);
+// Face-varying channel ch's values at every point of an adaptive refiner
+// and its patch table: the cage's values (cageValues) interpolated once
+// through all adaptive levels (concatenated, as the patch table indexes
+// them), plus the table's local points.
+std::vector<glm::vec2> fvarPatchPoints(const Far::TopologyRefiner& adaptive,
+                                       const Far::PatchTable& table,
+                                       const std::vector<glm::vec2>& cageValues, int ch) {
     std::vector<uint32_t> fvBase(size_t(adaptive.GetNumLevels()) + 1, 0);
     for (int l = 0; l < adaptive.GetNumLevels(); ++l) {
         fvBase[size_t(l) + 1] =
             fvBase[size_t(l)] + uint32_t(adaptive.GetLevel(l).GetNumFVarValues(ch));
     }
     const Far::StencilTableReal<float>* local =
-        lp.patches->GetLocalPointFaceVaryingStencilTable<float>(ch);
+        table.GetLocalPointFaceVaryingStencilTable<float>(ch);
     std::vector<glm::vec2> values(fvBase.back() + (local ? size_t(local->GetNumStencils()) : 0));
-    std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), values.begin());
+    std::copy(cageValues.begin(), cageValues.end(), values.begin());
     Far::PrimvarRefiner primvar(adaptive);
     for (int l = 1; l < adaptive.GetNumLevels(); ++l) {
         PrimvarView<const glm::vec2> src{values.data() + fvBase[size_t(l) - 1]};
@@ -1166,6 +1167,12 @@ std::vector<glm::vec2> limitUvPoints(const PolygonMesh& cage, const LimitPatches
         localPoints.apply(values.data());
     }
     return values;
+}
+
+// UV set s's values at every adaptive point: UVs are static, so they are
+// interpolated once.
+std::vector<glm::vec2> limitUvPoints(const PolygonMesh& cage, const LimitPatches& lp, size_t s) {
+    return fvarPatchPoints(*lp.adaptive, *lp.patches, cage.uvSets[s].values, int(s));
 }
 
 } // namespace
@@ -1825,6 +1832,33 @@ bool patchCorners(const Far::TopologyRefiner& refiner, const std::vector<int>& p
     return true;
 }
 
+// Face-varying channel ch of the patch table as an AdaptiveUvSet, patches
+// in the order of the position arrays. The type of each patch is the one
+// Far::PatchTable::EvaluateBasisFaceVarying uses: the channel's regular
+// descriptor where the patch's face-varying PatchParam says regular, else
+// its irregular one.
+AdaptiveUvSet adaptiveUvSet(const Far::TopologyRefiner& refiner, const Far::PatchTable& table,
+                            const std::vector<glm::vec2>& cageValues, int ch) {
+    AdaptiveUvSet out;
+    out.values = fvarPatchPoints(refiner, table, cageValues, ch);
+    const int regular = int(table.GetFVarPatchDescriptorRegular(ch).GetType());
+    const int irregular = int(table.GetFVarPatchDescriptorIrregular(ch).GetType());
+    const uint32_t stride = AdaptiveUvSet::kUvValuesPerPatch;
+    for (int a = 0; a < table.GetNumPatchArrays(); ++a) {
+        for (int k = 0; k < table.GetNumPatches(a); ++k) {
+            const Far::PatchParam pp = table.GetPatchFVarPatchParam(a, k, ch);
+            const Far::ConstIndexArray cvs = table.GetPatchFVarValues(a, k, ch);
+            out.field1.push_back(pp.field1);
+            out.types.push_back(uint32_t(pp.IsRegular() ? regular : irregular));
+            const size_t at = out.indices.size();
+            out.indices.resize(at + stride, 0u);
+            for (int i = 0; i < cvs.size() && uint32_t(i) < stride; ++i)
+                out.indices[at + size_t(i)] = uint32_t(cvs[i]);
+        }
+    }
+    return out;
+}
+
 // AdaptivePatches::edgeOwners and cornerOwners from cornerVertices.
 void assignOwners(AdaptivePatches& ap) {
     const size_t n = ap.cornerVertices.size();
@@ -1861,14 +1895,15 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
         throw InputError(file, "isolation",
                          "adaptive isolation " + std::to_string(isolation) + " is outside 1..10");
     Descriptor d;
-    d.build(cage);
-    d.desc.numFVarChannels = 0; // UVs are not carried by the patch arrays yet
-    d.desc.fvarChannels = nullptr;
+    d.build(cage); // one face-varying channel per UV set
     std::unique_ptr<Far::TopologyRefiner> refiner = createRefiner(d, options, file);
     Far::PatchTableFactory::Options popt(static_cast<unsigned>(isolation));
     popt.SetEndCapType(Far::PatchTableFactory::Options::ENDCAP_GREGORY_BASIS);
     popt.useInfSharpPatch = true;
-    popt.generateFVarTables = false;
+    // UV patches as the uniform path's limit evaluation builds them
+    // (buildPatches): smooth where the face-varying rule says smooth.
+    popt.generateFVarTables = !cage.uvSets.empty();
+    popt.generateFVarLegacyLinearPatches = false;
     popt.generateVaryingTables = false;
     popt.generateLegacySharpCornerPatches = false;
     refiner->RefineAdaptive(popt.GetRefineAdaptiveOptions());
@@ -1937,6 +1972,8 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
                              "the refined face of an adaptive patch was not found");
     }
     assignOwners(out);
+    for (size_t s = 0; s < cage.uvSets.size(); ++s)
+        out.uvSets.push_back(adaptiveUvSet(*refiner, *table, cage.uvSets[s].values, int(s)));
     return out;
 }
 

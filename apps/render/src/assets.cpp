@@ -509,33 +509,74 @@ sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCach
     return sub.renderMesh();
 }
 
+// The derived UV sets of `mi` ("uv_sets": [{from, scale, rotate_deg,
+// offset}]) appended to adaptive patches: the map is affine and every
+// patch basis sums to one, so mapping a set's face-varying values maps its
+// evaluated UVs (as addDerivedUvSets maps refined UVs). Errors as there.
+void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, sm::AdaptivePatches& ap) {
+    for (const DerivedUvSet& d : mi.derivedUvSets) {
+        const size_t count = ap.uvSets.size();
+        if (size_t(d.from) >= count) {
+            throw io::InputError(scene.sourceName, d.fieldPath + ".from",
+                                 "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
+                                     std::to_string(int(count) - 1) + ") at this point, no set " +
+                                     std::to_string(d.from));
+        }
+        if (count >= size_t(kMaxUvSets)) {
+            throw io::InputError(scene.sourceName, d.fieldPath,
+                                 "a mesh can have at most " + std::to_string(kMaxUvSets) +
+                                     " UV sets (it has " + std::to_string(count) + " already)");
+        }
+        const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
+        const glm::mat2 lin =
+            glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+        sm::AdaptiveUvSet set = ap.uvSets[size_t(d.from)];
+        for (auto& st : set.values) st = lin * st + d.offset;
+        ap.uvSets.push_back(std::move(set));
+    }
+}
+
 // An adaptive mesh ("subdivision": {"mode": "adaptive"}): the cage's
-// feature-adaptive patches; `mesh` keeps their control points for the
-// bounds. UV sets and morph targets are not carried by the patches yet:
-// a layer reading a UV set meets "the mesh has no UV set" (plan), and
-// morph weights are refused here.
+// feature-adaptive patches with its UV sets (and the derived ones); `mesh`
+// keeps their control points for the bounds. Morph targets and vertex
+// tangents are not carried by the patches: refused here (every bump layer
+// takes its frame per pixel).
 MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
     if (!mi.morphWeights.empty() || !mi.morphKeys.empty()) {
         throw io::InputError(scene.sourceName, elementOf(mi, "morph"),
                              "morph targets are not carried by \"subdivision\": {\"mode\": "
                              "\"adaptive\"} meshes yet (use \"mode\": \"uniform\")");
     }
-    if (!mi.derivedUvSets.empty()) {
-        throw io::InputError(scene.sourceName, elementOf(mi, "uv_sets"),
-                             "UV sets are not carried by \"subdivision\": {\"mode\": "
-                             "\"adaptive\"} meshes yet (use \"mode\": \"uniform\")");
+    for (size_t k = 0; k < mi.tangents.size(); ++k) {
+        if (mi.tangents[k] != TangentSource::Pixel) {
+            throw io::InputError(scene.sourceName,
+                                 elementOf(mi, "tangents[" + std::to_string(k) + "]"),
+                                 "vertex tangents are not carried by \"subdivision\": {\"mode\": "
+                                 "\"adaptive\"} meshes (use \"pixel\", or \"mode\": \"uniform\")");
+        }
     }
     MeshAsset a;
-    auto patches = detail::fromReferencedFile(scene.sourceName, elementOf(mi, "file"), [&] {
-        sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
-        sm::SubdivOptions options = cage.options;
-        if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, options.scheme)) {
-            throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
-                                 "unknown scheme");
-        }
-        return std::make_shared<sm::AdaptivePatches>(
-            sm::buildAdaptivePatches(cage, options, mi.subdivIsolation, mi.file.string()));
-    });
+    std::shared_ptr<const sm::AdaptivePatches> patches =
+        detail::fromReferencedFile(scene.sourceName, elementOf(mi, "file"), [&] {
+            sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
+            sm::SubdivOptions options = cage.options;
+            if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, options.scheme)) {
+                throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
+                                     "unknown scheme");
+            }
+            return std::make_shared<sm::AdaptivePatches>(
+                sm::buildAdaptivePatches(cage, options, mi.subdivIsolation, mi.file.string()));
+        });
+    if (!mi.derivedUvSets.empty()) {
+        auto own = std::make_shared<sm::AdaptivePatches>(*patches);
+        addDerivedPatchUvSets(scene, mi, *own);
+        patches = std::move(own);
+    }
+    if (mi.displacement && size_t(mi.displacement->uvSet) >= patches->uvSets.size()) {
+        throw io::InputError(scene.sourceName, mi.displacement->fieldPath + ".uv_set",
+                             "the mesh has " + std::to_string(patches->uvSets.size()) +
+                                 " UV set(s), no set " + std::to_string(mi.displacement->uvSet));
+    }
     a.mesh.positions = patches->points;
     a.mesh.normals.assign(a.mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
     a.patches = std::move(patches);
@@ -653,6 +694,10 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
                 {&*mat.baseColorMap, kChannelR | kChannelG | kChannelB, "the colour"});
         for (const Layer& L : mat.layers) collectTextures(L, textureUses);
     }
+    // Height maps of displaced adaptive meshes (red channel).
+    for (const auto& mi : scene.meshes)
+        if (mi.displacement && mi.subdivAdaptive)
+            textureUses.push_back({&mi.displacement->map, 1u, "the displacement"});
     std::vector<const Layer*> features;
     for (int mIdx : usedMaterials)
         for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectFeatures(L, features);

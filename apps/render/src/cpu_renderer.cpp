@@ -25,6 +25,7 @@
 #include <limits>
 
 #include "render_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/render.h"
 
@@ -78,6 +79,10 @@ bool topLeft(glm::dvec2 a, glm::dvec2 b) {
 // program computes it.
 struct MeshData {
     std::vector<glm::vec3> rel, world, obj, normal;
+    // Displaced adaptive meshes: rel, world, obj are the undisplaced
+    // positions (the frame's, vRelPos), relLit the displaced ones
+    // (vRelPosLit, lighting; clip comes from them). Empty otherwise.
+    std::vector<glm::vec3> relLit;
     std::vector<glm::vec4> tangent[kMaxUvSets];
     std::vector<glm::vec4> clip;
     const sg::mesh::RenderMesh* mesh = nullptr;
@@ -85,7 +90,8 @@ struct MeshData {
     float detSign = 1.0f;
 };
 
-MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& view) {
+MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& view,
+                     const std::vector<glm::vec3>* framePositions = nullptr) {
     const auto& m = a.mesh;
     MeshData d;
     d.mesh = &m;
@@ -96,15 +102,22 @@ MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& v
     size_t nv = m.vertexCount();
     d.rel.resize(nv);
     d.world.resize(nv);
-    d.obj = m.positions;
+    const std::vector<glm::vec3>& base = framePositions ? *framePositions : m.positions;
+    d.obj = base;
     d.normal.resize(nv);
     d.clip.resize(nv);
+    if (framePositions) d.relLit.resize(nv);
     for (size_t v = 0; v < nv; ++v) {
-        glm::vec4 wp = M * glm::vec4(m.positions[v], 1.0f);
+        glm::vec4 wp = M * glm::vec4(base[v], 1.0f);
         d.world[v] = glm::vec3(wp);
-        d.rel[v] = glm::vec3(rel * glm::vec4(m.positions[v], 1.0f));
+        d.rel[v] = glm::vec3(rel * glm::vec4(base[v], 1.0f));
         d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
-        d.clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
+        if (framePositions) {
+            d.relLit[v] = glm::vec3(rel * glm::vec4(m.positions[v], 1.0f));
+            d.clip[v] = view.viewProjRel * glm::vec4(d.relLit[v], 1.0f);
+        } else {
+            d.clip[v] = view.viewProjRel * glm::vec4(d.rel[v], 1.0f);
+        }
     }
     for (int k = 0; k < kMaxUvSets && size_t(k) < a.vertexTangents.size(); ++k) {
         const auto& t = a.vertexTangents[size_t(k)];
@@ -261,6 +274,7 @@ detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, i
     };
     detail::PixelInputs in;
     in.relPos = interp(d.rel, mu);
+    in.relPosLit = d.relLit.empty() ? in.relPos : interp(d.relLit, mu);
     in.dPdx = interp(d.rel, mux);
     in.dPdy = interp(d.rel, muy);
     in.worldPos = interp(d.world, mu);
@@ -335,19 +349,31 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
     std::vector<MeshData> md(scene.meshes.size());
     std::vector<MeshAsset> tessellated(scene.meshes.size());
     std::vector<std::vector<glm::vec4>> patchAov(scene.meshes.size());
+    std::vector<std::vector<glm::vec3>> framePositions(scene.meshes.size());
     const float focalPx = sg::glsl::sgPatchFocalPx(view.proj[1][1], float(view.height));
     for (size_t mi = 0; mi < scene.meshes.size(); ++mi) {
         const MeshInstance& inst = scene.meshes[mi];
         const MeshAsset* asset = &assets.meshes[mi];
         if (asset->patches) {
+            detail::PatchDisplacement disp;
+            const bool displaced = inst.displacement.has_value();
+            if (displaced) {
+                auto it = assets.textures.find(inst.displacement->map.key());
+                SG_ASSERT(it != assets.textures.end(), "displacement maps load with the assets");
+                disp.map.image = it->second.get();
+                disp.scale = inst.displacement->scale;
+                disp.uvSet = inst.displacement->uvSet;
+            }
             detail::TessellatedPatches t = detail::tessellatePatches(
                 *asset->patches, modelToCameraRelative(inst.transform, view.cameraPos), focalPx,
-                inst.subdivPixelsPerEdge);
+                inst.subdivPixelsPerEdge, displaced ? &disp : nullptr);
             tessellated[mi].mesh = std::move(t.mesh);
             patchAov[mi] = std::move(t.patchAov);
+            framePositions[mi] = std::move(t.framePositions);
             asset = &tessellated[mi];
         }
-        md[mi] = vertexStage(inst, *asset, view);
+        md[mi] = vertexStage(inst, *asset, view,
+                             framePositions[mi].empty() ? nullptr : &framePositions[mi]);
         if (!patchAov[mi].empty()) md[mi].patchAov = &patchAov[mi];
         const bool cull = scene.materials[size_t(inst.material)].doubleSided == DoubleSided::Off;
         raster.mesh(int(mi), md[mi], cull);

@@ -40,8 +40,9 @@ struct GpuMesh {
     uint64_t layoutId = 0; // MeshAsset::layoutId of the uploaded UVs and indices
     // Adaptive meshes: shader storage buffers of sg/patch/patch_*.glsl:
     // [0] control points (binding 0), [1] per-patch records (binding 1),
-    // [2] control-point indices (binding 3). 0 for triangle meshes.
-    GLuint patchBuf[3] = {};
+    // [2] control-point indices (binding 3), [3] UV values (binding 4),
+    // [4] UV patches (binding 5; meshes with UV sets). 0 for triangle meshes.
+    GLuint patchBuf[5] = {};
 };
 
 // The per-patch records the tessellation stages read (binding 1; layout in
@@ -63,8 +64,35 @@ std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap) {
     return data;
 }
 
+// The UV sets' buffers (bindings 4 and 5; layout in sg/patch/patch_tes.glsl):
+// every set's values, xy, one set after the other; per patch and set
+// (patch-major), 22 words: face-varying field1, type, 20 value indices
+// (offset by the set's first value).
+void uvPatchBuffers(const sg::mesh::AdaptivePatches& ap, std::vector<float>& values,
+                    std::vector<uint32_t>& records) {
+    constexpr uint32_t kStride = 2 + sg::mesh::AdaptiveUvSet::kUvValuesPerPatch;
+    const size_t sets = std::min(ap.uvSets.size(), size_t(kMaxUvSets));
+    std::vector<uint32_t> firstValue(sets, 0);
+    for (size_t s = 0; s < sets; ++s) {
+        firstValue[s] = uint32_t(values.size() / 2);
+        for (const glm::vec2& v : ap.uvSets[s].values) values.insert(values.end(), {v.x, v.y});
+    }
+    records.assign(ap.patchCount() * sets * kStride, 0u);
+    for (size_t p = 0; p < ap.patchCount(); ++p) {
+        for (size_t s = 0; s < sets; ++s) {
+            const sg::mesh::AdaptiveUvSet& u = ap.uvSets[s];
+            uint32_t* r = &records[(p * sets + s) * kStride];
+            r[0] = u.field1[p];
+            r[1] = u.types[p];
+            for (uint32_t i = 0; i < sg::mesh::AdaptiveUvSet::kUvValuesPerPatch; ++i)
+                r[2 + i] =
+                    firstValue[s] + u.indices[p * sg::mesh::AdaptiveUvSet::kUvValuesPerPatch + i];
+        }
+    }
+}
+
 void uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap) {
-    if (!g.patchBuf[0]) glCreateBuffers(3, g.patchBuf);
+    if (!g.patchBuf[0]) glCreateBuffers(5, g.patchBuf);
     std::vector<float> pts;
     pts.reserve(3 * ap.points.size());
     for (const glm::vec3& p : ap.points) pts.insert(pts.end(), {p.x, p.y, p.z});
@@ -75,6 +103,15 @@ void uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap) {
                       GL_STATIC_DRAW);
     glNamedBufferData(g.patchBuf[2], GLsizeiptr(ap.indices.size() * sizeof(uint32_t)),
                       ap.indices.data(), GL_STATIC_DRAW);
+    if (!ap.uvSets.empty()) {
+        std::vector<float> uvValues;
+        std::vector<uint32_t> uvRecords;
+        uvPatchBuffers(ap, uvValues, uvRecords);
+        glNamedBufferData(g.patchBuf[3], GLsizeiptr(uvValues.size() * sizeof(float)),
+                          uvValues.data(), GL_STATIC_DRAW);
+        glNamedBufferData(g.patchBuf[4], GLsizeiptr(uvRecords.size() * sizeof(uint32_t)),
+                          uvRecords.data(), GL_STATIC_DRAW);
+    }
 }
 
 struct GpuProgram {
@@ -93,7 +130,7 @@ void deleteMesh(GpuMesh& m) {
     if (m.vao) glDeleteVertexArrays(1, &m.vao);
     glDeleteBuffers(10, m.vbo);
     if (m.ebo) glDeleteBuffers(1, &m.ebo);
-    if (m.patchBuf[0]) glDeleteBuffers(3, m.patchBuf);
+    if (m.patchBuf[0]) glDeleteBuffers(5, m.patchBuf);
     m = GpuMesh{};
 }
 
@@ -323,10 +360,16 @@ struct GlRenderer::Impl {
     // sgPatchEdgeTessLevel at `pixelsPerEdge` for this view.
     void drawPatches(const MaterialPlan& plan, const detail::DrawUniforms& u, const View& view,
                      const SceneAssets& assets, const GpuMesh& g,
-                     const sg::mesh::AdaptivePatches& ap, float pixelsPerEdge, RenderStats& stats) {
+                     const sg::mesh::AdaptivePatches& ap, const MeshInstance& mi,
+                     RenderStats& stats) {
+        const float pixelsPerEdge = mi.subdivPixelsPerEdge;
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, g.patchBuf[0]);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, g.patchBuf[1]);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, g.patchBuf[2]);
+        if (!ap.uvSets.empty()) {
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, g.patchBuf[3]);
+            glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, g.patchBuf[4]);
+        }
         const float focalPx = sg::glsl::sgPatchFocalPx(view.proj[1][1], float(view.height));
         for (const auto& arr : ap.arrays) {
             if (arr.patchCount == 0) continue;
@@ -338,6 +381,17 @@ struct GlRenderer::Impl {
             glUniform1f(gp.loc("uFocalPx"), focalPx);
             glUniform1f(gp.loc("uPixelsPerEdge"), pixelsPerEdge);
             glUniform1f(gp.loc("uMaxTessLevel"), SG_TESS_MAX_LEVEL);
+            if (plan.displacementUvSet >= 0 && mi.displacement) {
+                // The height map on the unit after the fragment stage's
+                // textures and feature maps.
+                const GLuint unit = GLuint(plan.textureKeys.size() +
+                                           (plan.featureNear ? 4u : 2u) * plan.featureKeys.size());
+                auto it = assets.textures.find(mi.displacement->map.key());
+                glBindTextureUnit(unit,
+                                  it != assets.textures.end() ? texture(it->second.get()) : 0);
+                glUniform1i(gp.loc("uDispMap"), GLint(unit));
+                glUniform1f(gp.loc("uDispScale"), mi.displacement->scale);
+            }
             glPatchParameteri(GL_PATCH_VERTICES, arr.pointsPerPatch);
             glDrawArrays(GL_PATCHES, 0, GLsizei(arr.patchCount * uint32_t(arr.pointsPerPatch)));
             ++stats.drawCalls;
@@ -501,8 +555,7 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             glFrontFace(u.detSign < 0.0f ? GL_CW : GL_CCW); // mirroring transforms flip the winding
             glBindVertexArray(I.meshes[i].vao);
             if (const auto& patches = assets.meshes[i].patches) {
-                I.drawPatches(plan, u, view, assets, I.meshes[i], *patches, mi.subdivPixelsPerEdge,
-                              stats_);
+                I.drawPatches(plan, u, view, assets, I.meshes[i], *patches, mi, stats_);
             } else {
                 I.bindDraw(*progs[i], plan, u, view, assets);
                 glDrawElements(GL_TRIANGLES, I.meshes[i].indexCount, GL_UNSIGNED_INT, nullptr);

@@ -10,6 +10,7 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
+#include "surfgrad/adaptive_patches.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/io.h"
 
@@ -177,6 +178,7 @@ struct Planner {
         std::ostringstream sig;
         sig << "uv" << plan.uvCount << ":vt" << plan.vertexTangentMask << ":l" << plan.lightCount
             << (plan.uber ? ":uber" : "") << (plan.adaptive ? ":patches" : "");
+        if (plan.displacementUvSet >= 0) sig << ":disp" << plan.displacementUvSet;
         for (size_t g = 0; g < plan.groups.size(); ++g) {
             sig << "|g" << g << "[";
             for (const auto& pl : plan.groups[g]) sig << sigCode(pl, plan) << ";";
@@ -203,7 +205,20 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
     p.plan.materialIndex = materialIndex;
     p.plan.uber = uber;
     p.plan.adaptive = ma.patches != nullptr;
-    p.plan.uvCount = std::min(int(ma.mesh.uvSets.size()), kMaxUvSets);
+    // Adaptive meshes: the patches' UV sets (ma.mesh holds only their
+    // control points).
+    const size_t uvSets = ma.patches ? ma.patches->uvSets.size() : ma.mesh.uvSets.size();
+    p.plan.uvCount = std::min(int(uvSets), kMaxUvSets);
+    const MeshInstance& mi = scene.meshes[size_t(meshIndex)];
+    if (ma.patches && mi.displacement) {
+        if (mi.displacement->uvSet >= p.plan.uvCount) {
+            throw io::InputError(scene.sourceName, mi.displacement->fieldPath + ".uv_set",
+                                 "the mesh has " + std::to_string(p.plan.uvCount) +
+                                     " UV set(s), no set " +
+                                     std::to_string(mi.displacement->uvSet));
+        }
+        p.plan.displacementUvSet = mi.displacement->uvSet;
+    }
     // Vertex tangents are read only where an enabled layer uses the set's
     // basis (a mesh may keep tangents of a set whose layers were switched off).
     const uint32_t basisSets = tangentBasisUvSets(scene.materials[size_t(materialIndex)]);

@@ -142,17 +142,62 @@ glm::vec3 evalPoint(const sg::mesh::AdaptivePatches& ap, const std::vector<uint3
     return pos;
 }
 
+// UV set s of patch p at (u,v) of the ptex face (the evaluation stage's
+// patchUv and patchUvDeriv, sg/patch/patch_tes.glsl), and its derivatives
+// with respect to that (u,v) when du, dv are given.
+glm::vec2 evalUv(const sg::mesh::AdaptiveUvSet& set, uint32_t p, glm::vec2 faceUv,
+                 glm::vec2* du = nullptr, glm::vec2* dv = nullptr) {
+    const uint32_t f1 = set.field1[p];
+    const G::SgPatchBasis b = G::sgPatchBasis(int(set.types[p]), f1, faceUv);
+    const uint32_t* idx = &set.indices[size_t(p) * sg::mesh::AdaptiveUvSet::kUvValuesPerPatch];
+    glm::vec2 st(0.0f), su(0.0f), sv(0.0f);
+    for (int i = 0; i < b.count; ++i) {
+        const glm::vec2 x = set.values[idx[i]];
+        st += b.point.v[i] * x;
+        su += b.du.v[i] * x;
+        sv += b.dv.v[i] * x;
+    }
+    if (du) *du = su;
+    if (dv) *dv = sv;
+    return st;
+}
+
+// The evaluation stage's displacement of one point (SG_DISPLACEMENT):
+// everything from the site (sg/patch/displace.glsl).
+glm::vec3 displace(const sg::mesh::AdaptivePatches& ap, const PatchDisplacement& d,
+                   const glm::mat4& modelRel, float focalPx, float pixelsPerEdge,
+                   const G::SgPatchSite& site, glm::vec3 pos, glm::vec3 du, glm::vec3 dv) {
+    glm::vec2 dispDu, dispDv;
+    const glm::vec2 st =
+        evalUv(ap.uvSets[size_t(d.uvSet)], site.patchIndex,
+               G::sgPatchUnnormalizeUv(ap.params[site.patchIndex].y, site.uv), &dispDu, &dispDv);
+    const glm::mat3 m3(modelRel);
+    const glm::vec3 relBase = glm::vec3(modelRel * glm::vec4(pos, 1.0f));
+    const glm::ivec2 size = G::textureSize(d.map, 0);
+    const float lod = G::sgDisplaceLod(m3 * du, m3 * dv, dispDu, dispDv, glm::length(relBase),
+                                       focalPx, pixelsPerEdge, float(std::max(size.x, size.y)));
+    const float height = G::textureLod(d.map, st, lod).x;
+    const glm::vec3 n = G::sgSafeNormalize(glm::cross(du, dv), glm::vec3(0.0f, 0.0f, 1.0f));
+    return G::sgDisplacePoint(pos, n, height, d.scale);
+}
+
 } // namespace
 
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const glm::mat4& modelRel,
-                                     float focalPx, float pixelsPerEdge) {
+                                     float focalPx, float pixelsPerEdge,
+                                     const PatchDisplacement* displacement) {
     SG_EXPECTS(pixelsPerEdge > 0.0f, "a positive pixels-per-edge target");
+    SG_EXPECTS(!displacement ||
+                   (displacement->uvSet >= 0 && size_t(displacement->uvSet) < ap.uvSets.size()),
+               "the displacement's UV set is one of the patches'");
     std::vector<uint32_t> arrayOf(ap.patchCount(), 0u);
     for (size_t a = 0; a < ap.arrays.size(); ++a)
         for (uint32_t k = 0; k < ap.arrays[a].patchCount; ++k)
             arrayOf[ap.arrays[a].firstPatch + k] = uint32_t(a);
     TessellatedPatches result;
     sg::mesh::RenderMesh& out = result.mesh;
+    const size_t uvSets = std::min(ap.uvSets.size(), size_t(kMaxUvSets));
+    out.uvSets.resize(uvSets);
     auto rel = [&](uint32_t v) { return glm::vec3(modelRel * glm::vec4(ap.points[v], 1.0f)); };
     for (uint32_t p = 0; p < uint32_t(ap.patchCount()); ++p) {
         // The control stage's levels (patch_tcs.glsl), same inputs and order.
@@ -170,10 +215,22 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const 
             const G::SgPatchSite s =
                 G::sgPatchEvalSite(p, ap.edgeOwners[p], ap.cornerOwners[p], outer, uv);
             glm::vec3 du, dv;
-            out.positions.push_back(evalPoint(ap, arrayOf, s.patchIndex, s.uv, &du, &dv));
+            const glm::vec3 pos = evalPoint(ap, arrayOf, s.patchIndex, s.uv, &du, &dv);
+            if (displacement) {
+                result.framePositions.push_back(pos);
+                out.positions.push_back(
+                    displace(ap, *displacement, modelRel, focalPx, pixelsPerEdge, s, pos, du, dv));
+            } else {
+                out.positions.push_back(pos);
+            }
             // The normal of this patch at this point (the evaluation stage
             // takes it from the owner too: the same point, the same tangent plane).
             out.normals.push_back(G::sgSafeNormalize(glm::cross(du, dv), glm::vec3(0, 0, 1)));
+            // UVs of this patch at its own domain point (not the owner's:
+            // a UV seam keeps its two sides).
+            const glm::vec2 faceUv = G::sgPatchUnnormalizeUv(ap.params[p].y, uv);
+            for (size_t k = 0; k < uvSets; ++k)
+                out.uvSets[k].push_back(evalUv(ap.uvSets[k], p, faceUv));
         }
         for (uint32_t i : d.tris) out.indices.push_back(base + i);
         const float maxOuter = std::max(std::max(outer.x, outer.y), std::max(outer.z, outer.w));

@@ -116,6 +116,10 @@ void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
         o << "#define SG_AOV_PATCH 8\n"
           << "flat in vec4 vPatchAov; // patch AOV (sg/patch/patch_tes.glsl)\n";
     }
+    if (plan.displacementUvSet >= 0) {
+        o << "in vec3 vRelPosLit; // displaced position, lit (vRelPos: undisplaced, the frame's; "
+             "section 2.5)\n";
+    }
 }
 
 // The base colour: after the prologue, or after group 0's layers when a
@@ -233,7 +237,9 @@ void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
     }
     o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
-      << "        color += sgShadeLight(nrm, vRelPos, uLights[2 * i], uLights[2 * i + 1], "
+      << "        color += sgShadeLight(nrm, "
+      << (plan.displacementUvSet >= 0 ? "vRelPosLit" : "vRelPos")
+      << ", uLights[2 * i], uLights[2 * i + 1], "
          "baseColor, "
       << roughness << ");\n"
       << "    }\n";
@@ -389,16 +395,21 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
         if (k->programDefines) k->programDefines(plan, fdefs);
     auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
     if (plan.adaptive) {
-        // Patches carry no UV sets or vertex tangents yet (MeshAsset::patches):
-        // uvCount and vertexTangentMask are 0, so the fragment program reads
-        // only what the evaluation stage writes.
-        SG_ASSERT(plan.uvCount == 0 && plan.vertexTangentMask == 0,
-                  "adaptive patches carry no UV sets");
+        // Patches carry UV sets (the evaluation stage writes vUv0..) but no
+        // vertex tangents (MeshAsset::patches): vertexTangentMask is 0, so
+        // the fragment program reads only what the evaluation stage writes.
+        SG_ASSERT(plan.vertexTangentMask == 0, "adaptive patches carry no vertex tangents");
         const char* pvs = sg::shaders::find("sg/patch/patch_vs.glsl");
         const char* tes = sg::shaders::find("sg/patch/patch_tes.glsl");
         SG_ASSERT(pvs && tes, "the patch stages are embedded");
         auto v = sg::shaders::assemble(pvs, "sg/patch/patch_vs.glsl");
-        auto e = sg::shaders::assemble(tes, "sg/patch/patch_tes.glsl");
+        std::vector<std::string> edefs;
+        if (plan.uvCount > 0) edefs.push_back("SG_UV_COUNT " + std::to_string(plan.uvCount));
+        if (plan.displacementUvSet >= 0) {
+            edefs.push_back("SG_DISPLACEMENT 1");
+            edefs.push_back("SG_DISP_UV_SET " + std::to_string(plan.displacementUvSet));
+        }
+        auto e = sg::shaders::assemble(tes, "sg/patch/patch_tes.glsl", edefs);
         return ProgramSource{v.text, stripUnreachableFunctions(f.text), v.files, f.files, e.text,
                              e.files};
     }
@@ -522,8 +533,9 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
         plan.antialias ? G::sgAaRoughness(u.roughness, s.slopeCov) : u.roughness;
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
     for (int i = 0; i < plan.lightCount; ++i) {
-        color += G::sgShadeLight(nrm, in.relPos, u.lights[size_t(2 * i)],
-                                 u.lights[size_t(2 * i + 1)], baseColor, roughness);
+        color += G::sgShadeLight(nrm, plan.displacementUvSet >= 0 ? in.relPosLit : in.relPos,
+                                 u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], baseColor,
+                                 roughness);
     }
     const bool hasUv0 = plan.uvCount > 0;
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);

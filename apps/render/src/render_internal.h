@@ -72,12 +72,23 @@ glm::mat3 normalMatrix(const glm::mat4& model);
 // domain points; the triangulation documented there): object-space
 // positions and limit normals per point, counter-clockwise triangles;
 // patchAov per point: the patch AOV of its patch (Aov::Patch).
+// With a displacement (dispMap non-null): mesh.positions are displaced
+// along the limit normal by dispScale * dispMap.r at UV set dispUvSet
+// (sg/patch/displace.glsl, as the evaluation stage), and framePositions
+// holds the undisplaced ones (the frame's, Mikkelsen 2019 section 2.5).
 struct TessellatedPatches {
     sg::mesh::RenderMesh mesh;
     std::vector<glm::vec4> patchAov;
+    std::vector<glm::vec3> framePositions; // displaced meshes only
+};
+struct PatchDisplacement {
+    sg::glsl::sampler2D map;
+    float scale = 0.0f;
+    int uvSet = 0;
 };
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,
-                                     const glm::mat4& modelRel, float focalPx, float pixelsPerEdge);
+                                     const glm::mat4& modelRel, float focalPx, float pixelsPerEdge,
+                                     const PatchDisplacement* displacement = nullptr);
 
 // World-space bounds of every mesh instance.
 void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
@@ -107,6 +118,7 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
 // and their screen derivatives.
 struct PixelInputs {
     glm::vec3 relPos{0.0f}, worldPos{0.0f}, objPos{0.0f}, normal{0.0f};
+    glm::vec3 relPosLit{0.0f}; // displaced adaptive meshes: vRelPosLit (the lit position)
     std::array<glm::vec2, kMaxUvSets> uv{}, dUVdx{}, dUVdy{};
     std::array<glm::vec4, kMaxUvSets> tangent{};
     glm::vec3 dPdx{0.0f}, dPdy{0.0f}; // of relPos

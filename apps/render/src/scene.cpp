@@ -319,7 +319,7 @@ struct Parser : detail::SceneReader {
 
     MeshInstance mesh(const Node& n, const std::vector<Material>& materials) const {
         n.allowOnly({"name", "file", "procedural", "subdivision", "uv_sets", "tangents", "morph",
-                     "transform", "material"});
+                     "transform", "material", "displacement"});
         MeshInstance m;
         m.fieldPath = n.path();
         m.name = n.string("name", "");
@@ -398,6 +398,22 @@ struct Parser : detail::SceneReader {
                 u.offset = vec2(d, "offset", glm::vec2(0.0f), -kHuge, kHuge);
                 m.derivedUvSets.push_back(u);
             }
+        }
+        if (n.has("displacement")) {
+            // Adaptive meshes only: the tessellation evaluation stage moves
+            // the limit surface (a uniform mesh's vertices are not resampled).
+            if (!m.subdivide || !m.subdivAdaptive)
+                n.failField("displacement", "applies to meshes with \"subdivision\": "
+                                            "{\"mode\": \"adaptive\"} only");
+            Node d = n.child("displacement");
+            d.allowOnly({"map", "scale", "uv_set"});
+            if (!d.has("map")) d.fail("missing \"map\" (the height map)");
+            Displacement disp;
+            disp.fieldPath = d.path();
+            disp.map = texture(d.child("map"), Wrap::Repeat);
+            disp.scale = float(d.num("scale", 0.01, -kHuge, kHuge));
+            disp.uvSet = d.integer("uv_set", 0, 0, kMaxUvSets - 1);
+            m.displacement = disp;
         }
         if (n.has("tangents")) tangents(n, m);
         if (n.has("morph")) morph(n, m);

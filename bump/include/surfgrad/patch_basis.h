@@ -8,7 +8,9 @@
 //                                     level of a patch edge;
 //   shaders/sg/patch/watertight.glsl  where a tessellated point is
 //                                     evaluated (shared edges and corners
-//                                     by their owner patch).
+//                                     by their owner patch);
+//   shaders/sg/patch/displace.glsl    displacement along the normal and
+//                                     the height map's level.
 // Read the contracts there. Callable as sg::glsl::sgPatchBasis(...), etc.
 // The patch tables themselves come from surfgrad/adaptive_patches.h (mesh).
 #pragma once
@@ -20,4 +22,5 @@ namespace sg::glsl {
 #include "sg/patch/basis.glsl"
 #include "sg/patch/tess_level.glsl"
 #include "sg/patch/watertight.glsl"
+#include "sg/patch/displace.glsl"
 } // namespace sg::glsl

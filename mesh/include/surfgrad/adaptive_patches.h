@@ -40,6 +40,29 @@ struct AdaptivePatchArray {
     uint32_t firstIndex = 0; // into indices: patchCount * pointsPerPatch entries
 };
 
+// One UV set on the patches: OpenSubdiv's face-varying patch table of the
+// set's channel (Far::PatchTable::GetPatchFVarValues / GetPatchFVarPatchParam),
+// built under the cage's face-varying interpolation rule
+// (SubdivOptions::fvar, as the uniform path refines UVs). Each patch of
+// the position table has one face-varying patch over the same part of the
+// same ptex face, with its own type: bilinear (type 3, 4 values) when the
+// rule makes the channel linear ("all"), else regular B-spline (type 6, 16
+// values, boundary folds from its own PatchParam: UV seams are boundaries
+// of the channel) or Gregory basis (type 9, 20 values) where the channel is
+// irregular, exactly as Far::PatchTable::EvaluateBasisFaceVarying chooses.
+// The bases are the positions' (shaders/sg/patch/basis.glsl); a UV is the
+// weighted sum of the patch's values, evaluated at the ptex (u,v) of the
+// position patch's domain point. UVs are static: no stencils.
+struct AdaptiveUvSet {
+    std::vector<glm::vec2> values; // every level's face-varying values, then Far's local points
+    std::vector<uint32_t> field1;  // per patch: face-varying PatchParam field1
+    std::vector<uint32_t> types;   // per patch: Far::PatchDescriptor::Type (3, 6 or 9)
+    // Per patch kUvValuesPerPatch entries (indices into values; the first 4,
+    // 16 or 20 are used, the rest 0).
+    std::vector<uint32_t> indices;
+    static constexpr uint32_t kUvValuesPerPatch = 20;
+};
+
 struct AdaptivePatches {
     int isolation = 0;
     uint32_t cagePointCount = 0; // points[0, cagePointCount) are the cage's vertices
@@ -75,6 +98,8 @@ struct AdaptivePatches {
     std::vector<uint32_t> stencilOffsets;
     std::vector<uint32_t> stencilIndices;
     std::vector<float> stencilWeights;
+    // The cage's UV sets, in its order (empty for a cage without UVs).
+    std::vector<AdaptiveUvSet> uvSets;
 
     size_t patchCount() const { return params.size(); }
 };
@@ -84,7 +109,7 @@ struct AdaptivePatches {
 // reason) for a scheme other than Catmark (element "scheme": Loop and
 // bilinear cages take the uniform path), an isolation outside 1..10
 // (element "isolation"), or a cage OpenSubdiv refuses. Holes: hole faces
-// get no patches. UV sets are not carried yet.
+// get no patches. Every UV set of the cage becomes an AdaptiveUvSet.
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
                                      int isolation, const std::string& file = {});
 

@@ -16,16 +16,42 @@
 // reassociation or fusing that could differ between the two programs), so
 // the two positions are equal bit for bit. Corners likewise from their
 // owner (cornerOwners). Interior points use this patch's own control points.
+//
+// UV sets (sg::mesh::AdaptiveUvSet): each set's face-varying patch is
+// evaluated with the same shared basis at this patch's own domain point
+// (not the owner's: across a UV seam the two sides have different UVs, as
+// the uniform path's split vertices do), and passed to the fragment stage
+// as surface_vs.glsl passes its UV sets (vUv0..3).
 // Defines set by the host program:
 //   SG_PATCH_CAPTURE (0/1)  also append (patch, u, v, object position) of
 //                           every evaluated point to the capture buffer
 //                           (binding 2; tests of parity and crack-freedom).
+//   SG_UV_COUNT (0..4)      UV sets written (as surface_vs.glsl).
+//   SG_DISPLACEMENT (0/1)   displace along the limit normal by uDispScale
+//                           times the red channel of uDispMap at UV set
+//   SG_DISP_UV_SET (0..3)   SG_DISP_UV_SET (sg/patch/displace.glsl): vRelPos
+//                           stays undisplaced (the fragment stage's frame,
+//                           Mikkelsen 2019 section 2.5), vRelPosLit and
+//                           gl_Position are displaced. Boundary points take
+//                           everything from their owner's site (UV, normal,
+//                           level of the map), so displaced shared edges stay
+//                           crack-free.
 // glslang-validate: SG_PATCH_CAPTURE 1
+// glslang-validate: SG_UV_COUNT 2, SG_DISPLACEMENT 1, SG_DISP_UV_SET 1
 #include "sg/patch/basis.glsl"
 #include "sg/patch/watertight.glsl"
 
 #ifndef SG_PATCH_CAPTURE
 #define SG_PATCH_CAPTURE 0
+#endif
+#ifndef SG_UV_COUNT
+#define SG_UV_COUNT 0
+#endif
+#ifndef SG_DISPLACEMENT
+#define SG_DISPLACEMENT 0
+#endif
+#if SG_DISPLACEMENT
+#include "sg/patch/displace.glsl"
 #endif
 
 layout(quads, equal_spacing, ccw) in;
@@ -52,6 +78,68 @@ layout(std430, binding = 2) buffer SgPatchCapture {
     uint sgCaptureCapacity;
     uint sgCapture[];
 };
+#endif
+
+#if SG_UV_COUNT > 0
+// Every UV set's face-varying values, xy, the sets one after the other
+// (binding 4); per patch and set (patch-major), SG_PATCH_UV_STRIDE words:
+// the face-varying PatchParam field1, the patch type, then 20 indices into
+// sgUvValues (binding 5). Layout written by gl_renderer.cpp.
+layout(std430, binding = 4) readonly buffer SgPatchUvValues {
+    float sgUvValues[];
+};
+layout(std430, binding = 5) readonly buffer SgPatchUvPatches {
+    uint sgUvPatches[];
+};
+#define SG_PATCH_UV_STRIDE 22u
+
+// UV set `set` of patch p at (u,v) of the ptex face.
+vec2 patchUv(uint p, uint set, vec2 faceUv) {
+    uint base = SG_PATCH_UV_STRIDE * (p * uint(SG_UV_COUNT) + set);
+    uint field1 = sgUvPatches[base];
+    SgPatchBasis b = sgPatchBasis(int(sgUvPatches[base + 1u]), field1, faceUv);
+    vec2 st = vec2(0.0);
+    for (int i = 0; i < b.count; ++i) {
+        uint v = sgUvPatches[base + 2u + uint(i)];
+        st += b.point.v[i] * vec2(sgUvValues[2u * v], sgUvValues[2u * v + 1u]);
+    }
+    return st;
+}
+out vec2 vUv0;
+#endif
+#if SG_DISPLACEMENT
+// UV set `set` of patch p at (u,v) of the ptex face, and its derivatives
+// with respect to that (u,v) (as the positions' from sgPatchBasis).
+void patchUvDeriv(uint p, uint set, vec2 faceUv, out vec2 st, out vec2 du, out vec2 dv) {
+    uint base = SG_PATCH_UV_STRIDE * (p * uint(SG_UV_COUNT) + set);
+    uint field1 = sgUvPatches[base];
+    SgPatchBasis b = sgPatchBasis(int(sgUvPatches[base + 1u]), field1, faceUv);
+    precise vec2 s0 = vec2(0.0), s1 = vec2(0.0), s2 = vec2(0.0);
+    for (int i = 0; i < b.count; ++i) {
+        uint v = sgUvPatches[base + 2u + uint(i)];
+        vec2 x = vec2(sgUvValues[2u * v], sgUvValues[2u * v + 1u]);
+        s0 += b.point.v[i] * x;
+        s1 += b.du.v[i] * x;
+        s2 += b.dv.v[i] * x;
+    }
+    st = s0;
+    du = s1;
+    dv = s2;
+}
+uniform sampler2D uDispMap;
+uniform float uDispScale;
+uniform float uFocalPx;
+uniform float uPixelsPerEdge;
+out vec3 vRelPosLit; // displaced, camera-relative (lighting)
+#endif
+#if SG_UV_COUNT > 1
+out vec2 vUv1;
+#endif
+#if SG_UV_COUNT > 2
+out vec2 vUv2;
+#endif
+#if SG_UV_COUNT > 3
+out vec2 vUv3;
 #endif
 
 uniform mat4 uModel;
@@ -128,8 +216,41 @@ void main() {
     vWorldPos = (uModel * vec4(pos, 1.0)).xyz;
     vRelPos = (uModelRel * vec4(pos, 1.0)).xyz;
     vNormal = uNormalMat * nObj;
+#if SG_DISPLACEMENT
+    // Everything from the site (the owner's patch and parameter on shared
+    // edges and corners; this patch's inside): the same bits on both sides.
+    vec2 dispSt, dispDu, dispDv;
+    patchUvDeriv(site.patchIndex, uint(SG_DISP_UV_SET),
+                 sgPatchUnnormalizeUv(sgPatchData[SG_PATCH_DATA_STRIDE * site.patchIndex], site.uv),
+                 dispSt, dispDu, dispDv);
+    precise vec3 relDu = mat3(uModelRel) * du, relDv = mat3(uModelRel) * dv;
+    precise vec3 relBase = (uModelRel * vec4(pos, 1.0)).xyz;
+    ivec2 dispSize = textureSize(uDispMap, 0);
+    precise float dispLod = sgDisplaceLod(relDu, relDv, dispDu, dispDv, length(relBase), uFocalPx,
+                                          uPixelsPerEdge, float(max(dispSize.x, dispSize.y)));
+    float height = textureLod(uDispMap, dispSt, dispLod).r;
+    precise vec3 dispN = sgSafeNormalize(cross(du, dv), vec3(0.0, 0.0, 1.0));
+    precise vec3 posLit = sgDisplacePoint(pos, dispN, height, uDispScale);
+    vRelPosLit = (uModelRel * vec4(posLit, 1.0)).xyz;
+    gl_Position = uViewProjRel * vec4(vRelPosLit, 1.0);
+#else
+    vec3 posLit = pos;
     gl_Position = uViewProjRel * vec4(vRelPos, 1.0);
+#endif
     uint field1 = sgPatchData[base];
+#if SG_UV_COUNT > 0
+    vec2 faceUv = sgPatchUnnormalizeUv(field1, uv);
+    vUv0 = patchUv(patchIndex, 0u, faceUv);
+#endif
+#if SG_UV_COUNT > 1
+    vUv1 = patchUv(patchIndex, 1u, faceUv);
+#endif
+#if SG_UV_COUNT > 2
+    vUv2 = patchUv(patchIndex, 2u, faceUv);
+#endif
+#if SG_UV_COUNT > 3
+    vUv3 = patchUv(patchIndex, 3u, faceUv);
+#endif
     vPatchAov = vec4(float(patchIndex + 1u), max(max(outer.x, outer.y), max(outer.z, outer.w)),
                      float(sgPatchData[base + 5u]), float(sgPatchDepth(field1)));
 #if SG_PATCH_CAPTURE
@@ -139,9 +260,9 @@ void main() {
         sgCapture[o] = patchIndex;
         sgCapture[o + 1u] = floatBitsToUint(gl_TessCoord.x);
         sgCapture[o + 2u] = floatBitsToUint(gl_TessCoord.y);
-        sgCapture[o + 3u] = floatBitsToUint(pos.x);
-        sgCapture[o + 4u] = floatBitsToUint(pos.y);
-        sgCapture[o + 5u] = floatBitsToUint(pos.z);
+        sgCapture[o + 3u] = floatBitsToUint(posLit.x);
+        sgCapture[o + 4u] = floatBitsToUint(posLit.y);
+        sgCapture[o + 5u] = floatBitsToUint(posLit.z);
     }
 #endif
 }

@@ -53,6 +53,14 @@ struct MaterialPlan {
     // vertex stage is sg/patch/patch_vs.glsl with the tessellation stages
     // (the fragment program is the same as for triangles).
     bool adaptive = false;
+    // Adaptive meshes with a "displacement" (MeshInstance::displacement):
+    // its UV set (else -1). The evaluation stage then moves every point
+    // along the limit normal (SG_DISPLACEMENT) and writes the displaced
+    // position for rasterisation and lighting (vRelPosLit) and the
+    // undisplaced one for the frame (vRelPos: Mikkelsen 2019 section 2.5,
+    // a bump layer of the same height field takes dPdx/dPdy of the surface
+    // before displacement); the fragment program lights at vRelPosLit.
+    int displacementUvSet = -1;
     std::vector<std::vector<PlanLayer>> groups; // [0] base layers, then post-resolve groups
     std::vector<const LayerKind*> kinds;        // kinds of the plan's layers, registry order
     std::vector<const Layer*> groupLayers; // the post_resolve layer of each group (nullptr for 0)

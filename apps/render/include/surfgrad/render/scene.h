@@ -198,6 +198,18 @@ struct DerivedUvSet {
     std::string fieldPath; // e.g. "meshes[0].uv_sets[0]"
 };
 
+// "displacement": {"map", "scale", "uv_set"} of an adaptive mesh: the
+// tessellation evaluation stage (and the CPU tessellator) moves every
+// tessellated point along the limit normal by scale * height(uv), height
+// the map's red channel on UV set uvSet (shaders/sg/patch/displace.glsl;
+// docs/scene.md). Object-space units: the height map's values times scale.
+struct Displacement {
+    TextureSource map;
+    float scale = 0.0f;
+    int uvSet = 0;
+    std::string fieldPath; // e.g. "meshes[0].displacement"
+};
+
 struct MeshInstance {
     std::string name;
     std::string fieldPath;
@@ -218,12 +230,13 @@ struct MeshInstance {
     // subdivPixelsPerEdge screen pixels per tessellated edge segment;
     // sg::mesh::buildAdaptivePatches, shaders/sg/patch/).
     bool subdivAdaptive = false;
-    int subdivIsolation = 3;                 // 1..10
-    float subdivPixelsPerEdge = 8.0f;        // > 0
-    std::vector<DerivedUvSet> derivedUvSets; // appended after the mesh's own UV sets
-    std::vector<TangentSource> tangents;     // per UV set; missing = pixel
-    std::vector<float> morphWeights;         // empty: the file's defaults
-    std::vector<MorphKey> morphKeys;         // weight animation (linear between keys)
+    int subdivIsolation = 3;                  // 1..10
+    float subdivPixelsPerEdge = 8.0f;         // > 0
+    std::optional<Displacement> displacement; // adaptive meshes only
+    std::vector<DerivedUvSet> derivedUvSets;  // appended after the mesh's own UV sets
+    std::vector<TangentSource> tangents;      // per UV set; missing = pixel
+    std::vector<float> morphWeights;          // empty: the file's defaults
+    std::vector<MorphKey> morphKeys;          // weight animation (linear between keys)
     bool morphLoop = true;
     glm::mat4 transform{1.0f};
     int material = 0;
