@@ -10,6 +10,10 @@ trap 'rm -rf "$tmp"' EXIT
 
 # Spot's colour texture as a height (dark patches raised: --invert), bevelled.
 $bake "$data/meshes/spot/spot_texture.png" "$here/spot_normal.png" --size 512 --depth 5 --blur 5 --wrap clamp --invert
+# The same height (luminance, resized, blurred, inverted) as an 8-bit map:
+# the tessellated asset's displacement.
+oiiotool "$data/meshes/spot/spot_texture.png" --ch R,G,B --chsum:weight=0.2126,0.7152,0.0722 \
+    --resize 512x512 --blur 5x5 --invert -d uint8 -o "$here/spot_height.png"
 # A tileable rock from the CC0 lava height map.
 $bake "$data/textures/lava_height.png" "$here/rock_normal.png" --size 256 --depth 8
 # A branding-iron decal: an "S" in a frame (DejaVu Serif Bold), burned in (--invert).
