@@ -15,10 +15,12 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/image_header.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/morph.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/subdivision.h"
 #include "surfgrad/tangents.h"
@@ -538,15 +540,12 @@ void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, sm::Adapt
 
 // An adaptive mesh ("subdivision": {"mode": "adaptive"}): the cage's
 // feature-adaptive patches with its UV sets (and the derived ones); `mesh`
-// keeps their control points for the bounds. Morph targets and vertex
-// tangents are not carried by the patches: refused here (every bump layer
-// takes its frame per pixel).
+// keeps their control points for the bounds. Morph targets of the cage
+// (blendshapes) animate the cage (applyFrame -> setCagePositions: the
+// patches' points follow through the stencils). Vertex tangents are not
+// carried by the patches: refused here (every bump layer takes its frame
+// per pixel).
 MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
-    if (!mi.morphWeights.empty() || !mi.morphKeys.empty()) {
-        throw io::InputError(scene.sourceName, elementOf(mi, "morph"),
-                             "morph targets are not carried by \"subdivision\": {\"mode\": "
-                             "\"adaptive\"} meshes yet (use \"mode\": \"uniform\")");
-    }
     for (size_t k = 0; k < mi.tangents.size(); ++k) {
         if (mi.tangents[k] != TangentSource::Pixel) {
             throw io::InputError(scene.sourceName,
@@ -556,9 +555,10 @@ MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
         }
     }
     MeshAsset a;
+    sm::PolygonMesh cage;
     std::shared_ptr<const sm::AdaptivePatches> patches =
         detail::fromReferencedFile(scene.sourceName, elementOf(mi, "file"), [&] {
-            sm::PolygonMesh cage = sm::loadPolygonMesh(mi.file);
+            cage = sm::loadPolygonMesh(mi.file);
             sm::SubdivOptions options = cage.options;
             if (!mi.subdivScheme.empty() && !sm::parseScheme(mi.subdivScheme, options.scheme)) {
                 throw io::InputError(scene.sourceName, elementOf(mi, "subdivision.scheme"),
@@ -579,6 +579,18 @@ MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
     }
     a.mesh.positions = patches->points;
     a.mesh.normals.assign(a.mesh.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
+    const size_t targets = cage.morphTargets.size();
+    if (targets) {
+        a.mesh.morphWeights = cage.morphWeights;
+        if (a.mesh.morphWeights.size() != targets) a.mesh.morphWeights.assign(targets, 0.0f);
+        a.morphCage = std::make_shared<const sm::PolygonMesh>(std::move(cage));
+    }
+    if ((!mi.morphWeights.empty() && mi.morphWeights.size() != targets) ||
+        (!mi.morphKeys.empty() && mi.morphKeys[0].weights.size() != targets)) {
+        throw io::InputError(scene.sourceName, elementOf(mi, "morph"),
+                             "the cage has " + std::to_string(targets) +
+                                 " morph targets; the weights must match");
+    }
     a.patches = std::move(patches);
     a.basePositions = a.mesh.positions;
     a.baseNormals = a.mesh.normals;
@@ -757,9 +769,40 @@ std::vector<float> weightsAt(const MeshInstance& mi, const sg::mesh::RenderMesh&
 
 } // namespace
 
+void setCagePositions(const Scene& scene, SceneAssets& assets, size_t mesh,
+                      std::vector<glm::vec3> cagePositions) {
+    SG_EXPECTS(mesh < assets.meshes.size() && mesh < scene.meshes.size() &&
+                   assets.meshes[mesh].patches &&
+                   cagePositions.size() == assets.meshes[mesh].patches->cagePointCount,
+               "setCagePositions: an adaptive mesh and one position per cage vertex");
+    for (size_t v = 0; v < cagePositions.size(); ++v) {
+        const glm::vec3 p = cagePositions[v];
+        if (!(std::fabs(p.x) <= kMaxCagePosition && std::fabs(p.y) <= kMaxCagePosition &&
+              std::fabs(p.z) <= kMaxCagePosition)) {
+            throw io::InputError(scene.sourceName, elementOf(scene.meshes[mesh], "morph"),
+                                 "cage vertex " + std::to_string(v) +
+                                     " is not finite or beyond 2^100 after animation; the "
+                                     "frame is refused");
+        }
+    }
+    MeshAsset& a = assets.meshes[mesh];
+    a.cagePositions = std::move(cagePositions);
+    ++assets.meshVersion;
+}
+
 void applyFrame(const Scene& scene, SceneAssets& assets, float seconds) {
     for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
         MeshAsset& a = assets.meshes[i];
+        if (a.patches && a.morphCage) {
+            // Blendshapes on the cage of an adaptive mesh: the cage moves.
+            std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
+            if (w == a.appliedWeights) continue; // nothing moved
+            std::vector<glm::vec3> cage;
+            sm::morphCagePositions(*a.morphCage, w, cage);
+            setCagePositions(scene, assets, i, std::move(cage));
+            a.appliedWeights = std::move(w);
+            continue;
+        }
         if (a.mesh.morphTargets.empty()) continue;
         std::vector<float> w = weightsAt(scene.meshes[i], a.mesh, seconds);
         if (w == a.appliedWeights) continue; // nothing moved

@@ -26,6 +26,7 @@
 
 #include "render_internal.h"
 #include "surfgrad/contract.h"
+#include "surfgrad/adaptive_patches.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/render.h"
 
@@ -355,6 +356,15 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
         const MeshInstance& inst = scene.meshes[mi];
         const MeshAsset* asset = &assets.meshes[mi];
         if (asset->patches) {
+            // An animated cage: the points of its cage through the same
+            // stencils the GPU's compute stage applies.
+            const sg::mesh::AdaptivePatches* ap = asset->patches.get();
+            sg::mesh::AdaptivePatches moved;
+            if (!asset->cagePositions.empty()) {
+                moved = *ap;
+                sg::mesh::updateAdaptivePoints(moved, asset->cagePositions);
+                ap = &moved;
+            }
             detail::PatchDisplacement disp;
             const bool displaced = inst.displacement.has_value();
             if (displaced) {
@@ -365,7 +375,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                 disp.uvSet = inst.displacement->uvSet;
             }
             detail::TessellatedPatches t = detail::tessellatePatches(
-                *asset->patches, modelToCameraRelative(inst.transform, view.cameraPos), focalPx,
+                *ap, modelToCameraRelative(inst.transform, view.cameraPos), focalPx,
                 inst.subdivPixelsPerEdge, displaced ? &disp : nullptr);
             tessellated[mi].mesh = std::move(t.mesh);
             patchAov[mi] = std::move(t.patchAov);

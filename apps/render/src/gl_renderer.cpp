@@ -17,6 +17,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "gpu_stencils.h"
 #include "render_internal.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/gl.h"
@@ -43,6 +44,9 @@ struct GpuMesh {
     // [2] control-point indices (binding 3), [3] UV values (binding 4),
     // [4] UV patches (binding 5; meshes with UV sets). 0 for triangle meshes.
     GLuint patchBuf[5] = {};
+    // Animated cages (MeshAsset::cagePositions): the stencil rows and the
+    // cage, whose compute stage writes patchBuf[0].
+    detail::GpuStencils stencils;
 };
 
 // The per-patch records the tessellation stages read (binding 1; layout in
@@ -91,14 +95,22 @@ void uvPatchBuffers(const sg::mesh::AdaptivePatches& ap, std::vector<float>& val
     }
 }
 
-void uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap) {
+// Static patches upload their points; an animated cage uploads the stencil
+// rows instead (its points come from the compute stage). Returns the bytes.
+uint64_t uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap, bool animated) {
     if (!g.patchBuf[0]) glCreateBuffers(5, g.patchBuf);
-    std::vector<float> pts;
-    pts.reserve(3 * ap.points.size());
-    for (const glm::vec3& p : ap.points) pts.insert(pts.end(), {p.x, p.y, p.z});
     const std::vector<uint32_t> records = patchRecords(ap);
-    glNamedBufferData(g.patchBuf[0], GLsizeiptr(pts.size() * sizeof(float)), pts.data(),
-                      GL_STATIC_DRAW);
+    uint64_t bytes = records.size() * 4 + ap.indices.size() * 4;
+    if (animated) {
+        bytes += g.stencils.upload(ap, g.patchBuf[0]);
+    } else {
+        std::vector<float> pts;
+        pts.reserve(3 * ap.points.size());
+        for (const glm::vec3& p : ap.points) pts.insert(pts.end(), {p.x, p.y, p.z});
+        glNamedBufferData(g.patchBuf[0], GLsizeiptr(pts.size() * sizeof(float)), pts.data(),
+                          GL_STATIC_DRAW);
+        bytes += pts.size() * sizeof(float);
+    }
     glNamedBufferData(g.patchBuf[1], GLsizeiptr(records.size() * sizeof(uint32_t)), records.data(),
                       GL_STATIC_DRAW);
     glNamedBufferData(g.patchBuf[2], GLsizeiptr(ap.indices.size() * sizeof(uint32_t)),
@@ -111,7 +123,9 @@ void uploadPatches(GpuMesh& g, const sg::mesh::AdaptivePatches& ap) {
                           uvValues.data(), GL_STATIC_DRAW);
         glNamedBufferData(g.patchBuf[4], GLsizeiptr(uvRecords.size() * sizeof(uint32_t)),
                           uvRecords.data(), GL_STATIC_DRAW);
+        bytes += uvValues.size() * sizeof(float) + uvRecords.size() * sizeof(uint32_t);
     }
+    return bytes;
 }
 
 struct GpuProgram {
@@ -135,10 +149,11 @@ void deleteMesh(GpuMesh& m) {
 }
 
 template <class T>
-void uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>& data, int comps) {
+uint64_t uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>& data,
+                      int comps) {
     if (data.empty()) {
         glDisableVertexArrayAttrib(vao, location);
-        return;
+        return 0;
     }
     if (!vbo) glCreateBuffers(1, &vbo);
     glNamedBufferData(vbo, GLsizeiptr(data.size() * sizeof(T)), data.data(), GL_DYNAMIC_DRAW);
@@ -146,6 +161,7 @@ void uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vector<T>
     glVertexArrayAttribFormat(vao, location, comps, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao, location, location);
     glEnableVertexArrayAttrib(vao, location);
+    return data.size() * sizeof(T);
 }
 
 } // namespace
@@ -216,43 +232,58 @@ struct GlRenderer::Impl {
         fbH = h;
     }
 
-    void uploadMeshes(const SceneAssets& assets) {
+    sg::gl::Program stencilProgram; // stencils.comp.glsl, compiled at the first animated cage
+
+    // Returns the bytes uploaded.
+    uint64_t uploadMeshes(const SceneAssets& assets) {
         if (meshesFor != assets.uid || meshes.size() != assets.meshes.size()) {
             for (auto& m : meshes) deleteMesh(m);
-            meshes.assign(assets.meshes.size(), GpuMesh{});
+            meshes.clear();
+            meshes.resize(assets.meshes.size());
             meshesFor = assets.uid;
             meshesDirty = true;
         }
         if (meshVersion != assets.meshVersion) meshesDirty = true;
         meshVersion = assets.meshVersion;
-        if (!meshesDirty) return;
+        if (!meshesDirty) return 0;
+        uint64_t bytes = 0;
         for (size_t i = 0; i < assets.meshes.size(); ++i) {
             const MeshAsset& a = assets.meshes[i];
             GpuMesh& g = meshes[i];
             bool fresh = !g.vao;
             if (fresh) glCreateVertexArrays(1, &g.vao);
             if (a.patches) {
-                // The draw reads the patch buffers only (the VAO stays empty).
-                if (fresh || g.layoutId != a.layoutId) uploadPatches(g, *a.patches);
+                // The draw reads the patch buffers only (the VAO stays empty);
+                // an animated cage: only the cage per frame, the points from
+                // the stencils' compute stage.
+                const bool animated = !a.cagePositions.empty();
+                if (fresh || g.layoutId != a.layoutId || animated != g.stencils.uploaded())
+                    bytes += uploadPatches(g, *a.patches, animated);
+                if (animated) {
+                    if (!stencilProgram.id()) stencilProgram = detail::makeStencilProgram();
+                    bytes += g.stencils.apply(a.cagePositions, stencilProgram);
+                }
                 g.layoutId = a.layoutId;
                 continue;
             }
-            uploadAttrib(g.vao, g.vbo[0], 0, a.mesh.positions, 3);
-            uploadAttrib(g.vao, g.vbo[1], 1, a.mesh.normals, 3);
+            bytes += uploadAttrib(g.vao, g.vbo[0], 0, a.mesh.positions, 3);
+            bytes += uploadAttrib(g.vao, g.vbo[1], 1, a.mesh.normals, 3);
             static const std::vector<glm::vec2> none2;
             static const std::vector<glm::vec4> none4;
             // Tangents move with morphing; UVs and indices never change.
             for (int k = 0; k < kMaxUvSets; ++k) {
                 size_t kk = size_t(k);
-                uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k),
-                             kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
+                bytes +=
+                    uploadAttrib(g.vao, g.vbo[6 + k], GLuint(6 + k),
+                                 kk < a.vertexTangents.size() ? a.vertexTangents[kk] : none4, 4);
             }
             if (fresh || g.layoutId != a.layoutId) {
                 for (int k = 0; k < kMaxUvSets; ++k) {
                     size_t kk = size_t(k);
-                    uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k),
-                                 kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
+                    bytes += uploadAttrib(g.vao, g.vbo[2 + k], GLuint(2 + k),
+                                          kk < a.mesh.uvSets.size() ? a.mesh.uvSets[kk] : none2, 2);
                 }
+                bytes += a.mesh.indices.size() * sizeof(uint32_t);
                 if (!g.ebo) glCreateBuffers(1, &g.ebo);
                 glNamedBufferData(g.ebo, GLsizeiptr(a.mesh.indices.size() * sizeof(uint32_t)),
                                   a.mesh.indices.data(), GL_STATIC_DRAW);
@@ -263,6 +294,7 @@ struct GlRenderer::Impl {
         }
         meshesDirty = false;
         sg::gl::checkError("mesh upload");
+        return bytes;
     }
 
     GLuint texture(const TextureImage* img) {
@@ -488,7 +520,8 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
     Impl& I = *impl_;
     stats_ = RenderStats{};
     I.ensureFramebuffer(view.width, view.height);
-    I.uploadMeshes(assets);
+    const auto updateStart = std::chrono::steady_clock::now();
+    stats_.meshUploadBytes = I.uploadMeshes(assets);
     glBindFramebuffer(GL_FRAMEBUFFER, I.fbo);
     glViewport(0, 0, view.width, view.height);
     glm::vec3 bg = view.aov == Aov::Color ? scene.output.background : glm::vec3(0.0f);
@@ -527,6 +560,8 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
     if (!I.query) glCreateQueries(GL_TIME_ELAPSED, 1, &I.query);
     glFinish(); // uploads done: the wall time starts with an idle GPU
     const auto wallStart = std::chrono::steady_clock::now();
+    stats_.meshUpdateWallMs =
+        std::chrono::duration<double, std::milli>(wallStart - updateStart).count();
     glBeginQuery(GL_TIME_ELAPSED, I.query);
     // Large images with a progress callback: drawn in horizontal bands
     // (scissored, so every pixel is shaded exactly as in one pass), each

@@ -28,7 +28,8 @@
 
 namespace sg::mesh {
 struct AdaptivePatches;
-}
+struct PolygonMesh;
+} // namespace sg::mesh
 
 namespace sg::render {
 
@@ -52,6 +53,16 @@ struct MeshAsset {
     // control points as positions (bounds: the limit surface lies in their
     // convex hull) and no triangles, no UV sets and no morph targets.
     std::shared_ptr<const sg::mesh::AdaptivePatches> patches;
+    // Adaptive meshes whose cage moves (blendshapes on the cage, or
+    // setCagePositions): the cage positions now, object space,
+    // patches->cagePointCount entries. The GPU renderer uploads only these
+    // per frame and recomputes the control points with the stencils in a
+    // compute stage; the CPU reference applies the same stencils
+    // (sg::mesh::updateAdaptivePoints). Empty: patches->points as built.
+    std::vector<glm::vec3> cagePositions;
+    // Adaptive meshes whose cage has morph targets: the cage (applyFrame
+    // morphs it, sg::mesh::morphCagePositions); null otherwise.
+    std::shared_ptr<const sg::mesh::PolygonMesh> morphCage;
 };
 
 // UV sets whose tangent basis the enabled layers of `material` read (bit k:
@@ -94,6 +105,19 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets);
 // Applies the morph weights of time `seconds` to every animated mesh
 // (positions and normals; pixel frames need nothing else).
 void applyFrame(const Scene& scene, SceneAssets& assets, float seconds);
+// Moves the cage of adaptive mesh `mesh` (an animated cage:
+// cagePointCount positions, object space) and bumps meshVersion; the
+// renderers then draw the patches of that cage. A position that is not
+// finite, or larger in magnitude than kMaxCagePosition, refuses the frame
+// (InputError naming the scene and the mesh's field; the assets are left as
+// they were). Contract: `mesh` is an adaptive mesh and the count matches.
+void setCagePositions(const Scene& scene, SceneAssets& assets, size_t mesh,
+                      std::vector<glm::vec3> cagePositions);
+// Largest cage coordinate an animated cage may reach: stencil weights are
+// at most 1 in magnitude and a row sums a few hundred of them at most, so
+// the control points stay finite in float with a wide margin (2^100 * 2^10
+// << FLT_MAX = 2^128).
+inline constexpr float kMaxCagePosition = 0x1p100f;
 // Largest texture file accepted (pixels per side).
 inline constexpr int kMaxTextureSize = 16384;
 

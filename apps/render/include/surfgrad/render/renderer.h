@@ -39,6 +39,14 @@ struct RenderStats {
     double drawWallMs = 0.0;
     int programsCompiled = 0; // programs compiled by this call (cache misses)
     int drawCalls = 0;
+    // Mesh data of this call, before the draws: bytes uploaded to vertex
+    // and patch buffers (0 when nothing moved; an animated adaptive cage:
+    // cagePointCount x 12, the cage only), and the wall time from the start
+    // of those uploads to the idle GPU before the draws (uploads, the
+    // cage's stencil compute stage; a call that compiles programs or
+    // uploads textures includes those too).
+    uint64_t meshUploadBytes = 0;
+    double meshUpdateWallMs = 0.0;
 };
 
 // The OpenGL 4.5 renderer. Needs a current GL 4.5 core context (from

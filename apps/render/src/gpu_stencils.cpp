@@ -1,0 +1,110 @@
+// Animated cages on the GPU: the stencil rows applied to the uploaded cage
+// by the compute stage shaders/sg/patch/stencils.comp.glsl (gpu_stencils.h).
+// Our own compute stage rather than Osd::GLComputeEvaluator: it reads the
+// stencil arrays AdaptivePatches already holds (one table for every level
+// and the Gregory end caps' local points), writes the packed xyz points
+// buffer the patch draw reads, and sums in updateAdaptivePoints' order, so
+// the GPU's points equal the CPU reference's bit for bit (docs/mesh.md).
+#include "gpu_stencils.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "surfgrad/contract.h"
+#include "surfgrad/gl.h"
+#include "surfgrad/shader_files.h"
+
+namespace sg::render::detail {
+
+namespace {
+
+constexpr uint32_t kGroupSize = 64;    // local_size_x of stencils.comp.glsl
+constexpr uint32_t kMaxGroups = 65535; // GL's guaranteed work-group count per dispatch
+
+} // namespace
+
+sg::gl::Program makeStencilProgram() {
+    const char* src = sg::shaders::find("sg/patch/stencils.comp.glsl");
+    SG_ASSERT(src, "the stencil stage is embedded");
+    return sg::gl::Program(
+        {{sg::gl::Stage::Compute, sg::shaders::assemble(src, "sg/patch/stencils.comp.glsl")}});
+}
+
+GpuStencils::~GpuStencils() {
+    if (buf_[0]) glDeleteBuffers(4, buf_);
+}
+
+GpuStencils::GpuStencils(GpuStencils&& o) noexcept {
+    *this = std::move(o);
+}
+
+GpuStencils& GpuStencils::operator=(GpuStencils&& o) noexcept {
+    if (this != &o) {
+        if (buf_[0]) glDeleteBuffers(4, buf_);
+        std::copy(o.buf_, o.buf_ + 4, buf_);
+        std::fill(o.buf_, o.buf_ + 4, 0u);
+        points_ = o.points_;
+        pointCount_ = o.pointCount_;
+        cagePointCount_ = o.cagePointCount_;
+        bytes_ = o.bytes_;
+    }
+    return *this;
+}
+
+uint64_t GpuStencils::upload(const sg::mesh::AdaptivePatches& ap, GLuint pointsBuffer) {
+    SG_EXPECTS(ap.stencilOffsets.size() == ap.points.size() + 1,
+               "GpuStencils::upload: one stencil row per point");
+    if (!buf_[0]) glCreateBuffers(4, buf_);
+    points_ = pointsBuffer;
+    pointCount_ = uint32_t(ap.points.size());
+    cagePointCount_ = ap.cagePointCount;
+    const GLsizeiptr cageBytes = GLsizeiptr(size_t(cagePointCount_) * 12);
+    const GLsizeiptr offBytes = GLsizeiptr(ap.stencilOffsets.size() * 4);
+    const GLsizeiptr idxBytes = GLsizeiptr(std::max<size_t>(ap.stencilIndices.size(), 1) * 4);
+    const GLsizeiptr wBytes = GLsizeiptr(std::max<size_t>(ap.stencilWeights.size(), 1) * 4);
+    glNamedBufferData(buf_[0], std::max<GLsizeiptr>(cageBytes, 12), nullptr, GL_STREAM_DRAW);
+    glNamedBufferData(buf_[1], offBytes, ap.stencilOffsets.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buf_[2], idxBytes,
+                      ap.stencilIndices.empty() ? nullptr : ap.stencilIndices.data(),
+                      GL_STATIC_DRAW);
+    glNamedBufferData(buf_[3], wBytes,
+                      ap.stencilWeights.empty() ? nullptr : ap.stencilWeights.data(),
+                      GL_STATIC_DRAW);
+    glNamedBufferData(points_, GLsizeiptr(std::max<size_t>(ap.points.size(), 1) * 12), nullptr,
+                      GL_DYNAMIC_COPY);
+    bytes_ = uint64_t(cageBytes + offBytes + idxBytes + wBytes);
+    return uint64_t(offBytes + idxBytes + wBytes);
+}
+
+uint64_t GpuStencils::apply(std::span<const glm::vec3> cage, const sg::gl::Program& program) {
+    SG_EXPECTS(uploaded() && cage.size() == cagePointCount_,
+               "GpuStencils::apply: upload() first, one position per cage vertex");
+    const GLsizeiptr cageBytes = GLsizeiptr(cage.size() * 12);
+    static_assert(sizeof(glm::vec3) == 12, "packed xyz");
+    if (cageBytes) glNamedBufferSubData(buf_[0], 0, cageBytes, cage.data());
+    const GLuint prog = program.id();
+    glUseProgram(prog);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, points_);
+    for (int k = 0; k < 4; ++k) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(4 + k), buf_[k]);
+    glUniform1ui(glGetUniformLocation(prog, "uPointCount"), pointCount_);
+    const GLint firstLoc = glGetUniformLocation(prog, "uFirstPoint");
+    const uint32_t perDispatch = kGroupSize * kMaxGroups;
+    for (uint32_t first = 0; first < pointCount_; first += perDispatch) {
+        const uint32_t n = std::min(perDispatch, pointCount_ - first);
+        glUniform1ui(firstLoc, first);
+        glDispatchCompute((n + kGroupSize - 1) / kGroupSize, 1, 1);
+    }
+    // The patch draw reads the points as storage buffers (patch_vs/tcs).
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    sg::gl::checkError("cage stencils");
+    return uint64_t(cageBytes);
+}
+
+std::vector<glm::vec3> readPoints(GLuint pointsBuffer, size_t count) {
+    std::vector<glm::vec3> out(count);
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+    if (count) glGetNamedBufferSubData(pointsBuffer, 0, GLsizeiptr(count * 12), out.data());
+    return out;
+}
+
+} // namespace sg::render::detail

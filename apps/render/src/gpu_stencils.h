@@ -1,0 +1,66 @@
+// Animated cages on the GPU (internal to surfgrad_render): the stencil rows
+// of sg::mesh::AdaptivePatches uploaded once, then per frame the cage
+// positions uploaded (cagePointCount x 12 bytes) and the control points
+// recomputed into the points buffer the patch draw reads, by the compute
+// stage shaders/sg/patch/stencils.comp.glsl (bit for bit what
+// sg::mesh::updateAdaptivePoints computes on the CPU).
+//
+// Needs a current GL 4.3+ context (compute shaders) on the calling thread;
+// the object owns its buffers except the points buffer, which belongs to the
+// caller (the patch draw's binding 0) and is (re)sized by upload().
+#pragma once
+
+#include <epoxy/gl.h>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "surfgrad/adaptive_patches.h"
+#include "surfgrad/gl.h"
+
+namespace sg::render::detail {
+
+// The compute program of stencils.comp.glsl (one per context).
+sg::gl::Program makeStencilProgram();
+
+class GpuStencils {
+public:
+    GpuStencils() = default;
+    ~GpuStencils();
+    GpuStencils(const GpuStencils&) = delete;
+    GpuStencils& operator=(const GpuStencils&) = delete;
+    GpuStencils(GpuStencils&& o) noexcept;
+    GpuStencils& operator=(GpuStencils&& o) noexcept;
+
+    // Uploads the stencil rows of `patches` (offsets, indices, weights) and
+    // sizes `pointsBuffer` (a buffer name the caller created) for
+    // patches.points.size() points (xyz floats). Returns the bytes uploaded.
+    uint64_t upload(const sg::mesh::AdaptivePatches& patches, GLuint pointsBuffer);
+    // Uploads `cagePositions` (cagePointCount entries, object space) and
+    // dispatches the compute stage (`program`: makeStencilProgram()) that writes every point into
+    // the points buffer, followed by the barrier that makes them visible to the patch draw's
+    // storage-buffer reads. Returns the bytes uploaded (the cage).
+    uint64_t apply(std::span<const glm::vec3> cagePositions, const sg::gl::Program& program);
+
+    bool uploaded() const { return buf_[0] != 0; }
+    GLuint pointsBuffer() const { return points_; }
+    uint32_t pointCount() const { return pointCount_; }
+    uint32_t cagePointCount() const { return cagePointCount_; }
+    // Bytes of the buffers this object owns (cage and stencil rows).
+    uint64_t bufferBytes() const { return bytes_; }
+
+private:
+    GLuint buf_[4] = {}; // cage (binding 4), offsets (5), indices (6), weights (7)
+    GLuint points_ = 0;  // not owned
+    uint32_t pointCount_ = 0, cagePointCount_ = 0;
+    uint64_t bytes_ = 0;
+};
+
+// Reads `count` points (xyz floats) back from a points buffer (tests, the
+// bench's check).
+std::vector<glm::vec3> readPoints(GLuint pointsBuffer, size_t count);
+
+} // namespace sg::render::detail
