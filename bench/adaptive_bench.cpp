@@ -377,8 +377,9 @@ struct EqualRow {
 // whose drawn triangles are within `targetPx` of the limit (p99 and max),
 // then their costs measured in the same run.
 void equalErrorAsset(const char* name, const std::filesystem::path& file, int refLevel,
-                     int maxUniform, const std::vector<std::pair<const char*, float>>& views,
-                     float targetPx, int frames, std::vector<EqualRow>& out) {
+                     int maxUniform, int isolation,
+                     const std::vector<std::pair<const char*, float>>& views, float targetPx,
+                     int frames, std::vector<EqualRow>& out) {
     const sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(file);
     sg::mesh::SubdivisionSettings rs;
     rs.level = refLevel;
@@ -396,8 +397,10 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
         uni[size_t(L)] = loadAssets(s);
         uniLoad[size_t(L)] = msSince(t0);
     }
-    Scene sa0 = parseScene(coverageScene(file, 1.0f, R"({"mode": "adaptive"})"),
-                           "adaptive_bench.json", ".");
+    const std::string iso = std::to_string(isolation);
+    Scene sa0 =
+        parseScene(coverageScene(file, 1.0f, R"({"mode": "adaptive", "isolation": )" + iso + "}"),
+                   "adaptive_bench.json", ".");
     auto t0 = Clock::now();
     SceneAssets adaptive = loadAssets(sa0);
     const double adaptiveLoad = msSince(t0);
@@ -429,7 +432,7 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
         char buf[96];
         std::snprintf(buf, sizeof buf, "level %d", level);
         r.uniformPick = buf;
-        std::snprintf(buf, sizeof buf, "%g px/edge", double(ppe));
+        std::snprintf(buf, sizeof buf, "%g px/edge (isolation %d)", double(ppe), isolation);
         r.adaptivePick = buf;
         const SceneAssets& au = uni[size_t(level)];
         const auto& m = au.meshes[0].mesh;
@@ -442,7 +445,8 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
         r.loadA = adaptiveLoad;
         // Frame time, interleaved.
         char sub[96];
-        std::snprintf(sub, sizeof sub, R"({"mode": "adaptive", "pixels_per_edge": %g})",
+        std::snprintf(sub, sizeof sub,
+                      R"({"mode": "adaptive", "isolation": %d, "pixels_per_edge": %g})", isolation,
                       double(ppe));
         Scene sa = parseScene(coverageScene(file, distanceScale, sub), "adaptive_bench.json", ".");
         GlRenderer gu, ga;
@@ -473,11 +477,11 @@ void equalErrorTable(bool quick) {
     std::vector<EqualRow> rows;
     const std::vector<std::pair<const char*, float>> views = {
         {"small", 4.0f}, {"medium", 1.2f}, {"full screen", 0.45f}};
-    equalErrorAsset("spot", data / "meshes/spot/spot_control_mesh.obj", quick ? 5 : 6, 5, views,
+    equalErrorAsset("spot", data / "meshes/spot/spot_control_mesh.obj", quick ? 5 : 6, 5, 3, views,
                     target, quick ? 3 : 5, rows);
     if (!quick)
-        equalErrorAsset("bob", data / "meshes/bob/bob_tri.obj", 4, 3,
-                        {{"small", 4.0f}, {"medium", 1.2f}}, target, 5, rows);
+        equalErrorAsset("bob", data / "meshes/bob/bob_tri.obj", 4, 3, 2,
+                        {{"small", 4.0f}, {"medium", 1.2f}}, target, 3, rows);
     std::printf("\nEqual screen-space error (p99 and max < %.1f px to the limit surface), 960x540, "
                 "llvmpipe, draw: median of %d interleaved frames\n\n",
                 double(target), quick ? 3 : 5);
