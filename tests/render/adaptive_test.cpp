@@ -692,176 +692,173 @@ TEST(RenderHardCases, AdaptiveDisplacementBehindTheEyeIsBounded) {
                              "adaptive displacement (scale 0.1), eye inside the mesh and 60 "
                              "sizes away: |displaced - limit point| / scale, CPU tessellator",
                              "offset in units of the scale", worst, 1.0 + 1e-5);
-    // ---- Animated cages ----------------------------------------------------
+}
 
-    std::filesystem::path sourcePath(const std::string& rel) {
-        return std::filesystem::path(SURFGRAD_SOURCE_DIR) / rel;
+// ---- Animated cages ----------------------------------------------------
+
+std::filesystem::path sourcePath(const std::string& rel) {
+    return std::filesystem::path(SURFGRAD_SOURCE_DIR) / rel;
+}
+
+// A deterministic motion of every cage vertex: a few percent of the cage's
+// size, different per vertex and per axis.
+std::vector<glm::vec3> movedCage(const std::vector<glm::vec3>& cage, float t) {
+    float extent = 0.0f;
+    for (const glm::vec3& p : cage)
+        extent = std::max({extent, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
+    std::vector<glm::vec3> out = cage;
+    for (size_t v = 0; v < out.size(); ++v) {
+        const float k = float(v);
+        out[v] += 0.05f * extent *
+                  glm::vec3(std::sin(1.3f * k + t), std::cos(0.7f * k + 2.0f * t),
+                            std::sin(0.31f * k - t));
     }
+    return out;
+}
 
-    // A deterministic motion of every cage vertex: a few percent of the cage's
-    // size, different per vertex and per axis.
-    std::vector<glm::vec3> movedCage(const std::vector<glm::vec3>& cage, float t) {
-        float extent = 0.0f;
-        for (const glm::vec3& p : cage)
-            extent = std::max({extent, std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)});
-        std::vector<glm::vec3> out = cage;
-        for (size_t v = 0; v < out.size(); ++v) {
-            const float k = float(v);
-            out[v] += 0.05f * extent *
-                      glm::vec3(std::sin(1.3f * k + t), std::cos(0.7f * k + 2.0f * t),
-                                std::sin(0.31f * k - t));
+// Bits in which two floats differ, counted over points (0: bitwise equal).
+size_t differingPoints(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
+    size_t n = 0;
+    for (size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(glm::vec3)) != 0;
+    return n;
+}
+
+// The compute stage (sg/patch/stencils.comp.glsl) against
+// sg::mesh::updateAdaptivePoints for a moved cage: the same rows summed in
+// the same order with every product rounded (`precise` on the GPU; the CPU
+// build has no FMA contraction), so every point is equal bit for bit. Spot
+// (valence 3..6 vertices: Gregory end caps), and two osd-shapes with
+// creases and corners next to extraordinary vertices.
+TEST(AdaptiveAnim, GpuStencilsEqualTheCpuBitwise) {
+    gpu(); // the context
+    const sg::gl::Program program = detail::makeStencilProgram();
+    for (const std::string& file : {kSpot, std::string("data/osd-shapes/catmark_cube_creases2.obj"),
+                                    std::string("data/osd-shapes/catmark_pyramid_creases1.obj")}) {
+        const sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(sourcePath(file));
+        sg::mesh::AdaptivePatches ap = sg::mesh::buildAdaptivePatches(cage, cage.options, 3, file);
+        bool gregory = false;
+        for (const auto& arr : ap.arrays) gregory |= arr.type == 9 && arr.patchCount > 0;
+        EXPECT_TRUE(gregory) << file; // end caps around extraordinary vertices
+        if (file != kSpot) {
+            EXPECT_FALSE(cage.creases.empty()) << file;
         }
-        return out;
-    }
-
-    // Bits in which two floats differ, counted over points (0: bitwise equal).
-    size_t differingPoints(const std::vector<glm::vec3>& a, const std::vector<glm::vec3>& b) {
-        size_t n = 0;
-        for (size_t i = 0; i < a.size(); ++i)
-            n += std::memcmp(&a[i], &b[i], sizeof(glm::vec3)) != 0;
-        return n;
-    }
-
-    // The compute stage (sg/patch/stencils.comp.glsl) against
-    // sg::mesh::updateAdaptivePoints for a moved cage: the same rows summed in
-    // the same order with every product rounded (`precise` on the GPU; the CPU
-    // build has no FMA contraction), so every point is equal bit for bit. Spot
-    // (valence 3..6 vertices: Gregory end caps), and two osd-shapes with
-    // creases and corners next to extraordinary vertices.
-    TEST(AdaptiveAnim, GpuStencilsEqualTheCpuBitwise) {
-        gpu(); // the context
-        const sg::gl::Program program = detail::makeStencilProgram();
-        for (const std::string& file :
-             {kSpot, std::string("data/osd-shapes/catmark_cube_creases2.obj"),
-              std::string("data/osd-shapes/catmark_pyramid_creases1.obj")}) {
-            const sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(sourcePath(file));
-            sg::mesh::AdaptivePatches ap =
-                sg::mesh::buildAdaptivePatches(cage, cage.options, 3, file);
-            bool gregory = false;
-            for (const auto& arr : ap.arrays) gregory |= arr.type == 9 && arr.patchCount > 0;
-            EXPECT_TRUE(gregory) << file; // end caps around extraordinary vertices
-            if (file != kSpot) {
-                EXPECT_FALSE(cage.creases.empty()) << file;
-            }
-            GLuint points = 0;
-            glCreateBuffers(1, &points);
-            detail::GpuStencils st;
-            st.upload(ap, points);
-            const std::vector<glm::vec3> rest = ap.points;
-            for (float t : {0.0f, 0.4f, 1.7f}) {
-                const std::vector<glm::vec3> moved = movedCage(cage.positions, t);
-                EXPECT_EQ(st.apply(moved, program), moved.size() * 12); // the cage only
-                const std::vector<glm::vec3> g = detail::readPoints(points, ap.points.size());
-                sg::mesh::updateAdaptivePoints(ap, moved);
-                EXPECT_EQ(differingPoints(g, ap.points), 0u) << file << " t " << t;
-                EXPECT_GT(differingPoints(g, rest), ap.points.size() / 2) << file; // they moved
-            }
-            glDeleteBuffers(1, &points);
-        }
-    }
-
-    std::string blobScene(const std::string& morph, int w = 240, int h = 180) {
-        return R"({"output": {"width": )" + std::to_string(w) + R"(, "height": )" +
-               std::to_string(h) +
-               R"(}, "materials": [{"name": "m"}], "meshes": [{"file": "examples/data/morph_blob.gltf",
-           "subdivision": {"mode": "adaptive", "isolation": 3, "pixels_per_edge": 3}, "morph": )" +
-               morph + "}]}";
-    }
-
-    // Blendshapes on the cage of an adaptive mesh: applyFrame moves the cage,
-    // the GPU renderer uploads the cage only (cagePointCount x 12 bytes per
-    // frame) and its compute stage recomputes the points; the CPU reference
-    // follows the same points (updateAdaptivePoints) and agrees with the GPU
-    // within GpuMatchesCpuReference's bounds (the same triangulation argument);
-    // the moved frame differs from the rest pose.
-    TEST(AdaptiveAnim, BlendshapesMoveTheCageOnTheGpu) {
-        Scene s = sceneFromJson(blobScene(R"({"animation": {"loop": true, "keys": [
-        {"time": 0.0, "weights": [0.0, 0.0]}, {"time": 1.0, "weights": [1.0, 0.6]}]}})"));
-        SceneAssets a = loadAssets(s);
-        const MeshAsset& m = a.meshes[0];
-        ASSERT_TRUE(m.patches);
-        ASSERT_TRUE(m.morphCage);
-        ASSERT_EQ(m.morphCage->morphTargets.size(), 2u);
-        const size_t cageBytes = size_t(m.patches->cagePointCount) * 12;
-        View v = makeView(s, a, 0, 0, Aov::Normal);
-        const Image rest = gpu().render(s, a, v);
-        applyFrame(s, a, 0.9f);
-        const Image g = gpu().render(s, a, v);
-        EXPECT_EQ(gpu().stats().meshUploadBytes, cageBytes);
-        gpu().render(s, a, v); // nothing moved: nothing uploaded
-        EXPECT_EQ(gpu().stats().meshUploadBytes, 0u);
-        CpuOptions cpu;
-        cpu.derivatives = CpuDerivatives::Quad;
-        const Image c = renderCpu(s, a, v, cpu);
-        NormalAgreement r = compareNormals(g, c);
-        std::printf("animated cage GPU vs CPU: %zu px both, %zu one only, p50 %.3f p99 %.3f deg\n",
-                    r.both, r.onlyOne, r.p50, r.p99);
-        EXPECT_GT(r.both, size_t(240 * 180 / 20));
-        EXPECT_EQ(r.nonFinite, 0u);
-        EXPECT_LE(double(r.onlyOne), 0.015 * double(r.both));
-        EXPECT_LE(r.p50, 0.5);
-        EXPECT_LE(r.p99, 5.0);
-        NormalAgreement moved = compareNormals(g, rest);
-        EXPECT_GT(moved.p99 + double(moved.onlyOne), 5.0); // the blob did move
-    }
-
-    // Hard cases of an animated cage: a cage that is not finite after
-    // animation (a NaN or infinite vertex) or beyond kMaxCagePosition refuses
-    // the frame with an InputError naming the mesh's field, the assets left as
-    // they were (no NaN image follows); a cage at the largest accepted size
-    // keeps every control point finite on the GPU and in the CPU reference.
-    TEST(AdaptiveAnimHardCases, NonFiniteOrHugeCageRefusesTheFrame) {
-        Scene s = sceneFromJson(cageScene(R"({"mode": "adaptive", "isolation": 2})", kSpot));
-        SceneAssets a = loadAssets(s);
-        const sg::mesh::AdaptivePatches& ap = *a.meshes[0].patches;
-        const std::vector<glm::vec3> cage(ap.points.begin(), ap.points.begin() + ap.cagePointCount);
-        setCagePositions(s, a, 0, movedCage(cage, 0.5f));
-        const uint64_t version = a.meshVersion;
-        const std::vector<glm::vec3> before = a.meshes[0].cagePositions;
-        int refused = 0;
-        for (float bad : {std::nanf(""), INFINITY, -1e38f, 0x1p101f}) {
-            std::vector<glm::vec3> c = cage;
-            c[cage.size() / 2].y = bad;
-            try {
-                setCagePositions(s, a, 0, c);
-                ADD_FAILURE() << "accepted " << bad;
-            } catch (const sg::io::InputError& e) {
-                ++refused;
-                EXPECT_NE(std::string(e.what()).find("meshes[0]"), std::string::npos) << e.what();
-                EXPECT_NE(std::string(e.what()).find("cage vertex"), std::string::npos) << e.what();
-            }
-            EXPECT_EQ(a.meshVersion, version);
-            EXPECT_EQ(differingPoints(a.meshes[0].cagePositions, before), 0u);
-        }
-        View v = makeView(s, a, 0, 0, Aov::Normal);
-        EXPECT_EQ(countNonFinite(gpu().render(s, a, v)), 0u);
-        sg::test::reportHardCaseHolds(
-            "scales", "animated adaptive cage with a NaN, inf, -1e38 or 2^101 vertex", "frame",
-            "refused (InputError), assets unchanged", refused == 4 ? "refused" : "accepted");
-
-        // The largest accepted cage: every point finite on both sides.
-        std::vector<glm::vec3> huge = cage;
-        for (glm::vec3& p : huge) p *= 0x1p100f / 2.0f;
-        setCagePositions(s, a, 0, huge); // accepted
-        const sg::gl::Program program = detail::makeStencilProgram();
         GLuint points = 0;
         glCreateBuffers(1, &points);
         detail::GpuStencils st;
         st.upload(ap, points);
-        st.apply(huge, program);
-        const std::vector<glm::vec3> g = detail::readPoints(points, ap.points.size());
+        const std::vector<glm::vec3> rest = ap.points;
+        for (float t : {0.0f, 0.4f, 1.7f}) {
+            const std::vector<glm::vec3> moved = movedCage(cage.positions, t);
+            EXPECT_EQ(st.apply(moved, program), moved.size() * 12); // the cage only
+            const std::vector<glm::vec3> g = detail::readPoints(points, ap.points.size());
+            sg::mesh::updateAdaptivePoints(ap, moved);
+            EXPECT_EQ(differingPoints(g, ap.points), 0u) << file << " t " << t;
+            EXPECT_GT(differingPoints(g, rest), ap.points.size() / 2) << file; // they moved
+        }
         glDeleteBuffers(1, &points);
-        sg::mesh::AdaptivePatches cpu = ap;
-        sg::mesh::updateAdaptivePoints(cpu, huge);
-        size_t nonFinite = 0;
-        for (size_t i = 0; i < g.size(); ++i)
-            nonFinite += !std::isfinite(g[i].x + g[i].y + g[i].z) ||
-                         !std::isfinite(cpu.points[i].x + cpu.points[i].y + cpu.points[i].z);
-        sg::test::hardCaseAtMost("scales",
-                                 "animated adaptive cage scaled to 2^100 (largest accepted)",
-                                 "control points not finite (GPU or CPU)", double(nonFinite), 0.0);
-        EXPECT_EQ(differingPoints(g, cpu.points), 0u);
     }
+}
+
+std::string blobScene(const std::string& morph, int w = 240, int h = 180) {
+    return R"({"output": {"width": )" + std::to_string(w) + R"(, "height": )" + std::to_string(h) +
+           R"(}, "materials": [{"name": "m"}], "meshes": [{"file": "examples/data/morph_blob.gltf",
+           "subdivision": {"mode": "adaptive", "isolation": 3, "pixels_per_edge": 3}, "morph": )" +
+           morph + "}]}";
+}
+
+// Blendshapes on the cage of an adaptive mesh: applyFrame moves the cage,
+// the GPU renderer uploads the cage only (cagePointCount x 12 bytes per
+// frame) and its compute stage recomputes the points; the CPU reference
+// follows the same points (updateAdaptivePoints) and agrees with the GPU
+// within GpuMatchesCpuReference's bounds (the same triangulation argument);
+// the moved frame differs from the rest pose.
+TEST(AdaptiveAnim, BlendshapesMoveTheCageOnTheGpu) {
+    Scene s = sceneFromJson(blobScene(R"({"animation": {"loop": true, "keys": [
+        {"time": 0.0, "weights": [0.0, 0.0]}, {"time": 1.0, "weights": [1.0, 0.6]}]}})"));
+    SceneAssets a = loadAssets(s);
+    const MeshAsset& m = a.meshes[0];
+    ASSERT_TRUE(m.patches);
+    ASSERT_TRUE(m.morphCage);
+    ASSERT_EQ(m.morphCage->morphTargets.size(), 2u);
+    const size_t cageBytes = size_t(m.patches->cagePointCount) * 12;
+    View v = makeView(s, a, 0, 0, Aov::Normal);
+    const Image rest = gpu().render(s, a, v);
+    applyFrame(s, a, 0.9f);
+    const Image g = gpu().render(s, a, v);
+    EXPECT_EQ(gpu().stats().meshUploadBytes, cageBytes);
+    gpu().render(s, a, v); // nothing moved: nothing uploaded
+    EXPECT_EQ(gpu().stats().meshUploadBytes, 0u);
+    CpuOptions cpu;
+    cpu.derivatives = CpuDerivatives::Quad;
+    const Image c = renderCpu(s, a, v, cpu);
+    NormalAgreement r = compareNormals(g, c);
+    std::printf("animated cage GPU vs CPU: %zu px both, %zu one only, p50 %.3f p99 %.3f deg\n",
+                r.both, r.onlyOne, r.p50, r.p99);
+    EXPECT_GT(r.both, size_t(240 * 180 / 20));
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_LE(double(r.onlyOne), 0.015 * double(r.both));
+    EXPECT_LE(r.p50, 0.5);
+    EXPECT_LE(r.p99, 5.0);
+    NormalAgreement moved = compareNormals(g, rest);
+    EXPECT_GT(moved.p99 + double(moved.onlyOne), 5.0); // the blob did move
+}
+
+// Hard cases of an animated cage: a cage that is not finite after
+// animation (a NaN or infinite vertex) or beyond kMaxCagePosition refuses
+// the frame with an InputError naming the mesh's field, the assets left as
+// they were (no NaN image follows); a cage at the largest accepted size
+// keeps every control point finite on the GPU and in the CPU reference.
+TEST(AdaptiveAnimHardCases, NonFiniteOrHugeCageRefusesTheFrame) {
+    Scene s = sceneFromJson(cageScene(R"({"mode": "adaptive", "isolation": 2})", kSpot));
+    SceneAssets a = loadAssets(s);
+    const sg::mesh::AdaptivePatches& ap = *a.meshes[0].patches;
+    const std::vector<glm::vec3> cage(ap.points.begin(), ap.points.begin() + ap.cagePointCount);
+    setCagePositions(s, a, 0, movedCage(cage, 0.5f));
+    const uint64_t version = a.meshVersion;
+    const std::vector<glm::vec3> before = a.meshes[0].cagePositions;
+    int refused = 0;
+    for (float bad : {std::nanf(""), INFINITY, -1e38f, 0x1p101f}) {
+        std::vector<glm::vec3> c = cage;
+        c[cage.size() / 2].y = bad;
+        try {
+            setCagePositions(s, a, 0, c);
+            ADD_FAILURE() << "accepted " << bad;
+        } catch (const sg::io::InputError& e) {
+            ++refused;
+            EXPECT_NE(std::string(e.what()).find("meshes[0]"), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("cage vertex"), std::string::npos) << e.what();
+        }
+        EXPECT_EQ(a.meshVersion, version);
+        EXPECT_EQ(differingPoints(a.meshes[0].cagePositions, before), 0u);
+    }
+    View v = makeView(s, a, 0, 0, Aov::Normal);
+    EXPECT_EQ(countNonFinite(gpu().render(s, a, v)), 0u);
+    sg::test::reportHardCaseHolds(
+        "scales", "animated adaptive cage with a NaN, inf, -1e38 or 2^101 vertex", "frame",
+        "refused (InputError), assets unchanged", refused == 4 ? "refused" : "accepted");
+
+    // The largest accepted cage: every point finite on both sides.
+    std::vector<glm::vec3> huge = cage;
+    for (glm::vec3& p : huge) p *= 0x1p100f / 2.0f;
+    setCagePositions(s, a, 0, huge); // accepted
+    const sg::gl::Program program = detail::makeStencilProgram();
+    GLuint points = 0;
+    glCreateBuffers(1, &points);
+    detail::GpuStencils st;
+    st.upload(ap, points);
+    st.apply(huge, program);
+    const std::vector<glm::vec3> g = detail::readPoints(points, ap.points.size());
+    glDeleteBuffers(1, &points);
+    sg::mesh::AdaptivePatches cpu = ap;
+    sg::mesh::updateAdaptivePoints(cpu, huge);
+    size_t nonFinite = 0;
+    for (size_t i = 0; i < g.size(); ++i)
+        nonFinite += !std::isfinite(g[i].x + g[i].y + g[i].z) ||
+                     !std::isfinite(cpu.points[i].x + cpu.points[i].y + cpu.points[i].z);
+    sg::test::hardCaseAtMost("scales", "animated adaptive cage scaled to 2^100 (largest accepted)",
+                             "control points not finite (GPU or CPU)", double(nonFinite), 0.0);
+    EXPECT_EQ(differingPoints(g, cpu.points), 0u);
+}
 
 } // namespace
 } // namespace sg::render::test
