@@ -19,6 +19,7 @@
 #include <memory>
 #include <vector>
 
+#include "hardcase.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/io.h"
@@ -356,16 +357,22 @@ TEST(PatchTessLevel, HardCasesStayBounded) {
         {"NaN", g::vec3(nan, 0, -1), g::vec3(1, 0, -1), 1.0f},
         {"infinity", g::vec3(inf, 0, -1), g::vec3(1, 0, -1), 1.0f},
     };
+    int outside = 0;
     for (const Case& c : cases) {
         SCOPED_TRACE(c.what);
         const float l = g::sgPatchEdgeTessLevel(c.a, c.b, 1000.0f, 4.0f, 64.0f);
         EXPECT_TRUE(std::isfinite(l));
         EXPECT_GE(l, 1.0f);
         EXPECT_LE(l, 64.0f);
+        outside += !(l >= 1.0f && l <= 64.0f);
         if (c.expected > 0.0f) {
             EXPECT_EQ(l, c.expected);
         }
     }
+    sg::test::hardCaseAtMost("grazing",
+                             "patch edge tessellation level: zero length, through, behind and "
+                             "along the view ray, 1e30 coordinates, NaN, infinity",
+                             "levels not finite or outside [1, 64] (of 8 edges)", outside, 0.0);
 }
 
 } // namespace
@@ -450,17 +457,23 @@ TEST(PatchHardCases, ZeroAreaAndFarFromTheOriginStayFinite) {
     for (glm::vec3& p : collapsed.positions) p = glm::vec3(0.25f, -1.0f, 3.0f);
     sg::mesh::AdaptivePatches ap = sg::mesh::buildAdaptivePatches(collapsed, collapsed.options, 3);
     EXPECT_TRUE(allFinite(ap));
+    double worstOff = 0.0;
     for (const auto& arr : ap.arrays) {
         for (uint32_t p = 0; p < arr.patchCount; ++p) {
             glm::vec3 du;
             const glm::vec3 q = evalPatch(ap, arr, p, glm::vec2(0.5f), &du);
-            // Weights sum to 1: the point itself, up to rounding of the
-            // stencils (rows of ~50 weights) and of the basis.
-            EXPECT_LE(glm::length(q - glm::vec3(0.25f, -1.0f, 3.0f)), 2e-5f);
+            const double off = glm::length(q - glm::vec3(0.25f, -1.0f, 3.0f));
+            worstOff = std::isfinite(off) ? std::max(worstOff, off) : INFINITY;
             // The normal the TES derives falls back to +z (no direction).
             EXPECT_LE(g::sgMaxAbs3(du), 1e-3f);
         }
     }
+    // Weights sum to 1: the point itself, up to rounding of the stencils
+    // (rows of ~50 weights) and of the basis.
+    sg::test::hardCaseAtMost("zero-area",
+                             "adaptive patches of a cage collapsed to one point (catmark_pole8, "
+                             "isolation 3): every patch has zero area",
+                             "|patch centre - the point| (object units)", worstOff, 2e-5);
     // 1e6 from the origin at a size of 1: finite patches, and a bounded
     // level for an edge seen from 5 units away (camera-relative end points
     // rounded at 1e6: 0.06 steps).
@@ -473,6 +486,9 @@ TEST(PatchHardCases, ZeroAreaAndFarFromTheOriginStayFinite) {
     const float lv = g::sgPatchEdgeTessLevel(a - eye, b - eye, 1000.0f, 4.0f, 64.0f);
     EXPECT_GE(lv, 1.0f);
     EXPECT_LE(lv, 64.0f);
+    sg::test::reportHardCaseHolds(
+        "far-from-origin", "adaptive patches of catmark_pole8 moved 1e6 from the origin",
+        "control points finite, edge level within [1, 64]", "holds", "holds");
 }
 
 } // namespace

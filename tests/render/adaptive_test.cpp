@@ -358,7 +358,7 @@ TEST(AdaptiveDraw, PatchAovLevelsMatchTheCpu) {
 // eye: levels clamped by sgPatchEdgeTessLevel, primitives clipped) and the
 // cow far away (a few pixels: every level 1). Images finite in both
 // renderers.
-TEST(AdaptiveDraw, CameraInsideAndFarAwayStayFinite) {
+TEST(RenderHardCases, AdaptiveCameraInsideAndFarAwayStayFinite) {
     for (const char* camera :
          {R"("camera": {"distance_scale": 0.02})", R"("camera": {"distance_scale": 60})"}) {
         Scene s = sceneFromJson(
@@ -367,11 +367,18 @@ TEST(AdaptiveDraw, CameraInsideAndFarAwayStayFinite) {
             "meshes": [{"file": ")" +
             kSpot + R"(", "subdivision": {"mode": "adaptive", "pixels_per_edge": 1}}]})");
         SceneAssets a = loadAssets(s);
+        size_t bad = 0;
         for (Aov aov : {Aov::Color, Aov::Normal, Aov::Patch}) {
             View v = makeView(s, a, 0, 0, aov);
-            EXPECT_EQ(countNonFinite(gpu().render(s, a, v)), 0u) << camera;
-            EXPECT_EQ(countNonFinite(renderCpu(s, a, v)), 0u) << camera;
+            bad += countNonFinite(gpu().render(s, a, v));
+            bad += countNonFinite(renderCpu(s, a, v));
         }
+        sg::test::hardCaseAtMost(
+            "grazing",
+            std::string("adaptive spot at 1 px/edge, camera ") +
+                (std::strstr(camera, "0.02") ? "inside the mesh" : "60 sizes away") +
+                ": patches edge-on, behind and through the camera",
+            "non-finite pixels (GPU and CPU, colour, normal and patch AOVs)", double(bad), 0.0);
     }
 }
 
