@@ -43,6 +43,7 @@
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <mutex>
@@ -1859,28 +1860,129 @@ AdaptiveUvSet adaptiveUvSet(const Far::TopologyRefiner& refiner, const Far::Patc
     return out;
 }
 
-// AdaptivePatches::edgeOwners and cornerOwners from cornerVertices.
-void assignOwners(AdaptivePatches& ap) {
-    const size_t n = ap.cornerVertices.size();
-    // Edge k of a patch runs from corner kEdgeFrom[k] to corner kEdgeTo[k].
-    static constexpr int kEdgeFrom[4] = {0, 0, 1, 3}, kEdgeTo[4] = {3, 1, 2, 2};
+// Edge k of a patch runs from corner kEdgeFrom[k] to corner kEdgeTo[k].
+constexpr int kEdgeFrom[4] = {0, 0, 1, 3}, kEdgeTo[4] = {3, 1, 2, 2};
+
+uint64_t edgeKey(uint32_t a, uint32_t b) {
+    return (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
+}
+
+// The first patch (and its edge or corner) that has each edge (by its two
+// vertices) and each corner (by the vertex it refines), in patch order.
+struct OwnerMaps {
     std::unordered_map<uint64_t, uint32_t> edgeFirst;   // vertex pair -> (patch << 2) | edge
-    std::unordered_map<uint32_t, uint32_t> cornerFirst; // vertex -> (patch << 2) | corner
+    std::unordered_map<uint64_t, uint32_t> edgeCount;   // vertex pair -> patches with it
+    std::unordered_map<uint32_t, uint32_t> cornerFirst; // root vertex -> (patch << 2) | corner
+};
+
+// AdaptivePatches::edgeOwners and cornerOwners from cornerVertices; root[v]
+// is the coarsest vertex whose chain of child vertices ends at point v.
+OwnerMaps assignOwners(AdaptivePatches& ap, const std::vector<uint32_t>& root) {
+    const size_t n = ap.cornerVertices.size();
+    OwnerMaps m;
     ap.edgeOwners.assign(n, glm::uvec4(0));
     ap.cornerOwners.assign(n, glm::uvec4(0));
     for (uint32_t p = 0; p < uint32_t(n); ++p) {
         const glm::uvec4 c = ap.cornerVertices[p];
         for (int k = 0; k < 4; ++k) {
             const uint32_t a = c[kEdgeFrom[k]], b = c[kEdgeTo[k]];
-            const uint64_t key = (uint64_t(std::min(a, b)) << 32) | std::max(a, b);
-            const uint32_t first = edgeFirst.try_emplace(key, (p << 2) | uint32_t(k)).first->second;
+            const uint64_t key = edgeKey(a, b);
+            const uint32_t first =
+                m.edgeFirst.try_emplace(key, (p << 2) | uint32_t(k)).first->second;
+            ++m.edgeCount[key];
             const uint32_t owner = first >> 2, ownerEdge = first & 3u;
             const uint32_t ownerFrom = ap.cornerVertices[owner][kEdgeFrom[ownerEdge]];
             ap.edgeOwners[p][k] = (owner << 3) | (ownerEdge << 1) | (ownerFrom != a ? 1u : 0u);
             ap.cornerOwners[p][k] =
-                cornerFirst.try_emplace(c[k], (p << 2) | uint32_t(k)).first->second;
+                m.cornerFirst.try_emplace(root[c[k]], (p << 2) | uint32_t(k)).first->second;
         }
     }
+    return m;
+}
+
+// AdaptivePatches::transition*: for each edge of a patch at depth d that no
+// other patch of its depth shares, the level-d edge between its two
+// vertices, its child vertex (the midpoint) and its ends' child vertices at
+// level d + 1; when patches have both halves as edges, it is a transition.
+void assignTransitions(AdaptivePatches& ap, const OwnerMaps& m, const Far::TopologyRefiner& refiner,
+                       const std::vector<uint32_t>& levelBase, const std::vector<uint32_t>& root) {
+    const size_t n = ap.cornerVertices.size();
+    ap.transitionMask.assign(n, 0u);
+    ap.transitionLo.assign(n, glm::uvec4(0));
+    ap.transitionHi.assign(n, glm::uvec4(0));
+    ap.transitionMid.assign(n, glm::uvec4(0));
+    std::vector<uint64_t> halves;
+    // (owner << 3) | (owner's edge << 1) | flip of the half from `from` to `to`.
+    auto halfOwner = [&](uint32_t from, uint32_t to, uint32_t& code) {
+        const auto it = m.edgeFirst.find(edgeKey(from, to));
+        if (it == m.edgeFirst.end()) return false;
+        const uint32_t owner = it->second >> 2, ownerEdge = it->second & 3u;
+        const uint32_t ownerFrom = ap.cornerVertices[owner][kEdgeFrom[ownerEdge]];
+        code = (owner << 3) | (ownerEdge << 1) | (ownerFrom != from ? 1u : 0u);
+        return true;
+    };
+    for (uint32_t p = 0; p < uint32_t(n); ++p) {
+        Far::PatchParam pp;
+        pp.field0 = ap.params[p].x;
+        pp.field1 = ap.params[p].y;
+        const int depth = pp.GetDepth();
+        if (depth + 1 >= refiner.GetNumLevels()) continue;
+        const Far::TopologyLevel& lv = refiner.GetLevel(depth);
+        const uint32_t lo = levelBase[size_t(depth)], hi = levelBase[size_t(depth) + 1];
+        const uint32_t next = levelBase[size_t(depth) + 1];
+        const glm::uvec4 c = ap.cornerVertices[p];
+        for (int k = 0; k < 4; ++k) {
+            const uint32_t a = c[kEdgeFrom[k]], b = c[kEdgeTo[k]];
+            if (a < lo || a >= hi || b < lo || b >= hi) continue; // not a level-d vertex
+            if (m.edgeCount.at(edgeKey(a, b)) != 1) continue;     // shared at its own depth
+            const Far::Index e = lv.FindEdge(Far::Index(a - lo), Far::Index(b - lo));
+            if (e == Far::INDEX_INVALID) continue;
+            const Far::Index ca = lv.GetVertexChildVertex(Far::Index(a - lo));
+            const Far::Index cb = lv.GetVertexChildVertex(Far::Index(b - lo));
+            const Far::Index cm = lv.GetEdgeChildVertex(e);
+            if (ca == Far::INDEX_INVALID || cb == Far::INDEX_INVALID || cm == Far::INDEX_INVALID)
+                continue; // the edge was not refined: no finer neighbour
+            const uint32_t pa = next + uint32_t(ca), pb = next + uint32_t(cb),
+                           pm = next + uint32_t(cm);
+            uint32_t codeLo = 0, codeHi = 0;
+            if (!halfOwner(pa, pm, codeLo) || !halfOwner(pm, pb, codeHi)) continue;
+            const auto mid = m.cornerFirst.find(root[pm]);
+            if (mid == m.cornerFirst.end()) continue;
+            ap.transitionMask[p] |= 1u << k;
+            ap.transitionLo[p][k] = codeLo;
+            ap.transitionHi[p][k] = codeHi;
+            ap.transitionMid[p][k] = mid->second;
+            halves.push_back(edgeKey(pa, pm));
+            halves.push_back(edgeKey(pm, pb));
+        }
+    }
+    std::sort(halves.begin(), halves.end());
+    for (uint32_t p = 0; p < uint32_t(n); ++p) {
+        const glm::uvec4 c = ap.cornerVertices[p];
+        for (int k = 0; k < 4; ++k)
+            if (std::binary_search(halves.begin(), halves.end(),
+                                   edgeKey(c[kEdgeFrom[k]], c[kEdgeTo[k]])))
+                ap.transitionMask[p] |= 1u << (4 + k);
+    }
+}
+
+// root[v] for every refined vertex (levels only, not the local points):
+// the level-0 or edge/face child vertex whose chain of vertex children
+// reaches v (they all have v's limit position).
+std::vector<uint32_t> rootVertices(const Far::TopologyRefiner& refiner,
+                                   const std::vector<uint32_t>& levelBase) {
+    std::vector<uint32_t> root(levelBase.back());
+    for (uint32_t i = 0; i < uint32_t(root.size()); ++i) root[i] = i;
+    for (int l = 0; l + 1 < refiner.GetNumLevels(); ++l) {
+        const Far::TopologyLevel& lv = refiner.GetLevel(l);
+        for (int v = 0; v < lv.GetNumVertices(); ++v) {
+            const Far::Index child = lv.GetVertexChildVertex(v);
+            if (child != Far::INDEX_INVALID)
+                root[levelBase[size_t(l) + 1] + uint32_t(child)] =
+                    root[levelBase[size_t(l)] + uint32_t(v)];
+        }
+    }
+    return root;
 }
 
 } // namespace
@@ -1971,7 +2073,9 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
             throw InputError(file, "patch " + std::to_string(p),
                              "the refined face of an adaptive patch was not found");
     }
-    assignOwners(out);
+    const std::vector<uint32_t> root = rootVertices(*refiner, levelBase);
+    const OwnerMaps owners = assignOwners(out, root);
+    assignTransitions(out, owners, *refiner, levelBase, root);
     for (size_t s = 0; s < cage.uvSets.size(); ++s)
         out.uvSets.push_back(adaptiveUvSet(*refiner, *table, cage.uvSets[s].values, int(s)));
     return out;

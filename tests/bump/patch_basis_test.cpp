@@ -15,8 +15,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <stdexcept>
 #include <vector>
 
 #include "hardcase.h"
@@ -388,21 +390,59 @@ TEST(PatchWatertight, EdgeAndCornerPointsGoToTheirOwner) {
                            (5u << 3) | (3u << 1));
     const glm::uvec4 corners((5u << 2) | 0u, (5u << 2) | 1u, (3u << 2) | 0u, (5u << 2) | 3u);
     const g::vec4 outer(3.0f, 4.0f, 5.0f, 6.0f);
+    const g::SgPatchTransitions none = g::sgPatchNoTransitions();
     // An edge point a tessellator put slightly off 1/4 (fixed point).
-    g::SgPatchSite s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(0.25002f, 0.0f));
+    g::SgPatchSite s = g::sgPatchEvalSite(5u, edges, corners, none, outer, g::vec2(0.25002f, 0.0f));
     EXPECT_EQ(s.patchIndex, 2u);
     EXPECT_EQ(s.uv, g::vec2(3.0f / 4.0f, 1.0f)); // i = 1 of 4, flipped: 3/4, exactly
-    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(1.0f, 1.0f));
+    s = g::sgPatchEvalSite(5u, edges, corners, none, outer, g::vec2(1.0f, 1.0f));
     EXPECT_EQ(s.patchIndex, 3u);
     EXPECT_EQ(s.uv, g::vec2(0.0f, 0.0f));
     // Own edge u = 1, level 5: snapped to 2/5 on the patch itself.
-    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(1.0f, 0.39998f));
+    s = g::sgPatchEvalSite(5u, edges, corners, none, outer, g::vec2(1.0f, 0.39998f));
     EXPECT_EQ(s.patchIndex, 5u);
     EXPECT_EQ(s.uv, g::vec2(1.0f, 2.0f / 5.0f));
     // Interior points stay where they are.
-    s = g::sgPatchEvalSite(5u, edges, corners, outer, g::vec2(0.3f, 0.7f));
+    s = g::sgPatchEvalSite(5u, edges, corners, none, outer, g::vec2(0.3f, 0.7f));
     EXPECT_EQ(s.patchIndex, 5u);
     EXPECT_EQ(s.uv, g::vec2(0.3f, 0.7f));
+}
+
+TEST(PatchWatertight, TransitionEdgePointsGoToTheFineHalves) {
+    // Patch 7's edge v = 1 (3) is a transition edge: its lower half (from
+    // (0,1)) is patch 9's edge u = 0 (0), run the other way, level 3; its
+    // upper half patch 12's edge v = 0 (1), level 2; the midpoint patch
+    // 12's corner (0,0). Coarse level 3 + 2.
+    const glm::uvec4 edges((7u << 3) | (0u << 1), (7u << 3) | (1u << 1), (7u << 3) | (2u << 1),
+                           (7u << 3) | (3u << 1));
+    const glm::uvec4 corners((7u << 2) | 0u, (7u << 2) | 1u, (7u << 2) | 2u, (7u << 2) | 3u);
+    g::SgPatchTransitions tr = g::sgPatchNoTransitions();
+    tr.lo[3] = (9u << 3) | (0u << 1) | 1u;
+    tr.hi[3] = (12u << 3) | (1u << 1);
+    tr.mid[3] = (12u << 2) | 0u;
+    tr.loLevel[3] = 3.0f;
+    const g::vec4 outer(2.0f, 2.0f, 2.0f, 5.0f);
+    // i = 1 of 5 (off by the tessellator's fixed point): point 1 of the
+    // lower half's 3, flipped on patch 9: 2/3 along its u = 0 edge.
+    g::SgPatchSite s = g::sgPatchEvalSite(7u, edges, corners, tr, outer, g::vec2(0.19998f, 1.0f));
+    EXPECT_EQ(s.patchIndex, 9u);
+    EXPECT_EQ(s.uv, g::vec2(0.0f, 2.0f / 3.0f));
+    // i = 3: the midpoint, at its corner owner.
+    s = g::sgPatchEvalSite(7u, edges, corners, tr, outer, g::vec2(0.6f, 1.0f));
+    EXPECT_EQ(s.patchIndex, 12u);
+    EXPECT_EQ(s.uv, g::vec2(0.0f, 0.0f));
+    // i = 4: point 1 of the upper half's 2 on patch 12's v = 0 edge.
+    s = g::sgPatchEvalSite(7u, edges, corners, tr, outer, g::vec2(0.80001f, 1.0f));
+    EXPECT_EQ(s.patchIndex, 12u);
+    EXPECT_EQ(s.uv, g::vec2(0.5f, 0.0f));
+    // The other edges are unchanged (level 2 on the patch itself).
+    s = g::sgPatchEvalSite(7u, edges, corners, tr, outer, g::vec2(0.5f, 0.0f));
+    EXPECT_EQ(s.patchIndex, 7u);
+    EXPECT_EQ(s.uv, g::vec2(0.5f, 0.0f));
+    // The halves' cap: their sum stays within the maximum.
+    EXPECT_EQ(g::sgPatchHalfMaxLevel(64.0f), 32.0f);
+    EXPECT_EQ(g::sgPatchHalfMaxLevel(5.0f), 2.0f);
+    EXPECT_EQ(g::sgPatchHalfMaxLevel(1.0f), 1.0f);
 }
 
 TEST(PatchWatertight, OwnersAreConsistentOnEveryCatmarkShape) {
@@ -423,11 +463,106 @@ TEST(PatchWatertight, OwnersAreConsistentOnEveryCatmarkShape) {
                 const bool flip = (e & 1u) != 0u;
                 EXPECT_EQ(c[kFrom[k]], flip ? oc[kTo[oe]] : oc[kFrom[oe]]);
                 EXPECT_EQ(c[kTo[k]], flip ? oc[kFrom[oe]] : oc[kTo[oe]]);
-                const uint32_t co = ap.cornerOwners[p][k];
-                EXPECT_EQ(ap.cornerVertices[co >> 2][int(co & 3u)], c[k]);
+                // Corner owners are keyed by the refined vertex's root (a
+                // vertex and its child vertices): the same vertex at the
+                // same depth, or the same limit point at another depth.
+                const uint32_t co = ap.cornerOwners[p][k], cp = co >> 2;
+                ASSERT_EQ(ap.cornerOwners[cp][int(co & 3u)], co);
+                if (g::sgPatchDepth(ap.params[cp].y) == g::sgPatchDepth(ap.params[p].y)) {
+                    EXPECT_EQ(ap.cornerVertices[cp][int(co & 3u)], c[k]);
+                }
             }
         }
     }
+}
+
+// The domain corner (0,0), (1,0), (1,1), (0,1) of corner k.
+glm::vec2 cornerUv(int k) {
+    return glm::vec2(k == 1 || k == 2 ? 1.0f : 0.0f, k >= 2 ? 1.0f : 0.0f);
+}
+
+const sg::mesh::AdaptivePatchArray& arrayOfPatch(const sg::mesh::AdaptivePatches& ap, uint32_t p) {
+    for (const auto& a : ap.arrays)
+        if (p >= a.firstPatch && p < a.firstPatch + a.patchCount) return a;
+    throw std::runtime_error("patch out of range");
+}
+
+glm::vec3 evalAt(const sg::mesh::AdaptivePatches& ap, uint32_t p, glm::vec2 uv) {
+    const auto& arr = arrayOfPatch(ap, p);
+    glm::vec3 du;
+    return evalPatch(ap, arr, p - arr.firstPatch, uv, &du);
+}
+
+TEST(PatchWatertight, TransitionEdgesFindBothHalvesOnEveryCatmarkShapeAndSpot) {
+    // Every edge Far marks as a transition (PatchParam transition mask, bit
+    // order from the first corner: v = 0, u = 1, v = 1, u = 0) finds its
+    // two halves among the patches one level deeper: each half's owner
+    // edge runs (as the flip says) from a vertex with the coarse corner's
+    // limit point to the midpoint, whose corner owner is the halves'
+    // shared corner; and no edge without the bit is taken as a transition.
+    auto shapes = catmarkShapes();
+    shapes.emplace_back("spot",
+                        sg::mesh::loadPolygonMesh(dataPath("meshes/spot/spot_control_mesh.obj")));
+    static constexpr int kFrom[4] = {0, 0, 1, 3}, kTo[4] = {3, 1, 2, 2};
+    static constexpr int kFarBit[4] = {3, 0, 1, 2}; // our edge k -> Far's transition bit
+    size_t transitions = 0, halves = 0;
+    float worst = 0.0f;
+    for (const auto& [name, cage] : shapes) {
+        SCOPED_TRACE(name);
+        for (int isolation : {2, 3}) {
+            const sg::mesh::AdaptivePatches ap =
+                sg::mesh::buildAdaptivePatches(cage, cage.options, isolation, name);
+            ASSERT_EQ(ap.transitionMask.size(), ap.patchCount());
+            float extent = 0.0f;
+            for (const glm::vec3& q : ap.points) extent = std::max(extent, g::sgMaxAbs3(q));
+            for (uint32_t p = 0; p < ap.patchCount(); ++p) {
+                const uint32_t farMask = ap.params[p].x >> 28;
+                const uint32_t depth = uint32_t(g::sgPatchDepth(ap.params[p].y));
+                for (int k = 0; k < 4; ++k) {
+                    const bool far = (farMask >> kFarBit[k]) & 1u;
+                    const bool ours = (ap.transitionMask[p] >> k) & 1u;
+                    EXPECT_EQ(ours, far) << "patch " << p << " edge " << k;
+                    halves += (ap.transitionMask[p] >> (4 + k)) & 1u;
+                    if (!ours) continue;
+                    ++transitions;
+                    const uint32_t ends[2] = {ap.cornerVertices[p][kFrom[k]],
+                                              ap.cornerVertices[p][kTo[k]]};
+                    const glm::vec3 endPos[2] = {evalAt(ap, p, cornerUv(kFrom[k])),
+                                                 evalAt(ap, p, cornerUv(kTo[k]))};
+                    uint32_t midVertex[2] = {};
+                    for (int h = 0; h < 2; ++h) {
+                        const uint32_t code =
+                            h == 0 ? ap.transitionLo[p][k] : ap.transitionHi[p][k];
+                        const uint32_t owner = code >> 3, oe = (code >> 1) & 3u;
+                        const bool flip = (code & 1u) != 0u;
+                        ASSERT_LT(owner, ap.patchCount());
+                        EXPECT_EQ(uint32_t(g::sgPatchDepth(ap.params[owner].y)), depth + 1);
+                        EXPECT_EQ((ap.transitionMask[owner] >> (4 + oe)) & 1u, 1u);
+                        const glm::uvec4 oc = ap.cornerVertices[owner];
+                        // The half from its coarse end (h = 0: the start)
+                        // to the midpoint (h = 1: from the midpoint).
+                        const int atCoarse = (h == 0) != flip ? kFrom[oe] : kTo[oe];
+                        const int atMid = atCoarse == kFrom[oe] ? kTo[oe] : kFrom[oe];
+                        midVertex[h] = oc[atMid];
+                        EXPECT_NE(oc[atCoarse], ends[h]); // a child, one level down
+                        worst = std::max(
+                            worst, g::sgMaxAbs3(evalAt(ap, owner, cornerUv(atCoarse)) - endPos[h]));
+                    }
+                    EXPECT_EQ(midVertex[0], midVertex[1]);
+                    const uint32_t mo = ap.transitionMid[p][k];
+                    ASSERT_EQ(ap.cornerOwners[mo >> 2][int(mo & 3u)], mo);
+                    EXPECT_EQ(ap.cornerVertices[mo >> 2][int(mo & 3u)], midVertex[0]);
+                }
+            }
+            // The far corners' limit points: the coarse corner's (Far's
+            // corner evaluation, different patches: a few ulp of the extent).
+            EXPECT_LE(worst, 1e-5f * std::max(extent, 1.0f));
+        }
+    }
+    EXPECT_GT(transitions, 100u);
+    EXPECT_EQ(halves, 2 * transitions);
+    std::printf("%zu transition edges, %zu halves, far-corner limit points within %.3g\n",
+                transitions, halves, double(worst));
 }
 
 } // namespace

@@ -224,13 +224,14 @@ TEST(PatchUv, SeamsDoNotTearPositions) {
             if (uvGap < 1e-3f) continue; // the same UVs: not a seam
             ++seamEdges;
             const glm::vec4 outer = glm::vec4(float(n));
+            const g::SgPatchTransitions none = g::sgPatchNoTransitions();
             for (int i = 1; i < n; ++i) {
                 const glm::vec2 a = g::sgPatchEdgeUv(k, float(i) / float(n));
                 const glm::vec2 b = g::sgPatchEdgeUv(ownerEdge, float(flip ? n - i : i) / float(n));
-                const g::SgPatchSite sa =
-                    g::sgPatchEvalSite(p, withUv.edgeOwners[p], withUv.cornerOwners[p], outer, a);
-                const g::SgPatchSite sb = g::sgPatchEvalSite(owner, withUv.edgeOwners[owner],
-                                                             withUv.cornerOwners[owner], outer, b);
+                const g::SgPatchSite sa = g::sgPatchEvalSite(
+                    p, withUv.edgeOwners[p], withUv.cornerOwners[p], none, outer, a);
+                const g::SgPatchSite sb = g::sgPatchEvalSite(
+                    owner, withUv.edgeOwners[owner], withUv.cornerOwners[owner], none, outer, b);
                 const glm::vec3 pa = evalPosition(withUv, arrays, sa.patchIndex, sa.uv);
                 const glm::vec3 pb = evalPosition(withUv, arrays, sb.patchIndex, sb.uv);
                 torn += std::memcmp(&pa, &pb, sizeof pa) != 0;

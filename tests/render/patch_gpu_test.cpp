@@ -9,8 +9,10 @@
 //    patch's corner vertices;
 //  - shared edges: two patches of the same depth that share an edge put
 //    the same number of points on it (no T-junctions), at positions equal
-//    bit for bit from both sides (sg/patch/watertight.glsl). Edges between
-//    patches of different depths (transitions) are not covered yet.
+//    bit for bit from both sides (sg/patch/watertight.glsl);
+//  - transition edges: a patch's edge against two patches one level
+//    deeper (one per half) carries as many points as the two halves
+//    together, at positions equal bit for bit to the halves' own.
 #include <gtest/gtest.h>
 
 #include <epoxy/gl.h>
@@ -78,12 +80,41 @@ std::vector<Captured> drawAndCapture(const AdaptivePatches& ap, const View& view
     glNamedBufferStorage(buf[0], GLsizeiptr(pts.size() * 4), pts.data(), 0);
     std::vector<uint32_t> data;
     for (size_t p = 0; p < ap.patchCount(); ++p) {
+        // The renderer's layout (patch_tes.glsl, 28 words).
         const glm::uvec4 c = ap.cornerVertices[p], e = ap.edgeOwners[p], o = ap.cornerOwners[p];
+        const glm::uvec4 lo = ap.transitionLo[p], hi = ap.transitionHi[p];
+        const glm::uvec4 mid = ap.transitionMid[p];
         const auto& arr = arrayOf(ap, uint32_t(p));
         const uint32_t first =
             arr.firstIndex + (uint32_t(p) - arr.firstPatch) * uint32_t(arr.pointsPerPatch);
-        data.insert(data.end(), {ap.params[p].y, c.x, c.y, c.z, c.w, uint32_t(arr.type), first, 0u,
-                                 e.x, e.y, e.z, e.w, o.x, o.y, o.z, o.w});
+        data.insert(data.end(), {ap.params[p].y,
+                                 c.x,
+                                 c.y,
+                                 c.z,
+                                 c.w,
+                                 uint32_t(arr.type),
+                                 first,
+                                 ap.transitionMask[p],
+                                 e.x,
+                                 e.y,
+                                 e.z,
+                                 e.w,
+                                 o.x,
+                                 o.y,
+                                 o.z,
+                                 o.w,
+                                 lo.x,
+                                 lo.y,
+                                 lo.z,
+                                 lo.w,
+                                 hi.x,
+                                 hi.y,
+                                 hi.z,
+                                 hi.w,
+                                 mid.x,
+                                 mid.y,
+                                 mid.z,
+                                 mid.w});
     }
     glNamedBufferStorage(buf[1], GLsizeiptr(data.size() * 4), data.data(), 0);
     const uint32_t capacity = 4u << 20;
@@ -166,47 +197,121 @@ glm::vec3 cpuEvalSite(const AdaptivePatches& ap, uint32_t p, glm::vec2 uv) {
     return pos;
 }
 
-// Outer levels (u=0, v=0, u=1, v=1 edges) the CPU computes for patch p.
-glm::vec4 cpuLevels(const AdaptivePatches& ap, uint32_t p, const View& v) {
+constexpr int kFrom[4] = {0, 0, 1, 3}, kTo[4] = {3, 1, 2, 2}; // edge k's corners
+
+// Outer levels (u=0, v=0, u=1, v=1 edges) the CPU computes for patch p, as
+// the control stage does (patch_tcs.glsl), and its transitions with the
+// lower halves' levels.
+glm::vec4 cpuLevels(const AdaptivePatches& ap, uint32_t p, const View& v,
+                    g::SgPatchTransitions* trOut = nullptr) {
     const glm::mat4 rel = v.modelRel();
-    auto c = [&](uint32_t i) {
-        return glm::vec3(rel * glm::vec4(ap.points[ap.cornerVertices[p][int(i)]], 1.0f));
+    auto c = [&](uint32_t patch, int i) {
+        return glm::vec3(rel * glm::vec4(ap.points[ap.cornerVertices[patch][i]], 1.0f));
     };
-    auto l = [&](glm::vec3 a, glm::vec3 b) {
-        return g::sgPatchEdgeTessLevel(a, b, v.focalPx, v.pixelsPerEdge, v.maxLevel);
+    const float halfMax = g::sgPatchHalfMaxLevel(v.maxLevel);
+    auto l = [&](uint32_t patch, int k, float maxLevel) {
+        return g::sgPatchEdgeTessLevel(c(patch, kFrom[k]), c(patch, kTo[k]), v.focalPx,
+                                       v.pixelsPerEdge, maxLevel);
     };
-    return glm::vec4(l(c(0), c(3)), l(c(0), c(1)), l(c(1), c(2)), l(c(3), c(2)));
+    g::SgPatchTransitions tr = g::sgPatchNoTransitions();
+    tr.lo = ap.transitionLo[p];
+    tr.hi = ap.transitionHi[p];
+    tr.mid = ap.transitionMid[p];
+    glm::vec4 out;
+    const uint32_t mask = ap.transitionMask[p];
+    for (int k = 0; k < 4; ++k) {
+        if ((mask >> k) & 1u) {
+            tr.loLevel[k] = l(tr.lo[k] >> 3, int((tr.lo[k] >> 1) & 3u), halfMax);
+            out[k] = tr.loLevel[k] + l(tr.hi[k] >> 3, int((tr.hi[k] >> 1) & 3u), halfMax);
+        } else {
+            out[k] = l(p, k, (mask >> (4 + k)) & 1u ? halfMax : v.maxLevel);
+        }
+    }
+    if (trOut) *trOut = tr;
+    return out;
 }
 
-// The CPU side of the TES: boundary points at their owner's site.
-glm::vec3 cpuEval(const AdaptivePatches& ap, uint32_t p, glm::vec2 uv, glm::vec4 outer) {
-    const g::SgPatchSite s = g::sgPatchEvalSite(p, ap.edgeOwners[p], ap.cornerOwners[p], outer, uv);
+// The CPU side of the TES: boundary points at their owner's site, with the
+// patch's levels and transitions (cpuLevels).
+glm::vec3 cpuEval(const AdaptivePatches& ap, uint32_t p, glm::vec2 uv, glm::vec4 outer,
+                  const g::SgPatchTransitions& tr) {
+    const g::SgPatchSite s =
+        g::sgPatchEvalSite(p, ap.edgeOwners[p], ap.cornerOwners[p], tr, outer, uv);
     return cpuEvalSite(ap, s.patchIndex, s.uv);
 }
 
 class PatchGpu : public ::testing::TestWithParam<const char*> {};
 
+struct CrackFigures {
+    size_t shared = 0, transitions = 0;
+};
+
+CrackFigures checkTessellation(const std::string& name, const AdaptivePatches& ap,
+                               const View& view);
+
 TEST_P(PatchGpu, TessellatedPointsMatchTheCpuAndShareEdges) {
     const std::string name = GetParam();
     sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(dataPath("osd-shapes/" + name + ".obj"));
     const AdaptivePatches ap = sg::mesh::buildAdaptivePatches(cage, cage.options, 3, name);
-    const View view;
+    const CrackFigures f = checkTessellation(name, ap, View{});
+    EXPECT_GT(f.shared, 0u);
+}
+
+// Transition edges on spot and on osd-shapes with creases and extraordinary
+// vertices (isolation 2 and 3), from several views: near and far (levels
+// from 1 to the cap, so the halves' levels differ from each other and from
+// the same-depth edges), and one so close that the halves reach the cap
+// (sgPatchHalfMaxLevel) and the coarse side the maximum.
+TEST(PatchGpuTransitions, TransitionEdgesAreBitwiseEqualFromBothSides) {
+    struct Case {
+        std::string file;
+        int isolation;
+    };
+    const Case cases[] = {{"meshes/spot/spot_control_mesh.obj", 2},
+                          {"osd-shapes/catmark_cube_creases1.obj", 3},
+                          {"osd-shapes/catmark_pole8.obj", 2},
+                          {"osd-shapes/catmark_xord_interior.obj", 3}};
+    View views[3];
+    views[0].eye = glm::vec3(0.3f, 0.4f, 4.0f);
+    views[1].eye = glm::vec3(-2.0f, 1.0f, 30.0f);
+    views[1].pixelsPerEdge = 3.0f;
+    views[2].eye = glm::vec3(0.2f, 0.1f, 2.5f);
+    views[2].pixelsPerEdge = 1.0f;
+    size_t transitions = 0;
+    for (const Case& c : cases) {
+        sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(dataPath(c.file));
+        const AdaptivePatches ap =
+            sg::mesh::buildAdaptivePatches(cage, cage.options, c.isolation, c.file);
+        for (const View& v : views) transitions += checkTessellation(c.file, ap, v).transitions;
+    }
+    EXPECT_GT(transitions, 100u);
+}
+
+CrackFigures checkTessellation(const std::string& name, const AdaptivePatches& ap,
+                               const View& view) {
+    CrackFigures figures;
     const std::vector<Captured> pts = drawAndCapture(ap, view);
-    ASSERT_GT(pts.size(), ap.patchCount() * 4);
+    EXPECT_GT(pts.size(), ap.patchCount() * 4);
     float extent = 0.0f;
     for (const glm::vec3& p : ap.points) extent = std::max(extent, g::sgMaxAbs3(p));
 
     // Parity. Up to 20 products summed in the same order on both sides;
     // the GPU may fuse multiply-adds: a few ulp of the largest term
     // (weights <= 1 times coordinates <= extent).
+    std::vector<glm::vec4> levels(ap.patchCount());
+    std::vector<g::SgPatchTransitions> trans(ap.patchCount());
+    for (uint32_t p = 0; p < ap.patchCount(); ++p) levels[p] = cpuLevels(ap, p, view, &trans[p]);
     float worst = 0.0f;
     for (const Captured& c : pts) {
-        ASSERT_LT(c.patch, ap.patchCount());
-        worst = std::max(
-            worst, g::sgMaxAbs3(c.pos - cpuEval(ap, c.patch, c.uv, cpuLevels(ap, c.patch, view))));
+        if (c.patch >= ap.patchCount()) {
+            ADD_FAILURE() << "captured patch index out of range";
+            return figures;
+        }
+        worst = std::max(worst, g::sgMaxAbs3(c.pos - cpuEval(ap, c.patch, c.uv, levels[c.patch],
+                                                             trans[c.patch])));
     }
     EXPECT_LE(worst, 4e-6f * extent);
-    RecordProperty("max_gpu_cpu_difference", std::to_string(worst));
+    ::testing::Test::RecordProperty("max_gpu_cpu_difference", std::to_string(worst));
 
     // Edge points are k/n with the CPU's level n.
     using EdgePoints = std::vector<std::pair<float, glm::vec3>>; // (param along the edge, position)
@@ -218,9 +323,9 @@ TEST_P(PatchGpu, TessellatedPointsMatchTheCpuAndShareEdges) {
         if (c.uv.x == 1.0f) e[2].push_back({c.uv.y, c.pos});
         if (c.uv.y == 1.0f) e[3].push_back({c.uv.x, c.pos});
     }
-    ASSERT_EQ(edges.size(), ap.patchCount()); // every patch was tessellated
+    EXPECT_EQ(edges.size(), ap.patchCount()); // every patch was tessellated
     for (auto& [p, e] : edges) {
-        const glm::vec4 lv = cpuLevels(ap, p, view);
+        const glm::vec4 lv = levels[p];
         for (int k = 0; k < 4; ++k) {
             auto& ek = e[size_t(k)];
             std::sort(ek.begin(), ek.end(),
@@ -229,13 +334,14 @@ TEST_P(PatchGpu, TessellatedPointsMatchTheCpuAndShareEdges) {
                                  [](const auto& x, const auto& y) { return x.first == y.first; }),
                      ek.end());
             const int n = int(lv[k]);
-            ASSERT_EQ(int(e[size_t(k)].size()), n + 1) << "patch " << p << " edge " << k;
+            EXPECT_EQ(int(e[size_t(k)].size()), n + 1) << "patch " << p << " edge " << k;
+            if (int(e[size_t(k)].size()) != n + 1) return figures;
             // GL's i/n, computed its own way: llvmpipe's tessellator works
             // in fixed point (steps of 2^-14 that accumulate along the
             // edge, 5e-5 seen at n = 34); a quarter step tells the points
             // apart and keeps them in order.
             for (int i = 0; i <= n; ++i)
-                ASSERT_NEAR(e[size_t(k)][size_t(i)].first, float(i) / float(n), 0.25f / float(n))
+                EXPECT_NEAR(e[size_t(k)][size_t(i)].first, float(i) / float(n), 0.25f / float(n))
                     << "patch " << p << " edge " << k;
         }
     }
@@ -249,14 +355,15 @@ TEST_P(PatchGpu, TessellatedPointsMatchTheCpuAndShareEdges) {
             byEdge[{std::min(ends[k][0], ends[k][1]), std::max(ends[k][0], ends[k][1])}].push_back(
                 {p, k});
     }
-    size_t shared = 0, bitwise = 0, edgePoints = 0;
+    size_t& shared = figures.shared;
+    size_t bitwise = 0, edgePoints = 0;
     float gap = 0.0f;
     for (const auto& [key, sides] : byEdge) {
         if (sides.size() != 2) continue;
         ++shared;
         const auto& a = edges[sides[0].first][size_t(sides[0].second)];
         const auto& b = edges[sides[1].first][size_t(sides[1].second)];
-        ASSERT_EQ(a.size(), b.size()) << "T-junction on a shared edge";
+        EXPECT_EQ(a.size(), b.size()) << "T-junction on a shared edge";
         // GPU positions along the edge from both sides, matched by nearest
         // point (the two sides may run the edge in opposite directions).
         for (const auto& pa : a) {
@@ -267,15 +374,54 @@ TEST_P(PatchGpu, TessellatedPointsMatchTheCpuAndShareEdges) {
             ++edgePoints;
         }
     }
-    EXPECT_GT(shared, 0u);
     // Crack-free by construction: every point of a shared edge is evaluated
     // from the edge's owner at the same integer parameter on both sides.
     EXPECT_EQ(gap, 0.0f);
     EXPECT_EQ(bitwise, edgePoints);
-    std::printf("%s: %zu patches, %zu points, %zu shared same-depth edges, gpu-cpu %.3g, "
-                "edge gap %.3g (extent %.3g), %zu of %zu edge points bitwise equal\n",
-                name.c_str(), ap.patchCount(), pts.size(), shared, double(worst), double(gap),
-                double(extent), bitwise, edgePoints);
+
+    // Transition edges: the coarse side's points (sorted along its edge)
+    // against the two halves' points from the fine side, each half in the
+    // coarse edge's direction, the midpoint once: the same count and, in
+    // order, the same bits.
+    size_t tBitwise = 0, tPoints = 0, tMismatch = 0;
+    int tLevelMin = 1 << 30, tLevelMax = 0;
+    auto halfPoints = [&](uint32_t code) {
+        EdgePoints h = edges[code >> 3][size_t((code >> 1) & 3u)];
+        if (code & 1u) std::reverse(h.begin(), h.end()); // now from the coarse side's start
+        return h;
+    };
+    for (uint32_t p = 0; p < ap.patchCount(); ++p) {
+        for (int k = 0; k < 4; ++k) {
+            if (!((ap.transitionMask[p] >> k) & 1u)) continue;
+            ++figures.transitions;
+            const EdgePoints& coarse = edges[p][size_t(k)];
+            const EdgePoints lo = halfPoints(ap.transitionLo[p][k]);
+            const EdgePoints hi = halfPoints(ap.transitionHi[p][k]);
+            tLevelMin = std::min(tLevelMin, int(coarse.size()) - 1);
+            tLevelMax = std::max(tLevelMax, int(coarse.size()) - 1);
+            EdgePoints fine = lo;
+            fine.insert(fine.end(), hi.begin() + (hi.empty() ? 0 : 1), hi.end());
+            if (fine.size() != coarse.size()) {
+                ++tMismatch;
+                continue;
+            }
+            for (size_t i = 0; i < fine.size(); ++i) {
+                tBitwise += std::memcmp(&fine[i].second, &coarse[i].second, sizeof(glm::vec3)) == 0;
+                ++tPoints;
+            }
+        }
+    }
+    EXPECT_EQ(tMismatch, 0u) << "T-junctions on transition edges";
+    EXPECT_EQ(tBitwise, tPoints);
+    std::printf("%s (eye %.1f %.1f %.1f, %.1f px/edge): %zu patches, %zu points, %zu shared "
+                "same-depth edges, gpu-cpu %.3g, edge gap %.3g (extent %.3g), %zu of %zu edge "
+                "points bitwise equal; %zu transition edges (levels %d..%d), %zu of %zu points "
+                "bitwise equal\n",
+                name.c_str(), double(view.eye.x), double(view.eye.y), double(view.eye.z),
+                double(view.pixelsPerEdge), ap.patchCount(), pts.size(), shared, double(worst),
+                double(gap), double(extent), bitwise, edgePoints, figures.transitions,
+                figures.transitions ? tLevelMin : 0, tLevelMax, tBitwise, tPoints);
+    return figures;
 }
 
 INSTANTIATE_TEST_SUITE_P(Shapes, PatchGpu,

@@ -50,19 +50,48 @@ struct GpuMesh {
 };
 
 // The per-patch records the tessellation stages read (binding 1; layout in
-// sg/patch/patch_tes.glsl): 16 words per patch: PatchParam field1, the four
-// corner vertices, the patch type, its first entry in the index buffer, 0,
-// the four edge owners, the four corner owners.
+// sg/patch/patch_tes.glsl): 28 words per patch: PatchParam field1, the four
+// corner vertices, the patch type, its first entry in the index buffer, the
+// transition mask, the four edge owners, the four corner owners, the four
+// transition edges' lower-half owners, upper-half owners, midpoint owners.
 std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap) {
     std::vector<uint32_t> data;
-    data.reserve(16 * ap.patchCount());
+    data.reserve(28 * ap.patchCount());
     for (const auto& arr : ap.arrays) {
         for (uint32_t k = 0; k < arr.patchCount; ++k) {
             const size_t p = size_t(arr.firstPatch) + k;
             const glm::uvec4 c = ap.cornerVertices[p], e = ap.edgeOwners[p], o = ap.cornerOwners[p];
+            const glm::uvec4 lo = ap.transitionLo[p], hi = ap.transitionHi[p];
+            const glm::uvec4 mid = ap.transitionMid[p];
             const uint32_t first = arr.firstIndex + k * uint32_t(arr.pointsPerPatch);
-            data.insert(data.end(), {ap.params[p].y, c.x, c.y, c.z, c.w, uint32_t(arr.type), first,
-                                     0u, e.x, e.y, e.z, e.w, o.x, o.y, o.z, o.w});
+            data.insert(data.end(), {ap.params[p].y,
+                                     c.x,
+                                     c.y,
+                                     c.z,
+                                     c.w,
+                                     uint32_t(arr.type),
+                                     first,
+                                     ap.transitionMask[p],
+                                     e.x,
+                                     e.y,
+                                     e.z,
+                                     e.w,
+                                     o.x,
+                                     o.y,
+                                     o.z,
+                                     o.w,
+                                     lo.x,
+                                     lo.y,
+                                     lo.z,
+                                     lo.w,
+                                     hi.x,
+                                     hi.y,
+                                     hi.z,
+                                     hi.w,
+                                     mid.x,
+                                     mid.y,
+                                     mid.z,
+                                     mid.w});
         }
     }
     return data;

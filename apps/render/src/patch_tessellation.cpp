@@ -1,8 +1,8 @@
 // The CPU reference of the adaptive-patch draw: every patch tessellated at
 // the levels the GPU's control stage computes (the shared
 // sgPatchEdgeTessLevel of sg/patch/tess_level.glsl, from the same corner
-// vertices), its domain points those of the GL specification's quad
-// tessellation with equal spacing (OpenGL 4.5 core, section 11.2.2.2), and
+// vertices; transition edges the sum of their halves'), its domain points those of the GL
+// specification's quad tessellation with equal spacing (OpenGL 4.5 core, section 11.2.2.2), and
 // every point evaluated as the evaluation stage does (sg/patch/watertight.glsl
 // for edge points, the shared basis sg/patch/basis.glsl).
 //
@@ -203,17 +203,40 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const 
         // The control stage's levels (patch_tcs.glsl), same inputs and order.
         const glm::uvec4 cv = ap.cornerVertices[p];
         const glm::vec3 c00 = rel(cv.x), c10 = rel(cv.y), c11 = rel(cv.z), c01 = rel(cv.w);
-        auto level = [&](glm::vec3 a, glm::vec3 b) {
-            return G::sgPatchEdgeTessLevel(a, b, focalPx, pixelsPerEdge, SG_TESS_MAX_LEVEL);
+        const float halfMax = G::sgPatchHalfMaxLevel(SG_TESS_MAX_LEVEL);
+        auto level = [&](glm::vec3 a, glm::vec3 b, float maxLevel) {
+            return G::sgPatchEdgeTessLevel(a, b, focalPx, pixelsPerEdge, maxLevel);
         };
-        const glm::vec4 outer(level(c00, c01), level(c00, c10), level(c10, c11), level(c01, c11));
+        // A transition half: its owner's own edge, from its corner vertices.
+        auto halfLevel = [&](uint32_t owner) {
+            static constexpr int kFrom[4] = {0, 0, 1, 3}, kTo[4] = {3, 1, 2, 2};
+            const glm::uvec4 oc = ap.cornerVertices[owner >> 3];
+            const int e = int((owner >> 1) & 3u);
+            return level(rel(oc[kFrom[e]]), rel(oc[kTo[e]]), halfMax);
+        };
+        const uint32_t mask = ap.transitionMask[p];
+        G::SgPatchTransitions tr = G::sgPatchNoTransitions();
+        tr.lo = ap.transitionLo[p];
+        tr.hi = ap.transitionHi[p];
+        tr.mid = ap.transitionMid[p];
+        const glm::vec3 ends[4][2] = {{c00, c01}, {c00, c10}, {c10, c11}, {c01, c11}};
+        glm::vec4 outer;
+        for (int k = 0; k < 4; ++k) {
+            if ((mask >> k) & 1u) {
+                tr.loLevel[k] = halfLevel(tr.lo[k]);
+                outer[k] = tr.loLevel[k] + halfLevel(tr.hi[k]);
+            } else {
+                const bool isHalf = (mask >> (4 + k)) & 1u;
+                outer[k] = level(ends[k][0], ends[k][1], isHalf ? halfMax : SG_TESS_MAX_LEVEL);
+            }
+        }
         const int ol[4] = {int(outer.x), int(outer.y), int(outer.z), int(outer.w)};
         const QuadDomain d =
             quadDomain(ol, int(std::max(outer.y, outer.w)), int(std::max(outer.x, outer.z)));
         const uint32_t base = uint32_t(out.positions.size());
         for (glm::vec2 uv : d.uv) {
             const G::SgPatchSite s =
-                G::sgPatchEvalSite(p, ap.edgeOwners[p], ap.cornerOwners[p], outer, uv);
+                G::sgPatchEvalSite(p, ap.edgeOwners[p], ap.cornerOwners[p], tr, outer, uv);
             glm::vec3 du, dv;
             const glm::vec3 pos = evalPoint(ap, arrayOf, s.patchIndex, s.uv, &du, &dv);
             if (displacement) {

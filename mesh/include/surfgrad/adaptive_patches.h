@@ -88,10 +88,34 @@ struct AdaptivePatches {
     // or +u): (owner << 3) | (owner's edge << 1) | flip, flip = 1 when the
     // owner runs the edge the other way. Per patch and corner ((0,0), (1,0),
     // (1,1), (0,1)): (owner << 2) | owner's corner. A patch owns its
-    // unshared edges and corners. Edges between patches of different depths
-    // (transitions) are not shared this way.
+    // unshared edges and corners. Corners are keyed by the vertex they
+    // refine (a vertex's child vertex at the next level is the same limit
+    // point), so patches of different depths that meet at a corner share
+    // its owner too.
     std::vector<glm::uvec4> edgeOwners;
     std::vector<glm::uvec4> cornerOwners;
+    // Transition edges (Far's PatchParam transition mask): an edge of a
+    // patch at depth d whose other side is two patches at depth d + 1, each
+    // covering one half (from the child vertex of one end to the edge's
+    // child vertex, its midpoint). The coarse side tessellates the edge
+    // with the sum of the halves' levels (each computed from the half's
+    // own two corner vertices, as the fine patch computes it) and evaluates
+    // every point on it from the fine owner of its half, at the parameter
+    // the fine owner uses: bitwise equal from both sides. Per patch:
+    // bit k (0..3) set when edge k is a transition edge of this (coarse)
+    // patch, bit 4 + k when edge k is a half of a coarser patch's
+    // transition edge (its level is capped at half the maximum, so the
+    // coarse side's sum stays within GL's maximum; sgPatchHalfMaxLevel).
+    std::vector<uint32_t> transitionMask;
+    // Per patch and transition edge k (0 elsewhere): the owner of the half
+    // at the edge's start (the corner it runs from: (0,0) for edges 0 and
+    // 1, (1,0) for 2, (0,1) for 3) and of the half at its end, each encoded
+    // as edgeOwners ((owner << 3) | (owner's edge << 1) | flip, flip = 1
+    // when the owner runs the half from the midpoint towards the coarse
+    // corner), and the midpoint's corner owner (as cornerOwners).
+    std::vector<glm::uvec4> transitionLo;
+    std::vector<glm::uvec4> transitionHi;
+    std::vector<glm::uvec4> transitionMid;
     // points = S * cage positions: a sparse matrix in rows (one per point,
     // factorised down to the cage: an animated cage needs only this and
     // its own positions). stencilOffsets has points.size() + 1 entries.

@@ -15,7 +15,10 @@
 // run the same instructions on the same inputs (`precise`: no
 // reassociation or fusing that could differ between the two programs), so
 // the two positions are equal bit for bit. Corners likewise from their
-// owner (cornerOwners). Interior points use this patch's own control points.
+// owner (cornerOwners). Transition edges (a coarse patch against two finer
+// ones): each point from the fine owner of its half at the fine side's own
+// parameter (sgPatchEvalSite with the halves' levels from the control
+// stage). Interior points use this patch's own control points.
 //
 // UV sets (sg::mesh::AdaptiveUvSet): each set's face-varying patch is
 // evaluated with the same shared basis at this patch's own domain point
@@ -58,13 +61,16 @@ layout(quads, equal_spacing, ccw) in;
 
 in vec3 tcCtrlObj[];
 patch in uint tcPatchIndex;
+patch in vec4 tcTransLoLevel;
 
 layout(std430, binding = 0) readonly buffer SgPatchPoints {
     float sgPoints[]; // xyz per control point, object space
 };
-// Per patch, 16 words: field1, four corner vertices, type, first entry of
-// its control points in sgPatchIndices, unused, four edge owners, four
-// corner owners (AdaptivePatches).
+// Per patch, SG_PATCH_DATA_STRIDE (28) words: field1, four corner
+// vertices, type, first entry of its control points in sgPatchIndices,
+// transition mask, four edge owners, four corner owners, then per edge the
+// transition's lower-half owner, upper-half owner and midpoint owner (four
+// words each; AdaptivePatches).
 layout(std430, binding = 1) readonly buffer SgPatchData {
     uint sgPatchData[];
 };
@@ -155,7 +161,7 @@ out vec3 vNormal;
 // largest outer level), Far patch type, depth.
 flat out vec4 vPatchAov;
 
-#define SG_PATCH_DATA_STRIDE 16u
+#define SG_PATCH_DATA_STRIDE 28u
 
 vec3 controlPoint(uint first, int i) {
     uint v = sgPatchIndices[first + uint(i)];
@@ -192,7 +198,15 @@ void main() {
                                sgPatchData[base + 14u], sgPatchData[base + 15u]);
     vec4 outer = vec4(gl_TessLevelOuter[0], gl_TessLevelOuter[1], gl_TessLevelOuter[2],
                       gl_TessLevelOuter[3]);
-    SgPatchSite site = sgPatchEvalSite(patchIndex, edgeOwners, cornerOwners, outer, uv);
+    SgPatchTransitions trans;
+    trans.lo = uvec4(sgPatchData[base + 16u], sgPatchData[base + 17u], sgPatchData[base + 18u],
+                     sgPatchData[base + 19u]);
+    trans.hi = uvec4(sgPatchData[base + 20u], sgPatchData[base + 21u], sgPatchData[base + 22u],
+                     sgPatchData[base + 23u]);
+    trans.mid = uvec4(sgPatchData[base + 24u], sgPatchData[base + 25u], sgPatchData[base + 26u],
+                      sgPatchData[base + 27u]);
+    trans.loLevel = tcTransLoLevel;
+    SgPatchSite site = sgPatchEvalSite(patchIndex, edgeOwners, cornerOwners, trans, outer, uv);
     vec3 pos, du, dv;
     // Every boundary point takes the buffers' path (also when this patch is
     // the owner): the same instructions as on the other side.

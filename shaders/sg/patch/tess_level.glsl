@@ -42,6 +42,16 @@ SG_FN float sgPatchEdgeTessLevel(vec3 relA, vec3 relB, float focalPx, float pixe
     return min(ceil(levels), maxLevel);
 }
 
+// The largest level of an edge that is one half of a coarser patch's
+// transition edge (sg::mesh::AdaptivePatches::transitionMask): the coarse
+// side tessellates the whole edge with the sum of its halves' levels, so
+// each half is capped at half the maximum (at least 1) and the sum stays
+// within maxLevel (for maxLevel >= 2; at 1 the sum is 2, within GL's
+// guaranteed 64). Both sides compute each half with this cap.
+SG_FN float sgPatchHalfMaxLevel(float maxLevel) {
+    return max(floor(maxLevel * 0.5f), 1.0f);
+}
+
 // Focal length in pixels of a perspective projection matrix projRel
 // (camera-relative world -> clip, GL conventions) for a viewport
 // heightPx pixels high: projRel[1][1] is 1 / tan(fovY / 2) for the usual
