@@ -160,7 +160,7 @@ void animatedCage(const AnimCase& c, int uniformLevel, float pixelsPerEdge, int 
         const auto& m = au.meshes[0].mesh; // positions, normals, UV sets, 32-bit indices
         U.gpuBytes = m.vertexCount() * (24 + 8 * m.uvSets.size()) + m.indices.size() * 4;
         const auto& p = *aa.meshes[0].patches; // points, indices, records, cage, stencil rows
-        A.gpuBytes = p.points.size() * 12 + p.indices.size() * 4 + p.patchCount() * 64 +
+        A.gpuBytes = p.points.size() * 12 + p.indices.size() * 4 + p.patchCount() * 112 +
                      size_t(p.cagePointCount) * 12 + p.stencilOffsets.size() * 4 +
                      p.stencilIndices.size() * 4 + p.stencilWeights.size() * 4;
     }
@@ -569,8 +569,8 @@ void staticTable() {
                     ap, modelToCameraRelative(r.scene.meshes[0].transform, view.cameraPos), focalPx,
                     r.scene.meshes[0].subdivPixelsPerEdge)
                     .mesh.triangleCount();
-            // Points (xyz), control-point indices, 16-word patch records.
-            r.gpuBytes = ap.points.size() * 12 + ap.indices.size() * 4 + ap.patchCount() * 64;
+            // Points (xyz), control-point indices, 28-word patch records.
+            r.gpuBytes = ap.points.size() * 12 + ap.indices.size() * 4 + ap.patchCount() * 112;
         } else {
             r.triangles = a.mesh.triangleCount();
             // Positions, normals, UV sets, 32-bit indices.
