@@ -1928,13 +1928,13 @@ void assignTransitions(AdaptivePatches& ap, const OwnerMaps& m, const Far::Topol
         const int depth = pp.GetDepth();
         if (depth + 1 >= refiner.GetNumLevels()) continue;
         const Far::TopologyLevel& lv = refiner.GetLevel(depth);
-        const uint32_t lo = levelBase[size_t(depth)], hi = levelBase[size_t(depth) + 1];
-        const uint32_t next = levelBase[size_t(depth) + 1];
+        // Level d's vertices are points [lo, next), level d + 1's from next.
+        const uint32_t lo = levelBase[size_t(depth)], next = levelBase[size_t(depth) + 1];
         const glm::uvec4 c = ap.cornerVertices[p];
         for (int k = 0; k < 4; ++k) {
             const uint32_t a = c[kEdgeFrom[k]], b = c[kEdgeTo[k]];
-            if (a < lo || a >= hi || b < lo || b >= hi) continue; // not a level-d vertex
-            if (m.edgeCount.at(edgeKey(a, b)) != 1) continue;     // shared at its own depth
+            if (a < lo || a >= next || b < lo || b >= next) continue; // not a level-d vertex
+            if (m.edgeCount.at(edgeKey(a, b)) != 1) continue;         // shared at its own depth
             const Far::Index e = lv.FindEdge(Far::Index(a - lo), Far::Index(b - lo));
             if (e == Far::INDEX_INVALID) continue;
             const Far::Index ca = lv.GetVertexChildVertex(Far::Index(a - lo));

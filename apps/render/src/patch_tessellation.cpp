@@ -1,10 +1,11 @@
 // The CPU reference of the adaptive-patch draw: every patch tessellated at
 // the levels the GPU's control stage computes (the shared
 // sgPatchEdgeTessLevel of sg/patch/tess_level.glsl, from the same corner
-// vertices; transition edges the sum of their halves'), its domain points those of the GL
-// specification's quad tessellation with equal spacing (OpenGL 4.5 core, section 11.2.2.2), and
-// every point evaluated as the evaluation stage does (sg/patch/watertight.glsl
-// for edge points, the shared basis sg/patch/basis.glsl).
+// vertices; transition edges the sum of their halves'), its domain points
+// those of the GL specification's quad tessellation with equal spacing
+// (OpenGL 4.5 core, section 11.2.2.2), and every point evaluated as the
+// evaluation stage does (sg/patch/watertight.glsl for edge points, the
+// shared basis sg/patch/basis.glsl).
 //
 // Triangulation. GL fixes the domain points for integer levels but leaves
 // the triangles of the ring between the outer edges and the inner grid to
