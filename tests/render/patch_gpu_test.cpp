@@ -26,6 +26,7 @@
 #include <map>
 #include <vector>
 
+#include "render_internal.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/gl.h"
@@ -78,44 +79,7 @@ std::vector<Captured> drawAndCapture(const AdaptivePatches& ap, const View& view
     std::vector<float> pts;
     for (const glm::vec3& p : ap.points) pts.insert(pts.end(), {p.x, p.y, p.z});
     glNamedBufferStorage(buf[0], GLsizeiptr(pts.size() * 4), pts.data(), 0);
-    std::vector<uint32_t> data;
-    for (size_t p = 0; p < ap.patchCount(); ++p) {
-        // The renderer's layout (patch_tes.glsl, 28 words).
-        const glm::uvec4 c = ap.cornerVertices[p], e = ap.edgeOwners[p], o = ap.cornerOwners[p];
-        const glm::uvec4 lo = ap.transitionLo[p], hi = ap.transitionHi[p];
-        const glm::uvec4 mid = ap.transitionMid[p];
-        const auto& arr = arrayOf(ap, uint32_t(p));
-        const uint32_t first =
-            arr.firstIndex + (uint32_t(p) - arr.firstPatch) * uint32_t(arr.pointsPerPatch);
-        data.insert(data.end(), {ap.params[p].y,
-                                 c.x,
-                                 c.y,
-                                 c.z,
-                                 c.w,
-                                 uint32_t(arr.type),
-                                 first,
-                                 ap.transitionMask[p],
-                                 e.x,
-                                 e.y,
-                                 e.z,
-                                 e.w,
-                                 o.x,
-                                 o.y,
-                                 o.z,
-                                 o.w,
-                                 lo.x,
-                                 lo.y,
-                                 lo.z,
-                                 lo.w,
-                                 hi.x,
-                                 hi.y,
-                                 hi.z,
-                                 hi.w,
-                                 mid.x,
-                                 mid.y,
-                                 mid.z,
-                                 mid.w});
-    }
+    const std::vector<uint32_t> data = sg::render::detail::patchRecords(ap); // the renderer's
     glNamedBufferStorage(buf[1], GLsizeiptr(data.size() * 4), data.data(), 0);
     const uint32_t capacity = 4u << 20;
     std::vector<uint32_t> cap(2 + 6 * size_t(capacity), 0u);

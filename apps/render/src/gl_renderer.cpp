@@ -49,12 +49,9 @@ struct GpuMesh {
     detail::GpuStencils stencils;
 };
 
-// The per-patch records the tessellation stages read (binding 1; layout in
-// sg/patch/patch_tes.glsl): 28 words per patch: PatchParam field1, the four
-// corner vertices, the patch type, its first entry in the index buffer, the
-// transition mask, the four edge owners, the four corner owners, the four
-// transition edges' lower-half owners, upper-half owners, midpoint owners.
-std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap) {
+} // namespace
+
+std::vector<uint32_t> detail::patchRecords(const sg::mesh::AdaptivePatches& ap) {
     std::vector<uint32_t> data;
     data.reserve(28 * ap.patchCount());
     for (const auto& arr : ap.arrays) {
@@ -96,6 +93,10 @@ std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap) {
     }
     return data;
 }
+
+namespace {
+
+using detail::patchRecords;
 
 // The UV sets' buffers (bindings 4 and 5; layout in sg/patch/patch_tes.glsl):
 // every set's values, xy, one set after the other; per patch and set

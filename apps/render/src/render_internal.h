@@ -64,6 +64,14 @@ FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
 void checkTextureBudget(const std::string& name, const TextureLoadOptions& opt,
                         const std::string& what, uint64_t residentBytes, uint64_t transientBytes);
 
+// The per-patch records the tessellation stages read (binding 1; layout in
+// sg/patch/patch_tes.glsl): 28 words per patch: PatchParam field1, the four
+// corner vertices, the patch type, its first entry in the index buffer, the
+// transition mask, the four edge owners, the four corner owners, the four
+// transition edges' lower-half owners, upper-half owners, midpoint owners
+// (gl_renderer.cpp; the crack tests draw with the same records).
+std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap);
+
 glm::mat3 normalMatrix(const glm::mat4& model);
 
 // The triangles of adaptive patches for one view, as the GPU's
