@@ -361,6 +361,26 @@ std::string elementOf(const MeshInstance& mi, const std::string& sub) {
     return mi.fieldPath + "." + sub;
 }
 
+// The linear part R(rotate_deg) * scale of derived UV set `d` on a mesh
+// that has `count` sets at this point; an InputError naming d's field when
+// its source set does not exist or the mesh is full.
+glm::mat2 derivedUvLinear(const Scene& scene, const DerivedUvSet& d, size_t count) {
+    if (size_t(d.from) >= count) {
+        throw io::InputError(scene.sourceName, d.fieldPath + ".from",
+                             "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
+                                 std::to_string(int(count) - 1) + ") at this point, no set " +
+                                 std::to_string(d.from));
+    }
+    if (count >= size_t(kMaxUvSets)) {
+        throw io::InputError(scene.sourceName, d.fieldPath,
+                             "a mesh can have at most " + std::to_string(kMaxUvSets) +
+                                 " UV sets (it has " + std::to_string(count) + " already)");
+    }
+    const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
+    // Column-major: R = [[c, s], [-s, c]] as columns, then scale per axis.
+    return glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+}
+
 // Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o) to
 // the built mesh, and their limit derivatives (the linear part R S times
 // those of the source set) to `limit` when the mesh has one. After
@@ -373,21 +393,7 @@ void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh
                       sm::LimitFrame& limit) {
     for (const DerivedUvSet& d : mi.derivedUvSets) {
         const size_t count = mesh.uvSets.size();
-        if (size_t(d.from) >= count) {
-            throw io::InputError(scene.sourceName, d.fieldPath + ".from",
-                                 "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
-                                     std::to_string(int(count) - 1) + ") at this point, no set " +
-                                     std::to_string(d.from));
-        }
-        if (count >= size_t(kMaxUvSets)) {
-            throw io::InputError(scene.sourceName, d.fieldPath,
-                                 "a mesh can have at most " + std::to_string(kMaxUvSets) +
-                                     " UV sets (it has " + std::to_string(count) + " already)");
-        }
-        const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
-        // Column-major: R = [[c, s], [-s, c]] as columns, then scale per axis.
-        const glm::mat2 lin =
-            glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+        const glm::mat2 lin = derivedUvLinear(scene, d, count);
         std::vector<glm::vec2> uv(mesh.uvSets[size_t(d.from)]);
         for (auto& st : uv) st = lin * st + d.offset;
         mesh.uvSets.push_back(std::move(uv));
@@ -518,20 +524,7 @@ sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCach
 void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, sm::AdaptivePatches& ap) {
     for (const DerivedUvSet& d : mi.derivedUvSets) {
         const size_t count = ap.uvSets.size();
-        if (size_t(d.from) >= count) {
-            throw io::InputError(scene.sourceName, d.fieldPath + ".from",
-                                 "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
-                                     std::to_string(int(count) - 1) + ") at this point, no set " +
-                                     std::to_string(d.from));
-        }
-        if (count >= size_t(kMaxUvSets)) {
-            throw io::InputError(scene.sourceName, d.fieldPath,
-                                 "a mesh can have at most " + std::to_string(kMaxUvSets) +
-                                     " UV sets (it has " + std::to_string(count) + " already)");
-        }
-        const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
-        const glm::mat2 lin =
-            glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
+        const glm::mat2 lin = derivedUvLinear(scene, d, count);
         sm::AdaptiveUvSet set = ap.uvSets[size_t(d.from)];
         for (auto& st : set.values) st = lin * st + d.offset;
         ap.uvSets.push_back(std::move(set));
