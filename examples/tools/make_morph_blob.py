@@ -34,8 +34,15 @@ import sys
 NS, NT = 64, 32
 
 
+def sin_theta(theta):
+    """sin(theta), exactly 0 at the north pole: math.sin(math.pi) is 1.2e-16,
+    which would give the 65 north-pole vertices 65 different positions, and
+    a cage welded by exact position would then have a hole there."""
+    return 0.0 if theta == math.pi else math.sin(theta)
+
+
 def base(phi, theta):
-    return (math.sin(theta) * math.sin(phi), -math.cos(theta), math.sin(theta) * math.cos(phi))
+    return (sin_theta(theta) * math.sin(phi), -math.cos(theta), sin_theta(theta) * math.cos(phi))
 
 
 def squash(phi, theta):
@@ -44,7 +51,7 @@ def squash(phi, theta):
 
 
 def lobes(phi, theta):
-    r = 1.0 + 0.28 * math.sin(3.0 * phi) * math.sin(theta) ** 2
+    r = 1.0 + 0.28 * math.sin(3.0 * phi) * sin_theta(theta) ** 2
     x, y, z = base(phi, theta)
     return (r * x, r * y, r * z)
 
@@ -75,7 +82,10 @@ def main():
     for j in range(NT + 1):
         for i in range(NS + 1):
             s, t = i / NS, j / NT
-            phi, theta = 2.0 * math.pi * (s - 0.5), math.pi * t
+            # The seam's two columns (s = 0 and 1) are one meridian: the
+            # same geometry bit for bit (phi = -pi and pi would differ by
+            # sin's rounding), so a cage welded by exact position closes.
+            phi, theta = 2.0 * math.pi * ((i % NS) / NS - 0.5), math.pi * t
             pole = j in (0, NT)
             p0, n0 = base(phi, theta), normal(base, phi, theta, pole)
             pos.append(p0)

@@ -53,6 +53,34 @@ TEST(ViewerPanel, MorphSlidersNamedByTheTargetNames) {
     EXPECT_EQ(morphTargetLabel(plain, 1), "target 1");
 }
 
+// An adaptive mesh keeps its morph targets on the cage (MeshAsset::
+// morphCage), not in the render mesh: the panel still gets one slider per
+// cage target, named by the file's targetNames, and setting the weights by
+// hand (what the slider does) moves the cage.
+TEST(ViewerPanel, AdaptiveCageBlendshapesGetSliders) {
+    Scene s = parseScene(R"({"materials": [{"name": "m"}], "meshes": [{"file":
+        "examples/data/morph_blob.gltf", "subdivision": {"mode": "adaptive", "isolation": 2}}]})",
+                         "test.json", SURFGRAD_SOURCE_DIR);
+    SceneAssets a = loadAssets(s);
+    ASSERT_TRUE(a.meshes[0].patches);
+    EXPECT_TRUE(a.meshes[0].mesh.morphTargets.empty()); // why the cage is asked
+    ASSERT_EQ(morphTargetCount(a.meshes[0]), 2u);
+    EXPECT_EQ(morphTargetLabel(a.meshes[0], 0), "squash");
+    EXPECT_EQ(morphTargetLabel(a.meshes[0], 1), "lobes");
+    EXPECT_EQ(morphTargetLabel(a.meshes[0], 5), "target 5");
+
+    applyFrame(s, a, 0.0f);
+    const std::vector<glm::vec3> rest = a.meshes[0].cagePositions;
+    s.meshes[0].morphKeys.clear();
+    s.meshes[0].morphWeights = {1.0f, 0.0f}; // the "squash" slider at 1
+    applyFrame(s, a, 0.0f);
+    ASSERT_EQ(a.meshes[0].cagePositions.size(), rest.size());
+    size_t moved = 0;
+    for (size_t v = 0; v < rest.size(); ++v) moved += a.meshes[0].cagePositions[v] != rest[v];
+    EXPECT_GT(moved, 0u);
+    EXPECT_EQ(a.meshes[0].appliedWeights, s.meshes[0].morphWeights);
+}
+
 TEST(ViewerPanel, TimingLinePrintsOnlyAMeasuredGpuTime) {
     RenderStats st;
     st.drawWallMs = 3.25;

@@ -284,7 +284,7 @@ bool materialControls(Scene& scene) {
 // slider per target, by its name).
 void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
     bool anyMorph = false;
-    for (const auto& a : assets.meshes) anyMorph |= !a.mesh.morphTargets.empty();
+    for (const auto& a : assets.meshes) anyMorph |= morphTargetCount(a) > 0;
     if (!anyMorph || !ImGui::CollapsingHeader("blendshapes", ImGuiTreeNodeFlags_DefaultOpen))
         return;
     ImGui::Checkbox("play", &st.playing);
@@ -301,7 +301,7 @@ void morphControls(Scene& scene, SceneAssets& assets, ViewerState& st) {
                                          .c_str());
         for (size_t t = 0; t < w.size(); ++t) {
             ImGui::PushID(int(i * 1000 + t));
-            std::string label = morphTargetLabel(assets.meshes[i].mesh, t);
+            std::string label = morphTargetLabel(assets.meshes[i], t);
             if (ImGui::SliderFloat(label.c_str(), &w[t], 0.0f, 1.0f) && st.morphOverride) {
                 scene.meshes[i].morphKeys.clear();
                 scene.meshes[i].morphWeights = w;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "surfgrad/polygon_mesh.h"
 #include "surfgrad/viewer.h"
 
 namespace sg::render {
@@ -15,6 +16,17 @@ float viewerPanelWidth(int windowWidth) {
 std::string morphTargetLabel(const sg::mesh::RenderMesh& mesh, size_t t) {
     if (t < mesh.morphTargets.size() && !mesh.morphTargets[t].name.empty())
         return mesh.morphTargets[t].name;
+    return "target " + std::to_string(t);
+}
+
+size_t morphTargetCount(const MeshAsset& asset) {
+    return asset.morphCage ? asset.morphCage->morphTargets.size() : asset.mesh.morphTargets.size();
+}
+
+std::string morphTargetLabel(const MeshAsset& asset, size_t t) {
+    if (!asset.morphCage) return morphTargetLabel(asset.mesh, t);
+    const auto& targets = asset.morphCage->morphTargets;
+    if (t < targets.size() && !targets[t].name.empty()) return targets[t].name;
     return "target " + std::to_string(t);
 }
 
