@@ -626,4 +626,109 @@ TEST(PatchHardCases, ZeroAreaAndFarFromTheOriginStayFinite) {
         "control points finite, edge level within [1, 64]", "holds", "holds");
 }
 
+// A closed cage with two poles of valence `valence`: a sphere of `valence`
+// segments and 4 rings, quads between the rings, triangle fans at the poles
+// (Catmark turns them into quads around a vertex of the same valence).
+// Rotationally symmetric: the limit normal at the north pole is +y.
+PolygonMesh poleCage(uint32_t valence) {
+    PolygonMesh cage;
+    const uint32_t rings = 4;
+    cage.positions.push_back(glm::vec3(0.0f, 1.0f, 0.0f)); // north pole: vertex 0
+    for (uint32_t r = 1; r < rings; ++r) {
+        const float theta = 3.14159265f * float(r) / float(rings);
+        for (uint32_t i = 0; i < valence; ++i) {
+            const float phi = 6.28318531f * float(i) / float(valence);
+            cage.positions.push_back(glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
+                                               -std::sin(theta) * std::sin(phi)));
+        }
+    }
+    const uint32_t south = uint32_t(cage.positions.size());
+    cage.positions.push_back(glm::vec3(0.0f, -1.0f, 0.0f));
+    auto ring = [&](uint32_t r, uint32_t i) { return 1 + (r - 1) * valence + i % valence; };
+    auto face = [&](std::initializer_list<uint32_t> v) {
+        cage.faceSizes.push_back(uint32_t(v.size()));
+        cage.faceVertices.insert(cage.faceVertices.end(), v);
+    };
+    for (uint32_t i = 0; i < valence; ++i) { // counter-clockwise seen from outside
+        face({0, ring(1, i), ring(1, i + 1)});
+        for (uint32_t r = 1; r + 1 < rings; ++r)
+            face({ring(r, i), ring(r + 1, i), ring(r + 1, i + 1), ring(r, i + 1)});
+        face({south, ring(rings - 1, i + 1), ring(rings - 1, i)});
+    }
+    return cage;
+}
+
+// Hard case: extraordinary vertices of high valence (3 to 64 patches
+// around one point). Gregory end caps surround the pole at every isolation;
+// their corner at the pole must be OpenSubdiv's limit point with its limit
+// normal, every patch finite. Measured against the uniform path's limit
+// evaluation (Far limit stencils at the refined vertices) and against the
+// symmetry (+y at the pole).
+TEST(PatchHardCases, HighValencePolesKeepTheLimitPointAndNormal) {
+    double worstAngleDeg = 0.0, worstOff = 0.0;
+    for (uint32_t valence : {3u, 8u, 64u}) {
+        SCOPED_TRACE(valence);
+        PolygonMesh cage = poleCage(valence);
+        sg::mesh::validate(cage, "pole.obj"); // closed, manifold, consistently oriented
+        for (int isolation : {1, 3}) {
+            sg::mesh::AdaptivePatches ap =
+                sg::mesh::buildAdaptivePatches(cage, cage.options, isolation, "pole.obj");
+            ASSERT_TRUE(allFinite(ap));
+            sg::mesh::SubdivisionSettings st;
+            st.options = cage.options;
+            st.level = 1;
+            st.limit = true;
+            sg::mesh::Subdivider sub(cage, st, "pole.obj");
+            const glm::vec3 limitPole = sub.refined().positions[0]; // vertex 0 keeps its index
+            size_t atPole = 0;
+            for (const auto& arr : ap.arrays) {
+                for (uint32_t p = 0; p < arr.patchCount; ++p) {
+                    for (glm::vec2 c :
+                         {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
+                        glm::vec3 du;
+                        const glm::vec3 q = evalPatch(ap, arr, p, c, &du);
+                        if (glm::length(q - limitPole) > 1e-3f) continue;
+                        // The other derivative: a finite difference would
+                        // mix in the patch's curvature; the basis has it.
+                        const glm::uvec2 param = ap.params[arr.firstPatch + p];
+                        const g::SgPatchBasis b =
+                            g::sgPatchBasis(arr.type, param.y, g::sgPatchUnnormalizeUv(param.y, c));
+                        glm::vec3 dv(0.0f);
+                        for (int i = 0; i < b.count; ++i)
+                            dv += b.dv.v[i] *
+                                  ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) +
+                                                       uint32_t(i)]];
+                        const glm::vec3 n = glm::cross(du, dv);
+                        ASSERT_GT(glm::length(n), 0.0f) << "patch " << arr.firstPatch + p;
+                        const double cosA = std::clamp(double(glm::normalize(n).y), -1.0, 1.0);
+                        worstAngleDeg = std::max(worstAngleDeg, std::acos(cosA) * 57.29577951);
+                        worstOff = std::max(worstOff, double(glm::length(q - limitPole)));
+                        ++atPole;
+                    }
+                }
+            }
+            // Every patch around the pole has it as a corner: at least one
+            // per sector of the fan.
+            EXPECT_GE(atPole, size_t(valence)) << "isolation " << isolation;
+        }
+    }
+    std::printf("high-valence poles: worst angle to +y %.3g deg, worst distance to the limit "
+                "point %.3g\n",
+                worstAngleDeg, worstOff);
+    // Both are OpenSubdiv's limit in binary32 through different stencil
+    // factorisations: rounding of rows with up to 2 * valence weights of
+    // unit-size coordinates.
+    sg::test::hardCaseAtMost("high-valence",
+                             "adaptive patches around poles of valence 3, 8 and 64 (isolation 1 "
+                             "and 3): patch corners at the pole",
+                             "|corner - Far's limit point| (object units, cage size 2)", worstOff,
+                             1e-4);
+    // The normal from the Gregory corner's derivatives against the
+    // symmetry's +y: float rounding of the derivative sums only.
+    sg::test::hardCaseAtMost("high-valence",
+                             "adaptive patches around poles of valence 3, 8 and 64: normal at the "
+                             "pole corner",
+                             "angle to the exact normal +y (degrees)", worstAngleDeg, 0.1);
+}
+
 } // namespace
