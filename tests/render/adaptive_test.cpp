@@ -151,6 +151,32 @@ TEST(AdaptiveUv, CageAndDerivedSetsReachThePlan) {
     EXPECT_EQ(src.tessEval.rfind(head + "#define SG_UV_COUNT 2\n", 0), 0u);
 }
 
+// Non-manifold cages (three quads on one edge; OpenSubdiv's regression
+// shape with vertices of two fans) are refused for adaptive patches as for
+// the uniform path: an InputError naming the file and the element, no
+// patches, no fallback.
+TEST(AdaptiveScene, NonManifoldCagesAreClearErrors) {
+    const std::filesystem::path dir = std::filesystem::path(SURFGRAD_BINARY_DIR) / "tests/render";
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path fin = dir / "adaptive_fin.obj";
+    std::ofstream(fin) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1 -1 0\nv 0 -1 0\n"
+                          "v 1 0 1\nv 0 0 1\nf 1 2 3 4\nf 2 1 6 5\nf 1 2 7 8\n";
+    for (const std::string& file :
+         {fin.string(), std::string("data/osd-shapes/catmark_nonman_verts.obj")}) {
+        std::string err;
+        try {
+            Scene s = sceneFromJson(R"({"materials": [{"name": "m"}], "meshes": [{"file": ")" +
+                                    file + R"(", "subdivision": {"mode": "adaptive"}}]})");
+            loadAssets(s);
+        } catch (const sg::io::InputError& e) {
+            err = e.what();
+        }
+        const std::string name = std::filesystem::path(file).filename().string();
+        EXPECT_NE(err.find(name), std::string::npos) << file << ": " << err;
+        EXPECT_NE(err.find("non-manifold"), std::string::npos) << file << ": " << err;
+    }
+}
+
 TEST(AdaptiveScene, OnlyAdaptiveMeshesGetTessellationStages) {
     Scene s = sceneFromJson(
         R"({"materials": [{"name": "m"}], "meshes": [
