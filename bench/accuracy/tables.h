@@ -32,6 +32,7 @@ void tableTriplanar(const Options& o);   // 7: triplanar method
 void tableAntialias(const Options& o);   // 8: bump antialiasing
 void tableParallax(const Options& o);    // 9: parallax and POM
 void tableFeatureAa(const Options& o);   // 10: feature curves antialiased
+void tableAdaptive(const Options& o);    // 11: adaptive patches vs uniform refinement
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {
@@ -46,6 +47,7 @@ inline const std::vector<TableEntry>& registeredTables() {
         {"antialias", "8. bump antialiasing", tableAntialias},
         {"parallax", "9. parallax and POM", tableParallax},
         {"feature-aa", "10. feature curves antialiased", tableFeatureAa},
+        {"adaptive", "11. adaptive patches vs uniform refinement", tableAdaptive},
     };
     return tables;
 }

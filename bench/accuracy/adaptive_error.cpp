@@ -1,0 +1,80 @@
+// Table 11's error measure: adaptive_error.h.
+#include "adaptive_error.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace study {
+
+SurfaceReference::SurfaceReference(const sg::mesh::RenderMesh& m)
+    : pos_(m.positions), nrm_(m.normals) {
+    double edge = 0.0;
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
+        edge += glm::length(pos_[m.indices[t]] - pos_[m.indices[t + 1]]);
+    cell_ = float(2.0 * edge / double(std::max<size_t>(m.indices.size() / 3, 1)));
+    grid_.reserve(pos_.size());
+    for (uint32_t v = 0; v < pos_.size(); ++v) grid_.push_back({key(cellOf(pos_[v])), v});
+    std::sort(grid_.begin(), grid_.end());
+}
+
+uint64_t SurfaceReference::key(glm::ivec3 c) {
+    return (uint64_t(uint32_t(c.x) & 0x1FFFFFu) << 42) |
+           (uint64_t(uint32_t(c.y) & 0x1FFFFFu) << 21) | uint64_t(uint32_t(c.z) & 0x1FFFFFu);
+}
+
+float SurfaceReference::distance(glm::vec3 p) const {
+    const glm::ivec3 c = cellOf(p);
+    float best = INFINITY;
+    uint32_t bestV = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const uint64_t k = key(c + glm::ivec3(dx, dy, dz));
+                auto it = std::lower_bound(grid_.begin(), grid_.end(),
+                                           std::pair<uint64_t, uint32_t>(k, 0));
+                for (; it != grid_.end() && it->first == k; ++it) {
+                    const glm::vec3 d = p - pos_[it->second];
+                    const float d2 = glm::dot(d, d);
+                    if (d2 < best) {
+                        best = d2;
+                        bestV = it->second;
+                    }
+                }
+            }
+    if (!std::isfinite(best)) return -1.0f;
+    return std::fabs(glm::dot(p - pos_[bestV], nrm_[bestV]));
+}
+
+ScreenError screenError(const SurfaceReference& ref, const sg::mesh::RenderMesh& m,
+                        const sg::render::View& v, float focalPx, size_t maxTriangles) {
+    std::vector<double> px;
+    const size_t tris = m.indices.size() / 3;
+    const size_t stride = std::max<size_t>(1, tris / std::max<size_t>(maxTriangles, 1));
+    ScreenError e;
+    const glm::mat4 vp = v.proj * v.view;
+    for (size_t t = 0; t < tris; t += stride) {
+        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                        c = m.positions[m.indices[3 * t + 2]];
+        for (const glm::vec3 p :
+             {(a + b + c) / 3.0f, 0.5f * (a + b), 0.5f * (b + c), 0.5f * (c + a)}) {
+            const glm::vec4 clip = vp * glm::vec4(p, 1.0f);
+            if (!(clip.w > 0.0f) || std::fabs(clip.x) > clip.w || std::fabs(clip.y) > clip.w)
+                continue;
+            const float d = ref.distance(p);
+            if (d < 0.0f) {
+                ++e.missed;
+                continue;
+            }
+            const float depth = -(v.view * glm::vec4(p, 1.0f)).z;
+            px.push_back(double(d) * double(focalPx) / double(depth));
+        }
+    }
+    e.samples = px.size();
+    if (px.empty()) return e;
+    std::sort(px.begin(), px.end());
+    e.max = px.back();
+    e.p99 = px[std::min(px.size() - 1, size_t(0.99 * double(px.size())))];
+    return e;
+}
+
+} // namespace study
