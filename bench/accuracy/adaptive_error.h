@@ -50,7 +50,6 @@ struct ScreenError {
 // focalPx (focal length in pixels) / the point's depth. At most
 // `maxTriangles` triangles, evenly strided.
 ScreenError screenError(const SurfaceReference& ref, const sg::mesh::RenderMesh& mesh,
-                        const sg::render::View& view, float focalPx,
-                        size_t maxTriangles = 400000);
+                        const sg::render::View& view, float focalPx, size_t maxTriangles = 400000);
 
 } // namespace study

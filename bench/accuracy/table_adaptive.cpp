@@ -101,12 +101,15 @@ std::string meshScene(const std::string& file, float distanceScale, const std::s
            R"(", "subdivision": )" + subdivision + extra + "}]}";
 }
 
-Scene sceneOf(const std::string& json) { return parseScene(json, "table_adaptive.json", "."); }
+Scene sceneOf(const std::string& json) {
+    return parseScene(json, "table_adaptive.json", ".");
+}
 
 std::string adaptiveJson(int isolation, float pixelsPerEdge) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, R"({"mode": "adaptive", "isolation": %d, "pixels_per_edge": %g})",
-                  isolation, double(pixelsPerEdge));
+    std::snprintf(buf, sizeof buf,
+                  R"({"mode": "adaptive", "isolation": %d, "pixels_per_edge": %g})", isolation,
+                  double(pixelsPerEdge));
     return buf;
 }
 
@@ -261,9 +264,15 @@ void animatedTable(const Options& o) {
     t.title = "Table 11b: animated cages, 960x540, median of " + std::to_string(frames) +
               " frames" + (o.quick ? "" : " (bob: " + std::to_string(heavyFrames) + ")") +
               "; each frame a new cage; adaptive and uniform interleaved";
-    t.header = {"cage (faces, vertices)", "mode",          "triangles drawn",
-                "GPU buffers MiB",        "upload/frame KiB", "CPU ms",
-                "upload+compute ms",      "draw ms",       "frame ms",
+    t.header = {"cage (faces, vertices)",
+                "mode",
+                "triangles drawn",
+                "GPU buffers MiB",
+                "upload/frame KiB",
+                "CPU ms",
+                "upload+compute ms",
+                "draw ms",
+                "frame ms",
                 "ratio to uniform"};
     for (size_t i = 0; i < rows.size(); i += 2) {
         const double base = median(rows[i + 1].frameMs);
@@ -273,8 +282,8 @@ void animatedTable(const Options& o) {
                        std::to_string(r.cageVerts) + ")",
                    r.mode, std::to_string(r.triangles), fmt(double(r.gpuBytes) / 1048576.0, 1),
                    fmt(double(r.uploadBytes) / 1024.0, 1), fmt(median(r.cpuMs), 2),
-                   fmt(median(r.updateMs), 2), fmt(median(r.drawMs), 1),
-                   fmt(median(r.frameMs), 1), fmtRatio(median(r.frameMs) / base)});
+                   fmt(median(r.updateMs), 2), fmt(median(r.drawMs), 1), fmt(median(r.frameMs), 1),
+                   fmtRatio(median(r.frameMs) / base)});
         }
     }
     t.notes.push_back(
@@ -312,7 +321,8 @@ void staticTable(const Options& o) {
     std::vector<Row> rows;
     for (const Case& c : cases) {
         Row r;
-        r.scene = sceneOf(meshScene("data:meshes/spot/spot_control_mesh.obj", 0.72f, c.subdivision));
+        r.scene =
+            sceneOf(meshScene("data:meshes/spot/spot_control_mesh.obj", 0.72f, c.subdivision));
         std::vector<double> loads; // median of 3 (the first also reads the file)
         for (int k = 0; k < 3; ++k) {
             const auto t0 = Clock::now();
@@ -352,8 +362,8 @@ void staticTable(const Options& o) {
     Table t;
     t.title = "Table 11c: static spot cage on the tessellated-asset view, 960x540, median of " +
               std::to_string(frames) + " interleaved frames";
-    t.header = {"mesh", "load (CPU) ms", "triangles drawn", "GPU buffers KiB", "draw ms",
-                "ratio to uniform level 3"};
+    t.header = {"mesh",    "load (CPU) ms",           "triangles drawn", "GPU buffers KiB",
+                "draw ms", "ratio to uniform level 3"};
     for (size_t i = 0; i < rows.size(); ++i) {
         const double ms = median(rows[i].drawMs);
         t.add({cases[i].name, fmt(rows[i].loadMs, 1), std::to_string(rows[i].triangles),
@@ -397,9 +407,9 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
         uni[size_t(L)] = loadAssets(s);
         uniLoad[size_t(L)] = msSince(t0);
     }
-    Scene sa0 = sceneOf(meshScene(file.string(), 1.0f,
-                                  R"({"mode": "adaptive", "isolation": )" +
-                                      std::to_string(isolation) + "}"));
+    Scene sa0 = sceneOf(
+        meshScene(file.string(), 1.0f,
+                  R"({"mode": "adaptive", "isolation": )" + std::to_string(isolation) + "}"));
     auto t0 = Clock::now();
     SceneAssets adaptive = loadAssets(sa0);
     const double adaptiveLoad = msSince(t0);
@@ -512,7 +522,6 @@ void equalErrorTable(const Options& o) {
     t.print(o);
 }
 
-
 // ---- 11d: displacement's cost --------------------------------------------
 
 // The displaced surface as the CPU tessellator makes it for `view`
@@ -556,8 +565,7 @@ sg::mesh::RenderMesh displacedMesh(const Scene& s, const SceneAssets& a, const V
 // background 0).
 size_t pinholes(const Image& img) {
     auto covered = [&](int x, int y) {
-        return glm::length(glm::vec3(img.pixels[size_t(y) * size_t(img.width) + size_t(x)])) >
-               0.5f;
+        return glm::length(glm::vec3(img.pixels[size_t(y) * size_t(img.width) + size_t(x)])) > 0.5f;
     };
     size_t holes = 0;
     for (int y = 1; y + 1 < img.height; ++y)
@@ -626,11 +634,12 @@ void displacementTable(const Options& o) {
             vs[i].drawMs.push_back(gl[i].stats().drawWallMs);
         }
     Table t;
-    t.title = "Table 11d: displacement's cost, spot adaptive (isolation 3) on the tessellated-asset "
-              "view, 960x540, spot_height.png x 0.012; draw: median of " +
-              std::to_string(frames) + " interleaved frames";
-    t.header = {"px/edge",        "displacement", "triangles",        "CPU tessellator ms",
-                "draw ms",        "draw ratio to off", "pinholes (GPU)", "err to displaced p99/max px"};
+    t.title =
+        "Table 11d: displacement's cost, spot adaptive (isolation 3) on the tessellated-asset "
+        "view, 960x540, spot_height.png x 0.012; draw: median of " +
+        std::to_string(frames) + " interleaved frames";
+    t.header = {"px/edge", "displacement",      "triangles",      "CPU tessellator ms",
+                "draw ms", "draw ratio to off", "pinholes (GPU)", "err to displaced p99/max px"};
     for (size_t i = 0; i < vs.size(); ++i) {
         const Variant& v = vs[i];
         const Variant& off = vs[i & ~size_t(1)];

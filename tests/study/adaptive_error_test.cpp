@@ -75,7 +75,9 @@ TEST(StudyAdaptiveError, ChordErrorConvergesQuadratically) {
         // Chords of a smooth surface sag by h^2 k / 8: halving h divides the
         // error by 4; below 2.5 per level would be linear convergence (or a
         // reference that does not follow the surface).
-        if (level > 1) EXPECT_GT(prev / e.p99, 2.5);
+        if (level > 1) {
+            EXPECT_GT(prev / e.p99, 2.5);
+        }
         prev = e.p99;
     }
 }
