@@ -71,12 +71,13 @@ std::filesystem::path dataDir() {
 // Bytes the renderer's buffers hold for adaptive patches: control points
 // (xyz), control-point indices and the patch records the draw uploads
 // (detail::patchRecords, 28 words per patch); with `stencils`, also the
-// animated path's cage and stencil rows (offsets, indices, weights).
+// animated path's stencil rows (offsets, indices, weights of the passes;
+// the cage is uploaded into the control points' buffer).
 size_t patchGpuBytes(const sg::mesh::AdaptivePatches& p, bool stencils) {
     size_t bytes = p.points.size() * 12 + p.indices.size() * 4 + detail::patchRecords(p).size() * 4;
     if (stencils)
-        bytes += size_t(p.cagePointCount) * 12 + p.stencilOffsets.size() * 4 +
-                 p.stencilIndices.size() * 4 + p.stencilWeights.size() * 4;
+        bytes +=
+            p.stencilOffsets.size() * 4 + p.stencilIndices.size() * 4 + p.stencilWeights.size() * 4;
     return bytes;
 }
 
@@ -287,8 +288,9 @@ void animatedTable(const Options& o) {
         }
     }
     t.notes.push_back(
-        "GPU buffers: adaptive = control points, indices, patch records, the cage and the stencil "
-        "rows; uniform = positions, normals, UV sets, indices. Upload: RenderStats::"
+        "GPU buffers: adaptive = control points, indices, patch records and the stencil rows "
+        "(applied level by level); uniform = positions, normals, UV sets, indices. Upload: "
+        "RenderStats::"
         "meshUploadBytes (exact). CPU: the caller's work per frame (adaptive: setCagePositions; "
         "uniform: Subdivider::update and the copy). Frame: CPU + renderToTexture. Ratio to "
         "uniform on the same cage, same run; renderer " +

@@ -1966,6 +1966,65 @@ void assignTransitions(AdaptivePatches& ap, const OwnerMaps& m, const Far::Topol
     }
 }
 
+// The stencil passes of AdaptivePatches (its declaration has the layout):
+// one pass per refinement level from Far's StencilTable with
+// factorizeIntermediateLevels = false (each level's rows read the level
+// above, by its own vertex indices: rebased here onto the global point
+// index; Far folds the face points its edge and vertex rules reuse into
+// them), then one pass of the patch table's local points (Gregory end
+// caps), whose rows read refined points of any level by global index.
+// Checks that every row reads only points of earlier passes: the contract
+// that lets the GPU run a pass's rows in parallel.
+void recordAdaptiveStencils(const Far::TopologyRefiner& refiner, const Far::PatchTable& table,
+                            AdaptivePatches& out, const std::string& file) {
+    Far::StencilTableFactoryReal<float>::Options sopt;
+    sopt.generateIntermediateLevels = true;
+    sopt.factorizeIntermediateLevels = false;
+    sopt.generateControlVerts = false;
+    sopt.generateOffsets = true;
+    std::unique_ptr<const Far::StencilTableReal<float>> levels(
+        Far::StencilTableFactoryReal<float>::Create(refiner, sopt));
+    const Far::StencilTableReal<float>* local = table.GetLocalPointStencilTable<float>();
+    out.stencilOffsets.assign(1, 0);
+    out.stencilIndices.clear();
+    out.stencilWeights.clear();
+    out.stencilPasses.assign(1, out.cagePointCount);
+    // Rows [first, first + count) of `st`, reading points srcBase + index.
+    auto appendRows = [&](const Far::StencilTableReal<float>& st, int first, int count,
+                          uint32_t srcBase) {
+        const auto& sizes = st.GetSizes();
+        const auto& offsets = st.GetOffsets();
+        const auto& idx = st.GetControlIndices();
+        const auto& w = st.GetWeights();
+        const uint32_t passStart = out.stencilPasses.back();
+        for (int s = first; s < first + count; ++s) {
+            const size_t at = size_t(offsets[size_t(s)]);
+            for (int k = 0; k < sizes[size_t(s)]; ++k) {
+                const uint32_t src = srcBase + uint32_t(idx[at + size_t(k)]);
+                if (idx[at + size_t(k)] < 0 || src >= passStart)
+                    throw InputError(file, "stencils",
+                                     "a stencil row reads a point of its own pass (OpenSubdiv "
+                                     "layout not as expected)");
+                out.stencilIndices.push_back(src);
+                out.stencilWeights.push_back(w[at + size_t(k)]);
+            }
+            out.stencilOffsets.push_back(uint32_t(out.stencilIndices.size()));
+        }
+        if (count > 0) out.stencilPasses.push_back(passStart + uint32_t(count));
+    };
+    int row = 0;
+    uint32_t levelAbove = 0; // global index of the level above's first point
+    for (int l = 1; l < refiner.GetNumLevels(); ++l) {
+        const int n = refiner.GetLevel(l).GetNumVertices();
+        appendRows(*levels, row, n, levelAbove);
+        row += n;
+        levelAbove += uint32_t(refiner.GetLevel(l - 1).GetNumVertices());
+    }
+    SG_ASSERT(row == levels->GetNumStencils(), "one stencil per refined vertex");
+    if (local) appendRows(*local, 0, local->GetNumStencils(), 0);
+    out.points.resize(out.stencilPasses.back());
+}
+
 // root[v] for every refined vertex (levels only, not the local points):
 // the level-0 or edge/face child vertex whose chain of vertex children
 // reaches v (they all have v's limit position).
@@ -2012,33 +2071,10 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
     std::unique_ptr<Far::PatchTable> table(Far::PatchTableFactory::Create(*refiner, popt));
     if (!table) throw InputError(file, "limit", "OpenSubdiv could not build patches: " + tFarError);
 
-    // Stencils: cage -> every vertex of every level, then the local points,
-    // all factorised down to the cage.
-    Far::StencilTableFactoryReal<float>::Options sopt;
-    sopt.generateIntermediateLevels = true;
-    sopt.factorizeIntermediateLevels = true;
-    sopt.generateControlVerts = true;
-    sopt.generateOffsets = true;
-    std::unique_ptr<const Far::StencilTableReal<float>> base(
-        Far::StencilTableFactoryReal<float>::Create(*refiner, sopt));
-    std::unique_ptr<const Far::StencilTableReal<float>> all;
-    if (const Far::StencilTableReal<float>* local = table->GetLocalPointStencilTable<float>()) {
-        all.reset(Far::StencilTableFactoryReal<float>::AppendLocalPointStencilTable(
-            *refiner, base.get(), local, true));
-    }
-    const Far::StencilTableReal<float>& st = all ? *all : *base;
-
     AdaptivePatches out;
     out.isolation = isolation;
     out.cagePointCount = uint32_t(cage.positions.size());
-    const int n = st.GetNumStencils();
-    out.stencilOffsets.resize(size_t(n) + 1);
-    for (int i = 0; i < n; ++i)
-        out.stencilOffsets[size_t(i)] = uint32_t(st.GetOffsets()[size_t(i)]);
-    out.stencilOffsets[size_t(n)] = uint32_t(st.GetControlIndices().size());
-    out.stencilIndices.assign(st.GetControlIndices().begin(), st.GetControlIndices().end());
-    out.stencilWeights.assign(st.GetWeights().begin(), st.GetWeights().end());
-    out.points.resize(size_t(n));
+    recordAdaptiveStencils(*refiner, *table, out, file);
     updateAdaptivePoints(out, cage.positions);
 
     for (int a = 0; a < table->GetNumPatchArrays(); ++a) {
@@ -2082,14 +2118,21 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
 }
 
 void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions) {
-    SG_EXPECTS(cagePositions.size() == patches.cagePointCount,
+    SG_EXPECTS(cagePositions.size() == patches.cagePointCount &&
+                   patches.points.size() >= patches.cagePointCount,
                "updateAdaptivePoints: one position per cage vertex");
-    const size_t n = patches.points.size();
-    for (size_t i = 0; i < n; ++i) {
+    std::copy(cagePositions.begin(), cagePositions.end(), patches.points.begin());
+    // The passes in order; within a pass the rows are independent (each
+    // reads only points of earlier passes), so point order is pass order.
+    glm::vec3* points = patches.points.data();
+    const uint32_t* off = patches.stencilOffsets.data();
+    const uint32_t* idx = patches.stencilIndices.data();
+    const float* w = patches.stencilWeights.data();
+    const size_t rows = patches.points.size() - patches.cagePointCount;
+    for (size_t r = 0; r < rows; ++r) {
         glm::vec3 p(0.0f);
-        for (uint32_t k = patches.stencilOffsets[i]; k < patches.stencilOffsets[i + 1]; ++k)
-            p += patches.stencilWeights[k] * cagePositions[patches.stencilIndices[k]];
-        patches.points[i] = p;
+        for (uint32_t k = off[r]; k < off[r + 1]; ++k) p += w[k] * points[idx[k]];
+        points[patches.cagePointCount + r] = p;
     }
 }
 

@@ -1,10 +1,11 @@
 // Animated cages on the GPU: the stencil rows applied to the uploaded cage
 // by the compute stage shaders/sg/patch/stencils.comp.glsl (gpu_stencils.h).
 // Our own compute stage rather than Osd::GLComputeEvaluator: it reads the
-// stencil arrays AdaptivePatches already holds (one table for every level
-// and the Gregory end caps' local points), writes the packed xyz points
-// buffer the patch draw reads, and sums in updateAdaptivePoints' order, so
-// the GPU's points equal the CPU reference's bit for bit (docs/mesh.md).
+// stencil arrays AdaptivePatches already holds (one pass per refinement
+// level, each from the level above, then the Gregory end caps' local
+// points), updates the packed xyz points buffer the patch draw reads in
+// place, and sums in updateAdaptivePoints' order, so the GPU's points equal
+// the CPU reference's bit for bit (docs/mesh.md).
 #include "gpu_stencils.h"
 
 #include <algorithm>
@@ -31,7 +32,7 @@ sg::gl::Program makeStencilProgram() {
 }
 
 GpuStencils::~GpuStencils() {
-    if (buf_[0]) glDeleteBuffers(4, buf_);
+    if (buf_[0]) glDeleteBuffers(3, buf_);
 }
 
 GpuStencils::GpuStencils(GpuStencils&& o) noexcept {
@@ -40,10 +41,11 @@ GpuStencils::GpuStencils(GpuStencils&& o) noexcept {
 
 GpuStencils& GpuStencils::operator=(GpuStencils&& o) noexcept {
     if (this != &o) {
-        if (buf_[0]) glDeleteBuffers(4, buf_);
-        std::copy(o.buf_, o.buf_ + 4, buf_);
-        std::fill(o.buf_, o.buf_ + 4, 0u);
+        if (buf_[0]) glDeleteBuffers(3, buf_);
+        std::copy(o.buf_, o.buf_ + 3, buf_);
+        std::fill(o.buf_, o.buf_ + 3, 0u);
         points_ = o.points_;
+        passes_ = std::move(o.passes_);
         pointCount_ = o.pointCount_;
         cagePointCount_ = o.cagePointCount_;
         bytes_ = o.bytes_;
@@ -52,28 +54,30 @@ GpuStencils& GpuStencils::operator=(GpuStencils&& o) noexcept {
 }
 
 uint64_t GpuStencils::upload(const sg::mesh::AdaptivePatches& ap, GLuint pointsBuffer) {
-    SG_EXPECTS(ap.stencilOffsets.size() == ap.points.size() + 1,
-               "GpuStencils::upload: one stencil row per point");
-    if (!buf_[0]) glCreateBuffers(4, buf_);
+    SG_EXPECTS(ap.points.size() >= ap.cagePointCount &&
+                   ap.stencilOffsets.size() == ap.points.size() - ap.cagePointCount + 1 &&
+                   !ap.stencilPasses.empty() && ap.stencilPasses.front() == ap.cagePointCount &&
+                   ap.stencilPasses.back() == ap.points.size(),
+               "GpuStencils::upload: one stencil row per point past the cage, passes cover them");
+    if (!buf_[0]) glCreateBuffers(3, buf_);
     points_ = pointsBuffer;
     pointCount_ = uint32_t(ap.points.size());
     cagePointCount_ = ap.cagePointCount;
-    const GLsizeiptr cageBytes = GLsizeiptr(size_t(cagePointCount_) * 12);
+    passes_ = ap.stencilPasses;
     const GLsizeiptr offBytes = GLsizeiptr(ap.stencilOffsets.size() * 4);
     const GLsizeiptr idxBytes = GLsizeiptr(std::max<size_t>(ap.stencilIndices.size(), 1) * 4);
     const GLsizeiptr wBytes = GLsizeiptr(std::max<size_t>(ap.stencilWeights.size(), 1) * 4);
-    glNamedBufferData(buf_[0], std::max<GLsizeiptr>(cageBytes, 12), nullptr, GL_STREAM_DRAW);
-    glNamedBufferData(buf_[1], offBytes, ap.stencilOffsets.data(), GL_STATIC_DRAW);
-    glNamedBufferData(buf_[2], idxBytes,
+    glNamedBufferData(buf_[0], offBytes, ap.stencilOffsets.data(), GL_STATIC_DRAW);
+    glNamedBufferData(buf_[1], idxBytes,
                       ap.stencilIndices.empty() ? nullptr : ap.stencilIndices.data(),
                       GL_STATIC_DRAW);
-    glNamedBufferData(buf_[3], wBytes,
+    glNamedBufferData(buf_[2], wBytes,
                       ap.stencilWeights.empty() ? nullptr : ap.stencilWeights.data(),
                       GL_STATIC_DRAW);
     glNamedBufferData(points_, GLsizeiptr(std::max<size_t>(ap.points.size(), 1) * 12), nullptr,
                       GL_DYNAMIC_COPY);
-    bytes_ = uint64_t(cageBytes + offBytes + idxBytes + wBytes);
-    return uint64_t(offBytes + idxBytes + wBytes);
+    bytes_ = uint64_t(offBytes + idxBytes + wBytes);
+    return bytes_;
 }
 
 uint64_t GpuStencils::apply(std::span<const glm::vec3> cage, const sg::gl::Program& program) {
@@ -81,21 +85,29 @@ uint64_t GpuStencils::apply(std::span<const glm::vec3> cage, const sg::gl::Progr
                "GpuStencils::apply: upload() first, one position per cage vertex");
     const GLsizeiptr cageBytes = GLsizeiptr(cage.size() * 12);
     static_assert(sizeof(glm::vec3) == 12, "packed xyz");
-    if (cageBytes) glNamedBufferSubData(buf_[0], 0, cageBytes, cage.data());
+    // The cage is the points buffer's first cagePointCount points; the
+    // buffer update is ordered before the dispatches that read it.
+    if (cageBytes) glNamedBufferSubData(points_, 0, cageBytes, cage.data());
     const GLuint prog = program.id();
     glUseProgram(prog);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, points_);
-    for (int k = 0; k < 4; ++k) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(4 + k), buf_[k]);
-    glUniform1ui(glGetUniformLocation(prog, "uPointCount"), pointCount_);
+    for (int k = 0; k < 3; ++k) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GLuint(5 + k), buf_[k]);
+    glUniform1ui(glGetUniformLocation(prog, "uCagePointCount"), cagePointCount_);
     const GLint firstLoc = glGetUniformLocation(prog, "uFirstPoint");
+    const GLint endLoc = glGetUniformLocation(prog, "uEndPoint");
     const uint32_t perDispatch = kGroupSize * kMaxGroups;
-    for (uint32_t first = 0; first < pointCount_; first += perDispatch) {
-        const uint32_t n = std::min(perDispatch, pointCount_ - first);
-        glUniform1ui(firstLoc, first);
-        glDispatchCompute((n + kGroupSize - 1) / kGroupSize, 1, 1);
+    // One pass after the other: a pass reads points earlier passes wrote,
+    // hence the barrier after each (the last one also serves the patch
+    // draw, which reads the points as storage buffers: patch_vs/tcs).
+    for (size_t p = 0; p + 1 < passes_.size(); ++p) {
+        glUniform1ui(endLoc, passes_[p + 1]);
+        for (uint32_t first = passes_[p]; first < passes_[p + 1]; first += perDispatch) {
+            const uint32_t n = std::min(perDispatch, passes_[p + 1] - first);
+            glUniform1ui(firstLoc, first);
+            glDispatchCompute((n + kGroupSize - 1) / kGroupSize, 1, 1);
+        }
+        glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     }
-    // The patch draw reads the points as storage buffers (patch_vs/tcs).
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     sg::gl::checkError("cage stencils");
     return uint64_t(cageBytes);
 }

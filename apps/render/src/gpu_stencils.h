@@ -1,8 +1,10 @@
 // Animated cages on the GPU (internal to surfgrad_render): the stencil rows
 // of sg::mesh::AdaptivePatches uploaded once, then per frame the cage
-// positions uploaded (cagePointCount x 12 bytes) and the control points
-// recomputed into the points buffer the patch draw reads, by the compute
-// stage shaders/sg/patch/stencils.comp.glsl (bit for bit what
+// positions uploaded (cagePointCount x 12 bytes, into the first points of
+// the points buffer the patch draw reads) and the other control points
+// recomputed in that buffer, pass after pass (one dispatch per stencil
+// pass, a storage barrier between), by the compute stage
+// shaders/sg/patch/stencils.comp.glsl (bit for bit what
 // sg::mesh::updateAdaptivePoints computes on the CPU).
 //
 // Needs a current GL 4.3+ context (compute shaders) on the calling thread;
@@ -39,23 +41,25 @@ public:
     // sizes `pointsBuffer` (a buffer name the caller created) for
     // patches.points.size() points (xyz floats). Returns the bytes uploaded.
     uint64_t upload(const sg::mesh::AdaptivePatches& patches, GLuint pointsBuffer);
-    // Uploads `cagePositions` (cagePointCount entries, object space) and
-    // dispatches the compute stage (`program`: makeStencilProgram()) that writes every point into
-    // the points buffer, followed by the barrier that makes them visible to the patch draw's
-    // storage-buffer reads. Returns the bytes uploaded (the cage).
+    // Uploads `cagePositions` (cagePointCount entries, object space) into
+    // the points buffer and dispatches the compute stage (`program`:
+    // makeStencilProgram()) once per stencil pass, in order, with a storage
+    // barrier after each (the next pass and the patch draw's storage-buffer
+    // reads see its points). Returns the bytes uploaded (the cage).
     uint64_t apply(std::span<const glm::vec3> cagePositions, const sg::gl::Program& program);
 
     bool uploaded() const { return buf_[0] != 0; }
     GLuint pointsBuffer() const { return points_; }
     uint32_t pointCount() const { return pointCount_; }
     uint32_t cagePointCount() const { return cagePointCount_; }
-    // Bytes of the buffers this object owns (cage and stencil rows).
+    // Bytes of the buffers this object owns (the stencil rows).
     uint64_t bufferBytes() const { return bytes_; }
 
 private:
-    GLuint buf_[4] = {}; // cage (binding 4), offsets (5), indices (6), weights (7)
+    GLuint buf_[3] = {}; // offsets (binding 5), indices (6), weights (7)
     GLuint points_ = 0;  // not owned
     uint32_t pointCount_ = 0, cagePointCount_ = 0;
+    std::vector<uint32_t> passes_; // AdaptivePatches::stencilPasses
     uint64_t bytes_ = 0;
 };
 

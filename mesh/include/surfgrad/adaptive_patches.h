@@ -116,16 +116,42 @@ struct AdaptivePatches {
     std::vector<glm::uvec4> transitionLo;
     std::vector<glm::uvec4> transitionHi;
     std::vector<glm::uvec4> transitionMid;
-    // points = S * cage positions: a sparse matrix in rows (one per point,
-    // factorised down to the cage: an animated cage needs only this and
-    // its own positions). stencilOffsets has points.size() + 1 entries.
+    // Stencils: every point past the cage is a fixed linear combination of
+    // points before it, applied in passes (what an animated cage needs per
+    // frame besides its own positions; the GPU runs the same passes,
+    // apps/render/src/gpu_stencils.h). One row per point past the cage, in
+    // point order: row r computes point i = cagePointCount + r as
+    //   points[i] = sum over k in [stencilOffsets[r], stencilOffsets[r + 1])
+    //               of stencilWeights[k] * points[stencilIndices[k]],
+    // summed from 0 in increasing k, each product rounded to float before
+    // its add (no fused multiply-add). That order is the contract: the
+    // GPU's compute stage performs the same operations and its points equal
+    // updateAdaptivePoints' bit for bit. stencilOffsets has
+    // points.size() - cagePointCount + 1 entries.
+    // Passes: pass p computes points [stencilPasses[p], stencilPasses[p + 1])
+    // (stencilPasses[0] = cagePointCount, stencilPasses.back() =
+    // points.size(); empty passes are left out). Each adaptive refinement
+    // level is one pass whose rows read the level above (OpenSubdiv's
+    // Far::StencilTable with factorizeIntermediateLevels = false: a few
+    // weights per point), then one pass for Far's local points (Gregory end
+    // caps) whose rows read refined points of any level. Every row reads
+    // only points of earlier passes (checked when built), so the rows of a
+    // pass are independent and the passes run in order. The rows are not
+    // factorised down to the cage, so their size is proportional to the
+    // number of points, not growing with the depth.
     std::vector<uint32_t> stencilOffsets;
     std::vector<uint32_t> stencilIndices;
     std::vector<float> stencilWeights;
+    std::vector<uint32_t> stencilPasses;
     // The cage's UV sets, in its order (empty for a cage without UVs).
     std::vector<AdaptiveUvSet> uvSets;
 
     size_t patchCount() const { return params.size(); }
+    // Bytes of the stencil arrays (offsets, indices, weights, passes).
+    size_t stencilBytes() const {
+        return 4 * (stencilOffsets.size() + stencilIndices.size() + stencilWeights.size() +
+                    stencilPasses.size());
+    }
 };
 
 // Builds the adaptive patches of `cage` (validated) at the given isolation
@@ -138,8 +164,10 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
                                      int isolation, const std::string& file = {});
 
 // Recomputes patches.points from new cage positions (cagePointCount
-// entries) with the stencils: what an animated cage needs per frame (the
-// GPU applies the same rows in a compute stage).
+// entries): copies the cage into points[0, cagePointCount), then applies
+// the stencil passes in order (the layout and summation order above): what
+// an animated cage needs per frame (the GPU applies the same passes in a
+// compute stage, bit for bit the same points).
 void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions);
 
 } // namespace sg::mesh
