@@ -113,10 +113,12 @@ void applyFrame(const Scene& scene, SceneAssets& assets, float seconds);
 // they were). Contract: `mesh` is an adaptive mesh and the count matches.
 void setCagePositions(const Scene& scene, SceneAssets& assets, size_t mesh,
                       std::vector<glm::vec3> cagePositions);
-// Largest cage coordinate an animated cage may reach: stencil weights are
-// at most 1 in magnitude and a row sums a few hundred of them at most, so
-// the control points stay finite in float with a wide margin (2^100 * 2^10
-// << FLT_MAX = 2^128).
+// Largest cage coordinate an animated cage may reach: the stencil passes
+// apply subdivision masks level by level (convex weights: no growth) and
+// then the Gregory end caps' local points (weights of magnitudes summing to
+// about ten), so the control points stay within a small multiple of the
+// cage's magnitude and finite in float with a wide margin (2^100 * 2^10
+// << FLT_MAX = 2^128; tested at 2^100 on the GPU and the CPU).
 inline constexpr float kMaxCagePosition = 0x1p100f;
 // Largest texture file accepted (pixels per side).
 inline constexpr int kMaxTextureSize = 16384;
