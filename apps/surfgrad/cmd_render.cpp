@@ -95,10 +95,12 @@ constexpr const char* kBudgetHelp =
 
 // --tbn: the scene field "tangents" for every UV set whose basis an
 // enabled layer reads, one rule for both. "limit" is the same request as
-// "tangents": "limit": it applies to meshes with "subdivision": {"limit":
-// true} and changes only their tangents (never the geometry); the other
-// meshes keep their own tangents and are named in a note on stderr. A scene
-// without such a mesh is an error naming its meshes.
+// "tangents": "limit": it applies to meshes drawn as the limit surface
+// ("subdivision": {"limit": true} or {"mode": "adaptive"}) and changes only
+// their tangents (never the geometry); the other meshes keep their own
+// tangents and are named in a note on stderr. A scene without such a mesh
+// is an error naming its meshes. "mikktspace" on an adaptive mesh is an
+// error naming it (patches have no vertex list), as the field is.
 void overrideTangents(Scene& scene, const std::string& tbn) {
     if (tbn.empty()) return;
     TangentSource src = tbn == "pixel"        ? TangentSource::Pixel
@@ -106,7 +108,12 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
                                               : TangentSource::Limit;
     std::string skipped;
     for (auto& m : scene.meshes) {
-        if (src == TangentSource::Limit && !m.subdivLimit) {
+        if (src == TangentSource::MikkTSpace && m.drawsPatches()) {
+            throw CliError("--tbn mikktspace: " + m.fieldPath +
+                           " is drawn as adaptive patches, which have no vertex list for "
+                           "MikkTSpace (use --tbn limit or pixel)");
+        }
+        if (src == TangentSource::Limit && !m.drawsLimitSurface()) {
             skipped += (skipped.empty() ? "" : ", ") + m.fieldPath;
             continue;
         }
@@ -122,9 +129,10 @@ void overrideTangents(Scene& scene, const std::string& tbn) {
         }
     }
     if (skipped.empty()) return;
-    const char* rule = "limit tangents need \"subdivision\": {\"limit\": true}";
+    const char* rule =
+        "limit tangents need \"subdivision\": {\"limit\": true} or {\"mode\": \"adaptive\"}";
     bool none = std::none_of(scene.meshes.begin(), scene.meshes.end(),
-                             [](const MeshInstance& m) { return m.subdivLimit; });
+                             [](const MeshInstance& m) { return m.drawsLimitSurface(); });
     if (none) throw CliError("--tbn limit: " + skipped + ": " + rule);
     std::fprintf(stderr, "surfgrad: note: --tbn limit: %s keep their tangents (%s)\n",
                  skipped.c_str(), rule);

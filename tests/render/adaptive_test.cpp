@@ -86,8 +86,9 @@ TEST(AdaptiveScene, InvalidValuesNameTheField) {
 }
 
 TEST(AdaptiveScene, UnsupportedRequestsAreClearErrors) {
-    // Vertex tangents: the patches carry none (every frame is per pixel).
-    for (const char* tangents : {R"(["mikktspace"])", R"(["pixel", "limit"])"}) {
+    // MikkTSpace tangents: the patches have no vertex list ("limit" ones
+    // come from the patch derivatives: adaptive_tangents_test.cpp).
+    for (const char* tangents : {R"(["mikktspace"])", R"(["pixel", "mikktspace"])"}) {
         std::string err;
         try {
             Scene s = sceneFromJson(

@@ -535,16 +535,19 @@ void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, sm::Adapt
 // feature-adaptive patches with its UV sets (and the derived ones); `mesh`
 // keeps their control points for the bounds. Morph targets of the cage
 // (blendshapes) animate the cage (applyFrame -> setCagePositions: the
-// patches' points follow through the stencils). Vertex tangents are not
-// carried by the patches: refused here (every bump layer takes its frame
-// per pixel).
+// patches' points follow through the stencils). Vertex tangents: "limit"
+// only, evaluated by the tessellation stages from the patch derivatives
+// (MeshAsset::patchTangentSets); MikkTSpace needs a vertex list the patches
+// do not have: refused (the scene parser refuses it too; this also covers
+// scenes built in code).
 MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
     for (size_t k = 0; k < mi.tangents.size(); ++k) {
-        if (mi.tangents[k] != TangentSource::Pixel) {
+        if (mi.tangents[k] == TangentSource::MikkTSpace) {
             throw io::InputError(scene.sourceName,
                                  elementOf(mi, "tangents[" + std::to_string(k) + "]"),
-                                 "vertex tangents are not carried by \"subdivision\": {\"mode\": "
-                                 "\"adaptive\"} meshes (use \"pixel\", or \"mode\": \"uniform\")");
+                                 "\"mikktspace\" tangents need a vertex list; \"subdivision\": "
+                                 "{\"mode\": \"adaptive\"} meshes are patches (use \"limit\" or "
+                                 "\"pixel\", or \"mode\": \"uniform\")");
         }
     }
     MeshAsset a;
@@ -564,6 +567,17 @@ MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
         auto own = std::make_shared<sm::AdaptivePatches>(*patches);
         addDerivedPatchUvSets(scene, mi, *own);
         patches = std::move(own);
+    }
+    // "limit" tangents for the sets an enabled layer reads (vertexTangentSets).
+    const uint32_t tangentSets = vertexTangentSets(scene, mi);
+    for (size_t k = 0; k < size_t(kMaxUvSets); ++k) {
+        if (!(tangentSets >> k & 1u)) continue;
+        if (k >= patches->uvSets.size()) {
+            throw io::InputError(scene.sourceName,
+                                 elementOf(mi, "tangents[" + std::to_string(k) + "]"),
+                                 "the mesh has no UV set " + std::to_string(k));
+        }
+        a.patchTangentSets |= 1u << k;
     }
     if (mi.displacement && size_t(mi.displacement->uvSet) >= patches->uvSets.size()) {
         throw io::InputError(scene.sourceName, mi.displacement->fieldPath + ".uv_set",
@@ -722,11 +736,12 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     FileCache files;
     for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
         MeshAsset& a = assets.meshes[i];
-        uint32_t have = 0;
+        uint32_t have = a.patchTangentSets;
         for (size_t k = 0; k < a.vertexTangents.size(); ++k) {
             if (!a.vertexTangents[k].empty()) have |= 1u << k;
         }
-        const uint32_t sets = (1u << std::min(a.mesh.uvSets.size(), size_t(kMaxUvSets))) - 1u;
+        const size_t uvSets = a.patches ? a.patches->uvSets.size() : a.mesh.uvSets.size();
+        const uint32_t sets = (1u << std::min(uvSets, size_t(kMaxUvSets))) - 1u;
         if ((vertexTangentSets(scene, scene.meshes[i]) & sets & ~have) == 0) continue;
         std::vector<float> weights = a.appliedWeights;
         a = loadMeshAsset(scene, scene.meshes[i], files);

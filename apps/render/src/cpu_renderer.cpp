@@ -376,8 +376,10 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             }
             detail::TessellatedPatches t = detail::tessellatePatches(
                 *ap, modelToCameraRelative(inst.transform, view.cameraPos), focalPx,
-                inst.subdivPixelsPerEdge, displaced ? &disp : nullptr);
+                inst.subdivPixelsPerEdge, displaced ? &disp : nullptr,
+                patchTangentMask(*asset, scene.materials[size_t(inst.material)]));
             tessellated[mi].mesh = std::move(t.mesh);
+            tessellated[mi].vertexTangents = std::move(t.vertexTangents);
             patchAov[mi] = std::move(t.patchAov);
             framePositions[mi] = std::move(t.framePositions);
             asset = &tessellated[mi];

@@ -226,6 +226,8 @@ MaterialPlan makePlan(const Scene& scene, const SceneAssets& assets, int meshInd
         if (!ma.vertexTangents[size_t(k)].empty() && (basisSets >> k & 1u))
             p.plan.vertexTangentMask |= 1u << k;
     }
+    // Adaptive meshes: the evaluation stage writes the same vTangentk.
+    p.plan.vertexTangentMask |= patchTangentMask(ma, scene.materials[size_t(materialIndex)]);
     p.plan.lightCount = std::max(1, int(scene.lights.size()));
     p.plan.groups.emplace_back();
     p.plan.groupLayers.push_back(nullptr);
@@ -258,6 +260,12 @@ uint32_t tangentBasisUvSets(const Material& material) {
             sets |= 1u << L.uvSet;
     }
     return sets;
+}
+
+uint32_t patchTangentMask(const MeshAsset& mesh, const Material& material) {
+    if (!mesh.patches) return 0u;
+    const size_t sets = std::min(mesh.patches->uvSets.size(), size_t(kMaxUvSets));
+    return mesh.patchTangentSets & tangentBasisUvSets(material) & ((1u << sets) - 1u);
 }
 
 MaterialPlan planMaterial(const Scene& scene, const SceneAssets& assets, int meshIndex,

@@ -5,7 +5,8 @@
 // those of the GL specification's quad tessellation with equal spacing
 // (OpenGL 4.5 core, section 11.2.2.2), and every point evaluated as the
 // evaluation stage does (sg/patch/watertight.glsl for edge points, the
-// shared basis sg/patch/basis.glsl).
+// shared basis sg/patch/basis.glsl, "limit" tangents from
+// sg/patch/limit_tangent.glsl).
 //
 // Triangulation. GL fixes the domain points for integer levels but leaves
 // the triangles of the ring between the outer edges and the inner grid to
@@ -182,11 +183,31 @@ glm::vec3 displace(const sg::mesh::AdaptivePatches& ap, const PatchDisplacement&
     return G::sgDisplacePoint(pos, n, height, d.scale);
 }
 
+// The evaluation stage's "limit" tangents of one point (SG_VTX_TANGENT_k,
+// sg/patch/patch_tes.glsl): this patch's own derivatives at its own domain
+// point (evaluated again on the boundary, where the site is the owner's),
+// each set's face-varying derivatives there, orthogonal to the normal.
+void addTangents(const sg::mesh::AdaptivePatches& ap, const std::vector<uint32_t>& arrayOf,
+                 uint32_t mask, uint32_t p, glm::vec2 uv, glm::vec3 du, glm::vec3 dv,
+                 glm::vec3 normal, std::vector<std::vector<glm::vec4>>& tangents) {
+    const bool onBoundary = uv.x == 0.0f || uv.x == 1.0f || uv.y == 0.0f || uv.y == 1.0f;
+    glm::vec3 ownDu = du, ownDv = dv;
+    if (onBoundary) evalPoint(ap, arrayOf, p, uv, &ownDu, &ownDv);
+    const glm::vec2 faceUv = G::sgPatchUnnormalizeUv(ap.params[p].y, uv);
+    for (size_t k = 0; k < tangents.size(); ++k) {
+        if (!((mask >> k) & 1u)) continue;
+        glm::vec2 sdu, sdv;
+        evalUv(ap.uvSets[k], p, faceUv, &sdu, &sdv);
+        int resolved = 0;
+        tangents[k].push_back(G::sgPatchLimitTangent(ownDu, ownDv, sdu, sdv, normal, resolved));
+    }
+}
+
 } // namespace
 
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const glm::mat4& modelRel,
                                      float focalPx, float pixelsPerEdge,
-                                     const PatchDisplacement* displacement) {
+                                     const PatchDisplacement* displacement, uint32_t tangentMask) {
     SG_EXPECTS(pixelsPerEdge > 0.0f, "a positive pixels-per-edge target");
     SG_EXPECTS(!displacement ||
                    (displacement->uvSet >= 0 && size_t(displacement->uvSet) < ap.uvSets.size()),
@@ -199,6 +220,8 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const 
     sg::mesh::RenderMesh& out = result.mesh;
     const size_t uvSets = std::min(ap.uvSets.size(), size_t(kMaxUvSets));
     out.uvSets.resize(uvSets);
+    SG_EXPECTS((tangentMask >> uvSets) == 0u, "tangents only for UV sets the patches have");
+    result.vertexTangents.resize(uvSets);
     auto rel = [&](uint32_t v) { return glm::vec3(modelRel * glm::vec4(ap.points[v], 1.0f)); };
     for (uint32_t p = 0; p < uint32_t(ap.patchCount()); ++p) {
         // The control stage's levels (patch_tcs.glsl), same inputs and order.
@@ -255,6 +278,9 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const 
             const glm::vec2 faceUv = G::sgPatchUnnormalizeUv(ap.params[p].y, uv);
             for (size_t k = 0; k < uvSets; ++k)
                 out.uvSets[k].push_back(evalUv(ap.uvSets[k], p, faceUv));
+            if (tangentMask != 0u)
+                addTangents(ap, arrayOf, tangentMask, p, uv, du, dv, out.normals.back(),
+                            result.vertexTangents);
         }
         for (uint32_t i : d.tris) out.indices.push_back(base + i);
         const float maxOuter = std::max(std::max(outer.x, outer.y), std::max(outer.z, outer.w));

@@ -395,16 +395,19 @@ ProgramSource assembleProgram(const MaterialPlan& plan) {
         if (k->programDefines) k->programDefines(plan, fdefs);
     auto f = sg::shaders::assemble(fragmentBody(plan), "(assembled fragment program)", fdefs);
     if (plan.adaptive) {
-        // Patches carry UV sets (the evaluation stage writes vUv0..) but no
-        // vertex tangents (MeshAsset::patches): vertexTangentMask is 0, so
-        // the fragment program reads only what the evaluation stage writes.
-        SG_ASSERT(plan.vertexTangentMask == 0, "adaptive patches carry no vertex tangents");
+        // Patches carry UV sets and the "limit" tangents of the sets in
+        // vertexTangentMask (the evaluation stage writes vUvk and vTangentk
+        // under the same SG_VTX_TANGENT_k as the fragment program reads).
         const char* pvs = sg::shaders::find("sg/patch/patch_vs.glsl");
         const char* tes = sg::shaders::find("sg/patch/patch_tes.glsl");
         SG_ASSERT(pvs && tes, "the patch stages are embedded");
         auto v = sg::shaders::assemble(pvs, "sg/patch/patch_vs.glsl");
         std::vector<std::string> edefs;
         if (plan.uvCount > 0) edefs.push_back("SG_UV_COUNT " + std::to_string(plan.uvCount));
+        for (int k = 0; k < kMaxUvSets; ++k) {
+            if ((plan.vertexTangentMask >> k) & 1u)
+                edefs.push_back("SG_VTX_TANGENT_" + std::to_string(k) + " 1");
+        }
         if (plan.displacementUvSet >= 0) {
             edefs.push_back("SG_DISPLACEMENT 1");
             edefs.push_back("SG_DISP_UV_SET " + std::to_string(plan.displacementUvSet));

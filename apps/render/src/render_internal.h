@@ -84,10 +84,14 @@ glm::mat3 normalMatrix(const glm::mat4& model);
 // along the limit normal by dispScale * dispMap.r at UV set dispUvSet
 // (sg/patch/displace.glsl, as the evaluation stage), and framePositions
 // holds the undisplaced ones (the frame's, Mikkelsen 2019 section 2.5).
+// tangentMask bit k: UV set k gets its "limit" tangents (vertexTangents[k],
+// object space, sg/patch/limit_tangent.glsl as the evaluation stage;
+// vertexTangents has one entry per UV set, empty where the bit is clear).
 struct TessellatedPatches {
     sg::mesh::RenderMesh mesh;
     std::vector<glm::vec4> patchAov;
-    std::vector<glm::vec3> framePositions; // displaced meshes only
+    std::vector<glm::vec3> framePositions;              // displaced meshes only
+    std::vector<std::vector<glm::vec4>> vertexTangents; // per UV set (tangentMask)
 };
 struct PatchDisplacement {
     sg::glsl::sampler2D map;
@@ -96,7 +100,8 @@ struct PatchDisplacement {
 };
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,
                                      const glm::mat4& modelRel, float focalPx, float pixelsPerEdge,
-                                     const PatchDisplacement* displacement = nullptr);
+                                     const PatchDisplacement* displacement = nullptr,
+                                     uint32_t tangentMask = 0);
 
 // World-space bounds of every mesh instance.
 void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);

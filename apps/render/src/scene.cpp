@@ -280,9 +280,15 @@ struct Parser : detail::SceneReader {
                 "expected a tangent source or an array of them, one per UV set (at most 4)");
         }
         for (auto s : m.tangents) {
-            if (s == TangentSource::Limit && !m.subdivLimit) {
+            if (s == TangentSource::Limit && !m.drawsLimitSurface()) {
+                n.failField("tangents", "\"limit\" tangents need \"subdivision\": {\"limit\": "
+                                        "true} or {\"mode\": \"adaptive\"}");
+            }
+            if (s == TangentSource::MikkTSpace && m.drawsPatches()) {
                 n.failField("tangents",
-                            "\"limit\" tangents need \"subdivision\": {\"limit\": true}");
+                            "\"mikktspace\" tangents need a vertex list; \"subdivision\": "
+                            "{\"mode\": \"adaptive\"} meshes are patches (use \"limit\" or "
+                            "\"pixel\", or \"mode\": \"uniform\")");
             }
         }
     }

@@ -10,7 +10,9 @@
 //                                     evaluated (shared edges and corners
 //                                     by their owner patch);
 //   shaders/sg/patch/displace.glsl    displacement along the normal and
-//                                     the height map's level.
+//                                     the height map's level;
+//   shaders/sg/patch/limit_tangent.glsl  the "limit" tangent of a UV set
+//                                     from the patch derivatives.
 // Read the contracts there. Callable as sg::glsl::sgPatchBasis(...), etc.
 // The patch tables themselves come from surfgrad/adaptive_patches.h (mesh).
 #pragma once
@@ -23,4 +25,5 @@ namespace sg::glsl {
 #include "sg/patch/tess_level.glsl"
 #include "sg/patch/watertight.glsl"
 #include "sg/patch/displace.glsl"
+#include "sg/patch/limit_tangent.glsl"
 } // namespace sg::glsl

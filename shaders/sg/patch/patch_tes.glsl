@@ -39,8 +39,21 @@
 //                           everything from their owner's site (UV, normal,
 //                           level of the map), so displaced shared edges stay
 //                           crack-free.
+//   SG_VTX_TANGENT_k (0/1)  write vTangentk, the "limit" tangent of UV set k
+//                           (sg/patch/limit_tangent.glsl), world space as
+//                           surface_vs.glsl writes its vertex tangents: the
+//                           position patch's and the set's derivatives at
+//                           this patch's own domain point (the chart of the
+//                           UVs this point carries: across a UV seam each
+//                           side keeps its own tangent, as the uniform
+//                           path's split vertices do), made orthogonal to
+//                           the output normal (the owner's on shared edges
+//                           and corners). Undisplaced surface (Mikkelsen
+//                           2019, section 2.5). Only the sets the plan asks
+//                           for (an enabled layer reads their basis).
 // glslang-validate: SG_PATCH_CAPTURE 1
 // glslang-validate: SG_UV_COUNT 2, SG_DISPLACEMENT 1, SG_DISP_UV_SET 1
+// glslang-validate: SG_UV_COUNT 2, SG_VTX_TANGENT_0 1, SG_VTX_TANGENT_1 1
 #include "sg/patch/basis.glsl"
 #include "sg/patch/watertight.glsl"
 
@@ -55,6 +68,22 @@
 #endif
 #if SG_DISPLACEMENT
 #include "sg/patch/displace.glsl"
+#endif
+#ifndef SG_VTX_TANGENT_0
+#define SG_VTX_TANGENT_0 0
+#endif
+#ifndef SG_VTX_TANGENT_1
+#define SG_VTX_TANGENT_1 0
+#endif
+#ifndef SG_VTX_TANGENT_2
+#define SG_VTX_TANGENT_2 0
+#endif
+#ifndef SG_VTX_TANGENT_3
+#define SG_VTX_TANGENT_3 0
+#endif
+#define SG_PATCH_TANGENTS (SG_VTX_TANGENT_0 || SG_VTX_TANGENT_1 || SG_VTX_TANGENT_2 || SG_VTX_TANGENT_3)
+#if SG_PATCH_TANGENTS
+#include "sg/patch/limit_tangent.glsl"
 #endif
 
 layout(quads, equal_spacing, ccw) in;
@@ -113,7 +142,7 @@ vec2 patchUv(uint p, uint set, vec2 faceUv) {
 }
 out vec2 vUv0;
 #endif
-#if SG_DISPLACEMENT
+#if SG_DISPLACEMENT || SG_PATCH_TANGENTS
 // UV set `set` of patch p at (u,v) of the ptex face, and its derivatives
 // with respect to that (u,v) (as the positions' from sgPatchBasis).
 void patchUvDeriv(uint p, uint set, vec2 faceUv, out vec2 st, out vec2 du, out vec2 dv) {
@@ -132,6 +161,8 @@ void patchUvDeriv(uint p, uint set, vec2 faceUv, out vec2 st, out vec2 du, out v
     du = s1;
     dv = s2;
 }
+#endif
+#if SG_DISPLACEMENT
 uniform sampler2D uDispMap;
 uniform float uDispScale;
 uniform float uFocalPx;
@@ -146,6 +177,21 @@ out vec2 vUv2;
 #endif
 #if SG_UV_COUNT > 3
 out vec2 vUv3;
+#endif
+#if SG_VTX_TANGENT_0
+out vec4 vTangent0;
+#endif
+#if SG_VTX_TANGENT_1
+out vec4 vTangent1;
+#endif
+#if SG_VTX_TANGENT_2
+out vec4 vTangent2;
+#endif
+#if SG_VTX_TANGENT_3
+out vec4 vTangent3;
+#endif
+#if SG_PATCH_TANGENTS
+uniform float uDetSign; // sign of det(uModel's 3x3): mirrors flip tangent handedness
 #endif
 
 uniform mat4 uModel;
@@ -188,6 +234,19 @@ void evalFromBuffers(uint p, vec2 uv, out vec3 pos, out vec3 du, out vec3 dv) {
     dv = sv;
 }
 
+#if SG_PATCH_TANGENTS
+// The limit tangent of UV set `set` of patch p at (u,v) of its ptex face
+// (dPdu, dPdv: that patch's derivatives there; nObj: the output normal),
+// world space. Only sets below SG_UV_COUNT (the plan's vertex tangents).
+vec4 patchTangent(uint p, uint set, vec2 faceUv, vec3 dPdu, vec3 dPdv, vec3 nObj) {
+    vec2 st, sdu, sdv;
+    patchUvDeriv(p, set, faceUv, st, sdu, sdv);
+    int resolved;
+    vec4 t = sgPatchLimitTangent(dPdu, dPdv, sdu, sdv, nObj, resolved);
+    return vec4(mat3(uModel) * t.xyz, t.w * uDetSign);
+}
+#endif
+
 void main() {
     uint patchIndex = tcPatchIndex;
     uint base = SG_PATCH_DATA_STRIDE * patchIndex;
@@ -210,7 +269,8 @@ void main() {
     vec3 pos, du, dv;
     // Every boundary point takes the buffers' path (also when this patch is
     // the owner): the same instructions as on the other side.
-    if (uv.x == 0.0 || uv.x == 1.0 || uv.y == 0.0 || uv.y == 1.0) {
+    bool onBoundary = uv.x == 0.0 || uv.x == 1.0 || uv.y == 0.0 || uv.y == 1.0;
+    if (onBoundary) {
         evalFromBuffers(site.patchIndex, site.uv, pos, du, dv);
     } else {
         uint field1 = sgPatchData[base];
@@ -264,6 +324,28 @@ void main() {
 #endif
 #if SG_UV_COUNT > 3
     vUv3 = patchUv(patchIndex, 3u, faceUv);
+#endif
+#if SG_PATCH_TANGENTS
+    // The tangents' chart: this patch's own derivatives (the site's on the
+    // inside; evaluated again here on the boundary, where the site may be
+    // another patch with another (u,v)).
+    vec3 ownDu = du, ownDv = dv;
+    if (onBoundary) {
+        vec3 ownPos;
+        evalFromBuffers(patchIndex, uv, ownPos, ownDu, ownDv);
+    }
+#endif
+#if SG_VTX_TANGENT_0
+    vTangent0 = patchTangent(patchIndex, 0u, faceUv, ownDu, ownDv, nObj);
+#endif
+#if SG_VTX_TANGENT_1
+    vTangent1 = patchTangent(patchIndex, 1u, faceUv, ownDu, ownDv, nObj);
+#endif
+#if SG_VTX_TANGENT_2
+    vTangent2 = patchTangent(patchIndex, 2u, faceUv, ownDu, ownDv, nObj);
+#endif
+#if SG_VTX_TANGENT_3
+    vTangent3 = patchTangent(patchIndex, 3u, faceUv, ownDu, ownDv, nObj);
 #endif
     vPatchAov = vec4(float(patchIndex + 1u), max(max(outer.x, outer.y), max(outer.z, outer.w)),
                      float(sgPatchData[base + 5u]), float(sgPatchDepth(field1)));

@@ -53,6 +53,11 @@ struct MeshAsset {
     // control points as positions (bounds: the limit surface lies in their
     // convex hull) and no triangles, no UV sets and no morph targets.
     std::shared_ptr<const sg::mesh::AdaptivePatches> patches;
+    // Adaptive meshes: bit k set when UV set k gets "limit" tangents from
+    // the patch derivatives (the tessellation evaluation stage and the CPU
+    // tessellator, shaders/sg/patch/limit_tangent.glsl): asked for by the
+    // mesh and read by an enabled layer, as vertexTangents. 0 otherwise.
+    uint32_t patchTangentSets = 0;
     // Adaptive meshes whose cage moves (blendshapes on the cage, or
     // setCagePositions): the cage positions now, object space,
     // patches->cagePointCount entries. The GPU renderer uploads only these
@@ -71,6 +76,12 @@ struct MeshAsset {
 // the resolved normal, section 2.11). Vertex tangents are generated, and
 // read by the shader, only for these sets (effects on demand).
 uint32_t tangentBasisUvSets(const Material& material);
+
+// The UV sets whose "limit" tangents the tessellation stages of adaptive
+// mesh `mesh` write when drawn with `material` (bit k: vTangentk): its
+// patchTangentSets read by an enabled layer; 0 for other meshes. The plan's
+// vertexTangentMask and the CPU tessellator use this one rule.
+uint32_t patchTangentMask(const MeshAsset& mesh, const Material& material);
 
 struct SceneAssets {
     uint64_t uid = 0;                // unique per loadAssets() call (GPU caches key on it)

@@ -240,6 +240,12 @@ struct MeshInstance {
     bool morphLoop = true;
     glm::mat4 transform{1.0f};
     int material = 0;
+
+    // Drawn as the subdivision limit surface with its derivatives: uniform
+    // with "limit": true, or adaptive patches. "limit" tangents need it.
+    bool drawsLimitSurface() const { return subdivide && (subdivLimit || subdivAdaptive); }
+    // Adaptive patches: no vertex list, so no MikkTSpace tangents.
+    bool drawsPatches() const { return subdivide && subdivAdaptive; }
 };
 
 struct Light {

@@ -1,0 +1,239 @@
+// "tangents": "limit" on adaptive meshes: the scene and plan accept it
+// (and refuse "mikktspace" naming the field), the evaluation stage writes
+// vTangentk only for the sets an enabled layer reads, GPU vs CPU reference
+// parity with a uv_normal layer on limit tangents, and the limit frame
+// against the per-pixel frame on the same tessellated surface.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "cli.h"
+#include "hardcase.h"
+#include "render_internal.h"
+#include "render_test_util.h"
+
+namespace sg::render::test {
+namespace {
+
+const std::string kSpot = "data/meshes/spot/spot_control_mesh.obj";
+const std::string kBricks =
+    R"({"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 256}, "strength": 1.0})";
+
+std::string adaptiveScene(const std::string& tangents, const std::string& layers = kBricks,
+                          int w = 320, int h = 240, const std::string& extra = "") {
+    return oneMaterialScene(layers,
+                            R"({"file": ")" + kSpot +
+                                R"(", "subdivision": {"mode": "adaptive", "isolation": 3, )"
+                                R"("pixels_per_edge": 3}, "tangents": )" +
+                                tangents + extra + "}",
+                            "", w, h);
+}
+
+std::string loadError(const std::string& json) {
+    try {
+        Scene s = sceneFromJson(json);
+        loadAssets(s);
+    } catch (const sg::io::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// Angles (degrees) between two vector AOVs where both cover the pixel
+// (length above 0.5), sorted; nonFinite counts pixels of either with a
+// non-finite channel.
+struct Angles {
+    std::vector<double> deg;
+    size_t nonFinite = 0, onlyOne = 0;
+    double at(double q) const { return deg.empty() ? 0.0 : deg[size_t(q * double(deg.size() - 1))]; }
+};
+
+Angles compareDirections(const Image& a, const Image& b) {
+    Angles r;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 x(a.pixels[i]), y(b.pixels[i]);
+        if (!std::isfinite(x.x + x.y + x.z) || !std::isfinite(y.x + y.y + y.z)) {
+            ++r.nonFinite;
+            continue;
+        }
+        const bool ca = glm::length(x) > 0.5f, cb = glm::length(y) > 0.5f;
+        if (ca != cb) ++r.onlyOne;
+        if (!ca || !cb) continue;
+        const double c =
+            std::clamp(double(glm::dot(glm::normalize(x), glm::normalize(y))), -1.0, 1.0);
+        r.deg.push_back(std::acos(c) * 180.0 / M_PI);
+    }
+    std::sort(r.deg.begin(), r.deg.end());
+    return r;
+}
+
+TEST(AdaptiveTangents, SceneAcceptsLimitAndRefusesMikkTSpaceNamingTheField) {
+    // "limit" needs no "limit": true on an adaptive mesh (patches are the
+    // limit surface).
+    Scene s = sceneFromJson(adaptiveScene(R"(["limit"])"));
+    ASSERT_EQ(s.meshes[0].tangents.size(), 1u);
+    EXPECT_EQ(s.meshes[0].tangents[0], TangentSource::Limit);
+    SceneAssets a = loadAssets(s);
+    EXPECT_EQ(a.meshes[0].patchTangentSets, 1u);
+    EXPECT_TRUE(a.meshes[0].vertexTangents.empty() || a.meshes[0].vertexTangents[0].empty());
+    // "mikktspace": parse error naming the field and the reason.
+    for (const char* t : {R"("mikktspace")", R"(["pixel", "mikktspace"])"}) {
+        std::string err;
+        try {
+            sceneFromJson(adaptiveScene(t));
+        } catch (const sg::io::InputError& e) {
+            err = e.what();
+        }
+        EXPECT_NE(err.find("meshes[0].tangents"), std::string::npos) << t << ": " << err;
+        EXPECT_NE(err.find("vertex list"), std::string::npos) << t << ": " << err;
+    }
+    // A set the patches do not have names its element.
+    const std::string err = loadError(adaptiveScene(R"(["pixel", "limit"])",
+                                                    R"({"type": "uv_normal", "uv_set": 1, )"
+                                                    R"("map": {"procedural": "bricks"}})"));
+    EXPECT_NE(err.find("meshes[0].tangents[1]"), std::string::npos) << err;
+    EXPECT_NE(err.find("no UV set 1"), std::string::npos) << err;
+}
+
+TEST(AdaptiveTangents, OnlyTheSetsALayerReadsGetThem) {
+    // Asked on set 0 and set 1 (derived), read on set 1 only.
+    const std::string layer1 =
+        R"({"type": "uv_normal", "uv_set": 1, "map": {"procedural": "bricks", "size": 64}})";
+    Scene s = sceneFromJson(adaptiveScene(R"(["limit", "limit"])", layer1, 96, 64,
+                                          R"(, "uv_sets": [{"from": 0, "scale": 4}])"));
+    SceneAssets a = loadAssets(s);
+    EXPECT_EQ(a.meshes[0].patchTangentSets, 2u);
+    const MaterialPlan plan = planMaterial(s, a, 0, 0);
+    EXPECT_EQ(plan.vertexTangentMask, 2u);
+    const ProgramSource src = assembleProgram(plan);
+    // The evaluation stage gets the fragment program's SG_VTX_TANGENT_k
+    // for the sets read (its #if blocks then write vTangent1 only).
+    EXPECT_NE(src.tessEval.find("#define SG_VTX_TANGENT_1 1\n"), std::string::npos);
+    EXPECT_EQ(src.tessEval.find("#define SG_VTX_TANGENT_0 1\n"), std::string::npos);
+    EXPECT_NE(src.fragment.find("#define SG_VTX_TANGENT_1 1\n"), std::string::npos);
+    // Asked on both, read by no layer (the layer switched off): none, and
+    // the evaluation stage defines no tangent output.
+    Scene off = sceneFromJson(
+        adaptiveScene(R"(["limit", "limit"])",
+                      R"({"type": "uv_normal", "uv_set": 1, "enabled": false, )"
+                      R"("map": {"procedural": "bricks", "size": 64}})",
+                      96, 64, R"(, "uv_sets": [{"from": 0, "scale": 4}])"));
+    SceneAssets offAssets = loadAssets(off);
+    EXPECT_EQ(offAssets.meshes[0].patchTangentSets, 0u);
+    const MaterialPlan offPlan = planMaterial(off, offAssets, 0, 0);
+    EXPECT_EQ(offPlan.vertexTangentMask, 0u);
+    const std::string offTes = assembleProgram(offPlan).tessEval;
+    EXPECT_EQ(offTes.find("#define SG_VTX_TANGENT_0 1\n"), std::string::npos);
+    EXPECT_EQ(offTes.find("#define SG_VTX_TANGENT_1 1\n"), std::string::npos);
+}
+
+// GPU vs CPU with a tangent-space normal map on limit tangents of adaptive
+// patches: both evaluate the same patches at the same domain points with
+// the same shared source (sg/patch/limit_tangent.glsl), so, as for the
+// pixel-frame layer (AdaptiveUv.GpuMatchesCpuWithAUvNormalLayer), only the
+// triangulation of the tessellation rings differs (patch_tessellation.cpp):
+// the UVs and now the tangents are interpolated over different triangles
+// there. Bounds as that test's: median 0.5 degrees, 99th percentile 8,
+// coverage 1.5% (measured 0.028 and 2.23 degrees, 1 of 9621 pixels; the
+// tangent AOV: 0 and 0.79).
+TEST(AdaptiveTangents, GpuMatchesCpuWithAUvNormalLayerOnLimitTangents) {
+    Scene s = sceneFromJson(adaptiveScene(R"(["limit"])"));
+    SceneAssets a = loadAssets(s);
+    View v = makeView(s, a, 0, 0, Aov::Normal);
+    CpuOptions cpu;
+    cpu.derivatives = CpuDerivatives::Quad;
+    const Image g = gpu().render(s, a, v), c = renderCpu(s, a, v, cpu);
+    const Angles r = compareDirections(g, c);
+    std::printf("adaptive limit-tangent uv_normal GPU vs CPU: %zu px both, %zu one only, p50 %.3f "
+                "p99 %.3f deg\n",
+                r.deg.size(), r.onlyOne, r.at(0.5), r.at(0.99));
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_GT(r.deg.size(), size_t(320 * 240 / 10));
+    EXPECT_LE(double(r.onlyOne), 0.015 * double(r.deg.size()));
+    EXPECT_LE(r.at(0.5), 0.5);
+    EXPECT_LE(r.at(0.99), 8.0);
+    // The tangent AOV (vT of set 0) likewise, and it is the limit frame's:
+    // it differs from the per-pixel frame's (below), so the parity is not
+    // that of two per-pixel frames.
+    View vt = makeView(s, a, 0, 0, Aov::Tangent);
+    const Angles t = compareDirections(gpu().render(s, a, vt), renderCpu(s, a, vt, cpu));
+    std::printf("adaptive limit tangent AOV GPU vs CPU: p50 %.3f p99 %.3f deg\n", t.at(0.5),
+                t.at(0.99));
+    EXPECT_EQ(t.nonFinite, 0u);
+    EXPECT_LE(t.at(0.5), 0.5);
+    EXPECT_LE(t.at(0.99), 8.0);
+}
+
+// The limit frame against the per-pixel frame on the same adaptive draw
+// (tangent AOV, vT of set 0): where the surface and the UVs are smooth over
+// a pixel both are dP/ds (Mikkelsen 2019 section 2.3: the per-pixel frame
+// takes the Jacobian from screen-space derivatives of the interpolated
+// position and UV, i.e. of the flat tessellated triangle; the limit frame
+// takes it exactly), so they differ by the tessellation's flatness over
+// triangles of ~3 pixels, and by the per-pixel frame's own
+// orthogonalisation. Pixels on UV seams, silhouettes and the quad-pair
+// derivative steps make the tail. Bounds: median 3 degrees, 90th percentile
+// 15 (measured 0.76 and 2.85, 99th percentile 11.1; a broken frame, e.g. a
+// flipped or swapped axis, moves the median by tens of degrees).
+TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
+    Scene sl = sceneFromJson(adaptiveScene(R"(["limit"])"));
+    Scene sp = sceneFromJson(adaptiveScene(R"(["pixel"])"));
+    SceneAssets al = loadAssets(sl), ap = loadAssets(sp);
+    View v = makeView(sl, al, 0, 0, Aov::Tangent);
+    const Image tl = gpu().render(sl, al, v), tp = gpu().render(sp, ap, v);
+    const Angles r = compareDirections(tl, tp);
+    std::printf("adaptive tangent AOV limit vs pixel: %zu px, p50 %.3f p90 %.3f p99 %.3f deg\n",
+                r.deg.size(), r.at(0.5), r.at(0.9), r.at(0.99));
+    EXPECT_EQ(r.nonFinite, 0u);
+    EXPECT_EQ(r.onlyOne, 0u); // the same tessellation: the same pixels
+    EXPECT_GT(r.deg.size(), size_t(320 * 240 / 10));
+    EXPECT_LE(r.at(0.5), 3.0);
+    EXPECT_LE(r.at(0.9), 15.0);
+    // The two differ at all (the limit frame is not the per-pixel one).
+    EXPECT_GT(r.at(0.99), 0.0);
+}
+
+// Hard case: zero-area UV patches (a cube cage whose every corner has the
+// same UV: the UV Jacobian is zero up to rounding everywhere) with limit
+// tangents and a normal map on that set, at isolation 1 and 2: finite
+// images on both renderers (sgPatchLimitTangent's degenerate-UV fallback).
+TEST(RenderHardCases, AdaptiveLimitTangentsOnZeroAreaUvPatchesStayFinite) {
+    const std::filesystem::path dir = sg::test::processScratchDir("adaptive_tangents");
+    const std::filesystem::path obj = dir / "cube_one_uv.obj";
+    {
+        std::ofstream f(obj);
+        f << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
+             "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0.5 0.5\n"
+             "f 1/1 4/1 3/1 2/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\n"
+             "f 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n";
+    }
+    size_t bad = 0;
+    for (const char* isolation : {"1", "2"}) {
+        Scene s = sceneFromJson(
+            R"({"output": {"width": 96, "height": 64}, "materials": [{"name": "m", "layers": [
+                  {"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 64}}]}],
+                "meshes": [{"file": ")" +
+            obj.generic_string() + R"(", "subdivision": {"mode": "adaptive", "isolation": )" +
+            isolation + R"(, "pixels_per_edge": 2}, "tangents": "limit"}]})");
+        SceneAssets a = loadAssets(s);
+        EXPECT_EQ(a.meshes[0].patchTangentSets, 1u);
+        for (Aov aov : {Aov::Color, Aov::Normal, Aov::Tangent}) {
+            View v = makeView(s, a, 0, 0, aov);
+            bad += countNonFinite(gpu().render(s, a, v));
+            bad += countNonFinite(renderCpu(s, a, v));
+        }
+    }
+    sg::test::hardCaseAtMost("uv-degenerate",
+                             "adaptive patches whose UVs are all one point (cube cage), limit "
+                             "tangents and a normal map on them, GPU and CPU",
+                             "non-finite pixel channels", double(bad), 0.0);
+}
+
+} // namespace
+} // namespace sg::render::test
