@@ -137,9 +137,9 @@ TangentAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, flo
             for (int i = 0; i <= steps; ++i) {
                 const glm::vec2 at(float(i) / float(steps), float(j) / float(steps));
                 const PatchPoint q = evalPatchPoint(ap, arrays, p, 0, at);
-                auto lo = std::lower_bound(
-                    order.begin(), order.end(), q.pos.x - posTol,
-                    [&](uint32_t v, float x) { return ref.positions[v].x < x; });
+                auto lo =
+                    std::lower_bound(order.begin(), order.end(), q.pos.x - posTol,
+                                     [&](uint32_t v, float x) { return ref.positions[v].x < x; });
                 uint32_t best = UINT32_MAX;
                 float bestUv = 1e-3f; // UVs agree to 2e-5 (PatchUv tests)
                 for (auto it = lo; it != order.end() && ref.positions[*it].x <= q.pos.x + posTol;
@@ -186,11 +186,10 @@ TangentAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, flo
 TEST(PatchTangent, MatchesTheUniformLimitTangentsAtTheSameLimitPoints) {
     // Spot (UV seams, extraordinary vertices) and osd-shapes with UV seams
     // and boundaries under several face-varying rules.
-    const char* shapes[] = {"meshes/spot/spot_control_mesh.obj", "osd-shapes/catmark_cube.obj",
-                            "osd-shapes/catmark_fvar_bound0.obj",
-                            "osd-shapes/catmark_fvar_bound1.obj",
-                            "osd-shapes/catmark_fvar_bound2.obj",
-                            "osd-shapes/catmark_gregory_test1.obj"};
+    const char* shapes[] = {
+        "meshes/spot/spot_control_mesh.obj",  "osd-shapes/catmark_cube.obj",
+        "osd-shapes/catmark_fvar_bound0.obj", "osd-shapes/catmark_fvar_bound1.obj",
+        "osd-shapes/catmark_fvar_bound2.obj", "osd-shapes/catmark_gregory_test1.obj"};
     for (const char* rel : shapes) {
         SCOPED_TRACE(rel);
         const auto path = dataPath(rel);
@@ -204,10 +203,10 @@ TEST(PatchTangent, MatchesTheUniformLimitTangentsAtTheSameLimitPoints) {
         std::printf("%s: %zu points (%zu not regular, %zu in another ptex face: skipped), "
                     "%zu handedness differences; B-spline patches: %zu points, p50 %.2e p99 "
                     "%.2e worst %.2e deg; Gregory: %zu points, p50 %.2e p90 %.2e worst %.2e deg\n",
-                    rel, r.checked, r.skipped, r.otherFace, r.signMismatch,
-                    r.bspline.angles.size(), r.bspline.at(0.5), r.bspline.at(0.99),
-                    r.bspline.worstDeg, r.gregory.angles.size(), r.gregory.at(0.5),
-                    r.gregory.at(0.9), r.gregory.worstDeg);
+                    rel, r.checked, r.skipped, r.otherFace, r.signMismatch, r.bspline.angles.size(),
+                    r.bspline.at(0.5), r.bspline.at(0.99), r.bspline.worstDeg,
+                    r.gregory.angles.size(), r.gregory.at(0.5), r.gregory.at(0.9),
+                    r.gregory.worstDeg);
         EXPECT_GT(r.checked, 0u);
         EXPECT_EQ(r.unmatched, 0u);
         // Same handedness everywhere the chain rule is well conditioned.
@@ -240,19 +239,20 @@ TEST(PatchTangentHardCases, DegenerateInputsGiveFiniteUnitOrthogonalTangents) {
         glm::vec2 su, sv;
     };
     const In cases[] = {
-        {{1, 0, 0}, {0, 1, 0}, {0, 0}, {0, 0}},         // zero UV Jacobian
-        {{1, 0, 0}, {0, 1, 0}, {1, 1}, {2, 2}},         // collapsed UVs (rank 1)
-        {{0, 0, 0}, {0, 0, 0}, {1, 0}, {0, 1}},         // collapsed surface
-        {{1, 0, 0}, {2, 0, 0}, {1, 0}, {0, 1}},         // parallel derivatives
-        {{0, 0, 0}, {0, 0, 0}, {0, 0}, {0, 0}},         // everything zero
+        {{1, 0, 0}, {0, 1, 0}, {0, 0}, {0, 0}},                   // zero UV Jacobian
+        {{1, 0, 0}, {0, 1, 0}, {1, 1}, {2, 2}},                   // collapsed UVs (rank 1)
+        {{0, 0, 0}, {0, 0, 0}, {1, 0}, {0, 1}},                   // collapsed surface
+        {{1, 0, 0}, {2, 0, 0}, {1, 0}, {0, 1}},                   // parallel derivatives
+        {{0, 0, 0}, {0, 0, 0}, {0, 0}, {0, 0}},                   // everything zero
         {{1e30f, 0, 0}, {0, 1e30f, 0}, {1e-30f, 0}, {0, 1e-30f}}, // extreme scales
         {{1e-30f, 0, 0}, {0, 1e-30f, 0}, {1e30f, 0}, {0, -1e30f}},
-        {{inf, 0, 0}, {0, 1, 0}, {1, 0}, {0, 1}},       // non-finite
+        {{inf, 0, 0}, {0, 1, 0}, {1, 0}, {0, 1}}, // non-finite
         {{nan, 0, 0}, {0, 1, 0}, {1, 0}, {0, nan}},
         {{1, 0, 0}, {0, 1, 0}, {inf, 0}, {0, 1}},
-        {{0, 0, 1}, {0, 0, 2}, {1, 0}, {0, 1}},         // along the normal
+        {{0, 0, 1}, {0, 0, 2}, {1, 0}, {0, 1}}, // along the normal
     };
-    const glm::vec3 normals[] = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}, glm::normalize(glm::vec3(1, 1, 1))};
+    const glm::vec3 normals[] = {
+        {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, glm::normalize(glm::vec3(1, 1, 1))};
     sg::test::Worst offUnit, offPlane;
     size_t nonFinite = 0;
     for (const In& c : cases) {
@@ -269,9 +269,9 @@ TEST(PatchTangentHardCases, DegenerateInputsGiveFiniteUnitOrthogonalTangents) {
     }
     // The regular cases keep the exact answer.
     int resolved = -1;
-    EXPECT_EQ(g::sgPatchLimitTangent({1, 0, 0}, {0, 1, 0}, {1e-30f, 0}, {0, 1e-30f}, {0, 0, 1},
-                                     resolved),
-              glm::vec4(1, 0, 0, 1));
+    EXPECT_EQ(
+        g::sgPatchLimitTangent({1, 0, 0}, {0, 1, 0}, {1e-30f, 0}, {0, 1e-30f}, {0, 0, 1}, resolved),
+        glm::vec4(1, 0, 0, 1));
     EXPECT_EQ(resolved, SG_LIMIT_TANGENT_REGULAR);
     // Mirrored UVs (t runs along -v): w = -1, T still along +s.
     EXPECT_EQ(g::sgPatchLimitTangent({2, 0, 0}, {0, 3, 0}, {1, 0}, {0, -1}, {0, 0, 1}, resolved),
@@ -283,8 +283,7 @@ TEST(PatchTangentHardCases, DegenerateInputsGiveFiniteUnitOrthogonalTangents) {
                              "collapsed or non-finite surface derivatives, scales 1e-30..1e30",
                              "| |T| - 1 |", offUnit.value, 1e-6);
     // Orthogonal: the Gram-Schmidt step in binary32 (a few ulp).
-    sg::test::hardCaseAtMost("uv-degenerate",
-                             "patch limit tangent: the same inputs, four normals",
+    sg::test::hardCaseAtMost("uv-degenerate", "patch limit tangent: the same inputs, four normals",
                              "|T . N|", offPlane.value, 1e-6);
 }
 

@@ -51,7 +51,9 @@ std::string loadError(const std::string& json) {
 struct Angles {
     std::vector<double> deg;
     size_t nonFinite = 0, onlyOne = 0;
-    double at(double q) const { return deg.empty() ? 0.0 : deg[size_t(q * double(deg.size() - 1))]; }
+    double at(double q) const {
+        return deg.empty() ? 0.0 : deg[size_t(q * double(deg.size() - 1))];
+    }
 };
 
 Angles compareDirections(const Image& a, const Image& b) {
@@ -94,9 +96,9 @@ TEST(AdaptiveTangents, SceneAcceptsLimitAndRefusesMikkTSpaceNamingTheField) {
         EXPECT_NE(err.find("vertex list"), std::string::npos) << t << ": " << err;
     }
     // A set the patches do not have names its element.
-    const std::string err = loadError(adaptiveScene(R"(["pixel", "limit"])",
-                                                    R"({"type": "uv_normal", "uv_set": 1, )"
-                                                    R"("map": {"procedural": "bricks"}})"));
+    const std::string err =
+        loadError(adaptiveScene(R"(["pixel", "limit"])", R"({"type": "uv_normal", "uv_set": 1, )"
+                                                         R"("map": {"procedural": "bricks"}})"));
     EXPECT_NE(err.find("meshes[0].tangents[1]"), std::string::npos) << err;
     EXPECT_NE(err.find("no UV set 1"), std::string::npos) << err;
 }
@@ -119,11 +121,11 @@ TEST(AdaptiveTangents, OnlyTheSetsALayerReadsGetThem) {
     EXPECT_NE(src.fragment.find("#define SG_VTX_TANGENT_1 1\n"), std::string::npos);
     // Asked on both, read by no layer (the layer switched off): none, and
     // the evaluation stage defines no tangent output.
-    Scene off = sceneFromJson(
-        adaptiveScene(R"(["limit", "limit"])",
-                      R"({"type": "uv_normal", "uv_set": 1, "enabled": false, )"
-                      R"("map": {"procedural": "bricks", "size": 64}})",
-                      96, 64, R"(, "uv_sets": [{"from": 0, "scale": 4}])"));
+    Scene off =
+        sceneFromJson(adaptiveScene(R"(["limit", "limit"])",
+                                    R"({"type": "uv_normal", "uv_set": 1, "enabled": false, )"
+                                    R"("map": {"procedural": "bricks", "size": 64}})",
+                                    96, 64, R"(, "uv_sets": [{"from": 0, "scale": 4}])"));
     SceneAssets offAssets = loadAssets(off);
     EXPECT_EQ(offAssets.meshes[0].patchTangentSets, 0u);
     const MaterialPlan offPlan = planMaterial(off, offAssets, 0, 0);
