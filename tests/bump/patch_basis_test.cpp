@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "hardcase.h"
+#include "patch_eval_util.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/io.h"
@@ -39,9 +40,7 @@ namespace Sdc = OpenSubdiv::Sdc;
 using sg::mesh::PolygonMesh;
 
 std::filesystem::path dataPath(const std::string& rel) {
-    const char* env = std::getenv("SURFGRAD_DATA_DIR");
-    return (env && *env ? std::filesystem::path(env) : std::filesystem::path(SURFGRAD_DATA_DIR)) /
-           rel;
+    return sg::test::patchDataPath(rel);
 }
 
 // Far's table for the same cage and options buildAdaptivePatches uses (the
@@ -196,21 +195,13 @@ TEST(PatchBasis, MatchesFarEvaluateBasisOnEveryCatmarkShape) {
     EXPECT_GE(boundarySeen, 1200u);
 }
 
-// Position on a patch from the exported arrays with the shared basis.
+// Position on a patch from the exported arrays with the shared basis
+// (`p` within the array), and optionally its u derivative.
 glm::vec3 evalPatch(const sg::mesh::AdaptivePatches& ap, const sg::mesh::AdaptivePatchArray& arr,
                     uint32_t p, glm::vec2 patchUv, glm::vec3* du = nullptr) {
-    const glm::uvec2 param = ap.params[arr.firstPatch + p];
-    const g::SgPatchBasis b =
-        g::sgPatchBasis(arr.type, param.y, g::sgPatchUnnormalizeUv(param.y, patchUv));
-    glm::vec3 pos(0.0f), d(0.0f);
-    for (int i = 0; i < b.count; ++i) {
-        const glm::vec3 cp =
-            ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) + uint32_t(i)]];
-        pos += b.point.v[i] * cp;
-        d += b.du.v[i] * cp;
-    }
-    if (du) *du = d;
-    return pos;
+    const sg::test::PatchSample s = sg::test::evalPatchSample(ap, arr, arr.firstPatch + p, patchUv);
+    if (du) *du = s.du;
+    return s.pos;
 }
 
 TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
@@ -836,20 +827,11 @@ TEST(PatchHardCases, HighValencePolesKeepTheLimitPointAndNormal) {
                 for (uint32_t p = 0; p < arr.patchCount; ++p) {
                     for (glm::vec2 c :
                          {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
-                        glm::vec3 du;
-                        const glm::vec3 q = evalPatch(ap, arr, p, c, &du);
+                        const sg::test::PatchSample x =
+                            sg::test::evalPatchSample(ap, arr, arr.firstPatch + p, c);
+                        const glm::vec3 q = x.pos;
                         if (glm::length(q - limitPole) > 1e-3f) continue;
-                        // The other derivative: a finite difference would
-                        // mix in the patch's curvature; the basis has it.
-                        const glm::uvec2 param = ap.params[arr.firstPatch + p];
-                        const g::SgPatchBasis b =
-                            g::sgPatchBasis(arr.type, param.y, g::sgPatchUnnormalizeUv(param.y, c));
-                        glm::vec3 dv(0.0f);
-                        for (int i = 0; i < b.count; ++i)
-                            dv += b.dv.v[i] *
-                                  ap.points[ap.indices[arr.firstIndex + p * uint32_t(b.count) +
-                                                       uint32_t(i)]];
-                        const glm::vec3 n = glm::cross(du, dv);
+                        const glm::vec3 n = glm::cross(x.du, x.dv);
                         ASSERT_GT(glm::length(n), 0.0f) << "patch " << arr.firstPatch + p;
                         const double cosA = std::clamp(double(glm::normalize(n).y), -1.0, 1.0);
                         angleDeg = std::max(angleDeg, std::acos(cosA) * 57.29577951);

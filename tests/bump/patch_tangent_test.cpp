@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "hardcase.h"
+#include "patch_eval_util.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/patch_basis.h"
@@ -23,13 +24,12 @@ namespace {
 
 namespace g = sg::glsl;
 using sg::mesh::AdaptivePatches;
-using sg::mesh::AdaptiveUvSet;
 using sg::mesh::PolygonMesh;
 
+using sg::test::patchArrayOf;
+
 std::filesystem::path dataPath(const std::string& rel) {
-    const char* env = std::getenv("SURFGRAD_DATA_DIR");
-    return (env && *env ? std::filesystem::path(env) : std::filesystem::path(SURFGRAD_DATA_DIR)) /
-           rel;
+    return sg::test::patchDataPath(rel);
 }
 
 // A tessellated point as the evaluation stage computes it from patch p's
@@ -44,41 +44,15 @@ struct PatchPoint {
 
 PatchPoint evalPatchPoint(const AdaptivePatches& ap, const std::vector<uint32_t>& arrayOf,
                           uint32_t p, size_t set, glm::vec2 patchUv) {
-    const auto& arr = ap.arrays[arrayOf[p]];
-    const uint32_t f1 = ap.params[p].y;
-    const glm::vec2 faceUv = g::sgPatchUnnormalizeUv(f1, patchUv);
-    const g::SgPatchBasis b = g::sgPatchBasis(arr.type, f1, faceUv);
-    const uint32_t* idx =
-        &ap.indices[arr.firstIndex + (p - arr.firstPatch) * uint32_t(arr.pointsPerPatch)];
+    const sg::test::PatchSample x =
+        sg::test::evalPatchSample(ap, ap.arrays[arrayOf[p]], p, patchUv);
+    const sg::test::PatchUvSample uv = sg::test::evalPatchUvSample(ap, set, p, patchUv);
     PatchPoint r;
-    glm::vec3 pos(0.0f), du(0.0f), dv(0.0f);
-    for (int i = 0; i < b.count; ++i) {
-        pos += b.point.v[i] * ap.points[idx[i]];
-        du += b.du.v[i] * ap.points[idx[i]];
-        dv += b.dv.v[i] * ap.points[idx[i]];
-    }
-    const AdaptiveUvSet& uvs = ap.uvSets[set];
-    const g::SgPatchBasis bu = g::sgPatchBasis(int(uvs.types[p]), uvs.field1[p], faceUv);
-    const uint32_t* uidx = &uvs.indices[size_t(p) * AdaptiveUvSet::kUvValuesPerPatch];
-    glm::vec2 st(0.0f), sdu(0.0f), sdv(0.0f);
-    for (int i = 0; i < bu.count; ++i) {
-        st += bu.point.v[i] * uvs.values[uidx[i]];
-        sdu += bu.du.v[i] * uvs.values[uidx[i]];
-        sdv += bu.dv.v[i] * uvs.values[uidx[i]];
-    }
-    r.pos = pos;
-    r.st = st;
-    r.normal = g::sgSafeNormalize(glm::cross(du, dv), glm::vec3(0.0f, 0.0f, 1.0f));
-    r.tangent = g::sgPatchLimitTangent(du, dv, sdu, sdv, r.normal, r.resolved);
+    r.pos = x.pos;
+    r.st = uv.st;
+    r.normal = g::sgSafeNormalize(glm::cross(x.du, x.dv), glm::vec3(0.0f, 0.0f, 1.0f));
+    r.tangent = g::sgPatchLimitTangent(x.du, x.dv, uv.du, uv.dv, r.normal, r.resolved);
     return r;
-}
-
-std::vector<uint32_t> arrayOfPatches(const AdaptivePatches& ap) {
-    std::vector<uint32_t> out(ap.patchCount(), 0);
-    for (size_t a = 0; a < ap.arrays.size(); ++a)
-        for (uint32_t k = 0; k < ap.arrays[a].patchCount; ++k)
-            out[ap.arrays[a].firstPatch + k] = uint32_t(a);
-    return out;
 }
 
 // In double (atan2 of |a x b| and a . b: no acos rounding near 0).
@@ -130,7 +104,7 @@ TangentAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, flo
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](uint32_t a, uint32_t b) { return ref.positions[a].x < ref.positions[b].x; });
-    const std::vector<uint32_t> arrays = arrayOfPatches(ap);
+    const std::vector<uint32_t> arrays = patchArrayOf(ap);
     for (uint32_t p = 0; p < ap.patchCount(); ++p) {
         const int steps = 1 << std::max(level - g::sgPatchDepth(ap.params[p].y), 0);
         for (int j = 0; j <= steps; ++j) {
@@ -304,7 +278,7 @@ TEST(PatchTangentHardCases, ZeroAreaUvPatchesAndCollapsedCage) {
         for (int isolation : {1, 3}) {
             const AdaptivePatches ap =
                 sg::mesh::buildAdaptivePatches(*cage, cage->options, isolation, "cube");
-            const std::vector<uint32_t> arrays = arrayOfPatches(ap);
+            const std::vector<uint32_t> arrays = patchArrayOf(ap);
             for (uint32_t p = 0; p < ap.patchCount(); ++p) {
                 for (int j = 0; j <= 4; ++j) {
                     for (int i = 0; i <= 4; ++i) {

@@ -12,6 +12,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "patch_eval_util.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/patch_basis.h"
@@ -21,47 +22,23 @@ namespace {
 
 namespace g = sg::glsl;
 using sg::mesh::AdaptivePatches;
-using sg::mesh::AdaptiveUvSet;
 using sg::mesh::PolygonMesh;
 
-std::filesystem::path dataPath(const std::string& rel) {
-    const char* env = std::getenv("SURFGRAD_DATA_DIR");
-    return (env && *env ? std::filesystem::path(env) : std::filesystem::path(SURFGRAD_DATA_DIR)) /
-           rel;
-}
+using sg::test::patchArrayOf;
 
-// Patch index -> its array.
-std::vector<uint32_t> arrayOf(const AdaptivePatches& ap) {
-    std::vector<uint32_t> out(ap.patchCount(), 0);
-    for (size_t a = 0; a < ap.arrays.size(); ++a)
-        for (uint32_t k = 0; k < ap.arrays[a].patchCount; ++k)
-            out[ap.arrays[a].firstPatch + k] = uint32_t(a);
-    return out;
+std::filesystem::path dataPath(const std::string& rel) {
+    return sg::test::patchDataPath(rel);
 }
 
 // Position of patch p at (u,v) of its square (the tessellator's evaluation).
 glm::vec3 evalPosition(const AdaptivePatches& ap, const std::vector<uint32_t>& arrays, uint32_t p,
                        glm::vec2 patchUv) {
-    const auto& arr = ap.arrays[arrays[p]];
-    const uint32_t f1 = ap.params[p].y;
-    const g::SgPatchBasis b = g::sgPatchBasis(arr.type, f1, g::sgPatchUnnormalizeUv(f1, patchUv));
-    const uint32_t* idx =
-        &ap.indices[arr.firstIndex + (p - arr.firstPatch) * uint32_t(arr.pointsPerPatch)];
-    glm::vec3 pos(0.0f);
-    for (int i = 0; i < b.count; ++i) pos += b.point.v[i] * ap.points[idx[i]];
-    return pos;
+    return sg::test::evalPatchSample(ap, ap.arrays[arrays[p]], p, patchUv).pos;
 }
 
-// UV of set `s` on patch p at (u,v) of the position patch's square (the
-// evaluation stage's patchUv, through the ptex face's (u,v)).
+// UV of set `s` on patch p at (u,v) of the position patch's square.
 glm::vec2 evalUv(const AdaptivePatches& ap, size_t s, uint32_t p, glm::vec2 patchUv) {
-    const AdaptiveUvSet& set = ap.uvSets[s];
-    const glm::vec2 faceUv = g::sgPatchUnnormalizeUv(ap.params[p].y, patchUv);
-    const g::SgPatchBasis b = g::sgPatchBasis(int(set.types[p]), set.field1[p], faceUv);
-    const uint32_t* idx = &set.indices[size_t(p) * AdaptiveUvSet::kUvValuesPerPatch];
-    glm::vec2 st(0.0f);
-    for (int i = 0; i < b.count; ++i) st += b.point.v[i] * set.values[idx[i]];
-    return st;
+    return sg::test::evalPatchUvSample(ap, s, p, patchUv).st;
 }
 
 struct UvAgreement {
@@ -98,7 +75,7 @@ UvAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, float po
     for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(),
               [&](uint32_t a, uint32_t b) { return ref.positions[a].x < ref.positions[b].x; });
-    const std::vector<uint32_t> arrays = arrayOf(ap);
+    const std::vector<uint32_t> arrays = patchArrayOf(ap);
     for (uint32_t p = 0; p < ap.patchCount(); ++p) {
         ++r.types[std::clamp(int(ap.uvSets[0].types[p]), 0, 9)];
         const int depth = g::sgPatchDepth(ap.params[p].y);
@@ -207,7 +184,7 @@ TEST(PatchUv, SeamsDoNotTearPositions) {
     // Shared edges whose two sides have different UVs (seams): their points
     // go to one site from both sides (the owner's, sg/patch/watertight.glsl),
     // so the positions are equal bit for bit while the UVs differ.
-    const std::vector<uint32_t> arrays = arrayOf(withUv);
+    const std::vector<uint32_t> arrays = patchArrayOf(withUv);
     size_t seamEdges = 0, sharedEdges = 0, torn = 0;
     const int n = 4;
     for (uint32_t p = 0; p < withUv.patchCount(); ++p) {

@@ -201,41 +201,9 @@ TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
     EXPECT_GT(r.at(0.99), 0.0);
 }
 
-// Hard case: zero-area UV patches (a cube cage whose every corner has the
-// same UV: the UV Jacobian is zero up to rounding everywhere) with limit
-// tangents and a normal map on that set, at isolation 1 and 2: finite
-// images on both renderers (sgPatchLimitTangent's degenerate-UV fallback).
-TEST(RenderHardCases, AdaptiveLimitTangentsOnZeroAreaUvPatchesStayFinite) {
-    const std::filesystem::path dir = sg::test::processScratchDir("adaptive_tangents");
-    const std::filesystem::path obj = dir / "cube_one_uv.obj";
-    {
-        std::ofstream f(obj);
-        f << "v -1 -1 -1\nv 1 -1 -1\nv 1 1 -1\nv -1 1 -1\n"
-             "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nvt 0.5 0.5\n"
-             "f 1/1 4/1 3/1 2/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\n"
-             "f 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n";
-    }
-    size_t bad = 0;
-    for (const char* isolation : {"1", "2"}) {
-        Scene s = sceneFromJson(
-            R"({"output": {"width": 96, "height": 64}, "materials": [{"name": "m", "layers": [
-                  {"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 64}}]}],
-                "meshes": [{"file": ")" +
-            obj.generic_string() + R"(", "subdivision": {"mode": "adaptive", "isolation": )" +
-            isolation + R"(, "pixels_per_edge": 2}, "tangents": "limit"}]})");
-        SceneAssets a = loadAssets(s);
-        EXPECT_EQ(a.meshes[0].patchTangentSets, 1u);
-        for (Aov aov : {Aov::Color, Aov::Normal, Aov::Tangent}) {
-            View v = makeView(s, a, 0, 0, aov);
-            bad += countNonFinite(gpu().render(s, a, v));
-            bad += countNonFinite(renderCpu(s, a, v));
-        }
-    }
-    sg::test::hardCaseAtMost("uv-degenerate",
-                             "adaptive patches whose UVs are all one point (cube cage), limit "
-                             "tangents and a normal map on them, GPU and CPU",
-                             "non-finite pixel channels", double(bad), 0.0);
-}
+// The zero-area UV patches with limit tangents: RenderHardCases.
+// AdaptiveZeroAreaUvPatchesStayFinite (adaptive_test.cpp), with the
+// per-pixel frame on the same cage.
 
 } // namespace
 } // namespace sg::render::test

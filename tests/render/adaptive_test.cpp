@@ -493,9 +493,10 @@ TEST(AdaptiveUv, UvAovMatchesTheUniformLimitUvs) {
 // Hard case: zero-area UV patches (a cube cage whose every corner has the
 // same UV: every face-varying value and every UV patch is one point, the
 // UV Jacobian is zero everywhere) with a normal map on that set, at
-// isolation 1 and 2: finite images on both renderers (the per-pixel
-// frame's degenerate-UV fallback takes over; nothing in the evaluation
-// stage divides by UVs).
+// isolation 1 and 2: finite images on both renderers, with the frame per
+// pixel (its degenerate-UV fallback takes over; nothing in the evaluation
+// stage divides by UVs) and with "limit" tangents (sgPatchLimitTangent's
+// degenerate-UV fallback).
 TEST(RenderHardCases, AdaptiveZeroAreaUvPatchesStayFinite) {
     const std::filesystem::path dir = sg::test::processScratchDir("adaptive_uv");
     const std::filesystem::path obj = dir / "cube_one_uv.obj";
@@ -506,23 +507,33 @@ TEST(RenderHardCases, AdaptiveZeroAreaUvPatchesStayFinite) {
              "f 1/1 4/1 3/1 2/1\nf 5/1 6/1 7/1 8/1\nf 1/1 2/1 6/1 5/1\n"
              "f 2/1 3/1 7/1 6/1\nf 3/1 4/1 8/1 7/1\nf 4/1 1/1 5/1 8/1\n";
     }
-    Scene s = sceneFromJson(
-        R"({"output": {"width": 96, "height": 64}, "materials": [{"name": "m", "layers": [
-              {"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 64}}]}],
-            "meshes": [{"file": ")" +
-        obj.generic_string() + R"(", "subdivision": {"mode": "adaptive", "isolation": 2,
-              "pixels_per_edge": 2}}]})");
-    SceneAssets a = loadAssets(s);
-    size_t bad = 0;
-    for (Aov aov : {Aov::Color, Aov::Normal, Aov::Uv}) {
-        View v = makeView(s, a, 0, 0, aov);
-        bad += countNonFinite(gpu().render(s, a, v));
-        bad += countNonFinite(renderCpu(s, a, v));
+    size_t bad[2] = {0, 0}; // per pixel, limit tangents
+    for (int limit : {0, 1}) {
+        for (const char* isolation : {"1", "2"}) {
+            Scene s = sceneFromJson(
+                R"({"output": {"width": 96, "height": 64}, "materials": [{"name": "m", "layers": [
+                  {"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 64}}]}],
+                "meshes": [{"file": ")" +
+                obj.generic_string() + R"(", "subdivision": {"mode": "adaptive", "isolation": )" +
+                isolation + R"(, "pixels_per_edge": 2})" +
+                (limit ? R"(, "tangents": "limit")" : "") + "}]}");
+            SceneAssets a = loadAssets(s);
+            EXPECT_EQ(a.meshes[0].patchTangentSets, limit ? 1u : 0u);
+            for (Aov aov : {Aov::Color, Aov::Normal, Aov::Uv, Aov::Tangent}) {
+                View v = makeView(s, a, 0, 0, aov);
+                bad[limit] += countNonFinite(gpu().render(s, a, v));
+                bad[limit] += countNonFinite(renderCpu(s, a, v));
+            }
+        }
     }
     sg::test::hardCaseAtMost("uv-degenerate",
                              "adaptive patches whose UVs are all one point (cube cage), "
                              "normal map on them, GPU and CPU",
-                             "non-finite pixel channels", double(bad), 0.0);
+                             "non-finite pixel channels", double(bad[0]), 0.0);
+    sg::test::hardCaseAtMost("uv-degenerate",
+                             "adaptive patches whose UVs are all one point (cube cage), limit "
+                             "tangents and a normal map on them, GPU and CPU",
+                             "non-finite pixel channels", double(bad[1]), 0.0);
 }
 
 // ---- Displacement ---------------------------------------------------------
