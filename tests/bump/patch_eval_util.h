@@ -68,7 +68,8 @@ inline PatchUvSample evalPatchUvSample(const sg::mesh::AdaptivePatches& ap, size
                                        glm::vec2 patchUv) {
     const sg::mesh::AdaptiveUvSet& uvs = ap.uvSets[set];
     const glm::vec2 faceUv = sg::glsl::sgPatchUnnormalizeUv(ap.params[p].y, patchUv);
-    const sg::glsl::SgPatchBasis b = sg::glsl::sgPatchBasis(int(uvs.types[p]), uvs.field1[p], faceUv);
+    const sg::glsl::SgPatchBasis b =
+        sg::glsl::sgPatchBasis(int(uvs.types[p]), uvs.field1[p], faceUv);
     const uint32_t* idx = &uvs.indices[size_t(p) * sg::mesh::AdaptiveUvSet::kUvValuesPerPatch];
     PatchUvSample s;
     for (int i = 0; i < b.count; ++i) {
