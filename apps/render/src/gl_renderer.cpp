@@ -220,13 +220,23 @@ struct GlRenderer::Impl {
         if (timerOk < 0) {
             GLint bits = 0;
             glGetQueryiv(GL_TIME_ELAPSED, GL_QUERY_COUNTER_BITS, &bits);
-            const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-            const std::string name = r ? r : "";
-            const bool software = name.find("llvmpipe") != std::string::npos ||
-                                  name.find("softpipe") != std::string::npos;
-            timerOk = bits > 0 && !software ? 1 : 0;
+            timerOk = bits > 0 && !mesaDrawModule() ? 1 : 0;
         }
         return timerOk == 1;
+    }
+
+    // Whether the context is one of Mesa's software rasterisers (llvmpipe,
+    // softpipe), which run the vertex and tessellation stages in Mesa's
+    // draw module.
+    int softwareDriver = -1;
+    bool mesaDrawModule() {
+        if (softwareDriver < 0) {
+            const char* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+            const std::string name = r ? r : "";
+            softwareDriver = name.find("llvmpipe") != std::string::npos ||
+                             name.find("softpipe") != std::string::npos;
+        }
+        return softwareDriver == 1;
     }
 
     ~Impl() {
@@ -455,11 +465,24 @@ struct GlRenderer::Impl {
                 glUniform1f(gp.loc("uDispScale"), mi.displacement->scale);
             }
             glPatchParameteri(GL_PATCH_VERTICES, arr.pointsPerPatch);
-            glDrawArrays(GL_PATCHES, 0, GLsizei(arr.patchCount * uint32_t(arr.pointsPerPatch)));
-            ++stats.drawCalls;
+            // gl_VertexID counts from `first`: the vertex stage's patch
+            // index and control points stay those of the whole array.
+            const uint32_t perDraw = detail::patchesPerDraw(mesaDrawModule()),
+                           ppp = uint32_t(arr.pointsPerPatch);
+            for (uint32_t first = 0, n = 0; first < arr.patchCount; first += n) {
+                n = std::min(perDraw, arr.patchCount - first);
+                glDrawArrays(GL_PATCHES, GLint(first * ppp), GLsizei(n * ppp));
+                ++stats.drawCalls;
+            }
         }
     }
 };
+
+uint32_t detail::patchesPerDraw(bool mesaDrawModule) {
+    if (!mesaDrawModule) return UINT32_MAX;
+    const uint32_t side = uint32_t(SG_TESS_MAX_LEVEL) + 1u;
+    return std::max(65535u / (side * side), 1u);
+}
 
 GlRenderer::GlRenderer() : impl_(std::make_unique<Impl>()) {}
 GlRenderer::~GlRenderer() = default;

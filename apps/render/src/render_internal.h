@@ -103,6 +103,19 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,
                                      const PatchDisplacement* displacement = nullptr,
                                      uint32_t tangentMask = 0);
 
+// Patches per glDrawArrays of an adaptive mesh (gl_renderer.cpp). Mesa's
+// draw module, which runs the vertex and tessellation stages of its
+// software rasterisers (llvmpipe, softpipe), splits a draw into chunks of
+// at most 4096 input vertices and cannot emit more than 65535 vertices
+// from one chunk's tessellation; past that, Mesa 22.3's llvmpipe draws
+// wrong, misplaced triangles (and takes seconds rasterising them), which
+// happens once a chunk's patches average level ~15 (spot at 1 px/edge on
+// a 960x540 view). There a draw gets at most as many patches as fit in
+// 65535 vertices at the largest level (a quad patch at level L emits
+// (L + 1)^2: 15 at level 64); other drivers draw each patch type at once
+// (UINT32_MAX). docs/platform.md.
+uint32_t patchesPerDraw(bool mesaDrawModule);
+
 // World-space bounds of every mesh instance.
 void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
 
