@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common.h"
+
 namespace study {
 
 SurfaceReference::SurfaceReference(const sg::mesh::RenderMesh& m)
@@ -75,6 +77,28 @@ ScreenError screenError(const SurfaceReference& ref, const sg::mesh::RenderMesh&
     e.max = px.back();
     e.p99 = px[std::min(px.size() - 1, size_t(0.99 * double(px.size())))];
     return e;
+}
+
+DirectionDiff compareDirections(const sg::render::Image& a, const sg::render::Image& b,
+                                const sg::render::Image& baseA, const sg::render::Image& baseB) {
+    DirectionDiff d;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::dvec3 x(a.pixels[i]), y(b.pixels[i]);
+        const glm::dvec3 nx(baseA.pixels[i]), ny(baseB.pixels[i]);
+        if (!std::isfinite(x.x + x.y + x.z) || !std::isfinite(y.x + y.y + y.z)) {
+            ++d.nonFinite;
+            continue;
+        }
+        const bool ca = glm::length(nx) > 0.5, cb = glm::length(ny) > 0.5;
+        if (!ca && !cb) continue; // background in both
+        if (!ca || !cb || angleDeg(nx, ny) > kSameSheetDeg) {
+            ++d.otherSheet;
+            continue;
+        }
+        d.deg.push_back(angleDeg(x, y));
+    }
+    std::sort(d.deg.begin(), d.deg.end());
+    return d;
 }
 
 } // namespace study

@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "surfgrad/render/image.h"
 #include "surfgrad/render/view.h"
 #include "surfgrad/render_mesh.h"
 
@@ -51,5 +52,24 @@ struct ScreenError {
 // `maxTriangles` triangles, evenly strided.
 ScreenError screenError(const SurfaceReference& ref, const sg::mesh::RenderMesh& mesh,
                         const sg::render::View& view, float focalPx, size_t maxTriangles = 400000);
+
+// Table 11e's frame error: angles (degrees) between two images of vectors
+// (tangent or shaded-normal AOVs of two tessellations of one view) at the
+// pixels where both see the same sheet of the surface: both covered and
+// their geometric (limit) normals, baseA and baseB (base normal AOVs;
+// background 0), within kSameSheetDeg. The limit normal is continuous and
+// the two tessellations' points at a pixel lie within the chord error of
+// each other, so it moves by far less except where an occlusion edge moved
+// and the pixel sees another part of the surface (or, at grazing angles,
+// nearly so); those pixels are counted in `otherSheet`, not compared.
+// Pixels with a non-finite vector in either image are counted in
+// `nonFinite`. `deg` is sorted ascending. All four images have one size.
+constexpr double kSameSheetDeg = 10.0;
+struct DirectionDiff {
+    std::vector<double> deg;
+    size_t otherSheet = 0, nonFinite = 0;
+};
+DirectionDiff compareDirections(const sg::render::Image& a, const sg::render::Image& b,
+                                const sg::render::Image& baseA, const sg::render::Image& baseB);
 
 } // namespace study

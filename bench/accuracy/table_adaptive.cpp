@@ -33,6 +33,17 @@
 // the undisplaced draw, frames interleaved; and pinholes in the GPU image
 // (uncovered pixels whose four neighbours are covered: 0 when displaced
 // shared edges stay closed).
+//
+// 11e, the tangent frame's source on adaptive patches (Mikkelsen 2019
+// section 2.3): spot (isolation 3) with a tangent-space normal map on UV
+// set 0 (procedural bricks), the per-pixel frame (screen-space derivatives
+// of the tessellated triangle's position and UV) against "tangents":
+// "limit" (sg/patch/limit_tangent.glsl in the evaluation stage, interpolated
+// over the triangle), at several pixels_per_edge. Ground truth: the limit
+// frame at 1 px/edge (its interpolation error is quadratic in the triangle
+// size). Errors: angle of the tangent AOV and of the shaded normal to the
+// ground truth's at pixels both cover; cost: draw time, frames interleaved,
+// and its ratio to the per-pixel frame at the same pixels_per_edge.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -666,6 +677,118 @@ void displacementTable(const Options& o) {
     t.print(o);
 }
 
+// ---- 11e: tangent frame source -------------------------------------------
+
+void frameSourceTable(const Options& o) {
+    const std::string spot = "data:meshes/spot/spot_control_mesh.obj";
+    const std::string layer =
+        R"({"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 256}, )"
+        R"("strength": 1.0})";
+    const std::vector<float> ppes = o.quick ? std::vector<float>{4} : std::vector<float>{8, 4, 2};
+    const float refPpe = 1.0f;
+    const int frames = o.quick ? 3 : 7;
+    auto sceneFor = [&](float ppe, const char* tangents) {
+        const std::string mesh = R"({"file": ")" + spot +
+                                 R"(", "material": "bumped", "subdivision": )" +
+                                 adaptiveJson(3, ppe) + R"(, "tangents": [")" + tangents + R"("]})";
+        return sceneOf(
+            R"({"output": {"width": 960, "height": 540}, "camera": {"azimuth_deg": 105, )"
+            R"("elevation_deg": 14, "distance_scale": 0.72, "fov_deg": 32}, "materials": [)"
+            R"({"name": "bumped", "layers": [)" +
+            layer + "]}], \"meshes\": [" + mesh + "]}");
+    };
+    struct Variant {
+        float ppe = 0.0f;
+        const char* source = "";
+        Scene scene;
+        SceneAssets assets;
+        DirectionDiff tangent, normal;
+        std::vector<double> drawMs;
+    };
+    std::vector<Variant> vs;
+    for (float p : ppes)
+        for (const char* src : {"pixel", "limit"}) {
+            Variant v;
+            v.ppe = p;
+            v.source = src;
+            v.scene = sceneFor(p, src);
+            v.assets = loadAssets(v.scene);
+            vs.push_back(std::move(v));
+        }
+    Scene refScene = sceneFor(refPpe, "limit");
+    SceneAssets refAssets = loadAssets(refScene);
+    const View view = makeView(refScene, refAssets);
+    auto aovView = [&](Aov aov) {
+        View v = view;
+        v.aov = aov;
+        return v;
+    };
+    GlRenderer refGl;
+    const Image refT = refGl.render(refScene, refAssets, aovView(Aov::Tangent));
+    const Image refN = refGl.render(refScene, refAssets, aovView(Aov::Normal));
+    const Image refBase = refGl.render(refScene, refAssets, aovView(Aov::BaseNormal));
+    std::vector<GlRenderer> gl(vs.size());
+    for (size_t i = 0; i < vs.size(); ++i) {
+        Variant& v = vs[i];
+        const Image base = gl[i].render(v.scene, v.assets, aovView(Aov::BaseNormal));
+        v.tangent = compareDirections(gl[i].render(v.scene, v.assets, aovView(Aov::Tangent)), refT,
+                                      base, refBase);
+        v.normal = compareDirections(gl[i].render(v.scene, v.assets, aovView(Aov::Normal)), refN,
+                                     base, refBase);
+        gl[i].renderToTexture(v.scene, v.assets, view); // the timed program
+    }
+    for (int f = 0; f < frames; ++f)
+        for (size_t i = 0; i < vs.size(); ++i) {
+            gl[i].renderToTexture(vs[i].scene, vs[i].assets, view);
+            vs[i].drawMs.push_back(gl[i].stats().drawWallMs);
+        }
+    Table t;
+    t.title = "Table 11e: tangent frame source on adaptive patches, spot (isolation 3) with a "
+              "bricks normal map on the tessellated-asset view, 960x540; ground truth: limit "
+              "frame at " +
+              fmt(refPpe, 0) + " px/edge; draw: median of " + std::to_string(frames) +
+              " interleaved frames";
+    t.header = {"px/edge",
+                "frame",
+                "tangent err p50 deg",
+                "tangent err p99 deg",
+                "shaded normal err p50 deg",
+                "shaded normal err p99 deg",
+                "pixels compared / other sheet",
+                "draw ms",
+                "draw ratio to per-pixel"};
+    for (size_t i = 0; i < vs.size(); ++i) {
+        const Variant& v = vs[i];
+        if (v.tangent.nonFinite + v.normal.nonFinite)
+            throw std::runtime_error("table adaptive: non-finite frame in the " +
+                                     std::string(v.source) + " variant");
+        const double ms = median(v.drawMs);
+        const ErrorStats te = errorStats(v.tangent.deg), ne = errorStats(v.normal.deg);
+        t.add({fmt(v.ppe, 0), std::string(v.source) == "pixel" ? "per-pixel" : "limit",
+               fmtErr(te.p50), fmtErr(te.p99), fmtErr(ne.p50), fmtErr(ne.p99),
+               std::to_string(ne.count) + " / " + std::to_string(v.normal.otherSheet), fmt(ms, 1),
+               fmtRatio(ms / median(vs[i & ~size_t(1)].drawMs))});
+    }
+    t.notes.push_back(
+        "Errors: angle to the ground truth's tangent AOV (vT of set 0) and shaded normal at "
+        "pixels where both images see the same sheet of the surface (both covered, base "
+        "normals within " +
+        fmt(kSameSheetDeg, 0) +
+        " deg); the tessellations differ, so each pixel's surface point differs by the chord "
+        "error (table 11a); pixels where an occlusion edge moved are counted (other sheet), "
+        "not compared. Ratio to the "
+        "per-pixel frame at the same px/edge, same run; renderer " +
+        o.renderer + ".");
+    t.plot.id = "adaptive-frames";
+    t.plot.xColumn = 7;
+    t.plot.yColumn = 5;
+    t.plot.seriesColumn = 1;
+    t.plot.labelColumns = {0};
+    t.plot.xLabel = "draw ms (llvmpipe, 960x540)";
+    t.plot.yLabel = "shaded normal error p99 (deg)";
+    t.print(o);
+}
+
 } // namespace
 
 void tableAdaptive(const Options& o) {
@@ -673,6 +796,7 @@ void tableAdaptive(const Options& o) {
     animatedTable(o);
     staticTable(o);
     displacementTable(o);
+    frameSourceTable(o);
 }
 
 } // namespace study

@@ -3,10 +3,13 @@
 // limit: the reference puts limit points at distance ~0, the chord error of
 // uniform limit meshes converges quadratically, and the picks the page
 // quotes for the medium view (uniform level 3; level 2 is not under the
-// 0.5 px bound) hold.
+// 0.5 px bound) hold; and table 11e's frame error compares only pixels
+// where both images see the same sheet of the surface.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include "adaptive_error.h"
 #include "surfgrad/mesh_io.h"
@@ -96,6 +99,39 @@ TEST(StudyAdaptiveError, MediumViewNeedsUniformLevel3) {
     EXPECT_GE(std::max(l2.p99, l2.max), 0.5);
     EXPECT_LT(l3.p99, 0.5);
     EXPECT_LT(l3.max, 0.5);
+}
+
+// Table 11e's frame error on synthetic 4x1 images: a pixel both images
+// cover with base normals 0.5 degrees apart is compared (its vectors 30
+// degrees apart), background in both is skipped, a pixel only one image
+// covers and one whose base normals are 20 degrees apart (another sheet)
+// are counted, a NaN vector is counted as non-finite.
+TEST(StudyAdaptiveError, FrameErrorComparesOnlyTheSameSheet) {
+    auto img = [](std::vector<glm::vec4> px) {
+        Image i;
+        i.width = int(px.size());
+        i.height = 1;
+        i.pixels = std::move(px);
+        return i;
+    };
+    auto dir = [](double deg) {
+        const double r = deg * M_PI / 180.0;
+        return glm::vec4(float(std::cos(r)), float(std::sin(r)), 0.0f, 0.0f);
+    };
+    const glm::vec4 none(0.0f);
+    const float nan = std::nanf("");
+    const Image a = img({dir(0), none, dir(0), dir(0), glm::vec4(nan, 0, 0, 0)});
+    const Image b = img({dir(30), none, dir(0), dir(0), dir(0)});
+    const Image baseA = img({dir(90), none, dir(90), dir(90), dir(90)});
+    const Image baseB = img({dir(90.5), none, none, dir(110), dir(90)});
+    const study::DirectionDiff d = study::compareDirections(a, b, baseA, baseB);
+    ASSERT_EQ(d.deg.size(), 1u);
+    EXPECT_NEAR(d.deg[0], 30.0, 1e-4); // float inputs: 1e-4 degrees covers their rounding
+    EXPECT_EQ(d.otherSheet, 2u);
+    EXPECT_EQ(d.nonFinite, 1u);
+    // The sheet threshold sits between the two cases above.
+    EXPECT_GT(study::kSameSheetDeg, 0.5);
+    EXPECT_LT(study::kSameSheetDeg, 20.0);
 }
 
 } // namespace
