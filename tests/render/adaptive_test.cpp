@@ -356,7 +356,7 @@ TEST(AdaptiveDraw, GpuMatchesCpuReference) {
 // 1.5% (measured 0 and 0.044 degrees, 2 of 9638 pixels; with one draw per
 // patch type: 99th percentile 43 degrees and 485 pixels covered by one
 // image only, misplaced patches and holes).
-TEST(AdaptiveDraw, DenseTessellationMatchesTheCpuReference) {
+TEST(RenderHardCases, AdaptiveDenseTessellationMatchesTheCpuReference) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(cageScene(
         R"({"mode": "adaptive", "isolation": 3, "pixels_per_edge": 0.5})", kSpot, "", w, h));
@@ -375,8 +375,8 @@ TEST(AdaptiveDraw, DenseTessellationMatchesTheCpuReference) {
     EXPECT_LE(double(r.onlyOne), 0.015 * double(r.both));
     EXPECT_LE(r.p50, 0.5);
     sg::test::hardCaseAtMost("scales",
-                             "adaptive spot at 0.5 px/edge on 320x240 (levels up to 64, draws "
-                             "past llvmpipe's 65535 vertices per chunk)",
+                             "adaptive spot at 0.5 px/edge on 320x240 (a draw chunk's patches "
+                             "emit more than llvmpipe's 65535 vertices)",
                              "GPU vs CPU normal, 99th percentile (deg)", r.p99, 5.0);
     // The view tessellates densely enough for a draw to pass the limit:
     // some 4096 consecutive control points (a chunk of one patch array)
