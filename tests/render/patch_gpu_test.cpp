@@ -127,7 +127,13 @@ std::vector<Captured> drawAndCapture(const AdaptivePatches& ap, const View& view
         glUniform1f(prog.uniform("uPixelsPerEdge"), view.pixelsPerEdge);
         glUniform1f(prog.uniform("uMaxTessLevel"), view.maxLevel);
         glPatchParameteri(GL_PATCH_VERTICES, arr.pointsPerPatch);
-        glDrawArrays(GL_PATCHES, 0, GLsizei(arr.patchCount * uint32_t(arr.pointsPerPatch)));
+        // Split as the renderer splits on llvmpipe (render_internal.h).
+        const uint32_t perDraw = sg::render::detail::patchesPerDraw(true);
+        const uint32_t ppp = uint32_t(arr.pointsPerPatch);
+        for (uint32_t first = 0, k = 0; first < arr.patchCount; first += k) {
+            k = std::min(perDraw, arr.patchCount - first);
+            glDrawArrays(GL_PATCHES, GLint(first * ppp), GLsizei(k * ppp));
+        }
         sg::gl::checkError("patch draw");
     }
     glDisable(GL_RASTERIZER_DISCARD);
