@@ -198,22 +198,26 @@ void animatedCage(const AnimCase& c, int uniformLevel, float pixelsPerEdge, int 
     U.triangles = au.meshes[0].mesh.triangleCount();
     U.gpuBytes = meshGpuBytes(au.meshes[0].mesh);
     A.gpuBytes = patchGpuBytes(*aa.meshes[0].patches, true);
+    // One frame of a mode: the caller's CPU work (timed), then the render.
+    auto timeFrame = [&](AnimRow& row, GlRenderer& r, const Scene& sc, const SceneAssets& as,
+                         const auto& cpuWork) {
+        auto t0 = Clock::now();
+        cpuWork();
+        row.cpuMs.push_back(msSince(t0));
+        t0 = Clock::now();
+        r.renderToTexture(sc, as, view);
+        row.frameMs.push_back(row.cpuMs.back() + msSince(t0));
+        row.updateMs.push_back(r.stats().meshUpdateWallMs);
+        row.drawMs.push_back(r.stats().drawWallMs);
+        row.uploadBytes = r.stats().meshUploadBytes;
+    };
     std::vector<glm::vec3> moved;
     for (int f = 1; f <= frames; ++f) {
         waveCage(cage.positions, extent, f, moved);
-        { // adaptive: the cage to the renderer, the GPU does the rest
-            auto t0 = Clock::now();
-            setCagePositions(sa, aa, 0, moved);
-            A.cpuMs.push_back(msSince(t0));
-            t0 = Clock::now();
-            ra.renderToTexture(sa, aa, view);
-            A.frameMs.push_back(A.cpuMs.back() + msSince(t0));
-            A.updateMs.push_back(ra.stats().meshUpdateWallMs);
-            A.drawMs.push_back(ra.stats().drawWallMs);
-            A.uploadBytes = ra.stats().meshUploadBytes;
-        }
-        { // uniform: refine the moved cage on the CPU, upload the mesh
-            auto t0 = Clock::now();
+        // Adaptive: the cage to the renderer, the GPU does the rest.
+        timeFrame(A, ra, sa, aa, [&] { setCagePositions(sa, aa, 0, moved); });
+        // Uniform: refine the moved cage on the CPU, upload the mesh.
+        timeFrame(U, ru, su, au, [&] {
             sub.update(moved, moving, &frame);
             MeshAsset& m = au.meshes[0];
             std::memcpy(m.mesh.positions.data(), moving.positions.data(),
@@ -221,14 +225,7 @@ void animatedCage(const AnimCase& c, int uniformLevel, float pixelsPerEdge, int 
             std::memcpy(m.mesh.normals.data(), moving.normals.data(),
                         moving.normals.size() * sizeof(glm::vec3));
             ++au.meshVersion;
-            U.cpuMs.push_back(msSince(t0));
-            t0 = Clock::now();
-            ru.renderToTexture(su, au, view);
-            U.frameMs.push_back(U.cpuMs.back() + msSince(t0));
-            U.updateMs.push_back(ru.stats().meshUpdateWallMs);
-            U.drawMs.push_back(ru.stats().drawWallMs);
-            U.uploadBytes = ru.stats().meshUploadBytes;
-        }
+        });
     }
     // Triangles the adaptive draw makes on the last frame's cage.
     sg::mesh::AdaptivePatches ap = *aa.meshes[0].patches;

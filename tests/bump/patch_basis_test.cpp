@@ -227,11 +227,9 @@ TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
         s.limit = true;
         s.buildRenderMesh = false;
         sg::mesh::Subdivider sub(cage, s, name);
-        std::vector<glm::vec3> limit = sub.refined().positions;
-        std::sort(limit.begin(), limit.end(),
-                  [](const glm::vec3& a, const glm::vec3& b) { return a.x < b.x; });
-        float extent = 0.0f;
-        for (const glm::vec3& p : cage.positions) extent = std::max(extent, g::sgMaxAbs3(p));
+        const std::vector<glm::vec3>& limit = sub.refined().positions;
+        const sg::test::PointsByX byX(limit);
+        const float extent = sg::test::maxAbsCoordinate(cage.positions);
         // Both are OpenSubdiv's limit in binary32, through different
         // stencil factorisations and isolation depths (5 in the limit
         // evaluation): a few ulp of the coordinates' magnitude, times the
@@ -243,11 +241,10 @@ TEST(PatchBasis, PatchCornersAreTheLimitPointsOfTheExistingLimitEvaluation) {
                 for (glm::vec2 c :
                      {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}) {
                     const glm::vec3 q = evalPatch(ap, arr, p, c);
-                    auto lo = std::lower_bound(limit.begin(), limit.end(), q.x - tol,
-                                               [](const glm::vec3& a, float x) { return a.x < x; });
                     float best = INFINITY;
-                    for (auto it = lo; it != limit.end() && it->x <= q.x + tol; ++it)
-                        best = std::min(best, glm::length(*it - q));
+                    byX.forEachNear(q, tol, [&](uint32_t v) {
+                        best = std::min(best, glm::length(limit[v] - q));
+                    });
                     EXPECT_LE(best, tol) << "patch " << arr.firstPatch + p << " corner (" << c.x
                                          << "," << c.y << ")";
                     ++checked;
@@ -352,8 +349,7 @@ TEST(PatchBasis, StencilPassesMatchFarsFactorisedTable) {
         }
         EXPECT_EQ(readsOwnPass, 0u);
 
-        float extent = 0.0f;
-        for (const glm::vec3& p : cage.positions) extent = std::max(extent, g::sgMaxAbs3(p));
+        const float extent = sg::test::maxAbsCoordinate(cage.positions);
         PolygonMesh moved = cage;
         moved.positions = waveCage(cage.positions, extent, 0.8f);
         sg::mesh::updateAdaptivePoints(ap, moved.positions);

@@ -100,60 +100,46 @@ TangentAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, flo
         return r;
     }
     sg::mesh::generateLimitTangents(ref, frame, 0);
-    std::vector<uint32_t> order(ref.positions.size());
-    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](uint32_t a, uint32_t b) { return ref.positions[a].x < ref.positions[b].x; });
+    const sg::test::PointsByX byX(ref.positions);
     const std::vector<uint32_t> arrays = patchArrayOf(ap);
-    for (uint32_t p = 0; p < ap.patchCount(); ++p) {
-        const int steps = 1 << std::max(level - g::sgPatchDepth(ap.params[p].y), 0);
-        for (int j = 0; j <= steps; ++j) {
-            for (int i = 0; i <= steps; ++i) {
-                const glm::vec2 at(float(i) / float(steps), float(j) / float(steps));
-                const PatchPoint q = evalPatchPoint(ap, arrays, p, 0, at);
-                auto lo =
-                    std::lower_bound(order.begin(), order.end(), q.pos.x - posTol,
-                                     [&](uint32_t v, float x) { return ref.positions[v].x < x; });
-                uint32_t best = UINT32_MAX;
-                float bestUv = 1e-3f; // UVs agree to 2e-5 (PatchUv tests)
-                for (auto it = lo; it != order.end() && ref.positions[*it].x <= q.pos.x + posTol;
-                     ++it) {
-                    if (glm::length(ref.positions[*it] - q.pos) > posTol) continue;
-                    const float d = glm::length(ref.uvSets[0][*it] - q.st);
-                    if (d <= bestUv) bestUv = d, best = *it;
-                }
-                if (best == UINT32_MAX) {
-                    ++r.unmatched;
-                    continue;
-                }
-                // The UV chart of a vertex can have a kink there (a
-                // face-varying corner: the UVs are C0 only, each face has
-                // its own Jacobian); the uniform vertex's derivatives are
-                // those of its home ptex face: compare in that face only.
-                if (frame.ptexFace[best] != (ap.params[p].x & 0x0fffffffu)) {
-                    ++r.otherFace;
-                    continue;
-                }
-                sg::mesh::LimitTangentCase kase;
-                sg::mesh::limitTangent(frame.dPdu[best], frame.dPdv[best], frame.dUVdu[0][best],
-                                       frame.dUVdv[0][best], &kase);
-                if (kase != sg::mesh::LimitTangentCase::Regular ||
-                    q.resolved != SG_LIMIT_TANGENT_REGULAR) {
-                    ++r.skipped;
-                    continue;
-                }
-                const glm::vec4 u = ref.tangents[best];
-                const double a = angleDeg(glm::vec3(q.tangent), glm::vec3(u));
-                r.signMismatch += q.tangent.w != u.w;
-                const bool gregory = ap.arrays[arrays[p]].type == SG_PATCH_GREGORY_BASIS ||
-                                     ap.uvSets[0].types[p] == SG_PATCH_GREGORY_BASIS;
-                Stats& into = gregory ? r.gregory : r.bspline;
-                into.worstDeg = std::max(into.worstDeg, std::isfinite(a) ? a : INFINITY);
-                into.angles.push_back(a);
-                ++r.checked;
-            }
+    sg::test::forEachLevelGridPoint(ap, level, [&](uint32_t p, glm::vec2 at) {
+        const PatchPoint q = evalPatchPoint(ap, arrays, p, 0, at);
+        uint32_t best = UINT32_MAX;
+        float bestUv = 1e-3f; // UVs agree to 2e-5 (PatchUv tests)
+        byX.forEachNear(q.pos, posTol, [&](uint32_t v) {
+            if (glm::length(ref.positions[v] - q.pos) > posTol) return;
+            const float d = glm::length(ref.uvSets[0][v] - q.st);
+            if (d <= bestUv) bestUv = d, best = v;
+        });
+        if (best == UINT32_MAX) {
+            ++r.unmatched;
+            return;
         }
-    }
+        // The UV chart of a vertex can have a kink there (a face-varying
+        // corner: the UVs are C0 only, each face has its own Jacobian); the
+        // uniform vertex's derivatives are those of its home ptex face:
+        // compare in that face only.
+        if (frame.ptexFace[best] != (ap.params[p].x & 0x0fffffffu)) {
+            ++r.otherFace;
+            return;
+        }
+        sg::mesh::LimitTangentCase kase;
+        sg::mesh::limitTangent(frame.dPdu[best], frame.dPdv[best], frame.dUVdu[0][best],
+                               frame.dUVdv[0][best], &kase);
+        if (kase != sg::mesh::LimitTangentCase::Regular || q.resolved != SG_LIMIT_TANGENT_REGULAR) {
+            ++r.skipped;
+            return;
+        }
+        const glm::vec4 u = ref.tangents[best];
+        const double a = angleDeg(glm::vec3(q.tangent), glm::vec3(u));
+        r.signMismatch += q.tangent.w != u.w;
+        const bool gregory = ap.arrays[arrays[p]].type == SG_PATCH_GREGORY_BASIS ||
+                             ap.uvSets[0].types[p] == SG_PATCH_GREGORY_BASIS;
+        Stats& into = gregory ? r.gregory : r.bspline;
+        into.worstDeg = std::max(into.worstDeg, std::isfinite(a) ? a : INFINITY);
+        into.angles.push_back(a);
+        ++r.checked;
+    });
     return r;
 }
 
@@ -170,8 +156,7 @@ TEST(PatchTangent, MatchesTheUniformLimitTangentsAtTheSameLimitPoints) {
         ASSERT_TRUE(std::filesystem::exists(path));
         PolygonMesh cage = sg::mesh::loadPolygonMesh(path);
         ASSERT_FALSE(cage.uvSets.empty());
-        float extent = 0.0f;
-        for (const glm::vec3& p : cage.positions) extent = std::max(extent, g::sgMaxAbs3(p));
+        const float extent = sg::test::maxAbsCoordinate(cage.positions);
         // Positions: PatchUv's bound, to find the vertex.
         TangentAgreement r = compareWithUniformLimit(cage, 3, 2e-5f * extent, rel);
         std::printf("%s: %zu points (%zu not regular, %zu in another ptex face: skipped), "

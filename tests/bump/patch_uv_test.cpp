@@ -67,45 +67,32 @@ UvAgreement compareWithUniformLimit(const PolygonMesh& cage, int level, float po
         ADD_FAILURE() << "UV sets: " << ap.uvSets.size() << " vs " << cage.uvSets.size();
         return r;
     }
-    // Uniform limit vertices sorted by x, each with its UV values.
+    // Uniform limit vertices, each with its UV values.
     std::vector<std::vector<glm::vec2>> uvOf(ref.positions.size());
     for (size_t c = 0; c < ref.faceVertices.size(); ++c)
         uvOf[ref.faceVertices[c]].push_back(ref.uvSets[0].values[ref.uvSets[0].indices[c]]);
-    std::vector<uint32_t> order(ref.positions.size());
-    for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](uint32_t a, uint32_t b) { return ref.positions[a].x < ref.positions[b].x; });
+    const sg::test::PointsByX byX(ref.positions);
     const std::vector<uint32_t> arrays = patchArrayOf(ap);
-    for (uint32_t p = 0; p < ap.patchCount(); ++p) {
+    for (uint32_t p = 0; p < ap.patchCount(); ++p)
         ++r.types[std::clamp(int(ap.uvSets[0].types[p]), 0, 9)];
-        const int depth = g::sgPatchDepth(ap.params[p].y);
-        const int steps = 1 << std::max(level - depth, 0);
-        for (int j = 0; j <= steps; ++j) {
-            for (int i = 0; i <= steps; ++i) {
-                const glm::vec2 at(float(i) / float(steps), float(j) / float(steps));
-                const glm::vec3 q = evalPosition(ap, arrays, p, at);
-                auto lo =
-                    std::lower_bound(order.begin(), order.end(), q.x - posTol,
-                                     [&](uint32_t v, float x) { return ref.positions[v].x < x; });
-                uint32_t best = UINT32_MAX;
-                float bestDist = posTol;
-                for (auto it = lo; it != order.end() && ref.positions[*it].x <= q.x + posTol;
-                     ++it) {
-                    const float d = glm::length(ref.positions[*it] - q);
-                    if (d <= bestDist) bestDist = d, best = *it;
-                }
-                if (best == UINT32_MAX) {
-                    ++r.unmatched;
-                    continue;
-                }
-                const glm::vec2 w = evalUv(ap, 0, p, at);
-                float e = INFINITY;
-                for (const glm::vec2& u : uvOf[best]) e = std::min(e, glm::length(u - w));
-                r.worst = std::max(r.worst, e);
-                ++r.checked;
-            }
+    sg::test::forEachLevelGridPoint(ap, level, [&](uint32_t p, glm::vec2 at) {
+        const glm::vec3 q = evalPosition(ap, arrays, p, at);
+        uint32_t best = UINT32_MAX;
+        float bestDist = posTol;
+        byX.forEachNear(q, posTol, [&](uint32_t v) {
+            const float d = glm::length(ref.positions[v] - q);
+            if (d <= bestDist) bestDist = d, best = v;
+        });
+        if (best == UINT32_MAX) {
+            ++r.unmatched;
+            return;
         }
-    }
+        const glm::vec2 w = evalUv(ap, 0, p, at);
+        float e = INFINITY;
+        for (const glm::vec2& u : uvOf[best]) e = std::min(e, glm::length(u - w));
+        r.worst = std::max(r.worst, e);
+        ++r.checked;
+    });
     return r;
 }
 
@@ -129,8 +116,7 @@ TEST(PatchUv, MatchTheUniformLimitUvsAtTheSameLimitPoints) {
         ASSERT_TRUE(std::filesystem::exists(path));
         PolygonMesh cage = sg::mesh::loadPolygonMesh(path);
         ASSERT_FALSE(cage.uvSets.empty());
-        float extent = 0.0f;
-        for (const glm::vec3& p : cage.positions) extent = std::max(extent, g::sgMaxAbs3(p));
+        const float extent = sg::test::maxAbsCoordinate(cage.positions);
         // Positions: the bound of the position test (a few ulp times the
         // sum of |weights| of a Gregory corner), to find the vertex.
         const UvAgreement r = compareWithUniformLimit(cage, 3, 2e-5f * extent, rel);

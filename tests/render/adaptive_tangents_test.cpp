@@ -21,18 +21,12 @@
 namespace sg::render::test {
 namespace {
 
-const std::string kSpot = "data/meshes/spot/spot_control_mesh.obj";
 const std::string kBricks =
     R"({"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 256}, "strength": 1.0})";
 
 std::string adaptiveScene(const std::string& tangents, const std::string& layers = kBricks,
                           int w = 320, int h = 240, const std::string& extra = "") {
-    return oneMaterialScene(layers,
-                            R"({"file": ")" + kSpot +
-                                R"(", "subdivision": {"mode": "adaptive", "isolation": 3, )"
-                                R"("pixels_per_edge": 3}, "tangents": )" +
-                                tangents + extra + "}",
-                            "", w, h);
+    return adaptiveSpotScene(R"(, "tangents": )" + tangents + extra, layers, w, h);
 }
 
 std::string loadError(const std::string& json) {

@@ -38,6 +38,22 @@ inline std::string oneMaterialScene(const std::string& layersJson, const std::st
 
 inline const char* kSphere = R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}})";
 
+// Spot's cage (relative to the source directory, as scenes resolve it).
+inline const std::string kSpotCage = "data/meshes/spot/spot_control_mesh.obj";
+
+// Spot's cage as an adaptive mesh (isolation 3, 3 px/edge) under one
+// material with `layers`; `meshFields`: further fields of the mesh, each
+// with its leading comma, e.g. R"(, "tangents": ["limit"])".
+inline std::string adaptiveSpotScene(const std::string& meshFields, const std::string& layers,
+                                     int w, int h) {
+    return oneMaterialScene(layers,
+                            R"({"file": ")" + kSpotCage +
+                                R"(", "subdivision": {"mode": "adaptive", "isolation": 3, )"
+                                R"("pixels_per_edge": 3})" +
+                                meshFields + "}",
+                            "", w, h);
+}
+
 struct NormalRenders {
     Image gpuNormal, gpuPrim, cpuNormal, cpuPrim;
     VectorImageDiff diff;
