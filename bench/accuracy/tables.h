@@ -33,6 +33,7 @@ void tableAntialias(const Options& o);   // 8: bump antialiasing
 void tableParallax(const Options& o);    // 9: parallax and POM
 void tableFeatureAa(const Options& o);   // 10: feature curves antialiased
 void tableAdaptive(const Options& o);    // 11: adaptive patches vs uniform refinement
+void tableStability(const Options& o);   // 12: numerical stability
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {
@@ -48,6 +49,7 @@ inline const std::vector<TableEntry>& registeredTables() {
         {"parallax", "9. parallax and POM", tableParallax},
         {"feature-aa", "10. feature curves antialiased", tableFeatureAa},
         {"adaptive", "11. adaptive patches vs uniform refinement", tableAdaptive},
+        {"stability", "12. numerical stability of hard cases", tableStability},
     };
     return tables;
 }

@@ -1,0 +1,1083 @@
+// Stability cases and their measurement (stability.h).
+#include "stability.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "layer_kind.h"
+
+namespace study::stability {
+
+namespace fs = std::filesystem;
+using sg::render::Aov;
+using sg::render::Image;
+using sg::render::Scene;
+
+// ---------------------------------------------------------------------------
+// Measurement
+
+sg::render::CpuOptions matchedCpu() {
+    sg::render::CpuOptions o;
+    o.derivatives = sg::render::CpuDerivatives::Quad;
+    o.textureLod = sg::glsl::LodRule::FastLog2;
+    return o;
+}
+
+AngleStats compare(const Image& a, const Image& b, const Image& primA, const Image& primB,
+                   float signB) {
+    AngleStats s;
+    if (a.width != b.width || a.height != b.height) {
+        s.coverageMismatch = size_t(-1);
+        return s;
+    }
+    std::vector<double> angles;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const float pa = primA.pixels[i].x, pb = primB.pixels[i].x;
+        if (pa != pb) {
+            ++s.coverageMismatch;
+            continue;
+        }
+        if (pa <= 0.0f) continue;
+        const glm::dvec3 va(a.pixels[i]), vb = double(signB) * glm::dvec3(b.pixels[i]);
+        ++s.compared;
+        if (!std::isfinite(va.x + va.y + va.z + vb.x + vb.y + vb.z)) {
+            ++s.nonFinite;
+            angles.push_back(180.0);
+            continue;
+        }
+        const double la = glm::length(va), lb = glm::length(vb);
+        double deg = 180.0;
+        if (la > 0.0 && lb > 0.0) {
+            deg = std::atan2(glm::length(glm::cross(va, vb)), glm::dot(va, vb)) * 180.0 /
+                  3.14159265358979323846;
+        } else if (la == lb) {
+            deg = 0.0;
+        }
+        angles.push_back(deg);
+    }
+    if (angles.empty()) return s;
+    std::sort(angles.begin(), angles.end());
+    auto pct = [&](double p) {
+        return angles[std::min(angles.size() - 1, size_t(p * double(angles.size())))];
+    };
+    s.p50 = pct(0.5);
+    s.p99 = pct(0.99);
+    s.max = angles.back();
+    return s;
+}
+
+namespace {
+
+struct Renders {
+    Image normal, prim;
+};
+
+// The AOV whose x channel says which primitive covers a pixel the same way
+// in both renderers: the primitive ID, or for adaptive meshes the patch
+// (the GPU's gl_PrimitiveID is the patch's; the CPU numbers its own
+// tessellated triangles).
+Aov maskAov(const Scene& scene) {
+    for (const auto& m : scene.meshes)
+        if (m.drawsPatches()) return Aov::Patch;
+    return Aov::PrimId;
+}
+
+Renders renderGpu(sg::render::GlRenderer& gpu, const Scene& scene,
+                  const sg::render::SceneAssets& assets, int w, int h) {
+    sg::render::View v = sg::render::makeView(scene, assets, w, h, Aov::Normal);
+    Renders r;
+    r.normal = gpu.render(scene, assets, v);
+    v.aov = maskAov(scene);
+    r.prim = gpu.render(scene, assets, v);
+    return r;
+}
+
+Renders renderCpu(const Scene& scene, const sg::render::SceneAssets& assets, int w, int h) {
+    sg::render::View v = sg::render::makeView(scene, assets, w, h, Aov::Normal);
+    Renders r;
+    r.normal = sg::render::renderCpu(scene, assets, v, matchedCpu());
+    v.aov = maskAov(scene);
+    r.prim = sg::render::renderCpu(scene, assets, v, matchedCpu());
+    return r;
+}
+
+fs::path freshDir(const fs::path& scratch, const std::string& name) {
+    const fs::path d = scratch / name;
+    fs::remove_all(d);
+    fs::create_directories(d);
+    return d;
+}
+
+} // namespace
+
+Result run(const Case& c, sg::render::GlRenderer& gpu, const fs::path& scratch) {
+    const auto t0 = std::chrono::steady_clock::now();
+    Result r;
+    const fs::path d0 = freshDir(scratch, "base"), d1 = freshDir(scratch, "perturbed");
+    const Scene s0 = c.build(false, d0), s1 = c.build(true, d1);
+    const sg::render::SceneAssets a0 = sg::render::loadAssets(s0), a1 = sg::render::loadAssets(s1);
+    const Renders g0 = renderGpu(gpu, s0, a0, c.width, c.height);
+    const Renders g1 = renderGpu(gpu, s1, a1, c.width, c.height);
+    const Renders c0 = renderCpu(s0, a0, c.width, c.height);
+    const Renders c1 = renderCpu(s1, a1, c.width, c.height);
+    r.perturbedGpu = compare(g0.normal, g1.normal, g0.prim, g1.prim);
+    r.perturbedCpu = compare(c0.normal, c1.normal, c0.prim, c1.prim);
+    r.gpuVsCpu = compare(g0.normal, c0.normal, g0.prim, c0.prim);
+    if (c.expected) {
+        const fs::path de = freshDir(scratch, "expected");
+        const Scene se = c.expected(de);
+        const sg::render::SceneAssets ae = sg::render::loadAssets(se);
+        const Renders ge = renderGpu(gpu, se, ae, c.width, c.height);
+        r.expected = compare(g0.normal, ge.normal, g0.prim, ge.prim, c.expectSign);
+    }
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return r;
+}
+
+// ---------------------------------------------------------------------------
+// Inputs: meshes written as OBJ, perturbations in ulps
+
+namespace {
+
+// A small deterministic generator (splitmix64): the same cases on every
+// platform and standard library.
+struct Rng {
+    uint64_t s;
+    uint64_t next() {
+        uint64_t z = (s += 0x9e3779b97f4a7c15ull);
+        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+        return z ^ (z >> 31);
+    }
+    double uniform() { return double(next() >> 11) * (1.0 / 9007199254740992.0); }
+    double range(double lo, double hi) { return lo + (hi - lo) * uniform(); }
+    int integer(int lo, int hi) { return lo + int(next() % uint64_t(hi - lo + 1)); }
+};
+
+// x moved by `ulps` units in the last place of binary32 at max(|x|, 0.5):
+// a change the file's reader sees (values are written to round-trip
+// binary32), of the size rounding gives a coordinate of that magnitude.
+double moveUlps(double x, int ulps) {
+    const float xf = float(x);
+    const float mag = std::max(std::fabs(xf), 0.5f);
+    int e = 0;
+    std::frexp(mag, &e);
+    const float ulp = std::ldexp(1.0f, e - 24);
+    return double(xf + float(ulps) * ulp);
+}
+
+struct ObjMesh {
+    std::vector<glm::dvec3> v, vn;
+    std::vector<glm::dvec2> vt;
+    // Faces: per corner (position, uv, normal) indices, -1 for none.
+    std::vector<std::vector<glm::ivec3>> faces;
+
+    int addV(glm::dvec3 p) {
+        v.push_back(p);
+        return int(v.size()) - 1;
+    }
+    int addVt(glm::dvec2 t) {
+        vt.push_back(t);
+        return int(vt.size()) - 1;
+    }
+    int addVn(glm::dvec3 n) {
+        vn.push_back(n);
+        return int(vn.size()) - 1;
+    }
+    // Every coordinate of the chosen arrays moved by -2..2 ulps (seeded).
+    void perturb(uint64_t seed, bool positions, bool uvs, bool normals) {
+        Rng rng{seed};
+        if (positions)
+            for (auto& p : v)
+                for (int c = 0; c < 3; ++c) p[c] = moveUlps(p[c], rng.integer(-2, 2));
+        if (uvs)
+            for (auto& t : vt)
+                for (int c = 0; c < 2; ++c) t[c] = moveUlps(t[c], rng.integer(-2, 2));
+        if (normals)
+            for (auto& n : vn)
+                for (int c = 0; c < 3; ++c) n[c] = moveUlps(n[c], rng.integer(-2, 2));
+    }
+    void write(const fs::path& file) const {
+        std::ofstream o(file);
+        char buf[128];
+        for (const auto& p : v) {
+            std::snprintf(buf, sizeof buf, "v %.9g %.9g %.9g\n", float(p.x), float(p.y),
+                          float(p.z));
+            o << buf;
+        }
+        for (const auto& t : vt) {
+            std::snprintf(buf, sizeof buf, "vt %.9g %.9g\n", float(t.x), float(t.y));
+            o << buf;
+        }
+        for (const auto& n : vn) {
+            std::snprintf(buf, sizeof buf, "vn %.9g %.9g %.9g\n", float(n.x), float(n.y),
+                          float(n.z));
+            o << buf;
+        }
+        for (const auto& f : faces) {
+            o << "f";
+            for (const auto& c : f) {
+                o << " " << c.x + 1;
+                if (c.y >= 0 || c.z >= 0) o << "/";
+                if (c.y >= 0) o << c.y + 1;
+                if (c.z >= 0) o << "/" << c.z + 1;
+            }
+            o << "\n";
+        }
+        if (!o.good()) throw std::runtime_error("cannot write " + file.string());
+    }
+};
+
+std::string num(double x) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+}
+
+std::string vec3Json(glm::dvec3 v) {
+    return "[" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + "]";
+}
+
+// A scene of one mesh (its JSON fields) under one material of `layers`,
+// seen from `eye` towards `target`.
+struct SceneSpec {
+    std::string meshFields;    // e.g. "\"file\": \"...\""
+    std::string layers;        // the material's layers array content
+    std::string materialExtra; // more material fields, each with a trailing comma
+    glm::dvec3 eye{0.0, 0.0, 3.0};
+    glm::dvec3 target{0.0};
+    double fovDeg = 40.0;
+    double nearPlane = 0.05, farPlane = 50.0;
+    std::string transform; // the mesh's "transform" object, or empty
+};
+
+Scene sceneOf(const SceneSpec& s, const fs::path& dir) {
+    std::string json = R"({"output": {"width": 64, "height": 48}, "materials": [{"name": "m", )" +
+                       s.materialExtra + R"("layers": [)" + s.layers + R"(]}], "meshes": [{)" +
+                       s.meshFields;
+    if (!s.transform.empty()) json += R"(, "transform": )" + s.transform;
+    json += R"(}], "camera": {"position": )" + vec3Json(s.eye) + R"(, "target": )" +
+            vec3Json(s.target) + R"(, "up": [0, 1, 0], "fov_deg": )" + num(s.fovDeg) +
+            R"(, "near": )" + num(s.nearPlane) + R"(, "far": )" + num(s.farPlane) + "}}";
+    return sg::render::parseScene(json, (dir / "scene.json").string(), dir);
+}
+
+std::string fileField(const ObjMesh& m, const fs::path& dir, const std::string& name) {
+    const fs::path f = dir / (name + ".obj");
+    m.write(f);
+    return R"("file": ")" + f.string() + R"(")";
+}
+
+// ---------------------------------------------------------------------------
+// Meshes
+
+// One triangle facing +z whose UVs are (s0,0), (s0,1), (s0,1): a chart
+// collapsed to a segment (s is constant, t runs along one edge only).
+ObjMesh collapsedTriangle(double s0) {
+    ObjMesh m;
+    const int n = m.addVn({0, 0, 1});
+    const int a = m.addV({-1, -1, 0}), b = m.addV({1, -1, 0}), c = m.addV({0, 1, 0});
+    const int ta = m.addVt({s0, 0}), tb = m.addVt({s0, 1}), tc = m.addVt({s0, 1});
+    m.faces.push_back({{a, ta, n}, {b, tb, n}, {c, tc, n}});
+    return m;
+}
+
+// An open cylinder (radius 0.5, y in [-0.5, 0.5], `segments` quads around,
+// `rows` quads high) with a top cap, UVs projected from the top:
+// (s, t) = (0.5 + x, 0.5 - z). The walls' UV chart is singular (t and s do
+// not change along y); the cap's is regular. Quads (a subdivision cage),
+// the cap a fan of triangles.
+ObjMesh topProjectedCylinder(int segments, int rows) {
+    ObjMesh m;
+    const double r = 0.5, kPi = 3.14159265358979323846;
+    std::vector<int> ring((size_t(rows) + 1) * size_t(segments)), uvs(ring.size());
+    std::vector<int> nrm(static_cast<size_t>(segments));
+    for (int i = 0; i < segments; ++i) {
+        const double a = 2.0 * kPi * double(i) / double(segments);
+        nrm[size_t(i)] = m.addVn({std::cos(a), 0, -std::sin(a)});
+    }
+    for (int j = 0; j <= rows; ++j)
+        for (int i = 0; i < segments; ++i) {
+            const double a = 2.0 * kPi * double(i) / double(segments);
+            const double x = r * std::cos(a), z = -r * std::sin(a), y = -0.5 + double(j) / rows;
+            const size_t k = size_t(j) * size_t(segments) + size_t(i);
+            ring[k] = m.addV({x, y, z});
+            uvs[k] = m.addVt({0.5 + x, 0.5 - z});
+        }
+    for (int j = 0; j < rows; ++j)
+        for (int i = 0; i < segments; ++i) {
+            const int i1 = (i + 1) % segments;
+            auto at = [&](int jj, int ii) {
+                const size_t k = size_t(jj) * size_t(segments) + size_t(ii);
+                return glm::ivec3(ring[k], uvs[k], nrm[size_t(ii)]);
+            };
+            m.faces.push_back({at(j, i), at(j, i1), at(j + 1, i1), at(j + 1, i)});
+        }
+    const int up = m.addVn({0, 1, 0});
+    const int centre = m.addV({0, 0.5, 0}), centreUv = m.addVt({0.5, 0.5});
+    for (int i = 0; i < segments; ++i) {
+        const int i1 = (i + 1) % segments;
+        const size_t k0 = size_t(rows) * size_t(segments) + size_t(i),
+                     k1 = size_t(rows) * size_t(segments) + size_t(i1);
+        m.faces.push_back(
+            {{ring[k0], uvs[k0], up}, {ring[k1], uvs[k1], up}, {centre, centreUv, up}});
+    }
+    return m;
+}
+
+// A grid of n x n quads over [-1, 1]^2 in the plane y = 0 (UVs [0, 1]^2,
+// s along +x, t along -z), every vertex normal `normal`.
+ObjMesh grid(int n, glm::dvec3 normal) {
+    ObjMesh m;
+    const int vn = m.addVn(normal);
+    std::vector<int> idx;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double s = double(i) / n, t = double(j) / n;
+            m.addV({-1.0 + 2.0 * s, 0.0, 1.0 - 2.0 * t});
+            m.addVt({s, t});
+        }
+    auto at = [&](int i, int j) {
+        const int k = j * (n + 1) + i;
+        return glm::ivec3(k, k, vn);
+    };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+            m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)});
+    return m;
+}
+
+} // namespace
+
+// ---------------------------------------------------------------------------
+// Layer kinds
+
+std::vector<std::pair<std::string, std::string>> kindLayers() {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const sg::render::LayerKind* k : sg::render::layerKinds()) {
+        const std::string name = k->name;
+        std::string layer = R"({"type": ")" + name + R"(")";
+        if (name == "post_resolve") {
+            out.emplace_back(
+                name,
+                R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 16}}, )"
+                R"({"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.02, "frequency": 6}]})");
+            continue;
+        }
+        // uv_normal: a map with slopes everywhere (the example's bumps are
+        // flat between them, which a collapsed chart may sample only).
+        if (name == "uv_normal")
+            layer += R"(, "map": {"procedural": "weave", "size": 32})";
+        else if (k->example && *k->example)
+            layer += std::string(", ") + k->example;
+        out.emplace_back(name, layer + "}");
+    }
+    return out;
+}
+
+namespace {
+
+std::string layerOf(const std::string& kind) {
+    for (const auto& [name, json] : kindLayers())
+        if (name == kind) return json;
+    throw std::runtime_error("no layer kind " + kind);
+}
+
+// ---------------------------------------------------------------------------
+// Named cases
+
+Case collapsedTriangleCase(const std::string& kind, const std::string& layer) {
+    Case c;
+    c.id = "collapsed-chart/" + kind;
+    c.family = "uv-degenerate";
+    c.kind = kind;
+    c.input = "a triangle with UVs (2.37,0), (2.37,1), (2.37,1) (chart collapsed to a segment)";
+    c.perturbation = "every UV coordinate moved by -2..2 ulps";
+    auto spec = [layer](const fs::path& dir, bool perturbed, bool withLayer) {
+        ObjMesh m = collapsedTriangle(2.37);
+        if (perturbed) m.perturb(11, false, true, false);
+        SceneSpec s;
+        s.meshFields = fileField(m, dir, "triangle");
+        s.layers = withLayer ? layer : "";
+        s.eye = {0.4, 0.3, 2.6};
+        return sceneOf(s, dir);
+    };
+    c.build = [spec](bool p, const fs::path& dir) { return spec(dir, p, true); };
+    c.expected = [spec](const fs::path& dir) { return spec(dir, false, false); };
+    c.expectedWhat = "the same triangle without the layer (the chart has no frame: no bump)";
+    return c;
+}
+
+Case cylinderCase(const std::string& id, const std::string& kind, const std::string& layer,
+                  const std::string& meshExtra, const std::string& what) {
+    Case c;
+    c.id = "top-projected-cylinder/" + id;
+    c.family = "uv-degenerate";
+    c.kind = kind;
+    c.input = "a cylinder with top-down planar UVs (singular chart on the walls)" + what;
+    c.perturbation = "every UV coordinate moved by -2..2 ulps";
+    c.build = [layer, meshExtra](bool perturbed, const fs::path& dir) {
+        ObjMesh m = topProjectedCylinder(24, 3);
+        if (perturbed) m.perturb(23, false, true, false);
+        SceneSpec s;
+        s.meshFields = fileField(m, dir, "cylinder") + meshExtra;
+        s.layers = layer;
+        s.eye = {0.0, 0.9, 2.0};
+        s.target = {0.0, -0.05, 0.0};
+        return sceneOf(s, dir);
+    };
+    return c;
+}
+
+const char* kDecalOnPlane =
+    R"({"type": "decal", "map": {"procedural": "scratches", "size": 16}, "position": [0.1, 0, -0.1], )"
+    R"("direction": [0, -1, 0], "up": [0, 0, -1], "size": [1.4, 1.4, 0.5]})";
+const char* kDecalOnSphere =
+    R"({"type": "decal", "map": {"procedural": "scratches", "size": 16}, "position": [0, 0, 1], )"
+    R"("direction": [0, 0, -1], "size": [1.2, 1.2, 0.8]})";
+
+// A sphere (procedural, 48 segments) under `layers`, in `spec` fields.
+Case sphereCase(const std::string& id, const std::string& family, const std::string& kind,
+                const std::string& input, const std::string& perturbation,
+                std::function<SceneSpec(bool perturbed)> spec) {
+    Case c;
+    c.id = id;
+    c.family = family;
+    c.kind = kind;
+    c.input = input;
+    c.perturbation = perturbation;
+    c.build = [spec](bool perturbed, const fs::path& dir) { return sceneOf(spec(perturbed), dir); };
+    return c;
+}
+
+const char* kSphereFields =
+    R"("procedural": {"type": "sphere", "size": 1, "segments": 48, "uv_sets": 1})";
+
+// The camera moved by 2 ulps of binary32 at its distance from the origin
+// (each coordinate, alternating signs).
+glm::dvec3 nudgedEye(glm::dvec3 eye) {
+    return {moveUlps(eye.x, 2), moveUlps(eye.y, -2), moveUlps(eye.z, 2)};
+}
+
+// World-unit terrain UVs: a tiling set offset by 1e4.
+Case farUvCase() {
+    return sphereCase(
+        "uv-offset-1e4/uv_normal", "uv-degenerate", "uv_normal",
+        "a sphere whose tiling UV set (8 repeats) is offset by (1e4, 1e4), a uv_normal layer on it",
+        "camera moved by 2 ulps", [](bool p) {
+            SceneSpec s;
+            s.meshFields = std::string(kSphereFields) +
+                           R"(, "uv_sets": [{"from": 0, "scale": 8, "offset": [10000, 10000]}])";
+            s.layers =
+                R"({"type": "uv_normal", "uv_set": 1, "map": {"procedural": "bumps", "size": 64}})";
+            s.eye = {0.6, 0.5, 2.4};
+            if (p) s.eye = nudgedEye(s.eye);
+            return s;
+        });
+}
+
+// An instance flattened to 1e-6 in y, seen from above: object-space volume layers.
+Case flattenedCase(const std::string& kind, const std::string& layer) {
+    return sphereCase("flattened-1e-6/" + kind, "scales", kind,
+                      "a sphere scaled by (1, 1e-6, 1), object-space " + kind,
+                      "camera moved by 2 ulps", [layer](bool p) {
+                          SceneSpec s;
+                          s.meshFields = kSphereFields;
+                          s.transform = R"({"scale": [1, 1e-6, 1]})";
+                          s.layers = layer;
+                          s.eye = {0.3, 1.8, 1.2};
+                          if (p) s.eye = nudgedEye(s.eye);
+                          return s;
+                      });
+}
+
+// A grid whose vertex normals lean `deg` degrees from the face normal (+y)
+// towards +z, parallax or POM on it.
+Case leaningNormalsCase(double deg, const std::string& kind, const std::string& layer) {
+    Case c;
+    char name[64];
+    std::snprintf(name, sizeof name, "normals-%g-deg-from-face/%s", deg, kind.c_str());
+    c.id = name;
+    c.family = "horizon";
+    c.kind = kind;
+    c.input = "a plane whose vertex normals lean " + num(deg) + " deg from the face normal";
+    c.perturbation = "every normal coordinate moved by -2..2 ulps";
+    c.build = [deg, layer](bool p, const fs::path& dir) {
+        const double a = deg * 3.14159265358979323846 / 180.0;
+        ObjMesh m = grid(4, {0.0, std::cos(a), std::sin(a)});
+        if (p) m.perturb(31, false, false, true);
+        SceneSpec s;
+        s.meshFields = fileField(m, dir, "grid");
+        s.layers = layer;
+        s.eye = {0.3, 1.6, 1.6};
+        return sceneOf(s, dir);
+    };
+    return c;
+}
+
+// A sphere and its camera about 1e6 units from the world origin.
+Case farCameraCase() {
+    Case c;
+    c.id = "camera-at-999990/uv_normal";
+    c.family = "far-from-origin-render";
+    c.kind = "uv_normal";
+    c.input = "a sphere at x = 999990, the camera 0.3 units beside it in x";
+    c.perturbation = "camera x moved by 1e-9 of its value";
+    auto spec = [](glm::dvec3 origin, double dx) {
+        SceneSpec s;
+        s.meshFields = kSphereFields;
+        s.transform = R"({"translate": )" + vec3Json(origin) + "}";
+        s.layers = R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 64}})";
+        s.eye = origin + glm::dvec3(0.3 + dx, 0.5, 2.6);
+        s.target = origin;
+        return s;
+    };
+    const glm::dvec3 far(999990.0, 0.0, 0.0);
+    c.build = [spec, far](bool p, const fs::path& dir) {
+        return sceneOf(spec(far, p ? 1e-9 * far.x : 0.0), dir);
+    };
+    c.expected = [spec](const fs::path& dir) { return sceneOf(spec(glm::dvec3(0.0), 0.0), dir); };
+    c.expectedWhat = "the same scene at the origin";
+    return c;
+}
+
+// A decal 1e-6 deep whose middle plane is a tilted plane's.
+Case thinDecalCase() {
+    Case c;
+    c.id = "decal-1e-6-deep-on-the-surface/decal";
+    c.family = "decals-parallel";
+    c.kind = "decal";
+    c.input = "a decal 1e-6 deep whose middle plane is the surface (a plane turned 25 deg about x, "
+              "40 about y)";
+    c.perturbation = "the decal moved by 1e-7 along its axis";
+    c.build = [](bool p, const fs::path& dir) {
+        const double a = glm::radians(25.0), b = glm::radians(40.0);
+        const glm::dvec3 n(std::sin(a) * std::sin(b), std::cos(a), std::sin(a) * std::cos(b));
+        SceneSpec s;
+        s.meshFields = fileField(grid(4, {0, 1, 0}), dir, "grid");
+        s.transform = R"({"rotate_deg": [25, 40, 0]})";
+        s.layers =
+            R"({"type": "decal", "map": {"procedural": "scratches", "size": 32}, "position": )" +
+            vec3Json(p ? 1e-7 * n : glm::dvec3(0.0)) + R"(, "direction": )" + vec3Json(-n) +
+            R"(, "up": [0, 0, 1], "size": [1.5, 1.5, 1e-6]})";
+        s.eye = 2.0 * n + glm::dvec3(0.3, 0.0, -0.2);
+        return sceneOf(s, dir);
+    };
+    return c;
+}
+
+// Back faces in flip mode must be the negation of mode none.
+Case flipCase(const std::string& kind, const std::string& layer) {
+    Case c;
+    c.id = "back-faces-flip-vs-none/" + kind;
+    c.family = "back-faces";
+    c.kind = kind;
+    c.input = "a bumped plane seen from below, double_sided flip";
+    c.perturbation = "camera moved by 2 ulps";
+    auto spec = [layer](const fs::path& dir, bool p, const char* mode) {
+        SceneSpec s;
+        s.meshFields = fileField(grid(4, {0, 1, 0}), dir, "grid");
+        s.layers = layer;
+        s.materialExtra = std::string(R"("double_sided": ")") + mode + R"(", )";
+        s.eye = {0.4, -1.7, 1.3};
+        if (p) s.eye = nudgedEye(s.eye);
+        return sceneOf(s, dir);
+    };
+    c.build = [spec](bool p, const fs::path& dir) { return spec(dir, p, "flip"); };
+    c.expected = [spec](const fs::path& dir) { return spec(dir, false, "none"); };
+    c.expectSign = -1.0f;
+    c.expectedWhat = "mode none, negated";
+    return c;
+}
+
+} // namespace
+
+std::vector<Case> namedCases() {
+    std::vector<Case> out;
+    for (const char* k : {"uv_normal", "deriv_map", "feature"})
+        out.push_back(collapsedTriangleCase(k, layerOf(k)));
+    const std::string pom =
+        R"({"type": "pom", "map": {"procedural": "bricks", "output": "height", "size": 32}, "scale": 0.04})";
+    const std::string plx =
+        R"({"type": "parallax", "map": {"procedural": "bricks", "output": "height", "size": 32}, "scale": 0.04})";
+    const std::string plxNoCorr =
+        R"({"type": "parallax", "map": {"procedural": "bricks", "output": "height", "size": 32}, "scale": 0.04, "normal_correction": false})";
+    const std::string noise =
+        R"({"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.01, "frequency": 8}]})";
+    const std::string uvn = R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 32}})";
+    out.push_back(cylinderCase("pom", "pom", pom, "", ""));
+    out.push_back(cylinderCase("parallax", "parallax", plx, "", ""));
+    out.push_back(cylinderCase("parallax-no-correction", "parallax", plxNoCorr, "",
+                               ", no normal correction"));
+    out.push_back(cylinderCase("pom+noise", "post_resolve", pom + ", " + noise, "",
+                               ", POM then a post-resolve noise group"));
+    out.push_back(cylinderCase("uv_normal", "uv_normal", uvn, "", ""));
+    out.push_back(cylinderCase("uv_normal-mikktspace", "uv_normal", uvn,
+                               R"(, "tangents": "mikktspace")", ", MikkTSpace tangents"));
+    out.push_back(
+        cylinderCase("uv_normal-limit", "uv_normal", uvn,
+                     R"(, "subdivision": {"level": 2, "limit": true}, "tangents": "limit")",
+                     ", subdivided (level 2, limit), limit tangents"));
+    out.push_back(cylinderCase(
+        "uv_normal-adaptive-limit", "uv_normal", uvn,
+        R"(, "subdivision": {"mode": "adaptive", "pixels_per_edge": 4}, "tangents": "limit")",
+        ", adaptive patches, limit tangents"));
+    out.push_back(farUvCase());
+    out.push_back(flattenedCase(
+        "noise", R"({"type": "noise", "space": "object", "amplitude": 0.02, "frequency": 6})"));
+    out.push_back(flattenedCase(
+        "triplanar",
+        R"({"type": "triplanar", "space": "object", "map": {"procedural": "tiles", "size": 32}, "scale": 2})"));
+    for (double deg : {88.0, 89.9}) {
+        out.push_back(leaningNormalsCase(deg, "parallax", plx));
+        out.push_back(leaningNormalsCase(deg, "pom", pom));
+    }
+    out.push_back(farCameraCase());
+    out.push_back(thinDecalCase());
+    for (const auto& [kind, layer] : kindLayers())
+        out.push_back(flipCase(kind, kind == "decal" ? kDecalOnPlane : layer));
+    return out;
+}
+
+namespace {
+
+// A hard-case family's input, to be crossed with every layer kind.
+struct FamilyInput {
+    std::string name;         // the input's id
+    std::string family;       // hard-case family id
+    std::string input;        // description
+    std::string perturbation; // description
+    // The decal layer that reaches this input's surface (the registry
+    // example projects along -z through the origin).
+    std::string decal;
+    // Only these kinds (empty: every kind).
+    std::vector<std::string> kinds;
+    std::function<Scene(const std::string& layers, bool perturbed, const fs::path& dir)> build;
+};
+
+// The eye moved by 2^-21 of its distance to the target in each coordinate
+// (alternating signs): a rounding-size change of the view at any distance
+// from the origin.
+glm::dvec3 nudged(glm::dvec3 eye, glm::dvec3 target) {
+    const double d = glm::length(eye - target) * std::ldexp(1.0, -21);
+    return eye + glm::dvec3(d, -d, d);
+}
+
+// A plane grid scene under `layers` seen from `eye`.
+Scene gridScene(const ObjMesh& m, const std::string& layers, glm::dvec3 eye, const fs::path& dir,
+                const std::string& materialExtra = "", const std::string& meshExtra = "") {
+    SceneSpec s;
+    s.meshFields = fileField(m, dir, "grid") + meshExtra;
+    s.layers = layers;
+    s.materialExtra = materialExtra;
+    s.eye = eye;
+    return sceneOf(s, dir);
+}
+
+// The top-projected cylinder with its walls' projection tilted by `tilt`
+// (t += tilt * y): 0 is singular, small values near-singular.
+ObjMesh tiltedCylinder(double tilt) {
+    ObjMesh m = topProjectedCylinder(24, 3);
+    for (size_t i = 0; i < m.vt.size() && i < m.v.size(); ++i) m.vt[i].y += tilt * m.v[i].y;
+    return m;
+}
+
+// A grid whose UVs are collinear on every triangle: (s, t) = (u, u).
+ObjMesh collinearGrid() {
+    ObjMesh m = grid(6, {0, 1, 0});
+    for (auto& t : m.vt) t.y = t.x;
+    return m;
+}
+
+// A grid mirrored in s across x = 0 (a UV seam in the middle).
+ObjMesh mirroredGrid() {
+    ObjMesh m = grid(6, {0, 1, 0});
+    for (size_t i = 0; i < m.vt.size(); ++i) m.vt[i].x = std::fabs(m.v[i].x);
+    return m;
+}
+
+// A fan of needles: a disk of 720 triangles (0.5 degrees each) around the
+// origin in the plane y = 0, UVs the planar projection.
+ObjMesh needleFan() {
+    ObjMesh m;
+    const int n = 720, vn = m.addVn({0, 1, 0});
+    const int c = m.addV({0, 0, 0});
+    m.addVt({0.5, 0.5});
+    for (int i = 0; i < n; ++i) {
+        const double a = 2.0 * 3.14159265358979323846 * double(i) / n;
+        m.addV({std::cos(a), 0, -std::sin(a)});
+        m.addVt({0.5 + 0.5 * std::cos(a), 0.5 + 0.5 * std::sin(a)});
+    }
+    for (int i = 0; i < n; ++i) {
+        const int a = 1 + i, b = 1 + (i + 1) % n;
+        m.faces.push_back({{c, c, vn}, {a, a, vn}, {b, b, vn}});
+    }
+    return m;
+}
+
+// A grid with every third quad collapsed to a segment (two corners moved
+// onto the other two): zero-area triangles amid ordinary ones.
+ObjMesh zeroAreaGrid() {
+    ObjMesh m = grid(6, {0, 1, 0});
+    std::vector<std::vector<glm::ivec3>> faces;
+    int k = 0;
+    for (auto f : m.faces) {
+        if (k++ % 3 == 0) {
+            faces.push_back({f[0], f[1], f[1]});
+            faces.push_back({f[0], f[1], f[0]});
+            faces.push_back({f[1], f[2], f[3]});
+        } else {
+            faces.push_back({f[0], f[1], f[2]});
+            faces.push_back({f[0], f[2], f[3]});
+        }
+    }
+    m.faces.clear();
+    for (auto& f : faces)
+        if (f[0].x != f[1].x && f[1].x != f[2].x && f[0].x != f[2].x) m.faces.push_back(f);
+    // Zero area by position: the middle vertex of a row moved onto the segment.
+    return m;
+}
+
+// A closed cage with two poles of valence `valence` (a sphere of `valence`
+// segments and 4 rings, triangle fans at the poles), UVs the sphere's.
+ObjMesh poleCage(int valence) {
+    ObjMesh m;
+    const double kPi = 3.14159265358979323846;
+    const int rings = 4;
+    std::vector<int> idx;
+    const int north = m.addV({0, 1, 0}), south = m.addV({0, -1, 0});
+    const int tn = m.addVt({0.5, 1.0}), ts = m.addVt({0.5, 0.0});
+    std::vector<int> ring((size_t(rings) - 1) * size_t(valence + 1));
+    std::vector<int> ringV((size_t(rings) - 1) * size_t(valence));
+    for (int r = 1; r < rings; ++r) {
+        const double th = kPi * double(r) / rings;
+        for (int i = 0; i <= valence; ++i) {
+            const double ph = 2.0 * kPi * double(i) / valence;
+            if (i < valence)
+                ringV[size_t(r - 1) * size_t(valence) + size_t(i)] = m.addV(
+                    {std::sin(th) * std::cos(ph), std::cos(th), -std::sin(th) * std::sin(ph)});
+            ring[size_t(r - 1) * size_t(valence + 1) + size_t(i)] =
+                m.addVt({double(i) / valence, 1.0 - double(r) / rings});
+        }
+    }
+    auto V = [&](int r, int i) {
+        return ringV[size_t(r - 1) * size_t(valence) + size_t(i % valence)];
+    };
+    auto T = [&](int r, int i) { return ring[size_t(r - 1) * size_t(valence + 1) + size_t(i)]; };
+    for (int i = 0; i < valence; ++i) {
+        m.faces.push_back(
+            {{north, tn, -1}, {V(1, i), T(1, i), -1}, {V(1, i + 1), T(1, i + 1), -1}});
+        for (int r = 1; r + 1 < rings; ++r)
+            m.faces.push_back({{V(r, i), T(r, i), -1},
+                               {V(r + 1, i), T(r + 1, i), -1},
+                               {V(r + 1, i + 1), T(r + 1, i + 1), -1},
+                               {V(r, i + 1), T(r, i + 1), -1}});
+        m.faces.push_back({{south, ts, -1},
+                           {V(rings - 1, i + 1), T(rings - 1, i + 1), -1},
+                           {V(rings - 1, i), T(rings - 1, i), -1}});
+    }
+    return m;
+}
+
+FamilyInput meshFamily(std::string name, std::string family, std::string input, ObjMesh (*make)(),
+                       glm::dvec3 eye, bool perturbUv, bool perturbPos, bool perturbNormals,
+                       std::string decal = kDecalOnPlane, std::string meshExtra = "",
+                       std::string materialExtra = "") {
+    FamilyInput f;
+    f.name = std::move(name);
+    f.family = std::move(family);
+    f.input = std::move(input);
+    std::string what;
+    if (perturbPos) what = "positions";
+    if (perturbUv) what += std::string(what.empty() ? "" : ", ") + "UVs";
+    if (perturbNormals) what += std::string(what.empty() ? "" : ", ") + "normals";
+    f.perturbation = "every coordinate of the mesh's " + what + " moved by -2..2 ulps";
+    f.decal = std::move(decal);
+    f.build = [=](const std::string& layers, bool p, const fs::path& dir) {
+        ObjMesh m = make();
+        if (p) m.perturb(97, perturbPos, perturbUv, perturbNormals);
+        return gridScene(m, layers, eye, dir, materialExtra, meshExtra);
+    };
+    return f;
+}
+
+// A sphere under a transform, the camera nudged.
+FamilyInput sphereFamily(std::string name, std::string family, std::string input,
+                         std::string transform, glm::dvec3 origin, glm::dvec3 eyeOffset) {
+    FamilyInput f;
+    f.name = std::move(name);
+    f.family = std::move(family);
+    f.input = std::move(input);
+    f.perturbation = "camera moved by 2^-21 of its distance in each coordinate";
+    f.decal =
+        std::string(
+            R"({"type": "decal", "map": {"procedural": "scratches", "size": 16}, "position": )") +
+        vec3Json(origin + glm::dvec3(0, 0, 1)) +
+        R"(, "direction": [0, 0, -1], "size": [1.2, 1.2, 0.8]})";
+    f.build = [=](const std::string& layers, bool p, const fs::path& dir) {
+        SceneSpec s;
+        s.meshFields = kSphereFields;
+        s.transform = transform;
+        s.layers = layers;
+        s.target = origin;
+        s.eye = origin + eyeOffset;
+        if (p) s.eye = nudged(s.eye, s.target);
+        return sceneOf(s, dir);
+    };
+    return f;
+}
+
+std::vector<FamilyInput> familyInputs() {
+    std::vector<FamilyInput> v;
+    const glm::dvec3 side(0.0, 0.9, 2.0), above(0.35, 1.7, 1.4);
+    v.push_back(meshFamily(
+        "singular-chart", "uv-degenerate",
+        "top-projected cylinder: the walls' UV chart is singular",
+        [] { return tiltedCylinder(0.0); }, side, true, false, false, kDecalOnSphere));
+    v.push_back(meshFamily(
+        "near-singular-chart", "uv-degenerate",
+        "cylinder projected from 0.06 deg off the axis: near-singular walls",
+        [] { return tiltedCylinder(1e-3); }, side, true, false, false, kDecalOnSphere));
+    v.push_back(meshFamily("collinear-chart", "uv-degenerate",
+                           "a plane whose UVs are collinear on every triangle, (s, t) = (u, u)",
+                           collinearGrid, above, true, false, false));
+    v.push_back(meshFamily("mirrored-chart", "uv-mirrored", "a plane mirrored in s at x = 0",
+                           mirroredGrid, above, true, true, false));
+    v.push_back(meshFamily("needles", "zero-area", "a disk of 720 needle triangles (0.5 deg)",
+                           needleFan, above, true, true, false));
+    v.push_back(meshFamily("zero-area-faces", "zero-area",
+                           "a plane with a third of its quads collapsed to segments", zeroAreaGrid,
+                           above, true, true, false));
+    v.push_back(meshFamily(
+        "normals-at-horizon", "horizon",
+        "a plane whose vertex normals lie 89.9 deg from the face normal",
+        [] {
+            const double a = 89.9 * 3.14159265358979323846 / 180.0;
+            return grid(6, {0.0, std::cos(a), std::sin(a)});
+        },
+        above, false, false, true));
+    for (const char* mode : {"none", "mirror", "flip"}) {
+        v.push_back(meshFamily(
+            std::string("back-faces-") + mode, "back-faces",
+            std::string("a plane seen from below, double_sided ") + mode,
+            [] {
+                return grid(6, {0, 1, 0});
+            },
+            {0.35, -1.7, 1.4}, true, true, false, kDecalOnPlane, "",
+            std::string(R"("double_sided": ")") + mode + R"(", )"));
+    }
+    v.push_back(meshFamily(
+        "grazing-view", "grazing", "a plane seen 2 deg above its horizon",
+        [] {
+            return grid(6, {0, 1, 0});
+        },
+        {0.0, 0.07, 2.0}, true, true, false));
+    v.push_back(sphereFamily(
+        "far-from-origin", "far-from-origin-render",
+        "a sphere and its camera 1e5 units from the origin in every coordinate",
+        R"({"translate": [100000, 100000, 100000]})", glm::dvec3(1e5), {0.6, 0.5, 2.4}));
+    v.push_back(sphereFamily("flattened-transform", "scales",
+                             "a sphere scaled by (1, 1e-6, 1), seen from above",
+                             R"({"scale": [1, 1e-6, 1]})", glm::dvec3(0.0), {0.3, 1.8, 1.2}));
+    v.push_back(sphereFamily("mirrored-transform", "uv-mirrored", "a sphere scaled by (-1, 1, 1)",
+                             R"({"scale": [-1, 1, 1]})", glm::dvec3(0.0), {0.6, 0.5, 2.4}));
+    {
+        // The grid's +y turned onto n = (1, 1, 1) / sqrt(3): columns e1, n, e1 x n.
+        const glm::dvec3 n = glm::normalize(glm::dvec3(1.0)),
+                         e1 = glm::normalize(glm::dvec3(1.0, -1.0, 0.0)), e2 = glm::cross(e1, n);
+        std::string mat = R"(, "transform": {"matrix": [)";
+        for (const glm::dvec3& col : {e1, n, e2})
+            mat += num(col.x) + ", " + num(col.y) + ", " + num(col.z) + ", 0, ";
+        mat += "0, 0, 0, 1]}";
+        const std::string decal =
+            R"({"type": "decal", "map": {"procedural": "scratches", "size": 16}, "position": [0, 0, 0], "direction": )" +
+            vec3Json(-n) + R"(, "up": [0, 0, 1], "size": [1.4, 1.4, 0.5]})";
+        v.push_back(meshFamily(
+            "triplanar-diagonal", "triplanar-equal",
+            "a plane whose normal is the diagonal (1, 1, 1) / sqrt(3)",
+            [] {
+                return grid(6, {0, 1, 0});
+            },
+            2.2 * n + glm::dvec3(0.2, 0, -0.2), true, true, false, decal, mat));
+    }
+    v.push_back(meshFamily(
+        "high-valence-adaptive", "high-valence",
+        "adaptive patches of a cage with two valence-64 poles, seen from a pole",
+        [] { return poleCage(64); }, {0.4, 2.2, 1.0}, true, true, false, kDecalOnSphere,
+        R"(, "subdivision": {"mode": "adaptive", "pixels_per_edge": 6})"));
+    return v;
+}
+
+} // namespace
+
+std::vector<Case> familyCases() {
+    std::vector<Case> out;
+    for (const FamilyInput& f : familyInputs()) {
+        for (const auto& [kind, layer] : kindLayers()) {
+            if (!f.kinds.empty() &&
+                std::find(f.kinds.begin(), f.kinds.end(), kind) == f.kinds.end())
+                continue;
+            Case c;
+            c.id = f.name + "/" + kind;
+            c.family = f.family;
+            c.kind = kind;
+            c.input = f.input;
+            c.perturbation = f.perturbation;
+            const std::string l = kind == "decal" ? f.decal : layer;
+            const auto build = f.build;
+            c.build = [build, l](bool p, const fs::path& dir) { return build(l, p, dir); };
+            out.push_back(std::move(c));
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// A random height-field grid with a random chart, normals and damage (see
+// generatedCases); `what` describes it.
+ObjMesh randomMesh(Rng& rng, std::string& what) {
+    const int n = rng.integer(2, 6);
+    ObjMesh m;
+    const double amp = rng.range(0.0, 0.4), freq = rng.range(0.5, 3.0);
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double jx = (i > 0 && i < n) ? rng.range(-0.3, 0.3) : 0.0;
+            const double jz = (j > 0 && j < n) ? rng.range(-0.3, 0.3) : 0.0;
+            const double x = -1.0 + 2.0 * (double(i) + jx) / n,
+                         z = -1.0 + 2.0 * (double(j) + jz) / n;
+            m.addV({x, amp * std::sin(freq * x) * std::cos(freq * z), z});
+        }
+    // Chart: st = A (x, z) + offset, A conformal, anisotropic, sheared or
+    // singular.
+    const int chart = rng.integer(0, 3);
+    const double a = rng.range(0.0, 6.283185307179586), sc = std::pow(10.0, rng.range(-1.0, 1.0));
+    glm::dmat2 A(std::cos(a) * sc, std::sin(a) * sc, -std::sin(a) * sc, std::cos(a) * sc);
+    const char* chartName[] = {"conformal", "anisotropic", "sheared", "singular"};
+    if (chart == 1) A[1] *= std::pow(10.0, rng.range(-3.0, 0.0));
+    if (chart == 2)
+        A[1] = A[0] * rng.range(0.95, 1.05) + A[1] * std::pow(10.0, rng.range(-4.0, -1.0));
+    if (chart == 3) A[1] = A[0] * rng.range(-2.0, 2.0);
+    glm::dvec2 offset(0.0);
+    if (rng.uniform() < 0.25)
+        offset = glm::dvec2(std::floor(rng.range(-2e4, 2e4)), std::floor(rng.range(-2e4, 2e4)));
+    for (const auto& p : m.v) m.addVt(A * glm::dvec2(p.x, p.z) + offset);
+    what = std::string(chartName[chart]) + " chart";
+    if (offset != glm::dvec2(0.0)) what += " offset by ~1e4";
+    // Collapsed UVs: a few vertices take a neighbour's UV.
+    const int collapse = rng.integer(0, 3);
+    for (int k = 0; k < collapse; ++k) {
+        const int v = rng.integer(0, int(m.vt.size()) - 2);
+        m.vt[size_t(v)] = m.vt[size_t(v + 1)];
+    }
+    if (collapse) what += ", " + std::to_string(collapse) + " UVs collapsed onto a neighbour";
+    // Needles: a vertex moved almost onto its neighbour.
+    if (rng.uniform() < 0.3) {
+        const int v = rng.integer(0, int(m.v.size()) - 2);
+        m.v[size_t(v)] = m.v[size_t(v + 1)] + glm::dvec3(1e-4, 0.0, 0.0);
+        what += ", a needle";
+    }
+    // Normals: the height field's, some leaning towards the horizon.
+    const double lean = rng.uniform() < 0.3 ? rng.range(80.0, 89.9) : 0.0;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const glm::dvec3 p = m.v[size_t(j * (n + 1) + i)];
+            glm::dvec3 nrm = glm::normalize(
+                glm::dvec3(-amp * freq * std::cos(freq * p.x) * std::cos(freq * p.z), 1.0,
+                           amp * freq * std::sin(freq * p.x) * std::sin(freq * p.z)));
+            if (lean > 0.0 && rng.uniform() < 0.5) {
+                const double t = lean * 3.14159265358979323846 / 180.0,
+                             b = rng.range(0.0, 6.283185307179586);
+                nrm = glm::dvec3(std::sin(t) * std::cos(b), std::cos(t), std::sin(t) * std::sin(b));
+            }
+            m.addVn(nrm);
+        }
+    if (lean > 0.0)
+        what += ", normals leaning up to " + num(std::round(lean * 10.0) / 10.0) + " deg";
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            auto at = [&](int ii, int jj) {
+                const int k = jj * (n + 1) + ii;
+                return glm::ivec3(k, k, k);
+            };
+            m.faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+            m.faces.push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+        }
+    return m;
+}
+
+} // namespace
+
+std::vector<Case> generatedCases(uint64_t seed, int count) {
+    std::vector<Case> out;
+    const auto kinds = kindLayers();
+    for (int i = 0; i < count; ++i) {
+        Rng rng{seed * 1000003ull + uint64_t(i)};
+        std::string what;
+        const ObjMesh mesh = randomMesh(rng, what);
+        const auto& [kind, layer] = kinds[size_t(rng.integer(0, int(kinds.size()) - 1))];
+        const char* modes[] = {"off", "none", "mirror", "flip"};
+        const std::string mode = modes[rng.integer(0, 3)];
+        // Transform: rotation, scale (anisotropic, sometimes mirrored), translation.
+        const double sx = std::pow(10.0, rng.range(-0.5, 0.5)) * (rng.uniform() < 0.2 ? -1.0 : 1.0);
+        const double sy = rng.uniform() < 0.2 ? 1e-4 : std::pow(10.0, rng.range(-0.5, 0.5));
+        const double sz = std::pow(10.0, rng.range(-0.5, 0.5));
+        const glm::dvec3 rot(rng.range(-180, 180), rng.range(-180, 180), rng.range(-180, 180));
+        glm::dvec3 tr(0.0);
+        if (rng.uniform() < 0.2)
+            tr = glm::dvec3(rng.range(-1e5, 1e5), rng.range(-1e5, 1e5), rng.range(-1e5, 1e5));
+        const std::string transform = R"({"scale": )" + vec3Json({sx, sy, sz}) +
+                                      R"(, "rotate_deg": )" + vec3Json(rot) + R"(, "translate": )" +
+                                      vec3Json(tr) + "}";
+        const double az = rng.range(-180.0, 180.0), el = rng.range(-80.0, 80.0);
+        // A decal straight down the mesh's own +y (world), through its centre.
+        std::string l = layer;
+        if (kind == "decal") {
+            glm::dmat4 M = glm::translate(glm::dmat4(1.0), tr);
+            M = glm::rotate(M, glm::radians(rot.z), glm::dvec3(0, 0, 1));
+            M = glm::rotate(M, glm::radians(rot.y), glm::dvec3(0, 1, 0));
+            M = glm::rotate(M, glm::radians(rot.x), glm::dvec3(1, 0, 0));
+            M = glm::scale(M, glm::dvec3(sx, sy, sz));
+            const glm::dvec3 up =
+                glm::normalize(glm::transpose(glm::inverse(glm::dmat3(M))) * glm::dvec3(0, 1, 0));
+            const glm::dvec3 side =
+                std::fabs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+            const double ext = 2.0 * std::max({std::fabs(sx), std::fabs(sy), std::fabs(sz)});
+            l = R"({"type": "decal", "map": {"procedural": "scratches", "size": 16}, "position": )" +
+                vec3Json(tr) + R"(, "direction": )" + vec3Json(-up) + R"(, "up": )" +
+                vec3Json(glm::cross(up, side)) + R"(, "size": )" +
+                vec3Json(glm::dvec3(ext, ext, ext)) + "}";
+        }
+        Case c;
+        c.id = "generated-" + std::to_string(seed) + "-" + std::to_string(i) + "/" + kind;
+        c.family = "generated";
+        c.kind = kind;
+        c.input = what + ", double_sided " + mode + ", scale " + vec3Json({sx, sy, sz}) +
+                  (tr != glm::dvec3(0.0) ? ", translated ~1e5" : "") + ", camera azimuth " +
+                  num(std::round(az)) + " elevation " + num(std::round(el));
+        c.perturbation =
+            "every coordinate of the mesh (positions, UVs, normals) moved by -2..2 ulps";
+        const uint64_t pseed = rng.next();
+        c.build = [=](bool p, const fs::path& dir) {
+            ObjMesh m = mesh;
+            if (p) m.perturb(pseed, true, true, true);
+            const std::string json =
+                R"({"output": {"width": 64, "height": 48}, "materials": [{"name": "m", "double_sided": ")" +
+                mode + R"(", "layers": [)" + l + R"(]}], "meshes": [{)" +
+                fileField(m, dir, "random") + R"(, "transform": )" + transform +
+                R"(}], "camera": {"azimuth_deg": )" + num(az) + R"(, "elevation_deg": )" + num(el) +
+                "}}";
+            return sg::render::parseScene(json, (dir / "scene.json").string(), dir);
+        };
+        out.push_back(std::move(c));
+    }
+    return out;
+}
+
+} // namespace study::stability
