@@ -77,7 +77,7 @@ SG_BENCH(tspace_to_deriv_L4, g::sgTspaceNormalToDeriv(x.d[i], false));
 SG_BENCH(tbn_L5, g::sgSurfgradFromTBN(x.d[i], x.a[i], x.b[i]));
 SG_BENCH(gen_basis_tb_L6, ([&] {
              g::vec3 t, b;
-             g::sgGenBasisTB(x.frame[i], x.e[i], x.f[i], t, b);
+             g::sgGenBasisTB(x.frame[i], x.d[i], x.e[i], x.f[i], t, b);
              return t + b;
          }()));
 SG_BENCH(perturbed_L7, g::sgSurfgradFromPerturbedNormal(x.frame[i], x.c[i] + x.n[i] * 2.0f));
@@ -119,7 +119,7 @@ SG_BENCH(bounded_scale, g::sgBoundedScale3(x.c[i], g::vec4(x.s[i], 1e10f, 1e-12f
 SG_BENCH(chain_per_pixel_tbn, ([&] {
              g::SgFrame fr = g::sgPrologue(x.c[i], x.a[i], x.b[i], true, SG_BFACE_NONE);
              g::vec3 t, b;
-             g::sgGenBasisTB(fr, x.e[i], x.f[i], t, b);
+             g::sgGenBasisTB(fr, x.d[i], x.e[i], x.f[i], t, b);
              return g::sgResolve(
                  fr, g::sgSurfgradFromTBN(g::sgTspaceNormalToDeriv(x.d[i], false), t, b));
          }()));

@@ -74,7 +74,7 @@ void main() {
                            SG_BFACE_NONE);
     vec3 t;
     vec3 b;
-    sgGenBasisTB(f, dFdxFine(vUv), dFdyFine(vUv), t, b);
+    sgGenBasisTB(f, vUv, dFdxFine(vUv), dFdyFine(vUv), t, b);
     vec3 n = sgResolve(f, sgSurfgradFromTBN(sampleDeriv(), t, b));
     oColor = vec4(n * 0.5 + 0.5, 1.0);
 }

@@ -91,7 +91,7 @@ void main() {
 #if VERTEX_TANGENTS
     sgMikktsBasis(vNrm, vTan, vT, vB);
 #else
-    sgGenBasisTB(f, dFdxFine(vUv), dFdyFine(vUv), vT, vB);
+    sgGenBasisTB(f, vUv, dFdxFine(vUv), dFdyFine(vUv), vT, vB);
 #endif
     vec3 n = sgResolve(f, sgSurfgradFromTBN(d, vT, vB));
     float lambert = max(dot(n, normalize(vec3(0.4, 0.7, 0.6))), 0.0);

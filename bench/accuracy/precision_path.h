@@ -176,7 +176,7 @@ Frame<T> prologue(V3<T> vtxNormal, V3<T> dPdx, V3<T> dPdy) {
     return f;
 }
 
-// sgGenBasisTB.
+// sgGenBasisTB on a well-conditioned chart (the torus: its chart weight is 1).
 template <class T>
 void genBasisTB(const Frame<T>& f, V2<T> dSTdx, V2<T> dSTdy, V3<T>& vT, V3<T>& vB) {
     const V3<T> zero{T(0.0f), T(0.0f), T(0.0f)};

@@ -38,7 +38,7 @@ void main() {
     vec3 b;
 #ifdef FRAME_PIXEL
     f = sgPrologue(vNormal, dFdxFine(vRelPos), dFdyFine(vRelPos), gl_FrontFacing, SG_BFACE_NONE);
-    sgGenBasisTB(f, dFdxFine(vUv), dFdyFine(vUv), t, b);
+    sgGenBasisTB(f, vUv, dFdxFine(vUv), dFdyFine(vUv), t, b);
 #else
     f.nrmBase = vNormal * sgRenormFactor(vNormal);
     f.resolveSign = 1.0;

@@ -109,16 +109,11 @@ void shadeSample(const G::sampler2D& tex, float scale, glm::dvec2 st, glm::dvec3
                  glm::vec3 dPdx, glm::vec3 dPdy, int steps, glm::dvec2& stOut, glm::dvec3& offOut) {
     G::SgFrame fr = G::sgPrologue(glm::vec3(0, 0, 1), dPdx, dPdy, true, 0);
     G::SgUvFrame uv = G::sgUvFramePixel(fr, glm::vec2(st), glm::vec2(dPdx), glm::vec2(dPdy));
-    glm::vec2 sv = G::sgParallaxSearchVec(fr, uv, glm::vec3(toEye), scale, steps == 0);
-    glm::vec2 corr;
-    if (steps == 0) {
-        corr = G::sgParallaxOffset(uv, sv, tex, 0);
-    } else {
-        float d = 0.0f;
-        corr = G::sgParallaxOcclusion(uv, sv, tex, 0, steps, d);
-    }
-    stOut = st + glm::dvec2(corr);
-    offOut = glm::dvec3(G::sgParallaxSurfaceOffset(fr, uv, corr, scale, tex, 0));
+    const G::SgParallaxSearch sv = G::sgParallaxSearch(fr, uv, glm::vec3(toEye), scale, steps == 0);
+    const float d = steps == 0 ? G::sgParallaxOffsetDepth(uv, tex, 0)
+                               : G::sgParallaxOcclusionDepth(uv, sv.st, tex, 0, steps);
+    stOut = st - double(d) * glm::dvec2(sv.st);
+    offOut = glm::dvec3(G::sgParallaxSurfaceOffset(fr, uv, sv, d, scale, tex, 0));
 }
 
 const int kSteps[] = {0, 4, 8, 16, 32, 64};

@@ -159,7 +159,7 @@ glm::dvec3 sharedPixelPath(const PixelInputs& in) {
     const SgFrame f =
         sgPrologue(vec3(in.normal), vec3(in.dPdx), vec3(in.dPdy), true, SG_BFACE_NONE);
     vec3 t, b;
-    sgGenBasisTB(f, vec2(in.dSTdx), vec2(in.dSTdy), t, b);
+    sgGenBasisTB(f, vec2(in.uv), vec2(in.dSTdx), vec2(in.dSTdy), t, b);
     return glm::dvec3(
         sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(vec2(in.m), false), t, b)));
 }

@@ -59,7 +59,7 @@ void main() {
     vec2 dSTdx = dFdxFine(vUv0);
     vec2 dSTdy = dFdyFine(vUv0);
     vec3 vT, vB;
-    sgGenBasisTB(frame, dSTdx, dSTdy, vT, vB);                       // listing 6
+    sgGenBasisTB(frame, vUv0, dSTdx, dSTdy, vT, vB);                  // listing 6
     vec2 m = 2.0 * textureGrad(uNormalMap, vUv0, dSTdx, dSTdy).xy - 1.0;
     vec2 deriv = sgTspaceNormalToDeriv(m, false);                     // listing 4, green up
     surfGrad += sgBumpScale(uNormalStrength, sgSurfgradFromTBN(deriv, vT, vB)); // listings 2, 5

@@ -21,19 +21,24 @@
 //  NONE   - the perturbed normal is the same as on the front side;
 //  MIRROR - the base normal flips and the bump map is mirrored
 //           (the surface gradient itself is unchanged);
-//  FLIP   - the perturbed normal flips (base normal and gradient negated).
+//  FLIP   - the perturbed normal flips: exactly the negation of NONE's.
+//           The frame stays the front side's (every layer sees what it
+//           sees in NONE: a decal's angle fade, a parallax search's view
+//           elevation) and sgResolve negates its result, which the paper
+//           writes as base normal and gradient negated; sgReprologue takes
+//           such a result back to the front side.
 #define SG_BFACE_NONE 0
 #define SG_BFACE_MIRROR 1
 #define SG_BFACE_FLIP 2
 
 struct SgFrame {
-    vec3 nrmBase;      // unit base normal (negated on back faces in MIRROR/FLIP)
+    vec3 nrmBase;      // unit base normal (negated on back faces in MIRROR)
     vec3 dPdx;         // d(position)/d(screen x), position units per pixel
     vec3 dPdy;         // d(position)/d(screen y), position units per pixel
     vec3 sigmaX;       // dPdx minus its component along nrmBase
     vec3 sigmaY;       // dPdy minus its component along nrmBase
     float flipSign;    // -1 when (dPdx, dPdy, nrmBase) is left-handed
-    float resolveSign; // -1 only for back faces in FLIP mode; used by sgResolve
+    float resolveSign; // -1 only for back faces in FLIP mode: sgResolve negates
 };
 
 // Unit normal of the surface from its screen derivatives (cross(dPdx, dPdy)),
@@ -82,7 +87,7 @@ SG_FN SgFrame sgPrologue(vec3 vtxNormal, vec3 dPdx, vec3 dPdy, bool isFrontFacin
     // Callers that want it can pass sgGeometricNormal(dPdx, dPdy) themselves.
     vec3 nrm = sgSafeNormalize(vtxNormal, vec3(0.0f, 0.0f, 1.0f));
     bool isBackFace = !isFrontFacing;
-    float fs = (isBackFace && bfaceMode != SG_BFACE_NONE) ? -1.0f : 1.0f;
+    float fs = (isBackFace && bfaceMode == SG_BFACE_MIRROR) ? -1.0f : 1.0f;
     f.nrmBase = fs * nrm;
     f.resolveSign = (isBackFace && bfaceMode == SG_BFACE_FLIP) ? -1.0f : 1.0f;
     f.dPdx = dPdx;
@@ -130,13 +135,25 @@ SG_FN void sgMikktsBasis(vec3 vtxNormal, vec4 vtxTangent, SG_OUT(vec3) tang, SG_
 // first resolve, the resolved normal becomes the base of a second round of
 // bump mapping. nrmBase, sigmaX/Y and flipSign are replaced; dPdx/dPdy are
 // kept unless the caller supplies new ones (e.g. from sgScreenDerivOfPos for
-// a virtual surface after parallax). resolveSign is kept: in FLIP mode the
-// second layer's heights flip too.
+// a virtual surface after parallax). resolvedNormal is what sgResolve
+// returned with this frame (negated in FLIP mode): it is taken back to the
+// front side, and resolveSign is kept, so the second round runs as in NONE
+// and its resolve negates again.
 SG_FN SgFrame sgReprologue(SgFrame f, vec3 resolvedNormal, vec3 dPdx, vec3 dPdy) {
     SgFrame r = f;
-    r.nrmBase = sgSafeNormalize(resolvedNormal, f.nrmBase);
+    r.nrmBase = sgSafeNormalize(f.resolveSign * resolvedNormal, f.nrmBase);
     r.dPdx = dPdx;
     r.dPdy = dPdy;
+    return sgFrameUpdateSigmas(r);
+}
+
+// The frame with another base normal of the same side (e.g. section 2.6's
+// normal correction after parallax: a moved base, not a resolved normal;
+// any length, nrmBase kept when it vanishes). Derivatives and resolveSign
+// are kept; sigmas and flipSign follow.
+SG_FN SgFrame sgFrameWithBase(SgFrame f, vec3 nrmBase) {
+    SgFrame r = f;
+    r.nrmBase = sgSafeNormalize(nrmBase, f.nrmBase);
     return sgFrameUpdateSigmas(r);
 }
 

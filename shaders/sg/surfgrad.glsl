@@ -18,11 +18,13 @@
 
 #include "sg/frame.glsl"
 
-// Listing 1 / eq. 1: the perturbed unit normal normalize(n - s * surfGrad),
-// s = resolveSign. Always unit length: if the difference vanishes (a
-// "gradient" equal to the normal, not a tangent vector) nrmBase is returned.
+// Listing 1 / eq. 1: the perturbed unit normal s * normalize(n - surfGrad),
+// s = resolveSign (-1 on back faces in FLIP mode, whose frame is the front
+// side's: the paper's normalize(-n + surfGrad)). Always unit length: if the
+// difference vanishes (a "gradient" equal to the normal, not a tangent
+// vector) s * nrmBase is returned.
 SG_FN vec3 sgResolve(SgFrame f, vec3 surfGrad) {
-    return sgSafeNormalize(f.nrmBase - f.resolveSign * surfGrad, f.nrmBase);
+    return f.resolveSign * sgSafeNormalize(f.nrmBase - surfGrad, f.nrmBase);
 }
 
 // Listings 2 and 3: bump scale on a surface gradient or on a derivative
@@ -62,19 +64,61 @@ SG_FN vec3 sgDerivToTspaceNormal(vec2 d, bool flipV) {
 // classic TBN normal exactly; with sgGenBasisTB it is the procedural frame.
 SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT + deriv.y * vB; }
 
+// How much of a UV chart's frame a pixel keeps (sgGenBasisTB): the UV
+// Jacobian's determinant measured in units of its own rounding. dFdxFine of
+// a texture coordinate is the difference of two interpolated values, each
+// rounded at the coordinate's magnitude, so each derivative carries an
+// absolute error of an ulp or two of |st| (and of the vertices' UVs the
+// interpolation starts from, which lie within about 16 pixels' worth of
+// derivative of the pixel's own):
+//   noise = 2^-22 (max|st| + 16 k),   k = the Jacobian's largest entry,
+// and det J carries about k * noise: `units` = |det J| / (k noise) is the
+// determinant's signal-to-noise ratio (for an anisotropic chart, about the
+// shorter derivative over noise). Below SG_CHART_FADE_LO units the chart
+// has no reliable frame (sign(det) and the tangent's direction would be
+// rounding noise: a collapsed or collinear chart, the side walls of a
+// planar projection); from SG_CHART_FADE_HI (the determinant within 1/32
+// of its value) it is fully trusted; between, the frame fades in with a
+// smoothstep, so nothing switches on a rounding-size change of the input.
+// At |st| <= 1 this fades a chart only where its shorter screen derivative
+// is below about 8e-6 per pixel (a 1024^2 map stretched over 120 pixels per
+// texel, or a chart seen ~1000:1 edge-on), where the GPU's own derivatives
+// are already wrong by a tenth.
+#define SG_CHART_ROUNDING 2.384185791e-07f // 2^-22
+#define SG_CHART_FADE_LO 4.0f
+#define SG_CHART_FADE_HI 32.0f
+
+// The weight in [0, 1] above, from the coordinate st, the Jacobian's largest
+// entry k and its determinant scaled by 1/k^2 (detScaled, in [-2, 2]).
+// k / noise <= 2^18, so nothing overflows; non-finite inputs give 0.
+SG_FN float sgChartWeight(vec2 st, float k, float detScaled) {
+    float noise = SG_CHART_ROUNDING * (sgMaxAbs2(st) + 16.0f * k);
+    float units = abs(detScaled) * (k / noise);
+    return (units >= 0.0f && units <= SG_FLT_MAX)
+               ? smoothstep(SG_CHART_FADE_LO, SG_CHART_FADE_HI, units)
+               : 0.0f;
+}
+
 // Listing 6: orthonormal tangent/bitangent for any texture coordinate set,
 // generated per pixel from the screen derivatives of the coordinate
-// (dSTdx/dSTdy = dFdxFine/dFdyFine of the coordinate) and the frame's
-// sigmas. Works for clockwise and counter-clockwise UV layouts (mirrored
-// UVs): the bitangent follows +t in both.
-// The UV Jacobian is scaled to unit largest entry first (the determinant's
-// sign and the tangent's direction do not change), so the result is the
-// same for any texture or world scale. Degenerate UV Jacobian (the scaled
-// determinant below FLT_EPSILON: the two derivatives are parallel up to
-// rounding, and the paper's sign_det would be noise) or a pixel whose
-// sigmas vanish: vT = vB = 0, the layer contributes nothing. Otherwise both
-// are unit length and tangent.
-SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_OUT(vec3) vB) {
+// (dSTdx/dSTdy = dFdxFine/dFdyFine of st, the coordinate at the pixel, as
+// the paper's listing takes it) and the frame's sigmas. Works for clockwise
+// and counter-clockwise UV layouts (mirrored UVs): the bitangent follows +t
+// in both. The UV Jacobian is scaled to unit largest entry first (the
+// determinant's sign and the tangent's direction do not change), so the
+// frame's directions are the same for any texture or world scale.
+// Returned: vT, vB orthogonal and tangent, both of length w in [0, 1], the
+// chart's weight: 1 for a well-conditioned chart, fading to 0 where the
+// determinant is rounding noise (sgChartWeight) and where the tangent's
+// combination of the sigmas cancels (its part off the normal below 2^-10
+// of it at 0, above 2^-7 at 1: parallel sigmas, an edge-on or collapsed
+// screen footprint). TBN-style layers scale by the frame, so they fade with
+// it: a degenerate chart contributes nothing, and a rounding-size change of
+// st, dSTdx, dSTdy or the frame moves vT, vB by a rounding-size amount.
+// Zero sigmas (below ~1e-19 per pixel) or a zero or non-finite Jacobian:
+// vT = vB = 0.
+SG_FN void sgGenBasisTB(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT,
+                        SG_OUT(vec3) vB) {
     // One straight path with a final select (llvmpipe evaluates both sides
     // of a branch; this is on every pixel of every UV set).
     float k = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
@@ -88,17 +132,14 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3) vT, SG_O
     vec3 tRaw = f.sigmaX * invCO.x + f.sigmaY * invCO.y;
     // The sigmas are tangent only up to rounding; removing the normal
     // component of their combination again keeps t tangent, so vB = n x t
-    // is unit too. After one projection t is perpendicular to n up to
-    // ~FLT_EPSILON |tRaw| / |t|; if the tangent part is below 2^-10 of tRaw
-    // (the combination of the sigmas cancels: a degenerate screen/UV
-    // configuration, or sigmas that are pure rounding residue) the
-    // direction is not reliable: zero frame. So is a tangent part whose
-    // squared length is below SG_FLT_MIN (sigmas below ~1e-19 per pixel).
+    // is tangent and as long as t. After one projection t is perpendicular
+    // to n up to ~FLT_EPSILON |tRaw| / |t|.
     vec3 t1 = tRaw - dot(tRaw, f.nrmBase) * f.nrmBase;
     float l2 = dot(t1, t1);
-    bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && abs(det) >= SG_FLT_EPSILON &&
-                 l2 >= SG_FLT_MIN && l2 >= 9.5367432e-7f * dot(tRaw, tRaw); // (2^-10)^2
-    vec3 t = valid ? t1 * inversesqrt(l2) : vec3(0.0f);
+    float partW = smoothstep(9.5367432e-7f, 6.1035156e-5f, l2 / dot(tRaw, tRaw)); // 2^-20, 2^-14
+    bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && l2 >= SG_FLT_MIN;
+    float w = valid ? sgChartWeight(st, k, det) * partW : 0.0f;
+    vec3 t = valid ? t1 * (inversesqrt(l2) * w) : vec3(0.0f);
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
 }

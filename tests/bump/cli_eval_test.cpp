@@ -39,9 +39,10 @@ TEST(CliEval, GoodLinesGiveKnownAnswers) {
     // normalize((0,0,1) - (0.5,0,0)) = (-1, 0, 2)/sqrt(5); float output to 1e-6.
     EXPECT_NEAR(v[0]["n"][0].get<double>(), -1 / std::sqrt(5.0), 1e-6);
     EXPECT_NEAR(v[0]["n"][2].get<double>(), 2 / std::sqrt(5.0), 1e-6);
-    // resolve_sign -1: normalize(n + sg) = (0, 0.6, 0.8).
+    // resolve_sign -1 (flip mode: the front side's result negated):
+    // -normalize(n - sg) = -(0, -0.6, 0.8) = (0, 0.6, -0.8).
     EXPECT_NEAR(v[1]["n"][1].get<double>(), 0.6, 1e-6);
-    EXPECT_NEAR(v[1]["n"][2].get<double>(), 0.8, 1e-6);
+    EXPECT_NEAR(v[1]["n"][2].get<double>(), -0.8, 1e-6);
 
     const CliRun t =
         surfgrad("eval tspace-to-deriv", "{\"m\":[0.6,0]}\n{\"m\":[0,0.6],\"flip_v\":true}\n");

@@ -251,7 +251,7 @@ TEST(KnownAnswers, ParametrizationIndependenceGenBasisTB) {
             const dvec2 dSTdx = R * dvec2(J[0][0], J[0][1]), dSTdy = R * dvec2(J[1][0], J[1][1]);
             const dvec2 dHdST = glm::transpose(glm::inverse(R)) * hg; // = R hg (orthogonal)
             g::vec3 t, b;
-            g::sgGenBasisTB(f, f2(dSTdx), f2(dSTdy), t, b);
+            g::sgGenBasisTB(f, g::vec2(0.5f), f2(dSTdx), f2(dSTdy), t, b);
             normals[layout] = d3(g::sgResolve(f, g::sgSurfgradFromTBN(f2(dHdST), t, b)));
         }
         const dvec3 oracle = glm::normalize(n - (hg.x * e1 + hg.y * e2));
@@ -360,7 +360,7 @@ TEST(KnownAnswers, DoubleSidedModes) {
 
         auto run = [&](bool front, int mode, g::vec3& t, g::vec3& b) {
             g::SgFrame f = g::sgPrologue(f3(n), f3(dPdx), f3(dPdy), front, mode);
-            g::sgGenBasisTB(f, f2(dSTdx), f2(dSTdy), t, b);
+            g::sgGenBasisTB(f, g::vec2(0.5f), f2(dSTdx), f2(dSTdy), t, b);
             return d3(g::sgResolve(f, g::sgSurfgradFromTBN(deriv, t, b)));
         };
         g::vec3 t0, b0;

@@ -6,6 +6,7 @@
 // contract (finite outputs, resolve unit length, ...) on CPU and GPU.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -122,18 +123,48 @@ TEST(ParityContract, InvariantCheckRejectsBadOutputs) {
 }
 
 // The conditioning probe separates a singular configuration from a regular
-// one: GenBasisTB with parallel UV derivatives vs a well-shaped Jacobian.
+// one: listing 10 with parallel screen derivatives (its sign(det) is
+// rounding noise) vs a well-shaped frame. Listing 6 with parallel UV
+// derivatives is NOT ill-conditioned: its frame fades to zero there
+// (sgChartWeight), and the probe sees a stable zero.
 TEST(ParityContract, ConditionProbeFlagsSingularRecords) {
+    auto record = [](const eval::Entry& e,
+                     std::initializer_list<std::pair<const char*, std::vector<float>>> fields) {
+        std::vector<float> rec(size_t(eval::inStride()), 0.0f);
+        for (const eval::Field& f : e.inputs)
+            if (f.optional) rec[size_t(f.slot)] = f.defaultValue;
+        for (const auto& [key, v] : fields) {
+            const auto it = std::find_if(e.inputs.begin(), e.inputs.end(),
+                                         [&](const eval::Field& f) { return f.key == key; });
+            EXPECT_NE(it, e.inputs.end()) << key;
+            for (size_t i = 0; i < v.size(); ++i) rec[size_t(it->slot) + i] = v[i];
+        }
+        return rec;
+    };
+    const eval::Entry& l10 = *eval::findEntry("parallax-project");
+    const auto good = record(l10, {{"n", {0, 0, 1}},
+                                   {"dpdx", {1, 0, 0}},
+                                   {"dpdy", {0.2f, 1, 0}},
+                                   {"dir", {0.6f, 0, 0.8f}},
+                                   {"dstdx", {1, 0.2f}},
+                                   {"dstdy", {-0.1f, 1}}});
+    EXPECT_LT(parity::conditionProbe(l10, good.data(), parity::kPerturbationsLong), 1e-5);
+    // dpdy = 2 dpdx: n . (dpdx x dpdy) = 0 up to rounding.
+    auto singular = record(l10, {{"n", {0, 0, 1}},
+                                 {"dpdx", {1, 0.3f, 0}},
+                                 {"dpdy", {2, 0.6f, 0}},
+                                 {"dir", {0.6f, 0, 0.8f}},
+                                 {"dstdx", {1, 0.2f}},
+                                 {"dstdy", {-0.1f, 1}}});
+    EXPECT_GT(parity::conditionProbe(l10, singular.data(), parity::kPerturbationsLong), 0.1);
     const eval::Entry& basis = *eval::findEntry("basis");
-    std::vector<float> rec(size_t(eval::inStride()), 0.0f);
-    const float good[] = {0, 0, 1, 1, 0, 0, 0, 1, 0, 1, 0.2f, -0.1f, 1};
-    for (int i = 0; i < 13; ++i) rec[size_t(i)] = good[i];
-    EXPECT_LT(parity::conditionProbe(basis, rec.data(), parity::kPerturbationsLong), 1e-6);
-    rec[11] = 2.0f; // dstdy = 2 * dstdx: det = 0 up to rounding
-    rec[12] = 0.4f;
-    rec[10] = 0.2f;
-    rec[9] = 1.0f;
-    EXPECT_GT(parity::conditionProbe(basis, rec.data(), parity::kPerturbationsLong), 0.1);
+    const auto parallel = record(basis, {{"n", {0, 0, 1}},
+                                         {"dpdx", {1, 0, 0}},
+                                         {"dpdy", {0, 1, 0}},
+                                         {"st", {0.3f, 0.7f}},
+                                         {"dstdx", {0.2f, 1}},
+                                         {"dstdy", {0.4f, 2}}});
+    EXPECT_LT(parity::conditionProbe(basis, parallel.data(), parity::kPerturbationsLong), 1e-6);
 }
 
 } // namespace

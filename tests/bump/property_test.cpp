@@ -243,7 +243,7 @@ RC_GTEST_PROP(BumpProperties, GenBasisIsAnOrthonormalFrameAlongS, ()) {
     if (coin()) J = glm::dmat2(1, 0, 0, -1) * J; // mirrored UVs
     const dvec2 dSTdx = J[0], dSTdy = J[1];
     g::vec3 vT, vB;
-    g::sgGenBasisTB(f, f2(dSTdx), f2(dSTdy), vT, vB);
+    g::sgGenBasisTB(f, g::vec2(0.0f), f2(dSTdx), f2(dSTdy), vT, vB);
     const dvec3 t = d3(vT), b = d3(vB), n = d3(f.nrmBase);
     RC_ASSERT(std::fabs(glm::length(t) - 1.0) <= 4.0 * kEps);
     RC_ASSERT(std::fabs(glm::length(b) - 1.0) <= 4.0 * kEps);

@@ -18,7 +18,7 @@ void main() {
     SgFrame f = sgPrologue(vNormal, dFdxFine(vRelPos), dFdyFine(vRelPos), gl_FrontFacing,
                            SG_BFACE_NONE);
     vec3 vT, vB;
-    sgGenBasisTB(f, dFdxFine(vUv0), dFdyFine(vUv0), vT, vB);
+    sgGenBasisTB(f, vUv0, dFdxFine(vUv0), dFdyFine(vUv0), vT, vB);
     vec2 m = 2.0 * texture(uNormalMap, vUv0).xy - 1.0;
     vec3 n = sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(m, false), vT, vB));
     outColor = vec4(0.5 * n + 0.5, 1.0);

@@ -126,16 +126,11 @@ Result runMethod(const G::sampler2D& tex, const Field& f, const Pixel& px, int s
     G::SgFrame fr = pixelFrame(uv, px);
     glm::vec3 toEye(px.toEye);
     float scale = float(f.scale);
-    glm::vec2 sv = G::sgParallaxSearchVec(fr, uv, toEye, scale, steps == 0);
-    glm::vec2 corr;
-    if (steps == 0) {
-        corr = G::sgParallaxOffset(uv, sv, tex, 0);
-    } else {
-        float depth = 0.0f;
-        corr = G::sgParallaxOcclusion(uv, sv, tex, 0, steps, depth);
-    }
-    glm::vec3 off = G::sgParallaxSurfaceOffset(fr, uv, corr, scale, tex, 0);
-    return {glm::dvec2(corr), glm::dvec3(off)};
+    const G::SgParallaxSearch sv = G::sgParallaxSearch(fr, uv, toEye, scale, steps == 0);
+    const float depth = steps == 0 ? G::sgParallaxOffsetDepth(uv, tex, 0)
+                                   : G::sgParallaxOcclusionDepth(uv, sv.st, tex, 0, steps);
+    glm::vec3 off = G::sgParallaxSurfaceOffset(fr, uv, sv, depth, scale, tex, 0);
+    return {glm::dvec2(-depth * sv.st), glm::dvec3(off)};
 }
 
 double normalAngleDeg(const Field& f, glm::dvec2 a, glm::dvec2 b) {
@@ -244,26 +239,29 @@ TEST(ParallaxKnownAnswers, GrazingAndDegenerateViewsStayBounded) {
     for (double e : elevations) {
         for (int k = 0; k < 2; ++k) {
             glm::vec3 toEye(float(std::cos(e)), 0.0f, float(std::sin(e)));
-            glm::vec2 lim = G::sgParallaxSearchVec(fr, uv, toEye, float(f.scale), true);
-            glm::vec2 pom = G::sgParallaxSearchVec(fr, uv, toEye, float(f.scale), false);
-            float d = 0.0f;
-            glm::vec2 corr = k ? G::sgParallaxOcclusion(uv, pom, tex, 0, 32, d)
-                               : G::sgParallaxOffset(uv, lim, tex, 0);
+            const G::SgParallaxSearch lim =
+                G::sgParallaxSearch(fr, uv, toEye, float(f.scale), true);
+            const G::SgParallaxSearch pom =
+                G::sgParallaxSearch(fr, uv, toEye, float(f.scale), false);
+            const float d = k ? G::sgParallaxOcclusionDepth(uv, pom.st, tex, 0, 32)
+                              : G::sgParallaxOffsetDepth(uv, tex, 0);
+            const glm::vec2 corr = -d * (k ? pom.st : lim.st);
             ASSERT_TRUE(std::isfinite(corr.x) && std::isfinite(corr.y)) << e;
             // Offset limiting: |lim| <= scale (st = world units here, a unit
             // view direction); POM's search is at most 20x that
             // (SG_PARALLAX_MIN_ELEVATION = 0.05), plus rounding.
-            EXPECT_LE(glm::length(lim), f.scale * 1.0001) << e;
+            EXPECT_LE(glm::length(lim.st), f.scale * 1.0001) << e;
             EXPECT_LE(glm::length(corr), 20.0 * f.scale * 1.0001) << e;
-            glm::vec3 off = G::sgParallaxSurfaceOffset(fr, uv, corr, float(f.scale), tex, 0);
+            glm::vec3 off =
+                G::sgParallaxSurfaceOffset(fr, uv, k ? pom : lim, d, float(f.scale), tex, 0);
             EXPECT_TRUE(std::isfinite(off.x) && std::isfinite(off.y) && std::isfinite(off.z));
         }
     }
     // A zero view direction and a zero UV Jacobian give no correction.
-    EXPECT_EQ(G::sgParallaxSearchVec(fr, uv, glm::vec3(0.0f), 0.04f, false), glm::vec2(0.0f));
+    EXPECT_EQ(G::sgParallaxSearch(fr, uv, glm::vec3(0.0f), 0.04f, false).st, glm::vec2(0.0f));
     G::SgUvFrame flat = uv;
     flat.dSTdx = flat.dSTdy = glm::vec2(0.0f);
-    EXPECT_EQ(G::sgParallaxSearchVec(fr, flat, glm::vec3(0, 0.6f, 0.8f), 0.04f, false),
+    EXPECT_EQ(G::sgParallaxSearch(fr, flat, glm::vec3(0, 0.6f, 0.8f), 0.04f, false).st,
               glm::vec2(0.0f));
 }
 

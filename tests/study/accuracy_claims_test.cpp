@@ -165,9 +165,13 @@ TEST(StudyHalf, Binary32TranscriptionMatchesSharedBuild) {
         const vec3 dPdy(0.003f * u(rng), 0.003f * u(rng), 0.003f * u(rng));
         const vec2 dSTdx(0.001f * u(rng), 0.001f * u(rng)), dSTdy(0.001f * u(rng), 0.001f * u(rng));
         const vec2 m(0.6f * u(rng), 0.6f * u(rng));
+        // The transcription keeps listing 6's frame of a well-conditioned
+        // chart (chart weight 1); charts near singular are sgGenBasisTB's own
+        // (tests/bump/hardcases_test.cpp, DegenerateUvJacobians).
+        if (std::fabs(dSTdx.x * dSTdy.y - dSTdx.y * dSTdy.x) < 0.01f * 1e-6f) continue;
         const SgFrame f = sgPrologue(n, dPdx, dPdy, true, SG_BFACE_NONE);
         vec3 t, b;
-        sgGenBasisTB(f, dSTdx, dSTdy, t, b);
+        sgGenBasisTB(f, vec2(0.5f), dSTdx, dSTdy, t, b);
         const vec3 shared = sgResolve(f, sgSurfgradFromTBN(sgTspaceNormalToDeriv(m, false), t, b));
         auto v3f = [](vec3 v) { return V3<float>{v.x, v.y, v.z}; };
         const Frame<float> g = prologue(v3f(n), v3f(dPdx), v3f(dPdy));

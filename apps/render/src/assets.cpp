@@ -361,52 +361,6 @@ std::string elementOf(const MeshInstance& mi, const std::string& sub) {
     return mi.fieldPath + "." + sub;
 }
 
-// The linear part R(rotate_deg) * scale of derived UV set `d` on a mesh
-// that has `count` sets at this point; an InputError naming d's field when
-// its source set does not exist or the mesh is full.
-glm::mat2 derivedUvLinear(const Scene& scene, const DerivedUvSet& d, size_t count) {
-    if (size_t(d.from) >= count) {
-        throw io::InputError(scene.sourceName, d.fieldPath + ".from",
-                             "the mesh has " + std::to_string(count) + " UV set(s) (0.." +
-                                 std::to_string(int(count) - 1) + ") at this point, no set " +
-                                 std::to_string(d.from));
-    }
-    if (count >= size_t(kMaxUvSets)) {
-        throw io::InputError(scene.sourceName, d.fieldPath,
-                             "a mesh can have at most " + std::to_string(kMaxUvSets) +
-                                 " UV sets (it has " + std::to_string(count) + " already)");
-    }
-    const float a = glm::radians(d.rotateDeg), c = std::cos(a), sn = std::sin(a);
-    // Column-major: R = [[c, s], [-s, c]] as columns, then scale per axis.
-    return glm::mat2(c, sn, -sn, c) * glm::mat2(d.scale.x, 0.0f, 0.0f, d.scale.y);
-}
-
-// Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o) to
-// the built mesh, and their limit derivatives (the linear part R S times
-// those of the source set) to `limit` when the mesh has one. After
-// refinement is exact: subdivision masks are affine combinations, which
-// commute with an affine map, so refining set 0 and mapping it equals
-// refining the mapped set; it also costs no extra face-varying channel.
-// Vertices are already split wherever the source set has seams, and a
-// derived set is a function of its source, so it needs no further splits.
-void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, sm::RenderMesh& mesh,
-                      sm::LimitFrame& limit) {
-    for (const DerivedUvSet& d : mi.derivedUvSets) {
-        const size_t count = mesh.uvSets.size();
-        const glm::mat2 lin = derivedUvLinear(scene, d, count);
-        std::vector<glm::vec2> uv(mesh.uvSets[size_t(d.from)]);
-        for (auto& st : uv) st = lin * st + d.offset;
-        mesh.uvSets.push_back(std::move(uv));
-        if (!limit.empty() && limit.dUVdu.size() == count && limit.dUVdv.size() == count) {
-            std::vector<glm::vec2> du(limit.dUVdu[size_t(d.from)]), dv(limit.dUVdv[size_t(d.from)]);
-            for (auto& x : du) x = lin * x;
-            for (auto& x : dv) x = lin * x;
-            limit.dUVdu.push_back(std::move(du));
-            limit.dUVdv.push_back(std::move(dv));
-        }
-    }
-}
-
 // Vertex tangents for the UV sets in `wanted` (bit k: set k), each from its
 // own source. Limit tangents first: they need the limit frame aligned with
 // the vertices, which holds only until MikkTSpace splits one. Each
@@ -517,20 +471,6 @@ sm::RenderMesh loadMeshFile(const Scene& scene, const MeshInstance& mi, FileCach
     return sub.renderMesh();
 }
 
-// The derived UV sets of `mi` ("uv_sets": [{from, scale, rotate_deg,
-// offset}]) appended to adaptive patches: the map is affine and every
-// patch basis sums to one, so mapping a set's face-varying values maps its
-// evaluated UVs (as addDerivedUvSets maps refined UVs). Errors as there.
-void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, sm::AdaptivePatches& ap) {
-    for (const DerivedUvSet& d : mi.derivedUvSets) {
-        const size_t count = ap.uvSets.size();
-        const glm::mat2 lin = derivedUvLinear(scene, d, count);
-        sm::AdaptiveUvSet set = ap.uvSets[size_t(d.from)];
-        for (auto& st : set.values) st = lin * st + d.offset;
-        ap.uvSets.push_back(std::move(set));
-    }
-}
-
 // An adaptive mesh ("subdivision": {"mode": "adaptive"}): the cage's
 // feature-adaptive patches with its UV sets (and the derived ones); `mesh`
 // keeps their control points for the bounds. Morph targets of the cage
@@ -563,9 +503,12 @@ MeshAsset loadAdaptiveMeshAsset(const Scene& scene, const MeshInstance& mi) {
             return std::make_shared<sm::AdaptivePatches>(
                 sm::buildAdaptivePatches(cage, options, mi.subdivIsolation, mi.file.string()));
         });
-    if (!mi.derivedUvSets.empty()) {
+    // Derived UV sets, and every set only repeating maps read moved by
+    // whole units next to 0 (uv_sets.cpp).
+    const uint32_t repeatOnly = detail::repeatOnlyUvSets(scene, mi);
+    if (!mi.derivedUvSets.empty() || repeatOnly != 0u) {
         auto own = std::make_shared<sm::AdaptivePatches>(*patches);
-        addDerivedPatchUvSets(scene, mi, *own);
+        detail::addDerivedPatchUvSets(scene, mi, repeatOnly, *own);
         patches = std::move(own);
     }
     // "limit" tangents for the sets an enabled layer reads (vertexTangentSets).
@@ -616,8 +559,14 @@ MeshAsset loadMeshAsset(const Scene& scene, const MeshInstance& mi, FileCache& f
                                             [&] { return loadMeshFile(scene, mi, files, limit); });
     }
     if (a.mesh.normals.size() != a.mesh.positions.size()) sm::computeVertexNormals(a.mesh);
-    addDerivedUvSets(scene, mi, a.mesh, limit);
+    // Derived UV sets (uv_sets.cpp), then tangents from the sets as loaded,
+    // then every set only repeating maps read moved by whole units next to
+    // 0 (MikkTSpace sees the file's own coordinates).
+    const uint32_t repeatOnly = detail::repeatOnlyUvSets(scene, mi);
+    const uint32_t ownSets = uint32_t(a.mesh.uvSets.size());
+    detail::addDerivedUvSets(scene, mi, repeatOnly, a.mesh, limit);
     generateVertexTangents(scene, mi, vertexTangentSets(scene, mi), limit, a);
+    detail::recentreUvSets(repeatOnly & ((1u << ownSets) - 1u), a.mesh.uvSets);
     if (!mi.morphWeights.empty() && mi.morphWeights.size() != a.mesh.morphTargets.size()) {
         throw io::InputError(scene.sourceName, mi.fieldPath + ".morph.weights",
                              "the mesh has " + std::to_string(a.mesh.morphTargets.size()) +

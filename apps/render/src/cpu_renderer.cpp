@@ -280,6 +280,8 @@ detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, i
     in.dPdy = interp(d.rel, muy);
     in.worldPos = interp(d.world, mu);
     in.objPos = interp(d.obj, mu);
+    in.dObjdx = interp(d.obj, mux);
+    in.dObjdy = interp(d.obj, muy);
     in.normal = interp(d.normal, mu);
     in.dNdx = interp(d.normal, mux);
     in.dNdy = interp(d.normal, muy);

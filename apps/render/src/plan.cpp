@@ -141,7 +141,8 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
       << "    vec3 dPdx = dFdxFine(vRelPos);\n"
       << "    vec3 dPdy = dFdyFine(vRelPos);\n"
       << "    SgFrame frame = sgPrologue(vNormal, dPdx, dPdy, gl_FrontFacing, uBfaceMode);\n"
-      << "    vec3 baseNormal = frame.nrmBase;\n";
+      << "    vec3 baseNormal = frame.resolveSign * frame.nrmBase; // as displayed (flip: "
+         "negated)\n";
     const uint32_t uvMask = prologueUvMask(plan);
     for (int k = 0; k < plan.uvCount; ++k) {
         if (!(uvMask >> k & 1u)) continue;
@@ -161,7 +162,8 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
              "mat3(1.0));\n";
     }
     if (plan.usesObjectVolume) {
-        o << "    SgVolumeSpace volObject = sgVolumeSpace(frame, vObjPos, uModel3, uModelInv3);\n";
+        o << "    SgVolumeSpace volObject = sgVolumeSpaceDeriv(vObjPos, dFdxFine(vObjPos), "
+             "dFdyFine(vObjPos), uModel3, uModelInv3);\n";
     }
     if (!movesSurface(plan)) emitBaseColor(plan, o);
     o << "    vec3 surfGrad = vec3(0.0);\n";
@@ -469,7 +471,8 @@ struct CpuShader {
         if (plan.usesWorldVolume)
             s.volWorld = G::sgVolumeSpace(s.frame, in.worldPos, glm::mat3(1.0f), glm::mat3(1.0f));
         if (plan.usesObjectVolume)
-            s.volObject = G::sgVolumeSpace(s.frame, in.objPos, u.model3, u.modelInv3);
+            s.volObject =
+                G::sgVolumeSpaceDeriv(in.objPos, in.dObjdx, in.dObjdy, u.model3, u.modelInv3);
         return s;
     }
 
@@ -522,7 +525,7 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
                         const std::vector<FeatureSamplers>& fsmp, const PixelInputs& in) {
     const CpuShader sh{plan, u, smp, fsmp, in};
     CpuShadeState s = sh.prologue();
-    const glm::vec3 baseNormal = s.frame.nrmBase;
+    const glm::vec3 baseNormal = s.frame.resolveSign * s.frame.nrmBase;
     const bool lateBaseColor = movesSurface(plan);
     glm::vec3 baseColor = lateBaseColor ? glm::vec3(0.0f) : sh.baseColor(s);
     glm::vec3 nrm = sh.group(0, s, glm::vec3(0.0f), lateBaseColor ? &baseColor : nullptr);

@@ -28,6 +28,33 @@ namespace sg::render::detail {
 // sets are set 0 scaled by 4 (a tiling detail set), normals analytic.
 sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p);
 
+// UV sets of a mesh asset (uv_sets.cpp).
+// The sets of `mi` (bit k: set k) that only repeating textures read: the
+// maps of UV-reading layers of its material (post_resolve groups and
+// disabled layers included: the viewer may enable them), its base colour
+// map and its displacement map, each on its set. A set read by a clamped
+// map or by feature maps (clamped at their border) is not one.
+uint32_t repeatOnlyUvSets(const Scene& scene, const MeshInstance& mi);
+// Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o,
+// computed in binary64 from the source set as loaded) to the built mesh,
+// and their limit derivatives (R S times the source set's) to `limit` when
+// it has them; a derived set in `repeatOnly` is stored moved by whole units
+// next to 0 (recentreUvSets) before it is rounded to binary32. InputError
+// naming the field for a missing source set or a full mesh.
+void addDerivedUvSets(const Scene& scene, const MeshInstance& mi, uint32_t repeatOnly,
+                      sg::mesh::RenderMesh& mesh, sg::mesh::LimitFrame& limit);
+// The same for adaptive patches' face-varying values (every patch basis
+// sums to one, so an affine map of the values maps the evaluated UVs), and
+// the patches' own sets in `repeatOnly` re-centred.
+void addDerivedPatchUvSets(const Scene& scene, const MeshInstance& mi, uint32_t repeatOnly,
+                           sg::mesh::AdaptivePatches& ap);
+// Moves every set k in `sets` by the whole units (per coordinate) of the
+// centre of its bounding box, rounded toward zero: world-unit terrain UVs
+// around 1e4 come back next to 0, where binary32 keeps 13 more bits of the
+// fraction for interpolation and dFdxFine; repeating textures sample the
+// same texels. Sets whose centre is within one unit of 0 are unchanged.
+void recentreUvSets(uint32_t sets, std::vector<std::vector<glm::vec2>>& uvSets);
+
 // Procedural textures (procedural_textures.cpp): a tileable height field on
 // [0,1]^2 converted to the requested output (see TextureSource).
 TextureImage makeProceduralTexture(const TextureSource& src);
@@ -147,9 +174,10 @@ struct PixelInputs {
     glm::vec3 relPosLit{0.0f}; // displaced adaptive meshes: vRelPosLit (the lit position)
     std::array<glm::vec2, kMaxUvSets> uv{}, dUVdx{}, dUVdy{};
     std::array<glm::vec4, kMaxUvSets> tangent{};
-    glm::vec3 dPdx{0.0f}, dPdy{0.0f}; // of relPos
-    glm::vec3 dNdx{0.0f}, dNdy{0.0f}; // of normal (interpolated, unnormalized)
-    glm::vec2 fragCoord{0.0f};        // gl_FragCoord.xy: window position of the pixel centre
+    glm::vec3 dPdx{0.0f}, dPdy{0.0f};     // of relPos
+    glm::vec3 dObjdx{0.0f}, dObjdy{0.0f}; // of objPos (object-space volume domains)
+    glm::vec3 dNdx{0.0f}, dNdy{0.0f};     // of normal (interpolated, unnormalized)
+    glm::vec2 fragCoord{0.0f};            // gl_FragCoord.xy: window position of the pixel centre
     bool frontFacing = true;
     float primId = 0.0f;      // gl_PrimitiveID
     glm::vec4 patchAov{0.0f}; // adaptive meshes: vPatchAov (Aov::Patch)

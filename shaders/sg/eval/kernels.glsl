@@ -140,7 +140,8 @@ SG_FN SgFrame sgEvalFrameN(vec3 n) { return sgEvalFrame(n, vec3(0.0f), vec3(0.0f
 #define SG_EVAL_RESOLVE_IN(F)                                                                      \
     SG_EVAL_N_IN(F)                                                                               \
     F(vec3, sg, ("surface gradient (tangent to the surface)"))                                    \
-    F(float, resolve_sign, ("+1, or -1 for back faces in flip mode", sgDefault(1), sgGenSign))
+    F(float, resolve_sign, ("+1, or -1 for back faces in flip mode (negates the result)",          \
+                            sgDefault(1), sgGenSign))
 #define SG_EVAL_RESOLVE_OUT(F) F(vec3, n, ("perturbed unit normal"))
 SG_FN SgEvalOut sgEvalResolve(SgEvalIn sgRecIn) {
     SG_REC_READ(SG_EVAL_RESOLVE_IN)
@@ -151,7 +152,7 @@ SG_FN SgEvalOut sgEvalResolve(SgEvalIn sgRecIn) {
 }
 #define SG_EVAL_RESOLVE(X)                                                                         \
     X(("resolve"), 0, sgEvalResolve, SG_EVAL_RESOLVE_IN, SG_EVAL_RESOLVE_OUT,                      \
-      ("normalize(n - resolve_sign * sg) (L1)"), Mixed, 1e-5, 0.02, SG_EVAL_WHY_NORMALIZING,      \
+      ("resolve_sign * normalize(n - sg) (L1)"), Mixed, 1e-5, 0.02, SG_EVAL_WHY_NORMALIZING,      \
       fieldInputs)
 
 // ---------------------------------------------------------------------------
@@ -195,20 +196,25 @@ SG_FN SgEvalOut sgEvalTbn(SgEvalIn sgRecIn) {
 
 // ---------------------------------------------------------------------------
 // basis (L6, L16)
-#define SG_EVAL_BASIS_IN(F) SG_EVAL_FRAME_IN(F) SG_EVAL_DSTDXY_IN(F)
+#define SG_EVAL_BASIS_IN(F)                                                                        \
+    SG_EVAL_FRAME_IN(F)                                                                           \
+    F(vec2, st, ("texture coordinate at the pixel (sets the rounding of the derivatives)", sgDefault(0))) \
+    SG_EVAL_DSTDXY_IN(F)
 #define SG_EVAL_BASIS_OUT(F)                                                                       \
-    F(vec3, t, ("unit tangent (direction of +s)")) F(vec3, b, ("unit bitangent (direction of +t)"))
+    F(vec3, t, ("tangent (direction of +s), as long as the chart weight"))                    \
+    F(vec3, b, ("bitangent (direction of +t), as long as t"))
 SG_FN SgEvalOut sgEvalBasis(SgEvalIn sgRecIn) {
     SG_REC_READ(SG_EVAL_BASIS_IN)
     SG_REC_DECLARE(SG_EVAL_BASIS_OUT)
-    sgGenBasisTB(sgEvalFrame(n, dpdx, dpdy), dstdx, dstdy, t, b);
+    sgGenBasisTB(sgEvalFrame(n, dpdx, dpdy), st, dstdx, dstdy, t, b);
     SG_REC_RETURN(SgEvalOut, SG_EVAL_BASIS_OUT)
 }
 #define SG_EVAL_BASIS(X)                                                                           \
     X(("basis"), 3, sgEvalBasis, SG_EVAL_BASIS_IN, SG_EVAL_BASIS_OUT,                              \
       ("procedural tangent/bitangent from UV derivatives (L6, L16)"), Mixed, 1e-5, 0.10,         \
-      ("orthonormal frame from the UV Jacobian: sign(det) is noise for parallel UV derivatives " \
-       "or sigmas; measured 5.3e-7, 5.5% excluded"),                                              \
+      ("orthogonal frame from the UV Jacobian, scaled by the chart weight (0 where sign(det) "   \
+       "would be noise); measured below 5e-7, 2.5% excluded (the slope of the fade, parallel "    \
+       "sigmas)"),                                                                                \
       fieldInputs)
 
 // ---------------------------------------------------------------------------

@@ -27,10 +27,14 @@
 #define SG_LIMIT_TANGENT_DEGENERATE_UV 1
 #define SG_LIMIT_TANGENT_DEGENERATE_SURFACE 2
 
-// A chart is well conditioned when the sine of the angle between its two
-// derivatives exceeds this (sg::mesh::limitTangent's threshold): the chain
-// rule divides by it.
-#define SG_LIMIT_TANGENT_MIN_SINE 1.0e-3f
+// A chart is well conditioned when its determinant, relative to the square
+// of its largest entry, exceeds this (sg::mesh::limitTangent's threshold):
+// the chain rule divides by it. Relative to the chart's size, not to the
+// product of its two derivatives' lengths (the sine of their angle): a
+// derivative that is rounding noise (the UV chart of a planar projection's
+// side walls: dST/dv ~ 1e-7 |st|) has a random direction, so its sine says
+// nothing, while its size says it is noise.
+#define SG_LIMIT_TANGENT_MIN_REL_DET 1.0e-3f
 
 // v minus its component along unit n, normalized; zero when less than 1e-4
 // of |v| is left (v along n up to binary32 rounding of the projection).
@@ -60,8 +64,8 @@ SG_FN vec3 sgAnyOrthogonal(vec3 n) {
 // derivatives from 1e-30 to 1e30 work. Cases (`resolved`; the per-point
 // rules of sg::mesh::limitTangent, then the uniform path's final
 // projection onto the vertex normal):
-//  - Regular: both charts well conditioned (sines above
-//    SG_LIMIT_TANGENT_MIN_SINE): T = dP/ds made orthogonal to unitNormal,
+//  - Regular: both charts well conditioned (relative determinants above
+//    SG_LIMIT_TANGENT_MIN_REL_DET): T = dP/ds made orthogonal to unitNormal,
 //    w = sign(det J);
 //  - DegenerateUv (zero-area or collapsed UVs, det J near 0): T = dP/du
 //    made orthogonal to unitNormal (dP/dv if that leaves nothing), w = +1;
@@ -86,9 +90,8 @@ SG_FN vec4 sgPatchLimitTangent(vec3 dPdu, vec3 dPdv, vec2 dSTdu, vec2 dSTdv, vec
     // J = [[a b], [c d]] = [[ds/du ds/dv], [dt/du dt/dv]], entries <= 1.
     float a = ju.x, b = jv.x, c = ju.y, d = jv.y;
     float det = a * d - b * c;
-    bool uvRegular = abs(det) > SG_LIMIT_TANGENT_MIN_SINE * length(ju) * length(jv);
-    bool surfaceRegular =
-        length(cross(pu, pv)) > SG_LIMIT_TANGENT_MIN_SINE * length(pu) * length(pv);
+    bool uvRegular = abs(det) > SG_LIMIT_TANGENT_MIN_REL_DET;
+    bool surfaceRegular = length(cross(pu, pv)) > SG_LIMIT_TANGENT_MIN_REL_DET;
     float w = uvRegular && det < 0.0f ? -1.0f : 1.0f;
     // Along dP/ds: (d pu - c pv) / det, without the division.
     vec3 dPds = uvRegular ? w * (d * pu - c * pv) : vec3(0.0f);

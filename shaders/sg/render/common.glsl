@@ -34,7 +34,8 @@
 
 // A texture coordinate set at the pixel, with its screen derivatives and the
 // basis TBN-style layers use (listing 5):
-//   pixel frames  - vT, vB orthonormal, generated per pixel (listing 6);
+//   pixel frames  - vT, vB orthogonal, generated per pixel (listing 6), of
+//                   the chart's weight in length (1 on ordinary charts);
 //   vertex frames - vT, vB the mikktspace basis scaled by 1/|n| (section 2.2,
 //                   listing 16), from interpolated vertex (or limit) tangents.
 struct SgUvFrame {
@@ -45,8 +46,9 @@ struct SgUvFrame {
     vec3 vB;    // d(position)/dt direction (frame space)
 };
 
-// Per-pixel basis for any texture coordinate set (listing 6). A zero-area UV
-// Jacobian gives a zero vT (and vB): TBN-style layers then add nothing.
+// Per-pixel basis for any texture coordinate set (listing 6). vT and vB
+// carry the chart's weight (sgGenBasisTB): a zero-area or collapsed UV
+// Jacobian gives zero vectors, and TBN-style layers fade out with them.
 SG_FN SgUvFrame sgUvFramePixel(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy) {
     SgUvFrame u;
     u.st = st;
@@ -54,7 +56,7 @@ SG_FN SgUvFrame sgUvFramePixel(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy) {
     u.dSTdy = dSTdy;
     vec3 t;
     vec3 b;
-    sgGenBasisTB(f, dSTdx, dSTdy, t, b);
+    sgGenBasisTB(f, st, dSTdx, dSTdy, t, b);
     u.vT = t;
     u.vB = b;
     return u;
@@ -104,6 +106,25 @@ SG_FN SgVolumeSpace sgVolumeSpace(SgFrame f, vec3 domainPos, mat3 worldFromDomai
     v.pos = domainPos;
     v.dPdx = domainFromWorld * f.dPdx;
     v.dPdy = domainFromWorld * f.dPdy;
+    v.gradToFrame = transpose(domainFromWorld);
+    v.normalToDomain = transpose(worldFromDomain);
+    return v;
+}
+
+// The same with the domain position's own screen derivatives (dDomdx,
+// dDomdy: dFdxFine of the object position, for object space). For a
+// transform that shrinks an axis (an instance flattened to 1e-6), mapping
+// the frame's dPdx to the domain multiplies the rounding of the
+// camera-relative position (an ulp of its distance from the camera) by the
+// inverse scale, and the footprint, the texture LOD and the noise's octave
+// fade follow that noise; the object position's own derivatives carry only
+// their own rounding.
+SG_FN SgVolumeSpace sgVolumeSpaceDeriv(vec3 domainPos, vec3 dDomdx, vec3 dDomdy,
+                                       mat3 worldFromDomain, mat3 domainFromWorld) {
+    SgVolumeSpace v;
+    v.pos = domainPos;
+    v.dPdx = dDomdx;
+    v.dPdy = dDomdy;
     v.gradToFrame = transpose(domainFromWorld);
     v.normalToDomain = transpose(worldFromDomain);
     return v;

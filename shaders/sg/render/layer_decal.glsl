@@ -48,16 +48,32 @@ SG_FN SgDecalParams sgUnpackDecal(vec4 r0, vec4 r1, vec4 r2, vec4 r3, vec4 r4, v
     return p;
 }
 
+// The narrowest angle fade, in cosine (about 0.06 degrees at 90): a
+// narrower [start, end] (e.g. [90, 90], "no angle fade") still ramps over
+// this width below cosStart, so a decal whose projection direction lies in
+// the surface does not switch on the rounding of dot(n, axisZ).
+#define SG_DECAL_MIN_ANGLE_FADE 9.765625e-4f // 2^-10
+
 // Fall-off of the projector at local position l (size-normalized) for a
 // surface with base normal n: 0 outside the box, 1 in its core.
 SG_FN float sgDecalFade(SgDecalParams p, vec3 l, vec3 n) {
     if (abs(l.x) > 1.0f || abs(l.y) > 1.0f || abs(l.z) > 1.0f) return 0.0f;
     float depthFade = 1.0f - smoothstep(1.0f - max(p.fadeWidth, 0.0f), 1.0f, abs(l.z));
     float c = dot(n, p.axisZ);
-    float range = p.cosStart - p.cosEnd;
-    float angleFade = range > SG_FLT_EPSILON ? clamp((c - p.cosEnd) / range, 0.0f, 1.0f)
-                                             : (c >= p.cosStart ? 1.0f : 0.0f);
+    float cosEnd = min(p.cosEnd, p.cosStart - SG_DECAL_MIN_ANGLE_FADE);
+    float angleFade = clamp((c - cosEnd) / (p.cosStart - cosEnd), 0.0f, 1.0f);
     return depthFade * angleFade;
+}
+
+// The projector's half depth as the box uses it: at least 16 ulps of the
+// positions it is measured between (relPos and the origin, relative to the
+// camera). A box thinner than the rounding of the positions cannot say
+// which side of it a surface lies on: a decal 1e-6 deep lying on a surface
+// 3 units away would fade in and out with every rounding-size move of
+// either; widened to the rounding, the surface stays in its core.
+SG_FN float sgDecalHalfDepth(SgDecalParams p, vec3 relPos) {
+    float roundingFloor = 16.0f * SG_FLT_EPSILON * (sgMaxAbs3(relPos) + sgMaxAbs3(p.origin));
+    return max(max(p.halfSize.z, roundingFloor), SG_FLT_EPSILON);
 }
 
 // The pixel in the projector's box: l in [-1, 1]^3 inside, the fade (depth
@@ -75,7 +91,8 @@ struct SgDecalHit {
 SG_FN SgDecalHit sgDecalProject(SgFrame f, vec3 relPos, SgDecalParams p) {
     SgDecalHit h;
     vec3 r = relPos - p.origin;
-    vec3 inv = vec3(1.0f) / max(p.halfSize, vec3(SG_FLT_EPSILON));
+    vec3 inv = vec3(1.0f) / max(vec3(p.halfSize.x, p.halfSize.y, sgDecalHalfDepth(p, relPos)),
+                                vec3(SG_FLT_EPSILON));
     h.l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
     h.fade = sgDecalFade(p, h.l, f.nrmBase);
     h.st = 0.5f * vec2(h.l.x, h.l.y) + vec2(0.5f);

@@ -1,16 +1,19 @@
 // Layer kinds `parallax` (offset mapping with offset limiting) and `pom`
 // (parallax occlusion mapping): layer_parallax.glsl, Mikkelsen 2019,
-// section 2.6 (listings 10 and 11), section 3 and Fig. 3(c)-(d). The two
+// section 2.6 (listing 10; listing 11's inverse without the inverse), section
+// 3 and Fig. 3(c)-(d). The two
 // kinds share their math, records and emission and differ in the search
 // (one tap vs a marched ray), so both entries live in this unit.
 //
 // What a layer does, in order (GLSL statement and CPU call alike):
-//  1. the search vector (listing 10) from the view direction at the pixel
-//     and the correction of the UV set's coordinate (offset or POM);
-//  2. the virtual surface: surfOffset += listing 11's tangent offset plus
-//     the relief along the normal;
+//  1. the search (listing 10's projection of the view direction at the
+//     pixel: texture, tangent-plane and screen steps per unit of depth) and
+//     the depth of the hit (offset or POM);
+//  2. the virtual surface: surfOffset += the view ray's tangential travel
+//     to that depth plus the relief along the normal (what listing 11's
+//     inverse would give, without inverting the UV Jacobian);
 //  3. section 2.6's normal correction of nrmBase (option, dFdxFine of the
-//     vertex normal);
+//     vertex normal, moved by the screen step to that depth);
 //  4. uv<k>.st += correction, keeping the uncorrected derivatives (the mip
 //     level of the coordinate before correction);
 //  5. the relief's own surface gradient at the corrected coordinate
@@ -87,24 +90,22 @@ std::string glslStatement(const GlslLayerContext& c, bool occlusion) {
     const std::string uv = c.uv(), t = c.tex(0), in = c.indent + "    ";
     std::string o = "{\n";
     o += in + "SgParallaxParams p = " + c.unpack(c.layer().kind->records[0]) + ";\n";
-    o += in + "vec2 searchVec = sgParallaxSearchVec(frame, " + uv +
+    o += in + "SgParallaxSearch search = sgParallaxSearch(frame, " + uv +
          ", -(vRelPos + surfOffset), p.scale, " + (occlusion ? "false" : "true") + ");\n";
     if (occlusion) {
-        o += in + "float hitDepth;\n";
-        o += in + "vec2 corr = sgParallaxOcclusion(" + uv + ", searchVec, " + t +
-             ", p.channel, p.steps, hitDepth);\n";
+        o += in + "float depth = sgParallaxOcclusionDepth(" + uv + ", search.st, " + t +
+             ", p.channel, p.steps);\n";
     } else {
-        o += in + "vec2 corr = sgParallaxOffset(" + uv + ", searchVec, " + t + ", p.channel);\n";
+        o += in + "float depth = sgParallaxOffsetDepth(" + uv + ", " + t + ", p.channel);\n";
     }
-    o += in + "surfOffset += sgParallaxSurfaceOffset(frame, " + uv + ", corr, p.scale, " + t +
-         ", p.channel);\n";
+    o += in + "surfOffset += sgParallaxSurfaceOffset(frame, " + uv + ", search, depth, p.scale, " +
+         t + ", p.channel);\n";
     if (p.correctNormal) {
-        o += in + "frame = sgReprologue(frame, sgParallaxCorrectNormal(frame, " + uv +
-             ", corr, sgParallaxUnitNormalDeriv(frame, vNormal, dFdxFine(vNormal)), "
-             "sgParallaxUnitNormalDeriv(frame, vNormal, dFdyFine(vNormal))), frame.dPdx, "
-             "frame.dPdy);\n";
+        o += in + "frame = sgFrameWithBase(frame, sgParallaxCorrectNormal(frame, -depth * "
+                  "search.scr, sgParallaxUnitNormalDeriv(frame, vNormal, dFdxFine(vNormal)), "
+                  "sgParallaxUnitNormalDeriv(frame, vNormal, dFdyFine(vNormal))));\n";
     }
-    o += in + uv + ".st += corr;\n";
+    o += in + uv + ".st -= depth * search.st;\n";
     if (p.bump) {
         o += in + "surfGrad += sgLayerHeight(frame, " + uv + ", sgUnpackHeight(" + c.rec(0) +
              "), " + t + ");\n";
@@ -117,23 +118,20 @@ void cpuCall(const CpuLayerContext& c, CpuShadeState& s, bool occlusion) {
     const G::SgParallaxParams p = G::sgUnpackParallax(c.rec()[0]);
     G::SgUvFrame& uv = s.uv[size_t(c.layer().uvSet)];
     const G::sampler2D t = c.tex(0);
-    glm::vec2 searchVec =
-        G::sgParallaxSearchVec(s.frame, uv, -(c.in.relPos + s.surfOffset), p.scale, !occlusion);
-    glm::vec2 corr;
-    if (occlusion) {
-        float hitDepth = 0.0f;
-        corr = G::sgParallaxOcclusion(uv, searchVec, t, p.channel, p.steps, hitDepth);
-    } else {
-        corr = G::sgParallaxOffset(uv, searchVec, t, p.channel);
-    }
-    s.surfOffset += G::sgParallaxSurfaceOffset(s.frame, uv, corr, p.scale, t, p.channel);
+    const G::SgParallaxSearch search =
+        G::sgParallaxSearch(s.frame, uv, -(c.in.relPos + s.surfOffset), p.scale, !occlusion);
+    const float depth = occlusion
+                            ? G::sgParallaxOcclusionDepth(uv, search.st, t, p.channel, p.steps)
+                            : G::sgParallaxOffsetDepth(uv, t, p.channel);
+    s.surfOffset += G::sgParallaxSurfaceOffset(s.frame, uv, search, depth, p.scale, t, p.channel);
     if (prm.correctNormal) {
         glm::vec3 n = G::sgParallaxCorrectNormal(
-            s.frame, uv, corr, G::sgParallaxUnitNormalDeriv(s.frame, c.in.normal, c.in.dNdx),
+            s.frame, -depth * search.scr,
+            G::sgParallaxUnitNormalDeriv(s.frame, c.in.normal, c.in.dNdx),
             G::sgParallaxUnitNormalDeriv(s.frame, c.in.normal, c.in.dNdy));
-        s.frame = G::sgReprologue(s.frame, n, s.frame.dPdx, s.frame.dPdy);
+        s.frame = G::sgFrameWithBase(s.frame, n);
     }
-    uv.st += corr;
+    uv.st -= depth * search.st;
     if (prm.bump) s.surfGrad += G::sgLayerHeight(s.frame, uv, G::sgUnpackHeight(c.rec()[0]), t);
 }
 

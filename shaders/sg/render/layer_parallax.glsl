@@ -1,11 +1,19 @@
 // Bump layers that move the surface: offset (parallax) mapping and parallax
 // occlusion mapping on a height map. Mikkelsen 2019, section 2.6: the view
 // direction goes to texture space through the true metric of the texture
-// mapping (listing 10, sgProjectVecToTextureSpace), the chosen texture
-// offset goes back to the tangent plane (listing 11,
-// sgTexSpaceOffsToSurface) and, with the height at the corrected
-// coordinate, gives the position of the virtual surface; section 3 and
+// mapping (listing 10's projection, sgParallaxSearch), and the virtual
+// surface is the point of the view ray at the depth found; section 3 and
 // Fig. 3(c)-(d): later groups re-prologue on that virtual surface.
+//
+// Listing 11 (sgTexSpaceOffsToSurface) maps the texture offset back to the
+// tangent plane through the inverse UV Jacobian. Every offset here is a
+// multiple of listing 10's projection J w of the view's screen-space step
+// w, so J^-1 (J w) is w itself: the search keeps w and its tangent-plane
+// image (the view ray's tangential travel) beside the texture step, and
+// no inverse is taken. That matters on singular charts (the side walls of
+// a planar projection, collapsed UVs), where J^-1 would amplify the
+// rounding of a zero determinant into the virtual surface, its normal and
+// every post-resolve layer on it.
 // Offset mapping with offset limiting is Welsh 2004 (section 4.3, the
 // paper's skipProj); POM is a linear search with a secant refinement
 // (Kaneko et al. 2001 and its steep-parallax descendants).
@@ -33,7 +41,9 @@
 // cos = dot(nrmBase, toEye); cos is clamped below to this value (about 87.1
 // degrees from the normal), so the search is at most 20 times the
 // offset-limited vector (which is itself bounded by scale times the texture
-// metric): finite and bounded for edge-on and back-facing views.
+// metric): finite and bounded for edge-on and back-facing views. The cosine
+// between the base normal and the triangle's own normal is bounded by the
+// same value (sgParallaxSearch).
 #define SG_PARALLAX_MIN_ELEVATION 0.05f
 
 // Record r0 = (scale, channel, steps, 0).
@@ -88,37 +98,84 @@ SG_FN float sgParallaxHeight(sampler2D tex, vec2 st, vec2 dSTdx, vec2 dSTdy, int
     return clamp(sgTexelChannel(textureGrad(tex, st, dSTdx, dSTdy), channel), 0.0f, 1.0f);
 }
 
-// The texture-space search vector: the st offset per unit of depth (1 - H)
-// going DOWN into the relief, away from the eye (st(depth) = st0 - depth *
-// searchVec). toEye need not be unit (zero gives (0, 0)).
-//   offsetLimited - true: Welsh's offset limiting (listing 10, skipProj);
-//                   false: divided by the clamped elevation (POM: the ray
-//                   descends one unit of depth per searchVec).
-SG_FN vec2 sgParallaxSearchVec(SgFrame f, SgUvFrame uv, vec3 toEye, float scale,
-                               bool offsetLimited) {
+// The search of a parallax layer, per unit of relief depth (1 - H) going
+// down into the relief away from the eye: the change of the texture
+// coordinate (st(d) = st0 - d * st), of the point on the tangent plane
+// (frame space: the view ray's tangential travel; the virtual surface at
+// depth d is p - d * surf + scale * (H - 1) * nrmBase) and of the pixel on
+// screen (pixels; section 2.6's normal correction).
+struct SgParallaxSearch {
+    vec2 st;
+    vec3 surf;
+    vec2 scr;
+};
+
+// Listing 10 with skipProj (offset limiting, Welsh 2004) or divided by the
+// view's elevation over the tangent plane clamped to
+// SG_PARALLAX_MIN_ELEVATION (POM: one unit of depth per step of the ray).
+// toEye need not be unit (zero gives zeros).
+//   w = (vR1 . e, vR2 . e) / (det k) is the screen-space step whose
+//   tangent-plane image is the view's tangential part e_t; det = n . (dPdx x
+//   dPdy) / k^2 is |dPdx x dPdy| / k^2 times the cosine c between the base
+//   normal and the surface's geometric normal. A vertex normal nearly in
+//   the triangle's plane (c -> 0) would make w, and the search, grow as 1/c
+//   (the paper clamps det at FLT_EPSILON: a 1e7 amplification, and a sign
+//   that flips on rounding as c crosses 0). Here c is bounded like the
+//   view's elevation: 1/det becomes det / max(det, cMin |dPdx x dPdy| /
+//   k^2)^2 with cMin = SG_PARALLAX_MIN_ELEVATION, so the search grows at
+//   most 20x and fades to zero through c = 0 (continuous, odd in det).
+// Zero or non-finite dPdx, dPdy or UV Jacobian, or a zero toEye: zeros.
+// Every output is kept within SG_BIG.
+SG_FN SgParallaxSearch sgParallaxSearch(SgFrame f, SgUvFrame uv, vec3 toEye, float scale,
+                                        bool offsetLimited) {
+    SgParallaxSearch r;
+    r.st = vec2(0.0f);
+    r.surf = vec3(0.0f);
+    r.scr = vec2(0.0f);
     vec3 e = sgSafeNormalize(toEye, vec3(0.0f));
-    vec2 v = sgProjectVecToTextureSpace(f, e, uv.dSTdx, uv.dSTdy, scale, true);
-    if (offsetLimited) return v;
-    return v / max(dot(f.nrmBase, e), SG_PARALLAX_MIN_ELEVATION);
+    float k = max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
+    float sm = max(sgMaxAbs2(uv.dSTdx), sgMaxAbs2(uv.dSTdy));
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(sm >= SG_FLT_MIN) || !(sm <= SG_FLT_MAX) ||
+        sgMaxAbs3(e) == 0.0f) {
+        return r;
+    }
+    vec3 px = sgDivScale3(f.dPdx, k);
+    vec3 py = sgDivScale3(f.dPdy, k);
+    vec3 vR1 = cross(py, f.nrmBase);
+    vec3 vR2 = cross(f.nrmBase, px);
+    float det = dot(px, vR1);
+    float g = SG_PARALLAX_MIN_ELEVATION * length(cross(px, py));
+    float rcpDet = det / max(max(det * det, g * g), SG_FLT_MIN); // <= 1 / g
+    // The screen step times k (components <= 2 / g).
+    vec2 wk = rcpDet * vec2(dot(vR1, e), dot(vR2, e));
+    float rcpElev = offsetLimited ? 1.0f : 1.0f / max(dot(f.nrmBase, e), SG_PARALLAX_MIN_ELEVATION);
+    float sgn = scale < 0.0f ? -1.0f : 1.0f;
+    vec4 gain = vec4(abs(scale), rcpElev, 1.0f, 1.0f);
+    // Tangent plane: sigma / k is dimensionless, so surf is e_t (up to the
+    // bounded 1/c) times scale / elevation.
+    vec3 surf = sgDivScale3(f.sigmaX, k) * wk.x + sgDivScale3(f.sigmaY, k) * wk.y;
+    r.surf = sgn * sgBoundedScale3(surf, gain);
+    vec2 stDir = sgDivScale2(uv.dSTdx, sm) * wk.x + sgDivScale2(uv.dSTdy, sm) * wk.y;
+    r.st = sgn * sgBoundedScale2(stDir, vec4(abs(scale), rcpElev, sm, 1.0f / k));
+    r.scr = sgn * sgBoundedScale2(wk, vec4(abs(scale), rcpElev, 1.0f / k, 1.0f));
+    return r;
 }
 
 // Offset mapping with offset limiting (Welsh 2004): the depth at the pixel's
-// own coordinate, 1 - H(st0), times the offset-limited search vector. Returns
-// the texture-space correction (corrected st = st0 + result).
-SG_FN vec2 sgParallaxOffset(SgUvFrame uv, vec2 searchVec, sampler2D tex, int channel) {
-    float h0 = sgParallaxHeight(tex, uv.st, uv.dSTdx, uv.dSTdy, channel);
-    return -(1.0f - h0) * searchVec;
+// own coordinate, 1 - H(st0) (corrected st = st0 - depth * search.st).
+SG_FN float sgParallaxOffsetDepth(SgUvFrame uv, sampler2D tex, int channel) {
+    return 1.0f - sgParallaxHeight(tex, uv.st, uv.dSTdx, uv.dSTdy, channel);
 }
 
-// Parallax occlusion mapping: the ray st(d) = st0 - d * searchVec at depth d
+// Parallax occlusion mapping: the ray st(d) = st0 - d * searchSt at depth d
 // is marched in `steps` equal steps of depth from 0 (the top) to 1 (the
 // bottom, where it always meets the relief); the first sample at or below
 // the relief and the one before it bracket the hit, refined by the secant
 // (linear interpolation of ray height minus relief height). steps is clamped
-// to [1, 1024]. Returns the texture-space correction; depthOut is the
-// depth of the hit in [0, 1].
-SG_FN vec2 sgParallaxOcclusion(SgUvFrame uv, vec2 searchVec, sampler2D tex, int channel, int steps,
-                               SG_OUT(float) depthOut) {
+// to [1, 1024]. Returns the depth of the hit in [0, 1] (corrected st =
+// st0 - depth * searchSt).
+SG_FN float sgParallaxOcclusionDepth(SgUvFrame uv, vec2 searchSt, sampler2D tex, int channel,
+                                     int steps) {
     int n = clamp(steps, 1, 1024);
     float dz = 1.0f / float(n);
     float dPrev = 0.0f;
@@ -128,7 +185,7 @@ SG_FN vec2 sgParallaxOcclusion(SgUvFrame uv, vec2 searchVec, sampler2D tex, int 
         dHit = 1.0f;
         for (int i = 1; i <= n; ++i) {
             float d = float(i) * dz;
-            float h = sgParallaxHeight(tex, uv.st - d * searchVec, uv.dSTdx, uv.dSTdy, channel);
+            float h = sgParallaxHeight(tex, uv.st - d * searchSt, uv.dSTdx, uv.dSTdy, channel);
             float fi = (1.0f - d) - h; // ray height above the relief
             if (fi <= 0.0f) {
                 // fPrev > 0 >= fi: the denominator is positive.
@@ -139,36 +196,25 @@ SG_FN vec2 sgParallaxOcclusion(SgUvFrame uv, vec2 searchVec, sampler2D tex, int 
             fPrev = fi;
         }
     }
-    depthOut = dHit;
-    return -dHit * searchVec;
+    return dHit;
 }
 
-// The offset of the virtual surface from the mesh surface (frame space):
-// the tangent-plane offset of the correction (listing 11) plus the relief
-// along the base normal, scale * (H(corrected) - 1) (section 2.6).
-SG_FN vec3 sgParallaxSurfaceOffset(SgFrame f, SgUvFrame uv, vec2 corrOffs, float scale,
-                                   sampler2D tex, int channel) {
-    float h = sgParallaxHeight(tex, uv.st + corrOffs, uv.dSTdx, uv.dSTdy, channel);
-    return sgTexSpaceOffsToSurface(f, uv.dSTdx, uv.dSTdy, corrOffs) + (scale * (h - 1.0f)) * f.nrmBase;
+// The offset of the virtual surface from the mesh surface (frame space) at
+// the depth found: the view ray's tangential travel, -depth * search.surf,
+// plus the relief along the base normal, scale * (H(corrected) - 1)
+// (section 2.6).
+SG_FN vec3 sgParallaxSurfaceOffset(SgFrame f, SgUvFrame uv, SgParallaxSearch search, float depth,
+                                   float scale, sampler2D tex, int channel) {
+    float h = sgParallaxHeight(tex, uv.st - depth * search.st, uv.dSTdx, uv.dSTdy, channel);
+    return -depth * search.surf + (scale * (h - 1.0f)) * f.nrmBase;
 }
 
 // Section 2.6's normal correction for a curved base surface: the screen
-// offset (vx, vy) of the correction (the inverse of the UV Jacobian, as in
-// listing 11) applied to the screen derivatives of the base normal,
-// nrmBase + vx dNdx + vy dNdy (renormalized, and nrmBase when that
-// vanishes). The screen offset is bounded as in listing 11.
-SG_FN vec3 sgParallaxCorrectNormal(SgFrame f, SgUvFrame uv, vec2 corrOffs, vec3 dNdx, vec3 dNdy) {
-    float k = max(sgMaxAbs2(uv.dSTdx), sgMaxAbs2(uv.dSTdy));
-    float om = sgMaxAbs2(corrOffs);
-    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(om >= SG_FLT_MIN)) return f.nrmBase;
-    vec2 sx = uv.dSTdx / k;
-    vec2 sy = uv.dSTdy / k;
-    vec2 o = corrOffs / om;
-    float rcpDet = sgSignedRcp(sx.x * sy.y - sx.y * sy.x);
-    // Screen offset in pixels: (vx, vy) * om * rcpDet / k.
-    vec2 v = vec2(sy.y * o.x - sy.x * o.y, -sx.y * o.x + sx.x * o.y);
-    vec2 vs = sgBoundedScale2(v * (rcpDet < 0.0f ? -1.0f : 1.0f), vec4(abs(rcpDet), 1.0f / k, om, 1.0f));
-    return sgSafeNormalize(f.nrmBase + vs.x * dNdx + vs.y * dNdy, f.nrmBase);
+// offset scrOffs (pixels) of the correction applied to the screen
+// derivatives of the base normal, nrmBase + scrOffs.x dNdx + scrOffs.y dNdy
+// (renormalized, and nrmBase when that vanishes).
+SG_FN vec3 sgParallaxCorrectNormal(SgFrame f, vec2 scrOffs, vec3 dNdx, vec3 dNdy) {
+    return sgSafeNormalize(f.nrmBase + scrOffs.x * dNdx + scrOffs.y * dNdy, f.nrmBase);
 }
 
 // Screen derivatives of the unit base normal from those of the interpolated
