@@ -313,9 +313,10 @@ CrackFigures checkTessellation(const std::string& name, const AdaptivePatches& a
             EXPECT_EQ(int(e[size_t(k)].size()), n + 1) << "patch " << p << " edge " << k;
             if (int(e[size_t(k)].size()) != n + 1) return figures;
             // GL's i/n, computed its own way: llvmpipe's tessellator works
-            // in fixed point (steps of 2^-14 that accumulate along the
-            // edge, 5e-5 seen at n = 34); a quarter step tells the points
-            // apart and keeps them in order.
+            // in 16-bit fixed point (i times 2^16 / n rounded, so the
+            // rounding accumulates along the edge: at most 1.9e-4, at
+            // n = 53; QuadDomainGpu checks the exact values); a quarter
+            // step tells the points apart and keeps them in order.
             for (int i = 0; i <= n; ++i)
                 EXPECT_NEAR(e[size_t(k)][size_t(i)].first, float(i) / float(n), 0.25f / float(n))
                     << "patch " << p << " edge " << k;
@@ -635,14 +636,17 @@ std::string describe(const DomainLevels& l) {
 }
 
 // Every case of the sweep: the CPU's triangles are llvmpipe's, all
-// counter-clockwise in (u, v), and none is missing or extra.
-TEST(QuadDomainGpu, TrianglesAreLlvmpipes) {
+// counter-clockwise in (u, v), and none is missing or extra; every domain
+// point has llvmpipe's (u, v) bit for bit (16-bit fixed point, not the
+// float quotient i / n: 1/3 is 21845 / 2^16).
+TEST(QuadDomainGpu, TrianglesAndPointsAreLlvmpipes) {
     DomainCapture capture;
     const std::vector<DomainLevels> cases = domainSweep();
-    size_t differing = 0, triangles = 0;
+    size_t differing = 0, triangles = 0, pointsDiffer = 0;
     for (const DomainLevels& l : cases) {
         const DomainComparison c = compareDomain(capture, l);
         triangles += c.gpuTriangles;
+        pointsDiffer += c.pointsDiffer;
         const bool same = c.onlyGpu == 0 && c.onlyCpu == 0 && c.clockwise == 0 &&
                           c.gpuTriangles == c.cpuTriangles && c.gpuTriangles > 0;
         differing += !same;
@@ -651,9 +655,11 @@ TEST(QuadDomainGpu, TrianglesAreLlvmpipes) {
                           << c.onlyGpu << " not the CPU's, " << c.clockwise << " clockwise), "
                           << c.cpuTriangles << " CPU triangles (" << c.onlyCpu << " not the GPU's)";
     }
-    std::printf("quad domain: %zu level combinations, %zu triangles, %zu combinations differ\n",
-                cases.size(), triangles, differing);
+    std::printf("quad domain: %zu level combinations, %zu triangles, %zu combinations differ, "
+                "%zu points differ\n",
+                cases.size(), triangles, differing, pointsDiffer);
     EXPECT_EQ(differing, 0u);
+    EXPECT_EQ(pointsDiffer, 0u);
 }
 
 } // namespace

@@ -19,10 +19,15 @@
 // inner levels m (along u), n (along v):
 //  - Every level 1: one quad, two triangles split along (1,0)-(0,1).
 //    Otherwise an inner level 1 counts as 2 (GL's "1 + epsilon" rule).
-//  - Points: level L puts point i (0 <= i <= L) at i / L (domainCoord),
-//    each outer edge at its own level, the inner lattice point (i, j) at
-//    (domainCoord(m, i), domainCoord(n, j)). (llvmpipe rounds them to
-//    16-bit fixed point; the evaluation stage recovers the edges' i.)
+//  - Points: level L puts point i (0 <= i <= L) at i / L in 16-bit fixed
+//    point: i * s / 2^16 on the first half of the edge (2i < L),
+//    1 - (L - i) * s / 2^16 on the second, 1/2 exactly in the middle, with
+//    s = 2^16 / L rounded to nearest (domainCoord; 1/3 is 21845 / 2^16).
+//    Each outer edge uses its own level; the inner lattice point (i, j) is
+//    at (domainCoord(m, i), domainCoord(n, j)). The evaluation stage
+//    recovers an edge point's i as round(t L) (sg/patch/watertight.glsl),
+//    so edge positions do not depend on this rounding; interior points and
+//    every point's UVs do, and here they are llvmpipe's bit for bit.
 //  - Rings: the lattice points at distance r from the domain's border form
 //    ring r; ring 0 is replaced by the four outer edges, rings
 //    1 .. min(m, n) / 2 (integer halves) follow inwards. Every ring is
@@ -54,8 +59,8 @@
 //    n odd) every quad split along (i + 1, j)-(i, j + 1); along v (n >= m,
 //    m odd) along (i, j)-(i + 1, j + 1), except the middle quad, split the
 //    other way, when n is odd.
-// tests/render/patch_gpu_test.cpp (QuadDomainGpu) checks the triangles
-// against llvmpipe's own for every level the renderer uses.
+// tests/render/patch_gpu_test.cpp (QuadDomainGpu) checks the triangles and
+// the points against llvmpipe's own for every level the renderer uses.
 // Other implementations (hardware tessellators) place the same points up
 // to rounding but may choose other diagonals: the two images then differ
 // inside triangles by the interpolated attributes' second difference
@@ -92,9 +97,14 @@ struct QuadDomain {
     }
 };
 
-// Point i of level `level` along an edge or the inner lattice.
+// Point i of level `level` along an edge or the inner lattice: i / level
+// in llvmpipe's 16-bit fixed point (see the top of the file).
 float domainCoord(int level, int i) {
-    return float(i) / float(level);
+    if (2 * i == level) return 0.5f;
+    const uint32_t step = (65536u + uint32_t(level) / 2u) / uint32_t(level);
+    const bool secondHalf = 2 * i > level;
+    const uint32_t fixed = uint32_t(secondHalf ? level - i : i) * step;
+    return float(secondHalf ? 65536u - fixed : fixed) / 65536.0f;
 }
 
 // When a growing level inserts position p (0..32) of a half edge at level
