@@ -227,6 +227,8 @@ void centreStrip(QuadDomain& d, Lattice& g) {
 }
 
 QuadDomain quadDomain(const int outer[4], int innerU, int innerV) {
+    SG_ASSERT(std::max({outer[0], outer[1], outer[2], outer[3], innerU, innerV}) <= 64,
+              "levels up to 64 (the ruler order spans a half edge of 32 segments)");
     QuadDomain d;
     const uint32_t c00 = d.add({0.0f, 0.0f}), c10 = d.add({1.0f, 0.0f});
     const uint32_t c11 = d.add({1.0f, 1.0f}), c01 = d.add({0.0f, 1.0f});
