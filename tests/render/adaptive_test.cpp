@@ -234,7 +234,7 @@ TEST(AdaptiveScene, OnlyAdaptiveMeshesGetTessellationStages) {
 // Angles (degrees) between two normal AOV images at pixels both cover.
 struct NormalAgreement {
     size_t both = 0, onlyOne = 0, nonFinite = 0;
-    double p50 = 0, p99 = 0;
+    double p50 = 0, p99 = 0, p999 = 0, max = 0;
 };
 
 NormalAgreement compareNormals(const Image& a, const Image& b) {
@@ -255,6 +255,8 @@ NormalAgreement compareNormals(const Image& a, const Image& b) {
     if (!deg.empty()) {
         r.p50 = deg[deg.size() / 2];
         r.p99 = deg[std::min(deg.size() - 1, size_t(0.99 * double(deg.size())))];
+        r.p999 = deg[std::min(deg.size() - 1, size_t(0.999 * double(deg.size())))];
+        r.max = deg.back();
     }
     return r;
 }
@@ -266,24 +268,39 @@ NormalAgreement gpuVsCpuNormals(const Scene& s, const SceneAssets& a, const View
                                 const char* label, Image* gpuImage = nullptr) {
     CpuOptions cpu;
     cpu.derivatives = CpuDerivatives::Quad;
+    cpu.textureLod = sg::glsl::LodRule::FastLog2;
     const Image g = gpu().render(s, a, v);
     const NormalAgreement r = compareNormals(g, renderCpu(s, a, v, cpu));
-    std::printf("%s GPU vs CPU: %zu px both, %zu one only, p50 %.3f p99 %.3f deg\n", label, r.both,
-                r.onlyOne, r.p50, r.p99);
+    std::printf("%s GPU vs CPU: %zu px both, %zu one only, p50 %.3f p99 %.3f p99.9 %.3f max %.3f "
+                "deg\n",
+                label, r.both, r.onlyOne, r.p50, r.p99, r.p999, r.max);
     if (gpuImage) *gpuImage = g;
     return r;
 }
 
-// What every GPU-vs-CPU parity test of adaptive patches asserts besides its
-// 99th percentile (the reasons at GpuMatchesCpuReference): more than
-// `minBoth` pixels covered in both images, none non-finite, coverage
-// differing on at most `onlyOneFraction` of them, median 0.5 degrees.
-void expectParity(const NormalAgreement& r, size_t minBoth, double onlyOneFraction) {
+// What every GPU-vs-CPU parity test of adaptive patches asserts (the
+// reasons at GpuMatchesCpuReference): more than `minBoth` pixels covered
+// in both images, none non-finite, coverage differing on at most 0.1% of
+// them, median and 99th percentile 0.05 degrees (the triangle path's
+// parity bound), 99.9th percentile 1 degree (isolated pixels under a
+// normal map: GpuMatchesCpuWithAUvNormalLayer), and every pixel `maxDeg`.
+void expectParity(const NormalAgreement& r, size_t minBoth, double maxDeg) {
     EXPECT_GT(r.both, minBoth);
     EXPECT_EQ(r.nonFinite, 0u);
-    EXPECT_LE(double(r.onlyOne), onlyOneFraction * double(r.both));
-    EXPECT_LE(r.p50, 0.5);
+    EXPECT_LE(double(r.onlyOne), 0.001 * double(r.both));
+    EXPECT_LE(r.p50, 0.05);
+    EXPECT_LE(r.p99, 0.05);
+    EXPECT_LE(r.p999, 1.0);
+    EXPECT_LE(r.max, maxDeg);
 }
+
+// expectParity's bound on every pixel of an untextured normal AOV: 0.1
+// degrees (GpuMatchesCpuReference).
+constexpr double kUntexturedMaxDeg = 0.1;
+// ... and of one with a tangent-space normal map: none (isolated pixels,
+// the map amplifying the rounding of the UVs' screen derivatives:
+// GpuMatchesCpuWithAUvNormalLayer).
+constexpr double kMappedMaxDeg = 180.0;
 
 // The tessellated limit surface against the uniform path's limit surface
 // (level 4, limit positions and normals) of the spot cage on the same view
@@ -327,30 +344,33 @@ TEST(AdaptiveDraw, MatchesTheUniformLimitSurface) {
 
 // GPU vs CPU reference on adaptive patches. The CPU tessellates every patch
 // at the levels the GPU's control stage computes (the shared
-// sgPatchEdgeTessLevel, same corner vertices) and evaluates the same domain
-// points with the shared basis, so the points agree to float rounding; what
-// differs is the triangulation GL leaves to the implementation (the ring
-// between the outer edges and the inner grid, the grid's diagonals:
-// src/patch_tessellation.cpp): the two piecewise-linear surfaces share
-// every vertex and differ inside a cell of about pixels_per_edge pixels by
-// at most the surface's (and the interpolated normal's) second difference
-// across it. At 3 pixels per edge on this view that is a fraction of a
-// degree of normal on most pixels and a few degrees where the curvature is
-// high (ears, horns, hooves): bounds median 0.5, 99th percentile 5
-// degrees (measured 0.000 and 0.68: most pixels lie in cells both
-// triangulate alike); coverage differs at silhouette pixels whose centre
-// lies between the two triangulations: at most 1.5% of the covered pixels
-// (measured 1 of 9622). With the
-// triangles identical (parity of the triangle path, image_test.cpp) the
-// bound is 0.05 degrees; the larger bounds here are the triangulation.
+// sgPatchEdgeTessLevel, same corner vertices) into llvmpipe's own domain
+// points and triangles (src/patch_tessellation.cpp; patch_gpu_test.cpp's
+// QuadDomainGpu checks both against llvmpipe's) and evaluates the points
+// with the shared basis, so both draw the same triangles with vertices
+// equal to float rounding (a few ulp, patch_gpu_test.cpp), and the CPU
+// reference emulates llvmpipe's derivatives and texture LOD. The bounds
+// are then the triangle path's parity bound (image_test.cpp: 0.05
+// degrees): median and 99th percentile 0.05 degrees, every pixel 0.1
+// (measured 0.000, 0.020 and 0.028; 0.020 is the angle between two float
+// unit vectors whose dot product is one ulp below 1); coverage differs only
+// where a silhouette pixel's centre lies within rounding of an edge: at
+// most 0.1% of the covered pixels (measured 1 of 9621). With a
+// triangulation of its own (the ring between the outer edges and the inner
+// grid zipped by position, the grid split along one diagonal: same points,
+// other diagonals) the CPU measured p99 0.68 and max 9.9 degrees here: two
+// piecewise-linear surfaces sharing every vertex differ inside cells of 3
+// pixels by the surface's and the interpolated normal's second difference
+// across them, largest where the curvature is (ears, horns, hooves). That
+// is what a GPU whose tessellator triangulates otherwise shows against
+// this reference (docs/platform.md).
 TEST(AdaptiveDraw, GpuMatchesCpuReference) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(cageScene(
         R"({"mode": "adaptive", "isolation": 3, "pixels_per_edge": 3})", kSpotCage, "", w, h));
     SceneAssets a = loadAssets(s);
     const NormalAgreement r = gpuVsCpuNormals(s, a, makeView(s, a, 0, 0, Aov::Normal), "adaptive");
-    expectParity(r, size_t(w * h / 10), 0.015);
-    EXPECT_LE(r.p99, 5.0);
+    expectParity(r, size_t(w * h / 10), kUntexturedMaxDeg);
     // The CPU's tessellation is view-dependent like the GPU's: closer, more
     // triangles (the level function of the same edges grows with 1/distance).
     const auto& ap = *a.meshes[0].patches;
@@ -365,11 +385,12 @@ TEST(AdaptiveDraw, GpuMatchesCpuReference) {
 // llvmpipe, whose draw module emits at most 65535 vertices per chunk of a
 // draw (render_internal.h, patchesPerDraw): the renderer splits the patch
 // draws so the GPU image stays that of the CPU reference. Bounds as
-// GpuMatchesCpuReference's (the triangulations differ likewise, on cells
-// of half a pixel now): median 0.5, 99th percentile 5 degrees, coverage
-// 1.5% (measured 0 and 0.044 degrees, 2 of 9638 pixels; with one draw per
-// patch type: 99th percentile 43 degrees and 485 pixels covered by one
-// image only, misplaced patches and holes).
+// GpuMatchesCpuReference's: median and 99th percentile 0.05 degrees, every
+// pixel 0.1, coverage 0.1% (measured 0.000, 0.020 and 0.056 degrees, 2 of
+// 9638 pixels; with the CPU's earlier triangulation of its own, 0.044 and
+// 0.44 degrees on cells of half a pixel; with one draw per patch type:
+// 99th percentile 43 degrees and 485 pixels covered by one image only,
+// misplaced patches and holes).
 TEST(RenderHardCases, AdaptiveDenseTessellationMatchesTheCpuReference) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(cageScene(
@@ -377,11 +398,11 @@ TEST(RenderHardCases, AdaptiveDenseTessellationMatchesTheCpuReference) {
     SceneAssets a = loadAssets(s);
     const View v = makeView(s, a, 0, 0, Aov::Normal);
     const NormalAgreement r = gpuVsCpuNormals(s, a, v, "adaptive at 0.5 px/edge");
-    expectParity(r, size_t(w * h / 10), 0.015);
+    expectParity(r, size_t(w * h / 10), kUntexturedMaxDeg);
     sg::test::hardCaseAtMost("scales",
                              "adaptive spot at 0.5 px/edge on 320x240 (a draw chunk's patches "
                              "emit more than llvmpipe's 65535 vertices)",
-                             "GPU vs CPU normal, 99th percentile (deg)", r.p99, 5.0);
+                             "GPU vs CPU normal, 99th percentile (deg)", r.p99, 0.05);
     // The view tessellates densely enough for a draw to pass the limit:
     // some 4096 consecutive control points (a chunk of one patch array)
     // belong to patches whose tessellation has more than 65535 points (the
@@ -409,9 +430,11 @@ TEST(RenderHardCases, AdaptiveDenseTessellationMatchesTheCpuReference) {
 // The patch AOV: the GPU's control stage and the CPU's tessellator compute
 // the same levels (shared sgPatchEdgeTessLevel, same corner vertices, same
 // uModelRel), so wherever both show the same patch they show the same
-// level, bit for bit. Pixels may show different patches along patch
-// borders (the two triangulations differ by a fraction of a pixel there):
-// at most 3% of the pixels both cover.
+// level, bit for bit. A patch border is an edge of both tessellations, its
+// points equal bit for bit (patch_gpu_test.cpp), so pixels show different
+// patches only where their centre lies within rounding of a border: at
+// most 0.5% of the pixels both cover (measured 4 of 9612, also with the
+// CPU's earlier triangulation of its own).
 TEST(AdaptiveDraw, PatchAovLevelsMatchTheCpu) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(cageScene(
@@ -441,7 +464,7 @@ TEST(AdaptiveDraw, PatchAovLevelsMatchTheCpu) {
                 samePatch, sameLevel, double(maxLevel));
     EXPECT_GT(both, size_t(w * h / 10));
     EXPECT_EQ(bad, 0u);
-    EXPECT_GE(double(samePatch), 0.97 * double(both));
+    EXPECT_GE(double(samePatch), 0.995 * double(both));
     EXPECT_EQ(sameLevel, samePatch);
     EXPECT_GT(maxLevel, 1.0f); // the view does tessellate
 }
@@ -476,12 +499,17 @@ TEST(RenderHardCases, AdaptiveCameraInsideAndFarAwayStayFinite) {
 
 // GPU vs CPU with a tangent-space normal map on UV set 0 of adaptive
 // patches: the UVs are evaluated at the same domain points with the same
-// face-varying patches on both sides, so only the triangulation differs
-// (see GpuMatchesCpuReference); with the map the normal also follows the
-// UVs' per-triangle interpolation, whose difference between the two
-// triangulations moves the lookup by a fraction of a texel. Bounds: median
-// 0.5 degrees, 99th percentile 8 (measured 0.028 and 3.32), coverage as
-// there (measured 1 of 9622 pixels).
+// face-varying patches on both sides and interpolated over the same
+// triangles (see GpuMatchesCpuReference), so the bounds are that test's,
+// except on a few isolated pixels: the map's perturbation goes through the
+// per-pixel tangent frame, i.e. through screen derivatives of the
+// interpolated UVs, which each renderer computes in its own float
+// arithmetic, and the untextured normal has no such amplification. So no
+// bound on every pixel, 1 degree at the 99.9th percentile (measured p50
+// 0.000, p99 0.020, p99.9 0.028, max 2.6 degrees; coverage 1 of 9621
+// pixels). With the CPU's earlier triangulation of its own: p99 3.26,
+// p99.9 12.2, max 19.3 degrees (the map read through UVs interpolated over
+// other triangles).
 TEST(AdaptiveUv, GpuMatchesCpuWithAUvNormalLayer) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(cageScene(
@@ -492,14 +520,71 @@ TEST(AdaptiveUv, GpuMatchesCpuWithAUvNormalLayer) {
     const View v = makeView(s, a, 0, 0, Aov::Normal);
     Image g;
     const NormalAgreement r = gpuVsCpuNormals(s, a, v, "adaptive uv_normal", &g);
-    expectParity(r, size_t(w * h / 10), 0.015);
-    EXPECT_LE(r.p99, 8.0);
+    expectParity(r, size_t(w * h / 10), kMappedMaxDeg);
     // The layer does bend the normals (the map is read through the UVs).
     Scene plain = sceneFromJson(cageScene(
         R"({"mode": "adaptive", "isolation": 3, "pixels_per_edge": 3})", kSpotCage, "", w, h));
     SceneAssets pa = loadAssets(plain);
     NormalAgreement bent = compareNormals(g, gpu().render(plain, pa, v));
     EXPECT_GT(bent.p99, 5.0) << "the normal map changed nothing";
+}
+
+// A domed disk around one vertex of valence 64 (a cap of height 0.35 over
+// radius 0.75, planar UVs), written as an OBJ cage in the build tree: a fan
+// of 64 triangles around the centre (Catmark quads around a vertex of
+// valence 64 after the first level) and two rings of 64 quads out to the
+// rim.
+std::filesystem::path valence64Disk() {
+    const std::filesystem::path dir =
+        std::filesystem::path(SURFGRAD_BINARY_DIR) / "tests/render/adaptive";
+    std::filesystem::create_directories(dir);
+    const std::filesystem::path file = dir / "valence64_disk.obj";
+    std::ofstream o(file);
+    const int k = 64;
+    auto point = [&](double r, int i) {
+        const double a = 2.0 * M_PI * i / k, z = 0.35 * (1.0 - (r / 0.75) * (r / 0.75));
+        o << "v " << r * std::cos(a) << " " << r * std::sin(a) << " " << z << "\n";
+        o << "vt " << 0.5 + 0.66 * r * std::cos(a) << " " << 0.5 + 0.66 * r * std::sin(a) << "\n";
+    };
+    point(0.0, 0); // vertex 1: the centre
+    for (const double r : {0.25, 0.5, 0.75})
+        for (int i = 0; i < k; ++i) point(r, i); // ring j (0..2): vertices 2 + j k + i
+    auto ring = [&](int j, int i) { return 2 + j * k + i % k; };
+    auto face = [&](std::initializer_list<int> v) {
+        o << "f";
+        for (const int x : v) o << " " << x << "/" << x;
+        o << "\n";
+    };
+    for (int i = 0; i < k; ++i) face({1, ring(0, i), ring(0, i + 1)});
+    for (int j = 0; j < 2; ++j)
+        for (int i = 0; i < k; ++i)
+            face({ring(j, i), ring(j + 1, i), ring(j + 1, i + 1), ring(j, i + 1)});
+    return file;
+}
+
+// GPU vs the CPU reference with a tangent-space normal map on coarse
+// tessellations, where a cell spans several pixels and a difference of
+// triangulation shows most: spot and a disk around a vertex of valence 64
+// (thin patches around the centre), both at 8 px/edge. Same triangles, so
+// GpuMatchesCpuWithAUvNormalLayer's bounds (measured: spot p50 0.000, p99
+// 0.020, p99.9 0.028, max 6.2 degrees; the disk 0.000, 0.020, 0.044, 3.2;
+// coverage 0 and 0 pixels). With the CPU's earlier triangulation of its
+// own: spot p99 6.9, p99.9 15.9, max 22 degrees; the disk p99 0.68, p99.9
+// 1.5 (its largest difference, 3.2 degrees, is not the triangulation's).
+TEST(AdaptiveUv, MatchedCpuAgreesOnCoarseTessellations) {
+    const int w = 320, h = 240;
+    const std::string bricks =
+        R"({"type": "uv_normal", "uv_set": 0, "map": {"procedural": "bricks", "size": 256}, "strength": 1.0})";
+    const std::string coarse = R"({"mode": "adaptive", "isolation": 3, "pixels_per_edge": 8})";
+    for (const std::string& file : {kSpotCage, valence64Disk().string()}) {
+        Scene s = sceneFromJson(cageScene(coarse, file, bricks, w, h));
+        SceneAssets a = loadAssets(s);
+        const View v = makeView(s, a, 0, 0, Aov::Normal);
+        const std::string label =
+            std::filesystem::path(file).filename().string() + " at 8 px/edge, uv_normal,";
+        const NormalAgreement r = gpuVsCpuNormals(s, a, v, label.c_str());
+        expectParity(r, size_t(w * h / 10), kMappedMaxDeg);
+    }
 }
 
 // The UV AOV of the adaptive draw against the uniform path's limit UVs
@@ -669,9 +754,11 @@ TEST(AdaptiveDisplacement, OnlyDisplacedMeshesCompileIt) {
 // GPU vs CPU with displacement: both displace the same points by the same
 // height (the shared sgDisplaceLod and sgDisplacePoint, textureLod at the
 // same level: filtering differs by llvmpipe's fixed-point weights, a few
-// 1e-3 of a texel step), so the bounds of GpuMatchesCpuReference hold with
-// room for the displaced silhouette (coverage 2%). Measured: p50 0.000,
-// p99 0.70 degrees, 2 of 10533 pixels differ in coverage.
+// 1e-3 of a texel step) and draw the same triangles, so the bounds of
+// GpuMatchesCpuReference hold, coverage of the displaced silhouette
+// included. Measured: p50 0.000, p99 0.020, max 0.040 degrees, 0 of 10532
+// pixels differ in coverage (with the CPU's earlier triangulation of its
+// own: p99 0.70, max 11.3 degrees, 2 pixels).
 TEST(AdaptiveDisplacement, GpuMatchesCpuReference) {
     const int w = 320, h = 240;
     Scene s = sceneFromJson(
@@ -680,8 +767,7 @@ TEST(AdaptiveDisplacement, GpuMatchesCpuReference) {
     const View v = makeView(s, a, 0, 0, Aov::Normal);
     Image g;
     const NormalAgreement r = gpuVsCpuNormals(s, a, v, "displaced", &g);
-    expectParity(r, size_t(w * h / 10), 0.02);
-    EXPECT_LE(r.p99, 5.0);
+    expectParity(r, size_t(w * h / 10), kUntexturedMaxDeg);
     // The displacement moves the silhouette: coverage differs from the
     // undisplaced surface's.
     Scene u = sceneFromJson(cageScene(
@@ -869,8 +955,9 @@ std::string blobScene(const std::string& morph, int w = 240, int h = 180) {
 // the GPU renderer uploads the cage only (cagePointCount x 12 bytes per
 // frame) and its compute stage recomputes the points; the CPU reference
 // follows the same points (updateAdaptivePoints) and agrees with the GPU
-// within GpuMatchesCpuReference's bounds (the same triangulation argument);
-// the moved frame differs from the rest pose.
+// within GpuMatchesCpuReference's bounds (the same triangles; measured p99
+// 0.020, max 0.028 degrees, with the CPU's earlier triangulation of its
+// own p99 0.14, max 0.29); the moved frame differs from the rest pose.
 TEST(AdaptiveAnim, BlendshapesMoveTheCageOnTheGpu) {
     Scene s = sceneFromJson(blobScene(R"({"animation": {"loop": true, "keys": [
         {"time": 0.0, "weights": [0.0, 0.0]}, {"time": 1.0, "weights": [1.0, 0.6]}]}})"));
@@ -888,8 +975,7 @@ TEST(AdaptiveAnim, BlendshapesMoveTheCageOnTheGpu) {
     gpu().render(s, a, v); // nothing moved: nothing uploaded
     EXPECT_EQ(gpu().stats().meshUploadBytes, 0u);
     const NormalAgreement r = gpuVsCpuNormals(s, a, v, "animated cage");
-    expectParity(r, size_t(240 * 180 / 20), 0.015);
-    EXPECT_LE(r.p99, 5.0);
+    expectParity(r, size_t(240 * 180 / 20), kUntexturedMaxDeg);
     NormalAgreement moved = compareNormals(g, rest);
     EXPECT_GT(moved.p99 + double(moved.onlyOne), 5.0); // the blob did move
 }

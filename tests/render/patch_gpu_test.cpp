@@ -13,6 +13,9 @@
 //  - transition edges: a patch's edge against two patches one level
 //    deeper (one per half) carries as many points as the two halves
 //    together, at positions equal bit for bit to the halves' own.
+// And the CPU reference's own tessellation of the quad domain
+// (detail::tessellateQuadDomain) against the triangles llvmpipe emits for
+// one patch (transform feedback), over a sweep of levels (QuadDomainGpu).
 #include <gtest/gtest.h>
 
 #include <epoxy/gl.h>
@@ -24,6 +27,9 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <random>
+#include <set>
+#include <string>
 #include <vector>
 
 #include "render_internal.h"
@@ -307,9 +313,10 @@ CrackFigures checkTessellation(const std::string& name, const AdaptivePatches& a
             EXPECT_EQ(int(e[size_t(k)].size()), n + 1) << "patch " << p << " edge " << k;
             if (int(e[size_t(k)].size()) != n + 1) return figures;
             // GL's i/n, computed its own way: llvmpipe's tessellator works
-            // in fixed point (steps of 2^-14 that accumulate along the
-            // edge, 5e-5 seen at n = 34); a quarter step tells the points
-            // apart and keeps them in order.
+            // in 16-bit fixed point (i times 2^16 / n rounded, so the
+            // rounding accumulates along the edge: at most 1.9e-4, at
+            // n = 53; QuadDomainGpu checks the exact values); a quarter
+            // step tells the points apart and keeps them in order.
             for (int i = 0; i <= n; ++i)
                 EXPECT_NEAR(e[size_t(k)][size_t(i)].first, float(i) / float(n), 0.25f / float(n))
                     << "patch " << p << " edge " << k;
@@ -398,5 +405,261 @@ INSTANTIATE_TEST_SUITE_P(Shapes, PatchGpu,
                          ::testing::Values("catmark_torus", "catmark_pole8",
                                            "catmark_xord_boundary", "catmark_hole_test1",
                                            "catmark_cube_creases1"));
+
+// ---- The quad domain's triangles, llvmpipe's tessellator as the oracle ----
+//
+// The CPU reference tessellates every patch itself (patch_tessellation.cpp,
+// detail::tessellateQuadDomain). Its triangles must be the GPU's, or the
+// two images differ inside triangles by the interpolated attributes'
+// second difference across a cell. Oracle: what llvmpipe emits for one
+// patch with a minimal evaluation stage (layout(quads, equal_spacing, ccw),
+// gl_TessCoord out) through transform feedback, at levels set by a control
+// stage as the renderer's sets them (floats holding integers). Compared as
+// sets of triangles, each a counter-clockwise triple of domain points:
+//  - triangles: points named by lattice indices (their index on the edge
+//    they lie on, or (i, j) of the inner grid), so the comparison does not
+//    depend on how either side rounds i / n;
+//  - points: every point's (u, v) bit for bit.
+
+// One patch's triangles as llvmpipe emits them (three (u, v) each, in
+// emission order).
+class DomainCapture {
+public:
+    DomainCapture() {
+        context();
+        const char* vs = "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n";
+        const char* tcs = "#version 450 core\nlayout(vertices = 1) out;\n"
+                          "uniform vec4 uOuter;\nuniform vec2 uInner;\n"
+                          "void main() {\n"
+                          "    gl_out[gl_InvocationID].gl_Position = vec4(0.0);\n"
+                          "    for (int k = 0; k < 4; ++k) gl_TessLevelOuter[k] = uOuter[k];\n"
+                          "    gl_TessLevelInner[0] = uInner.x;\n"
+                          "    gl_TessLevelInner[1] = uInner.y;\n"
+                          "}\n";
+        const char* tes = "#version 450 core\nlayout(quads, equal_spacing, ccw) in;\n"
+                          "out vec2 tc;\n"
+                          "void main() {\n"
+                          "    tc = gl_TessCoord.xy;\n"
+                          "    gl_Position = vec4(gl_TessCoord.xy, 0.0, 1.0);\n"
+                          "}\n";
+        prog_ = glCreateProgram();
+        const std::pair<GLenum, const char*> stages[] = {{GL_VERTEX_SHADER, vs},
+                                                         {GL_TESS_CONTROL_SHADER, tcs},
+                                                         {GL_TESS_EVALUATION_SHADER, tes}};
+        for (const auto& [type, src] : stages) {
+            const GLuint s = glCreateShader(type);
+            glShaderSource(s, 1, &src, nullptr);
+            glCompileShader(s);
+            GLint ok = 0;
+            glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+            EXPECT_TRUE(ok) << src;
+            glAttachShader(prog_, s);
+            glDeleteShader(s);
+        }
+        const char* varyings[] = {"tc"};
+        glTransformFeedbackVaryings(prog_, 1, varyings, GL_INTERLEAVED_ATTRIBS);
+        glLinkProgram(prog_);
+        GLint linked = 0;
+        glGetProgramiv(prog_, GL_LINK_STATUS, &linked);
+        EXPECT_TRUE(linked);
+        glCreateVertexArrays(1, &vao_);
+        glCreateBuffers(1, &buf_);
+        // The largest patch (every level 64): 2 * 64 * 64 triangles.
+        glNamedBufferStorage(buf_, GLsizeiptr(kMaxTriangles * 6 * sizeof(float)), nullptr, 0);
+        glCreateQueries(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, 1, &query_);
+        // Draws need a framebuffer even with rasterisation off (surfaceless).
+        glCreateRenderbuffers(1, &rb_);
+        glNamedRenderbufferStorage(rb_, GL_RGBA8, 1, 1);
+        glCreateFramebuffers(1, &fbo_);
+        glNamedFramebufferRenderbuffer(fbo_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb_);
+    }
+    ~DomainCapture() {
+        glDeleteFramebuffers(1, &fbo_);
+        glDeleteRenderbuffers(1, &rb_);
+        glDeleteQueries(1, &query_);
+        glDeleteBuffers(1, &buf_);
+        glDeleteVertexArrays(1, &vao_);
+        glDeleteProgram(prog_);
+    }
+    DomainCapture(const DomainCapture&) = delete;
+    DomainCapture& operator=(const DomainCapture&) = delete;
+
+    std::vector<std::array<glm::vec2, 3>> triangles(const std::array<int, 4>& outer, int innerU,
+                                                    int innerV) {
+        glUseProgram(prog_);
+        glUniform4f(glGetUniformLocation(prog_, "uOuter"), float(outer[0]), float(outer[1]),
+                    float(outer[2]), float(outer[3]));
+        glUniform2f(glGetUniformLocation(prog_, "uInner"), float(innerU), float(innerV));
+        glBindVertexArray(vao_);
+        glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buf_);
+        glPatchParameteri(GL_PATCH_VERTICES, 1);
+        glEnable(GL_RASTERIZER_DISCARD);
+        glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query_);
+        glBeginTransformFeedback(GL_TRIANGLES);
+        glDrawArrays(GL_PATCHES, 0, 1);
+        glEndTransformFeedback();
+        glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+        glDisable(GL_RASTERIZER_DISCARD);
+        sg::gl::checkError("domain capture");
+        GLuint written = 0;
+        glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
+        std::vector<std::array<glm::vec2, 3>> out(std::min<size_t>(written, kMaxTriangles));
+        if (!out.empty())
+            glGetNamedBufferSubData(buf_, 0, GLsizeiptr(out.size() * sizeof(out[0])), out.data());
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glBindVertexArray(0);
+        return out;
+    }
+
+private:
+    static constexpr size_t kMaxTriangles = 2 * 64 * 64;
+    GLuint prog_ = 0, vao_ = 0, buf_ = 0, query_ = 0, fbo_ = 0, rb_ = 0;
+};
+
+// One tessellation case: outer levels (GL's order) and inner levels.
+struct DomainLevels {
+    std::array<int, 4> outer;
+    int innerU, innerV;
+};
+
+// Inner levels as patch_tcs.glsl sets them: the larger opposite outer level.
+DomainLevels withTcsInner(std::array<int, 4> o) {
+    return {o, std::max(o[1], o[3]), std::max(o[0], o[2])};
+}
+
+// A domain point named by integers: (edge, index along it) on an edge
+// (GL's edge order; corners on the first edge that holds them), (4, i, j)
+// in the inner lattice (inner levels below 2 count as 2).
+using PointKey = std::array<int, 3>;
+PointKey pointKey(glm::vec2 p, const DomainLevels& l) {
+    const int m = std::max(l.innerU, 2), n = std::max(l.innerV, 2);
+    auto index = [](float t, int level) { return int(std::lround(double(t) * level)); };
+    if (p.x == 0.0f) return {0, index(p.y, l.outer[0]), 0};
+    if (p.y == 0.0f) return {1, index(p.x, l.outer[1]), 0};
+    if (p.x == 1.0f) return {2, index(p.y, l.outer[2]), 0};
+    if (p.y == 1.0f) return {3, index(p.x, l.outer[3]), 0};
+    return {4, index(p.x, m), index(p.y, n)};
+}
+
+// A triangle as its three keys from the smallest, in its own (rotated) order.
+using TriangleKey = std::array<PointKey, 3>;
+TriangleKey triangleKey(const std::array<PointKey, 3>& t) {
+    const size_t k = size_t(std::min_element(t.begin(), t.end()) - t.begin());
+    return {t[k], t[(k + 1) % 3], t[(k + 2) % 3]};
+}
+
+float signedArea(const std::array<glm::vec2, 3>& t) {
+    const glm::vec2 e1 = t[1] - t[0], e2 = t[2] - t[0];
+    return e1.x * e2.y - e1.y * e2.x;
+}
+
+struct DomainComparison {
+    size_t gpuTriangles = 0, cpuTriangles = 0;
+    size_t onlyGpu = 0, onlyCpu = 0; // triangles of one side only
+    size_t clockwise = 0;            // GPU triangles not counter-clockwise
+    size_t pointsDiffer = 0;         // points whose (u, v) differ in some bit
+};
+
+DomainComparison compareDomain(DomainCapture& capture, const DomainLevels& l) {
+    DomainComparison c;
+    const auto gpuTris = capture.triangles(l.outer, l.innerU, l.innerV);
+    const sg::render::detail::QuadTessellation cpu =
+        sg::render::detail::tessellateQuadDomain(l.outer, l.innerU, l.innerV);
+    std::map<PointKey, glm::vec2> gpuPoint, cpuPoint;
+    std::multiset<TriangleKey> gpuSet, cpuSet;
+    for (const auto& t : gpuTris) {
+        c.clockwise += signedArea(t) <= 0.0f;
+        std::array<PointKey, 3> k;
+        for (size_t i = 0; i < 3; ++i) {
+            k[i] = pointKey(t[i], l);
+            gpuPoint[k[i]] = t[i];
+        }
+        gpuSet.insert(triangleKey(k));
+    }
+    for (size_t f = 0; f + 2 < cpu.triangles.size(); f += 3) {
+        std::array<PointKey, 3> k;
+        for (size_t i = 0; i < 3; ++i) {
+            const glm::vec2 p = cpu.uv[cpu.triangles[f + i]];
+            k[i] = pointKey(p, l);
+            cpuPoint[k[i]] = p;
+        }
+        cpuSet.insert(triangleKey(k));
+    }
+    c.gpuTriangles = gpuSet.size();
+    c.cpuTriangles = cpuSet.size();
+    for (const TriangleKey& t : gpuSet) c.onlyGpu += cpuSet.count(t) == 0;
+    for (const TriangleKey& t : cpuSet) c.onlyCpu += gpuSet.count(t) == 0;
+    for (const auto& [key, p] : gpuPoint) {
+        const auto it = cpuPoint.find(key);
+        c.pointsDiffer += it == cpuPoint.end() || std::memcmp(&it->second, &p, sizeof(p)) != 0;
+    }
+    return c;
+}
+
+// The sweep: every equal level 1..64; every outer combination of 1..5
+// (both parities, the smallest and degenerate rings); outer levels drawn
+// at random in 1..64 (asymmetric patches); transition edges (the sum of
+// two halves' levels in 1..32, sgPatchHalfMaxLevel of the cap 64) against
+// random other edges, all with the control stage's inner levels; and
+// arbitrary inner levels (every pair in 1..20, random pairs in 1..64)
+// with random outer levels.
+std::vector<DomainLevels> domainSweep() {
+    std::vector<DomainLevels> cases;
+    for (int l = 1; l <= 64; ++l) cases.push_back({{l, l, l, l}, l, l});
+    for (int a = 1; a <= 5; ++a)
+        for (int b = 1; b <= 5; ++b)
+            for (int c = 1; c <= 5; ++c)
+                for (int d = 1; d <= 5; ++d) cases.push_back(withTcsInner({a, b, c, d}));
+    std::mt19937 rng(20240611u);
+    auto level = [&](int hi) { return int(rng() % uint32_t(hi)) + 1; };
+    for (int k = 0; k < 400; ++k)
+        cases.push_back(withTcsInner({level(64), level(64), level(64), level(64)}));
+    for (int lo = 1; lo <= 32; lo += 1)
+        for (int hi : {lo, level(32), level(32)}) {
+            std::array<int, 4> o = {level(64), level(64), level(64), level(64)};
+            o[size_t(lo + hi) % 4] = lo + hi;
+            cases.push_back(withTcsInner(o));
+        }
+    for (int m = 1; m <= 20; ++m)
+        for (int n = 1; n <= 20; ++n)
+            cases.push_back({{level(64), level(64), level(64), level(64)}, m, n});
+    for (int k = 0; k < 200; ++k)
+        cases.push_back({{level(64), level(64), level(64), level(64)}, level(64), level(64)});
+    return cases;
+}
+
+std::string describe(const DomainLevels& l) {
+    return "outer " + std::to_string(l.outer[0]) + " " + std::to_string(l.outer[1]) + " " +
+           std::to_string(l.outer[2]) + " " + std::to_string(l.outer[3]) + ", inner " +
+           std::to_string(l.innerU) + " " + std::to_string(l.innerV);
+}
+
+// Every case of the sweep: the CPU's triangles are llvmpipe's, all
+// counter-clockwise in (u, v), and none is missing or extra; every domain
+// point has llvmpipe's (u, v) bit for bit (16-bit fixed point, not the
+// float quotient i / n: 1/3 is 21845 / 2^16).
+TEST(QuadDomainGpu, TrianglesAndPointsAreLlvmpipes) {
+    DomainCapture capture;
+    const std::vector<DomainLevels> cases = domainSweep();
+    size_t differing = 0, triangles = 0, pointsDiffer = 0;
+    for (const DomainLevels& l : cases) {
+        const DomainComparison c = compareDomain(capture, l);
+        triangles += c.gpuTriangles;
+        pointsDiffer += c.pointsDiffer;
+        const bool same = c.onlyGpu == 0 && c.onlyCpu == 0 && c.clockwise == 0 &&
+                          c.gpuTriangles == c.cpuTriangles && c.gpuTriangles > 0;
+        differing += !same;
+        if (!same && differing <= 5)
+            ADD_FAILURE() << describe(l) << ": " << c.gpuTriangles << " GPU triangles ("
+                          << c.onlyGpu << " not the CPU's, " << c.clockwise << " clockwise), "
+                          << c.cpuTriangles << " CPU triangles (" << c.onlyCpu << " not the GPU's)";
+    }
+    std::printf("quad domain: %zu level combinations, %zu triangles, %zu combinations differ, "
+                "%zu points differ\n",
+                cases.size(), triangles, differing, pointsDiffer);
+    EXPECT_EQ(differing, 0u);
+    EXPECT_EQ(pointsDiffer, 0u);
+}
 
 } // namespace

@@ -1,27 +1,72 @@
 // The CPU reference of the adaptive-patch draw: every patch tessellated at
 // the levels the GPU's control stage computes (the shared
 // sgPatchEdgeTessLevel of sg/patch/tess_level.glsl, from the same corner
-// vertices; transition edges the sum of their halves'), its domain points
-// those of the GL specification's quad tessellation with equal spacing
-// (OpenGL 4.5 core, section 11.2.2.2), and every point evaluated as the
-// evaluation stage does (sg/patch/watertight.glsl for edge points, the
-// shared basis sg/patch/basis.glsl, "limit" tangents from
-// sg/patch/limit_tangent.glsl).
+// vertices; transition edges the sum of their halves'), into the domain
+// points and triangles of GL's quad tessellation with equal spacing
+// (OpenGL 4.5 core, section 11.2.2.2) as Mesa's llvmpipe generates them,
+// and every point evaluated as the evaluation stage does
+// (sg/patch/watertight.glsl for edge points, the shared basis
+// sg/patch/basis.glsl, "limit" tangents from sg/patch/limit_tangent.glsl).
 //
-// Triangulation. GL fixes the domain points for integer levels but leaves
-// the triangles of the ring between the outer edges and the inner grid to
-// the implementation. Here: inner levels below 2 count as 2 (the
-// specification's 1 + epsilon rule for equal spacing, unless every level is
-// 1: one quad, two triangles); the inner grid (points i/m, j/n,
-// 1 <= i < m, 1 <= j < n) is cut into quads, each split along its
-// (i, j)-(i+1, j+1) diagonal; each side's strip between the n_outer + 1
-// points of the outer edge and the points of the inner grid's side is
-// "zipped": walking both rows in order, the next triangle advances the
-// row whose next point lies further back along the side (ties: the outer
-// row). Same points as the GPU, possibly different diagonals in the strip
-// and in the grid: the parity test's tolerance is derived from this
-// (tests/render/adaptive_test.cpp).
+// Tessellation. GL fixes the domain points of integer levels (i / n along
+// each edge and across the inner grid) but leaves their rounding and the
+// triangles to the implementation. Here both are llvmpipe's: Mesa's draw
+// module runs the Direct3D 11 reference tessellator (Mesa 22.3,
+// src/gallium/auxiliary/tessellator: p_tessellator.cpp maps GL's
+// equal_spacing to its integer partitioning, tessellator.cpp tessellates;
+// this file is a separate implementation of the behaviour learnt from
+// them). For integer outer levels (edges u = 0, v = 0, u = 1, v = 1) and
+// inner levels m (along u), n (along v):
+//  - Every level 1: one quad, two triangles split along (1,0)-(0,1).
+//    Otherwise an inner level 1 counts as 2 (GL's "1 + epsilon" rule).
+//  - Points: level L puts point i (0 <= i <= L) at i / L in 16-bit fixed
+//    point: i * s / 2^16 on the first half of the edge (2i < L),
+//    1 - (L - i) * s / 2^16 on the second, 1/2 exactly in the middle, with
+//    s = 2^16 / L rounded to nearest (domainCoord; 1/3 is 21845 / 2^16).
+//    Each outer edge uses its own level; the inner lattice point (i, j) is
+//    at (domainCoord(m, i), domainCoord(n, j)). The evaluation stage
+//    recovers an edge point's i as round(t L) (sg/patch/watertight.glsl),
+//    so edge positions do not depend on this rounding; interior points and
+//    every point's UVs do, and here they are llvmpipe's bit for bit.
+//  - Rings: the lattice points at distance r from the domain's border form
+//    ring r; ring 0 is replaced by the four outer edges, rings
+//    1 .. min(m, n) / 2 (integer halves) follow inwards. Every ring is
+//    walked counter-clockwise in (u, v) as four sides, each from corner to
+//    corner: u = low downward in v, v = low rightward in u, u = high
+//    upward, v = high leftward. Each side of ring r is stitched to the same
+//    side of ring r - 1 by a sequence of steps, one triangle each: an outer
+//    step (outer a, outer a + 1, inner b), an inner step (outer a, inner b,
+//    inner b + 1).
+//  - Ring 1 against an outer edge of level f, the side's inner level g
+//    (m or n): each half of the side is walked from its end to its middle
+//    over the 32 points of a half edge at level 64, in the order in which
+//    a growing level inserts them (ruler order, rulerRank: position 17
+//    first, then 9 and 25, then 5, 13, 21, 29, ..., position 1 last); the
+//    outer row advances at every position that level f has (rank below
+//    f / 2, integer half), the inner row at every position g has, the
+//    inner row first on the way in (first half), the outer first on the
+//    way back out (second half, walked from the middle to the end). The
+//    outer row also advances once at each end (if f > 1); in the middle,
+//    an odd g adds an inner step and an odd f an outer one (inner first).
+//  - Rings r >= 2 (the outer side has two points more): an outer step,
+//    then one quad per inner segment, then an outer step; the quads of the
+//    side's first half (the middle one, if any, included) are split from
+//    the outer row's earlier corner to the inner row's later one, those of
+//    the second half the mirror way.
+//  - Centre: an even shorter inner level leaves the last ring degenerate
+//    (a row, a column or a point: nothing left to fill). An odd one leaves
+//    a strip of quads one cell wide inside the last ring: along u (m > n,
+//    n odd) every quad split along (i + 1, j)-(i, j + 1); along v (n >= m,
+//    m odd) along (i, j)-(i + 1, j + 1), except the middle quad, split the
+//    other way, when n is odd.
+// tests/render/patch_gpu_test.cpp (QuadDomainGpu) checks the triangles and
+// the points against llvmpipe's own for every level the renderer uses.
+// Other implementations (hardware tessellators) place the same points up
+// to rounding but may choose other diagonals: the two images then differ
+// inside triangles by the interpolated attributes' second difference
+// across a cell (docs/platform.md).
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "render_internal.h"
@@ -35,9 +80,8 @@ namespace {
 
 namespace G = sg::glsl;
 
-// Domain points and triangles (indices into the points) of GL's quad
-// tessellation at integer outer levels (u = 0, v = 0, u = 1, v = 1) and
-// inner levels (along u, along v); counter-clockwise in (u, v).
+// Domain points and triangles (indices into the points) of one patch;
+// counter-clockwise in (u, v).
 struct QuadDomain {
     std::vector<glm::vec2> uv;
     std::vector<uint32_t> tris;
@@ -53,75 +97,166 @@ struct QuadDomain {
     }
 };
 
-// Zips an outer row and an inner row (both ordered along the same side,
-// with their positions along it) into triangles.
-void zip(QuadDomain& d, const std::vector<uint32_t>& outer, const std::vector<float>& outerT,
-         const std::vector<uint32_t>& inner, const std::vector<float>& innerT) {
-    size_t i = 0, j = 0;
-    while (i + 1 < outer.size() || j + 1 < inner.size()) {
-        const bool advanceOuter =
-            j + 1 >= inner.size() || (i + 1 < outer.size() && outerT[i + 1] <= innerT[j + 1]);
-        if (advanceOuter) {
-            d.tri(outer[i], outer[i + 1], inner[j]);
-            ++i;
+// Point i of level `level` along an edge or the inner lattice: i / level
+// in llvmpipe's 16-bit fixed point (see the top of the file).
+float domainCoord(int level, int i) {
+    if (2 * i == level) return 0.5f;
+    const uint32_t step = (65536u + uint32_t(level) / 2u) / uint32_t(level);
+    const bool secondHalf = 2 * i > level;
+    const uint32_t fixed = uint32_t(secondHalf ? level - i : i) * step;
+    return float(secondHalf ? 65536u - fixed : fixed) / 65536.0f;
+}
+
+// When a growing level inserts position p (0..32) of a half edge at level
+// 64: a level with h points on the half (h = level / 2) has the positions
+// of rank below h. Position 0 is the end (always there); then the ruler
+// function of p - 1 (17 first, 9 and 25, 5, 13, 21, 29, ...); position 1
+// last.
+int rulerRank(int p) {
+    if (p == 0) return 0;
+    if (p == 1) return 32;
+    const int k = p - 1, zeros = std::countr_zero(unsigned(k));
+    return (16 >> zeros) + (k >> (zeros + 1));
+}
+
+// A stitch between an outer and an inner row: true steps the outer row.
+using Steps = std::vector<bool>;
+
+// Ring 1's side against the outer edge (level outerLevel; innerLevel the
+// inner level along the side, at least 2).
+Steps transitionSteps(int outerLevel, int innerLevel) {
+    const int outerHalf = outerLevel / 2, innerHalf = innerLevel / 2;
+    Steps s;
+    if (outerHalf > 0) s.push_back(true);
+    for (int p = 1; p <= 32; ++p) {
+        if (rulerRank(p) < innerHalf) s.push_back(false);
+        if (rulerRank(p) < outerHalf) s.push_back(true);
+    }
+    if (innerLevel % 2 == 1) s.push_back(false);
+    if (outerLevel % 2 == 1) s.push_back(true);
+    for (int p = 32; p >= 1; --p) {
+        if (rulerRank(p) < outerHalf) s.push_back(true);
+        if (rulerRank(p) < innerHalf) s.push_back(false);
+    }
+    if (outerHalf > 0) s.push_back(true);
+    return s;
+}
+
+// A side of ring r >= 2 (innerPoints points) against ring r - 1's.
+Steps ringSteps(size_t innerPoints) {
+    Steps s{true};
+    for (size_t q = 0; q + 1 < innerPoints; ++q) {
+        const bool firstHalf = q < innerPoints / 2;
+        s.push_back(!firstHalf);
+        s.push_back(firstHalf);
+    }
+    s.push_back(true);
+    return s;
+}
+
+// Triangles between two rows walked by `steps`.
+void zip(QuadDomain& d, const std::vector<uint32_t>& outer, const std::vector<uint32_t>& inner,
+         const Steps& steps) {
+    size_t a = 0, b = 0;
+    for (const bool outerStep : steps) {
+        if (outerStep) {
+            d.tri(outer[a], outer[a + 1], inner[b]);
+            ++a;
         } else {
-            d.tri(outer[i], inner[j + 1], inner[j]);
-            ++j;
+            d.tri(outer[a], inner[b], inner[b + 1]);
+            ++b;
         }
     }
+    SG_ASSERT(a + 1 == outer.size() && b + 1 == inner.size(), "a stitch walks both rows");
+}
+
+// The inner lattice of a patch: point (i, j) for 1 <= i < m, 1 <= j < n.
+struct Lattice {
+    int m, n;
+    std::vector<uint32_t> ids;
+
+    Lattice(QuadDomain& d, int m_, int n_) : m(m_), n(n_), ids(size_t(m_ + 1) * size_t(n_ + 1)) {
+        for (int j = 1; j < n; ++j)
+            for (int i = 1; i < m; ++i) at(i, j) = d.add({domainCoord(m, i), domainCoord(n, j)});
+    }
+    uint32_t& at(int i, int j) { return ids[size_t(j) * size_t(m + 1) + size_t(i)]; }
+    // Side k of ring r, in the ring's counter-clockwise order.
+    std::vector<uint32_t> side(int r, int k) {
+        std::vector<uint32_t> row;
+        if (k == 0)
+            for (int j = n - r; j >= r; --j) row.push_back(at(r, j));
+        if (k == 1)
+            for (int i = r; i <= m - r; ++i) row.push_back(at(i, r));
+        if (k == 2)
+            for (int j = r; j <= n - r; ++j) row.push_back(at(m - r, j));
+        if (k == 3)
+            for (int i = m - r; i >= r; --i) row.push_back(at(i, n - r));
+        return row;
+    }
+};
+
+// The strip of quads inside the last ring when the shorter inner level is
+// odd (nothing when it is even).
+void centreStrip(QuadDomain& d, Lattice& g) {
+    const int m = g.m, n = g.n;
+    std::vector<uint32_t> outer, inner;
+    bool flipMiddle = false;
+    if (m > n && n % 2 == 1) {
+        const int r = n / 2;
+        for (int i = r; i <= m - r; ++i) {
+            outer.push_back(g.at(i, r));
+            inner.push_back(g.at(i, r + 1));
+        }
+    } else if (n >= m && m % 2 == 1) {
+        const int r = m / 2;
+        for (int j = n - r; j >= r; --j) {
+            outer.push_back(g.at(r, j));
+            inner.push_back(g.at(r + 1, j));
+        }
+        flipMiddle = n % 2 == 1;
+    }
+    if (outer.empty()) return;
+    const size_t quads = outer.size() - 1;
+    Steps s;
+    for (size_t q = 0; q < quads; ++q) {
+        const bool flip = flipMiddle && 2 * q + 1 == quads;
+        s.push_back(!flip);
+        s.push_back(flip);
+    }
+    zip(d, outer, inner, s);
 }
 
 QuadDomain quadDomain(const int outer[4], int innerU, int innerV) {
+    SG_ASSERT(std::max({outer[0], outer[1], outer[2], outer[3], innerU, innerV}) <= 64,
+              "levels up to 64 (the ruler order spans a half edge of 32 segments)");
     QuadDomain d;
-    if (innerU <= 1 && innerV <= 1 && outer[0] == 1 && outer[1] == 1 && outer[2] == 1 &&
-        outer[3] == 1) {
-        const uint32_t a = d.add(glm::vec2(0.0f, 0.0f)), b = d.add(glm::vec2(1.0f, 0.0f));
-        const uint32_t c = d.add(glm::vec2(1.0f, 1.0f)), e = d.add(glm::vec2(0.0f, 1.0f));
-        d.tri(a, b, c);
-        d.tri(a, c, e);
+    const uint32_t c00 = d.add({0.0f, 0.0f}), c10 = d.add({1.0f, 0.0f});
+    const uint32_t c11 = d.add({1.0f, 1.0f}), c01 = d.add({0.0f, 1.0f});
+    if (innerU <= 1 && innerV <= 1 && outer[0] <= 1 && outer[1] <= 1 && outer[2] <= 1 &&
+        outer[3] <= 1) {
+        d.tri(c00, c10, c01);
+        d.tri(c10, c11, c01);
         return d;
     }
-    const int m = std::max(innerU, 2), n = std::max(innerV, 2);
-    // Inner grid: (m - 1) x (n - 1) points.
-    std::vector<uint32_t> grid(size_t(m - 1) * size_t(n - 1));
-    auto g = [&](int i, int j) -> uint32_t& {
-        return grid[size_t(j - 1) * size_t(m - 1) + size_t(i - 1)];
-    };
-    for (int j = 1; j < n; ++j)
-        for (int i = 1; i < m; ++i)
-            g(i, j) = d.add(glm::vec2(float(i) / float(m), float(j) / float(n)));
-    for (int j = 1; j + 1 < n; ++j)
-        for (int i = 1; i + 1 < m; ++i) {
-            d.tri(g(i, j), g(i + 1, j), g(i + 1, j + 1));
-            d.tri(g(i, j), g(i + 1, j + 1), g(i, j + 1));
-        }
-    // Corners, then each side: the outer edge's points (corner to corner)
-    // against the inner grid's outermost row or column on that side.
-    const uint32_t c00 = d.add(glm::vec2(0.0f, 0.0f)), c10 = d.add(glm::vec2(1.0f, 0.0f));
-    const uint32_t c11 = d.add(glm::vec2(1.0f, 1.0f)), c01 = d.add(glm::vec2(0.0f, 1.0f));
+    Lattice g(d, std::max(innerU, 2), std::max(innerV, 2));
+    // Ring 1 against the outer edges (side k runs from first[k] to last[k]).
+    const uint32_t first[4] = {c01, c00, c10, c11}, last[4] = {c00, c10, c11, c01};
     for (int k = 0; k < 4; ++k) {
-        const int lvl = std::max(outer[k], 1);
-        const bool alongV = k == 0 || k == 2; // edges u = 0 and u = 1 run along v
-        std::vector<uint32_t> orow, irow;
-        std::vector<float> ot, it;
-        orow.push_back(k == 0 ? c00 : k == 1 ? c00 : k == 2 ? c10 : c01);
-        ot.push_back(0.0f);
-        for (int s = 1; s < lvl; ++s) {
-            const float t = float(s) / float(lvl);
-            orow.push_back(d.add(G::sgPatchEdgeUv(k, t)));
-            ot.push_back(t);
-        }
-        orow.push_back(k == 0 ? c01 : k == 1 ? c10 : k == 2 ? c11 : c11);
-        ot.push_back(1.0f);
-        const int count = alongV ? n - 1 : m - 1;
-        for (int s = 1; s <= count; ++s) {
-            const int i = k == 0 ? 1 : k == 2 ? m - 1 : s;
-            const int j = k == 1 ? 1 : k == 3 ? n - 1 : s;
-            irow.push_back(g(i, j));
-            it.push_back(alongV ? float(j) / float(n) : float(i) / float(m));
-        }
-        zip(d, orow, ot, irow, it);
+        const int level = std::max(outer[k], 1);
+        const bool backwards = k == 0 || k == 3; // against the edge's own parameter
+        std::vector<uint32_t> row{first[k]};
+        for (int s = 1; s < level; ++s)
+            row.push_back(
+                d.add(G::sgPatchEdgeUv(k, domainCoord(level, backwards ? level - s : s))));
+        row.push_back(last[k]);
+        zip(d, row, g.side(1, k), transitionSteps(level, k % 2 == 0 ? g.n : g.m));
     }
+    for (int r = 2; r <= std::min(g.m, g.n) / 2; ++r)
+        for (int k = 0; k < 4; ++k) {
+            const std::vector<uint32_t> inner = g.side(r, k);
+            zip(d, g.side(r - 1, k), inner, ringSteps(inner.size()));
+        }
+    centreStrip(d, g);
     return d;
 }
 
@@ -204,6 +339,14 @@ void addTangents(const sg::mesh::AdaptivePatches& ap, const std::vector<uint32_t
 }
 
 } // namespace
+
+QuadTessellation tessellateQuadDomain(const std::array<int, 4>& outer, int innerU, int innerV) {
+    SG_EXPECTS(innerU >= 1 && innerV >= 1 && *std::min_element(outer.begin(), outer.end()) >= 1 &&
+                   std::max({outer[0], outer[1], outer[2], outer[3], innerU, innerV}) <= 64,
+               "integer levels in 1..64");
+    QuadDomain d = quadDomain(outer.data(), innerU, innerV);
+    return {std::move(d.uv), std::move(d.tris)};
+}
 
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& ap, const glm::mat4& modelRel,
                                      float focalPx, float pixelsPerEdge,

@@ -130,6 +130,17 @@ TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,
                                      const PatchDisplacement* displacement = nullptr,
                                      uint32_t tangentMask = 0);
 
+// One patch's tessellation of GL's quad domain with equal spacing at
+// integer outer levels (edges u = 0, v = 0, u = 1, v = 1) and inner levels
+// (along u, along v), all in 1..64: the domain points and the
+// counter-clockwise triangles (indices into uv) that Mesa's llvmpipe
+// generates (patch_tessellation.cpp, which tessellatePatches uses).
+struct QuadTessellation {
+    std::vector<glm::vec2> uv;
+    std::vector<uint32_t> triangles;
+};
+QuadTessellation tessellateQuadDomain(const std::array<int, 4>& outer, int innerU, int innerV);
+
 // Patches per glDrawArrays of an adaptive mesh (gl_renderer.cpp). Mesa's
 // draw module, which runs the vertex and tessellation stages of its
 // software rasterisers (llvmpipe, softpipe), splits a draw into chunks of
