@@ -528,7 +528,7 @@ Case farCameraCase() {
     c.family = "far-from-origin-render";
     c.kind = "uv_normal";
     c.input = "a sphere at x = 999990, the camera 0.3 units beside it in x";
-    c.perturbation = "camera x moved by 1e-9 of its value";
+    c.perturbation = "camera x moved by 1e-12 of its value (1e-6 units)";
     auto spec = [](glm::dvec3 origin, double dx) {
         SceneSpec s;
         s.meshFields = kSphereFields;
@@ -540,7 +540,7 @@ Case farCameraCase() {
     };
     const glm::dvec3 far(999990.0, 0.0, 0.0);
     c.build = [spec, far](bool p, const fs::path& dir) {
-        return sceneOf(spec(far, p ? 1e-9 * far.x : 0.0), dir);
+        return sceneOf(spec(far, p ? 1e-12 * far.x : 0.0), dir);
     };
     c.expected = [spec](const fs::path& dir) { return sceneOf(spec(glm::dvec3(0.0), 0.0), dir); };
     c.expectedWhat = "the same scene at the origin";

@@ -439,7 +439,7 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
             if (r.eu.p99 < targetPx && r.eu.max < targetPx) break;
         }
         float ppe = ppes[std::size(ppes) - 1];
-        const glm::mat4 rel = modelToCameraRelative(glm::mat4(1.0f), view.cameraPos);
+        const glm::mat4 rel = modelToCameraRelative(glm::dmat4(1.0), view.cameraPos);
         for (float p : ppes) {
             sg::mesh::RenderMesh t = detail::tessellatePatches(ap, rel, focalPx, p).mesh;
             r.ea = screenError(ref, t, view, focalPx);

@@ -209,7 +209,7 @@ Scene makeScene(const SceneSpec& spec, Variant v, const Maps& maps, int w) {
 // world units per pixel 2 H tan(fov/2) / w = m / kTexelsPerUnit.
 void placeCamera(Scene& s, double m, int w) {
     const double h = m * w / (kTexelsPerUnit * 2.0 * std::tan(kFovDeg * 3.141592653589793 / 360.0));
-    s.camera.position = glm::vec3(planeFrame().n * h);
+    s.camera.position = glm::dvec3(planeFrame().n * h);
     s.camera.nearPlane = float(0.5 * h);
     s.camera.farPlane = float(2.0 * h);
 }

@@ -169,17 +169,18 @@ void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
 namespace {
 
 // A frame point is regular when its charts are well conditioned relative
-// to their size: |det J| > kMinRelDet max|J|^2 in UV space, |dP/du x dP/dv| >
-// kMinRelDet max(|dP/du|, |dP/dv|)^2 on the surface (components). The chain
+// to their size: |det J| > kMinRelDet max(|dST/du|, |dST/dv|)^2 in UV
+// space, |dP/du x dP/dv| > kMinRelDet max(|dP/du|, |dP/dv|)^2 on the surface
+// (for derivatives of equal length: the sine of their angle). The chain
 // rule divides by those determinants: with float inputs (relative error
-// ~1e-7 of the largest entry) the result is then good to ~1e-4 rad. Below,
-// the ratio is dominated by rounding: at smooth boundary corners of a
-// Catmull-Clark surface, where the limit parameterization collapses, and
+// ~1e-7 of the longer derivative) the result is then good to ~1e-4 rad.
+// Below, the ratio is dominated by rounding: at smooth boundary corners of
+// a Catmull-Clark surface, where the limit parameterization collapses, and
 // on charts where one derivative is rounding noise (the side walls of a
-// planar UV projection, dST/dv ~ 1e-7 |st|). Measured against the size and
-// not against the two derivatives' lengths (the sine of their angle),
+// planar UV projection, dST/dv ~ 1e-7 |st|). Relative to the longer
+// derivative, not to the product of both lengths (the sine of their angle),
 // because a noise derivative has a random direction: its sine is anything,
-// its size says it is noise (shaders/sg/patch/limit_tangent.glsl uses the
+// its length says it is noise (shaders/sg/patch/limit_tangent.glsl uses the
 // same rule).
 constexpr double kMinRelDet = 1e-3;
 
@@ -204,15 +205,14 @@ glm::vec4 limitTangent(const glm::vec3& dPduF, const glm::vec3& dPdvF, const glm
     // J = [[ds/du ds/dv], [dt/du dt/dv]].
     const double a = dSTdu.x, b = dSTdv.x, c = dSTdu.y, d = dSTdv.y;
     const double det = a * d - b * c;
-    const double kJ = std::max({std::fabs(a), std::fabs(b), std::fabs(c), std::fabs(d)});
-    const bool uvRegular = std::isfinite(det) && kJ > 0.0 && std::isfinite(kJ) &&
-                           std::fabs(det) > kMinRelDet * kJ * kJ;
+    const double kJ2 = std::max(a * a + c * c, b * b + d * d);
+    const bool uvRegular =
+        std::isfinite(det) && kJ2 > 0.0 && std::isfinite(kJ2) && std::fabs(det) > kMinRelDet * kJ2;
     const glm::dvec3 cross = glm::cross(dPdu, dPdv);
     const double crossLen = glm::length(cross);
-    const double kP = std::max({std::fabs(dPdu.x), std::fabs(dPdu.y), std::fabs(dPdu.z),
-                                std::fabs(dPdv.x), std::fabs(dPdv.y), std::fabs(dPdv.z)});
+    const double kP2 = std::max(glm::dot(dPdu, dPdu), glm::dot(dPdv, dPdv));
     const bool surfaceRegular =
-        std::isfinite(crossLen) && kP > 0.0 && std::isfinite(kP) && crossLen > kMinRelDet * kP * kP;
+        std::isfinite(crossLen) && kP2 > 0.0 && std::isfinite(kP2) && crossLen > kMinRelDet * kP2;
     const double w = uvRegular ? (det > 0.0 ? 1.0 : -1.0) : 1.0;
     const glm::dvec3 dPds = uvRegular ? (d * dPdu - c * dPdv) / det : glm::dvec3(0.0);
 

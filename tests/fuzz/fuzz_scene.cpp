@@ -82,7 +82,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         check(m.material >= 0 && size_t(m.material) < s.materials.size(),
               "material index in range");
         check(m.procedural.has_value() != !m.file.empty(), "exactly one geometry source");
-        check(std::abs(glm::determinant(glm::mat3(m.transform))) > 0.0f, "invertible transform");
+        check(std::abs(glm::determinant(glm::dmat3(m.transform))) > 0.0, "invertible transform");
     }
     size_t total = 0;
     for (const auto& mat : s.materials) {

@@ -185,8 +185,8 @@ Scene farScene(float c) {
         R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}})",
         R"({"procedural": {"type": "sphere", "size": 1, "segments": 48}})", "", 96, 72,
         R"(, "camera": {"position": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 38, "near": 0.5, "far": 10})"));
-    const glm::vec3 offset(c);
-    scene.meshes[0].transform = glm::translate(glm::mat4(1.0f), offset);
+    const glm::dvec3 offset(c);
+    scene.meshes[0].transform = glm::translate(glm::dmat4(1.0), offset);
     scene.camera.position += offset;
     scene.camera.target += offset;
     return scene;

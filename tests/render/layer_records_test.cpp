@@ -245,7 +245,7 @@ TEST(LayerRecords, PackedScenesUnpackToTheLayersParameters) {
         SceneAssets a = loadAssets(s);
         MaterialPlan plan = planMaterial(s, a, 0, 0);
         View view = makeView(s, a);
-        view.cameraPos += glm::vec3(std::uniform_real_distribution<float>(-5.0f, 5.0f)(rng));
+        view.cameraPos += glm::dvec3(std::uniform_real_distribution<float>(-5.0f, 5.0f)(rng));
         std::vector<glm::vec4> records = packLayerRecords(plan, view);
         for (const auto& group : plan.groups)
             for (const PlanLayer& pl : group) {

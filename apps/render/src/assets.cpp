@@ -164,9 +164,9 @@ void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, g
     lo = glm::vec3(1e30f);
     hi = glm::vec3(-1e30f);
     for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
-        const glm::mat4& M = scene.meshes[i].transform;
+        const glm::dmat4& M = scene.meshes[i].transform;
         for (const auto& p : assets.meshes[i].mesh.positions) {
-            glm::vec3 w = glm::vec3(M * glm::vec4(p, 1.0f));
+            glm::vec3 w = glm::vec3(M * glm::dvec4(glm::dvec3(p), 1.0));
             lo = glm::min(lo, w);
             hi = glm::max(hi, w);
         }
@@ -820,7 +820,7 @@ Scene sceneForModel(const fs::path& model) {
         mi.fieldPath = model.filename().string() + " instance " + std::to_string(i);
         mi.file = model;
         mi.fileInstance = int(i);
-        mi.transform = inst.objectToWorld;
+        mi.transform = glm::dmat4(inst.objectToWorld);
         // The node's weight animation (glTF sec. 3.11) as linear keys: the
         // animation's own keys when linear, else samples at 30 Hz of
         // sampleWeights (step / cubic spline).
@@ -869,18 +869,21 @@ Scene sceneForModel(const fs::path& model) {
 
 namespace {
 
-View finishView(glm::vec3 eye, glm::vec3 target, glm::vec3 up, float fovDeg, float nearP,
+View finishView(glm::dvec3 eye, glm::dvec3 target, glm::dvec3 up, float fovDeg, float nearP,
                 float farP, int w, int h, Aov aov) {
     View v;
     v.width = w;
     v.height = h;
     v.aov = aov;
     v.cameraPos = eye;
-    v.view = glm::lookAt(eye, target, up);
+    // In binary64: the direction target - eye of a camera 1e6 from the
+    // origin keeps its digits.
+    const glm::dmat4 view = glm::lookAt(eye, target, up);
+    v.view = glm::mat4(view);
     v.proj = glm::perspective(glm::radians(fovDeg), float(w) / float(h), nearP, farP);
     // Camera-relative: the view's rotation only (listing 16's relative
     // world position keeps the translation out of every derivative).
-    v.viewProjRel = v.proj * glm::mat4(glm::mat3(v.view));
+    v.viewProjRel = v.proj * glm::mat4(glm::mat3(view));
     return v;
 }
 
@@ -891,10 +894,10 @@ View makeView(const Scene& scene, const SceneAssets& assets, int width, int heig
     int h = height > 0 ? height : scene.output.height;
     glm::vec3 lo, hi;
     detail::sceneBounds(scene, assets, lo, hi);
-    glm::vec3 center = 0.5f * (lo + hi);
+    const glm::dvec3 center = 0.5 * (glm::dvec3(lo) + glm::dvec3(hi));
     float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     const Camera& c = scene.camera;
-    glm::vec3 eye = c.position, target = c.target;
+    glm::dvec3 eye = c.position, target = c.target;
     float halfFov = glm::radians(c.fovDeg) * 0.5f;
     if (c.automatic) {
         float az = glm::radians(c.azimuthDeg), el = glm::radians(c.elevationDeg);
@@ -903,21 +906,21 @@ View makeView(const Scene& scene, const SceneAssets& assets, int width, int heig
         float halfFovX = std::atan(std::tan(halfFov) * float(w) / float(h));
         float dist = radius / std::sin(std::min(halfFov, halfFovX)) * c.distanceScale;
         target = center;
-        eye = center + dir * dist;
+        eye = center + glm::dvec3(dir * dist);
     }
-    float dist = glm::length(eye - center);
+    float dist = float(glm::length(eye - center));
     float nearP = c.nearPlane > 0 ? c.nearPlane
                                   : std::max(dist - 2.0f * radius, std::max(dist, radius) * 1e-3f);
     float farP = c.farPlane > 0 ? c.farPlane : dist + 3.0f * radius;
     return finishView(eye, target, c.up, c.fovDeg, nearP, farP, w, h, aov);
 }
 
-View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg,
+View makeOrbitView(glm::dvec3 target, float distance, float azimuthDeg, float elevationDeg,
                    float fovDeg, float nearPlane, float farPlane, int width, int height, Aov aov) {
     float az = glm::radians(azimuthDeg), el = glm::radians(elevationDeg);
     glm::vec3 dir(std::sin(az) * std::cos(el), std::sin(el), std::cos(az) * std::cos(el));
-    return finishView(target + distance * dir, target, glm::vec3(0, 1, 0), fovDeg, nearPlane,
-                      farPlane, width, height, aov);
+    return finishView(target + glm::dvec3(distance * dir), target, glm::dvec3(0, 1, 0), fovDeg,
+                      nearPlane, farPlane, width, height, aov);
 }
 
 } // namespace sg::render

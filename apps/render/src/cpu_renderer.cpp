@@ -96,10 +96,10 @@ MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& v
     const auto& m = a.mesh;
     MeshData d;
     d.mesh = &m;
-    const glm::mat4& M = inst.transform;
-    const glm::mat4 rel = modelToCameraRelative(M, view.cameraPos);
-    glm::mat3 nm = detail::normalMatrix(M);
-    d.detSign = glm::determinant(glm::mat3(M)) < 0.0f ? -1.0f : 1.0f;
+    const glm::mat4 M(inst.transform); // uModel: the world position is rounded as on the GPU
+    const glm::mat4 rel = modelToCameraRelative(inst.transform, view.cameraPos);
+    glm::mat3 nm = detail::normalMatrix(inst.transform);
+    d.detSign = glm::determinant(glm::dmat3(inst.transform)) < 0.0 ? -1.0f : 1.0f;
     size_t nv = m.vertexCount();
     d.rel.resize(nv);
     d.world.resize(nv);

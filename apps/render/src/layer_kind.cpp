@@ -111,7 +111,7 @@ void parseParam(const ParamSpec& p, const detail::SceneNode& n, Layer& L,
         }
         break;
     case ParamType::Vec3:
-        if (n.has(key)) p.setVec3(L, n.vec3(key, glm::vec3(0.0f), p.lo, p.hi));
+        if (n.has(key)) p.setVec3(L, n.dvec3(key, glm::dvec3(0.0), p.lo, p.hi));
         break;
     case ParamType::String:
         if (n.has(key)) p.setString(L, n.string(key, ""));

@@ -73,8 +73,8 @@ struct ParamSpec {
     bool required = false;                            // Map
     std::optional<SliderRange> slider;                // viewer (Number only)
     // Typed access, made by the param:: helpers below.
-    std::function<void(Layer&, double)> setNumber; // Number, Integer, Boolean, Choice
-    std::function<void(Layer&, glm::vec3)> setVec3;
+    std::function<void(Layer&, double)> setNumber;   // Number, Integer, Boolean, Choice
+    std::function<void(Layer&, glm::dvec3)> setVec3; // read in binary64
     std::function<void(Layer&, std::string)> setString;
     std::function<float*(Layer&)> floatRef; // Number: the member (viewer sliders)
     ParamParse parse;                       // Custom
@@ -161,7 +161,21 @@ ParamSpec vec3(const char* json, glm::vec3 P::*m, Range r, const char* doc) {
     s.doc = doc;
     s.lo = r.lo;
     s.hi = r.hi;
-    s.setVec3 = [m](Layer& L, glm::vec3 v) { owner<P>(L).*m = v; };
+    s.setVec3 = [m](Layer& L, glm::dvec3 v) { owner<P>(L).*m = glm::vec3(v); };
+    return s;
+}
+
+// A binary64 vector (positions: kept in binary64 until the camera-relative
+// composition).
+template <class P>
+ParamSpec vec3(const char* json, glm::dvec3 P::*m, Range r, const char* doc) {
+    ParamSpec s;
+    s.json = json;
+    s.type = ParamType::Vec3;
+    s.doc = doc;
+    s.lo = r.lo;
+    s.hi = r.hi;
+    s.setVec3 = [m](Layer& L, glm::dvec3 v) { owner<P>(L).*m = v; };
     return s;
 }
 

@@ -310,7 +310,7 @@ std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view) {
     std::vector<glm::vec4> r;
     for (const Light& l : scene.lights) {
         if (l.point) {
-            r.emplace_back(l.position - view.cameraPos, 1.0f);
+            r.emplace_back(glm::vec3(l.position - view.cameraPos), 1.0f); // binary64
         } else {
             r.emplace_back(-l.direction, 0.0f);
         }
@@ -323,16 +323,16 @@ std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view) {
     return r;
 }
 
-glm::mat4 modelToCameraRelative(const glm::mat4& model, const glm::vec3& cameraPos) {
-    glm::mat4 rel = model;
-    for (int i = 0; i < 3; ++i) rel[3][i] = float(double(model[3][i]) - double(cameraPos[i]));
-    return rel;
+glm::mat4 modelToCameraRelative(const glm::dmat4& model, const glm::dvec3& cameraPos) {
+    glm::dmat4 rel = model;
+    for (int i = 0; i < 3; ++i) rel[3][i] = model[3][i] - cameraPos[i];
+    return glm::mat4(rel);
 }
 
 namespace detail {
 
-glm::mat3 normalMatrix(const glm::mat4& model) {
-    return glm::transpose(glm::inverse(glm::mat3(model)));
+glm::mat3 normalMatrix(const glm::dmat4& model) {
+    return glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model))));
 }
 
 namespace {
@@ -370,12 +370,15 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
     u.baseColor = mat.baseColor;
     u.roughness = mat.roughness;
     u.ambient = scene.ambient;
-    u.model = mi.transform;
+    u.model = glm::mat4(mi.transform);
     u.modelRel = modelToCameraRelative(mi.transform, view.cameraPos);
-    u.model3 = glm::mat3(mi.transform);
-    u.modelInv3 = glm::inverse(u.model3);
+    u.model3 = glm::mat3(u.model);
+    // Inverse, normal matrix and handedness in binary64 from the scene's
+    // transform, then rounded (a flattened instance's inverse is large).
+    const glm::dmat3 m3(mi.transform);
+    u.modelInv3 = glm::mat3(glm::inverse(m3));
     u.normalMat = normalMatrix(mi.transform);
-    u.detSign = glm::determinant(u.model3) < 0.0f ? -1.0f : 1.0f;
+    u.detSign = glm::determinant(m3) < 0.0 ? -1.0f : 1.0f;
     u.lights = packLightRecords(scene, view);
     u.records = packRecords(plan, view, &assets);
     if (plan.uber) u.uberFlags = uberFlags(plan);

@@ -99,7 +99,7 @@ void checkTextureBudget(const std::string& name, const TextureLoadOptions& opt,
 // (gl_renderer.cpp; the crack tests draw with the same records).
 std::vector<uint32_t> patchRecords(const sg::mesh::AdaptivePatches& ap);
 
-glm::mat3 normalMatrix(const glm::mat4& model);
+glm::mat3 normalMatrix(const glm::dmat4& model);
 
 // The triangles of adaptive patches for one view, as the GPU's
 // tessellation stages make them (patch_tessellation.cpp: the same levels,

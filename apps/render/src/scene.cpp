@@ -220,37 +220,38 @@ struct Parser : detail::SceneReader {
         return m;
     }
 
-    glm::mat4 transform(const Node& n) const {
+    // In binary64, as every scene position (MeshInstance::transform).
+    glm::dmat4 transform(const Node& n) const {
         n.allowOnly({"translate", "rotate_deg", "scale", "matrix"});
         if (n.has("matrix")) {
             if (n.has("translate") || n.has("rotate_deg") || n.has("scale")) {
                 n.fail("\"matrix\" excludes translate/rotate_deg/scale");
             }
-            std::vector<float> m = n.floats("matrix", -kHuge, kHuge, 16);
+            std::vector<double> m = n.doubles("matrix", -kHuge, kHuge, 16);
             if (m.size() != 16) n.failField("matrix", "expected 16 numbers (column-major)");
-            glm::mat4 r;
+            glm::dmat4 r;
             for (int c = 0; c < 4; ++c)
                 for (int k = 0; k < 4; ++k) r[c][k] = m[size_t(c * 4 + k)];
-            if (std::abs(glm::determinant(glm::mat3(r))) < 1e-12f)
+            if (std::abs(glm::determinant(glm::dmat3(r))) < 1e-12)
                 n.failField("matrix", "is singular");
             return r;
         }
-        glm::vec3 t = n.vec3("translate", glm::vec3(0.0f), -kHuge, kHuge);
-        glm::vec3 rot = n.vec3("rotate_deg", glm::vec3(0.0f), -1e4, 1e4);
-        glm::vec3 s(1.0f);
+        glm::dvec3 t = n.dvec3("translate", glm::dvec3(0.0), -kHuge, kHuge);
+        glm::dvec3 rot = n.dvec3("rotate_deg", glm::dvec3(0.0), -1e4, 1e4);
+        glm::dvec3 s(1.0);
         if (n.has("scale")) {
             if (n.value().at("scale").is_number()) {
-                s = glm::vec3(n.num("scale", 1.0, 0.0, kHuge, true));
+                s = glm::dvec3(n.number("scale", 1.0, 0.0, kHuge, true));
             } else {
-                s = n.vec3("scale", s, -kHuge, kHuge);
-                if (std::abs(s.x * s.y * s.z) < 1e-12f)
+                s = n.dvec3("scale", s, -kHuge, kHuge);
+                if (std::abs(s.x * s.y * s.z) < 1e-12)
                     n.failField("scale", "expected non-zero scales");
             }
         }
-        glm::mat4 m = glm::translate(glm::mat4(1.0f), t);
-        m = glm::rotate(m, glm::radians(rot.z), glm::vec3(0, 0, 1));
-        m = glm::rotate(m, glm::radians(rot.y), glm::vec3(0, 1, 0));
-        m = glm::rotate(m, glm::radians(rot.x), glm::vec3(1, 0, 0));
+        glm::dmat4 m = glm::translate(glm::dmat4(1.0), t);
+        m = glm::rotate(m, glm::radians(rot.z), glm::dvec3(0, 0, 1));
+        m = glm::rotate(m, glm::radians(rot.y), glm::dvec3(0, 1, 0));
+        m = glm::rotate(m, glm::radians(rot.x), glm::dvec3(1, 0, 0));
         return glm::scale(m, s);
     }
 
@@ -456,7 +457,7 @@ struct Parser : detail::SceneReader {
         l.point = n.choice("type", 0, {"directional", "point"}) == 1;
         if (l.point) {
             n.allowOnly({"type", "position", "color", "intensity"});
-            l.position = n.vec3("position", glm::vec3(0, 3, 3), -kHuge, kHuge);
+            l.position = n.dvec3("position", glm::dvec3(0, 3, 3), -kHuge, kHuge);
         } else {
             n.allowOnly({"type", "direction", "color", "intensity"});
             l.direction = n.vec3("direction", l.direction, -kHuge, kHuge);
@@ -480,14 +481,14 @@ struct Parser : detail::SceneReader {
             n.fail("azimuth_deg/elevation_deg/distance_scale apply to the automatic camera (no "
                    "\"position\")");
         }
-        c.position = n.vec3("position", c.position, -kHuge, kHuge);
-        c.target = n.vec3("target", c.target, -kHuge, kHuge);
-        c.up = n.vec3("up", c.up, -kHuge, kHuge);
+        c.position = n.dvec3("position", c.position, -kHuge, kHuge);
+        c.target = n.dvec3("target", c.target, -kHuge, kHuge);
+        c.up = n.dvec3("up", c.up, -kHuge, kHuge);
         if (!c.automatic) {
-            glm::vec3 fwd = c.target - c.position;
-            if (glm::length(fwd) < 1e-9f) n.failField("target", "must differ from \"position\"");
-            if (glm::length(glm::cross(fwd, c.up)) < 1e-9f * glm::length(fwd) ||
-                glm::length(c.up) < 1e-9f) {
+            const glm::dvec3 fwd = c.target - c.position;
+            if (glm::length(fwd) < 1e-9) n.failField("target", "must differ from \"position\"");
+            if (glm::length(glm::cross(fwd, c.up)) < 1e-9 * glm::length(fwd) ||
+                glm::length(c.up) < 1e-9) {
                 n.failField("up", "expected a non-zero vector not parallel to the view direction");
             }
         }

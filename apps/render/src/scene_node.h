@@ -122,21 +122,30 @@ public:
         failField(key, "expected one of " + list + ", got \"" + v.get<std::string>() + "\"");
     }
     glm::vec3 vec3(const char* key, glm::vec3 def, double lo = -1e9, double hi = 1e9) const {
+        return glm::vec3(dvec3(key, glm::dvec3(def), lo, hi));
+    }
+    // The same in binary64 (positions and transforms: kept in binary64 until
+    // the camera-relative composition, render/view.h).
+    glm::dvec3 dvec3(const char* key, glm::dvec3 def, double lo = -1e9, double hi = 1e9) const {
         if (!has(key)) return def;
         const nlohmann::json& v = j_.at(key);
         std::string what = "expected an array of 3 numbers" + rangeText(lo, hi, false);
         if (!v.is_array() || v.size() != 3) failField(key, what);
-        glm::vec3 r;
+        glm::dvec3 r;
         for (int i = 0; i < 3; ++i) {
             if (!v[size_t(i)].is_number()) failField(key, what);
             double x = v[size_t(i)].get<double>();
             if (!std::isfinite(x) || x < lo || x > hi) failField(key, what);
-            r[i] = float(x);
+            r[i] = x;
         }
         return r;
     }
     std::vector<float> floats(const char* key, double lo, double hi, size_t maxCount) const {
-        std::vector<float> out;
+        const std::vector<double> d = doubles(key, lo, hi, maxCount);
+        return std::vector<float>(d.begin(), d.end());
+    }
+    std::vector<double> doubles(const char* key, double lo, double hi, size_t maxCount) const {
+        std::vector<double> out;
         if (!has(key)) return out;
         const nlohmann::json& v = j_.at(key);
         std::string what = "expected an array of numbers" + rangeText(lo, hi, false);
@@ -148,7 +157,7 @@ public:
                 x.get<double>() > hi) {
                 failField(key, what);
             }
-            out.push_back(x.get<float>());
+            out.push_back(x.get<double>());
         }
         return out;
     }

@@ -65,7 +65,7 @@ void main() {
 )";
 
 struct Orbit {
-    glm::vec3 target{0.0f};
+    glm::dvec3 target{0.0}; // world, binary64
     float distance = 5.0f, azimuthDeg = 30.0f, elevationDeg = 20.0f, fovDeg = 35.0f;
     float radius = 1.0f; // scene radius: near/far planes
 };
@@ -76,8 +76,9 @@ Orbit orbitFromScene(const Scene& scene, const SceneAssets& assets, int w, int h
     detail::sceneBounds(scene, assets, lo, hi);
     Orbit o;
     o.radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
-    o.target = scene.camera.automatic ? 0.5f * (lo + hi) : scene.camera.target;
-    glm::vec3 d = v.cameraPos - o.target;
+    o.target =
+        scene.camera.automatic ? 0.5 * (glm::dvec3(lo) + glm::dvec3(hi)) : scene.camera.target;
+    const glm::vec3 d(v.cameraPos - o.target);
     o.distance = std::max(glm::length(d), 1e-3f);
     glm::vec3 dir = d / o.distance;
     o.elevationDeg = glm::degrees(std::asin(std::clamp(dir.y, -1.0f, 1.0f)));
@@ -186,7 +187,7 @@ void orbitFromMouse(Orbit& orbit, const Orbit& home, int fbw, int fbh) {
         glm::vec3 right(v.view[0][0], v.view[1][0], v.view[2][0]),
             up(v.view[0][1], v.view[1][1], v.view[2][1]);
         float k = orbit.distance * 0.002f;
-        orbit.target += k * (-io.MouseDelta.x * right + io.MouseDelta.y * up);
+        orbit.target += glm::dvec3(k * (-io.MouseDelta.x * right + io.MouseDelta.y * up));
     }
     orbit.distance = std::clamp(orbit.distance, 1e-3f * home.distance, 100.0f * home.distance);
 }

@@ -28,12 +28,13 @@
 #define SG_LIMIT_TANGENT_DEGENERATE_SURFACE 2
 
 // A chart is well conditioned when its determinant, relative to the square
-// of its largest entry, exceeds this (sg::mesh::limitTangent's threshold):
-// the chain rule divides by it. Relative to the chart's size, not to the
-// product of its two derivatives' lengths (the sine of their angle): a
-// derivative that is rounding noise (the UV chart of a planar projection's
-// side walls: dST/dv ~ 1e-7 |st|) has a random direction, so its sine says
-// nothing, while its size says it is noise.
+// of its longer derivative, exceeds this (sg::mesh::limitTangent's
+// threshold): the chain rule divides by it. For derivatives of equal length
+// that is the sine of their angle; relative to the longer one, not to the
+// product of the two lengths, because a derivative that is rounding noise
+// (the UV chart of a planar projection's side walls: dST/dv ~ 1e-7 |st|)
+// has a random direction: its sine says nothing, its length says it is
+// noise.
 #define SG_LIMIT_TANGENT_MIN_REL_DET 1.0e-3f
 
 // v minus its component along unit n, normalized; zero when less than 1e-4
@@ -90,8 +91,9 @@ SG_FN vec4 sgPatchLimitTangent(vec3 dPdu, vec3 dPdv, vec2 dSTdu, vec2 dSTdv, vec
     // J = [[a b], [c d]] = [[ds/du ds/dv], [dt/du dt/dv]], entries <= 1.
     float a = ju.x, b = jv.x, c = ju.y, d = jv.y;
     float det = a * d - b * c;
-    bool uvRegular = abs(det) > SG_LIMIT_TANGENT_MIN_REL_DET;
-    bool surfaceRegular = length(cross(pu, pv)) > SG_LIMIT_TANGENT_MIN_REL_DET;
+    bool uvRegular = abs(det) > SG_LIMIT_TANGENT_MIN_REL_DET * max(dot(ju, ju), dot(jv, jv));
+    bool surfaceRegular =
+        length(cross(pu, pv)) > SG_LIMIT_TANGENT_MIN_REL_DET * max(dot(pu, pu), dot(pv, pv));
     float w = uvRegular && det < 0.0f ? -1.0f : 1.0f;
     // Along dP/ds: (d pu - c pv) / det, without the division.
     vec3 dPds = uvRegular ? w * (d * pu - c * pv) : vec3(0.0f);

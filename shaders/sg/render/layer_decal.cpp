@@ -26,7 +26,9 @@ RecordLayout records() {
     using S = G::SgDecalParams;
     return Records<S, 6>("SgDecalParams", "sgUnpackDecal", G::sgUnpackDecal)
         .field("origin", &S::origin, "r0.xyz",
-               [](const PackInput& in) { return in.params<P>().position - in.view.cameraPos; })
+               [](const PackInput& in) {
+                   return glm::vec3(in.params<P>().position - in.view.cameraPos); // binary64
+               })
         .field("strength", &S::strength, "r0.w",
                [](const PackInput& in) { return in.layer.strength; })
         .field("axisX", &S::axisX, "r1.xyz",

@@ -74,7 +74,7 @@ struct TriplanarParams {
 // scene's fields; the frame and half size are derived from them when the
 // scene is read (z toward the surface the decal lands on, x = up x z).
 struct DecalParams {
-    glm::vec3 position{0.0f};               // centre (world)
+    glm::dvec3 position{0.0};               // centre (world, binary64)
     glm::vec3 direction{0.0f, 0.0f, -1.0f}; // projection direction
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     glm::vec3 axisX{1, 0, 0}, axisY{0, 1, 0}, axisZ{0, 0, 1}; // unit, orthogonal

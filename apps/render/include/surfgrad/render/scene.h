@@ -238,7 +238,11 @@ struct MeshInstance {
     std::vector<float> morphWeights;          // empty: the file's defaults
     std::vector<MorphKey> morphKeys;          // weight animation (linear between keys)
     bool morphLoop = true;
-    glm::mat4 transform{1.0f};
+    // Object -> world, in binary64 like every scene position: composed with
+    // the camera in binary64 (modelToCameraRelative, render/view.h) before
+    // anything is rounded, so an object and its camera 1e6 from the origin
+    // keep the relative placement the file gives.
+    glm::dmat4 transform{1.0};
     int material = 0;
 
     // Drawn as the subdivision limit surface with its derivatives: uniform
@@ -251,7 +255,7 @@ struct MeshInstance {
 struct Light {
     bool point = false;
     glm::vec3 direction{-0.4f, -0.7f, -0.6f}; // directional: direction light travels
-    glm::vec3 position{0.0f};                 // point: world position
+    glm::dvec3 position{0.0};                 // point: world position (binary64)
     glm::vec3 color{1.0f};
     float intensity = 3.0f; // point: radiant intensity (1/d^2 falloff)
 };
@@ -259,9 +263,9 @@ struct Light {
 struct Camera {
     bool automatic = true; // frame the scene's bounds
     float azimuthDeg = 30.0f, elevationDeg = 20.0f, distanceScale = 1.0f; // automatic
-    glm::vec3 position{0.0f, 0.0f, 5.0f};
-    glm::vec3 target{0.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    glm::dvec3 position{0.0, 0.0, 5.0}; // binary64, as every scene position
+    glm::dvec3 target{0.0};
+    glm::dvec3 up{0.0, 1.0, 0.0};
     float fovDeg = 35.0f;
     float nearPlane = 0.0f, farPlane = 0.0f; // 0: from the scene bounds
 };

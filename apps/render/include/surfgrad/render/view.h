@@ -17,7 +17,7 @@ namespace sg::render {
 
 struct View {
     int width = 0, height = 0;
-    glm::vec3 cameraPos{0.0f};
+    glm::dvec3 cameraPos{0.0};   // world, binary64 (scene positions are)
     glm::mat4 viewProjRel{1.0f}; // camera-relative world -> clip
     glm::mat4 view{1.0f}, proj{1.0f};
     Aov aov = Aov::Color;
@@ -37,11 +37,13 @@ View makeView(const Scene& scene, const SceneAssets& assets, int width = 0, int 
 // and sums of small values), against |model translation| 2^-24 + |camera|
 // 2^-24 for world position minus camera in binary32 (4 units at 1e8, 0.03
 // at 1e6).
-// `model` is affine (last row 0, 0, 0, 1).
-glm::mat4 modelToCameraRelative(const glm::mat4& model, const glm::vec3& cameraPos);
+// `model` is affine (last row 0, 0, 0, 1). Both are binary64, as the scene
+// keeps them: the camera 1e6 from the origin is placed to 1e-10, not to the
+// 0.06 of a binary32 coordinate there.
+glm::mat4 modelToCameraRelative(const glm::dmat4& model, const glm::dvec3& cameraPos);
 
 // An orbit view around `target` (viewer).
-View makeOrbitView(glm::vec3 target, float distance, float azimuthDeg, float elevationDeg,
+View makeOrbitView(glm::dvec3 target, float distance, float azimuthDeg, float elevationDeg,
                    float fovDeg, float nearPlane, float farPlane, int width, int height, Aov aov);
 
 } // namespace sg::render
