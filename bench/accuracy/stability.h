@@ -90,6 +90,13 @@ std::vector<Case> namedCases();
 std::vector<Case> familyCases();
 std::vector<Case> generatedCases(uint64_t seed, int count);
 
+// Writes the case's four normal images (GPU and CPU, as given and
+// perturbed) as EXR files <dir>/<id with '/' as '_'>_{gpu,cpu}{,_perturbed}.exr
+// (SG_STABILITY_DUMP=<dir> in the tests and the table: what a failing case
+// looks like).
+void dumpImages(const Case& c, sg::render::GlRenderer& gpu, const std::filesystem::path& scratch,
+                const std::filesystem::path& dir);
+
 // Every layer kind of the registry with its registry example, as the layer
 // JSON a material lists (post_resolve: a uv_normal layer, then the group).
 std::vector<std::pair<std::string, std::string>> kindLayers();

@@ -84,18 +84,31 @@ SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT
 // is below about 8e-6 per pixel (a 1024^2 map stretched over 120 pixels per
 // texel, or a chart seen ~1000:1 edge-on), where the GPU's own derivatives
 // are already wrong by a tenth.
+//
+// The weight also fades with the determinant relative to the Jacobian's
+// size (the scaled determinant, 1 for a conformal chart, 1/A for one
+// stretched A:1, s for one sheared by s): from 1 at 2^-7 to 0 at 2^-10. The
+// frame's direction then has a condition number of at most 2^7 in the
+// chart's shape: a chart thinner than that (a shear of 1e-3, or a chart seen
+// within 0.06 degrees of edge-on) has a frame that a rounding-size change
+// of its vertices' UVs turns by degrees, whatever the derivatives' own
+// precision.
 #define SG_CHART_ROUNDING 2.384185791e-07f // 2^-22
 #define SG_CHART_FADE_LO 4.0f
 #define SG_CHART_FADE_HI 32.0f
+#define SG_CHART_REL_DET_LO 9.765625e-4f // 2^-10
+#define SG_CHART_REL_DET_HI 7.8125e-3f   // 2^-7
 
-// The weight in [0, 1] above, from the coordinate st, the Jacobian's largest
-// entry k and its determinant scaled by 1/k^2 (detScaled, in [-2, 2]).
+// The weight in [0, 1] above (the product of the two fades), from the
+// coordinate st, the Jacobian's largest entry k and its determinant scaled
+// by 1/k^2 (detScaled, in [-2, 2]).
 // k / noise <= 2^18, so nothing overflows; non-finite inputs give 0.
 SG_FN float sgChartWeight(vec2 st, float k, float detScaled) {
     float noise = SG_CHART_ROUNDING * (sgMaxAbs2(st) + 16.0f * k);
     float units = abs(detScaled) * (k / noise);
+    float shape = smoothstep(SG_CHART_REL_DET_LO, SG_CHART_REL_DET_HI, abs(detScaled));
     return (units >= 0.0f && units <= SG_FLT_MAX)
-               ? smoothstep(SG_CHART_FADE_LO, SG_CHART_FADE_HI, units)
+               ? smoothstep(SG_CHART_FADE_LO, SG_CHART_FADE_HI, units) * shape
                : 0.0f;
 }
 

@@ -480,7 +480,8 @@ TEST(HardCasesBump, CollapsedScreenFootprints) {
 
 // The chart weight of sgGenBasisTB (sg/surfgrad.glsl, sgChartWeight),
 // evaluated here in double from the binary32 inputs: smoothstep from 4 to
-// 32 of |det J| / (k * 2^-22 (max|st| + 16 k)).
+// 32 of |det J| / (k * 2^-22 (max|st| + 16 k)) times smoothstep from 2^-10
+// to 2^-7 of |det J| / k^2.
 double chartWeight(const g::vec2& st, const g::vec2& a, const g::vec2& b) {
     const double k = std::max({std::fabs(double(a.x)), std::fabs(double(a.y)),
                                std::fabs(double(b.x)), std::fabs(double(b.y))});
@@ -488,8 +489,12 @@ double chartWeight(const g::vec2& st, const g::vec2& a, const g::vec2& b) {
     const double det = (double(a.x) * b.y - double(a.y) * b.x) / (k * k);
     const double noise = std::ldexp(1.0, -22) *
                          (std::max(std::fabs(double(st.x)), std::fabs(double(st.y))) + 16 * k);
-    const double u = std::clamp((std::fabs(det) * k / noise - 4.0) / 28.0, 0.0, 1.0);
-    return u * u * (3.0 - 2.0 * u);
+    auto smooth = [](double lo, double hi, double x) {
+        const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+        return u * u * (3.0 - 2.0 * u);
+    };
+    return smooth(4.0, 32.0, std::fabs(det) * k / noise) *
+           smooth(std::ldexp(1.0, -10), std::ldexp(1.0, -7), std::fabs(det));
 }
 
 // Listing 6 with parallel UV derivatives (dSTdy = c dSTdx (1 + delta)) at
@@ -534,7 +539,7 @@ TEST(HardCasesBump, DegenerateUvJacobians) {
         partial += w > 0.0 && w < 1.0;
     }
     EXPECT_GT(zeros, 1000);
-    EXPECT_GT(full, 1000);
+    EXPECT_GT(full, 500);
     EXPECT_GT(partial, 100);
     EXPECT_EQ(parallelNonZero, 0);
     reportHardCase({"uv-degenerate",

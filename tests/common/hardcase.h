@@ -36,6 +36,10 @@ struct HardCaseRow {
     // arithmetic follows the CPU's vector width and LLVM version): the doc
     // check then compares everything but this value.
     bool deterministic = true;
+    // Stability rows: the rounding-size change of the input whose effect
+    // the quantity measures (e.g. "every UV coordinate moved by -2..2
+    // ulps"); empty for rows that check a value on one input.
+    std::string perturbation;
 };
 
 // The largest of the values added; NaN sticks (any NaN makes the result
@@ -96,7 +100,8 @@ inline void reportHardCase(const HardCaseRow& row) {
                              ",\"quantity\":" + detail::jsonString(row.quantity) +
                              ",\"bound\":" + detail::jsonString(row.bound) +
                              ",\"worst\":" + detail::jsonString(row.worst) +
-                             ",\"deterministic\":" + (row.deterministic ? "true" : "false") + "}";
+                             ",\"deterministic\":" + (row.deterministic ? "true" : "false") +
+                             ",\"perturbation\":" + detail::jsonString(row.perturbation) + "}";
     std::printf("[hardcase] %s\n", json.c_str());
     std::fflush(stdout);
     static int count = 0;
@@ -123,6 +128,17 @@ inline void hardCaseAtMost(const std::string& family, const std::string& caseNam
     EXPECT_LE(worst, bound) << family << ": " << caseName << ": " << quantity;
     reportHardCase({family, caseName, quantity, "<= " + hardCaseNumber(bound),
                     hardCaseNumber(worst), deterministic});
+}
+
+// A stability row (docs/hard-cases.md's perturbation column): asserts
+// worst <= bound like hardCaseAtMost and names the rounding-size change of
+// the input the quantity responds to.
+inline void hardCasePerturbedAtMost(const std::string& family, const std::string& caseName,
+                                    const std::string& perturbation, const std::string& quantity,
+                                    double worst, double bound, bool deterministic = true) {
+    EXPECT_LE(worst, bound) << family << ": " << caseName << ": " << quantity;
+    reportHardCase({family, caseName, quantity, "<= " + hardCaseNumber(bound),
+                    hardCaseNumber(worst), deterministic, perturbation});
 }
 
 // For checks without a measured number (a known answer bit for bit, an
