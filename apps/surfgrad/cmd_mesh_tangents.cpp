@@ -101,6 +101,22 @@ void runTangents(const TangentsOptions& o, int& status) {
     mesh::WriteOptions write;
     write.inputs = {o.input};
     std::vector<std::string> notes;
+    // MikkTSpace's frames of charts with no frame follow the file's rounding
+    // (kept bit for bit with the reference: say so, and what to do).
+    size_t roundingArea = 0;
+    if (*method == mesh::TangentMethod::MikkTSpace) {
+        roundingArea = mesh::uvAreaWithinRounding(result, o.uvSet);
+        if (roundingArea > 0) {
+            notes.push_back(std::to_string(roundingArea) + " triangle(s) of TEXCOORD_" +
+                            std::to_string(o.uvSet) +
+                            " have a UV area within the rounding of their coordinates "
+                            "(collapsed or collinear UVs): MikkTSpace gives them the frame of "
+                            "that rounding, which a rounding-size change of one UV turns by up to "
+                            "90 degrees; give them UV area, or render that set with per-pixel "
+                            "frames (\"tangents\": \"pixel\", which fade such charts out) or "
+                            "limit tangents (docs/tangents.md, \"Charts with no frame\")");
+        }
+    }
     const std::optional<mesh::Material> material = inputMaterial(o.input, true, notes);
     if (material) write.material = &*material;
     const std::vector<std::string> written = mesh::writeRenderMesh(o.output, result, write);
@@ -118,6 +134,7 @@ void runTangents(const TangentsOptions& o, int& status) {
         j["vertices"] = result.vertexCount();
         j["triangles"] = result.triangleCount();
         j[changedKey] = changed;
+        if (*method == mesh::TangentMethod::MikkTSpace) j["rounding_area_triangles"] = roundingArea;
         j["output"] = o.output;
         j["notes"] = notes;
         j["seconds"] = seconds;

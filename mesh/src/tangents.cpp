@@ -152,6 +152,26 @@ std::string tangentInputProblem(const RenderMesh& mesh, TangentMethod method, in
     return {};
 }
 
+size_t uvAreaWithinRounding(const RenderMesh& mesh, int uvSet) {
+    SG_EXPECTS(uvSet >= 0 && size_t(uvSet) < mesh.uvSets.size(), "uvSet indexes mesh.uvSets");
+    const std::vector<glm::vec2>& uv = mesh.uvSets[size_t(uvSet)];
+    size_t count = 0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        const uint32_t a = mesh.indices[i], b = mesh.indices[i + 1], c = mesh.indices[i + 2];
+        if (a >= uv.size() || b >= uv.size() || c >= uv.size()) continue;
+        const glm::dvec2 t0(uv[a]), t1(uv[b]), t2(uv[c]);
+        const glm::dvec2 e1 = t1 - t0, e2 = t2 - t0, e3 = t2 - t1;
+        const double area2 = std::fabs(e1.x * e2.y - e1.y * e2.x);
+        const double m = std::max({std::fabs(t0.x), std::fabs(t0.y), std::fabs(t1.x),
+                                   std::fabs(t1.y), std::fabs(t2.x), std::fabs(t2.y)});
+        const double l =
+            std::sqrt(std::max({glm::dot(e1, e1), glm::dot(e2, e2), glm::dot(e3, e3)}));
+        // 16 ulps (2^-23 relative) of the coordinates, over the longest edge.
+        count += area2 <= 16.0 * std::ldexp(1.0, -23) * m * l;
+    }
+    return count;
+}
+
 void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
     SG_EXPECTS(mesh.normals.size() == mesh.positions.size(), "the mesh has vertex normals");
     SG_EXPECTS(uvSetProblem(mesh, uvSet).empty(), "uvSet indexes mesh.uvSets");

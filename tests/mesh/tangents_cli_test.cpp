@@ -190,4 +190,39 @@ TEST_F(TangentsCli, ValuesMikkTSpaceCannotTakeFailNamingTheFile) {
     EXPECT_FALSE(fs::exists(path("a.glb")));
 }
 
+// A chart with no frame: two triangles of a quad, the second with its UVs
+// collinear (its area is 0), then one of them moved by a rounding-size
+// amount. MikkTSpace keeps its rule (the reference algorithm); the command
+// counts the triangles whose frame follows the rounding and says what to
+// do, in its notes and its JSON.
+TEST_F(TangentsCli, MikkTSpaceNamesChartsWithNoFrame) {
+    const std::string in = path("chart.obj");
+    std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0.5\nvt 0.25 0.25\n"
+                         "vn 0 0 1\n"
+                         "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    const CliRun r = surfgrad("mesh tangents '" + in + "' -o '" + path("a.glb") + "' --json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    // Triangle 2's UVs (0,0), (1,1), (0.5,0.5) are collinear: counted.
+    EXPECT_NE(r.out.find("\"rounding_area_triangles\":1"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("MikkTSpace gives them the frame of that rounding"), std::string::npos)
+        << r.out;
+    // Moved by one ulp (0.5 -> 0.50000006): still within the rounding.
+    std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.50000006 0.5\n"
+                         "vn 0 0 1\n"
+                         "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    const CliRun r2 = surfgrad("mesh tangents '" + in + "' -o '" + path("b.glb") + "' --json");
+    ASSERT_EQ(r2.exitCode, 0) << r2.err;
+    EXPECT_NE(r2.out.find("\"rounding_area_triangles\":1"), std::string::npos) << r2.out;
+    // A chart with area: nothing to say.
+    std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                         "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n"
+                         "f 1/1/1 2/2/1 3/3/1\nf 1/1/1 3/3/1 4/4/1\n";
+    const CliRun r3 = surfgrad("mesh tangents '" + in + "' -o '" + path("c.glb") + "' --json");
+    ASSERT_EQ(r3.exitCode, 0) << r3.err;
+    EXPECT_NE(r3.out.find("\"rounding_area_triangles\":0"), std::string::npos) << r3.out;
+    EXPECT_EQ(r3.out.find("MikkTSpace gives them"), std::string::npos) << r3.out;
+}
+
 } // namespace

@@ -169,6 +169,18 @@ void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles, bool allowWideSim
 // (tangentInputProblem(mesh, TangentMethod::MikkTSpace, uvSet) is empty).
 void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet);
 
+// Triangles of UV set `uvSet` whose UV area is within the rounding of their
+// coordinates: |(t1 - t0) x (t2 - t0)| <= 16 * 2^-23 * M * L, M the largest
+// |coordinate| of the three UVs, L their longest UV edge (zero areas
+// included). MikkTSpace decides such a triangle's frame on its area (zero:
+// its neighbours' frame; any non-zero area: the frame of that area's
+// Jacobian), so a rounding-size change of one UV turns the frame by up to
+// 90 degrees and flips its handedness (docs/tangents.md, "Charts with no
+// frame"). The reference algorithm is kept bit for bit; this count tells
+// the user that the frames of those triangles follow the rounding of the
+// file. Precondition: uvSet indexes mesh.uvSets.
+size_t uvAreaWithinRounding(const RenderMesh& mesh, int uvSet);
+
 // Stores per-corner tangents (one per entry of mesh.indices) into
 // mesh.tangents, splitting vertices whose corners disagree (bitwise) as
 // described above. Corners that agree share one vertex. Returns the number
