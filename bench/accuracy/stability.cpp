@@ -98,12 +98,13 @@ Renders renderGpu(sg::render::GlRenderer& gpu, const Scene& scene,
     return r;
 }
 
-Renders renderCpu(const Scene& scene, const sg::render::SceneAssets& assets, int w, int h) {
+Renders renderCpu(const Scene& scene, const sg::render::SceneAssets& assets, int w, int h,
+                  const sg::render::CpuOptions& options = matchedCpu()) {
     sg::render::View v = sg::render::makeView(scene, assets, w, h, Aov::Normal);
     Renders r;
-    r.normal = sg::render::renderCpu(scene, assets, v, matchedCpu());
+    r.normal = sg::render::renderCpu(scene, assets, v, options);
     v.aov = maskAov(scene);
-    r.prim = sg::render::renderCpu(scene, assets, v, matchedCpu());
+    r.prim = sg::render::renderCpu(scene, assets, v, options);
     return r;
 }
 
@@ -129,6 +130,10 @@ Result run(const Case& c, sg::render::GlRenderer& gpu, const fs::path& scratch) 
     r.perturbedGpu = compare(g0.normal, g1.normal, g0.prim, g1.prim);
     r.perturbedCpu = compare(c0.normal, c1.normal, c0.prim, c1.prim);
     r.gpuVsCpu = compare(g0.normal, c0.normal, g0.prim, c0.prim);
+    if (c.withDefaultCpu) {
+        const Renders ref = renderCpu(s0, a0, c.width, c.height, sg::render::CpuOptions{});
+        r.gpuVsDefaultCpu = compare(g0.normal, ref.normal, g0.prim, ref.prim);
+    }
     if (c.expected) {
         const fs::path de = freshDir(scratch, "expected");
         const Scene se = c.expected(de);
@@ -482,6 +487,14 @@ glm::dvec3 nudgedEye(glm::dvec3 eye) {
     return {moveUlps(eye.x, 2), moveUlps(eye.y, -2), moveUlps(eye.z, 2)};
 }
 
+// The eye moved by 2^-21 of its distance to the target in each coordinate
+// (alternating signs): a rounding-size change of the view at any distance
+// from the origin.
+glm::dvec3 nudged(glm::dvec3 eye, glm::dvec3 target) {
+    const double d = glm::length(eye - target) * std::ldexp(1.0, -21);
+    return eye + glm::dvec3(d, -d, d);
+}
+
 // World-unit terrain UVs: a tiling set offset by 1e4.
 Case farUvCase() {
     return sphereCase(
@@ -641,6 +654,28 @@ Case extremePomCase(const std::string& id, const std::string& input, bool sphere
     return c;
 }
 
+// A tiling map seen minified (64 repeats over a plane at a grazing view):
+// which CPU reference agrees with llvmpipe (Case::withDefaultCpu).
+Case minifiedCase(const std::string& id, const std::string& kind, const std::string& layer) {
+    Case c;
+    c.id = "minified-tiling-map-" + id + "/" + kind;
+    c.family = "grazing";
+    c.kind = kind;
+    c.input = "a map tiled 6 times on a plane seen 70 deg from the normal (minified), " + id;
+    c.perturbation = "camera moved by 2^-21 of its distance in each coordinate";
+    c.withDefaultCpu = true;
+    c.build = [layer](bool p, const fs::path& dir) {
+        SceneSpec s;
+        s.meshFields = fileField(grid(8, {0, 1, 0}), dir, "grid") +
+                       R"(, "uv_sets": [{"from": 0, "scale": 6}])";
+        s.layers = layer;
+        s.eye = {0.0, 0.75, 2.1};
+        if (p) s.eye = nudged(s.eye, s.target);
+        return sceneOf(s, dir);
+    };
+    return c;
+}
+
 // Back faces in flip mode must be the negation of mode none.
 Case flipCase(const std::string& kind, const std::string& layer) {
     Case c;
@@ -713,6 +748,15 @@ std::vector<Case> namedCases() {
     out.push_back(extremePomCase(
         "grazing", "POM of scale 0.25, 256 steps, on a plane seen 80 deg from the normal", false,
         {0.0, 0.35, 2.0}));
+    const char* bricks = R"("map": {"procedural": "weave", "size": 128}, "uv_set": 1)";
+    out.push_back(minifiedCase("uv_normal", "uv_normal",
+                               std::string(R"({"type": "uv_normal", )") + bricks + "}"));
+    out.push_back(
+        minifiedCase("lean", "uv_normal",
+                     std::string(R"({"type": "uv_normal", "antialias": "lean", )") + bricks + "}"));
+    out.push_back(minifiedCase(
+        "pom", "pom",
+        R"({"type": "pom", "map": {"procedural": "weave", "output": "height", "size": 128}, "uv_set": 1, "scale": 0.02})"));
     out.push_back(extremePomCase("silhouette",
                                  "POM of scale 0.25, 256 steps, on a sphere (its silhouette)", true,
                                  {0.0, 0.0, 2.6}));
@@ -736,14 +780,6 @@ struct FamilyInput {
     std::vector<std::string> kinds;
     std::function<Scene(const std::string& layers, bool perturbed, const fs::path& dir)> build;
 };
-
-// The eye moved by 2^-21 of its distance to the target in each coordinate
-// (alternating signs): a rounding-size change of the view at any distance
-// from the origin.
-glm::dvec3 nudged(glm::dvec3 eye, glm::dvec3 target) {
-    const double d = glm::length(eye - target) * std::ldexp(1.0, -21);
-    return eye + glm::dvec3(d, -d, d);
-}
 
 // A plane grid scene under `layers` seen from `eye`.
 Scene gridScene(const ObjMesh& m, const std::string& layers, glm::dvec3 eye, const fs::path& dir,

@@ -63,14 +63,19 @@ struct Case {
     std::function<sg::render::Scene(const std::filesystem::path& dir)> expected;
     float expectSign = 1.0f;
     std::string expectedWhat; // what `expected` renders
+    // Also compare the GPU with the default CPU reference (analytic
+    // derivatives, the GL specification's exact LOD): which CPU is the
+    // reference (docs/scene.md, "CPU reference").
+    bool withDefaultCpu = false;
 };
 
 struct Result {
-    AngleStats perturbedGpu; // GPU: input vs perturbed input
-    AngleStats perturbedCpu; // matched CPU reference: input vs perturbed input
-    AngleStats gpuVsCpu;     // GPU vs matched CPU reference, the input as given
-    AngleStats expected;     // GPU vs `expected` (compared == 0 when the case has none)
-    double seconds = 0.0;    // wall time of the case
+    AngleStats perturbedGpu;    // GPU: input vs perturbed input
+    AngleStats perturbedCpu;    // matched CPU reference: input vs perturbed input
+    AngleStats gpuVsCpu;        // GPU vs matched CPU reference, the input as given
+    AngleStats expected;        // GPU vs `expected` (compared == 0 when the case has none)
+    AngleStats gpuVsDefaultCpu; // GPU vs the default CPU reference (Case::withDefaultCpu)
+    double seconds = 0.0;       // wall time of the case
 };
 
 // The CPU reference options that follow the GPU (quad derivatives,

@@ -42,7 +42,7 @@ void tableStability(const Options& o) {
         std::fprintf(stderr, "stability: %s\n", c.id.c_str());
         const stability::Result r = stability::run(c, gpu, scratch);
         t.add({c.id, c.family, deg(r.perturbedGpu), deg(r.perturbedCpu), deg(r.gpuVsCpu),
-               deg(r.expected), fmt(r.seconds, 2)});
+               deg(r.expected), deg(r.gpuVsDefaultCpu), fmt(r.seconds, 2)});
     }
     t.notes.push_back("Renderer: " + o.renderer + ".");
     t.print(o);
