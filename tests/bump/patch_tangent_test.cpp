@@ -296,4 +296,35 @@ TEST(PatchTangentHardCases, ZeroAreaUvPatchesAndCollapsedCage) {
                              1e-6);
 }
 
+// The patch version of the same rule (sg/patch/limit_tangent.glsl): a UV
+// chart whose d(s,t)/dv is rounding noise is degenerate in every direction
+// of the noise (w = +1, T along dP/du), as tests/mesh/tangents_limit_test
+// checks for the uniform path; with the sine rule a perpendicular noise
+// direction passed as regular and w followed its sign on the GPU and the
+// CPU alike, differently (41 deg apart on an adaptive cylinder).
+TEST(PatchTangentHardCases, NoiseUvDerivativeIsDegenerateInEveryDirection) {
+    size_t regular = 0, flipped = 0;
+    double worst = 0.0;
+    const glm::vec3 du(0.3f, 0.0f, 0.1f), dv(0.0f, 0.5f, 0.0f);
+    const glm::vec3 n = glm::normalize(glm::cross(du, dv));
+    for (int i = 0; i < 360; ++i) {
+        const float a = glm::radians(float(i));
+        const glm::vec2 noise = 2.4e-7f * glm::vec2(std::cos(a), std::sin(a));
+        int resolved = 0;
+        const glm::vec4 t =
+            g::sgPatchLimitTangent(du, dv, glm::vec2(0.3f, 0.1f), noise, n, resolved);
+        regular += resolved == SG_LIMIT_TANGENT_REGULAR;
+        flipped += t.w != 1.0f;
+        const glm::dvec3 a3{glm::vec3(t)}, b3{glm::normalize(du)};
+        worst = std::max(worst, std::atan2(glm::length(glm::cross(a3, b3)), glm::dot(a3, b3)));
+    }
+    EXPECT_EQ(regular, 0u);
+    EXPECT_EQ(flipped, 0u);
+    sg::test::hardCasePerturbedAtMost(
+        "uv-degenerate", "patch limit tangent of a chart whose d(s,t)/dv is rounding noise",
+        "the noise's direction turned through 360 deg in 1-deg steps",
+        "angle of T to dP/du (rad); regular points or w = -1 must be none",
+        worst + double(regular + flipped), 1e-6);
+}
+
 } // namespace

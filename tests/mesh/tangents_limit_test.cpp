@@ -112,6 +112,38 @@ TEST(LimitTangent, DegenerateJacobiansFallBackFinitely) {
         "the documented fallback, exactly");
 }
 
+// A UV chart whose second derivative is rounding noise (the side walls of a
+// planar UV projection: s and t do not change along v, so d(s,t)/dv is
+// 1e-7 of the coordinates in a random direction). The chart is degenerate
+// relative to its size, whatever the noise's direction: the documented
+// fallback, w = +1, for every direction. With the sine of the two
+// derivatives' angle as the measure (the rule before), a noise direction
+// perpendicular to d(s,t)/du passed as regular and w took the noise's sign.
+TEST(LimitTangentHardCases, NoiseDerivativeIsDegenerateInEveryDirection) {
+    LimitTangentCase k;
+    size_t regular = 0, flipped = 0;
+    double worstDeg = 0.0;
+    for (int i = 0; i < 360; ++i) {
+        const float a = float(i) * float(M_PI / 180.0);
+        const glm::vec2 noise = 2.4e-7f * glm::vec2(std::cos(a), std::sin(a));
+        const glm::vec4 t = limitTangent({0.3f, 0, 0.1f}, {0, 0.5f, 0}, {0.3f, 0.1f}, noise, &k);
+        regular += k == LimitTangentCase::Regular;
+        flipped += t.w != 1.0f;
+        worstDeg = std::max(worstDeg, angleDeg(glm::vec3(t), glm::vec3(0.3f, 0, 0.1f)));
+    }
+    EXPECT_EQ(regular, 0u);
+    EXPECT_EQ(flipped, 0u);
+    // T = dP/du made orthogonal to the normal (dP/du is already): rounding.
+    EXPECT_LT(worstDeg, 1e-4);
+    sg::test::hardCasePerturbedAtMost(
+        "uv-degenerate",
+        "limit tangent of a chart whose d(s,t)/dv is rounding noise (2.4e-7 of d(s,t)/du)",
+        "the noise's direction turned through 360 deg in 1-deg steps",
+        "angle of T to the fallback dP/du (deg); points classified regular or with w = -1 must "
+        "be none",
+        worstDeg + double(regular + flipped), 1e-4);
+}
+
 // ---------------------------------------------------------------------------
 // Through the subdivider
 // ---------------------------------------------------------------------------

@@ -120,6 +120,38 @@ TEST(RenderHardCases, DecalsParallelToTheSurface) {
                     "|sg|", "= 0", hardCaseNumber(atNinety)});
 }
 
+// A decal thinner than the rounding of the positions it is measured between
+// (sgDecalHalfDepth): 1e-6 deep, its middle plane the surface, 3 units from
+// the camera, where a position carries 2.4e-7 of rounding. Surface points
+// moved by -2..2 ulps of their distance (what the interpolation of a
+// rounded vertex gives) keep the decal at full strength and the same
+// gradient; without the floor of 16 ulps on the half depth they would sit
+// at |l.z| up to 0.95 of the box and fade by up to 85%.
+TEST(RenderHardCases, DecalThinnerThanTheRoundingKeepsItsSurface) {
+    const glm::vec3 m = glm::normalize(glm::vec3(0.35f, -0.2f, 0.9f));
+    TextureImage img = constantNormalMap(m);
+    G::sampler2D tex{&img};
+    const G::SgFrame f = flatFrame(0.002f);
+    const G::SgDecalParams p = G::sgUnpackDecal(
+        glm::vec4(0, -3, 0, 1), glm::vec4(1, 0, 0, 0.5f), glm::vec4(0, 0, -1, 0.5f),
+        glm::vec4(0, 1, 0, 5e-7f), glm::vec4(0.25f, 0.5f, 0.17f, 0), glm::vec4(0));
+    const glm::vec3 ref = G::sgLayerDecal(f, glm::vec3(0.1f, -3.0f, 0.05f), p, tex);
+    ASSERT_GT(glm::length(ref), 0.1f);
+    Worst moved;
+    for (int ulps = -2; ulps <= 2; ++ulps) {
+        const float y = -3.0f + float(ulps) * 2.384185791e-7f; // ulp(3) = 2^-22
+        const glm::vec3 g = G::sgLayerDecal(f, glm::vec3(0.1f, y, 0.05f), p, tex);
+        moved.add(glm::length(g - ref) / glm::length(ref));
+    }
+    // The local depth is at most 2 ulps / 16 ulps of the widened half depth:
+    // inside the core (the fade starts at 0.75), the gradient the same up to
+    // the rounding of the dot products.
+    sg::test::hardCasePerturbedAtMost(
+        "decals-parallel", "decal 1e-6 deep lying on the surface, 3 units from the camera",
+        "the surface point moved by -2..2 ulps of its distance along the decal's axis",
+        "|sg - sg unmoved| / |sg|", moved.value, 1e-6);
+}
+
 TEST(RenderHardCases, TriplanarLayerAtEqualWeights) {
     // Three different constant maps on the three planes; the layer's
     // gradient at the diagonal normal is the projection of the average of

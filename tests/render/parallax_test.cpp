@@ -265,5 +265,90 @@ TEST(ParallaxKnownAnswers, GrazingAndDegenerateViewsStayBounded) {
               glm::vec2(0.0f));
 }
 
+// The search is the view ray's travel, whatever the UV chart (sgParallaxSearch):
+// on a plane z = 0 with unit screen derivatives along x and y, its
+// tangent-plane step per unit of depth is scale * e_t / elevation (POM)
+// or scale * e_t (offset limiting), e_t the view's tangential part, in
+// double; its texture step is the chart's Jacobian times its screen step.
+// A singular chart (s, t depend on x only: the walls of a planar
+// projection) changes only the texture step: no inverse of the chart is
+// taken, so nothing in the surface step depends on the chart.
+TEST(ParallaxKnownAnswers, SearchIsTheViewRayOnAnyChart) {
+    const float foot = 0.01f, scale = 0.05f;
+    const G::SgFrame f = G::sgPrologue(glm::vec3(0, 0, 1), glm::vec3(foot, 0, 0),
+                                       glm::vec3(0, foot, 0), true, SG_BFACE_NONE);
+    const glm::dvec2 charts[][2] = {{{1, 0}, {0, 1}},             // conformal
+                                    {{0.7, 0.2}, {-0.1, 0.4}},    // sheared
+                                    {{0.6, 0.3}, {0.0, 0.0}},     // singular: nothing along y
+                                    {{0.5, -0.5}, {1e-7, 1e-7}}}; // singular up to noise
+    double worstSurf = 0, worstSt = 0;
+    for (const auto& chart : charts) {
+        const G::SgUvFrame uv = G::sgUvFramePixel(
+            f, glm::vec2(0.3f, 0.6f), glm::vec2(chart[0] * 0.01), glm::vec2(chart[1] * 0.01));
+        for (double elev : {0.2, 0.5, 0.9}) {
+            for (int offsetLimited = 0; offsetLimited < 2; ++offsetLimited) {
+                const glm::dvec3 e(std::sqrt(1 - elev * elev) * 0.6,
+                                   std::sqrt(1 - elev * elev) * 0.8, elev);
+                const G::SgParallaxSearch r =
+                    G::sgParallaxSearch(f, uv, glm::vec3(e), scale, offsetLimited != 0);
+                const double k = offsetLimited ? 1.0 : 1.0 / elev;
+                const glm::dvec3 surf = double(scale) * k * glm::dvec3(e.x, e.y, 0.0);
+                worstSurf =
+                    std::max(worstSurf, glm::length(glm::dvec3(r.surf) - surf) / glm::length(surf));
+                // Screen step in pixels: e_t / foot; the texture step J w.
+                const glm::dvec2 w = glm::dvec2(surf) / double(foot);
+                const glm::dvec2 st = 0.01 * (chart[0] * w.x + chart[1] * w.y);
+                worstSt = std::max(worstSt, glm::length(glm::dvec2(r.st) - st) /
+                                                std::max(glm::length(st), 1e-3));
+                EXPECT_LT(glm::length(glm::dvec2(r.scr) - w) / glm::length(w), 1e-6);
+            }
+        }
+    }
+    // One projection and a few products in binary32: a few ulps.
+    EXPECT_LT(worstSurf, 1e-6);
+    EXPECT_LT(worstSt, 1e-5);
+}
+
+// Vertex normals far from their face (n . g -> 0, sgParallaxSearch): the
+// search is bounded at 20 times its value at n . g = 1 and goes to zero
+// continuously through n . g = 0, where the paper's clamped reciprocal would
+// reach 1/FLT_EPSILON and flip its sign.
+TEST(ParallaxKnownAnswers, NormalsFarFromTheirFaceBoundTheSearch) {
+    const float foot = 0.01f, scale = 0.05f;
+    const glm::vec3 toEye = glm::normalize(glm::vec3(0.3f, 0.2f, 1.0f));
+    double prevLen = -1.0, maxJump = 0.0, maxLen = 0.0, lenAtOne = 0.0;
+    for (int k = 0; k <= 2000; ++k) {
+        // The base normal turned from the face normal +z towards +y by
+        // 80 .. 100 degrees (through the face's plane at 90).
+        const double a = glm::radians(80.0 + 0.01 * k);
+        const glm::vec3 n(0.0f, float(std::sin(a)), float(std::cos(a)));
+        const G::SgFrame f =
+            G::sgPrologue(n, glm::vec3(foot, 0, 0), glm::vec3(0, foot, 0), true, SG_BFACE_NONE);
+        const G::SgUvFrame uv =
+            G::sgUvFramePixel(f, glm::vec2(0.5f), glm::vec2(0.01f, 0.0f), glm::vec2(0.0f, 0.01f));
+        const G::SgParallaxSearch r = G::sgParallaxSearch(f, uv, toEye, scale, true);
+        ASSERT_TRUE(std::isfinite(r.st.x + r.st.y + r.surf.x + r.surf.y + r.surf.z)) << k;
+        const double len = glm::length(glm::dvec2(r.st));
+        maxLen = std::max(maxLen, len);
+        if (prevLen >= 0.0) maxJump = std::max(maxJump, std::fabs(len - prevLen));
+        prevLen = len;
+    }
+    {
+        const G::SgFrame f = G::sgPrologue(glm::vec3(0, 0, 1), glm::vec3(foot, 0, 0),
+                                           glm::vec3(0, foot, 0), true, SG_BFACE_NONE);
+        const G::SgUvFrame uv =
+            G::sgUvFramePixel(f, glm::vec2(0.5f), glm::vec2(0.01f, 0.0f), glm::vec2(0.0f, 0.01f));
+        lenAtOne = glm::length(glm::vec2(G::sgParallaxSearch(f, uv, toEye, scale, true).st));
+    }
+    // |1/det| <= 1/0.05: the step is at most 20x the aligned one (the view's
+    // tangential part is at most 1; plus rounding).
+    EXPECT_LE(maxLen, 20.0 * double(scale) * 1.0001);
+    EXPECT_GT(lenAtOne, 0.0);
+    // Continuous: 0.01-degree steps change the step by a small fraction of
+    // its bound (the slope of det / max(det, 0.05)^2 at its steepest is
+    // 1/0.05^2 per unit of det, det moving 1.7e-4 per step: 0.07 of scale).
+    EXPECT_LT(maxJump, 0.1 * double(scale));
+}
+
 } // namespace
 } // namespace sg::render::test

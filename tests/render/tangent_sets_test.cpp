@@ -368,5 +368,53 @@ TEST(TangentSets, OnlyTheSetsThatNeedVertexTangentsGetThem) {
     }
 }
 
+// Whole-unit re-centring of UV sets (uv_sets.cpp): a derived set offset by
+// (1e4, -2e4), computed in binary64, is stored moved by the whole units of
+// its centre when only repeating maps read it: every value is then the
+// binary64 value minus that shift, rounded once (bit for bit), the centre
+// within a unit of 0. Read by a clamped map (or a feature layer, whose maps
+// are clamped at their border) it keeps its coordinates: the map would not
+// sample the same texels after a shift.
+TEST(UvSets, RepeatOnlySetsAreRecentredExactly) {
+    auto scene = [](const std::string& layer) {
+        return sceneFromJson(oneMaterialScene(
+            layer,
+            R"({"procedural": {"type": "sphere", "size": 1, "segments": 16, "uv_sets": 1},
+                "uv_sets": [{"from": 0, "scale": 8, "offset": [10000, -20000]}]})"));
+    };
+    const std::string repeat =
+        R"({"type": "uv_normal", "uv_set": 1, "map": {"procedural": "weave", "size": 16}})";
+    const std::string clamp =
+        R"({"type": "uv_normal", "uv_set": 1, "map": {"procedural": "weave", )"
+        R"("size": 16, "wrap": "clamp"}})";
+    const std::string feature =
+        R"({"type": "feature", "uv_set": 1, "curves": {"svg": "data:svg/flame.svg", "size": 32}})";
+    for (const std::string* layer : {&repeat, &clamp, &feature}) {
+        const Scene s = scene(*layer);
+        const SceneAssets a = loadAssets(s);
+        const auto& set0 = a.meshes[0].mesh.uvSets[0];
+        const auto& set1 = a.meshes[0].mesh.uvSets[1];
+        ASSERT_EQ(set0.size(), set1.size());
+        // The exact values and their centre's whole units (set 0 spans
+        // [0, 1]^2, so set 1 spans [1e4, 1e4 + 8] x [-2e4, -2e4 + 8]).
+        const glm::dvec2 shift = layer == &repeat ? glm::dvec2(10004.0, -19996.0) : glm::dvec2(0.0);
+        size_t bad = 0;
+        glm::vec2 lo(1e30f), hi(-1e30f);
+        for (size_t i = 0; i < set0.size(); ++i) {
+            const glm::dvec2 exact = 8.0 * glm::dvec2(set0[i]) + glm::dvec2(1e4, -2e4);
+            bad += set1[i] != glm::vec2(exact - shift);
+            lo = glm::min(lo, set1[i]);
+            hi = glm::max(hi, set1[i]);
+        }
+        EXPECT_EQ(bad, 0u) << *layer;
+        const glm::vec2 centre = 0.5f * (lo + hi);
+        if (layer == &repeat) {
+            EXPECT_LT(std::max(std::fabs(centre.x), std::fabs(centre.y)), 1.0f);
+        } else {
+            EXPECT_GT(std::fabs(centre.x), 9000.0f) << *layer;
+        }
+    }
+}
+
 } // namespace
 } // namespace sg::render::test
