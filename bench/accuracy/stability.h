@@ -75,7 +75,6 @@ struct Result {
     AngleStats gpuVsCpu;        // GPU vs matched CPU reference, the input as given
     AngleStats expected;        // GPU vs `expected` (compared == 0 when the case has none)
     AngleStats gpuVsDefaultCpu; // GPU vs the default CPU reference (Case::withDefaultCpu)
-    double seconds = 0.0;       // wall time of the case
 };
 
 // The CPU reference options that follow the GPU (quad derivatives,
