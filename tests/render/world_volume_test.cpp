@@ -6,8 +6,9 @@
 //  - known answers through the shared C++ functions: a world point near the
 //    origin and the same point moved by a large offset, the camera moved
 //    with it, give the same surface gradient (triplanar: whole texture
-//    repeats; noise: the lattice moved by the offset, against the noise
-//    evaluated in binary64 at the absolute lattice point);
+//    repeats; noise: the lattice moved by the offset), and against the
+//    layer on the absolute position near the origin (triplanar) or the
+//    noise placed in extended precision at the absolute lattice point;
 //  - renders (hard case far-from-origin-render): a sphere with world-space
 //    triplanar or noise layers 1e5 units from the origin, its camera
 //    nearby, on the GPU and on the CPU reference renderer, against each
@@ -117,9 +118,10 @@ TEST(WorldVolume, TriplanarFarFromOriginSamplesTheOriginsTexels) {
         }
         const double rms = std::sqrt(sumSq / double(want.size()));
         ASSERT_GT(rms, 0.05);
-        Worst nearErr, farErr;
+        Worst nearErr, farErr, moved;
         for (size_t i = 0; i < want.size(); ++i) {
             const glm::dvec3 x = nearPoints()[i];
+            glm::vec3 gNear(0.0f);
             for (double c : {0.0, 57735.0, 577350.0, 5773503.0, -577350.0}) {
                 const glm::dvec3 d(c), eye = x + kEye + d;
                 const std::vector<glm::vec4> r = packFor(L, eye);
@@ -134,10 +136,14 @@ TEST(WorldVolume, TriplanarFarFromOriginSamplesTheOriginsTexels) {
                 const glm::vec3 g =
                     G::sgLayerTriplanar(f, worldDomain(f, x + d, eye), p, tex, tex, tex);
                 (c == 0.0 ? nearErr : farErr).add(glm::length(glm::dvec3(g) - want[i]) / rms);
+                // Translation: the same point and camera near the origin.
+                if (c == 0.0) gNear = g;
+                moved.add(glm::length(glm::dvec3(g) - glm::dvec3(gNear)) / rms);
             }
         }
         const char* what = wrap == Wrap::Repeat ? "repeating maps" : "clamped maps";
-        std::printf("[triplanar, %s] near %.3g far %.3g\n", what, nearErr.value, farErr.value);
+        std::printf("[triplanar, %s] near %.3g far %.3g moved %.3g (far: repeating maps only)\n",
+                    what, nearErr.value, farErr.value, moved.value);
         // The texture coordinate scale (x - camera) + fract(scale camera)
         // equals scale x up to a few ulps of values below 8 (about 1e-6),
         // 2e-5 texels on this 16-texel map, whose neighbouring texels'
@@ -146,6 +152,9 @@ TEST(WorldVolume, TriplanarFarFromOriginSamplesTheOriginsTexels) {
         EXPECT_LE(nearErr.value, 1e-4) << what;
         if (wrap == Wrap::Repeat) {
             EXPECT_LE(farErr.value, 1e-4) << what;
+            // fract(scale camera) far out is the origin's up to one ulp of
+            // a value below 1 (binary64 sums at 1e7 round at 2e-9).
+            EXPECT_LE(moved.value, 1e-5) << what;
         }
     }
 }
@@ -382,8 +391,11 @@ TEST(RenderHardCases, WorldVolumeLayersFarFromOrigin) {
     // far view against the origin's. The layers' inputs far out are the
     // origin's camera-relative position plus a shift below one texture
     // repeat or lattice cell, so what is left is the rounding of those
-    // small numbers (and of the view at 1e5); the absolute binary32
-    // position gave 7-10 deg p99 here.
+    // small numbers (and of the view at 1e5): measured GPU vs CPU 1.4e-3
+    // deg p99 (the origin's), far vs origin 0 (the same binary32 inputs).
+    // The absolute binary32 world position gave, on this view, GPU vs CPU
+    // 38-42 deg p99 for triplanar, 3.2-4.6 for noise, and far vs origin
+    // 35-40 (GPU) and 19-21 (CPU) for triplanar, 1.8-4.5 for noise.
     hardCaseAtMost("far-from-origin-render", what + ": GPU vs CPU reference (quad derivatives)",
                    "normal AOV p99 angle, deg", parityFar.value, 0.05, false);
     hardCaseAtMost("far-from-origin-render", "the same view at the origin, GPU vs CPU",
@@ -391,7 +403,7 @@ TEST(RenderHardCases, WorldVolumeLayersFarFromOrigin) {
     hardCaseAtMost("far-from-origin-render", what + ": GPU, vs the same view at the origin",
                    "normal AOV p99 angle, deg", gpuMoved.value, 0.05, false);
     hardCaseAtMost("far-from-origin-render", what + ": CPU reference, vs the view at the origin",
-                   "normal AOV p99 angle, deg", cpuMoved.value, 0.05, false);
+                   "normal AOV p99 angle, deg", cpuMoved.value, 0.05);
 }
 
 } // namespace

@@ -20,7 +20,10 @@
 // modulo 2^32), and originFrac the rest, both computed in binary64 on the
 // CPU (layer_noise.cpp): originFrac is in [0, 1] and vs.pos small (the
 // camera is near what it sees), so nothing is large in binary32, and
-// sgNoiseOctavesAt keeps the cell exact in every octave (noise.glsl).
+// sgNoiseOctavesAt keeps the cell exact in every octave (noise.glsl): for
+// any lacunarity while the argument stays within 2^31 cells of 0; beyond,
+// the cell wraps modulo 2^32, exact for integer lacunarities only (octaves
+// with a non-integer lacunarity^k then see a seam where it wraps).
 // Object space keeps x0 = 0: originCell 0 and originFrac = offset (the
 // argument as it always was).
 //
