@@ -40,10 +40,11 @@ G::SgFrame frameWithNormal(glm::vec3 n, glm::vec3 dPdx, glm::vec3 dPdy) {
     return f;
 }
 
-// r0 = (strength, scale, sharpness, rightHanded), r1 = (encoding, flipV).
+// r0 = (strength, scale, sharpness, rightHanded), r1 = (encoding, flipV),
+// r2 = (texShift, 0).
 G::SgTriplanarParams triplanarParams(float strength, float scale, bool rightHanded) {
     return G::sgUnpackTriplanar(glm::vec4(strength, scale, 4.0f, rightHanded ? 1.0f : 0.0f),
-                                glm::vec4(float(NormalEncoding::Float), 0, 0, 0));
+                                glm::vec4(float(NormalEncoding::Float), 0, 0, 0), glm::vec4(0.0f));
 }
 
 // s^2 P G (sum over the axes' outer products weighted by C) G^T P, in
@@ -248,8 +249,8 @@ const float kReach[] = {0.0f, 1e-3f, 1e6f, 1e30f};
 TEST(AntialiasCompose, HardTriplanarAtEqualWeightsAndTheHorizon) {
     Moments m = hardMoments();
     G::sampler2D sa{&m.a}, sb{&m.b}, st{&m.toksvig};
-    G::SgTriplanarParams p =
-        G::sgUnpackTriplanar(glm::vec4(3.0f, 2.0f, 64.0f, 1.0f), glm::vec4(0, 0, 0, 0));
+    G::SgTriplanarParams p = G::sgUnpackTriplanar(glm::vec4(3.0f, 2.0f, 64.0f, 1.0f),
+                                                  glm::vec4(0, 0, 0, 0), glm::vec4(0.0f));
     // Equal weights (diagonal normals), a normal at the edge of two planes,
     // footprints from 0 to the horizon (1e30 units per pixel) and a zero
     // gradient map (whose domain normal is 0: the frame's is used).
@@ -386,9 +387,11 @@ TEST(AntialiasCompose, NoiseRemovedVarianceMatchesTheMeasuredFullDetailVariance)
 G::SgNoiseParams noiseParams(int type, float amplitude, float frequency, int octaves,
                              float exponent) {
     // r0 = (amplitude, frequency, type, octaves), r1 = (lacunarity, gain,
-    // exponent, antialias), r2 = (offset, 0).
+    // exponent, antialias), r2 = (originFrac, 0) (the offset: cell 0, as
+    // in object space), r3, r4 = (originCell's halves, 0).
     return G::sgUnpackNoise(glm::vec4(amplitude, frequency, float(type), float(octaves)),
-                            glm::vec4(2.0f, 0.5f, exponent, 1.0f), glm::vec4(0.3f, 0.1f, 0.7f, 0));
+                            glm::vec4(2.0f, 0.5f, exponent, 1.0f), glm::vec4(0.3f, 0.1f, 0.7f, 0),
+                            glm::vec4(0.0f), glm::vec4(0.0f));
 }
 
 TEST(AntialiasCompose, NoiseLeanKeepsTheFadedGradientAndMapsTheCovariance) {
@@ -448,9 +451,10 @@ TEST(AntialiasCompose, HardNoiseLeanAtTheHorizonAndAtExtremes) {
                     // octave is evaluated: frequencies that keep the lattice
                     // coordinates in int range.
                     const bool zero = reach == 0.0f;
-                    G::SgNoiseParams p = G::sgUnpackNoise(
-                        glm::vec4(amp, zero ? 10.0f : 1e6f, float(type), 12.0f),
-                        glm::vec4(zero ? 2.0f : 8.0f, 1.0f, exponent, 1.0f), glm::vec4(0.0f));
+                    G::SgNoiseParams p =
+                        G::sgUnpackNoise(glm::vec4(amp, zero ? 10.0f : 1e6f, float(type), 12.0f),
+                                         glm::vec4(zero ? 2.0f : 8.0f, 1.0f, exponent, 1.0f),
+                                         glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f));
                     glm::mat3 cov(0.0f);
                     glm::vec3 g = G::sgLayerNoiseLean(f, vs, p, cov);
                     bad += nonFinite(g, cov);

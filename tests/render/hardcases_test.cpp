@@ -180,7 +180,7 @@ TEST(RenderHardCases, TriplanarLayerAtEqualWeights) {
         for (float k : {1.0f, 4.0f, 64.0f}) {
             for (int rh = 0; rh < 2; ++rh) {
                 const G::SgTriplanarParams p =
-                    G::sgUnpackTriplanar(glm::vec4(1, 1, k, float(rh)), glm::vec4(0));
+                    G::sgUnpackTriplanar(glm::vec4(1, 1, k, float(rh)), glm::vec4(0), glm::vec4(0));
                 const glm::vec3 g = G::sgLayerTriplanar(f, vs, p, tx, ty, tz);
                 ASSERT_TRUE(std::isfinite(g.x + g.y + g.z));
                 const glm::vec3 w = G::sgTriplanarWeights(n, k);

@@ -213,7 +213,7 @@ TEST(Layers, FlatNormalMapsAddNothing) {
     G::SgVolumeSpace vs =
         G::sgVolumeSpace(f, glm::vec3(0.3f, 0.0f, 0.2f), glm::mat3(1.0f), glm::mat3(1.0f));
     glm::vec3 tri = G::sgLayerTriplanar(
-        f, vs, G::sgUnpackTriplanar(glm::vec4(1, 1, 4, 1), glm::vec4(0)), s, s, s);
+        f, vs, G::sgUnpackTriplanar(glm::vec4(1, 1, 4, 1), glm::vec4(0), glm::vec4(0)), s, s, s);
     EXPECT_LT(glm::length(tri), 1e-6f);
 }
 
@@ -248,8 +248,9 @@ TEST(Layers, NoiseSurfaceGradientIsTheTangentialVolumeGradient) {
     G::SgFrame f = flatFrame(1e-4f);
     glm::vec3 p(0.3f, 0.0f, -0.7f);
     G::SgVolumeSpace vs = G::sgVolumeSpace(f, p, glm::mat3(1.0f), glm::mat3(1.0f));
-    G::SgNoiseParams np = G::sgUnpackNoise(glm::vec4(0.05f, 3.0f, SG_NOISE_PERLIN, 1),
-                                           glm::vec4(2, 0.5f, 1, 0), glm::vec4(0.0f));
+    G::SgNoiseParams np =
+        G::sgUnpackNoise(glm::vec4(0.05f, 3.0f, SG_NOISE_PERLIN, 1), glm::vec4(2, 0.5f, 1, 0),
+                         glm::vec4(0.0f), glm::vec4(0.0f), glm::vec4(0.0f));
     glm::vec3 g = G::sgLayerNoise(f, vs, np);
     auto H = [&](glm::vec3 q) { return 0.05f * G::sgPerlinNoise(3.0f * q).x; };
     glm::dvec3 fd = finiteGradient(H, p, 1e-3f);

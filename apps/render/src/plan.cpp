@@ -158,7 +158,9 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
         }
     }
     if (plan.usesWorldVolume) {
-        o << "    SgVolumeSpace volWorld = sgVolumeSpace(frame, vWorldPos, mat3(1.0), "
+        // Camera-relative: the layers add the camera's part, packed per layer
+        // (SgVolumeSpace, sg/render/common.glsl).
+        o << "    SgVolumeSpace volWorld = sgVolumeSpace(frame, vRelPos, mat3(1.0), "
              "mat3(1.0));\n";
     }
     if (plan.usesObjectVolume) {
@@ -469,7 +471,7 @@ struct CpuShader {
                            : G::sgUvFramePixel(s.frame, in.uv[kk], in.dUVdx[kk], in.dUVdy[kk]);
         }
         if (plan.usesWorldVolume)
-            s.volWorld = G::sgVolumeSpace(s.frame, in.worldPos, glm::mat3(1.0f), glm::mat3(1.0f));
+            s.volWorld = G::sgVolumeSpace(s.frame, in.relPos, glm::mat3(1.0f), glm::mat3(1.0f));
         if (plan.usesObjectVolume)
             s.volObject =
                 G::sgVolumeSpaceDeriv(in.objPos, in.dObjdx, in.dObjdy, u.model3, u.modelInv3);

@@ -82,13 +82,21 @@ SG_FN SgUvFrame sgUvFrameVertex(vec2 st, vec2 dSTdx, vec2 dSTdy, vec3 vtxNormal,
 // The domain of a volume layer (triplanar, decal, noise): positions and
 // screen derivatives in the layer's space (object or world), and the linear
 // maps between that space and the frame's (world, relative to the camera).
+// The position is relative to a reference point x0 of the domain: object
+// space the object position (x0 = 0), world space the camera-relative
+// position vRelPos (x0 = the camera, which binary32 cannot place precisely
+// far from the origin while vRelPos stays small there). Layers add their
+// pattern's value at x0, packed per layer in binary64 and reduced by the
+// pattern's period or lattice (layer_triplanar.glsl's texShift,
+// layer_noise.glsl's originCell and originFrac), so patterns stay put in
+// the domain as the camera moves.
 //   gradToFrame   - maps a domain-space GRADIENT to frame space: the inverse
 //                   transpose of the domain-to-world linear map (identity for
 //                   world space);
 //   normalToDomain - maps a frame-space normal to the domain (the transpose
 //                   of the domain-to-world linear map); result unnormalized.
 struct SgVolumeSpace {
-    vec3 pos;  // position in the domain (absolute, so patterns stay put)
+    vec3 pos;  // position in the domain minus the reference point x0 (above)
     vec3 dPdx; // d(pos)/d(screen x)
     vec3 dPdy; // d(pos)/d(screen y)
     mat3 gradToFrame;

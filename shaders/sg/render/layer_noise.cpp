@@ -5,6 +5,9 @@
 // (layer_noise_aa.glsl).
 #include "layer_kind.h"
 
+#include <cmath>
+#include <cstdint>
+
 namespace sg::render {
 
 namespace {
@@ -12,12 +15,44 @@ namespace {
 namespace G = sg::glsl;
 using P = NoiseParams;
 
-// sgUnpackNoise(r0, r1, r2), layer_noise.glsl:
+// The noise's argument frequency * x0 + offset at the domain's reference
+// point x0 (layer_noise.glsl: the camera for world space, 0 for object
+// space), split in binary64 into its whole cell, wrapped to 32 bits, and
+// the rest.
+struct OriginSplit {
+    glm::vec3 frac{0.0f};
+    glm::vec3 cellLo{0.0f}, cellHi{0.0f}; // 16-bit halves of the cell's two's complement
+};
+
+OriginSplit originSplit(const PackInput& in) {
+    const P& p = in.params<P>();
+    OriginSplit o;
+    if (p.space == Space::Object) {
+        o.frac = p.offset;
+        return o;
+    }
+    for (int i = 0; i < 3; ++i) {
+        const double arg = double(p.frequency) * in.view.cameraPos[i] + double(p.offset[i]);
+        if (!std::isfinite(arg)) continue;
+        const double cell = std::floor(arg);
+        o.frac[i] = float(arg - cell);                  // exact in binary64, then rounded once
+        double wrapped = std::fmod(cell, 4294967296.0); // exact
+        if (wrapped < 0.0) wrapped += 4294967296.0;
+        const uint32_t bits = uint32_t(wrapped);
+        o.cellLo[i] = float(bits & 0xffffu);
+        o.cellHi[i] = float(bits >> 16);
+    }
+    return o;
+}
+
+// sgUnpackNoise(r0, r1, r2, r3, r4), layer_noise.glsl:
 //   r0 = (amplitude, frequency, type SG_NOISE_*, octaves);
-//   r1 = (lacunarity, gain, exponent k, antialias); r2 = (offset xyz, 0).
+//   r1 = (lacunarity, gain, exponent k, antialias); r2 = (originFrac xyz, 0);
+//   r3, r4 = (originCell's low, high 16 bits xyz, 0). View-dependent for
+//   world space (the camera is x0).
 RecordLayout records() {
     using S = G::SgNoiseParams;
-    return Records<S, 3>("SgNoiseParams", "sgUnpackNoise", G::sgUnpackNoise)
+    return Records<S, 5>("SgNoiseParams", "sgUnpackNoise", G::sgUnpackNoise)
         .field("amplitude", &S::amplitude, "r0.x",
                [](const PackInput& in) { return in.params<P>().amplitude; })
         .field("frequency", &S::frequency, "r0.y",
@@ -33,8 +68,12 @@ RecordLayout records() {
                [](const PackInput& in) { return in.params<P>().exponent; })
         .field("antialias", &S::antialias, "r1.w",
                [](const PackInput& in) { return in.params<P>().antialias != NoiseAntialias::None; })
-        .field("offset", &S::offset, "r2.xyz",
-               [](const PackInput& in) { return in.params<P>().offset; })
+        .field("originFrac", &S::originFrac, "r2.xyz",
+               [](const PackInput& in) { return originSplit(in).frac; })
+        .field("originCellLo", &S::originCellLo, "r3.xyz",
+               [](const PackInput& in) { return originSplit(in).cellLo; })
+        .field("originCellHi", &S::originCellHi, "r4.xyz",
+               [](const PackInput& in) { return originSplit(in).cellHi; })
         .done();
 }
 
@@ -52,7 +91,7 @@ std::string glsl(const GlslLayerContext& c) {
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const glm::vec4* r = c.rec();
     const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
-    const G::SgNoiseParams p = G::sgUnpackNoise(r[0], r[1], r[2]);
+    const G::SgNoiseParams p = G::sgUnpackNoise(r[0], r[1], r[2], r[3], r[4]);
     if (isLean(c.layer())) {
         s.surfGrad += G::sgLayerNoiseLean(s.frame, vs, p, s.slopeCov);
         return;

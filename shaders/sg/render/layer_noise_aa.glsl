@@ -6,9 +6,10 @@
 // the highlight instead of vanishing.
 //
 // The variance of the removed octaves, derived from the noise's spectrum:
-// octave o of sgNoiseOctaves is amp_o n(freq_o q) (amp_o = gain^o,
-// freq_o = lacunarity^o, q = frequency p + offset; turbulence takes |n|,
-// whose gradient sign(n) grad n has the same second moments). Its domain
+// octave o of sgNoiseOctavesAt is amp_o n(freq_o q) (amp_o = gain^o,
+// freq_o = lacunarity^o, q = frequency p + offset, layer_noise.glsl's
+// argument, passed as a lattice cell and a small rest; turbulence takes
+// |n|, whose gradient sign(n) grad n has the same second moments). Its domain
 // gradient is A F amp_o freq_o grad n (A amplitude, F frequency), so over
 // the domain its covariance is (A F amp_o freq_o)^2 D, D the covariance of
 // the gradient of one unit noise n (below). Octaves are taken as
@@ -83,8 +84,7 @@ SG_FN mat3 sgDomainCovToFrame(SgFrame f, SgVolumeSpace vs, vec3 var) {
 SG_FN vec3 sgLayerNoiseLean(SgFrame f, SgVolumeSpace vs, SgNoiseParams p,
                             SG_INOUT(mat3) slopeCov) {
     float footprint = sgVolumeFootprint(vs) * p.frequency;
-    vec4 n = sgNoiseOctaves(p.type, p.frequency * vs.pos + p.offset, p.octaves, p.lacunarity,
-                            p.gain, footprint);
+    vec4 n = sgNoiseLayerOctaves(vs, p, footprint);
     float k = 1.0f; // the composite's gradient factor
     if (p.exponent != 1.0f) {
         float kk = max(p.exponent, 1.0f);

@@ -150,7 +150,7 @@ void cpuPom(const CpuLayerContext& c, CpuShadeState& s) {
 
 // The re-prologue on the virtual surface (section 3): listing 17 at
 // vRelPos + surfOffset with the resolved normal, and the volume domains
-// moved there.
+// moved there (world space camera-relative, as the prologue's).
 std::string reprologue(const GlslLayerContext& c) {
     const std::string in = c.indent + "    ";
     std::string o = "{\n";
@@ -160,8 +160,7 @@ std::string reprologue(const GlslLayerContext& c) {
          "), gl_FragCoord.x, gl_FragCoord.y);\n";
     o += in + "frame = sgReprologue(frame, nrm, dPdxV, dPdyV);\n";
     if (c.plan.usesWorldVolume) {
-        o +=
-            in + "volWorld = sgVolumeSpace(frame, vWorldPos + surfOffset, mat3(1.0), mat3(1.0));\n";
+        o += in + "volWorld = sgVolumeSpace(frame, vRelPos + surfOffset, mat3(1.0), mat3(1.0));\n";
     }
     if (c.plan.usesObjectVolume) {
         o += in + "volObject = sgVolumeSpace(frame, vObjPos + uModelInv3 * surfOffset, uModel3, "
@@ -178,8 +177,8 @@ void reprologueCpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3 nrm) {
                           c.in.fragCoord.y);
     s.frame = G::sgReprologue(s.frame, nrm, dPdxV, dPdyV);
     if (c.plan.usesWorldVolume) {
-        s.volWorld = G::sgVolumeSpace(s.frame, c.in.worldPos + s.surfOffset, glm::mat3(1.0f),
-                                      glm::mat3(1.0f));
+        s.volWorld =
+            G::sgVolumeSpace(s.frame, c.in.relPos + s.surfOffset, glm::mat3(1.0f), glm::mat3(1.0f));
     }
     if (c.plan.usesObjectVolume) {
         s.volObject = G::sgVolumeSpace(s.frame, c.in.objPos + c.u.modelInv3 * s.surfOffset,

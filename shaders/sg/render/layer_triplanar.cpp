@@ -4,6 +4,8 @@
 // plane's slope covariance mapped by its Jacobian, weights squared).
 #include "layer_kind.h"
 
+#include <algorithm>
+
 namespace sg::render {
 
 namespace {
@@ -12,11 +14,32 @@ namespace G = sg::glsl;
 using P = TriplanarParams;
 using detail::SceneNode;
 
-// sgUnpackTriplanar(r0, r1), layer_triplanar.glsl:
-//   r0 = (strength, scale, sharpness k, rightHanded); r1 = (encoding, flipV, 0, 0).
+// Whether every plane's map repeats ("wrap": "repeat", the default; a
+// map's "wrap": "clamp" is kept).
+bool mapsRepeat(const Layer& L) {
+    return std::all_of(L.maps.begin(), L.maps.end(),
+                       [](const TextureSource& m) { return m.wrap == Wrap::Repeat; });
+}
+
+// SgTriplanarParams::texShift: the texture position of the domain's
+// reference point (the camera for world space) in binary64, reduced to
+// [0, 1) by whole repeats when the maps repeat; with a clamped map the
+// absolute scale * camera (no repeat to reduce by: the layer reads the
+// absolute position, as precise as binary32 is there); 0 in object space.
+glm::vec3 texShift(const PackInput& in) {
+    const P& p = in.params<P>();
+    if (p.space == Space::Object) return glm::vec3(0.0f);
+    const glm::dvec3 s = double(p.scale) * in.view.cameraPos;
+    if (!mapsRepeat(in.layer)) return glm::vec3(s);
+    return glm::vec3(s - glm::floor(s));
+}
+
+// sgUnpackTriplanar(r0, r1, r2), layer_triplanar.glsl:
+//   r0 = (strength, scale, sharpness k, rightHanded); r1 = (encoding, flipV, 0, 0);
+//   r2 = (texShift xyz, 0), view-dependent for world space.
 RecordLayout records() {
     using S = G::SgTriplanarParams;
-    return Records<S, 2>("SgTriplanarParams", "sgUnpackTriplanar", G::sgUnpackTriplanar)
+    return Records<S, 3>("SgTriplanarParams", "sgUnpackTriplanar", G::sgUnpackTriplanar)
         .field("strength", &S::strength, "r0.x",
                [](const PackInput& in) { return in.layer.strength; })
         .field("scale", &S::scale, "r0.y", [](const PackInput& in) { return in.params<P>().scale; })
@@ -27,6 +50,7 @@ RecordLayout records() {
         .field("encoding", &S::encoding, "r1.x",
                [](const PackInput& in) { return int(in.params<P>().encoding); })
         .field("flipV", &S::flipV, "r1.y", [](const PackInput& in) { return in.params<P>().flipV; })
+        .field("texShift", &S::texShift, "r2.xyz", texShift)
         .done();
 }
 
@@ -75,7 +99,7 @@ std::string glsl(const GlslLayerContext& c) {
 void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const glm::vec4* r = c.rec();
     const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
-    const G::SgTriplanarParams p = G::sgUnpackTriplanar(r[0], r[1]);
+    const G::SgTriplanarParams p = G::sgUnpackTriplanar(r[0], r[1], r[2]);
     const int aa = antialiasOf(c.layer());
     if (aa == 0) {
         s.surfGrad += G::sgLayerTriplanar(s.frame, vs, p, c.tex(0), c.tex(1), c.tex(2));

@@ -55,24 +55,24 @@ SG_FN vec3 sgNoiseLatticeGradient(uint h) {
     return vec3(0.0f, -1.0f, s0);
 }
 
-// Improved Perlin noise at p and its exact gradient: vec4(n, dn/dp).
-// n is in about [-1, 1]; n = 0 at every lattice point.
-SG_FN vec4 sgPerlinNoise(vec3 p) {
-    vec3 pf = floor(p);
-    ivec3 i = ivec3(pf);
-    vec3 f = p - pf;
+// Improved Perlin noise in the lattice cell whose lower corner is `cell`
+// (the corner's integer coordinates modulo 2^32, as the hash reads them) at
+// f in [0, 1]^3 within it, and its exact gradient: vec4(n, dn/dp).
+// Corners are cell + (0 or 1) in wrapped uint arithmetic, which both builds
+// share.
+SG_FN vec4 sgPerlinNoiseCell(uvec3 cell, vec3 f) {
     // Quintic fade and its derivative (C2 continuous noise).
     vec3 u = f * f * f * (f * (f * 6.0f - vec3(15.0f)) + vec3(10.0f));
     vec3 du = 30.0f * f * f * (f * (f - vec3(2.0f)) + vec3(1.0f));
 
-    vec3 g000 = sgNoiseLatticeGradient(sgNoiseHash(i));
-    vec3 g100 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(1, 0, 0)));
-    vec3 g010 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(0, 1, 0)));
-    vec3 g110 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(1, 1, 0)));
-    vec3 g001 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(0, 0, 1)));
-    vec3 g101 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(1, 0, 1)));
-    vec3 g011 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(0, 1, 1)));
-    vec3 g111 = sgNoiseLatticeGradient(sgNoiseHash(i + ivec3(1, 1, 1)));
+    vec3 g000 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell)));
+    vec3 g100 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(1u, 0u, 0u))));
+    vec3 g010 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(0u, 1u, 0u))));
+    vec3 g110 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(1u, 1u, 0u))));
+    vec3 g001 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(0u, 0u, 1u))));
+    vec3 g101 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(1u, 0u, 1u))));
+    vec3 g011 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(0u, 1u, 1u))));
+    vec3 g111 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(1u, 1u, 1u))));
 
     float v000 = dot(g000, f);
     float v100 = dot(g100, f - vec3(1.0f, 0.0f, 0.0f));
@@ -113,21 +113,85 @@ SG_FN vec4 sgPerlinNoise(vec3 p) {
     return vec4(n, grad.x, grad.y, grad.z);
 }
 
+// Improved Perlin noise at p and its exact gradient: vec4(n, dn/dp).
+// n is in about [-1, 1]; n = 0 at every lattice point.
+SG_FN vec4 sgPerlinNoise(vec3 p) {
+    vec3 pf = floor(p);
+    return sgPerlinNoiseCell(uvec3(ivec3(pf)), p - pf);
+}
+
+// freq * cell exactly, as its whole part modulo 2^32 (`whole`) and its
+// fraction in [0, 1) (`frac`), for a binary32 freq in [1, SG_FLT_MAX] and a
+// 32-bit lattice coordinate `cell`: freq = m 2^(e - 24) with m a 24-bit
+// integer (frexp), so freq * cell is the 56-bit product m * cell
+// (imulExtended) times 2^(e - 24); its fraction has at most 23 bits and is
+// exact in binary32. Integer arithmetic only: both builds agree bit for
+// bit. Other freq (never made by lacunarities >= 1): 0, 0.
+SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(float) frac) {
+    whole = 0u;
+    frac = 0.0f;
+    if (!(freq >= 1.0f) || !(freq <= SG_FLT_MAX)) return;
+    int e;
+    float mant = frexp(freq, e);
+    int m = int(mant * 16777216.0f); // in [2^23, 2^24): exact
+    int hi;
+    int lo;
+    imulExtended(m, cell, hi, lo);
+    int shift = 24 - e; // freq * cell = (hi 2^32 + lo) 2^-shift, shift <= 23
+    if (shift <= -32) return; // a multiple of 2^32
+    if (shift <= 0) {
+        whole = uint(lo) << uint(-shift);
+        return;
+    }
+    whole = (uint(lo) >> uint(shift)) | (uint(hi) << uint(32 - shift));
+    frac = ldexp(float(uint(lo) & ((1u << uint(shift)) - 1u)), -shift);
+}
+
+// One octave, frequency freq, at the lattice argument cell + q (cell a
+// 32-bit lattice offset, q small): the noise at freq * (cell + q), with
+// freq * cell split exactly (sgNoiseScaleCell), so only freq * q is rounded
+// and a far cell costs no precision. cell = 0 is sgPerlinNoise(q * freq)
+// bit for bit.
+SG_FN vec4 sgPerlinNoiseShifted(ivec3 cell, vec3 q, float freq) {
+    uint wx;
+    uint wy;
+    uint wz;
+    float fx;
+    float fy;
+    float fz;
+    sgNoiseScaleCell(cell.x, freq, wx, fx);
+    sgNoiseScaleCell(cell.y, freq, wy, fy);
+    sgNoiseScaleCell(cell.z, freq, wz, fz);
+    vec3 p = q * freq + vec3(fx, fy, fz);
+    vec3 pf = floor(p);
+    return sgPerlinNoiseCell(uvec3(ivec3(pf)) + uvec3(wx, wy, wz), p - pf);
+}
+
 // Weight of an octave of `cyclesPerPixel` (frequency times footprint):
 // 1 below a quarter cycle per pixel, 0 from half a cycle (Nyquist) up.
 SG_FN float sgNoiseOctaveWeight(float cyclesPerPixel) {
     return 1.0f - smoothstep(0.25f, 0.5f, cyclesPerPixel);
 }
 
-// Sum of octaves of noise at p (domain units), vec4(value, gradient):
+// Sum of octaves of noise at the lattice argument p = cell + q (lattice
+// units: cell a 32-bit integer offset, q the rest), vec4(value, gradient):
 //   type SG_NOISE_PERLIN     - one octave of noise (octaves ignored);
 //   type SG_NOISE_TURBULENCE - sum_i gain^i |noise(lacunarity^i p)|  (>= 0);
 //   type SG_NOISE_FBM        - sum_i gain^i noise(lacunarity^i p).
-// footprint is the pixel size in the same units as p (0 disables the
-// frequency clamp). |noise| has a crease where noise = 0; its gradient there
-// is taken as 0 (sign(0) = 0) so the result stays finite.
-SG_FN vec4 sgNoiseOctaves(int type, vec3 p, int octaves, float lacunarity, float gain,
-                          float footprint) {
+// lacunarity^i is the binary32 product of i lacunarities, and octave i
+// reads the noise at lacunarity^i cell + lacunarity^i q with the first
+// product exact (sgPerlinNoiseShifted): a large argument is passed as a
+// cell and a small q without losing precision, for any lacunarity >= 1,
+// as long as the argument's whole part fits 32 bits (|p| < 2^31). For an
+// integer lacunarity the cell may also be wrapped modulo 2^32 (the hash
+// reads corners modulo 2^32, and lacunarity^i is then an integer); for a
+// non-integer one a wrapped cell moves octaves i >= 1 by lacunarity^i *
+// 2^32 mod 2^32, a different lattice. footprint is the pixel size in the
+// units of q (0 disables the frequency clamp). |noise| has a crease where
+// noise = 0; its gradient there is taken as 0 (sign(0) = 0) so the result
+// stays finite.
+SG_FN vec4 sgNoiseOctavesAt(int type, ivec3 cell, vec3 q, int octaves, float lacunarity,
+                            float gain, float footprint) {
     int count = type == SG_NOISE_PERLIN ? 1 : clamp(octaves, 1, SG_NOISE_MAX_OCTAVES);
     float value = 0.0f;
     vec3 grad = vec3(0.0f);
@@ -137,7 +201,7 @@ SG_FN vec4 sgNoiseOctaves(int type, vec3 p, int octaves, float lacunarity, float
         if (o >= count) break;
         float w = sgNoiseOctaveWeight(freq * footprint);
         if (!(w > 0.0f)) break; // higher octaves are finer still
-        vec4 n = sgPerlinNoise(p * freq);
+        vec4 n = sgPerlinNoiseShifted(cell, q, freq);
         vec3 gn = vec3(n.y, n.z, n.w);
         if (type == SG_NOISE_TURBULENCE) {
             value += w * amp * abs(n.x);
@@ -150,6 +214,12 @@ SG_FN vec4 sgNoiseOctaves(int type, vec3 p, int octaves, float lacunarity, float
         amp *= gain;
     }
     return vec4(value, grad.x, grad.y, grad.z);
+}
+
+// The same at p (domain units, no cell): sgNoiseOctavesAt with cell 0.
+SG_FN vec4 sgNoiseOctaves(int type, vec3 p, int octaves, float lacunarity, float gain,
+                          float footprint) {
+    return sgNoiseOctavesAt(type, ivec3(0), p, octaves, lacunarity, gain, footprint);
 }
 
 // Gritz's composite g(f) = sign(f) |f|^k (k >= 1) and its gradient

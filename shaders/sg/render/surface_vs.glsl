@@ -8,9 +8,10 @@
 // position keeps its precision far from the origin). The relative position
 // comes from uModelRel, composed on the CPU with the camera subtracted in
 // binary64 (sg::render::modelToCameraRelative, render/view.h): it is never
-// the difference of two large binary32 world positions. vWorldPos stays
-// the absolute world position (world-space volume layers), rounded at its
-// distance from the origin.
+// the difference of two large binary32 world positions. vWorldPos is the
+// absolute world position, rounded at its distance from the origin; no
+// layer reads it (world-space volume layers take vRelPos and the camera's
+// part packed per layer: SgVolumeSpace, sg/render/common.glsl).
 #ifndef SG_UV_COUNT
 #define SG_UV_COUNT 0
 #endif
