@@ -160,7 +160,7 @@ string(APPEND _md
     "(a UV, position or normal coordinate moved by a couple of binary32 ulps, the camera by "
     "2^-21 of its distance, ...), and bounds how far the output moves; rows of "
     "`Stability.*` (tests/render/stability_test.cpp, cases in "
-    "bench/accuracy/stability.cpp) do so for every hard-case family crossed with every "
+    "bench/accuracy/stability_cases.cpp) do so for every hard-case family crossed with every "
     "layer kind, for the named inputs users meet, and for random meshes, charts, "
     "transforms and cameras, and compare the GPU with the CPU reference that uses the "
     "GPU's derivative and LOD rules. The same measurements before and after the fixes "

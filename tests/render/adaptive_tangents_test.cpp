@@ -194,7 +194,11 @@ TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
     std::printf("adaptive tangent AOV limit vs pixel: %zu px, p50 %.3f p90 %.3f p99 %.3f deg\n",
                 r.deg.size(), r.at(0.5), r.at(0.9), r.at(0.99));
     EXPECT_EQ(r.nonFinite, 0u);
-    EXPECT_EQ(r.onlyOne, 0u); // the same tessellation: the same pixels
+    // The same tessellation: the same pixels, except where the per-pixel
+    // frame fades (listing 6's chart weight below 0.5: a chart thinner than
+    // 2^-7 relative determinant on screen, at spot's UV seams and poles;
+    // measured 4 of 9617 pixels): at most 0.1%.
+    EXPECT_LE(double(r.onlyOne), 0.001 * double(r.deg.size()));
     EXPECT_GT(r.deg.size(), size_t(320 * 240 / 10));
     EXPECT_LE(r.at(0.5), 3.0);
     EXPECT_LE(r.at(0.9), 15.0);

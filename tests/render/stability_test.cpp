@@ -1,5 +1,5 @@
 // The stability suite: hard cases must be stable, not only finite. Every
-// case (bench/accuracy/stability.{h,cpp}) is rendered as given and after a
+// case (bench/accuracy/stability_cases.cpp) is rendered as given and after a
 // rounding-size change of its input, on the GPU (llvmpipe) and on the CPU
 // reference renderer with the GPU's derivative and LOD rules; the normal
 // images must move by a bounded amount, and the GPU must agree with the
@@ -202,7 +202,7 @@ TEST(Stability, EveryFamilyWithEveryLayerKind) {
     std::filesystem::remove_all(dir);
 }
 
-// Property test over generated inputs (stability.cpp, generatedCases): a
+// Property test over generated inputs (stability_cases.cpp, generatedCases): a
 // fixed seed in the test run (SG_STABILITY_SEED and SG_STABILITY_COUNT pick
 // others, e.g. to search for new failures).
 TEST(Stability, GeneratedCasesStayStable) {
@@ -220,7 +220,8 @@ TEST(Stability, GeneratedCasesStayStable) {
     EXPECT_GE(w.covered * 4, w.cases * 3);
     const std::string name = std::to_string(count) +
                              " random meshes (height fields; conformal, anisotropic, sheared or "
-                             "singular charts, some offset by 1e4; collapsed UVs, needles, "
+                             "singular charts, conformal ones some offset by 1e4; collapsed UVs, "
+                             "needles, "
                              "normals leaning to 89.9 deg) under random transforms (flattened to "
                              "1e-4, mirrored, 1e5 from the origin), cameras, double-sided modes "
                              "and layer kinds, seed " +

@@ -76,11 +76,11 @@ bool topLeft(glm::dvec2 a, glm::dvec2 b) {
     return (e.y == 0.0 && e.x < 0.0) || e.y < 0.0;
 }
 
-// World-space vertex data of one mesh instance, exactly as the vertex
-// program computes it.
+// Vertex data of one mesh instance (camera-relative and object space),
+// exactly as the vertex program computes it.
 struct MeshData {
-    std::vector<glm::vec3> rel, world, obj, normal;
-    // Displaced adaptive meshes: rel, world, obj are the undisplaced
+    std::vector<glm::vec3> rel, obj, normal;
+    // Displaced adaptive meshes: rel, obj are the undisplaced
     // positions (the frame's, vRelPos), relLit the displaced ones
     // (vRelPosLit, lighting; clip comes from them). Empty otherwise.
     std::vector<glm::vec3> relLit;
@@ -96,21 +96,18 @@ MeshData vertexStage(const MeshInstance& inst, const MeshAsset& a, const View& v
     const auto& m = a.mesh;
     MeshData d;
     d.mesh = &m;
-    const glm::mat4 M(inst.transform); // uModel: the world position is rounded as on the GPU
+    const glm::mat4 M(inst.transform); // uModel (tangents)
     const glm::mat4 rel = modelToCameraRelative(inst.transform, view.cameraPos);
     glm::mat3 nm = detail::normalMatrix(inst.transform);
     d.detSign = glm::determinant(glm::dmat3(inst.transform)) < 0.0 ? -1.0f : 1.0f;
     size_t nv = m.vertexCount();
     d.rel.resize(nv);
-    d.world.resize(nv);
     const std::vector<glm::vec3>& base = framePositions ? *framePositions : m.positions;
     d.obj = base;
     d.normal.resize(nv);
     d.clip.resize(nv);
     if (framePositions) d.relLit.resize(nv);
     for (size_t v = 0; v < nv; ++v) {
-        glm::vec4 wp = M * glm::vec4(base[v], 1.0f);
-        d.world[v] = glm::vec3(wp);
         d.rel[v] = glm::vec3(rel * glm::vec4(base[v], 1.0f));
         d.normal[v] = m.normals.empty() ? glm::vec3(0.0f) : nm * m.normals[v];
         if (framePositions) {
@@ -278,7 +275,6 @@ detail::PixelInputs pixelInputs(const ScreenTri& st, const MeshData& d, int x, i
     in.relPosLit = d.relLit.empty() ? in.relPos : interp(d.relLit, mu);
     in.dPdx = interp(d.rel, mux);
     in.dPdy = interp(d.rel, muy);
-    in.worldPos = interp(d.world, mu);
     in.objPos = interp(d.obj, mu);
     in.dObjdx = interp(d.obj, mux);
     in.dObjdy = interp(d.obj, muy);

@@ -181,7 +181,7 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
 // rasteriser: interpolated varyings (same names as sg/render/surface_fs.glsl)
 // and their screen derivatives.
 struct PixelInputs {
-    glm::vec3 relPos{0.0f}, worldPos{0.0f}, objPos{0.0f}, normal{0.0f};
+    glm::vec3 relPos{0.0f}, objPos{0.0f}, normal{0.0f};
     glm::vec3 relPosLit{0.0f}; // displaced adaptive meshes: vRelPosLit (the lit position)
     std::array<glm::vec2, kMaxUvSets> uv{}, dUVdx{}, dUVdy{};
     std::array<glm::vec4, kMaxUvSets> tangent{};

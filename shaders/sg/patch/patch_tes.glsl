@@ -200,7 +200,6 @@ uniform mat3 uNormalMat;
 uniform mat4 uViewProjRel;
 
 out vec3 vRelPos;
-out vec3 vWorldPos;
 out vec3 vObjPos;
 out vec3 vNormal;
 // The patch AOV (Aov::Patch): 1 + patch index, tessellation level (the
@@ -287,7 +286,6 @@ void main() {
     }
     vec3 nObj = sgSafeNormalize(cross(du, dv), vec3(0.0, 0.0, 1.0));
     vObjPos = pos;
-    vWorldPos = (uModel * vec4(pos, 1.0)).xyz;
     vRelPos = (uModelRel * vec4(pos, 1.0)).xyz;
     vNormal = uNormalMat * nObj;
 #if SG_DISPLACEMENT

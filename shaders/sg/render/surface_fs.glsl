@@ -15,7 +15,6 @@
 #endif
 
 in vec3 vRelPos;
-in vec3 vWorldPos;
 in vec3 vObjPos;
 in vec3 vNormal;
 #if SG_UV_COUNT > 0

@@ -8,10 +8,10 @@
 // position keeps its precision far from the origin). The relative position
 // comes from uModelRel, composed on the CPU with the camera subtracted in
 // binary64 (sg::render::modelToCameraRelative, render/view.h): it is never
-// the difference of two large binary32 world positions. vWorldPos is the
-// absolute world position, rounded at its distance from the origin; no
-// layer reads it (world-space volume layers take vRelPos and the camera's
-// part packed per layer: SgVolumeSpace, sg/render/common.glsl).
+// the difference of two large binary32 world positions. No stage passes
+// the absolute world position (rounded at its distance from the origin):
+// world-space volume layers take vRelPos and the camera's part packed per
+// layer in binary64 (SgVolumeSpace, sg/render/common.glsl).
 #ifndef SG_UV_COUNT
 #define SG_UV_COUNT 0
 #endif
@@ -58,13 +58,10 @@ uniform float uDetSign;    // sign of det(uModel's 3x3): mirrors flip tangent ha
 uniform mat4 uViewProjRel; // camera-relative world -> clip (view rotation and projection)
 
 out vec3 vRelPos;   // world position minus camera position
-out vec3 vWorldPos; // world position (volume layers in world space)
 out vec3 vObjPos;   // object position (volume layers in object space)
 out vec3 vNormal;   // world normal, unnormalized (normalized per pixel, listing 16)
 
 void main() {
-    vec4 worldPos = uModel * vec4(aPosition, 1.0);
-    vWorldPos = worldPos.xyz;
     vRelPos = (uModelRel * vec4(aPosition, 1.0)).xyz;
     vObjPos = aPosition;
     vNormal = uNormalMat * aNormal;
