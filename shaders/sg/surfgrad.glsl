@@ -85,14 +85,21 @@ SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT
 // texel, or a chart seen ~1000:1 edge-on), where the GPU's own derivatives
 // are already wrong by a tenth.
 //
-// The weight also fades with the determinant relative to the Jacobian's
-// size (the scaled determinant, 1 for a conformal chart, 1/A for one
-// stretched A:1, s for one sheared by s): from 1 at 2^-7 to 0 at 2^-10. The
-// frame's direction then has a condition number of at most 2^7 in the
-// chart's shape: a chart thinner than that (a shear of 1e-3, or a chart seen
-// within 0.06 degrees of edge-on) has a frame that a rounding-size change
-// of its vertices' UVs turns by degrees, whatever the derivatives' own
-// precision.
+// The weight also fades with the chart's shape on the surface: the relative
+// determinant of the map from the tangent plane to (s, t), 2 |det M| /
+// |M|_F^2 (1 for a conformal chart, about 2/A for one stretched A:1, about
+// s for one sheared by s), from 1 at 2^-7 to 0 at 2^-10. The frame's
+// direction has a condition number of about 1/shape in the chart's
+// vertices: a chart thinner than 2^-10 (a shear of 1e-3) has a frame that a
+// rounding-size change of its UVs turns by degrees, whatever the
+// derivatives' own precision. Measured on the surface, not on the screen,
+// so a conformal chart keeps its frame at any view angle, and on the
+// triangle's own plane (the position's screen derivatives), so a base normal
+// far from the face (a leaning vertex normal) does not count against the
+// chart. With A = [dSTdx dSTdy] and P = [dPdx dPdy], M = A P^-1 gives,
+// without a division by P's determinant,
+//   shape = 2 |det A| |dPdx x dPdy| / (|a_s|^2 + |a_t|^2),
+//   a_s = ds/dx dPdy - ds/dy dPdx,  a_t = dt/dx dPdy - dt/dy dPdx.
 #define SG_CHART_ROUNDING 2.384185791e-07f // 2^-22
 #define SG_CHART_FADE_LO 4.0f
 #define SG_CHART_FADE_HI 32.0f
@@ -100,16 +107,16 @@ SG_FN vec3 sgSurfgradFromTBN(vec2 deriv, vec3 vT, vec3 vB) { return deriv.x * vT
 #define SG_CHART_REL_DET_HI 7.8125e-3f   // 2^-7
 
 // The weight in [0, 1] above (the product of the two fades), from the
-// coordinate st, the Jacobian's largest entry k and its determinant scaled
-// by 1/k^2 (detScaled, in [-2, 2]).
+// coordinate st, the Jacobian's largest entry k, its determinant scaled by
+// 1/k^2 (detScaled, in [-2, 2]) and the chart's shape on the surface.
 // k / noise <= 2^18, so nothing overflows; non-finite inputs give 0.
-SG_FN float sgChartWeight(vec2 st, float k, float detScaled) {
+SG_FN float sgChartWeight(vec2 st, float k, float detScaled, float shape) {
     float noise = SG_CHART_ROUNDING * (sgMaxAbs2(st) + 16.0f * k);
     float units = abs(detScaled) * (k / noise);
-    float shape = smoothstep(SG_CHART_REL_DET_LO, SG_CHART_REL_DET_HI, abs(detScaled));
-    return (units >= 0.0f && units <= SG_FLT_MAX)
-               ? smoothstep(SG_CHART_FADE_LO, SG_CHART_FADE_HI, units) * shape
-               : 0.0f;
+    bool finite = units >= 0.0f && units <= SG_FLT_MAX && shape >= 0.0f && shape <= SG_FLT_MAX;
+    return finite ? smoothstep(SG_CHART_FADE_LO, SG_CHART_FADE_HI, units) *
+                        smoothstep(SG_CHART_REL_DET_LO, SG_CHART_REL_DET_HI, shape)
+                  : 0.0f;
 }
 
 // Listing 6: orthonormal tangent/bitangent for any texture coordinate set,
@@ -150,8 +157,18 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3)
     vec3 t1 = tRaw - dot(tRaw, f.nrmBase) * f.nrmBase;
     float l2 = dot(t1, t1);
     float partW = smoothstep(9.5367432e-7f, 6.1035156e-5f, l2 / dot(tRaw, tRaw)); // 2^-20, 2^-14
+    // The chart's shape on the surface (sgChartWeight), from the position's
+    // own screen derivatives scaled to unit largest component (the ratio
+    // does not change; no product of tiny or huge derivatives leaves the
+    // normal range).
+    float rkp = 1.0f / max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
+    vec3 ux = f.dPdx * rkp;
+    vec3 uy = f.dPdy * rkp;
+    vec3 aS = uy * sx.x - ux * sy.x;
+    vec3 aT = uy * sx.y - ux * sy.y;
+    float shape = 2.0f * abs(det) * length(cross(ux, uy)) / (dot(aS, aS) + dot(aT, aT));
     bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && l2 >= SG_FLT_MIN;
-    float w = valid ? sgChartWeight(st, k, det) * partW : 0.0f;
+    float w = valid ? sgChartWeight(st, k, det, shape) * partW : 0.0f;
     vec3 t = valid ? t1 * (inversesqrt(l2) * w) : vec3(0.0f);
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);

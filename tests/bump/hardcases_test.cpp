@@ -481,20 +481,30 @@ TEST(HardCasesBump, CollapsedScreenFootprints) {
 // The chart weight of sgGenBasisTB (sg/surfgrad.glsl, sgChartWeight),
 // evaluated here in double from the binary32 inputs: smoothstep from 4 to
 // 32 of |det J| / (k * 2^-22 (max|st| + 16 k)) times smoothstep from 2^-10
-// to 2^-7 of |det J| / k^2.
-double chartWeight(const g::vec2& st, const g::vec2& a, const g::vec2& b) {
+// to 2^-7 of the chart's shape on the surface, 2 |det M| / |M|_F^2 for the
+// map M from the triangle's plane to (s, t): M = J S^-1, S the position's
+// screen derivatives in an orthonormal basis of their plane.
+double chartWeight(const g::SgFrame& f, const g::vec2& st, const g::vec2& a, const g::vec2& b) {
     const double k = std::max({std::fabs(double(a.x)), std::fabs(double(a.y)),
                                std::fabs(double(b.x)), std::fabs(double(b.y))});
     if (!(k > 0.0)) return 0.0;
     const double det = (double(a.x) * b.y - double(a.y) * b.x) / (k * k);
-    const double noise = std::ldexp(1.0, -22) *
-                         (std::max(std::fabs(double(st.x)), std::fabs(double(st.y))) + 16 * k);
+    const double noise =
+        std::ldexp(1.0, -22) * (std::max(std::fabs(double(st.x)), std::fabs(double(st.y))) + 16 * k);
     auto smooth = [](double lo, double hi, double x) {
         const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
         return u * u * (3.0 - 2.0 * u);
     };
+    const dvec3 sx = d3(f.dPdx), sy = d3(f.dPdy);
+    const dvec3 e1 = glm::normalize(sx), e2 = glm::normalize(glm::cross(glm::cross(sx, sy), e1));
+    const glm::dmat2 S(glm::dot(sx, e1), glm::dot(sx, e2), glm::dot(sy, e1), glm::dot(sy, e2));
+    const glm::dmat2 J(double(a.x), double(a.y), double(b.x), double(b.y));
+    const glm::dmat2 M = J * glm::inverse(S);
+    const double frob = M[0][0] * M[0][0] + M[0][1] * M[0][1] + M[1][0] * M[1][0] +
+                        M[1][1] * M[1][1];
+    const double shape = 2.0 * std::fabs(glm::determinant(M)) / frob;
     return smooth(4.0, 32.0, std::fabs(det) * k / noise) *
-           smooth(std::ldexp(1.0, -10), std::ldexp(1.0, -7), std::fabs(det));
+           smooth(std::ldexp(1.0, -10), std::ldexp(1.0, -7), shape);
 }
 
 // Listing 6 with parallel UV derivatives (dSTdy = c dSTdx (1 + delta)) at
@@ -519,7 +529,7 @@ TEST(HardCasesBump, DegenerateUvJacobians) {
         g::vec3 vT, vB;
         g::sgGenBasisTB(f, st, f2(a), f2(b), vT, vB);
         ASSERT_TRUE(finite3(vT) && finite3(vB)) << i;
-        const double w = chartWeight(st, f2(a), f2(b));
+        const double w = chartWeight(f, st, f2(a), f2(b));
         const double lt = glm::length(d3(vT)), lb = glm::length(d3(vB));
         // The weight in binary32 against double: the determinant of the
         // scaled Jacobian carries its rounding relative to its largest

@@ -195,9 +195,9 @@ TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
                 r.deg.size(), r.at(0.5), r.at(0.9), r.at(0.99));
     EXPECT_EQ(r.nonFinite, 0u);
     // The same tessellation: the same pixels, except where the per-pixel
-    // frame fades (listing 6's chart weight below 0.5: a chart thinner than
-    // 2^-7 relative determinant on screen, at spot's UV seams and poles;
-    // measured 4 of 9617 pixels): at most 0.1%.
+    // frame fades (listing 6's chart weight below 0.5 where spot's UV chart
+    // degenerates, at its seams and poles; measured at most 4 of 9617
+    // pixels): at most 0.1%.
     EXPECT_LE(double(r.onlyOne), 0.001 * double(r.deg.size()));
     EXPECT_GT(r.deg.size(), size_t(320 * 240 / 10));
     EXPECT_LE(r.at(0.5), 3.0);
