@@ -63,6 +63,17 @@ struct Case {
     std::function<sg::render::Scene(const std::filesystem::path& dir)> expected;
     float expectSign = 1.0f;
     std::string expectedWhat; // what `expected` renders
+    // The condition number the input brings itself, before any rendering:
+    // the anisotropy of its transform (max / min |scale|; a transform that
+    // is A:1 anisotropic multiplies the rounding of normals, object-space
+    // maps and volume gradients through its inverse transpose by A). 1 for
+    // ordinary inputs; the tests scale their bounds by it beyond 1000.
+    double inputCondition = 1.0;
+    // The largest angle between a vertex normal and its face (degrees; 0
+    // when they agree): parallax and POM search up to 1 / cos of it further
+    // (n . g bounded at 0.05: 20x), so their results reach that much further
+    // into the map.
+    double normalLeanDeg = 0.0;
     // Also compare the GPU with the default CPU reference (analytic
     // derivatives, the GL specification's exact LOD): which CPU is the
     // reference (docs/scene.md, "CPU reference").

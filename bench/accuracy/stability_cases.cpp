@@ -180,6 +180,7 @@ Case leaningNormalsCase(double deg, const std::string& kind, const std::string& 
                   "a plane whose vertex normals lean %g deg from the face normal", deg);
     c.input = what;
     c.perturbation = "every normal coordinate moved by -2..2 ulps";
+    c.normalLeanDeg = deg;
     c.build = [deg, layer](bool p, const fs::path& dir) {
         const double a = deg * 3.14159265358979323846 / 180.0;
         ObjMesh m = grid(4, {0.0, std::cos(a), std::sin(a)});
@@ -415,8 +416,8 @@ struct FamilyInput {
     // The decal layer that reaches this input's surface (the registry
     // example projects along -z through the origin).
     std::string decal;
-    // Only these kinds (empty: every kind).
-    std::vector<std::string> kinds;
+    double inputCondition = 1.0; // Case::inputCondition
+    double normalLeanDeg = 0.0;  // Case::normalLeanDeg
     std::function<Scene(const std::string& layers, bool perturbed, const fs::path& dir)> build;
 };
 
@@ -508,6 +509,7 @@ std::vector<FamilyInput> familyInputs() {
             return grid(6, {0.0, std::cos(a), std::sin(a)});
         },
         above, false, false, true));
+    v.back().normalLeanDeg = 89.9;
     for (const char* mode : {"none", "mirror", "flip"}) {
         v.push_back(meshFamily(
             std::string("back-faces-") + mode, "back-faces",
@@ -537,6 +539,7 @@ std::vector<FamilyInput> familyInputs() {
     v.push_back(sphereFamily("flattened-transform", "transforms",
                              "a sphere scaled by (1, 1e-4, 1), seen from above",
                              R"({"scale": [1, 1e-4, 1]})", glm::dvec3(0.0), {0.3, 1.8, 1.2}));
+    v.back().inputCondition = 1e4;
     v.push_back(sphereFamily("mirrored-transform", "transforms", "a sphere scaled by (-1, 1, 1)",
                              R"({"scale": [-1, 1, 1]})", glm::dvec3(0.0), {0.6, 0.5, 2.4}));
     {
@@ -572,15 +575,14 @@ std::vector<Case> familyCases() {
     std::vector<Case> out;
     for (const FamilyInput& f : familyInputs()) {
         for (const auto& [kind, layer] : kindLayers()) {
-            if (!f.kinds.empty() &&
-                std::find(f.kinds.begin(), f.kinds.end(), kind) == f.kinds.end())
-                continue;
             Case c;
             c.id = f.name + "/" + kind;
             c.family = f.family;
             c.kind = kind;
             c.input = f.input;
             c.perturbation = f.perturbation;
+            c.inputCondition = f.inputCondition;
+            c.normalLeanDeg = f.normalLeanDeg;
             const std::string l = kind == "decal" ? f.decal : layer;
             const auto build = f.build;
             c.build = [build, l](bool p, const fs::path& dir) { return build(l, p, dir); };
@@ -596,7 +598,9 @@ std::vector<Case> generatedCases(uint64_t seed, int count) {
     for (int i = 0; i < count; ++i) {
         Rng rng{seed * 1000003ull + uint64_t(i)};
         std::string what;
-        const ObjMesh mesh = randomMesh(rng, what);
+        bool uvsOffset = false;
+        double leanDeg = 0.0;
+        const ObjMesh mesh = randomMesh(rng, what, uvsOffset, leanDeg);
         const auto& [kind, layer] = kinds[size_t(rng.integer(0, int(kinds.size()) - 1))];
         const char* modes[] = {"off", "none", "mirror", "flip"};
         const std::string mode = modes[rng.integer(0, 3)];
@@ -637,12 +641,22 @@ std::vector<Case> generatedCases(uint64_t seed, int count) {
         c.input = what + ", double_sided " + mode + ", scale " + vec3Json({sx, sy, sz}) +
                   (tr != glm::dvec3(0.0) ? ", translated ~1e5" : "") + ", camera azimuth " +
                   num(std::round(az)) + " elevation " + num(std::round(el));
-        c.perturbation =
-            "every coordinate of the mesh (positions, UVs, normals) moved by -2..2 ulps";
+        // UVs offset by 1e4 are stored to 1e-3: two ulps there move a small
+        // chart by percents, a change of the data rather than of its
+        // rounding; those cases perturb positions and normals only (the
+        // named case "uv-offset-1e4" perturbs a set derived in binary64).
+        c.perturbation = uvsOffset
+                             ? "every coordinate of the mesh's positions and normals (its UVs "
+                               "are offset by 1e4) moved by -2..2 ulps"
+                             : "every coordinate of the mesh (positions, UVs, normals) moved "
+                               "by -2..2 ulps";
+        const double smin = std::min({std::fabs(sx), std::fabs(sy), std::fabs(sz)});
+        c.inputCondition = std::max({std::fabs(sx), std::fabs(sy), std::fabs(sz)}) / smin;
+        c.normalLeanDeg = leanDeg;
         const uint64_t pseed = rng.next();
         c.build = [=](bool p, const fs::path& dir) {
             ObjMesh m = mesh;
-            if (p) m.perturb(pseed, true, true, true);
+            if (p) m.perturb(pseed, true, !uvsOffset, true);
             const std::string json =
                 R"({"output": {"width": 64, "height": 48}, "materials": [{"name": "m", "double_sided": ")" +
                 mode + R"(", "layers": [)" + l + R"(]}], "meshes": [{)" +

@@ -166,6 +166,8 @@ ObjMesh poleCage(int valence);
 
 // A random height-field grid with a random chart, normals and damage (see
 // generatedCases); `what` describes it.
-ObjMesh randomMesh(Rng& rng, std::string& what);
+// `uvsOffset`: its UVs were offset by about 1e4 (stored to 1e-3 there);
+// `leanDeg`: how far some vertex normals lean from the surface (0: none).
+ObjMesh randomMesh(Rng& rng, std::string& what, bool& uvsOffset, double& leanDeg);
 
 } // namespace study::stability::detail
