@@ -489,8 +489,8 @@ double chartWeight(const g::SgFrame& f, const g::vec2& st, const g::vec2& a, con
                                std::fabs(double(b.x)), std::fabs(double(b.y))});
     if (!(k > 0.0)) return 0.0;
     const double det = (double(a.x) * b.y - double(a.y) * b.x) / (k * k);
-    const double noise =
-        std::ldexp(1.0, -22) * (std::max(std::fabs(double(st.x)), std::fabs(double(st.y))) + 16 * k);
+    const double noise = std::ldexp(1.0, -22) *
+                         (std::max(std::fabs(double(st.x)), std::fabs(double(st.y))) + 16 * k);
     auto smooth = [](double lo, double hi, double x) {
         const double u = std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
         return u * u * (3.0 - 2.0 * u);
@@ -500,8 +500,8 @@ double chartWeight(const g::SgFrame& f, const g::vec2& st, const g::vec2& a, con
     const glm::dmat2 S(glm::dot(sx, e1), glm::dot(sx, e2), glm::dot(sy, e1), glm::dot(sy, e2));
     const glm::dmat2 J(double(a.x), double(a.y), double(b.x), double(b.y));
     const glm::dmat2 M = J * glm::inverse(S);
-    const double frob = M[0][0] * M[0][0] + M[0][1] * M[0][1] + M[1][0] * M[1][0] +
-                        M[1][1] * M[1][1];
+    const double frob =
+        M[0][0] * M[0][0] + M[0][1] * M[0][1] + M[1][0] * M[1][0] + M[1][1] * M[1][1];
     const double shape = 2.0 * std::fabs(glm::determinant(M)) / frob;
     return smooth(4.0, 32.0, std::fabs(det) * k / noise) *
            smooth(std::ldexp(1.0, -10), std::ldexp(1.0, -7), shape);
