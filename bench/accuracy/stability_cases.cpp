@@ -510,6 +510,10 @@ std::vector<FamilyInput> familyInputs() {
         },
         above, false, false, true));
     v.back().normalLeanDeg = 89.9;
+    v.push_back(meshFamily("normals-flipping", "horizon",
+                           "a plane whose vertex normals alternate between the face normal and "
+                           "150 deg from it (behind the surface)",
+                           flippingNormalsGrid, above, false, false, true));
     for (const char* mode : {"none", "mirror", "flip"}) {
         v.push_back(meshFamily(
             std::string("back-faces-") + mode, "back-faces",

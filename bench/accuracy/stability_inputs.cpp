@@ -140,6 +140,22 @@ ObjMesh collinearGrid() {
     return m;
 }
 
+// A grid whose vertex normals alternate, checkerwise, between the face
+// normal and 150 degrees from it (behind the surface, leaning to +z): the
+// interpolated normal turns through the horizon inside every triangle.
+ObjMesh flippingNormalsGrid() {
+    const int n = 6;
+    ObjMesh m = grid(n, {0, 1, 0});
+    const double a = 150.0 * 3.14159265358979323846 / 180.0;
+    const int behind = m.addVn({0.0, std::cos(a), std::sin(a)});
+    for (auto& f : m.faces)
+        for (glm::ivec3& corner : f) {
+            const int i = corner.x % (n + 1), j = corner.x / (n + 1);
+            if ((i + j) % 2 == 1) corner.z = behind;
+        }
+    return m;
+}
+
 // A grid mirrored in s across x = 0 (a UV seam in the middle).
 ObjMesh mirroredGrid() {
     ObjMesh m = grid(6, {0, 1, 0});

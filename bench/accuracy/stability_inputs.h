@@ -149,6 +149,10 @@ ObjMesh tiltedCylinder(double tilt);
 // A grid whose UVs are collinear on every triangle: (s, t) = (u, u).
 ObjMesh collinearGrid();
 
+// A grid whose vertex normals alternate, checkerwise, between the face
+// normal and 150 degrees from it (behind the surface): normals that flip.
+ObjMesh flippingNormalsGrid();
+
 // A grid mirrored in s across x = 0 (a UV seam in the middle).
 ObjMesh mirroredGrid();
 
