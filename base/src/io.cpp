@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -50,6 +51,15 @@ std::string printable(std::string_view text, std::size_t maxBytes) {
         for (std::size_t k = 2; k < n; ++k) {
             if (at(i + k) < 0x80 || at(i + k) > 0xbf) return 0;
         }
+        // Bidirectional controls (Unicode UAX #9, 2.1-2.6: U+061C, U+200E,
+        // U+200F, U+202A..U+202E, U+2066..U+2069) reorder what follows them
+        // on a terminal, so a path could show as another: escaped too.
+        if (n == 2 && b == 0xd8 && at(i + 1) == 0x9c) return 0;
+        if (n == 3 && b == 0xe2 && at(i + 1) == 0x80 &&
+            (at(i + 2) == 0x8e || at(i + 2) == 0x8f || (at(i + 2) >= 0xaa && at(i + 2) <= 0xae)))
+            return 0;
+        if (n == 3 && b == 0xe2 && at(i + 1) == 0x81 && at(i + 2) >= 0xa6 && at(i + 2) <= 0xa9)
+            return 0;
         return n;
     };
     std::size_t i = 0;
@@ -187,6 +197,43 @@ void checkNotInput(const fs::path& output, std::initializer_list<fs::path> input
                              "output would overwrite the input " + in.string());
         }
     }
+}
+
+void checkOutputPath(const fs::path& output, std::initializer_list<fs::path> inputs) {
+    checkNotInput(output, inputs);
+    const std::string name = output.string();
+    std::error_code ec;
+    if (output.empty()) throw InputError(name, "", "empty output path");
+    if (fs::is_directory(output, ec)) throw InputError(name, "", "is a folder, not a file");
+    const fs::path dir = output.has_parent_path() ? output.parent_path() : fs::path(".");
+    if (!fs::exists(dir, ec))
+        throw InputError(name, "",
+                         "cannot be written: the folder " + dir.string() + " does not exist");
+    if (!fs::is_directory(dir, ec))
+        throw InputError(name, "", "cannot be written: " + dir.string() + " is not a folder");
+    std::string probe = (dir / ".surfgrad-probe-XXXXXX").string();
+    const int fd = ::mkstemp(probe.data());
+    if (fd < 0) {
+        throw InputError(name, "",
+                         "cannot be written: no new file can be made in " + dir.string() + " (" +
+                             std::strerror(errno) + ")");
+    }
+    ::close(fd);
+    fs::remove(probe, ec);
+}
+
+bool isInsideFolder(const fs::path& folder, const fs::path& path) {
+    std::error_code ec;
+    fs::path base = fs::weakly_canonical(fs::absolute(folder, ec), ec);
+    if (ec) return false;
+    fs::path full = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec) return false;
+    auto b = base.begin(), f = full.begin();
+    for (; b != base.end(); ++b, ++f) {
+        if (b->empty()) continue; // a trailing separator
+        if (f == full.end() || *b != *f) return false;
+    }
+    return true;
 }
 
 std::string readFile(const fs::path& path, std::size_t maxBytes) {

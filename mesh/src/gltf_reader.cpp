@@ -13,10 +13,13 @@
 // t = 1 - v.
 #include <tiny_gltf.h>
 
+#include <atomic>
 #include <cctype>
 #include <cstring>
 #include <fstream>
 #include <functional>
+
+#include <nlohmann/json.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -37,10 +40,21 @@ struct FsContext {
     std::string refused; // why the last external read was refused
 };
 
+// Empty when `path` may be read, else why not.
+std::string outsideRule(const FsContext& ctx, const std::string& path) {
+    if (ctx.baseDir.empty())
+        return "external file '" + io::printable(path, 200) + "' refused (in-memory input)";
+    if (!ctx.limits->allowOutsideFolder && !io::isInsideFolder(ctx.baseDir, path)) {
+        return "URI resolves to '" + io::printable(path, 200) +
+               "', outside the model's folder (refused; --allow-outside-uris allows it)";
+    }
+    return {};
+}
+
 bool fsFileExists(const std::string& path, void* user) {
     auto* ctx = static_cast<FsContext*>(user);
-    if (ctx->baseDir.empty()) {
-        ctx->refused = "external file '" + path.substr(0, 200) + "' refused (in-memory input)";
+    if (std::string why = outsideRule(*ctx, path); !why.empty()) {
+        ctx->refused = why;
         return false;
     }
     std::error_code ec;
@@ -59,8 +73,7 @@ bool fsRead(std::vector<unsigned char>* out, std::string* err, const std::string
         if (err) *err += why + "\n";
         return false;
     };
-    if (ctx->baseDir.empty())
-        return refuse("external file '" + path.substr(0, 200) + "' refused (in-memory input)");
+    if (std::string why = outsideRule(*ctx, path); !why.empty()) return refuse(why);
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec))
         return refuse("external file '" + path.substr(0, 200) + "' not found");
@@ -667,7 +680,13 @@ std::string GltfReader::texturePath(int textureIdx, const std::string& what) con
             path += img.uri[i];
         }
     }
-    return baseDir_.empty() ? path : (baseDir_ / path).lexically_normal().string();
+    if (baseDir_.empty()) return path;
+    std::string full = (baseDir_ / path).lexically_normal().string();
+    if (!limits_.allowOutsideFolder && !io::isInsideFolder(baseDir_, full)) {
+        fail(what, "image URI '" + io::printable(img.uri, 200) +
+                       "' is outside the model's folder (refused; --allow-outside-uris allows it)");
+    }
+    return full;
 }
 
 void GltfReader::materials(Scene& scene) {
@@ -806,7 +825,57 @@ Scene GltfReader::read() {
     return scene;
 }
 
+// Why a buffer's data URI failed (tinygltf says only "Failed to decode
+// 'uri'" and quotes the whole URI): the first buffer whose base64 payload is
+// malformed or decodes to fewer bytes than its byteLength (glTF 2.0 sec.
+// 3.6.1.1); empty when none is found. `jsonText` is the glTF JSON.
+std::string dataUriProblem(std::string_view jsonText) {
+    const nlohmann::json j = nlohmann::json::parse(jsonText, nullptr, false);
+    if (!j.is_object() || !j.contains("buffers") || !j["buffers"].is_array()) return {};
+    const std::string marker = ";base64,";
+    for (size_t i = 0; i < j["buffers"].size(); ++i) {
+        const nlohmann::json& b = j["buffers"][i];
+        if (!b.is_object() || !b.contains("uri") || !b["uri"].is_string()) continue;
+        const std::string& uri = b["uri"].get_ref<const std::string&>();
+        if (uri.rfind("data:", 0) != 0) continue;
+        const std::string el = "buffer " + std::to_string(i);
+        const size_t at = uri.find(marker);
+        if (at == std::string::npos)
+            return el + ": its data URI is not base64 (\"data:...;base64,...\" expected)";
+        const std::string_view payload = std::string_view(uri).substr(at + marker.size());
+        size_t chars = 0, pad = 0;
+        for (char c : payload) {
+            if (std::isalnum(static_cast<unsigned char>(c)) || c == '+' || c == '/') {
+                if (pad) return el + ": its data URI has base64 characters after the '=' padding";
+                ++chars;
+            } else if (c == '=') {
+                ++pad;
+            } else {
+                return el + ": its data URI holds a character that is not base64";
+            }
+        }
+        const uint64_t bytes = uint64_t(chars) * 3 / 4;
+        const uint64_t declared = b.contains("byteLength") && b["byteLength"].is_number_unsigned()
+                                      ? b["byteLength"].get<uint64_t>()
+                                      : 0;
+        if (bytes < declared) {
+            return el + ": its data URI decodes to " + std::to_string(bytes) +
+                   " bytes, but byteLength is " + std::to_string(declared) + " (truncated?)";
+        }
+    }
+    return {};
+}
+
+std::atomic<bool> g_allowOutsideFolder{false};
+
 } // namespace
+
+void setAllowOutsideFolderDefault(bool allow) {
+    g_allowOutsideFolder = allow;
+}
+bool allowOutsideFolderDefault() {
+    return g_allowOutsideFolder;
+}
 
 Scene parseGltf(std::string_view bytes, const std::string& file,
                 const std::filesystem::path& baseDir, const InputLimits& limits,
@@ -836,6 +905,12 @@ Scene parseGltf(std::string_view bytes, const std::string& file,
                : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(),
                                             unsigned(bytes.size()), base);
     if (!ok) {
+        if (ctx.refused.empty() && err.find("'uri'") != std::string::npos) {
+            const std::string why =
+                dataUriProblem(binary ? bytes.substr(20, size_t(readU32(bytes, 12))) : bytes);
+            if (!why.empty())
+                throw InputError(file, why.substr(0, why.find(':')), why.substr(why.find(':') + 2));
+        }
         std::string msg = !ctx.refused.empty() ? ctx.refused : err;
         while (!msg.empty() && (msg.back() == '\n' || msg.back() == ' ')) msg.pop_back();
         if (msg.size() > 300) msg = msg.substr(0, 300) + "...";

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <cstring>
+#include <unistd.h>
 
 #include "surfgrad/io.h"
 
@@ -29,6 +31,68 @@ TEST(Printable, KeepsTextAndUtf8EscapesControlAndStrayBytes) {
     EXPECT_EQ(printable("abcdef", 4), "abcd...");
     EXPECT_EQ(printable("ab\xe5\xbf\x83", 4), "ab..."); // never cut inside a sequence
     EXPECT_EQ(printable(printable("\x01")), "\\x01");   // idempotent
+    // Bidirectional controls: a right-to-left override makes "evil\u202Egnp.obj"
+    // show as "evilbo.png" (UAX #9); every one of them is escaped.
+    EXPECT_EQ(printable("evil\xe2\x80\xaegnp.obj"), "evil\\xe2\\x80\\xaegnp.obj");
+    for (const char* control : {"\xd8\x9c", "\xe2\x80\x8e", "\xe2\x80\x8f", "\xe2\x80\xaa",
+                                "\xe2\x80\xae", "\xe2\x81\xa6", "\xe2\x81\xa9"}) {
+        EXPECT_EQ(printable(control).find('\\'), 0u) << printable(control);
+        EXPECT_EQ(printable(control).size(), std::strlen(control) * 4);
+    }
+    // Their neighbours are printable text: U+2010 (hyphen), U+2070, U+061B.
+    EXPECT_EQ(printable("\xe2\x80\x90\xe2\x81\xb0\xd8\x9b"), "\xe2\x80\x90\xe2\x81\xb0\xd8\x9b");
+}
+
+// isInsideFolder: "..", absolute paths and symbolic links that lead out are
+// outside; a link that stays inside is inside.
+TEST(IsInsideFolder, FollowsDotsAndLinks) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("sg_inside_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "model/textures");
+    fs::create_directory_symlink(fs::path("/etc"), dir / "model/out");
+    fs::create_directory_symlink(fs::path("textures"), dir / "model/in");
+    const fs::path model = dir / "model";
+    EXPECT_TRUE(sg::io::isInsideFolder(model, model / "a.bin"));
+    EXPECT_TRUE(sg::io::isInsideFolder(model, model / "textures/../a.bin"));
+    EXPECT_TRUE(sg::io::isInsideFolder(model, model / "in/a.png"));
+    EXPECT_FALSE(sg::io::isInsideFolder(model, model / "../a.bin"));
+    EXPECT_FALSE(sg::io::isInsideFolder(model, model / "../../../../../../etc/passwd"));
+    EXPECT_FALSE(sg::io::isInsideFolder(model, "/etc/passwd"));
+    EXPECT_FALSE(sg::io::isInsideFolder(model, model / "out/passwd"));
+    EXPECT_FALSE(sg::io::isInsideFolder(model, dir / "model2/a.bin")); // a prefix, not a folder
+    fs::remove_all(dir);
+}
+
+// checkOutputPath: refused before any work when the output cannot be written.
+TEST(CheckOutputPath, RefusesWhatCannotBeWritten) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::temp_directory_path() / ("sg_outpath_" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "sub");
+    std::ofstream(dir / "file.txt") << "x";
+    auto reason = [](const fs::path& p) {
+        try {
+            sg::io::checkOutputPath(p);
+        } catch (const InputError& e) {
+            return e.reason();
+        }
+        return std::string("accepted");
+    };
+    EXPECT_EQ(reason(dir / "out.png"), "accepted");
+    EXPECT_FALSE(fs::exists(dir / "out.png")); // nothing is left behind
+    EXPECT_EQ(fs::directory_iterator(dir / "sub") == fs::directory_iterator(), true);
+    EXPECT_EQ(reason(dir / "sub"), "is a folder, not a file");
+    EXPECT_EQ(reason(dir / "none/out.png"),
+              "cannot be written: the folder " + (dir / "none").string() + " does not exist");
+    EXPECT_EQ(reason(dir / "file.txt/out.png"),
+              "cannot be written: " + (dir / "file.txt").string() + " is not a folder");
+    if (::geteuid() != 0) { // root writes into a read-only folder
+        fs::permissions(dir / "sub", fs::perms::owner_read | fs::perms::owner_exec);
+        EXPECT_NE(reason(dir / "sub/out.png").find("no new file can be made"), std::string::npos);
+        fs::permissions(dir / "sub", fs::perms::owner_all);
+    }
+    fs::remove_all(dir);
 }
 
 TEST(InputErrorMessage, QuotedBytesReachTheMessageEscaped) {

@@ -240,6 +240,20 @@ TEST(Gltf, HostileFilesAreNamed) {
     json external = ok;
     external["buffers"][0]["uri"] = "t.bin";
     expectInputError([&] { parse(external); }, "", "refused");
+    // A data URI cut short: the buffer, its decoded size and byteLength
+    // (tinygltf says only "Failed to decode 'uri'" and quotes the URI).
+    json shortUri = ok;
+    std::string uri = shortUri["buffers"][0]["uri"].get<std::string>();
+    const size_t payload = uri.find(";base64,") + 8;
+    const size_t keep = (uri.size() - payload) / 2 / 4 * 4; // whole base64 quads
+    shortUri["buffers"][0]["uri"] = uri.substr(0, payload + keep);
+    expectInputError([&] { parse(shortUri); }, "buffer 0",
+                     "its data URI decodes to " + std::to_string(keep / 4 * 3) +
+                         " bytes, but byteLength is " +
+                         std::to_string(ok["buffers"][0]["byteLength"].get<size_t>()));
+    json badChar = ok;
+    badChar["buffers"][0]["uri"] = uri.substr(0, payload) + "AA!A" + uri.substr(payload + 4);
+    expectInputError([&] { parse(badChar); }, "buffer 0", "not base64");
     json noPos = ok;
     noPos["meshes"][0]["primitives"][0]["attributes"].erase("POSITION");
     expectInputError([&] { parse(noPos); }, "mesh 0 primitive 0", "no POSITION");
@@ -250,6 +264,67 @@ TEST(Gltf, HostileFilesAreNamed) {
                      "2 default weights for 1 morph targets");
     expectInputError([&] { parseGltf("{not json", "t.gltf", {}); }, "", "glTF parse error");
     expectInputError([&] { parseGltf("", "t.gltf", {}); }, "", "");
+}
+
+// Buffer and image URIs stay inside the model's folder: "..", absolute
+// paths and symbolic links that lead out are refused before anything is
+// read (so nothing of the file, not even its size, is disclosed), unless
+// InputLimits::allowOutsideFolder says otherwise.
+TEST(Gltf, UrisThatLeaveTheModelsFolderAreRefused) {
+    sg::test::TempDir dir;
+    json ok = triangleGltf();
+    // The buffer as a file inside the model's folder, and one outside it.
+    std::filesystem::create_directories(dir / "model/bin");
+    std::filesystem::create_directories(dir / "elsewhere");
+    {
+        // Decode the embedded buffer through the reader's own oracle: tinygltf.
+        tinygltf::TinyGLTF loader;
+        tinygltf::Model m;
+        std::string err, warn, text = ok.dump();
+        ASSERT_TRUE(
+            loader.LoadASCIIFromString(&m, &err, &warn, text.data(), unsigned(text.size()), ""))
+            << err;
+        const auto& bytes = m.buffers[0].data;
+        for (const char* p : {"model/bin/t.bin", "elsewhere/t.bin"})
+            std::ofstream(dir / p, std::ios::binary)
+                .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
+    }
+    std::filesystem::create_directory_symlink(dir / "elsewhere", dir / "model/link");
+    auto load = [&](const std::string& uri, bool allow) {
+        json j = ok;
+        j["buffers"][0]["uri"] = uri;
+        std::ofstream(dir / "model/m.gltf") << j.dump();
+        LoadOptions lo;
+        lo.limits.allowOutsideFolder = allow;
+        return loadScene(dir / "model/m.gltf", lo);
+    };
+    EXPECT_EQ(load("bin/t.bin", false).instances[0].mesh.triangleCount(), 1u);
+    EXPECT_EQ(load("bin/../bin/t.bin", false).instances[0].mesh.triangleCount(), 1u);
+    for (const std::string& uri :
+         {std::string("../elsewhere/t.bin"), std::string("link/t.bin"),
+          (dir / "elsewhere/t.bin").string(), std::string("../../../../../../../../etc/passwd")}) {
+        SCOPED_TRACE(uri);
+        expectInputError([&] { load(uri, false); }, "", "outside the model's folder (refused");
+        try {
+            load(uri, false);
+        } catch (const sg::io::InputError& e) {
+            EXPECT_EQ(e.reason().find("bytes"), std::string::npos) << e.what(); // no size
+        }
+    }
+    // Allowed explicitly: read as before.
+    EXPECT_EQ(load("../elsewhere/t.bin", true).instances[0].mesh.triangleCount(), 1u);
+    EXPECT_EQ(load("link/t.bin", true).instances[0].mesh.triangleCount(), 1u);
+
+    // A material's image: the same rule (its path is handed to the renderer).
+    json img = ok;
+    img["images"] = json::array({{{"uri", "../secret.png"}}});
+    img["textures"] = json::array({{{"source", 0}}});
+    img["materials"] = json::array({{{"normalTexture", {{"index", 0}}}}});
+    img["meshes"][0]["primitives"][0]["material"] = 0;
+    std::ofstream(dir / "secret.png") << "x";
+    std::ofstream(dir / "model/img.gltf") << img.dump();
+    expectInputError([&] { loadScene(dir / "model/img.gltf"); }, "",
+                     "outside the model's folder (refused");
 }
 
 TEST(Gltf, NanPositionsAreRefused) {

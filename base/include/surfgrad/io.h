@@ -26,7 +26,8 @@ namespace sg::io {
 
 // `text` made safe to show on a terminal, for messages that quote input:
 // bytes that are not printable ASCII or part of a well-formed UTF-8
-// sequence (control characters, DEL, stray or overlong bytes) become
+// sequence (control characters, DEL, stray or overlong bytes) and the
+// bytes of bidirectional controls (U+202E and the like) become
 // "\xNN"; at most maxBytes bytes of `text` are kept, with "..." appended
 // when it was cut (never inside a UTF-8 sequence).
 std::string printable(std::string_view text, std::size_t maxBytes = 64);
@@ -62,6 +63,21 @@ void writeFileAtomically(const std::filesystem::path& path, const std::string& b
 // (inputs are never overwritten).
 void checkNotInput(const std::filesystem::path& output,
                    std::initializer_list<std::filesystem::path> inputs);
+
+// For a command about to start long work: throws InputError about `output`
+// when it could not be written at the end — its folder is missing or is not
+// a folder, the folder refuses a new file (a file is created there and
+// removed again), or `output` is a folder — or when it names an input
+// (checkNotInput). Writing can still fail later (a full disk).
+void checkOutputPath(const std::filesystem::path& output,
+                     std::initializer_list<std::filesystem::path> inputs = {});
+
+// True when `path` lies inside `folder` once both are made absolute and
+// every symbolic link that exists is resolved (std::filesystem::
+// weakly_canonical): a "..", an absolute path or a link that leads out is
+// outside. For references found inside input files (a glTF buffer or image
+// URI), which must not reach files the user did not hand over.
+bool isInsideFolder(const std::filesystem::path& folder, const std::filesystem::path& path);
 
 // Reads a whole file. Throws InputError when it is missing, unreadable, not
 // a regular file, or larger than maxBytes.

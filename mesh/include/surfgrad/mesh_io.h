@@ -44,6 +44,12 @@ namespace sg::mesh {
 
 // Upper bounds checked before allocating (a file that declares more is
 // refused with InputError, not truncated).
+// Process-wide default of InputLimits::allowOutsideFolder: false until set.
+// The CLI sets it from --allow-outside-uris before it loads anything; a
+// library user sets the field per call instead.
+void setAllowOutsideFolderDefault(bool allow);
+bool allowOutsideFolderDefault();
+
 struct InputLimits {
     size_t maxFileBytes = size_t(1) << 30; // 1 GiB (also per glTF buffer)
     size_t maxVertices = size_t(1) << 25;  // 33.5 M
@@ -52,6 +58,11 @@ struct InputLimits {
     uint32_t maxFaceDegree = 256;        // corners of one polygon
     size_t maxUvSets = 8;
     size_t maxMorphTargets = 64;
+    // glTF buffer and image URIs must resolve inside the model's folder
+    // (sg::io::isInsideFolder: no "..", absolute path or symbolic link out of
+    // it), so a downloaded model cannot read or point at other files; true
+    // lifts that rule (the CLI's --allow-outside-uris).
+    bool allowOutsideFolder = allowOutsideFolderDefault();
 };
 
 // What a loader (or validate with repair) did besides the obvious. Nothing
