@@ -285,6 +285,28 @@ ImageHeader scanPng(Reader& r) {
 // ---------------------------------------------------------------------------
 // JPEG
 
+// libjpeg decodes a file cut inside its scan data with a warning only and
+// fills the rest grey: the end-of-image marker (T.81 B.2.1) must follow.
+// Entropy-coded data cannot hold the bytes FF D9 (a data byte FF is
+// followed by 00, T.81 F.1.2.3), so the first FF D9 after the first scan
+// header is the marker; bytes after it (appended data) are allowed.
+void checkJpegEnd(const Reader& r, uint64_t scanStart) {
+    constexpr uint64_t kChunk = 1 << 16;
+    std::string chunk;
+    bool lastWasFF = false;
+    for (uint64_t at = scanStart; at < r.size(); at += kChunk) {
+        chunk = r.bytes(at, size_t(std::min(kChunk, r.size() - at)));
+        for (char c : chunk) {
+            const auto b = static_cast<unsigned char>(c);
+            if (lastWasFF && b == 0xD9) return;
+            lastWasFF = b == 0xFF;
+        }
+    }
+    r.fail("truncated: no end-of-image marker (0xFFD9) after the scan data, the file ends at "
+           "byte " +
+           std::to_string(r.size()));
+}
+
 ImageHeader scanJpeg(Reader& r) {
     ImageHeader h;
     h.format = ImageFormat::Jpeg;
@@ -368,6 +390,7 @@ ImageHeader scanJpeg(Reader& r) {
                "), but the file has " + formatBytes(have) + " after the scan header");
     }
     h.minFileBytes = at + ceilDiv(blocks0, 8);
+    checkJpegEnd(r, at);
     // libjpeg keeps every coefficient of a multi-scan image (64 x 2 bytes a
     // block); a single interleaved scan needs a few rows of blocks.
     if (progressive || ns < nf) {
