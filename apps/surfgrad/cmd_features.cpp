@@ -121,7 +121,7 @@ void runBake(const BakeArgs& a) {
         throw CliError("features bake: --mode must be linear or quadratic, got '" + a.mode + "'");
     }
     const fs::path in = !a.json.empty() ? a.json : !a.svg.empty() ? a.svg : a.font;
-    io::checkNotInput(a.out, {in});
+    io::checkOutputPath(a.out, {in});
     CurveNetwork net;
     if (!a.json.empty()) {
         net = loadCurvesJson(a.json);
@@ -266,7 +266,7 @@ float toSrgb(float c) {
 }
 
 void runRender(const RenderArgs& a) {
-    io::checkNotInput(a.out, {a.maps});
+    io::checkOutputPath(a.out, {a.maps});
     glsl::SgFeatProfile prof = makeProfile(a.profile, a.depth, a.blend, a.width);
     FeatureMaps maps = load(a.maps);
     GpuFeatureMaps gpu = maps.packGpu();
@@ -409,7 +409,9 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     bakeCmd->add_option("--font", bakeArgs->font, "TrueType/OpenType font");
     bakeCmd->add_option("--text", bakeArgs->text, "UTF-8 text to take from the font");
     bakeCmd->add_option("--face", bakeArgs->face, "Face index in a font collection");
-    bakeCmd->add_option("--size", bakeArgs->size, "Texels per side N")->required();
+    bakeCmd->add_option("--size", bakeArgs->size, "Texels per side N")
+        ->required()
+        ->check(CLI::Range(1, sg::features::kMaxFeatureMapSize));
     bakeCmd->add_option("--mode", bakeArgs->mode,
                         "linear (straight segments) or quadratic (Bezier curves)");
     bakeCmd->add_option("--margin", bakeArgs->margin,

@@ -165,7 +165,7 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
 
 void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, bool limit,
                   const std::string& out, bool asJson, bool repair, uint64_t maxMemory) {
-    io::checkNotInput(out, {file});
+    io::checkOutputPath(out, {file});
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions lo;
     lo.repair = repair;
@@ -247,7 +247,7 @@ std::vector<float> parseWeights(const std::string& text) {
 void runMorph(const std::string& file, const std::string& weightsText,
               const std::string& normalsMode, int level, bool limit, const std::string& out,
               bool asJson, bool repair, uint64_t maxMemory) {
-    io::checkNotInput(out, {file});
+    io::checkOutputPath(out, {file});
     std::vector<float> weights = parseWeights(weightsText);
     MorphNormals mode = normalsMode == "blend" ? MorphNormals::Blend : MorphNormals::Recompute;
     LoadOptions lo;

@@ -63,7 +63,7 @@ void runTangents(const TangentsOptions& o, int& status) {
     if (o.level < 0 || o.level > mesh::kMaxSubdivisionLevel)
         throw CliError("--level " + std::to_string(o.level) + ": expected 0.." +
                        std::to_string(mesh::kMaxSubdivisionLevel));
-    io::checkNotInput(o.output, {o.input});
+    io::checkOutputPath(o.output, {o.input});
 
     mesh::RenderMesh result;
     size_t changed = 0; // vertices split (mikktspace) or irregular (limit)

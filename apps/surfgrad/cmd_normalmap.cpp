@@ -427,6 +427,12 @@ void runMips(const Options& o, Reporter& r) {
     if (int(o.lean) + int(o.toksvig) + int(o.naive) != 1) {
         throw CliError("normalmap mips: give exactly one of --lean, --toksvig, --naive");
     }
+    std::string ext = fs::path(o.output).extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != ".exr") {
+        throw CliError("normalmap mips: -o " + o.output +
+                       ": a MIP chain is written as OpenEXR (.exr), one part per level");
+    }
     const Map m = readMap(o.inputs[0], o);
     std::vector<nm::Image> levels;
     std::string layout;
@@ -498,6 +504,7 @@ void run(Options o) {
     for (const std::string* extra : {&o.mask, &o.by, &o.pointsFile, &o.mesh}) {
         if (!extra->empty()) ins.emplace_back(*extra);
     }
+    if (!o.output.empty()) io::checkOutputPath(o.output);
     for (const fs::path& in : ins) io::checkNotInput(o.output, {in});
     if ((o.encoding == "object" || o.to == "object") && (o.op != "convert" || o.mesh.empty())) {
         throw CliError("normalmap " + o.op + ": object-space maps need `convert --mesh M`");
@@ -550,7 +557,8 @@ void addCommon(CLI::App* c, Options& o, bool readsMap) {
     c->add_option("--range", o.range, "Slope at full scale of integer derivative maps (default 8)");
     c->add_flag("--wrap", o.wrap, "The image tiles (periodic differences, sampling, integration)");
     c->add_flag("--naive", o.naive, "The plain image operation instead (for comparison)");
-    c->add_option("--threads", o.threads, "Worker threads (default: all)");
+    c->add_option("--threads", o.threads, "Worker threads, 1 to 1024 (default: all cores)")
+        ->check(CLI::Range(1, 1024));
     c->add_flag("--progress", o.progress, "Report progress on stderr (default: when a terminal)");
 }
 

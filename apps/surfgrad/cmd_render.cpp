@@ -208,7 +208,7 @@ void runRender(const RenderOpts& ro) {
         throw CliError(out.string() + ": unsupported image format \"" + outExt +
                        "\" (expected .png or .exr)");
     }
-    if (!ro.scene.empty()) io::checkNotInput(out, {fs::path(ro.scene)});
+    io::checkOutputPath(out, {fs::path(ro.scene)});
     int w = 0, h = 0;
     if (!ro.size.empty()) parseSize(ro.size, w, h);
     AssetOptions assetOptions;
@@ -245,7 +245,14 @@ void runRender(const RenderOpts& ro) {
         if (gl) gl->setProgress(progressLine("drawing " + size, "bands"));
         cpuOpt.progress =
             pixels >= kCpuProgressPixels ? progressLine("CPU reference " + size, "rows") : nullptr;
-        Image img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
+        Image img;
+        try {
+            img = gl ? gl->render(scene, assets, view) : renderCpu(scene, assets, view, cpuOpt);
+        } catch (const std::bad_alloc&) {
+            throw std::runtime_error("out of memory rendering " + size + " pixels (" +
+                                     (gl ? "OpenGL" : "CPU reference") +
+                                     "): render a smaller --size");
+        }
         fs::path target = out;
         if (ro.allFrames) {
             char suffix[16];
@@ -384,7 +391,9 @@ void addViewCommand(CLI::App& app, int& status) {
                          "); default: the built-in scene");
     view->add_option("--frames", vo->frames, "Quit after N frames (0: run until closed)")
         ->check(CLI::Range(0, 1000000));
-    view->add_option("--screenshot", vo->screenshot, "Write a PNG of the last frame on exit");
+    view->add_option("--screenshot", vo->screenshot,
+                     "Write a PNG of the window after the first complete frame and quit (with "
+                     "--frames N: after frame N)");
     view->add_option("--size", vo->size, "Window size WxH (default 1280x720)");
     view->add_option("--texture-budget", vo->budget, kBudgetHelp);
     view->add_flag("--no-ui", vo->noUi,
@@ -394,13 +403,17 @@ void addViewCommand(CLI::App& app, int& status) {
 #if SURFGRAD_HAVE_VIEWER
         ViewerOptions opt;
         opt.maxFrames = vo->frames;
+        // A screenshot without --frames: the first complete frame, then quit
+        // (nobody closes a window under a virtual X server). With the panel
+        // that is frame 2: Dear ImGui hides an auto-sized window on the
+        // frame it first measures it.
+        if (!vo->screenshot.empty() && opt.maxFrames == 0) opt.maxFrames = vo->noUi ? 1 : 2;
         opt.screenshot = vo->screenshot;
         opt.panel = !vo->noUi;
         if (!vo->size.empty()) parseSize(vo->size, opt.width, opt.height);
         if (!vo->budget.empty())
             opt.textureBudgetBytes = parseBytes("--texture-budget", vo->budget);
-        if (!opt.screenshot.empty() && !vo->scene.empty())
-            io::checkNotInput(opt.screenshot, {fs::path(vo->scene)});
+        if (!opt.screenshot.empty()) io::checkOutputPath(opt.screenshot, {fs::path(vo->scene)});
         Scene scene = sceneFromArg(vo->scene);
         noteSubdivision(scene);
         status = runViewer(std::move(scene), opt);

@@ -183,7 +183,7 @@ TEST(NormalmapCli, BadInputIsAnErrorWithoutOutput) {
         {"curves " + kRock + " -o out.png", "give exactly one of --boost, --points, --points-file",
          2},
         {"deform " + kRock + " -o out.png --warp twist:3", "--warp: twist:3"},
-        {"mips " + kRock + " -o out.png --lean", "a MIP chain is written as OpenEXR"},
+        {"mips " + kRock + " -o out.png --lean", "a MIP chain is written as OpenEXR", 2},
         {"mips " + kRock + " -o out.exr", "give exactly one of --lean, --toksvig, --naive", 2},
         {"convert " + kRock + " -o out.png --to signed", "signed normals need a float output"},
         {"convert " + kRock + " -o out.png --to object",

@@ -7,11 +7,16 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <sys/stat.h>
+
+#include <nlohmann/json.hpp>
 
 #include "cli.h"
 #include "render_test_util.h"
@@ -34,6 +39,11 @@ fs::path scratch(const std::string& name) {
     fs::remove_all(p);
     fs::create_directories(p);
     return p;
+}
+
+std::string fileBytes(const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // Distinct 8-bit RGB values of an image: a constant or blank image has 1.
@@ -214,7 +224,22 @@ TEST(Cli, UsageErrorsExit2InOneFormat) {
         {"eval", "eval"},
         {"selftest --only nope", "selftest"},
         {"normalmap --bogus", "normalmap"},
+        // A word that names no command, at the top and in a group.
+        {"frobnicate", ""},
+        {"mesh frobnicate", "mesh"},
+        // Numbers that are not finite, or that a float cannot hold.
+        {"render --frame nan", "render"},
+        {"render --frame inf", "render"},
+        {"normalmap scale n.png -o o.png --alpha nan", "normalmap scale"},
+        {"normalmap from-height n.png -o o.png --scale 1e39", "normalmap from-height"},
+        {"normalmap scale n.png -o o.png --alpha 1 --threads -5", "normalmap scale"},
+        {"normalmap scale n.png -o o.png --alpha 1 --threads 0", "normalmap scale"},
+        {"normalmap scale n.png -o o.png --alpha 1 --threads 2000", "normalmap scale"},
+        // Options out of range or of the wrong kind: a usage error, not bad input.
+        {"features bake --curves c.json --size 0 -o x.exr", "features bake"},
+        {"normalmap mips n.png --lean -o x.png", "normalmap mips"},
     };
+    std::ofstream(dir / "n.png") << "not read: the command line is refused first";
     for (const auto& [args, command] : cases) {
         SCOPED_TRACE(args);
         CmdResult r = run(args, dir);
@@ -227,6 +252,12 @@ TEST(Cli, UsageErrorsExit2InOneFormat) {
         EXPECT_EQ(err[1],
                   "Run 'surfgrad " + command + (command.empty() ? "" : " ") + "--help' for usage.");
     }
+    // The unknown word and the commands there are named.
+    const CmdResult word = run("mesh frobnicate", dir);
+    EXPECT_NE(word.err.find("mesh: 'frobnicate' is not a command (commands: info, subdivide, "),
+              std::string::npos)
+        << word.err;
+    EXPECT_NE(run("render --frame nan", dir).err.find("--frame"), std::string::npos);
     CmdResult bad = run("render missing.json -o x.png", dir);
     EXPECT_EQ(bad.exitCode, 1) << bad.output();
     EXPECT_EQ(lines(bad.err).size(), 1u) << bad.err;
@@ -263,6 +294,100 @@ TEST(Cli, CorruptPngTextureGivesOneErrorLine) {
     EXPECT_EQ(err[0].rfind("surfgrad: error: ", 0), 0u);
     EXPECT_NE(err[0].find("bad.png"), std::string::npos);
     EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+// A JPEG texture cut short: refused, naming the file and why (libjpeg
+// decodes it with a warning only and fills the rest grey).
+TEST(Cli, TruncatedJpegTextureIsRefused) {
+    fs::path dir = scratch("truncated_jpeg");
+    const std::string good =
+        fileBytes(fs::path(SURFGRAD_SOURCE_DIR) / "tests/fuzz/corpus/texture/baseline.jpg");
+    // Cut inside the scan data (after the start-of-scan marker FF DA), where
+    // every header is whole and only the end-of-image marker can tell.
+    const size_t sos = good.find("\xff\xda");
+    ASSERT_NE(sos, std::string::npos);
+    for (const size_t keep : {good.size() - 2, good.size() - 1, sos + (good.size() - sos) / 2}) {
+        SCOPED_TRACE(keep);
+        std::ofstream(dir / "cut.jpg", std::ios::binary) << good.substr(0, keep);
+        std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
+            "materials": [{"layers": [{"type": "uv_normal", "map": "cut.jpg"}]}]})";
+        CmdResult r = run("render s.json --cpu --size 16x16 -o x.png", dir);
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.err.find("cut.jpg: JPEG scan data: truncated: no end-of-image marker"),
+                  std::string::npos)
+            << r.err;
+        EXPECT_FALSE(fs::exists(dir / "x.png"));
+    }
+    // The whole file renders (the check passes what is complete).
+    std::ofstream(dir / "cut.jpg", std::ios::binary) << good;
+    EXPECT_EQ(run("render s.json --cpu --size 16x16 -o x.png", dir).exitCode, 0);
+}
+
+// A texture that is a folder or a FIFO is "not a regular file"; a missing
+// one "does not exist".
+TEST(Cli, TextureThatIsNotAFileSaysSo) {
+    fs::path dir = scratch("texture_kind");
+    fs::create_directories(dir / "folder.png");
+    ASSERT_EQ(::mkfifo((dir / "fifo.png").c_str(), 0600), 0);
+    for (const auto& [map, reason] :
+         {std::pair<std::string, std::string>{"folder.png", "not a regular file"},
+          {"fifo.png", "not a regular file"},
+          {"missing.png", "does not exist"}}) {
+        SCOPED_TRACE(map);
+        std::ofstream(dir / "s.json") << R"({"meshes": [{"procedural": {"type": "sphere"}}],
+            "materials": [{"layers": [{"type": "uv_normal", "map": ")" +
+                                             map + R"("}]}]})";
+        CmdResult r = run("render s.json --cpu --size 16x16 -o x.png", dir);
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.err.find(map + ": " + reason), std::string::npos) << r.err;
+    }
+}
+
+// An output that cannot be written is refused before the work starts: a
+// CPU render of 4096x4096 would take minutes before failing at the end.
+TEST(Cli, UnwritableOutputIsRefusedBeforeRendering) {
+    fs::path dir = scratch("unwritable");
+    std::ofstream(dir / "file") << "x";
+    for (const std::string& out : {std::string("no/such/dir/x.png"), std::string("file/x.png")}) {
+        SCOPED_TRACE(out);
+        const CmdResult r = run("render --cpu --size 4096x4096 -o " + out, dir);
+        EXPECT_EQ(r.exitCode, 1) << r.output();
+        EXPECT_NE(r.err.find(out + ": cannot be written: "), std::string::npos) << r.err;
+        // Refused before loading: no progress line of the CPU reference.
+        EXPECT_EQ(r.err.find("CPU reference"), std::string::npos) << r.err;
+    }
+}
+
+// A glTF model whose image URI leaves its folder: refused unless the
+// command line allows it (--allow-outside-uris, before or after the command).
+TEST(Cli, GltfUrisOutsideTheModelsFolderNeedTheOption) {
+    fs::path dir = scratch("outside_uri");
+    fs::create_directories(dir / "model");
+    const fs::path box =
+        fs::path(SURFGRAD_SOURCE_DIR) / "data/gltf/MultiUVTest/glTF/MultiUVTest.gltf";
+    nlohmann::json j = nlohmann::json::parse(fileBytes(box));
+    for (auto& b : j["buffers"]) {
+        fs::copy_file(box.parent_path() / b["uri"].get<std::string>(),
+                      dir / b["uri"].get<std::string>(), fs::copy_options::overwrite_existing);
+        b["uri"] = "../" + b["uri"].get<std::string>();
+    }
+    for (auto& img : j["images"]) {
+        fs::copy_file(box.parent_path() / img["uri"].get<std::string>(),
+                      dir / "model" / img["uri"].get<std::string>(),
+                      fs::copy_options::overwrite_existing);
+    }
+    std::ofstream(dir / "model/m.gltf") << j.dump();
+    CmdResult refused = run("render model/m.gltf --cpu --size 16x16 -o x.png", dir);
+    EXPECT_EQ(refused.exitCode, 1) << refused.output();
+    EXPECT_NE(refused.err.find("outside the model's folder (refused; --allow-outside-uris"),
+              std::string::npos)
+        << refused.err;
+    EXPECT_EQ(
+        run("render model/m.gltf --cpu --size 16x16 -o x.png --allow-outside-uris", dir).exitCode,
+        0);
+    EXPECT_EQ(
+        run("--allow-outside-uris render model/m.gltf --cpu --size 16x16 -o y.png", dir).exitCode,
+        0);
 }
 
 // `features bake`: the curve network comes with --curves, --json only asks
@@ -495,6 +620,37 @@ TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
     EXPECT_EQ(shot.height, 300);
     // The render, the display pass and the panel: many colours.
     EXPECT_GT(distinctColours(shot), 100u);
+}
+
+// `view --screenshot` alone: the first complete frame (panel included),
+// then the viewer quits by itself; `timeout` turns a viewer that waits for
+// a window close (which never comes under Xvfb) into exit status 124.
+TEST(Viewer, ScreenshotWithoutFramesQuitsAfterTheFirstCompleteFrame) {
+    fs::path dir = scratch("viewer_once");
+    const CmdResult r =
+        sg::test::runCommand("timeout 120 xvfb-run -a -s '-screen 0 1280x1024x24' " +
+                                 sg::test::shellQuote(sg::test::surfgradBinary()) +
+                                 " view --size 400x300 --screenshot shot.png",
+                             {.cwd = dir});
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    Image shot = readImage(dir / "shot.png");
+    EXPECT_EQ(shot.width, 400);
+    // The panel is drawn (an incomplete first ImGui frame has none).
+    EXPECT_GT(distinctColours(shot), 100u);
+}
+
+// A screenshot path that cannot be written is refused before the window opens.
+TEST(Viewer, UnwritableScreenshotIsRefusedFirst) {
+    fs::path dir = scratch("viewer_bad_out");
+    const CmdResult r =
+        sg::test::runCommand("timeout 120 " + sg::test::shellQuote(sg::test::surfgradBinary()) +
+                                 " view --screenshot no/such/folder/shot.png",
+                             {.cwd = dir});
+    EXPECT_EQ(r.exitCode, 1) << r.output();
+    EXPECT_NE(r.output().find("no/such/folder/shot.png: cannot be written: the folder "
+                              "no/such/folder does not exist"),
+              std::string::npos)
+        << r.output();
 }
 
 // Fraction of the pixels in columns [x0, x1) whose 8-bit RGB values differ

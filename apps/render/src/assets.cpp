@@ -205,7 +205,9 @@ std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
         maps = detail::fromReferencedFile(sceneName, f.fieldPath, [&] {
             std::error_code ec;
             if (!fs::is_regular_file(f.mapsFile, ec)) {
-                throw io::InputError(f.mapsFile.string(), "", "does not exist");
+                throw io::InputError(f.mapsFile.string(), "",
+                                     fs::exists(f.mapsFile, ec) ? "not a regular file"
+                                                                : "does not exist");
             }
             return sf::load(f.mapsFile);
         });

@@ -13,6 +13,7 @@
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <unordered_map>
@@ -266,7 +267,14 @@ struct GlRenderer::Impl {
         glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, colorTex, 0);
         glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depthRb);
         if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-            throw sg::gl::GlError("renderer: RGBA32F + DEPTH32F framebuffer incomplete");
+            // Almost always memory: name the size and the option that sets it.
+            const double mib = double(w) * double(h) * (16.0 + 4.0) / (1024.0 * 1024.0);
+            char buf[200];
+            std::snprintf(buf, sizeof buf,
+                          "renderer: the GL driver cannot make a %dx%d framebuffer (RGBA32F + "
+                          "DEPTH32F, %.0f MiB): render a smaller --size",
+                          w, h, mib);
+            throw sg::gl::GlError(buf);
         }
         fbW = w;
         fbH = h;

@@ -161,7 +161,10 @@ std::shared_ptr<const TextureImage> loadTexture(const TextureSource& src,
     // "<scene>: <field>: <image>: <element>: <reason>" (detail::fromReferencedFile).
     return detail::fromReferencedFile(sceneName, src.fieldPath, [&] {
         std::error_code ec;
-        if (!fs::is_regular_file(src.file, ec)) throw InputError(name, "", "does not exist");
+        if (!fs::is_regular_file(src.file, ec)) {
+            throw InputError(name, "",
+                             fs::exists(src.file, ec) ? "not a regular file" : "does not exist");
+        }
         return std::make_shared<TextureImage>(
             toTexture(image::decodeImageFile(src.file, decodeOptions(name, src.srgb, options)),
                       name, src.srgb, src.wrap));
