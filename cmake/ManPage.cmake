@@ -21,6 +21,8 @@ function(_sg_help words out)
         string(REPLACE ";" " " _w "${words}")
         message(FATAL_ERROR "ManPage.cmake: `surfgrad ${_w} --help` exited ${_rc}: ${_err}")
     endif()
+    # CLI11 prints the program as invoked: the page names it as installed.
+    string(REPLACE "${SURFGRAD}" "surfgrad" _text "${_text}")
     set(${out} "${_text}" PARENT_SCOPE)
 endfunction()
 

@@ -185,6 +185,7 @@ for c in render shader mesh normalmap features eval selftest; do
 done
 grep -qx '.SS "surfgrad mesh info"' "$work/surfgrad.1" || fail "surfgrad.1: no section for surfgrad mesh info"
 first="$("$root/usr/bin/surfgrad" render --help | head -1 | sed 's/\\/\\e/g')"
+! grep -qF "$build" "$work/surfgrad.1" || fail "surfgrad.1 names the build directory $build"
 grep -qF -- "$first" "$work/surfgrad.1" || fail "surfgrad.1 lacks 'surfgrad render --help' ($first)"
 if command -v man >/dev/null; then
     MANWIDTH=100 man -l "$work/surfgrad.1" >"$work/surfgrad.1.txt" 2>"$work/man.err" ||
