@@ -74,6 +74,24 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION "${SURFGRAD_INST
         # examples/CMakeLists.txt only adds the sample programs to this build;
         # each program's own CMakeLists.txt also builds it on its own.
         REGEX "/examples/CMakeLists\\.txt$" EXCLUDE)
+# The installed scenes name their maps "data:../examples/data/..." instead
+# of "../data/...": "data:" resolves to the installation's data directory
+# (beside which the examples' own maps are installed), so a scene copied
+# out of the installation still finds them; in the source tree "../data/"
+# stays (the examples' own folder, readable without an installation).
+string(CONFIGURE [[
+    set(_sg_ex "$ENV{DESTDIR}${CMAKE_INSTALL_PREFIX}/@SURFGRAD_INSTALL_EXAMPLESDIR@")
+    file(GLOB _sg_scenes "${_sg_ex}/*/scene.json")
+    foreach(_f IN LISTS _sg_scenes)
+        file(READ "${_f}" _text)
+        string(REPLACE "\"../data/" "\"data:../examples/data/" _new "${_text}")
+        if(NOT _new STREQUAL _text)
+            file(WRITE "${_f}.tmp" "${_new}")
+            file(RENAME "${_f}.tmp" "${_f}")
+        endif()
+    endforeach()
+]] _sg_rewrite_scenes @ONLY)
+install(CODE "${_sg_rewrite_scenes}" COMPONENT runtime)
 
 # ---- the package config: find_package(surfgrad CONFIG REQUIRED)
 install(EXPORT surfgradTargets NAMESPACE surfgrad:: DESTINATION "${SURFGRAD_INSTALL_CMAKEDIR}"
