@@ -1,6 +1,13 @@
+# SPDX-License-Identifier: Apache-2.0
 # Installation (cmake --install) and packaging (cpack -G DEB). Layout under
 # the prefix (directories set in the top-level CMakeLists.txt):
 #   bin/surfgrad                          the CLI                    [runtime]
+#   share/man/man1/surfgrad.1.gz          its manual page, generated from
+#                                         the help texts at build time [runtime]
+#   share/doc/surfgrad/copyright          licenses: the project's and every
+#                                         bundled data set's (Debian format) [runtime]
+#   share/doc/surfgrad/LICENSE            the Apache License 2.0     [runtime]
+#   share/doc/surfgrad-dev/copyright      the same, for surfgrad-dev [development]
 #   share/surfgrad/data/                  data/ ("data:" in scenes)  [runtime]
 #   share/surfgrad/examples/              examples/                  [runtime]
 #   include/surfgrad/**.h                 public headers of each module   [development]
@@ -28,6 +35,29 @@ set_target_properties(surfgrad PROPERTIES EXPORT_NAME surfgrad)
 install(TARGETS surfgrad EXPORT surfgradTargets
         RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT runtime)
 
+# ---- the manual page, from the help texts of the program just built
+# (cmake/ManPage.cmake walks every command's --help), and the licenses.
+find_program(SURFGRAD_GZIP gzip)
+mark_as_advanced(SURFGRAD_GZIP)
+if(SURFGRAD_GZIP)
+    set(_sg_man "${PROJECT_BINARY_DIR}/man/surfgrad.1.gz")
+else()
+    set(_sg_man "${PROJECT_BINARY_DIR}/man/surfgrad.1")
+endif()
+add_custom_command(
+    OUTPUT "${_sg_man}"
+    COMMAND "${CMAKE_COMMAND}" -DSURFGRAD=$<TARGET_FILE:surfgrad> -DVERSION=${PROJECT_VERSION}
+            -DOUT=${_sg_man} -DGZIP=${SURFGRAD_GZIP} -P "${PROJECT_SOURCE_DIR}/cmake/ManPage.cmake"
+    DEPENDS surfgrad "${PROJECT_SOURCE_DIR}/cmake/ManPage.cmake"
+    COMMENT "Generating the manual page surfgrad(1) from the help texts"
+    VERBATIM)
+add_custom_target(surfgrad_man ALL DEPENDS "${_sg_man}")
+install(FILES "${_sg_man}" DESTINATION "${CMAKE_INSTALL_MANDIR}/man1" COMPONENT runtime)
+install(FILES "${PROJECT_SOURCE_DIR}/packaging/copyright" "${PROJECT_SOURCE_DIR}/LICENSE"
+        DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/surfgrad" COMPONENT runtime)
+install(FILES "${PROJECT_SOURCE_DIR}/packaging/copyright"
+        DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/surfgrad-dev" COMPONENT development)
+
 # ---- the GLSL library: share/surfgrad/shaders/sg/**.glsl, so that
 # `#include "sg/surfgrad.glsl"` resolves with only share/surfgrad/shaders
 # on the include path (and C++ sees the same files through surfgrad::shaders).
@@ -44,6 +74,24 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION "${SURFGRAD_INST
         # examples/CMakeLists.txt only adds the sample programs to this build;
         # each program's own CMakeLists.txt also builds it on its own.
         REGEX "/examples/CMakeLists\\.txt$" EXCLUDE)
+# The installed scenes name their maps "data:../examples/data/..." instead
+# of "../data/...": "data:" resolves to the installation's data directory
+# (beside which the examples' own maps are installed), so a scene copied
+# out of the installation still finds them; in the source tree "../data/"
+# stays (the examples' own folder, readable without an installation).
+string(CONFIGURE [[
+    set(_sg_ex "$ENV{DESTDIR}${CMAKE_INSTALL_PREFIX}/@SURFGRAD_INSTALL_EXAMPLESDIR@")
+    file(GLOB _sg_scenes "${_sg_ex}/*/scene.json")
+    foreach(_f IN LISTS _sg_scenes)
+        file(READ "${_f}" _text)
+        string(REPLACE "\"../data/" "\"data:../examples/data/" _new "${_text}")
+        if(NOT _new STREQUAL _text)
+            file(WRITE "${_f}.tmp" "${_new}")
+            file(RENAME "${_f}.tmp" "${_f}")
+        endif()
+    endforeach()
+]] _sg_rewrite_scenes @ONLY)
+install(CODE "${_sg_rewrite_scenes}" COMPONENT runtime)
 
 # ---- the package config: find_package(surfgrad CONFIG REQUIRED)
 install(EXPORT surfgradTargets NAMESPACE surfgrad:: DESTINATION "${SURFGRAD_INSTALL_CMAKEDIR}"
@@ -76,6 +124,11 @@ install(FILES "${PROJECT_BINARY_DIR}/cmake/surfgradConfig.cmake"
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME surfgrad)
 set(CPACK_PACKAGE_VENDOR "surfgrad")
+# The project's license, SPDX identifier; the data sets' licenses are in
+# share/doc/surfgrad/copyright (packaging/copyright).
+set(SURFGRAD_LICENSE "Apache-2.0")
+set(SURFGRAD_DATA_LICENSES "CC0-1.0, CC-BY-4.0, ISC, public domain and OpenSubdiv's modified Apache-2.0")
+set(CPACK_RESOURCE_FILE_LICENSE "${PROJECT_SOURCE_DIR}/LICENSE")
 # The Maintainer field: whoever builds the packages sets it (the default's
 # .invalid domain, RFC 2606, is a placeholder that cannot receive mail).
 set(SURFGRAD_PACKAGE_MAINTAINER "surfgrad maintainers <maintainers@surfgrad.invalid>"
@@ -101,14 +154,19 @@ surfgrad renders bump-mapped subdivision meshes with surface gradients
 (Mikkelsen 2019): normal, height, triplanar, decal, noise and feature-curve
 layers add as surface gradients. This package holds the surfgrad command
 (render, shader, view, mesh, features, eval, selftest), the example scenes
-and the data they read (/usr/share/surfgrad).")
+and the data they read (/usr/share/surfgrad).
+.
+License: ${SURFGRAD_LICENSE}; bundled data: ${SURFGRAD_DATA_LICENSES}
+(/usr/share/doc/surfgrad/copyright).")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME surfgrad-dev)
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION "surface-gradient bump mapping on subdivision meshes (development)
 Headers, static libraries and the CMake package of surfgrad, for
 find_package(surfgrad CONFIG REQUIRED) and the targets surfgrad::bump,
 surfgrad::mesh, surfgrad::features, surfgrad::render and the others; the
-GLSL library for engines under /usr/share/surfgrad/shaders (sg/*.glsl).")
+GLSL library for engines under /usr/share/surfgrad/shaders (sg/*.glsl).
+.
+License: ${SURFGRAD_LICENSE} (/usr/share/doc/surfgrad-dev/copyright).")
 # openimageio-tools: Debian's OpenImageIOConfig.cmake fails unless the
 # tools it exports as targets (/usr/bin/iconvert, ...) are installed.
 set(_sg_dev_depends

@@ -2,9 +2,10 @@
 // surfgrad/mesh_io.h, surfgrad/subdivision.h, surfgrad/morph.h).
 //
 //   mesh info FILE [--json] [--repair]
-//       counts, face-degree histogram, UV sets, creases/corners/holes,
-//       boundary loops, manifoldness (non-manifold files are described, not
-//       refused).
+//       counts, bounding box (object units; glTF: world space, the nodes'
+//       transforms applied, as the file is loaded), face-degree histogram,
+//       UV sets, creases/corners/holes, boundary loops, manifoldness
+//       (non-manifold files are described, not refused).
 //   mesh subdivide FILE --level N [--scheme catmark|loop|bilinear]
 //       [--boundary none|edge-only|edge-and-corner] [--fvar smooth|...|all]
 //       [--limit] [--max-memory SIZE] -o OUT [--json] [--repair]
@@ -17,12 +18,16 @@
 //       to the cage, which is then subdivided.
 // A subdivision whose estimated peak memory is above --max-memory (default:
 // sg::mesh::defaultSubdivisionBudget) is refused before it allocates,
-// naming the level, the face count and the bytes needed.
+// naming the level, the face count and the bytes needed. One of at least
+// kProgressFaces faces (seconds: level 8 of a 180-face cage takes about 5)
+// says so on stderr before it starts and again before the output is
+// written.
 //
 // Other files attach more `mesh` subcommands to the group this returns
 // (see commands.h). Notes about dropped or converted data go to stderr as
 // "surfgrad: note: ...".
 #include <CLI/CLI.hpp>
+#include <glm/common.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -45,6 +50,9 @@ namespace {
 
 using namespace sg::mesh;
 using nlohmann::json;
+
+// Refined face count from which `mesh subdivide` reports its phases.
+constexpr uint64_t kProgressFaces = uint64_t(1) << 20;
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -110,11 +118,31 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
     }
     json names = json::array();
     for (const auto& s : m.uvSets) names.push_back(s.name);
+    // Bounding box of the positions as loaded (glTF: world space).
+    const std::string inExt = meshFormat(file);
+    const bool world = inExt == ".gltf" || inExt == ".glb";
+    glm::vec3 boxMin(0.0f), boxMax(0.0f);
+    if (!m.positions.empty()) {
+        boxMin = boxMax = m.positions.front();
+        for (const glm::vec3& p : m.positions) {
+            boxMin = glm::min(boxMin, p);
+            boxMax = glm::max(boxMax, p);
+        }
+    }
+    const glm::vec3 size = boxMax - boxMin;
+    json box = nullptr;
+    if (!m.positions.empty()) {
+        box = {{"min", {boxMin.x, boxMin.y, boxMin.z}},
+               {"max", {boxMax.x, boxMax.y, boxMax.z}},
+               {"size", {size.x, size.y, size.z}},
+               {"space", world ? "world" : "object"}};
+    }
     json j = {{"file", file},
               {"vertices", info.vertices},
               {"faces", info.faces},
               {"corners", info.corners},
               {"edges", info.edges},
+              {"bounding_box", box},
               {"face_degree_histogram", hist},
               {"uv_sets", m.uvSets.size()},
               {"uv_set_names", names},
@@ -140,6 +168,11 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
     std::printf("%s\n", file.c_str());
     std::printf("  vertices %zu, faces %zu, edges %zu, corners %zu\n", info.vertices, info.faces,
                 info.edges, info.corners);
+    if (!m.positions.empty()) {
+        std::printf("  bounding box min (%g, %g, %g), max (%g, %g, %g), size %g x %g x %g%s\n",
+                    boxMin.x, boxMin.y, boxMin.z, boxMax.x, boxMax.y, boxMax.z, size.x, size.y,
+                    size.z, world ? " (world space: node transforms applied)" : "");
+    }
     std::string h;
     for (auto it = hist.begin(); it != hist.end(); ++it)
         h += " " + it.key() + ":" + std::to_string(it.value().get<size_t>());
@@ -182,9 +215,23 @@ void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, 
         throw CliError(out + ": unknown output format '" + ext +
                        "' (expected .obj, .ply, .gltf or .glb)");
     s.buildRenderMesh = gltf || limit; // limit evaluation runs on the render vertices
+    const SubdivisionCost cost = estimateSubdivisionCost(cage, s);
+    const bool longRun = cost.faces >= kProgressFaces;
+    if (longRun) {
+        std::fprintf(stderr,
+                     "surfgrad: %s: subdividing to level %d%s: %llu faces, up to %s of memory "
+                     "(each level ~4x the faces)\n",
+                     file.c_str(), level, limit ? " with limit evaluation" : "",
+                     static_cast<unsigned long long>(cost.faces),
+                     formatByteSize(cost.bytes).c_str());
+    }
     t0 = std::chrono::steady_clock::now();
     Subdivider sub(cage, s, file);
     double refineSeconds = secondsSince(t0);
+    if (longRun) {
+        std::fprintf(stderr, "surfgrad: %s: refined in %.1f s; writing %s\n", file.c_str(),
+                     refineSeconds, out.c_str());
+    }
     t0 = std::chrono::steady_clock::now();
     WriteOptions wo;
     wo.inputs = {file};

@@ -552,7 +552,9 @@ void addCommon(CLI::App* c, Options& o, bool readsMap) {
         c->add_option("--green", o.green, "Input green convention: gl (+v up, default) or dx");
     }
     c->add_option("--to", o.to, "Output encoding (default: as the input)");
-    c->add_option("--to-green", o.toGreen, "Output green convention (default: as the input)");
+    c->add_option("--to-green", o.toGreen,
+                  readsMap ? "Output green convention (default: as the input)"
+                           : "Output green convention: gl (+v up, default) or dx");
     c->add_option("--bits", o.bits, "Output samples: 8, 16, half or float (default by extension)");
     c->add_option("--range", o.range, "Slope at full scale of integer derivative maps (default 8)");
     c->add_flag("--wrap", o.wrap, "The image tiles (periodic differences, sampling, integration)");
@@ -592,7 +594,6 @@ void addNormalmapCommands(CLI::App& app, int& status) {
         c->add_option("--scale", o->scale,
                       "Texels of height per unit of the image value (default 1)");
         c->add_option("--channel", o->channel, "Height channel (default: luminance or channel 0)");
-        c->add_option("--green", o->green, "Output green convention: gl (default) or dx");
     }
     add("to-height", "Height of a normal map (least-squares Poisson solve)", 1, true);
     add("to-derivative", "Derivative map (dh/du, dh/dv) of a normal map", 1, true);

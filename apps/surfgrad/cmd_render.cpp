@@ -306,8 +306,9 @@ void addRenderCommand(CLI::App& app, int& status) {
         ->add_option("--tbn", ro->tbn,
                      "Tangent frame for normal-mapped UV sets: pixel, mikktspace or limit "
                      "(the scene field \"tangents\" on every mesh; limit applies to meshes "
-                     "with \"subdivision\": {\"limit\": true} only and never changes the "
-                     "geometry, other meshes keep their tangents)")
+                     "drawn as the limit surface, \"subdivision\": {\"limit\": true} or "
+                     "{\"mode\": \"adaptive\"}, and never changes the geometry, other meshes "
+                     "keep their tangents; mikktspace is refused on adaptive meshes)")
         ->check(CLI::IsMember({"pixel", "mikktspace", "limit"}));
     render->add_flag("--cpu", ro->cpu, "Use the CPU reference renderer instead of OpenGL");
     render

@@ -17,7 +17,9 @@
 #      fails without it), the directory the config reports;
 #   5. the installed `surfgrad render share/surfgrad/examples/terrain/scene.json`
 #      works, "data:" resolves to the installation's data (a file that exists
-#      only there is found), and $SURFGRAD_DATA_DIR overrides it.
+#      only there is found), and $SURFGRAD_DATA_DIR overrides it; the
+#      installed scenes name their maps through "data:" and render when
+#      copied out of the installation.
 # Usage: install_test.sh BUILD_DIR SOURCE_DIR WORK_DIR ENGINE_SAMPLE_BIN
 #        GENERATOR MAKE_PROGRAM CXX_COMPILER BUILD_TYPE
 set -euo pipefail
@@ -146,6 +148,17 @@ cd "$work"
 "$prefix/bin/surfgrad" render "$prefix/share/surfgrad/examples/terrain/scene.json" -o terrain.png \
     --size 64x36 >render.out 2>&1 || { cat render.out >&2; fail "rendering the installed terrain example"; }
 grep -q "^wrote terrain.png (64x36" render.out || fail "render: $(cat render.out)"
+# The installed scenes name the examples' maps through "data:" (not
+# "../data/"), so a copy of an installed example elsewhere still renders.
+! grep -l '"\.\./data/' "$prefix"/share/surfgrad/examples/*/scene.json ||
+    fail "installed example scenes name ../data/ (they break when copied elsewhere)"
+mkdir -p "$work/copied"
+for ex in terrain tessellated-asset feature-curves; do
+    cp "$prefix/share/surfgrad/examples/$ex/scene.json" "$work/copied/$ex.json"
+    "$prefix/bin/surfgrad" render "$work/copied/$ex.json" -o "copied-$ex.png" --size 48x32 \
+        >"copied-$ex.out" 2>&1 ||
+        { cat "copied-$ex.out" >&2; fail "the installed $ex example copied elsewhere does not render"; }
+done
 # A file only the installation has: "data:" must resolve there, not to the
 # source tree this build came from.
 mkdir -p "$prefix/share/surfgrad/data/install-test"

@@ -11,6 +11,11 @@
 #   3. contents (dpkg-deb -c): the CLI, data, examples in surfgrad; headers,
 #      static libraries, CMake package and GLSL library in surfgrad-dev;
 #      everything under /usr, owned by root, no file in both packages;
+#      the licenses: /usr/share/doc/<package>/copyright in both (Debian's
+#      machine-readable format, naming the project's license and every data
+#      set of data/README.md with a license paragraph for each license it
+#      uses), the Apache License 2.0 text, the manual page surfgrad(1)
+#      (gzip, generated from the help texts: every command's section);
 #   4. both extracted into a scratch root (dpkg-deb -x): the packaged
 #      surfgrad renders the packaged terrain example, finding the packaged
 #      data relative to itself.
@@ -52,6 +57,8 @@ for deb in "$run" "$dev"; do
     field "$deb" Maintainer | grep -Eq '^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$' ||
         fail "$(basename "$deb"): Maintainer '$(field "$deb" Maintainer)' is not 'name <email>'"
     [ -n "$(field "$deb" Description)" ] || fail "$(basename "$deb"): no Description"
+    field "$deb" Description | grep -q "License: Apache-2.0" ||
+        fail "$(basename "$deb"): the Description does not give the SPDX license Apache-2.0"
 done
 expect_field "$run" Section graphics
 expect_field "$dev" Section libdevel
@@ -118,6 +125,13 @@ both="$(comm -12 <(grep -v '/$' "$work/run.list" | sort) <(grep -v '/$' "$work/d
 dpkg-deb -c "$run" | awk '$6 == "./usr/bin/surfgrad" { print $1, $2 }' | grep -qx -- '-rwxr-xr-x root/root' ||
     fail "/usr/bin/surfgrad is not -rwxr-xr-x root/root"
 
+# Licenses and the manual page.
+has run /usr/share/doc/surfgrad/copyright
+has run /usr/share/doc/surfgrad/LICENSE
+has dev /usr/share/doc/surfgrad-dev/copyright
+has run /usr/share/man/man1/surfgrad.1.gz
+! grep -q '^/usr/share/man/' "$work/dev.list" || fail "surfgrad-dev holds a manual page"
+
 # ---- 4. run from the unpacked packages
 step "surfgrad render from the unpacked packages"
 root="$work/root"
@@ -128,4 +142,54 @@ cd "$work"
 "$root/usr/bin/surfgrad" render "$root/usr/share/surfgrad/examples/tessellated-asset/scene.json" \
     -o asset.png --size 64x48 >render.out 2>&1 || { cat render.out >&2; fail "packaged surfgrad render"; }
 grep -q "^wrote asset.png (64x48" render.out || fail "render: $(cat render.out)"
+
+step "licenses and the manual page in the unpacked packages"
+doc="$root/usr/share/doc/surfgrad"
+cmp -s "$doc/LICENSE" "$src/LICENSE" || fail "/usr/share/doc/surfgrad/LICENSE is not LICENSE"
+grep -q "Apache License" "$src/LICENSE" && grep -q "Version 2.0, January 2004" "$src/LICENSE" ||
+    fail "LICENSE is not the Apache License 2.0"
+cmp -s "$doc/copyright" "$root/usr/share/doc/surfgrad-dev/copyright" ||
+    fail "the two packages' copyright files differ"
+copyright="$doc/copyright"
+head -1 "$copyright" | grep -qx 'Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
+    fail "copyright: not in Debian's machine-readable format (first line $(head -1 "$copyright"))"
+# The project's own files.
+awk '/^Files: \*$/ { f = 1; next } f && /^License:/ { print $2; exit }' "$copyright" | grep -qx Apache-2.0 ||
+    fail "copyright: 'Files: *' is not under Apache-2.0"
+# Every data set data/README.md lists (its table's folders) has a Files
+# paragraph.
+sets="$(grep -o '^| `[a-z-]*/[a-z-]*/*`' "$src/data/README.md" | tr -d '|` ')"
+[ -n "$sets" ] || fail "no data sets found in data/README.md"
+for d in $sets; do
+    grep -qx "Files: data/${d%/}/\*" "$copyright" || fail "copyright: no 'Files: data/${d%/}/*' paragraph"
+done
+# Every license a Files paragraph names (split at 'and'/'or') has its own
+# License paragraph, or its text inline (a paragraph with a body).
+for lic in $(awk '/^Files:/ { f = 1; next } f && /^License:/ { sub(/^License: */, ""); print; f = 0 }' \
+                 "$copyright" | sed 's/ and / /g; s/ or / /g'); do
+    awk -v l="$lic" 'BEGIN { ok = 0 }
+        /^License: / { cur = $2; next }
+        /^[A-Za-z-]+:/ { cur = "" }
+        cur == l && /^ / { ok = 1 }
+        /^$/ { cur = "" }
+        END { exit !ok }' "$copyright" || fail "copyright: license $lic has no text or paragraph"
+done
+man="$root/usr/share/man/man1/surfgrad.1.gz"
+gzip -t "$man" || fail "surfgrad.1.gz is not gzip"
+zcat "$man" >"$work/surfgrad.1"
+grep -q '^\.TH SURFGRAD 1 ' "$work/surfgrad.1" || fail "surfgrad.1: no .TH SURFGRAD 1"
+# Generated from the help texts: every command the CLI lists has a section
+# holding its own --help (its first line).
+for c in render shader mesh normalmap features eval selftest; do
+    grep -qx ".SS \"surfgrad $c\"" "$work/surfgrad.1" || fail "surfgrad.1: no section for surfgrad $c"
+done
+grep -qx '.SS "surfgrad mesh info"' "$work/surfgrad.1" || fail "surfgrad.1: no section for surfgrad mesh info"
+first="$("$root/usr/bin/surfgrad" render --help | head -1 | sed 's/\\/\\e/g')"
+! grep -qF "$build" "$work/surfgrad.1" || fail "surfgrad.1 names the build directory $build"
+grep -qF -- "$first" "$work/surfgrad.1" || fail "surfgrad.1 lacks 'surfgrad render --help' ($first)"
+if command -v man >/dev/null; then
+    MANWIDTH=100 man -l "$work/surfgrad.1" >"$work/surfgrad.1.txt" 2>"$work/man.err" ||
+        fail "man -l surfgrad.1: $(cat "$work/man.err")"
+    ! grep -q 'warning' "$work/man.err" || fail "man -l surfgrad.1: $(cat "$work/man.err")"
+fi
 step "passed"

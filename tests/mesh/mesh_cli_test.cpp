@@ -251,3 +251,100 @@ TEST(MeshCli, GltfMaterialsAndTexturesAreKept) {
     EXPECT_NE(obj.err.find("the material 'Texture' of "), std::string::npos) << obj.err;
     EXPECT_NE(obj.err.find("OBJ and PLY outputs keep no material"), std::string::npos) << obj.err;
 }
+
+// `mesh info` gives the bounding box (placing a decal needs it): min, max
+// and size of the positions in object units, in text and JSON. Expected
+// values: the file's coordinates, by hand.
+TEST(MeshCli, InfoGivesTheBoundingBox) {
+    sg::test::TempDir dir;
+    sg::test::writeText(dir / "box.obj", "v -1 2 3\nv 4 -5 6\nv 0 0.5 -7\nf 1 2 3\n");
+    const sg::test::CommandResult r =
+        sg::test::runSurfgrad("mesh info " + sg::test::shellQuote(dir / "box.obj"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("  bounding box min (-1, -5, -7), max (4, 2, 6), size 5 x 7 x 13\n"),
+              std::string::npos)
+        << r.out;
+    const sg::test::CommandResult j =
+        sg::test::runSurfgrad("mesh info --json " + sg::test::shellQuote(dir / "box.obj"));
+    ASSERT_EQ(j.exitCode, 0) << j.err;
+    const nlohmann::json box = nlohmann::json::parse(j.out).at("bounding_box");
+    // Exact: the coordinates are small integers, exact in binary32.
+    EXPECT_EQ(box.at("min"), nlohmann::json({-1.0, -5.0, -7.0}));
+    EXPECT_EQ(box.at("max"), nlohmann::json({4.0, 2.0, 6.0}));
+    EXPECT_EQ(box.at("size"), nlohmann::json({5.0, 7.0, 13.0}));
+    EXPECT_EQ(box.at("space"), "object");
+}
+
+// glTF: the box of the scene as info loads it, in world space (the node's
+// translation and scale applied). The triangle (0,0,0), (1,0,0), (0,1,0)
+// under scale (2, 3, 4) then translation (10, 20, 30): by hand, min
+// (10, 20, 30), max (12, 23, 30).
+TEST(MeshCli, InfoGivesTheGltfBoundingBoxInWorldSpace) {
+    sg::test::TempDir dir;
+    sg::test::writeText(dir / "tri.gltf",
+                        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+ "nodes": [{"mesh": 0, "translation": [10, 20, 30], "scale": [2, 3, 4]}],
+ "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+ "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                "min": [0, 0, 0], "max": [1, 1, 0]}],
+ "bufferViews": [{"buffer": 0, "byteLength": 36}],
+ "buffers": [{"byteLength": 36, "uri":
+   "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})");
+    const sg::test::CommandResult r =
+        sg::test::runSurfgrad("mesh info " + sg::test::shellQuote(dir / "tri.gltf"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.out.find("  bounding box min (10, 20, 30), max (12, 23, 30), size 2 x 3 x 0 "
+                         "(world space: node transforms applied)\n"),
+              std::string::npos)
+        << r.out;
+    const sg::test::CommandResult j =
+        sg::test::runSurfgrad("mesh info --json " + sg::test::shellQuote(dir / "tri.gltf"));
+    ASSERT_EQ(j.exitCode, 0) << j.err;
+    const nlohmann::json box = nlohmann::json::parse(j.out).at("bounding_box");
+    // Exact: products and sums of small integers, exact in binary32.
+    EXPECT_EQ(box.at("min"), nlohmann::json({10.0, 20.0, 30.0}));
+    EXPECT_EQ(box.at("max"), nlohmann::json({12.0, 23.0, 30.0}));
+    EXPECT_EQ(box.at("space"), "world");
+}
+
+// A grid of nx x ny unit quads in the plane z = 0, as OBJ.
+std::string quadGridObj(int nx, int ny) {
+    std::string obj;
+    for (int y = 0; y <= ny; ++y)
+        for (int x = 0; x <= nx; ++x)
+            obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    auto v = [&](int x, int y) { return std::to_string(y * (nx + 1) + x + 1); };
+    for (int y = 0; y < ny; ++y)
+        for (int x = 0; x < nx; ++x)
+            obj += "f " + v(x, y) + " " + v(x + 1, y) + " " + v(x + 1, y + 1) + " " + v(x, y + 1) +
+                   "\n";
+    return obj;
+}
+
+// A long subdivision says so on stderr before it starts and before the
+// output is written; a short one says nothing. 8 quads at level 8 are
+// 8 x 4^8 = 524288 faces, below the threshold (2^20); 16 quads at level 8
+// are 16 x 4^8 = 2^20, at it.
+TEST(MeshCli, LongSubdivisionsReportProgress) {
+    sg::test::TempDir dir;
+    sg::test::writeText(dir / "eight.obj", quadGridObj(4, 2));
+    sg::test::writeText(dir / "sixteen.obj", quadGridObj(4, 4));
+    const sg::test::CommandResult quiet =
+        sg::test::runSurfgrad("mesh subdivide " + sg::test::shellQuote(dir / "eight.obj") +
+                              " --level 8 -o " + sg::test::shellQuote(dir / "t.ply"));
+    ASSERT_EQ(quiet.exitCode, 0) << quiet.err;
+    EXPECT_EQ(quiet.err.find("subdividing"), std::string::npos) << quiet.err;
+    const std::filesystem::path in = dir / "sixteen.obj";
+    const sg::test::CommandResult r =
+        sg::test::runSurfgrad("mesh subdivide " + sg::test::shellQuote(in) + " --level 8 -o " +
+                              sg::test::shellQuote(dir / "f.ply"));
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    EXPECT_NE(r.err.find("surfgrad: " + in.string() + ": subdividing to level 8: 1048576 faces, "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("surfgrad: " + in.string() + ": refined in "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" s; writing " + (dir / "f.ply").string() + "\n"), std::string::npos)
+        << r.err;
+    // The lines come before the result line on stdout, which is unchanged.
+    EXPECT_NE(r.out.find(": level 8 catmark: 1048576 faces"), std::string::npos) << r.out;
+}

@@ -183,6 +183,45 @@ TEST(Cli, MeshHelpNamesEveryMeshSubcommand) {
     }
 }
 
+// `render --help` on --tbn names both kinds of limit-surface mesh that
+// `--tbn limit` applies to (adaptive ones were missing) and that
+// mikktspace is refused on adaptive meshes (overrideTangents in
+// cmd_render.cpp). CLI11 wraps long descriptions, so the text is compared
+// with its whitespace collapsed.
+TEST(Cli, RenderHelpSaysTbnLimitAppliesToAdaptiveMeshes) {
+    const CmdResult help = run("render --help", scratch("tbnhelp"));
+    ASSERT_EQ(help.exitCode, 0) << help.err;
+    const std::string text = std::regex_replace(help.out, std::regex("\\s+"), " ");
+    EXPECT_NE(text.find("limit applies to meshes drawn as the limit surface, \"subdivision\": "
+                        "{\"limit\": true} or {\"mode\": \"adaptive\"}"),
+              std::string::npos)
+        << help.out;
+    EXPECT_NE(text.find("mikktspace is refused on adaptive meshes"), std::string::npos) << help.out;
+}
+
+// `normalmap from-height --help` documents one spelling of the output's
+// green convention, --to-green as every other op; --green is gone.
+TEST(Cli, FromHeightHelpHasOneGreenOption) {
+    const fs::path dir = scratch("greenhelp");
+    const CmdResult help = run("normalmap from-height --help", dir);
+    ASSERT_EQ(help.exitCode, 0) << help.err;
+    EXPECT_NE(help.out.find("--to-green"), std::string::npos) << help.out;
+    EXPECT_NE(help.out.find("Output green convention: gl (+v up, default) or dx"),
+              std::string::npos)
+        << help.out;
+    EXPECT_EQ(std::regex_search(help.out, std::regex("(^|[^-])--green\\b")), false) << help.out;
+    // --to-green sets the output's convention (the summary line names it).
+    const std::string lava = std::string(SURFGRAD_DATA_DIR) + "/textures/lava_height.png";
+    const CmdResult dx = run(
+        "normalmap from-height " + sg::test::shellQuote(lava) + " -o dx.png --to-green dx", dir);
+    EXPECT_EQ(dx.exitCode, 0) << dx.err;
+    EXPECT_NE(dx.out.find("dx green"), std::string::npos) << dx.out;
+    const CmdResult old =
+        run("normalmap from-height " + sg::test::shellQuote(lava) + " -o gl.png --green dx", dir);
+    EXPECT_EQ(old.exitCode, 2) << old.err;
+    EXPECT_FALSE(fs::exists(dir / "gl.png"));
+}
+
 // Lines of a text, without their "\n".
 std::vector<std::string> lines(const std::string& text) {
     std::vector<std::string> out;
