@@ -48,10 +48,10 @@ struct GroupOrder {
 };
 
 // A layer of the plan moves the surface (LayerKind::movesSurface): main()
-// holds surfOffset and samples the base colour after group 0's layers.
+// holds surfOffset and surfPos and samples the base colour after group 0's
+// layers.
 bool movesSurface(const MaterialPlan& plan) {
-    return std::any_of(plan.kinds.begin(), plan.kinds.end(),
-                       [](const LayerKind* k) { return k->movesSurface; });
+    return planMovesSurface(plan);
 }
 
 // The layer whose re-prologue group g uses: the last one before the group
@@ -173,8 +173,11 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
         o << "    mat3 slopeCov = mat3(0.0); // the layers' slope covariances "
              "(sg/render/antialias.glsl)\n";
     }
-    if (movesSurface(plan))
-        o << "    vec3 surfOffset = vec3(0.0); // the virtual surface (parallax, section 3)\n";
+    if (movesSurface(plan)) {
+        o << "    vec3 surfOffset = vec3(0.0); // the virtual surface (parallax, section 3)\n"
+          << "    vec3 surfPos = vRelPos; // the frame's surface: the virtual one after a "
+             "re-prologue\n";
+    }
 }
 
 // One group: the re-prologue (groups after the first), the layers, the resolve.
@@ -461,6 +464,7 @@ struct CpuShader {
     CpuShadeState prologue() const {
         CpuShadeState s;
         s.frame = G::sgPrologue(in.normal, in.dPdx, in.dPdy, in.frontFacing, u.bfaceMode);
+        s.surfPos = in.relPos;
         const uint32_t uvMask = prologueUvMask(plan);
         for (int k = 0; k < plan.uvCount; ++k) {
             if (!(uvMask >> k & 1u)) continue;
