@@ -10,11 +10,15 @@
 // against the known height field (a step carved below a plane), and the
 // hit tested against the decal's box. Both renderers (llvmpipe and the CPU
 // reference) must put the decal on exactly the pixels whose traced hit is
-// inside the box, away from the box's edges and from the step's edge.
+// inside the box, away from the box's edges and from the step's edge; a
+// point light between the mesh plane and the floor must light exactly the
+// pixels whose traced hit is on the floor (the decal disabled: its bumps
+// would turn some floor normals away from a light this close).
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -36,8 +40,15 @@ namespace fs = std::filesystem;
 // normal +y), as a kTexels x kTexels map.
 constexpr int kTexels = 64;
 constexpr double kScale = 0.1;
+// The map repeats (wrap "repeat"): the step is at s = 0.5 and at every
+// whole s, where H comes back to 1.
 double stepHeight(double s) {
-    return s < 0.5 ? 1.0 : 0.0;
+    return s - std::floor(s) < 0.5 ? 1.0 : 0.0;
+}
+// Distance (in s, = x) from the nearest edge of the repeated step.
+double stepEdgeDistance(double x) {
+    const double f = (x + 0.5) - std::floor(x + 0.5);
+    return std::min({std::fabs(f - 0.5), f, 1.0 - f});
 }
 
 // The decal: projected straight down, a 0.28 x 0.28 footprint centred on the
@@ -83,24 +94,26 @@ fs::path writeMaps() {
     return dir;
 }
 
-std::string sceneJson(const fs::path& dir) {
+// topExtra: more top-level fields (lights, ambient), each with its comma;
+// decal: whether the decal layer is enabled.
+std::string sceneJson(const fs::path& dir, const std::string& topExtra = "", bool decal = true) {
     char buf[2048];
     std::snprintf(buf, sizeof buf,
-                  R"({"output": {"width": %d, "height": %d},
+                  R"({"output": {"width": %d, "height": %d}%s,
             "camera": {"position": [%.17g, %.17g, %.17g], "target": [%.17g, %.17g, %.17g],
                        "up": [0, 1, 0], "fov_deg": %.17g},
             "materials": [{"name": "m", "layers": [
               {"type": "pom", "map": {"file": "%s", "wrap": "repeat"}, "scale": %.17g,
                "steps": 32, "bump": false, "normal_correction": false},
               {"type": "post_resolve", "layers": [
-                {"type": "decal", "map": "%s", "position": [%.17g, %.17g, %.17g],
+                {"type": "decal", "enabled": %s, "map": "%s", "position": [%.17g, %.17g, %.17g],
                  "direction": [0, -1, 0], "up": [0, 0, -1],
                  "size": [%.17g, %.17g, %.17g], "fade": 0}]}]}],
             "meshes": [{"procedural": {"type": "plane", "size": 1, "segments": 2}}]})",
-                  kW, kH, kEye.x, kEye.y, kEye.z, kTarget.x, kTarget.y, kTarget.z, kFovDeg,
-                  (dir / "step.png").string().c_str(), kScale, (dir / "tilt.png").string().c_str(),
-                  kDecalCentre.x, kDecalCentre.y, kDecalCentre.z, 2 * kDecalHalf, 2 * kDecalHalf,
-                  2 * kDecalHalfDepth);
+                  kW, kH, topExtra.c_str(), kEye.x, kEye.y, kEye.z, kTarget.x, kTarget.y, kTarget.z,
+                  kFovDeg, (dir / "step.png").string().c_str(), kScale, decal ? "true" : "false",
+                  (dir / "tilt.png").string().c_str(), kDecalCentre.x, kDecalCentre.y,
+                  kDecalCentre.z, 2 * kDecalHalf, 2 * kDecalHalf, 2 * kDecalHalfDepth);
     return buf;
 }
 
@@ -197,8 +210,8 @@ TEST(VirtualSurface, DecalAfterPomLandsOnTheRayTracedRelief) {
         for (int x = 0; x < kW; ++x) {
             const Traced t = trace(x, y);
             if (!t.onPlane || std::fabs(t.mesh.x) > 0.45 || std::fabs(t.mesh.z) > 0.45) continue;
-            if (distToBoxSides(t.hit) < boxMargin || std::fabs(t.hit.x) < stepMargin ||
-                std::fabs(t.mesh.x) < stepMargin)
+            if (distToBoxSides(t.hit) < boxMargin || stepEdgeDistance(t.hit.x) < stepMargin ||
+                stepEdgeDistance(t.mesh.x) < stepMargin)
                 continue;
             const bool expected = insideBox(t.hit);
             // What projecting the mesh position would give (the decal's
@@ -234,6 +247,52 @@ TEST(VirtualSurface, DecalAfterPomLandsOnTheRayTracedRelief) {
         EXPECT_GT(c->expectedOn, 300u);
         EXPECT_GT(c->meshDiffers, 200u);
         EXPECT_EQ(c->wrong, 0u);
+    }
+}
+
+// Lights see the virtual surface too (section 3: the corrected position
+// serves shading and lighting): a point light between the mesh plane and
+// the floor of the step (y = -0.05, over the floor) lights the floor, which
+// lies below it, and not the top of the step (the mesh surface, above it),
+// whose radiance is exactly 0 without ambient light. Which pixels are which
+// comes from the ray traced through the height field; lighting the mesh
+// position instead would leave every pixel dark (the light is below the
+// mesh plane everywhere).
+TEST(VirtualSurface, PointLightsLightTheRelief) {
+    const fs::path dir = writeMaps();
+    const Scene scene = sceneFromJson(sceneJson(dir, R"(, "ambient": [0, 0, 0],
+                "lights": [{"type": "point", "position": [0.3, -0.05, 0.0], "intensity": 0.2}])",
+                                                false));
+    const SceneAssets assets = loadAssets(scene);
+    View v = makeView(scene, assets, 0, 0, Aov::Color);
+    const Image cpu = renderCpu(scene, assets, v, CpuOptions{});
+    const Image gpuImg = gpu().render(scene, assets, v);
+    fs::remove_all(dir);
+    const double stepMargin = 3.0 / kTexels;
+    for (int k = 0; k < 2; ++k) {
+        const Image& img = k ? gpuImg : cpu;
+        size_t floorLit = 0, floorDark = 0, topLit = 0, topDark = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const Traced t = trace(x, y);
+                if (!t.onPlane || std::fabs(t.mesh.x) > 0.45 || std::fabs(t.mesh.z) > 0.45)
+                    continue;
+                if (stepEdgeDistance(t.hit.x) < stepMargin ||
+                    stepEdgeDistance(t.mesh.x) < stepMargin)
+                    continue;
+                const bool lit = glm::length(glm::vec3(img.at(x, y))) > 0.0f;
+                if (t.hit.y < -0.999 * kScale) {
+                    (lit ? floorLit : floorDark)++;
+                } else if (t.hit.y > -1e-9) {
+                    (lit ? topLit : topDark)++;
+                }
+            }
+        std::printf("%s: floor lit %zu dark %zu; top lit %zu dark %zu\n", k ? "gpu" : "cpu",
+                    floorLit, floorDark, topLit, topDark);
+        EXPECT_GT(floorLit, 1000u);
+        EXPECT_GT(topDark, 1000u);
+        EXPECT_EQ(floorDark, 0u);
+        EXPECT_EQ(topLit, 0u);
     }
 }
 

@@ -242,10 +242,14 @@ void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
              "bumps\n";
         roughness = "roughness";
     }
+    // The lit position: the displaced one (section 2.5), moved to the
+    // virtual surface when a layer moved it (section 3: the corrected
+    // position serves shading and lighting, point lights and the view vector).
+    std::string lit = plan.displacementUvSet >= 0 ? "vRelPosLit" : "vRelPos";
+    if (movesSurface(plan)) lit = "(" + lit + " + surfOffset)";
     o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
-      << "        color += sgShadeLight(nrm, "
-      << (plan.displacementUvSet >= 0 ? "vRelPosLit" : "vRelPos")
+      << "        color += sgShadeLight(nrm, " << lit
       << ", uLights[2 * i], uLights[2 * i + 1], "
          "baseColor, "
       << roughness << ");\n"
@@ -544,10 +548,11 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
     const float roughness =
         plan.antialias ? G::sgAaRoughness(u.roughness, s.slopeCov) : u.roughness;
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
+    // emitShading()'s lit position (s.surfOffset is zero unless a layer moved the surface).
+    const glm::vec3 lit = (plan.displacementUvSet >= 0 ? in.relPosLit : in.relPos) + s.surfOffset;
     for (int i = 0; i < plan.lightCount; ++i) {
-        color += G::sgShadeLight(nrm, plan.displacementUvSet >= 0 ? in.relPosLit : in.relPos,
-                                 u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], baseColor,
-                                 roughness);
+        color += G::sgShadeLight(nrm, lit, u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)],
+                                 baseColor, roughness);
     }
     const bool hasUv0 = plan.uvCount > 0;
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);
