@@ -181,9 +181,13 @@ TEST(AdaptiveTangents, GpuMatchesCpuWithAUvNormalLayerOnLimitTangents) {
 // takes it exactly), so they differ by the tessellation's flatness over
 // triangles of ~3 pixels, and by the per-pixel frame's own
 // orthogonalisation. Pixels on UV seams, silhouettes and the quad-pair
-// derivative steps make the tail. Bounds: median 3 degrees, 90th percentile
-// 15 (measured 0.76 and 2.85, 99th percentile 11.1; a broken frame, e.g. a
-// flipped or swapped axis, moves the median by tens of degrees).
+// derivative steps make the tail. Measured (llvmpipe, this view): median
+// 0.758, 90th percentile 2.849, 99th 11.13 degrees. Bounds: 1.0, 3.5 and
+// 14, about 30% over the measurement: room for the driver's rounding and
+// LOD approximation, not for a systematic frame error of a fraction of a
+// degree (e.g. one tangent scaled wrong, or a patch parameterization off by
+// a little), which the former bounds (median 3, 90th percentile 15) let
+// through; a flipped or swapped axis moves the median by tens of degrees.
 TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
     Scene sl = sceneFromJson(adaptiveScene(R"(["limit"])"));
     Scene sp = sceneFromJson(adaptiveScene(R"(["pixel"])"));
@@ -200,8 +204,9 @@ TEST(AdaptiveTangents, LimitAgreesWithThePerPixelFrameWhereSmooth) {
     // pixels): at most 0.1%.
     EXPECT_LE(double(r.onlyOne), 0.001 * double(r.deg.size()));
     EXPECT_GT(r.deg.size(), size_t(320 * 240 / 10));
-    EXPECT_LE(r.at(0.5), 3.0);
-    EXPECT_LE(r.at(0.9), 15.0);
+    EXPECT_LE(r.at(0.5), 1.0);
+    EXPECT_LE(r.at(0.9), 3.5);
+    EXPECT_LE(r.at(0.99), 14.0);
     // The two differ at all (the limit frame is not the per-pixel one).
     EXPECT_GT(r.at(0.99), 0.0);
 }

@@ -836,23 +836,52 @@ TEST(AdaptiveDisplacement, DisplacedSurfacePinholes) {
 // Hard case: displacement with the eye inside the cow (patches around and
 // behind the eye) and far away: finite images, and every displaced point
 // within |scale| * max height (1 for an 8-bit map) of its limit point.
+// Bounded is not the same as working: the displacement must also move the
+// points (the largest offset close to the map's top, 1) and change what the
+// renderers show against the same draw with scale 0 (the eye inside: the
+// surface around it moves by up to 0.1 of a cow about 1.5 long).
 TEST(RenderHardCases, AdaptiveDisplacementBehindTheEyeIsBounded) {
     double worst = 0.0;
     size_t bad = 0;
+    size_t changed[2] = {0, 0}; // GPU, CPU: inside camera, normal AOV vs scale 0
+    auto sceneOf = [](const char* camera, const char* scale) {
+        return sceneFromJson(R"({"output": {"width": 96, "height": 64}, )" + std::string(camera) +
+                             R"(, "materials": [{"name": "m"}],
+            "meshes": [{"file": ")" +
+                             kSpotCage +
+                             R"(", "subdivision": {"mode": "adaptive", "pixels_per_edge": 1},
+            "displacement": {"map": )" +
+                             kBumpsHeight + R"(, "scale": )" + scale + "}}]}");
+    };
+    bool inside = true;
     for (const char* camera :
          {R"("camera": {"distance_scale": 0.02})", R"("camera": {"distance_scale": 60})"}) {
-        Scene s = sceneFromJson(
-            R"({"output": {"width": 96, "height": 64}, )" + std::string(camera) +
-            R"(, "materials": [{"name": "m"}],
-            "meshes": [{"file": ")" +
-            kSpotCage + R"(", "subdivision": {"mode": "adaptive", "pixels_per_edge": 1},
-            "displacement": {"map": )" +
-            kBumpsHeight + R"(, "scale": 0.1}}]})");
+        Scene s = sceneOf(camera, "0.1");
         SceneAssets a = loadAssets(s);
         for (Aov aov : {Aov::Color, Aov::Normal}) {
             View v = makeView(s, a, 0, 0, aov);
-            bad += countNonFinite(gpu().render(s, a, v));
-            bad += countNonFinite(renderCpu(s, a, v));
+            const Image g = gpu().render(s, a, v), c = renderCpu(s, a, v);
+            bad += countNonFinite(g);
+            bad += countNonFinite(c);
+            if (inside && aov == Aov::Normal) {
+                Scene s0 = sceneOf(camera, "0");
+                SceneAssets a0 = loadAssets(s0);
+                const View v0 = makeView(s0, a0, 0, 0, aov);
+                const Image g0 = gpu().render(s0, a0, v0), c0 = renderCpu(s0, a0, v0);
+                for (size_t i = 0; i < g.pixels.size(); ++i) {
+                    // A pixel changes when its normal turns by more than 1
+                    // degree or its coverage changes.
+                    auto differs = [](glm::vec4 p, glm::vec4 q) {
+                        const glm::vec3 np(p), nq(q);
+                        const float la = glm::length(np), lb = glm::length(nq);
+                        if ((la > 0.5f) != (lb > 0.5f)) return true;
+                        return la > 0.5f &&
+                               glm::dot(np, nq) < std::cos(glm::radians(1.0f)) * la * lb;
+                    };
+                    changed[0] += differs(g.pixels[i], g0.pixels[i]);
+                    changed[1] += differs(c.pixels[i], c0.pixels[i]);
+                }
+            }
             detail::PatchDisplacement d;
             d.map.image = a.textures.begin()->second.get();
             d.scale = 0.1f;
@@ -865,8 +894,21 @@ TEST(RenderHardCases, AdaptiveDisplacementBehindTheEyeIsBounded) {
                 worst = std::isfinite(moved) ? std::max(worst, moved) : INFINITY;
             }
         }
+        inside = false;
     }
+    std::printf("largest offset %.4f of the scale; eye inside, pixels changed by the "
+                "displacement: GPU %zu, CPU %zu of %d\n",
+                worst, changed[0], changed[1], 96 * 64);
     EXPECT_EQ(bad, 0u);
+    // The map's top is 1 (bumps: 255 at the bump centres): the tessellated
+    // points that reach it move by the whole scale (measured 0.994).
+    EXPECT_GT(worst, 0.9);
+    // With the eye inside, the displaced surface around it turns the
+    // normal by more than a degree, or moves an edge, at 230 (GPU) and 231
+    // (CPU) of the 6144 pixels (measured; 0 when the displacement does
+    // nothing).
+    EXPECT_GT(changed[0], size_t(100));
+    EXPECT_GT(changed[1], size_t(100));
     sg::test::hardCaseAtMost("grazing",
                              "adaptive displacement (scale 0.1), eye inside the mesh and 60 "
                              "sizes away: |displaced - limit point| / scale, CPU tessellator",

@@ -147,10 +147,15 @@ std::vector<LayerCase> layerCases() {
         // Parallax kinds (layer_parallax.glsl): the corrected coordinate
         // feeds the later layers of its UV set and keeps the uncorrected
         // derivatives, so the mip level cannot jump at POM's occlusion
-        // edges: the parity bound below (0.05 degrees everywhere, edges
-        // included) would fail if either renderer took it from the
-        // corrected coordinate. The post-resolve case re-prologues on the
-        // virtual surface with listing 17 and evaluates its noise there.
+        // edges. This comparison cannot check that: both renderers run the
+        // same layer statement (GLSL and its C++ build), so a mip level
+        // taken from the corrected coordinate would be taken by both and
+        // they would still agree. It shows agreement only; which
+        // coordinate the level comes from is fixed by the statement
+        // (uv.st changes, uv.dSTdx and dSTdy do not) and no test compares
+        // it with an independent expectation. The post-resolve case
+        // re-prologues on the virtual surface with listing 17 and
+        // evaluates its noise there.
         {"parallax_offset_limited",
          sphereScene(
              R"({"type": "parallax", "scale": 0.03, "map": {"procedural": "bricks", "output": "height", "size": 256}},

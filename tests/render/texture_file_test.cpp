@@ -8,11 +8,19 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
+#include <string>
 
 #include "render_test_util.h"
 #include "surfgrad/image_header.h"
@@ -369,10 +377,73 @@ TEST(TextureFiles, FeatureMapFilesAreScannedToo) {
     }
 }
 
+// The rule (docs/scene.md, image_decode.h): a quarter of physical memory,
+// at most 8 GiB, at most half of the address-space and data limits. The
+// machine is read here from /proc (MemTotal of /proc/meminfo; "Max address
+// space" and "Max data size" of /proc/self/limits), not through the
+// sysconf/getrlimit calls the code makes.
+uint64_t procMemTotal() {
+    std::ifstream in("/proc/meminfo");
+    std::string key, unit;
+    uint64_t kb = 0;
+    while (in >> key >> kb >> unit)
+        if (key == "MemTotal:") return kb * 1024;
+    return 0;
+}
+
+uint64_t procLimit(const std::string& name) { // soft limit; ~0 for unlimited
+    std::ifstream in("/proc/self/limits");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind(name, 0) != 0) continue;
+        std::istringstream f(line.substr(name.size()));
+        std::string soft;
+        f >> soft;
+        return soft == "unlimited" ? ~uint64_t(0) : uint64_t(std::stoull(soft));
+    }
+    return ~uint64_t(0);
+}
+
+uint64_t expectedBudget() {
+    uint64_t b = std::min(procMemTotal() / 4, uint64_t(8) << 30);
+    for (const char* l : {"Max address space", "Max data size"}) b = std::min(b, procLimit(l) / 2);
+    return b;
+}
+
 TEST(TextureFiles, DefaultBudgetFollowsTheMachine) {
-    const uint64_t b = defaultTextureBudget();
-    EXPECT_GT(b, 0u);
-    EXPECT_LE(b, uint64_t(8) << 30);
+    ASSERT_GT(procMemTotal(), 0u) << "/proc/meminfo";
+    // Exact: MemTotal is the kernel's page count in kB, as sysconf's
+    // _SC_PHYS_PAGES times the page size.
+    EXPECT_EQ(defaultTextureBudget(), expectedBudget())
+        << "MemTotal " << procMemTotal() << " bytes";
+    // Under an address-space limit (a child process, so this one keeps
+    // its limits): the current size plus 3 GiB, so the limit binds when
+    // the machine has more than twice that (this one: 24 GiB) and the
+    // child can still allocate.
+    std::ifstream statm("/proc/self/statm");
+    uint64_t pages = 0;
+    statm >> pages;
+    const uint64_t limit = pages * uint64_t(::sysconf(_SC_PAGE_SIZE)) + (uint64_t(3) << 30);
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        rlimit rl{};
+        ::getrlimit(RLIMIT_AS, &rl);
+        rl.rlim_cur = rlim_t(limit);
+        if (::setrlimit(RLIMIT_AS, &rl) != 0) ::_exit(2);
+        const uint64_t want = expectedBudget();
+        ::_exit(defaultTextureBudget() == want && procLimit("Max address space") == limit ? 0 : 1);
+    }
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        << "under RLIMIT_AS " << limit << " bytes: the budget is not min(MemTotal / 4, 8 GiB, "
+        << "limit / 2)";
+    std::printf("budget %llu bytes (MemTotal %llu); under a %llu-byte address-space limit: %llu\n",
+                static_cast<unsigned long long>(defaultTextureBudget()),
+                static_cast<unsigned long long>(procMemTotal()),
+                static_cast<unsigned long long>(limit),
+                static_cast<unsigned long long>(std::min(procMemTotal() / 4, limit / 2)));
 }
 
 // The header scan (surfgrad/image_header.h) agrees with OpenImageIO on every

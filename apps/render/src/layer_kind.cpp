@@ -222,6 +222,15 @@ std::string GlslLayerContext::vol(Space s) const {
     return s == Space::World ? "volWorld" : "volObject";
 }
 
+std::string GlslLayerContext::relPos() const {
+    return planMovesSurface(plan) ? "surfPos" : "vRelPos";
+}
+
+bool planMovesSurface(const MaterialPlan& plan) {
+    return std::any_of(plan.kinds.begin(), plan.kinds.end(),
+                       [](const LayerKind* k) { return k->movesSurface; });
+}
+
 // ---------------------------------------------------------------------------
 // Registry queries
 

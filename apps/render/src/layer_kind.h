@@ -448,8 +448,13 @@ void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm:
 // last such layer before it (nrm, the resolved normal, in scope) instead of
 // the default sgReprologue(frame, nrm, frame.dPdx, frame.dPdy): it sets
 // `frame` to the virtual surface (e.g. listing 17's analytic derivatives at
-// vRelPos + surfOffset) and rebuilds volWorld/volObject there (when the plan
-// uses them). The UV frames of the group are rebuilt after it as usual.
+// vRelPos + surfOffset), sets `surfPos` (vec3, camera-relative: the
+// position of the frame's surface, vRelPos until then) to the virtual
+// surface and rebuilds volWorld/volObject there (when the plan uses them).
+// Position-projected layers (decal) read surfPos (GlslLayerContext::relPos,
+// CpuShadeState::surfPos), so their detail lands on the virtual surface
+// like the volume layers' (section 3, Fig. 3(d)). The UV frames of the
+// group are rebuilt after it as usual.
 
 struct GlslLayerContext {
     const MaterialPlan& plan;
@@ -462,7 +467,14 @@ struct GlslLayerContext {
     std::string tex(int i) const;                    // "uTex<slot>" of the layer's i-th texture
     std::string uv() const;                          // "uv<k>": the layer's UV frame
     std::string vol(Space s) const;                  // "volWorld" | "volObject"
+    // The position of the frame's surface, camera-relative: "surfPos" in
+    // plans that move the surface (the virtual surface after a re-prologue),
+    // else "vRelPos".
+    std::string relPos() const;
 };
+
+// A layer of the plan moves the surface (LayerKind::movesSurface).
+bool planMovesSurface(const MaterialPlan& plan);
 
 // The main()'s variables on the CPU.
 struct CpuShadeState {
@@ -472,6 +484,9 @@ struct CpuShadeState {
     glm::vec3 surfGrad{0.0f};
     glm::mat3 slopeCov{0.0f};   // antialiasing plans: the sum of the layers' slope covariances
     glm::vec3 surfOffset{0.0f}; // the virtual surface (LayerKind::movesSurface)
+    // The position of the frame's surface (GLSL surfPos): the pixel's
+    // relPos from the prologue, the virtual surface after a re-prologue.
+    glm::vec3 surfPos{0.0f};
     const sg::glsl::SgVolumeSpace& vol(Space s) const {
         return s == Space::World ? volWorld : volObject;
     }

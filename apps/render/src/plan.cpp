@@ -48,10 +48,10 @@ struct GroupOrder {
 };
 
 // A layer of the plan moves the surface (LayerKind::movesSurface): main()
-// holds surfOffset and samples the base colour after group 0's layers.
+// holds surfOffset and surfPos and samples the base colour after group 0's
+// layers.
 bool movesSurface(const MaterialPlan& plan) {
-    return std::any_of(plan.kinds.begin(), plan.kinds.end(),
-                       [](const LayerKind* k) { return k->movesSurface; });
+    return planMovesSurface(plan);
 }
 
 // The layer whose re-prologue group g uses: the last one before the group
@@ -173,8 +173,11 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
         o << "    mat3 slopeCov = mat3(0.0); // the layers' slope covariances "
              "(sg/render/antialias.glsl)\n";
     }
-    if (movesSurface(plan))
-        o << "    vec3 surfOffset = vec3(0.0); // the virtual surface (parallax, section 3)\n";
+    if (movesSurface(plan)) {
+        o << "    vec3 surfOffset = vec3(0.0); // the virtual surface (parallax, section 3)\n"
+          << "    vec3 surfPos = vRelPos; // the frame's surface: the virtual one after a "
+             "re-prologue\n";
+    }
 }
 
 // One group: the re-prologue (groups after the first), the layers, the resolve.
@@ -239,10 +242,14 @@ void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
              "bumps\n";
         roughness = "roughness";
     }
+    // The lit position: the displaced one (section 2.5), moved to the
+    // virtual surface when a layer moved it (section 3: the corrected
+    // position serves shading and lighting, point lights and the view vector).
+    std::string lit = plan.displacementUvSet >= 0 ? "vRelPosLit" : "vRelPos";
+    if (movesSurface(plan)) lit = "(" + lit + " + surfOffset)";
     o << "    vec3 color = sgShadeAmbient(nrm, uAmbient, baseColor);\n"
       << "    for (int i = 0; i < SG_LIGHT_COUNT; ++i) {\n"
-      << "        color += sgShadeLight(nrm, "
-      << (plan.displacementUvSet >= 0 ? "vRelPosLit" : "vRelPos")
+      << "        color += sgShadeLight(nrm, " << lit
       << ", uLights[2 * i], uLights[2 * i + 1], "
          "baseColor, "
       << roughness << ");\n"
@@ -461,6 +468,7 @@ struct CpuShader {
     CpuShadeState prologue() const {
         CpuShadeState s;
         s.frame = G::sgPrologue(in.normal, in.dPdx, in.dPdy, in.frontFacing, u.bfaceMode);
+        s.surfPos = in.relPos;
         const uint32_t uvMask = prologueUvMask(plan);
         for (int k = 0; k < plan.uvCount; ++k) {
             if (!(uvMask >> k & 1u)) continue;
@@ -540,10 +548,11 @@ glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
     const float roughness =
         plan.antialias ? G::sgAaRoughness(u.roughness, s.slopeCov) : u.roughness;
     glm::vec3 color = G::sgShadeAmbient(nrm, u.ambient, baseColor);
+    // emitShading()'s lit position (s.surfOffset is zero unless a layer moved the surface).
+    const glm::vec3 lit = (plan.displacementUvSet >= 0 ? in.relPosLit : in.relPos) + s.surfOffset;
     for (int i = 0; i < plan.lightCount; ++i) {
-        color += G::sgShadeLight(nrm, plan.displacementUvSet >= 0 ? in.relPosLit : in.relPos,
-                                 u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)], baseColor,
-                                 roughness);
+        color += G::sgShadeLight(nrm, lit, u.lights[size_t(2 * i)], u.lights[size_t(2 * i + 1)],
+                                 baseColor, roughness);
     }
     const bool hasUv0 = plan.uvCount > 0;
     if (!hasUv0) tangentOut = bitangentOut = glm::vec3(0.0f);

@@ -88,7 +88,10 @@ int antialiasOf(const Layer& L) {
 }
 
 std::string glsl(const GlslLayerContext& c) {
-    const std::string head = "frame, vRelPos, " + c.unpack(c.layer().kind->records[0]) + ", ";
+    // The frame's surface: the virtual one in a post-resolve group after
+    // parallax or POM (section 3, Fig. 3(d)), as the footprint (frame.dPdx).
+    const std::string head =
+        "frame, " + c.relPos() + ", " + c.unpack(c.layer().kind->records[0]) + ", ";
     const int aa = antialiasOf(c.layer());
     if (aa == SG_AA_LEAN) {
         return "surfGrad += sgLayerDecalAa(" + head + "SG_AA_LEAN, " + c.tex(0) + ", " + c.tex(1) +
@@ -106,11 +109,11 @@ void cpu(const CpuLayerContext& c, CpuShadeState& s) {
     const G::SgDecalParams p = G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]);
     const int aa = antialiasOf(c.layer());
     if (aa == 0) {
-        s.surfGrad += G::sgLayerDecal(s.frame, c.in.relPos, p, c.tex(0));
+        s.surfGrad += G::sgLayerDecal(s.frame, s.surfPos, p, c.tex(0));
         return;
     }
     const int b = aa == SG_AA_LEAN ? 1 : 0;
-    s.surfGrad += G::sgLayerDecalAa(s.frame, c.in.relPos, p, aa, c.tex(0), c.tex(b), s.slopeCov);
+    s.surfGrad += G::sgLayerDecalAa(s.frame, s.surfPos, p, aa, c.tex(0), c.tex(b), s.slopeCov);
 }
 
 uint32_t mapChannels(const Layer& L, const char*& why) {

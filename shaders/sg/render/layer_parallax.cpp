@@ -148,19 +148,20 @@ void cpuPom(const CpuLayerContext& c, CpuShadeState& s) {
     cpuCall(c, s, true);
 }
 
-// The re-prologue on the virtual surface (section 3): listing 17 at
-// vRelPos + surfOffset with the resolved normal, and the volume domains
-// moved there (world space camera-relative, as the prologue's).
+// The re-prologue on the virtual surface (section 3): surfPos = vRelPos +
+// surfOffset, listing 17 there with the resolved normal, and the volume
+// domains and position-projected layers (decal) moved there (world space
+// camera-relative, as the prologue's).
 std::string reprologue(const GlslLayerContext& c) {
     const std::string in = c.indent + "    ";
     std::string o = "{\n";
+    o += in + "surfPos = vRelPos + surfOffset;\n";
     o += in + "vec3 dPdxV;\n" + in + "vec3 dPdyV;\n";
-    o += in + "sgScreenDerivOfPos(dPdxV, dPdyV, vRelPos + surfOffset, nrm, " +
-         "sgScreenMatrixMat4(" + c.unpack(c.layer().kind->records[1]) +
-         "), gl_FragCoord.x, gl_FragCoord.y);\n";
+    o += in + "sgScreenDerivOfPos(dPdxV, dPdyV, surfPos, nrm, " + "sgScreenMatrixMat4(" +
+         c.unpack(c.layer().kind->records[1]) + "), gl_FragCoord.x, gl_FragCoord.y);\n";
     o += in + "frame = sgReprologue(frame, nrm, dPdxV, dPdyV);\n";
     if (c.plan.usesWorldVolume) {
-        o += in + "volWorld = sgVolumeSpace(frame, vRelPos + surfOffset, mat3(1.0), mat3(1.0));\n";
+        o += in + "volWorld = sgVolumeSpace(frame, surfPos, mat3(1.0), mat3(1.0));\n";
     }
     if (c.plan.usesObjectVolume) {
         o += in + "volObject = sgVolumeSpace(frame, vObjPos + uModelInv3 * surfOffset, uModel3, "
@@ -172,13 +173,12 @@ std::string reprologue(const GlslLayerContext& c) {
 void reprologueCpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3 nrm) {
     const glm::vec4* r = c.rec();
     glm::mat4 m = G::sgScreenMatrixMat4(G::sgUnpackScreenMatrix(r[1], r[2], r[3], r[4]));
+    s.surfPos = c.in.relPos + s.surfOffset;
     glm::vec3 dPdxV, dPdyV;
-    G::sgScreenDerivOfPos(dPdxV, dPdyV, c.in.relPos + s.surfOffset, nrm, m, c.in.fragCoord.x,
-                          c.in.fragCoord.y);
+    G::sgScreenDerivOfPos(dPdxV, dPdyV, s.surfPos, nrm, m, c.in.fragCoord.x, c.in.fragCoord.y);
     s.frame = G::sgReprologue(s.frame, nrm, dPdxV, dPdyV);
     if (c.plan.usesWorldVolume) {
-        s.volWorld =
-            G::sgVolumeSpace(s.frame, c.in.relPos + s.surfOffset, glm::mat3(1.0f), glm::mat3(1.0f));
+        s.volWorld = G::sgVolumeSpace(s.frame, s.surfPos, glm::mat3(1.0f), glm::mat3(1.0f));
     }
     if (c.plan.usesObjectVolume) {
         s.volObject = G::sgVolumeSpace(s.frame, c.in.objPos + c.u.modelInv3 * s.surfOffset,
