@@ -166,8 +166,7 @@ OutFormat outFormat(const Options& o, const nm::MapFormat& in) {
     f.type =
         o.bits.empty() ? nm::defaultSampleType(o.output, needFloat) : nm::parseSampleType(o.bits);
     const bool isFloat = f.type == nm::SampleType::Half || f.type == nm::SampleType::Float;
-    std::string ext = fs::path(o.output).extension().string();
-    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const std::string ext = lowerExtension(o.output);
     if (needFloat && (!isFloat || ext == ".png" || ext == ".tga")) {
         throw io::InputError(
             o.output, "encoding",
@@ -427,8 +426,7 @@ void runMips(const Options& o, Reporter& r) {
     if (int(o.lean) + int(o.toksvig) + int(o.naive) != 1) {
         throw CliError("normalmap mips: give exactly one of --lean, --toksvig, --naive");
     }
-    std::string ext = fs::path(o.output).extension().string();
-    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    const std::string ext = lowerExtension(o.output);
     if (ext != ".exr") {
         throw CliError("normalmap mips: -o " + o.output +
                        ": a MIP chain is written as OpenEXR (.exr), one part per level");

@@ -37,12 +37,6 @@ using namespace sg::render;
 
 namespace {
 
-std::string lowerExt(const fs::path& p) {
-    std::string e = p.extension().string();
-    for (auto& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
-
 // What `render`, `shader` and `view` take: a scene, or a model in any mesh
 // format the loaders read (sg::mesh::kMeshFormats).
 const std::string kSceneOrModel =
@@ -50,7 +44,7 @@ const std::string kSceneOrModel =
 
 Scene sceneFromArg(const std::string& arg) {
     if (arg.empty()) return defaultScene();
-    std::string ext = lowerExt(arg);
+    std::string ext = lowerExtension(arg);
     if (ext == ".json") return loadScene(arg);
     if (sg::mesh::isMeshFormat(arg)) return sceneForModel(arg);
     throw CliError(arg + ": expected " + kSceneOrModel);
@@ -203,7 +197,7 @@ void runRender(const RenderOpts& ro) {
         fs::create_directories("out");
         out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro.aov) + ".png");
     }
-    std::string outExt = lowerExt(out);
+    std::string outExt = lowerExtension(out);
     if (outExt != ".png" && outExt != ".exr") {
         throw CliError(out.string() + ": unsupported image format \"" + outExt +
                        "\" (expected .png or .exr)");

@@ -646,13 +646,16 @@ TEST(Cli, ReferencedFileErrorsNameTheSceneField) {
                 "scene.json: materials[0].layers[0].map: none.png: does not exist");
 }
 
+// The shell command running `surfgrad args` on a virtual X server.
+std::string underXvfb(const std::string& args) {
+    return "xvfb-run -a -s '-screen 0 1280x1024x24' " +
+           sg::test::shellQuote(sg::test::surfgradBinary()) + " " + args;
+}
+
 TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
     fs::path dir = scratch("viewer");
-    const CmdResult r =
-        sg::test::runCommand("xvfb-run -a -s '-screen 0 1280x1024x24' " +
-                                 sg::test::shellQuote(sg::test::surfgradBinary()) +
-                                 " view --frames 3 --size 400x300 --screenshot shot.png",
-                             {.cwd = dir});
+    const CmdResult r = sg::test::runCommand(
+        underXvfb("view --frames 3 --size 400x300 --screenshot shot.png"), {.cwd = dir});
     ASSERT_EQ(r.exitCode, 0) << r.output();
     Image shot = readImage(dir / "shot.png");
     EXPECT_EQ(shot.width, 400);
@@ -666,11 +669,8 @@ TEST(Viewer, OpensUnderXvfbAndScreenshotsTheWindow) {
 // a window close (which never comes under Xvfb) into exit status 124.
 TEST(Viewer, ScreenshotWithoutFramesQuitsAfterTheFirstCompleteFrame) {
     fs::path dir = scratch("viewer_once");
-    const CmdResult r =
-        sg::test::runCommand("timeout 120 xvfb-run -a -s '-screen 0 1280x1024x24' " +
-                                 sg::test::shellQuote(sg::test::surfgradBinary()) +
-                                 " view --size 400x300 --screenshot shot.png",
-                             {.cwd = dir});
+    const CmdResult r = sg::test::runCommand(
+        "timeout 120 " + underXvfb("view --size 400x300 --screenshot shot.png"), {.cwd = dir});
     ASSERT_EQ(r.exitCode, 0) << r.output();
     Image shot = readImage(dir / "shot.png");
     EXPECT_EQ(shot.width, 400);
@@ -709,9 +709,7 @@ double differingFraction(const Image& a, const Image& b, int x0, int x1, int lev
 // panel's region (the right viewerPanelWidth(400) = 200 px) differs.
 TEST(Viewer, CleanScreenshotHasNoPanel) {
     fs::path dir = scratch("viewer_clean");
-    const std::string view = "xvfb-run -a -s '-screen 0 1280x1024x24' " +
-                             sg::test::shellQuote(sg::test::surfgradBinary()) +
-                             " view --frames 3 --size 400x300 --screenshot ";
+    const std::string view = underXvfb("view --frames 3 --size 400x300 --screenshot ");
     CmdResult clean = sg::test::runCommand(view + "clean.png --no-ui", {.cwd = dir});
     ASSERT_EQ(clean.exitCode, 0) << clean.output();
     CmdResult ui = sg::test::runCommand(view + "ui.png", {.cwd = dir});
