@@ -24,7 +24,6 @@
 // never over an input; errors print `surfgrad: error: file: element: reason`
 // and exit 1.
 #include <CLI/CLI.hpp>
-#include <tbb/global_control.h>
 
 #include <unistd.h>
 
@@ -507,10 +506,7 @@ void run(Options o) {
     if ((o.encoding == "object" || o.to == "object") && (o.op != "convert" || o.mesh.empty())) {
         throw CliError("normalmap " + o.op + ": object-space maps need `convert --mesh M`");
     }
-    std::optional<tbb::global_control> threads;
-    if (o.threads > 0) {
-        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(o.threads));
-    }
+    const auto threadLimit = limitThreads(o.threads);
     Reporter r;
     r.what = o.op;
     r.on = o.progress || ::isatty(2);
@@ -557,8 +553,7 @@ void addCommon(CLI::App* c, Options& o, bool readsMap) {
     c->add_option("--range", o.range, "Slope at full scale of integer derivative maps (default 8)");
     c->add_flag("--wrap", o.wrap, "The image tiles (periodic differences, sampling, integration)");
     c->add_flag("--naive", o.naive, "The plain image operation instead (for comparison)");
-    c->add_option("--threads", o.threads, "Worker threads, 1 to 1024 (default: all cores)")
-        ->check(CLI::Range(1, 1024));
+    addThreadsOption(c, o.threads);
     c->add_flag("--progress", o.progress, "Report progress on stderr (default: when a terminal)");
 }
 

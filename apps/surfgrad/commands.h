@@ -11,10 +11,13 @@
 #include <cctype>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <tbb/global_control.h>
 
 #include "surfgrad/mesh_io.h"
 
@@ -67,6 +70,13 @@ void addMeshTangentsCommand(CLI::App& mesh, int& status);
 // 0: the default budget). kMaxMemoryHint: how refusals name the option.
 inline constexpr const char* kMaxMemoryHint = "--max-memory SIZE";
 void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes);
+// `--threads N` (1..1024; default: all cores) into `threads` (0 when not
+// given), for every command whose work runs on several cores
+// (surfgrad/threads.h).
+void addThreadsOption(CLI::App* cmd, int& threads);
+// Caps every TBB loop of the command at `threads` for as long as the
+// returned object lives; 0: no cap (a null pointer).
+std::unique_ptr<tbb::global_control> limitThreads(int threads);
 // The glTF material of a mesh command's input, for its glTF output
 // (WriteOptions::material; texture paths are rewritten relative to the
 // output): the material of the file's first primitive that has one, with a
