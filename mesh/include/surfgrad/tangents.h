@@ -31,6 +31,7 @@
 // mikktspaceInputProblem() and raise sg::io::InputError with the reason.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -112,10 +113,23 @@ inline constexpr MikkTSpaceFrame kMikkTSpaceDefaultFrame{};
 // sentence naming the vertex or corner; empty when it satisfies them all.
 std::string mikktspaceInputProblem(const MikkTSpaceInput& input);
 
+// Wall time of one step of the last MikkTSpaceGenerator::generate() call
+// (the steps of docs/tangents.md), for the benchmark.
+struct MikkTSpaceStepTime {
+    const char* step; // static string
+    double ms;
+};
+
+// Inputs with fewer triangles than this run on the calling thread whatever
+// the thread count: below it the parallel steps cost more than they save
+// (measured with tangents_bench --cutover).
+inline constexpr size_t kMikkTSpaceParallelCutover = 20000;
+
 // The fast implementation: output identical (bit for bit) to
-// mikktspaceReferenceFrames(). Keeps its scratch buffers between calls, so
-// reuse one generator for many meshes or frames. Not thread-safe (one
-// generator per thread).
+// mikktspaceReferenceFrames(), for every thread count. Keeps its scratch
+// buffers between calls, so reuse one generator for many meshes or frames.
+// Not thread-safe (one generator per calling thread); generate() itself
+// runs its long steps on several cores (setThreads).
 class MikkTSpaceGenerator {
 public:
     MikkTSpaceGenerator();
@@ -135,10 +149,27 @@ public:
     // check exactly that and for benchmarks.
     void setWideSimd(bool enabled);
 
+    // How many threads generate() may use: 0 (the default) = TBB's default
+    // concurrency (all cores, still capped by any tbb::global_control the
+    // caller holds), otherwise 1..1024 (1: the calling thread only). The
+    // work runs in a tbb::task_arena of that size created by each call. The
+    // output is the same bits for every value. Precondition (contract):
+    // 0 <= threads <= 1024.
+    void setThreads(int threads);
+    // Inputs with fewer triangles than `triangles` run on the calling
+    // thread (default kMikkTSpaceParallelCutover); 0 sends every input
+    // through the parallel steps (the tests use it on small meshes).
+    void setParallelCutover(size_t triangles);
+
+    // The steps of the last generate() call and their wall times, in order.
+    std::span<const MikkTSpaceStepTime> lastStepTimes() const;
+
 private:
     struct Scratch;
     Scratch* scratch_;
     bool wideSimd_ = true;
+    int threads_ = 0;
+    size_t parallelCutover_ = kMikkTSpaceParallelCutover;
 };
 
 // The oracle: a plain, step-by-step implementation of the published
