@@ -221,7 +221,7 @@ int cutover(const sg::mesh::MikkTSpaceInput& full, int threads, int runs) {
 int main(int argc, char** argv) {
     std::string obj = std::string(SURFGRAD_DATA_DIR) + "/meshes/blub/blub_triangulated.obj";
     int runs = 9, oracleRuns = 3, splits = 3, profileRuns = 0, threads = 0;
-    bool cutoverOnly = false;
+    bool cutoverOnly = false, firstCallProfile = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string {
@@ -242,6 +242,8 @@ int main(int argc, char** argv) {
             profileRuns = std::max(1, std::stoi(next()));
         else if (a == "--threads")
             threads = std::clamp(std::stoi(next()), 0, 1024);
+        else if (a == "--first-call")
+            firstCallProfile = true;
         else if (a == "--cutover")
             cutoverOnly = true;
         else {
@@ -266,6 +268,17 @@ int main(int argc, char** argv) {
 
     if (cutoverOnly) return cutover(in, threads, runs);
 
+    if (profileRuns > 0 && firstCallProfile) {
+        const Timings t = timeRuns(profileRuns, [&] {
+            sg::mesh::MikkTSpaceGenerator fresh;
+            fresh.setThreads(1);
+            std::vector<glm::vec4> out;
+            fresh.generate(in, out);
+        });
+        std::printf("fast, first call: median %.1f ms cpu, %.1f ms wall (%d runs)\n",
+                    median(t.cpuMs), median(t.wallMs), profileRuns);
+        return 0;
+    }
     if (profileRuns > 0) {
         sg::mesh::MikkTSpaceGenerator generator;
         generator.setThreads(1);
@@ -289,7 +302,7 @@ int main(int argc, char** argv) {
     sg::mesh::MikkTSpaceGenerator generator;
     generator.setThreads(1);
     std::vector<glm::vec4> warm;
-    StepMedians steps1, stepsN;
+    StepMedians steps1, stepsN, stepsCold;
     const Timings warmT = timeThreads(generator, in, warm, runs, &steps1);
     sg::mesh::MikkTSpaceGenerator narrowGen;
     narrowGen.setThreads(1);
@@ -303,6 +316,7 @@ int main(int argc, char** argv) {
         fresh.setThreads(1);
         std::vector<glm::vec4> out;
         fresh.generate(in, out);
+        stepsCold.add(fresh.lastStepTimes());
         cold.swap(out);
     });
     sg::mesh::MikkTSpaceGenerator threaded;
@@ -347,7 +361,8 @@ int main(int argc, char** argv) {
     std::printf("\nPer step, median wall ms (1 thread | %d threads | ratio)\n", cores);
     for (size_t i = 0; i < steps1.names.size() && i < stepsN.names.size(); ++i) {
         const double a = median(steps1.ms[i]), b = median(stepsN.ms[i]);
-        std::printf("  %-28s %9.2f %9.2f %7.2fx\n", steps1.names[i], a, b, b > 0 ? a / b : 0.0);
+        std::printf("  %-28s %9.2f %9.2f %7.2fx  cold %9.2f\n", steps1.names[i], a, b,
+                    b > 0 ? a / b : 0.0, median(stepsCold.ms[i]));
     }
     return identical(warm) && identical(narrow) && identical(cold) && identical(many) ? 0 : 1;
 }

@@ -52,6 +52,8 @@
 #endif
 
 #include "mikktspace_common.h"
+#include "scratch_buffer.h"
+#include "surfgrad/threads.h"
 
 namespace sg::mesh {
 
@@ -605,6 +607,8 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
 
 namespace {
 
+using detail::ScratchVector;
+
 // Steps 7-8 scratch, one per thread.
 struct FrameScratch {
     // Terms of a chunk of vertices' entries (Terms layout).
@@ -619,41 +623,41 @@ struct FrameScratch {
 // The generator's buffers, reused between calls.
 struct Buffers {
     // Triangulation (only filled when faceSizes is given).
-    std::vector<uint32_t> triVertex; // input vertex per triangle corner
-    std::vector<uint32_t> triCorner; // output corner per triangle corner
-    std::vector<uint32_t> triFace;   // original face per triangle
-    std::vector<uint8_t> triVertInFace;
+    ScratchVector<uint32_t> triVertex; // input vertex per triangle corner
+    ScratchVector<uint32_t> triCorner; // output corner per triangle corner
+    ScratchVector<uint32_t> triFace;   // original face per triangle
+    ScratchVector<uint8_t> triVertInFace;
     // Welding.
-    std::vector<uint32_t> vertexClass; // input vertex -> welded id
-    std::vector<uint32_t> firstUse;    // input vertices in order of first use
-    std::vector<uint64_t> hashes;      // of firstUse's values
-    std::vector<WeldedVertex> staged;  // firstUse's values (becomes `welded` without duplicates)
-    std::vector<uint32_t> stagedId;    // firstUse index -> welded id
-    std::vector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
-    std::vector<WeldedVertex> welded;
-    std::vector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
+    ScratchVector<uint32_t> vertexClass; // input vertex -> welded id
+    ScratchVector<uint32_t> firstUse;    // input vertices in order of first use
+    ScratchVector<uint64_t> hashes;      // of firstUse's values
+    ScratchVector<WeldedVertex> staged;  // firstUse's values (becomes `welded` without duplicates)
+    ScratchVector<uint32_t> stagedId;    // firstUse index -> welded id
+    ScratchVector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
+    ScratchVector<WeldedVertex> welded;
+    ScratchVector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
     // Degenerate handling and the good-first order.
-    std::vector<uint8_t> quadOneDegen; // only with quads and degenerates
-    std::vector<uint32_t> order; // good triangles then degenerate ones (only if any degenerate)
-    std::vector<uint32_t> goodWelded, goodCorner, goodFace;
-    std::vector<uint8_t> goodVertInFace;
+    ScratchVector<uint8_t> quadOneDegen; // only with quads and degenerates
+    ScratchVector<uint32_t> order; // good triangles then degenerate ones (only if any degenerate)
+    ScratchVector<uint32_t> goodWelded, goodCorner, goodFace;
+    ScratchVector<uint8_t> goodVertInFace;
     // Per good triangle.
-    std::vector<TriDerivatives> deriv;
-    std::vector<uint8_t> flags;
+    ScratchVector<TriDerivatives> deriv;
+    ScratchVector<uint8_t> flags;
     // Vertex -> incident corners.
-    std::vector<uint32_t> incidenceStart;
-    std::vector<Incidence> incidence;
-    std::vector<glm::vec4> vertexOut; // one frame per welded vertex, or w = 0: see entryOut
-    std::vector<glm::vec4> entryOut;  // results in incidence order (vertices with w = 0)
+    ScratchVector<uint32_t> incidenceStart;
+    ScratchVector<Incidence> incidence;
+    ScratchVector<glm::vec4> vertexOut; // one frame per welded vertex, or w = 0: see entryOut
+    ScratchVector<glm::vec4> entryOut;  // results in incidence order (vertices with w = 0)
     // Vertices touching group-with-any triangles (1 per welded vertex).
-    std::vector<uint8_t> isDeferred;
+    ScratchVector<uint8_t> isDeferred;
     // Output stage.
-    std::vector<mikk::CornerSpace> spaces; // quads or full frames requested
-    std::vector<uint32_t> firstGoodCorner;
+    ScratchVector<mikk::CornerSpace> spaces; // quads or full frames requested
+    ScratchVector<uint32_t> firstGoodCorner;
     // Parallel steps only: per-block counts, the incidence fill cursors,
     // the weld's table slot then class representative per staged vertex.
-    std::vector<size_t> blockCounts;
-    std::vector<uint32_t> cursor, repOf;
+    ScratchVector<size_t> blockCounts;
+    ScratchVector<uint32_t> cursor, repOf;
     std::vector<MikkTSpaceStepTime> stepTimes;
     // Steps 7-8 scratch: the calling thread's, and each worker's.
     FrameScratch frameScratch;
@@ -1960,7 +1964,8 @@ void MikkTSpaceGenerator::setWideSimd(bool enabled) {
     wideSimd_ = enabled;
 }
 void MikkTSpaceGenerator::setThreads(int threads) {
-    SG_EXPECTS(threads >= 0 && threads <= 1024, "0 (all cores) or 1..1024 threads");
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     threads_ = threads;
 }
 void MikkTSpaceGenerator::setParallelCutover(size_t triangles) {
@@ -1996,6 +2001,10 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
     // triangles only every corner is written below (a good corner by its
     // group or the default frame, a degenerate one by step 9), so the
     // buffer needs no clearing.
+    // Fresh output storage gets huge pages before the fill touches it
+    // (scratch_buffer.h: the first call's page faults).
+    detail::reserveWithHugePages(cornerTangents, p.cornerCount);
+    if (frames) detail::reserveWithHugePages(*frames, p.cornerCount);
     if (p.trianglesOnly && !frames)
         cornerTangents.resize(p.cornerCount);
     else
@@ -2039,8 +2048,7 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
         steps();
         return;
     }
-    tbb::task_arena arena(threads_ == 0 ? tbb::task_arena::automatic : threads_);
-    arena.execute(steps);
+    runWithThreads(threads_, steps);
 }
 
 } // namespace sg::mesh

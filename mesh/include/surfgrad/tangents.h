@@ -149,12 +149,13 @@ public:
     // check exactly that and for benchmarks.
     void setWideSimd(bool enabled);
 
-    // How many threads generate() may use: 0 (the default) = TBB's default
-    // concurrency (all cores, still capped by any tbb::global_control the
-    // caller holds), otherwise 1..1024 (1: the calling thread only). The
-    // work runs in a tbb::task_arena of that size created by each call. The
-    // output is the same bits for every value. Precondition (contract):
-    // 0 <= threads <= 1024.
+    // How many threads generate() may use, by the convention of
+    // surfgrad/threads.h: 0 (the default) = all cores (still capped by any
+    // tbb::global_control the caller holds), 1 = the calling thread only,
+    // 2..kMaxThreads (1024) a task arena of that size (sg::runWithThreads,
+    // created by each call at or above the cut-over). The output is the
+    // same bits for every value. Precondition (contract):
+    // 0 <= threads <= kMaxThreads.
     void setThreads(int threads);
     // Inputs with fewer triangles than `triangles` run on the calling
     // thread (default kMikkTSpaceParallelCutover); 0 sends every input
