@@ -96,6 +96,13 @@ TEST_F(ContractDeath, MikkTSpaceThreadCountInRange) {
     generator.setThreads(1024);
     SG_EXPECT_CONTRACT_DEATH(generator.setThreads(-1), "threads");
     SG_EXPECT_CONTRACT_DEATH(generator.setThreads(1025), "threads");
+    RenderMesh m = triangle();
+    SG_EXPECT_CONTRACT_DEATH(
+        sg::mesh::generateTangents(m, sg::mesh::TangentMethod::MikkTSpace, 0, nullptr, -1),
+        "threads");
+    SG_EXPECT_CONTRACT_DEATH(
+        sg::mesh::generateTangents(m, sg::mesh::TangentMethod::MikkTSpace, 0, nullptr, 1025),
+        "threads");
 }
 
 TEST_F(ContractDeath, MikkTSpaceInputPreconditions) {

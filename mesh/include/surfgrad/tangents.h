@@ -199,7 +199,11 @@ void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles, bool allowWideSim
 // default frame. Preconditions: the mesh has normals, uvSet indexes
 // mesh.uvSets, and MikkTSpaceInput's hold for that set
 // (tangentInputProblem(mesh, TangentMethod::MikkTSpace, uvSet) is empty).
-void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet);
+// `threads`: MikkTSpaceGenerator::setThreads (0 = all cores, 1 = this
+// thread, up to kMaxThreads; meshes below kMikkTSpaceParallelCutover
+// triangles stay on this thread); the result is the same bits for every
+// count.
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet, int threads = 0);
 
 // Triangles of UV set `uvSet` whose UV area is within the rounding of their
 // coordinates: |(t1 - t0) x (t2 - t0)| <= 16 * 2^-23 * M * L, M the largest
@@ -291,10 +295,11 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
 // be the subdivider's limit frame), Pixel (tangents cleared,
 // tangentUvSet = -1: the shader builds the frame). Returns the number of
 // vertices added (MikkTSpace) or irregular (Limit); 0 for Pixel.
-// Preconditions: those of the method's function (tangentInputProblem() is
-// empty).
+// `threads` goes to generateMikkTSpaceTangents (the other methods run on
+// this thread). Preconditions: those of the method's function
+// (tangentInputProblem() is empty), 0 <= threads <= kMaxThreads.
 size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
-                        const LimitFrame* frame = nullptr);
+                        const LimitFrame* frame = nullptr, int threads = 0);
 
 // Why generateTangents(mesh, method, uvSet, frame) would violate its
 // preconditions, as a sentence (MikkTSpace: no vertex normals, no UV set
