@@ -26,6 +26,15 @@
 // --profile-runs N runs only the reused fast generator N times and prints
 // the median and minimum CPU time (no oracle, no comparison), for
 // `perf record`.
+//
+// Threads: the rows above run on one thread (setThreads(1)); then the same
+// reused generator on --threads N threads (default 0: all cores), same
+// run, with the wall-time ratio and the median wall time of each step at
+// both thread counts. On a shared machine only ratios within one run mean
+// anything.
+//
+// --cutover times prefixes of the input (1k to 200k triangles) at one
+// thread and at --threads, for choosing kMikkTSpaceParallelCutover.
 #include <algorithm>
 #include <chrono>
 #include <ctime>
@@ -33,11 +42,14 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/geometric.hpp>
+
+#include <tbb/info.h>
 
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/tangents.h"
@@ -156,9 +168,60 @@ int checkAcos() {
     return mismatches == 0 ? 0 : 1;
 }
 
+// Median wall time per step (MikkTSpaceGenerator::lastStepTimes) over runs.
+struct StepMedians {
+    std::vector<const char*> names;
+    std::vector<std::vector<double>> ms;
+    void add(std::span<const sg::mesh::MikkTSpaceStepTime> steps) {
+        if (names.empty())
+            for (const auto& st : steps) names.push_back(st.step), ms.emplace_back();
+        for (size_t i = 0; i < steps.size() && i < ms.size(); ++i) ms[i].push_back(steps[i].ms);
+    }
+};
+
+// Wall time of `runs` calls of a reused generator, per-step times recorded.
+Timings timeThreads(sg::mesh::MikkTSpaceGenerator& g, const sg::mesh::MikkTSpaceInput& in,
+                    std::vector<glm::vec4>& out, int runs, StepMedians* steps) {
+    g.generate(in, out); // sizes the buffers
+    Timings t;
+    for (int i = 0; i < runs; ++i) {
+        const Timings one = timeRuns(1, [&] { g.generate(in, out); });
+        t.wallMs.push_back(one.wallMs[0]);
+        t.cpuMs.push_back(one.cpuMs[0]);
+        if (steps) steps->add(g.lastStepTimes());
+    }
+    return t;
+}
+
+int cutover(const sg::mesh::MikkTSpaceInput& full, int threads, int runs) {
+    std::printf("cut-over: prefixes of the input, median wall ms of %d runs, 1 thread vs %d "
+                "(0 = all cores: %d)\n",
+                runs, threads, tbb::info::default_concurrency());
+    std::printf("%10s %12s %12s %8s\n", "triangles", "1 thread", "threads", "ratio");
+    for (size_t tris : {1000, 2000, 5000, 10000, 20000, 50000, 100000, 200000}) {
+        if (tris * 3 > full.cornerVertices.size()) break;
+        sg::mesh::MikkTSpaceInput in = full;
+        in.cornerVertices = full.cornerVertices.subspan(0, tris * 3);
+        sg::mesh::MikkTSpaceGenerator one, many;
+        one.setThreads(1);
+        many.setThreads(threads);
+        many.setParallelCutover(0);
+        std::vector<glm::vec4> a, b;
+        const double t1 = median(timeThreads(one, in, a, runs, nullptr).wallMs);
+        const double tn = median(timeThreads(many, in, b, runs, nullptr).wallMs);
+        const bool same = a.size() == b.size() &&
+                          std::memcmp(a.data(), b.data(), a.size() * sizeof(glm::vec4)) == 0;
+        std::printf("%10zu %12.3f %12.3f %7.2fx %s\n", tris, t1, tn, t1 / tn,
+                    same ? "" : "OUTPUT DIFFERS");
+        if (!same) return 1;
+    }
+    return 0;
+}
+
 int main(int argc, char** argv) {
     std::string obj = std::string(SURFGRAD_DATA_DIR) + "/meshes/blub/blub_triangulated.obj";
-    int runs = 9, oracleRuns = 3, splits = 3, profileRuns = 0;
+    int runs = 9, oracleRuns = 3, splits = 3, profileRuns = 0, threads = 0;
+    bool cutoverOnly = false, firstCallProfile = false;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto next = [&]() -> std::string {
@@ -177,10 +240,16 @@ int main(int argc, char** argv) {
             return checkAcos();
         else if (a == "--profile-runs")
             profileRuns = std::max(1, std::stoi(next()));
+        else if (a == "--threads")
+            threads = std::clamp(std::stoi(next()), 0, 1024);
+        else if (a == "--first-call")
+            firstCallProfile = true;
+        else if (a == "--cutover")
+            cutoverOnly = true;
         else {
             std::fprintf(stderr,
                          "usage: %s [--runs N] [--oracle-runs N] [--splits N] [--obj FILE] "
-                         "[--profile-runs N] | --check-acos\n",
+                         "[--threads N] [--profile-runs N] [--cutover] | --check-acos\n",
                          argv[0]);
             return 2;
         }
@@ -197,8 +266,22 @@ int main(int argc, char** argv) {
     in.uvs = m.uvs;
     in.cornerVertices = m.indices;
 
+    if (cutoverOnly) return cutover(in, threads, runs);
+
+    if (profileRuns > 0 && firstCallProfile) {
+        const Timings t = timeRuns(profileRuns, [&] {
+            sg::mesh::MikkTSpaceGenerator fresh;
+            fresh.setThreads(1);
+            std::vector<glm::vec4> out;
+            fresh.generate(in, out);
+        });
+        std::printf("fast, first call: median %.1f ms cpu, %.1f ms wall (%d runs)\n",
+                    median(t.cpuMs), median(t.wallMs), profileRuns);
+        return 0;
+    }
     if (profileRuns > 0) {
         sg::mesh::MikkTSpaceGenerator generator;
+        generator.setThreads(1);
         std::vector<glm::vec4> out;
         generator.generate(in, out);
         const Timings t = timeRuns(profileRuns, [&] { generator.generate(in, out); });
@@ -217,10 +300,12 @@ int main(int argc, char** argv) {
         expected[c] = glm::vec4(oracle[c].tangent, oracle[c].sign);
 
     sg::mesh::MikkTSpaceGenerator generator;
+    generator.setThreads(1);
     std::vector<glm::vec4> warm;
-    generator.generate(in, warm); // first call sizes the buffers
-    const Timings warmT = timeRuns(runs, [&] { generator.generate(in, warm); });
+    StepMedians steps1, stepsN, stepsCold;
+    const Timings warmT = timeThreads(generator, in, warm, runs, &steps1);
     sg::mesh::MikkTSpaceGenerator narrowGen;
+    narrowGen.setThreads(1);
     narrowGen.setWideSimd(false);
     std::vector<glm::vec4> narrow;
     narrowGen.generate(in, narrow);
@@ -228,10 +313,16 @@ int main(int argc, char** argv) {
     std::vector<glm::vec4> cold;
     const Timings coldT = timeRuns(runs, [&] {
         sg::mesh::MikkTSpaceGenerator fresh;
+        fresh.setThreads(1);
         std::vector<glm::vec4> out;
         fresh.generate(in, out);
+        stepsCold.add(fresh.lastStepTimes());
         cold.swap(out);
     });
+    sg::mesh::MikkTSpaceGenerator threaded;
+    threaded.setThreads(threads);
+    std::vector<glm::vec4> many;
+    const Timings manyT = timeThreads(threaded, in, many, runs, &stepsN);
     auto identical = [&](const std::vector<glm::vec4>& t) {
         return t.size() == expected.size() &&
                std::memcmp(t.data(), expected.data(), t.size() * sizeof(glm::vec4)) == 0;
@@ -254,5 +345,24 @@ int main(int argc, char** argv) {
     row("fast, new generator per call (cold buffers)", coldT, identical(cold) ? "yes" : "NO");
     std::printf("%-44s %3s %9s %9s %8.2f %15s %9s\n", "anchor: C reference mmikk/MikkTSpace", "-",
                 "-", "-", 0.5, "-", "(docs/tangents.md)");
-    return identical(warm) && identical(narrow) && identical(cold) ? 0 : 1;
+
+    const int cores = threads == 0 ? tbb::info::default_concurrency() : threads;
+    const double wall1 = median(warmT.wallMs), wallN = median(manyT.wallMs);
+    std::printf("\nThreads, same run, median wall ms of %d runs (a shared machine: compare the "
+                "ratio only)\n",
+                runs);
+    std::printf("%-44s %9s %8s %9s %9s\n", "what", "wall ms", "Mtri/s", "ratio", "identical");
+    std::printf("%-44s %9.1f %8.2f %8.2fx %9s\n", "fast, 1 thread", wall1,
+                triangles / (wall1 * 1e3), 1.0, identical(warm) ? "yes" : "NO");
+    char label[64];
+    std::snprintf(label, sizeof label, "fast, %d threads (--threads %d)", cores, threads);
+    std::printf("%-44s %9.1f %8.2f %8.2fx %9s\n", label, wallN, triangles / (wallN * 1e3),
+                wall1 / wallN, identical(many) ? "yes" : "NO");
+    std::printf("\nPer step, median wall ms (1 thread | %d threads | ratio)\n", cores);
+    for (size_t i = 0; i < steps1.names.size() && i < stepsN.names.size(); ++i) {
+        const double a = median(steps1.ms[i]), b = median(stepsN.ms[i]);
+        std::printf("  %-28s %9.2f %9.2f %7.2fx  cold %9.2f\n", steps1.names[i], a, b,
+                    b > 0 ? a / b : 0.0, median(stepsCold.ms[i]));
+    }
+    return identical(warm) && identical(narrow) && identical(cold) && identical(many) ? 0 : 1;
 }

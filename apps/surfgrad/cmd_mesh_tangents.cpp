@@ -1,5 +1,6 @@
 // `surfgrad mesh tangents FILE [--method mikktspace|limit] [--uv-set K]
-//  [--level N] [--scheme catmark|loop|bilinear] -o OUT.gltf|.glb [--json]`:
+//  [--level N] [--scheme catmark|loop|bilinear] [--threads N]
+//  -o OUT.gltf|.glb [--json]`:
 // writes a glTF whose TANGENT (xyz + handedness w) belongs to UV set K
 // (TEXCOORD_K), computed by one of the tangent-frame methods of
 // surfgrad/tangents.h:
@@ -10,8 +11,13 @@
 //    vertices of the level-N refinement (positions, normals and UVs on the
 //    limit surface as well).
 // The third method, pixel, stores nothing (the shader builds the frame),
-// so it has nothing to write here. Errors name the file and reason; the
-// output is written atomically and never over the input.
+// so it has nothing to write here. Without --level the file's vertices are
+// first welded by value (mesh::weldVerticesByValue: a file giving every
+// corner its own v/vt/vn indices writes only its distinct vertices).
+// --threads N caps every parallel step (reading, tangents; the output is
+// the same bytes for every N). Errors name the file and reason; the output
+// is written atomically and never over the input. --json reports the
+// seconds of each phase (read, tangents, write).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
@@ -37,6 +43,7 @@ struct TangentsOptions {
     std::string input, output, method = "mikktspace", scheme;
     int uvSet = 0;
     int level = 0;
+    int threads = 0; // --threads (0: all cores)
     bool json = false;
     uint64_t maxMemory = 0; // SubdivisionSettings::memoryBudget
 };
@@ -49,8 +56,13 @@ void checkTangentInput(const std::string& file, const mesh::RenderMesh& m,
     if (!why.empty()) throw io::InputError(file, "", why);
 }
 
+double secondsSince(std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
 void runTangents(const TangentsOptions& o, int& status) {
     const auto t0 = std::chrono::steady_clock::now();
+    const auto threadLimit = limitThreads(o.threads);
     const std::optional<mesh::TangentMethod> method = mesh::parseTangentMethod(o.method);
     if (!method || *method == mesh::TangentMethod::Pixel)
         throw CliError("--method " + o.method +
@@ -67,6 +79,8 @@ void runTangents(const TangentsOptions& o, int& status) {
 
     mesh::RenderMesh result;
     size_t changed = 0; // vertices split (mikktspace) or irregular (limit)
+    size_t welded = 0;  // vertices removed by the weld by value
+    double readSeconds = 0, tangentSeconds = 0;
     const bool subdivide = *method == mesh::TangentMethod::Limit || o.level > 0;
     if (subdivide) {
         const mesh::PolygonMesh cage = mesh::loadPolygonMesh(o.input);
@@ -80,22 +94,29 @@ void runTangents(const TangentsOptions& o, int& status) {
         settings.limit = *method == mesh::TangentMethod::Limit;
         mesh::Subdivider subdivider(cage, settings, o.input);
         result = subdivider.renderMesh();
+        readSeconds = secondsSince(t0);
+        const auto t1 = std::chrono::steady_clock::now();
         if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
                                  "the mesh has " + std::to_string(result.uvSets.size()) +
                                      " UV set(s)");
         const mesh::LimitFrame* frame = settings.limit ? &subdivider.limitFrame() : nullptr;
         checkTangentInput(o.input, result, *method, o.uvSet, frame);
-        changed = mesh::generateTangents(result, *method, o.uvSet, frame);
+        changed = mesh::generateTangents(result, *method, o.uvSet, frame, o.threads);
+        tangentSeconds = secondsSince(t1);
     } else {
         if (!o.scheme.empty()) throw CliError("--scheme needs --level N > 0 (or --method limit)");
         result = mesh::loadRenderMesh(o.input);
+        welded = mesh::weldVerticesByValue(result);
+        readSeconds = secondsSince(t0);
+        const auto t1 = std::chrono::steady_clock::now();
         if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())
             throw io::InputError(o.input, "--uv-set " + std::to_string(o.uvSet),
                                  "the mesh has " + std::to_string(result.uvSets.size()) +
                                      " UV set(s)");
         checkTangentInput(o.input, result, *method, o.uvSet, nullptr);
-        changed = mesh::generateTangents(result, *method, o.uvSet);
+        changed = mesh::generateTangents(result, *method, o.uvSet, nullptr, o.threads);
+        tangentSeconds = secondsSince(t1);
     }
 
     mesh::WriteOptions write;
@@ -117,12 +138,16 @@ void runTangents(const TangentsOptions& o, int& status) {
                             "limit tangents (docs/tangents.md, \"Charts with no frame\")");
         }
     }
+    if (welded > 0)
+        notes.push_back(std::to_string(welded) +
+                        " vertices welded into equal ones (every attribute bitwise equal)");
+    const auto t2 = std::chrono::steady_clock::now();
     const std::optional<mesh::Material> material = inputMaterial(o.input, true, notes);
     if (material) write.material = &*material;
     const std::vector<std::string> written = mesh::writeRenderMesh(o.output, result, write);
     notes.insert(notes.end(), written.begin(), written.end());
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const double writeSeconds = secondsSince(t2);
+    const double seconds = secondsSince(t0);
 
     const char* changedKey =
         *method == mesh::TangentMethod::Limit ? "irregular_vertices" : "split_vertices";
@@ -134,10 +159,16 @@ void runTangents(const TangentsOptions& o, int& status) {
         j["vertices"] = result.vertexCount();
         j["triangles"] = result.triangleCount();
         j[changedKey] = changed;
+        j["welded_vertices"] = welded;
         if (*method == mesh::TangentMethod::MikkTSpace) j["rounding_area_triangles"] = roundingArea;
         j["output"] = o.output;
         j["notes"] = notes;
         j["seconds"] = seconds;
+        // Where the time went: loading (and refining or welding), the
+        // input check and the tangent method, writing.
+        j["seconds_read"] = readSeconds;
+        j["seconds_tangents"] = tangentSeconds;
+        j["seconds_write"] = writeSeconds;
         std::cout << j.dump() << "\n";
     } else {
         std::printf("%s: %s tangents for TEXCOORD_%d%s: %zu vertices, %zu triangles, %zu %s -> %s "
@@ -176,6 +207,7 @@ void addMeshTangentsCommand(CLI::App& meshGroup, int& status) {
     cmd->add_option("--scheme", opts->scheme,
                     "catmark, loop or bilinear (default: the file's tag)");
     cmd->add_option("-o,--output", opts->output, "Output .gltf or .glb")->required();
+    addThreadsOption(cmd, opts->threads);
     cmd->add_flag("--json", opts->json, "Print a JSON summary");
     cmd->callback([opts, &status] { runTangents(*opts, status); });
 }

@@ -155,6 +155,102 @@ RenderMesh toRenderMesh(const PolygonMesh& mesh) {
     return out;
 }
 
+namespace {
+
+// The attribute arrays of a RenderMesh that have one entry per vertex, as
+// (bytes, stride) pairs: what weldVerticesByValue() compares and compacts.
+struct VertexArrays {
+    std::vector<std::pair<unsigned char*, size_t>> arrays;
+    template <class T>
+    void add(std::vector<T>& v, size_t vertexCount) {
+        if (!v.empty() && v.size() == vertexCount)
+            arrays.emplace_back(reinterpret_cast<unsigned char*>(v.data()), sizeof(T));
+    }
+};
+
+VertexArrays vertexArraysOf(RenderMesh& mesh) {
+    const size_t n = mesh.positions.size();
+    VertexArrays a;
+    a.add(mesh.positions, n);
+    a.add(mesh.normals, n);
+    for (auto& set : mesh.uvSets) a.add(set, n);
+    a.add(mesh.tangents, n);
+    for (MorphTarget& t : mesh.morphTargets) {
+        a.add(t.positionDeltas, n);
+        a.add(t.normalDeltas, n);
+        a.add(t.tangentDeltas, n);
+    }
+    return a;
+}
+
+} // namespace
+
+size_t weldVerticesByValue(RenderMesh& mesh) {
+    const size_t n = mesh.positions.size();
+    if (n < 2) return 0;
+    const VertexArrays va = vertexArraysOf(mesh);
+    auto hashOf = [&](size_t v) {
+        uint64_t h = 0x9E3779B97F4A7C15ull;
+        for (const auto& [bytes, stride] : va.arrays) {
+            const unsigned char* p = bytes + v * stride;
+            for (size_t i = 0; i + 4 <= stride; i += 4) {
+                uint32_t w;
+                std::memcpy(&w, p + i, 4);
+                h = (h ^ w) * 0x100000001B3ull;
+                h ^= h >> 29;
+            }
+        }
+        return h ^ (h >> 32);
+    };
+    auto same = [&](size_t a, size_t b) {
+        for (const auto& [bytes, stride] : va.arrays)
+            if (std::memcmp(bytes + a * stride, bytes + b * stride, stride) != 0) return false;
+        return true;
+    };
+    // Open addressing on vertex indices, in vertex order: a vertex takes
+    // the id of the first equal vertex met, else the next new id.
+    size_t tableSize = 64;
+    while (tableSize < 2 * n) tableSize *= 2;
+    const size_t mask = tableSize - 1;
+    std::vector<uint32_t> table(tableSize, UINT32_MAX);
+    std::vector<uint32_t> newId(n);
+    std::vector<uint32_t> firstOf; // new id -> first old vertex
+    firstOf.reserve(n);
+    for (size_t v = 0; v < n; ++v) {
+        for (size_t slot = size_t(hashOf(v)) & mask;; slot = (slot + 1) & mask) {
+            const uint32_t w = table[slot];
+            if (w == UINT32_MAX) {
+                table[slot] = uint32_t(v);
+                newId[v] = uint32_t(firstOf.size());
+                firstOf.push_back(uint32_t(v));
+                break;
+            }
+            if (same(w, v)) {
+                newId[v] = newId[w];
+                break;
+            }
+        }
+    }
+    const size_t kept = firstOf.size();
+    if (kept == n) return 0;
+    // Compact in place: new id k < old vertex firstOf[k], increasing.
+    for (const auto& [bytes, stride] : va.arrays)
+        for (size_t k = 0; k < kept; ++k)
+            if (firstOf[k] != k)
+                std::memmove(bytes + k * stride, bytes + firstOf[k] * stride, stride);
+    mesh.positions.resize(kept);
+    if (mesh.normals.size() == n) mesh.normals.resize(kept);
+    for (auto& set : mesh.uvSets)
+        if (set.size() == n) set.resize(kept);
+    if (mesh.tangents.size() == n) mesh.tangents.resize(kept);
+    for (MorphTarget& t : mesh.morphTargets) {
+        for (auto* d : {&t.positionDeltas, &t.normalDeltas, &t.tangentDeltas})
+            if (d->size() == n) d->resize(kept);
+    }
+    for (uint32_t& i : mesh.indices) i = newId[i];
+    return n - kept;
+}
+
 std::vector<uint32_t> detail::coincidentVertexGroups(const RenderMesh& mesh) {
     const size_t n = mesh.positions.size();
     auto cmp = [](const glm::vec3& p, const glm::vec3& q) {

@@ -29,8 +29,15 @@
 //    once; corner order is gathered at the end, in triangle order; all
 //    buffers live in the generator and are reused between calls.
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <limits>
 #include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -45,6 +52,8 @@
 #endif
 
 #include "mikktspace_common.h"
+#include "scratch_buffer.h"
+#include "surfgrad/threads.h"
 
 namespace sg::mesh {
 
@@ -598,35 +607,10 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
 
 namespace {
 
-// The generator's buffers, reused between calls.
-struct Buffers {
-    // Triangulation (only filled when faceSizes is given).
-    std::vector<uint32_t> triVertex; // input vertex per triangle corner
-    std::vector<uint32_t> triCorner; // output corner per triangle corner
-    std::vector<uint32_t> triFace;   // original face per triangle
-    std::vector<uint8_t> triVertInFace;
-    // Welding.
-    std::vector<uint32_t> vertexClass; // input vertex -> welded id
-    std::vector<uint32_t> firstUse;    // input vertices in order of first use
-    std::vector<uint64_t> hashes;      // of firstUse's values
-    std::vector<WeldedVertex> staged;  // firstUse's values (becomes `welded` without duplicates)
-    std::vector<uint32_t> stagedId;    // firstUse index -> welded id
-    std::vector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
-    std::vector<WeldedVertex> welded;
-    std::vector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
-    // Degenerate handling and the good-first order.
-    std::vector<uint8_t> quadOneDegen; // only with quads and degenerates
-    std::vector<uint32_t> order; // good triangles then degenerate ones (only if any degenerate)
-    std::vector<uint32_t> goodWelded, goodCorner, goodFace;
-    std::vector<uint8_t> goodVertInFace;
-    // Per good triangle.
-    std::vector<TriDerivatives> deriv;
-    std::vector<uint8_t> flags;
-    // Vertex -> incident corners.
-    std::vector<uint32_t> incidenceStart;
-    std::vector<Incidence> incidence;
-    std::vector<glm::vec4> vertexOut; // one frame per welded vertex, or w = 0: see entryOut
-    std::vector<glm::vec4> entryOut;  // results in incidence order (vertices with w = 0)
+using detail::ScratchVector;
+
+// Steps 7-8 scratch, one per thread.
+struct FrameScratch {
     // Terms of a chunk of vertices' entries (Terms layout).
     std::vector<float> terms;
     std::vector<int32_t> outNbr, inNbr, component;
@@ -634,13 +618,68 @@ struct Buffers {
     std::vector<uint8_t> paired;
     std::vector<uint32_t> members;             // also the flood stack (clean vertices)
     std::vector<uint32_t> stack, groupMembers; // deferred vertices
-    // Vertices touching group-with-any triangles.
-    std::vector<uint32_t> deferred;
-    std::vector<uint8_t> isDeferred;
-    // Output stage.
-    std::vector<mikk::CornerSpace> spaces; // quads or full frames requested
-    std::vector<uint32_t> firstGoodCorner;
 };
+
+// The generator's buffers, reused between calls.
+struct Buffers {
+    // Triangulation (only filled when faceSizes is given).
+    ScratchVector<uint32_t> triVertex; // input vertex per triangle corner
+    ScratchVector<uint32_t> triCorner; // output corner per triangle corner
+    ScratchVector<uint32_t> triFace;   // original face per triangle
+    ScratchVector<uint8_t> triVertInFace;
+    // Welding.
+    ScratchVector<uint32_t> vertexClass; // input vertex -> welded id
+    ScratchVector<uint32_t> firstUse;    // input vertices in order of first use
+    ScratchVector<uint64_t> hashes;      // of firstUse's values
+    ScratchVector<WeldedVertex> staged;  // firstUse's values (becomes `welded` without duplicates)
+    ScratchVector<uint32_t> stagedId;    // firstUse index -> welded id
+    ScratchVector<uint64_t> hashTable;   // hash bits 32..63 | welded id; ~0 = empty
+    ScratchVector<WeldedVertex> welded;
+    ScratchVector<uint32_t> triWelded; // welded id per triangle corner (all triangles)
+    // Degenerate handling and the good-first order.
+    ScratchVector<uint8_t> quadOneDegen; // only with quads and degenerates
+    ScratchVector<uint32_t> order; // good triangles then degenerate ones (only if any degenerate)
+    ScratchVector<uint32_t> goodWelded, goodCorner, goodFace;
+    ScratchVector<uint8_t> goodVertInFace;
+    // Per good triangle.
+    ScratchVector<TriDerivatives> deriv;
+    ScratchVector<uint8_t> flags;
+    // Vertex -> incident corners.
+    ScratchVector<uint32_t> incidenceStart;
+    ScratchVector<Incidence> incidence;
+    ScratchVector<glm::vec4> vertexOut; // one frame per welded vertex, or w = 0: see entryOut
+    ScratchVector<glm::vec4> entryOut;  // results in incidence order (vertices with w = 0)
+    // Vertices touching group-with-any triangles (1 per welded vertex).
+    ScratchVector<uint8_t> isDeferred;
+    // Output stage.
+    ScratchVector<mikk::CornerSpace> spaces; // quads or full frames requested
+    ScratchVector<uint32_t> firstGoodCorner;
+    // Parallel steps only: per-block counts, the incidence fill cursors,
+    // the weld's table slot then class representative per staged vertex.
+    ScratchVector<size_t> blockCounts;
+    ScratchVector<uint32_t> cursor, repOf;
+    std::vector<MikkTSpaceStepTime> stepTimes;
+    // Steps 7-8 scratch: the calling thread's, and each worker's.
+    FrameScratch frameScratch;
+    tbb::enumerable_thread_specific<FrameScratch> threadScratch;
+};
+
+// Parallel loops split [0, n) into fixed blocks: the boundaries depend on n
+// only, never on the thread count or the scheduling, and every step is
+// written so that its result does not depend on them either (per-element
+// work, or per-block counts combined in block order).
+struct Blocks {
+    size_t size = 0, count = 0;
+};
+constexpr size_t kBlocksPerLoop = 256;
+constexpr size_t kMinBlock = 8;
+
+// Blocks of a multiple of `align` elements.
+Blocks blocksOf(size_t n, size_t align) {
+    size_t size = std::max((n + kBlocksPerLoop - 1) / kBlocksPerLoop, kMinBlock);
+    size = (size + align - 1) / align * align;
+    return {size, (n + size - 1) / size};
+}
 
 // One generate() call: its input and buffers, and what each step hands on
 // to the next (the steps are numbered as in docs/tangents.md).
@@ -650,6 +689,38 @@ struct Pass {
 
     const MikkTSpaceInput& in;
     Buffers& s;
+    // Inside a task arena: loops run as parallel blocks; otherwise one block.
+    bool parallel = false;
+
+    Blocks blocks(size_t n, size_t align = 1) const {
+        if (!parallel) return {n, n == 0 ? size_t(0) : size_t(1)};
+        return blocksOf(n, align);
+    }
+    // f(block, begin, end) for every block of b over [0, n).
+    template <typename F>
+    void forBlocks(const Blocks& b, size_t n, F&& f) const {
+        if (b.count == 1) {
+            f(size_t(0), size_t(0), n);
+            return;
+        }
+        tbb::parallel_for(
+            size_t(0), b.count, [&](size_t k) { f(k, k * b.size, std::min(n, (k + 1) * b.size)); },
+            tbb::simple_partitioner());
+    }
+    template <typename F>
+    void forBlocks(size_t n, size_t align, F&& f) const {
+        forBlocks(blocks(n, align), n, f);
+    }
+    // Exclusive prefix sum of s.blockCounts[0..count) in place; returns the total.
+    size_t prefixBlockCounts(size_t count) const {
+        size_t total = 0;
+        for (size_t k = 0; k < count; ++k) {
+            const size_t c = s.blockCounts[k];
+            s.blockCounts[k] = total;
+            total += c;
+        }
+        return total;
+    }
     std::vector<MikkTSpaceFrame>* frames; // complete frames requested, or nullptr
     size_t triCount = 0, cornerCount = 0;
     bool trianglesOnly = true; // no faceSizes, or every face a triangle
@@ -814,10 +885,159 @@ uint32_t classifyStagedVertices(Buffers& s) {
     return classCount;
 }
 
+// Relaxed atomic minimum (the result does not depend on the order of the
+// calls).
+inline void atomicMin(uint32_t& target, uint32_t value) {
+    std::atomic_ref<uint32_t> a(target);
+    uint32_t current = a.load(std::memory_order_relaxed);
+    while (value < current && !a.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
+    }
+}
+inline void atomicMin(uint64_t& target, uint64_t value) {
+    std::atomic_ref<uint64_t> a(target);
+    uint64_t current = a.load(std::memory_order_relaxed);
+    while (value < current && !a.compare_exchange_weak(current, value, std::memory_order_relaxed)) {
+    }
+}
+
+// weld() in parallel, with the same result: the first use of an input
+// vertex is the smallest corner naming it (atomic minimum), firstUse the
+// corners that are their vertex's first use, compacted in corner order; a
+// class's id is the rank of its smallest staged index among those
+// smallest indices (the order the serial loop meets classes in), found
+// through a lock-free table whose slot keeps the smallest staged index of
+// its class (atomic minimum on tag | index: equal tags, so the index
+// decides).
+void weldParallel(Pass& p) {
+    Buffers& s = p.s;
+    const size_t cornerCount = p.triCount * 3;
+    const uint32_t* const tv = p.triVertex;
+    s.vertexClass.resize(p.in.positions.size());
+    p.forBlocks(s.vertexClass.size(), 1, [&](size_t, size_t b, size_t e) {
+        std::fill(s.vertexClass.begin() + ptrdiff_t(b), s.vertexClass.begin() + ptrdiff_t(e),
+                  kNone);
+    });
+    // First corner of each vertex (fewer than 2^30 corners: never kNone).
+    p.forBlocks(cornerCount, 1, [&](size_t, size_t b, size_t e) {
+        for (size_t c = b; c < e; ++c) atomicMin(s.vertexClass[tv[c]], uint32_t(c));
+    });
+    const Blocks cb = p.blocks(cornerCount);
+    s.blockCounts.resize(cb.count);
+    p.forBlocks(cb, cornerCount, [&](size_t k, size_t b, size_t e) {
+        size_t n = 0;
+        for (size_t c = b; c < e; ++c) n += s.vertexClass[tv[c]] == c;
+        s.blockCounts[k] = n;
+    });
+    const size_t used = p.prefixBlockCounts(cb.count);
+    s.firstUse.resize(used);
+    s.hashes.resize(used);
+    s.staged.resize(used);
+    p.forBlocks(cb, cornerCount, [&](size_t k, size_t b, size_t e) {
+        size_t i = s.blockCounts[k];
+        for (size_t c = b; c < e; ++c) {
+            const uint32_t v = tv[c];
+            if (s.vertexClass[v] != c) continue;
+            s.firstUse[i] = v;
+            const glm::vec3 pos = p.in.positions[v], n = p.in.normals[v];
+            const glm::vec2 uv = p.in.uvs[v];
+            s.staged[i] = {mikk::toVec3(pos), mikk::toVec3(n), uv};
+            s.hashes[i] = weldHash(pos, n, uv);
+            ++i;
+        }
+    });
+    // The table: each staged vertex inserted or merged into its class's
+    // slot; repOf[i] = that slot.
+    size_t tableSize = 64;
+    while (tableSize < 2 * used) tableSize *= 2;
+    const size_t mask = tableSize - 1;
+    constexpr uint64_t kEmpty = ~uint64_t(0);
+    s.hashTable.resize(tableSize);
+    p.forBlocks(tableSize, 1, [&](size_t, size_t b, size_t e) {
+        std::fill(s.hashTable.begin() + ptrdiff_t(b), s.hashTable.begin() + ptrdiff_t(e), kEmpty);
+    });
+    s.repOf.resize(used);
+    s.stagedId.resize(used);
+    const WeldedVertex* const staged = s.staged.data();
+    const Blocks ub = p.blocks(used);
+    p.forBlocks(ub, used, [&](size_t, size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) {
+            const uint64_t h = s.hashes[i];
+            const uint64_t tag = h & 0xFFFFFFFF00000000ull;
+            const uint64_t mine = tag | i;
+            const WeldedVertex& x = staged[i];
+            for (size_t slot = size_t(h) & mask;; slot = (slot + 1) & mask) {
+                std::atomic_ref<uint64_t> cell(s.hashTable[slot]);
+                uint64_t entry = cell.load(std::memory_order_relaxed);
+                if (entry == kEmpty) {
+                    if (cell.compare_exchange_strong(entry, mine, std::memory_order_relaxed)) {
+                        s.repOf[i] = uint32_t(slot);
+                        break;
+                    }
+                    // Taken meanwhile: `entry` is what took it.
+                }
+                if ((entry & 0xFFFFFFFF00000000ull) != tag) continue;
+                const WeldedVertex& y = staged[uint32_t(entry)];
+                if (mikk::exactlyEqual(x.position, y.position) &&
+                    mikk::exactlyEqual(x.normal, y.normal) && x.uv.x == y.uv.x &&
+                    x.uv.y == y.uv.y) {
+                    atomicMin(s.hashTable[slot], mine);
+                    s.repOf[i] = uint32_t(slot);
+                    break;
+                }
+            }
+        }
+    });
+    // Representatives (the smallest staged index of each class) numbered
+    // in staged order.
+    s.blockCounts.resize(ub.count);
+    p.forBlocks(ub, used, [&](size_t k, size_t b, size_t e) {
+        size_t n = 0;
+        for (size_t i = b; i < e; ++i) {
+            s.repOf[i] = uint32_t(s.hashTable[s.repOf[i]]);
+            n += s.repOf[i] == i;
+        }
+        s.blockCounts[k] = n;
+    });
+    const size_t classCount = p.prefixBlockCounts(ub.count);
+    const bool noDuplicates = classCount == used;
+    if (noDuplicates)
+        s.welded.swap(s.staged);
+    else
+        s.welded.resize(classCount);
+    p.forBlocks(ub, used, [&](size_t k, size_t b, size_t e) {
+        uint32_t id = uint32_t(s.blockCounts[k]);
+        for (size_t i = b; i < e; ++i)
+            if (s.repOf[i] == i) {
+                if (!noDuplicates) s.welded[id] = s.staged[i];
+                s.stagedId[i] = id++;
+            }
+    });
+    p.forBlocks(ub, used, [&](size_t, size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) {
+            if (s.repOf[i] != i) s.stagedId[i] = s.stagedId[s.repOf[i]]; // rep < i: set above
+            s.vertexClass[s.firstUse[i]] = s.stagedId[i];
+        }
+    });
+    s.triWelded.resize(cornerCount);
+    p.forBlocks(cb, cornerCount, [&](size_t, size_t b, size_t e) {
+        for (size_t c = b; c < e; ++c) s.triWelded[c] = s.vertexClass[tv[c]];
+    });
+    p.wv = s.welded.data();
+    p.weldedCount = s.welded.size();
+}
+
 // Weld by exact (position, normal, uv), through the input vertices. Welded
 // ids in order of first use; their values are those of the first corner
 // using them (as the oracle's representative).
 void weld(Pass& p) {
+    // The parallel weld does ~2.3x the serial weld's work (extra passes over
+    // the corners, atomics; tangents_bench per-step times with the parallel
+    // steps on one effective core), so it only pays with more threads.
+    constexpr int kParallelWeldThreads = 4;
+    if (p.parallel && tbb::this_task_arena::max_concurrency() >= kParallelWeldThreads) {
+        weldParallel(p);
+        return;
+    }
     Buffers& s = p.s;
     listVerticesByFirstUse(p);
     stageVertexValues(p);
@@ -842,6 +1062,9 @@ void weld(Pass& p) {
 
 // --- Steps 3-5: degenerate triangles, derivatives, orientation -----------------------
 
+size_t faceDerivativesRange(const WeldedVertex* wv, const uint32_t* tw, TriDerivatives* deriv,
+                            uint8_t* flags, size_t first, size_t last);
+
 // Per-triangle derivatives and orientation (eq. 18/19) of every triangle
 // in input order, with the degenerate test (two corners at one position)
 // in the same pass: both read the same positions. A degenerate triangle's
@@ -851,31 +1074,48 @@ void faceDerivativesAndDegenerates(Pass& p) {
     const size_t triCount = p.triCount;
     const WeldedVertex* const wv = p.wv;
     s.deriv.resize(triCount);
-    s.flags.assign(triCount, 0); // indexed in the good-first order after step 4
-    size_t degenerateCount = 0;
+    s.flags.resize(triCount); // indexed in the good-first order after step 4
     const uint32_t* const tw = s.triWelded.data();
-    size_t firstScalar = 0;
+    // Blocks of a multiple of 4 triangles: each triangle goes through the
+    // same kernel (4-wide or scalar tail; the same bits either way).
+    const Blocks tb = p.blocks(triCount, 4);
+    s.blockCounts.resize(tb.count);
+    p.forBlocks(tb, triCount, [&](size_t k, size_t b, size_t e) {
+        std::fill(s.flags.begin() + ptrdiff_t(b), s.flags.begin() + ptrdiff_t(e), uint8_t(0));
+        s.blockCounts[k] = faceDerivativesRange(wv, tw, s.deriv.data(), s.flags.data(), b, e);
+    });
+    size_t degenerateCount = 0;
+    for (size_t k = 0; k < tb.count; ++k) degenerateCount += s.blockCounts[k];
+    p.degenerateCount = degenerateCount;
+    p.goodCount = triCount - degenerateCount;
+}
+
+// Derivatives, flags and the degenerate test of triangles [b, e); returns
+// the number of degenerate ones.
+size_t faceDerivativesRange(const WeldedVertex* wv, const uint32_t* tw, TriDerivatives* deriv,
+                            uint8_t* flags, size_t first, size_t last) {
+    size_t degenerateCount = 0;
+    size_t firstScalar = first;
 #if defined(__SSE2__)
-    for (; firstScalar + 4 <= triCount; firstScalar += 4)
-        degenerateCount += faceDerivatives4(wv, tw + firstScalar * 3, s.deriv.data() + firstScalar,
-                                            s.flags.data() + firstScalar);
+    for (; firstScalar + 4 <= last; firstScalar += 4)
+        degenerateCount +=
+            faceDerivatives4(wv, tw + firstScalar * 3, deriv + firstScalar, flags + firstScalar);
 #endif
-    for (size_t t = firstScalar; t < triCount; ++t) {
+    for (size_t t = firstScalar; t < last; ++t) {
         const WeldedVertex& a = wv[tw[t * 3]];
         const WeldedVertex& b = wv[tw[t * 3 + 1]];
         const WeldedVertex& c = wv[tw[t * 3 + 2]];
         const mikk::FaceDerivatives d =
             mikk::faceDerivatives(a.position, b.position, c.position, a.uv, b.uv, c.uv);
-        s.deriv[t] = {d.vOs, d.magS, d.vOt, d.magT};
+        deriv[t] = {d.vOs, d.magS, d.vOt, d.magT};
         const bool degenerate = mikk::exactlyEqual(a.position, b.position) ||
                                 mikk::exactlyEqual(a.position, c.position) ||
                                 mikk::exactlyEqual(b.position, c.position);
-        s.flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0) |
-                              (degenerate ? kDegenerate : 0));
+        flags[t] |= uint8_t((d.orientPreserving ? kOrient : 0) | (d.groupWithAny ? kAny : 0) |
+                            (degenerate ? kDegenerate : 0));
         degenerateCount += degenerate;
     }
-    p.degenerateCount = degenerateCount;
-    p.goodCount = triCount - degenerateCount;
+    return degenerateCount;
 }
 
 // Step 4: quads with exactly one degenerate triangle are marked (fixed up in
@@ -965,7 +1205,65 @@ void oneOrientationPerQuad(Pass& p) {
 // Each welded vertex's incident corners of good triangles, each list in
 // ascending triangle order (the order of the reference's sorted edge list
 // and of its sorted subgroups).
+//
+// In parallel: the welded ids are split into one range per thread of the
+// arena; each range's task scans every corner in triangle order and counts,
+// then places, only the corners at its own vertices. Every list is thus
+// filled in ascending triangle order by one task, as in the serial loop
+// (no atomics, no sorting); the scan of the corner array is repeated per
+// range but is sequential.
+void buildIncidenceParallel(Pass& p) {
+    Buffers& s = p.s;
+    const size_t weldedCount = p.weldedCount, goodCount = p.goodCount;
+    const uint32_t* const gWelded = p.gWelded;
+    const size_t ranges =
+        std::clamp<size_t>(size_t(tbb::this_task_arena::max_concurrency()), 1, 64);
+    auto rangeStart = [&](size_t r) { return uint32_t(weldedCount * r / ranges); };
+    s.incidenceStart.resize(weldedCount + 1);
+    s.cursor.resize(weldedCount);
+    // Counts of vertex w into incidenceStart[w + 1] (ranges write disjoint entries).
+    tbb::parallel_for(
+        size_t(0), ranges,
+        [&](size_t r) {
+            const uint32_t lo = rangeStart(r), hi = rangeStart(r + 1);
+            std::fill(s.incidenceStart.begin() + ptrdiff_t(lo) + 1,
+                      s.incidenceStart.begin() + ptrdiff_t(hi) + 1, 0u);
+            for (size_t j = 0; j < goodCount * 3; ++j) {
+                const uint32_t w = gWelded[j];
+                if (w >= lo && w < hi) ++s.incidenceStart[w + 1];
+            }
+        },
+        tbb::simple_partitioner());
+    s.incidenceStart[0] = 0;
+    for (size_t w = 0; w < weldedCount; ++w) {
+        s.incidenceStart[w + 1] += s.incidenceStart[w];
+        s.cursor[w] = s.incidenceStart[w];
+    }
+    s.incidence.resize(goodCount * 3);
+    tbb::parallel_for(
+        size_t(0), ranges,
+        [&](size_t r) {
+            const uint32_t lo = rangeStart(r), hi = rangeStart(r + 1);
+            auto mine = [&](uint32_t w) { return w >= lo && w < hi; };
+            for (size_t t = 0; t < goodCount; ++t) {
+                const uint32_t* w = gWelded + t * 3;
+                const bool m0 = mine(w[0]), m1 = mine(w[1]), m2 = mine(w[2]);
+                if (!(m0 || m1 || m2)) continue;
+                const uint32_t tc = uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
+                                    ((s.flags[t] & kOrient) ? 4u : 0u);
+                if (m0) s.incidence[s.cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
+                if (m1) s.incidence[s.cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
+                if (m2) s.incidence[s.cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
+            }
+        },
+        tbb::simple_partitioner());
+}
+
 void buildIncidence(Pass& p) {
+    if (p.parallel) {
+        buildIncidenceParallel(p);
+        return;
+    }
     Buffers& s = p.s;
     const size_t weldedCount = p.weldedCount, goodCount = p.goodCount;
     const uint32_t* const gWelded = p.gWelded;
@@ -1012,10 +1310,20 @@ void buildIncidence(Pass& p) {
 // gathered afterwards (gatherCornerOrder): writing each corner straight
 // into the corner-ordered output scatters 16-byte stores over the whole
 // array and costs more.
+//
+// Vertices are independent here: each writes only its own vertexOut and
+// entryOut entries (or, with full spaces, the spaces of its own corners:
+// the corners two triangles of a quad share name one input vertex, so one
+// welded vertex) and its own isDeferred flag. The clean vertices therefore
+// run as parallel blocks (frameSteps), each thread with its own
+// FrameScratch; the deferred ones stay serial, in seed order.
 class VertexFrames {
 public:
-    VertexFrames(Pass& p, bool wide);
-    void run();
+    VertexFrames(Pass& p, bool wide, FrameScratch& scratch, size_t maxDegree);
+    // Steps 7-8 of the vertices [w0, w1), deferring those that touch a
+    // group-with-any triangle.
+    void cleanVertices(uint32_t w0, uint32_t w1);
+    void deferredVertices();
 
 private:
     // What the 8-lane test made of a vertex.
@@ -1056,9 +1364,7 @@ private:
     bool oneFan(size_t k) const;
     void vertex(uint32_t w, const Incidence* list, size_t k, const Terms& terms);
     void components(uint32_t w, const Incidence* list, size_t k, const Terms& terms);
-    void cleanVertices();
     void deferredGroup(size_t f, uint32_t i);
-    void deferredVertices();
 
     // Vertices are processed in chunks of about kChunk entries whose terms
     // are computed together (4 or 8 entries per SIMD step).
@@ -1067,6 +1373,7 @@ private:
 
     Pass& p_;
     Buffers& s_;
+    FrameScratch& f_;
     const bool wide_;
     const bool fullSpaces_;
     const float thresholdCos_;
@@ -1082,36 +1389,48 @@ private:
     int32_t* inNbr_ = nullptr;
 };
 
-VertexFrames::VertexFrames(Pass& p, bool wide)
-    : p_(p), s_(p.s), wide_(wide), fullSpaces_(p.fullSpaces),
+// Output buffers and the deferred flags for steps 7-8; returns the largest
+// incidence list.
+size_t prepareFrames(Pass& p) {
+    Buffers& s = p.s;
+    if (p.fullSpaces) s.spaces.assign(p.cornerCount, mikk::CornerSpace{});
+    if (!p.fullSpaces) {
+        s.vertexOut.resize(p.weldedCount);
+        s.entryOut.resize(p.goodCount * 3);
+    }
+    s.isDeferred.resize(p.weldedCount);
+    const Blocks vb = p.blocks(p.weldedCount);
+    s.blockCounts.resize(vb.count);
+    p.forBlocks(vb, p.weldedCount, [&](size_t k, size_t b, size_t e) {
+        std::fill(s.isDeferred.begin() + ptrdiff_t(b), s.isDeferred.begin() + ptrdiff_t(e),
+                  uint8_t(0));
+        size_t maxDegree = 0;
+        for (size_t w = b; w < e; ++w)
+            maxDegree = std::max<size_t>(maxDegree, s.incidenceStart[w + 1] - s.incidenceStart[w]);
+        s.blockCounts[k] = maxDegree;
+    });
+    return vb.count == 0 ? 0 : *std::max_element(s.blockCounts.begin(), s.blockCounts.end());
+}
+
+VertexFrames::VertexFrames(Pass& p, bool wide, FrameScratch& scratch, size_t maxDegree)
+    : p_(p), s_(p.s), f_(scratch), wide_(wide), fullSpaces_(p.fullSpaces),
       thresholdCos_(mikk::defaultThresholdCos()), wv_(p.wv), triDeriv_(p.s.deriv.data()),
       incidence_(p.s.incidence.data()), incidenceStart_(p.s.incidenceStart.data()),
       entryCount_(p.goodCount * 3) {
-    if (fullSpaces_) s_.spaces.assign(p.cornerCount, mikk::CornerSpace{});
-    if (!fullSpaces_) {
-        s_.vertexOut.resize(p.weldedCount);
-        s_.entryOut.resize(entryCount_);
-    }
     vertexOut_ = s_.vertexOut.data();
     entryOut_ = s_.entryOut.data();
-    size_t maxDegree = 0;
-    for (size_t w = 0; w < p.weldedCount; ++w)
-        maxDegree = std::max<size_t>(maxDegree, incidenceStart_[w + 1] - incidenceStart_[w]);
     const size_t termCapacity = std::max(kChunk, maxDegree) + TermBatch::kLanes;
-    s_.terms.resize(7 * termCapacity);
-    chunkTerms_ = Terms::over(s_.terms.data(), termCapacity);
+    if (f_.terms.size() < 7 * termCapacity) f_.terms.resize(7 * termCapacity);
+    chunkTerms_ = Terms::over(f_.terms.data(), termCapacity);
     const size_t localSize = std::max<size_t>(maxDegree, 8); // the 8-lane path writes 8
-    s_.outNbr.resize(localSize);
-    s_.inNbr.resize(localSize);
-    s_.component.resize(localSize);
-    s_.members.resize(localSize);
-    outNbr_ = s_.outNbr.data();
-    inNbr_ = s_.inNbr.data();
-}
-
-void VertexFrames::run() {
-    cleanVertices();
-    if (!s_.deferred.empty()) deferredVertices();
+    if (f_.outNbr.size() < localSize) {
+        f_.outNbr.resize(localSize);
+        f_.inNbr.resize(localSize);
+        f_.component.resize(localSize);
+        f_.members.resize(localSize);
+    }
+    outNbr_ = f_.outNbr.data();
+    inNbr_ = f_.inNbr.data();
 }
 
 // Terms of the entries of vertices [w0, w1) (consecutive in the incidence
@@ -1217,8 +1536,8 @@ void VertexFrames::pairEdgesGreedy(const Incidence* list, size_t k) {
     int32_t* const outNbr = outNbr_;
     int32_t* const inNbr = inNbr_;
     for (size_t e = 0; e < k; ++e) outNbr[e] = inNbr[e] = -1;
-    s_.halfEdges.resize(2 * k);
-    uint64_t* h = s_.halfEdges.data();
+    f_.halfEdges.resize(2 * k);
+    uint64_t* h = f_.halfEdges.data();
     for (size_t e = 0; e < k; ++e) {
         h[2 * e] = (uint64_t(list[e].next) << 32) | (uint64_t(e) << 1) | 1u; // out
         h[2 * e + 1] = (uint64_t(list[e].prev) << 32) | (uint64_t(e) << 1);  // in
@@ -1228,16 +1547,16 @@ void VertexFrames::pairEdgesGreedy(const Incidence* list, size_t k) {
     for (size_t r = 0; r < n;) {
         size_t end = r + 1;
         while (end < n && (h[end] >> 32) == (h[r] >> 32)) ++end;
-        s_.paired.assign(end - r, 0);
+        f_.paired.assign(end - r, 0);
         size_t next[2] = {r, r};
         for (size_t i = r; i < end; ++i) {
-            if (s_.paired[i - r]) continue;
+            if (f_.paired[i - r]) continue;
             const unsigned dir = unsigned(h[i] & 1), other = dir ^ 1u;
             size_t& q = next[other];
             if (q <= i) q = i + 1;
-            while (q < end && (unsigned(h[q] & 1) != other || s_.paired[q - r])) ++q;
+            while (q < end && (unsigned(h[q] & 1) != other || f_.paired[q - r])) ++q;
             if (q == end) continue;
-            s_.paired[i - r] = s_.paired[q - r] = 1;
+            f_.paired[i - r] = f_.paired[q - r] = 1;
             const int32_t a = int32_t((h[i] & 0xFFFFFFFFu) >> 1);
             const int32_t b = int32_t((h[q] & 0xFFFFFFFFu) >> 1);
             (dir ? outNbr : inNbr)[size_t(a)] = b;
@@ -1360,7 +1679,7 @@ VertexFrames::Fan VertexFrames::smallFan(uint32_t w, const Incidence* list, size
     size_t reached = 1;
     for (int32_t e = outNbr[start]; e >= 0 && e != start && reached <= k; e = outNbr[e]) ++reached;
     if (reached != k) return Fan::General;
-    uint32_t* const members = s_.members.data();
+    uint32_t* const members = f_.members.data();
     for (uint32_t e = 0; e < 8; ++e) members[e] = e;
     emitGroup(w, list, terms, members, k, orientBits != 0, true);
     return Fan::Done;
@@ -1391,7 +1710,7 @@ void VertexFrames::vertex(uint32_t w, const Incidence* list, size_t k, const Ter
         const Fan fan = smallFan(w, list, k, terms);
         if (fan == Fan::Done) return;
         if (fan == Fan::Deferred) {
-            s_.deferred.push_back(w);
+            s_.isDeferred[w] = 1;
             return;
         }
     } else
@@ -1400,11 +1719,11 @@ void VertexFrames::vertex(uint32_t w, const Incidence* list, size_t k, const Ter
         bool touchesAny = false;
         for (size_t e = 0; e < k; ++e) touchesAny |= list[e].any();
         if (touchesAny) {
-            s_.deferred.push_back(w);
+            s_.isDeferred[w] = 1;
             return;
         }
     }
-    uint32_t* const members = s_.members.data();
+    uint32_t* const members = f_.members.data();
     if (k == 1) {
         members[0] = 0;
         emitGroup(w, list, terms, members, 1, list[0].orient(), true);
@@ -1428,8 +1747,8 @@ void VertexFrames::vertex(uint32_t w, const Incidence* list, size_t k, const Ter
 // connected components of same-orientation entries (any flood order gives
 // the same components), each emitted in ascending entry order.
 void VertexFrames::components(uint32_t w, const Incidence* list, size_t k, const Terms& terms) {
-    int32_t* const comp = s_.component.data();
-    uint32_t* const members = s_.members.data();
+    int32_t* const comp = f_.component.data();
+    uint32_t* const members = f_.members.data();
     for (size_t e = 0; e < k; ++e) comp[e] = -1;
     for (size_t seed = 0; seed < k; ++seed) {
         if (comp[seed] >= 0) continue;
@@ -1454,13 +1773,12 @@ void VertexFrames::components(uint32_t w, const Incidence* list, size_t k, const
     }
 }
 
-// Every vertex in chunks: terms for the chunk, then each vertex's groups.
-void VertexFrames::cleanVertices() {
-    s_.deferred.clear();
-    const uint32_t weldedCount = uint32_t(p_.weldedCount);
-    for (uint32_t w0 = 0; w0 < weldedCount;) {
+// The vertices in chunks: terms for the chunk, then each vertex's groups.
+// (A vertex's terms do not depend on the chunk it is computed in.)
+void VertexFrames::cleanVertices(uint32_t first, uint32_t last) {
+    for (uint32_t w0 = first; w0 < last;) {
         uint32_t w1 = w0 + 1;
-        while (w1 < weldedCount && incidenceStart_[w1 + 1] - incidenceStart_[w0] <= kChunk) ++w1;
+        while (w1 < last && incidenceStart_[w1 + 1] - incidenceStart_[w0] <= kChunk) ++w1;
         computeTerms(w0, w1, chunkTerms_);
         for (uint32_t w = w0; w < w1; ++w) {
             const size_t k = incidenceStart_[w + 1] - incidenceStart_[w];
@@ -1487,25 +1805,25 @@ void VertexFrames::deferredGroup(size_t f, uint32_t i) {
     while (list[seed].tri() != f) ++seed;
     const bool orient = (fl[f] & kOrient) != 0;
     fl[f] |= uint8_t(kGrouped0 << i);
-    s_.groupMembers.assign(1, seed);
-    s_.stack.clear();
-    if (inNbr_[seed] >= 0) s_.stack.push_back(uint32_t(inNbr_[seed]));   // right
-    if (outNbr_[seed] >= 0) s_.stack.push_back(uint32_t(outNbr_[seed])); // left first
-    while (!s_.stack.empty()) {
-        const uint32_t e = s_.stack.back();
-        s_.stack.pop_back();
+    f_.groupMembers.assign(1, seed);
+    f_.stack.clear();
+    if (inNbr_[seed] >= 0) f_.stack.push_back(uint32_t(inNbr_[seed]));   // right
+    if (outNbr_[seed] >= 0) f_.stack.push_back(uint32_t(outNbr_[seed])); // left first
+    while (!f_.stack.empty()) {
+        const uint32_t e = f_.stack.back();
+        f_.stack.pop_back();
         const uint32_t t = list[e].tri(), c = list[e].corner();
         if (fl[t] & (kGrouped0 << c)) continue;
         if ((fl[t] & kAny) && (fl[t] & kGroupedAll) == 0)
             fl[t] = uint8_t((fl[t] & ~kOrient) | (orient ? kOrient : 0));
         if (((fl[t] & kOrient) != 0) != orient) continue;
         fl[t] |= uint8_t(kGrouped0 << c);
-        s_.groupMembers.push_back(e);
-        if (inNbr_[e] >= 0) s_.stack.push_back(uint32_t(inNbr_[e]));
-        if (outNbr_[e] >= 0) s_.stack.push_back(uint32_t(outNbr_[e]));
+        f_.groupMembers.push_back(e);
+        if (inNbr_[e] >= 0) f_.stack.push_back(uint32_t(inNbr_[e]));
+        if (outNbr_[e] >= 0) f_.stack.push_back(uint32_t(outNbr_[e]));
     }
-    std::sort(s_.groupMembers.begin(), s_.groupMembers.end());
-    emitGroup(w, list, chunkTerms_, s_.groupMembers.data(), s_.groupMembers.size(), orient, false);
+    std::sort(f_.groupMembers.begin(), f_.groupMembers.end());
+    emitGroup(w, list, chunkTerms_, f_.groupMembers.data(), f_.groupMembers.size(), orient, false);
 }
 
 // Steps 7-8 for the deferred vertices, in the reference's seed order
@@ -1513,10 +1831,8 @@ void VertexFrames::deferredGroup(size_t f, uint32_t i) {
 // deferred vertex not yet in a group. Their entries get the reference's
 // default first (some may never be reached).
 void VertexFrames::deferredVertices() {
-    s_.isDeferred.assign(p_.weldedCount, 0);
-    for (const uint32_t w : s_.deferred) {
-        s_.isDeferred[w] = 1;
-        if (fullSpaces_) continue; // spaces start as the default
+    for (uint32_t w = 0; w < p_.weldedCount && !fullSpaces_; ++w) { // spaces start as the default
+        if (!s_.isDeferred[w]) continue;
         vertexOut_[w].w = 0.0f;
         for (uint32_t j = incidenceStart_[w]; j < incidenceStart_[w + 1]; ++j)
             entryOut_[j] = glm::vec4(1, 0, 0, -1);
@@ -1531,6 +1847,19 @@ void VertexFrames::deferredVertices() {
     }
 }
 
+// Steps 7-8: the clean vertices in blocks (in parallel inside an arena),
+// then the deferred ones in seed order on this thread.
+void frameSteps(Pass& p, bool wide) {
+    Buffers& s = p.s;
+    const size_t maxDegree = prepareFrames(p);
+    p.forBlocks(p.weldedCount, 1, [&](size_t, size_t b, size_t e) {
+        FrameScratch& scratch = p.parallel ? s.threadScratch.local() : s.frameScratch;
+        VertexFrames(p, wide, scratch, maxDegree).cleanVertices(uint32_t(b), uint32_t(e));
+    });
+    if (std::find(s.isDeferred.begin(), s.isDeferred.end(), uint8_t(1)) != s.isDeferred.end())
+        VertexFrames(p, wide, s.frameScratch, maxDegree).deferredVertices();
+}
+
 // --- Output ------------------------------------------------------------------------------
 
 // Per-vertex and per-entry results (steps 7-8 without full spaces) into
@@ -1538,18 +1867,20 @@ void VertexFrames::deferredVertices() {
 void gatherCornerOrder(Pass& p) {
     const Buffers& s = p.s;
     const glm::vec4* const vertexOut = s.vertexOut.data();
-    for (size_t t = 0; t < p.goodCount; ++t) {
-        for (size_t i = 0; i < 3; ++i) {
-            const uint32_t w = p.gWelded[t * 3 + i];
-            glm::vec4 v = vertexOut[w];
-            if (v.w == 0.0f) { // this corner's entry (a good triangle meets w once)
-                uint32_t j = s.incidenceStart[w];
-                while (s.incidence[j].tri() != t) ++j;
-                v = s.entryOut[j];
+    p.forBlocks(p.goodCount, 1, [&](size_t, size_t b, size_t e) {
+        for (size_t t = b; t < e; ++t) {
+            for (size_t i = 0; i < 3; ++i) {
+                const uint32_t w = p.gWelded[t * 3 + i];
+                glm::vec4 v = vertexOut[w];
+                if (v.w == 0.0f) { // this corner's entry (a good triangle meets w once)
+                    uint32_t j = s.incidenceStart[w];
+                    while (s.incidence[j].tri() != t) ++j;
+                    v = s.entryOut[j];
+                }
+                p.tangentsOut[p.cornerOut(t * 3 + i)] = v;
             }
-            p.tangentsOut[p.cornerOut(t * 3 + i)] = v;
         }
-    }
+    });
 }
 
 void copyCorner(Pass& p, uint32_t dst, uint32_t src) {
@@ -1611,7 +1942,9 @@ void writeFrames(Pass& p) {
         if (p.frames) (*p.frames)[c] = fr;
     };
     if (p.in.faceSizes.empty()) {
-        for (size_t c = 0; c < p.cornerCount; ++c) emitCorner(c);
+        p.forBlocks(p.cornerCount, 1, [&](size_t, size_t b, size_t e) {
+            for (size_t c = b; c < e; ++c) emitCorner(c);
+        });
         return;
     }
     size_t first = 0;
@@ -1630,6 +1963,17 @@ MikkTSpaceGenerator::MikkTSpaceGenerator() : scratch_(new Scratch) {}
 void MikkTSpaceGenerator::setWideSimd(bool enabled) {
     wideSimd_ = enabled;
 }
+void MikkTSpaceGenerator::setThreads(int threads) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+    threads_ = threads;
+}
+void MikkTSpaceGenerator::setParallelCutover(size_t triangles) {
+    parallelCutover_ = triangles;
+}
+std::span<const MikkTSpaceStepTime> MikkTSpaceGenerator::lastStepTimes() const {
+    return scratch_->stepTimes;
+}
 MikkTSpaceGenerator::~MikkTSpaceGenerator() {
     delete scratch_;
 }
@@ -1638,7 +1982,16 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
                                    std::vector<glm::vec4>& cornerTangents,
                                    std::vector<MikkTSpaceFrame>* frames) {
     Pass p(in, *scratch_, frames);
+    std::vector<MikkTSpaceStepTime>& times = scratch_->stepTimes;
+    times.clear();
+    auto clock = std::chrono::steady_clock::now();
+    auto lap = [&](const char* step) {
+        const auto now = std::chrono::steady_clock::now();
+        times.push_back({step, std::chrono::duration<double, std::milli>(now - clock).count()});
+        clock = now;
+    };
     p.triCount = mikk::validateInput(in);
+    lap("validate input");
     p.cornerCount = in.cornerVertices.size();
     p.trianglesOnly = in.faceSizes.empty() || std::all_of(in.faceSizes.begin(), in.faceSizes.end(),
                                                           [](uint32_t n) { return n == 3; });
@@ -1648,31 +2001,54 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
     // triangles only every corner is written below (a good corner by its
     // group or the default frame, a degenerate one by step 9), so the
     // buffer needs no clearing.
+    // Fresh output storage gets huge pages before the fill touches it
+    // (scratch_buffer.h: the first call's page faults).
+    detail::reserveWithHugePages(cornerTangents, p.cornerCount);
+    if (frames) detail::reserveWithHugePages(*frames, p.cornerCount);
     if (p.trianglesOnly && !frames)
         cornerTangents.resize(p.cornerCount);
     else
         cornerTangents.assign(p.cornerCount, glm::vec4(0.0f));
     if (frames) frames->assign(p.cornerCount, MikkTSpaceFrame{{0, 0, 0}, 0, {0, 0, 0}, 0, 0});
+    lap("output buffers");
     if (p.triCount == 0) return;
     p.tangentsOut = cornerTangents.data();
 
-    triangulate(p);                   // step 1
-    weld(p);                          // step 2
-    faceDerivativesAndDegenerates(p); // steps 3 and 5
-    p.gWelded = p.s.triWelded.data();
-    p.gCorner = p.hasQuads ? p.s.triCorner.data() : nullptr;
-    p.gFace = p.hasQuads ? p.s.triFace.data() : nullptr;
-    p.gVertInFace = p.hasQuads ? p.s.triVertInFace.data() : nullptr;
-    if (p.degenerateCount > 0) moveDegeneratesLast(p); // step 4
-    if (p.hasQuads) oneOrientationPerQuad(p);          // step 5, quads
-    buildIncidence(p);                                 // step 6
-    VertexFrames(p, wideSimd_ && cpuHasAvx2()).run();  // steps 7-8
-    if (!p.fullSpaces) gatherCornerOrder(p);
-    if (p.degenerateCount > 0) { // step 9
-        copyFromFirstGoodCorner(p);
-        if (p.hasQuads) completeQuadsWithOneDegenerateHalf(p);
+    const bool wide = wideSimd_ && cpuHasAvx2();
+    auto steps = [&] {
+        triangulate(p); // step 1
+        lap("1 triangulate");
+        weld(p); // step 2
+        lap("2 weld");
+        faceDerivativesAndDegenerates(p); // steps 3 and 5
+        lap("3 derivatives");
+        p.gWelded = p.s.triWelded.data();
+        p.gCorner = p.hasQuads ? p.s.triCorner.data() : nullptr;
+        p.gFace = p.hasQuads ? p.s.triFace.data() : nullptr;
+        p.gVertInFace = p.hasQuads ? p.s.triVertInFace.data() : nullptr;
+        if (p.degenerateCount > 0) moveDegeneratesLast(p); // step 4
+        if (p.hasQuads) oneOrientationPerQuad(p);          // step 5, quads
+        lap("4-5 degenerates, quads");
+        buildIncidence(p); // step 6
+        lap("6 incidence");
+        frameSteps(p, wide); // steps 7-8
+        lap("7-8 groups, frames");
+        if (!p.fullSpaces) gatherCornerOrder(p);
+        if (p.degenerateCount > 0) { // step 9
+            copyFromFirstGoodCorner(p);
+            if (p.hasQuads) completeQuadsWithOneDegenerateHalf(p);
+        }
+        if (p.fullSpaces) writeFrames(p); // step 10
+        lap("9-10 output");
+    };
+    // Steps in parallel blocks inside an arena of the requested size; small
+    // inputs and one thread run the serial loops on this thread.
+    p.parallel = threads_ != 1 && p.triCount >= parallelCutover_;
+    if (!p.parallel) {
+        steps();
+        return;
     }
-    if (p.fullSpaces) writeFrames(p); // step 10
+    runWithThreads(threads_, steps);
 }
 
 } // namespace sg::mesh

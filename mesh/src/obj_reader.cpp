@@ -19,9 +19,11 @@
 // parsed with std::from_chars (no locale, no exceptions), and every error
 // names the line.
 #include <charconv>
+#include <cstring>
 #include <string_view>
 
 #include "mesh_internal.h"
+#include "scratch_buffer.h"
 #include "surfgrad/mesh_io.h"
 
 namespace sg::mesh {
@@ -63,6 +65,7 @@ public:
     PolygonMesh parse(std::string_view text, std::vector<uint32_t>* faceLines);
 
 private:
+    void reserveFor(std::string_view text);
     [[noreturn]] void fail(const std::string& reason) const {
         throw InputError(file_, "line " + std::to_string(lineNo_), reason);
     }
@@ -310,7 +313,37 @@ void ObjParser::tag(Tokenizer& t) {
     }
 }
 
+// Storage for the statements a quick scan of the line starts counts (each
+// within its limit), reserved before parsing: no reallocation copies, and
+// fresh blocks get huge pages before they are filled (scratch_buffer.h: on
+// a VM the first touch of 4 KiB pages is most of the cost of a large file).
+void ObjParser::reserveFor(std::string_view text) {
+    size_t v = 0, vt = 0, vn = 0, f = 0;
+    for (size_t pos = 0; pos < text.size();) {
+        const char* p = text.data() + pos;
+        if (p[0] == 'v' && pos + 1 < text.size()) {
+            v += p[1] == ' ' || p[1] == '\t';
+            vt += p[1] == 't';
+            vn += p[1] == 'n';
+        }
+        f += p[0] == 'f';
+        const void* eol = std::memchr(p, '\n', text.size() - pos);
+        pos = eol ? size_t(static_cast<const char*>(eol) - text.data()) + 1 : text.size();
+    }
+    auto reserve = [](auto& vec, size_t n, size_t limit) {
+        detail::reserveWithHugePages(vec, std::min(n, limit));
+    };
+    reserve(mesh_.positions, v, limits_.maxVertices);
+    reserve(uvs_, vt, limits_.maxCorners);
+    reserve(normals_, vn, limits_.maxCorners);
+    reserve(mesh_.faceSizes, f, limits_.maxFaces);
+    reserve(faceLine_, f, limits_.maxFaces);
+    // Triangles are the common case; larger faces grow the vectors.
+    for (auto* c : {&cornerV_, &cornerT_, &cornerN_}) reserve(*c, 3 * f, limits_.maxCorners);
+}
+
 PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceLines) {
+    reserveFor(text);
     size_t pos = 0;
     while (pos < text.size()) {
         size_t eol = text.find('\n', pos);

@@ -14,6 +14,7 @@
 #include <glm/geometric.hpp>
 
 #include "surfgrad/contract.h"
+#include "surfgrad/threads.h"
 
 namespace sg::mesh {
 
@@ -172,12 +173,13 @@ size_t uvAreaWithinRounding(const RenderMesh& mesh, int uvSet) {
     return count;
 }
 
-void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet) {
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet, int threads) {
     SG_EXPECTS(mesh.normals.size() == mesh.positions.size(), "the mesh has vertex normals");
     SG_EXPECTS(uvSetProblem(mesh, uvSet).empty(), "uvSet indexes mesh.uvSets");
     const MikkTSpaceInput input = mikktspaceInputOf(mesh, uvSet);
     std::vector<glm::vec4> cornerTangents;
     MikkTSpaceGenerator generator;
+    generator.setThreads(threads);
     generator.generate(input, cornerTangents);
     applyCornerTangents(mesh, uvSet, cornerTangents);
 }
@@ -352,12 +354,14 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
     return irregular;
 }
 
-size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
-                        const LimitFrame* frame) {
+size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet, const LimitFrame* frame,
+                        int threads) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     switch (method) {
     case TangentMethod::MikkTSpace: {
         const size_t before = mesh.vertexCount();
-        generateMikkTSpaceTangents(mesh, uvSet);
+        generateMikkTSpaceTangents(mesh, uvSet, threads);
         return mesh.vertexCount() - before;
     }
     case TangentMethod::Limit:

@@ -90,6 +90,21 @@ TEST_F(ContractDeath, VertexNormalSmoothGroupsOnePerVertex) {
     SG_EXPECT_CONTRACT_DEATH(sg::mesh::computeVertexNormals(m, groups), "smoothGroup");
 }
 
+TEST_F(ContractDeath, MikkTSpaceThreadCountInRange) {
+    MikkTSpaceGenerator generator;
+    generator.setThreads(0);
+    generator.setThreads(1024);
+    SG_EXPECT_CONTRACT_DEATH(generator.setThreads(-1), "threads");
+    SG_EXPECT_CONTRACT_DEATH(generator.setThreads(1025), "threads");
+    RenderMesh m = triangle();
+    SG_EXPECT_CONTRACT_DEATH(
+        sg::mesh::generateTangents(m, sg::mesh::TangentMethod::MikkTSpace, 0, nullptr, -1),
+        "threads");
+    SG_EXPECT_CONTRACT_DEATH(
+        sg::mesh::generateTangents(m, sg::mesh::TangentMethod::MikkTSpace, 0, nullptr, 1025),
+        "threads");
+}
+
 TEST_F(ContractDeath, MikkTSpaceInputPreconditions) {
     const RenderMesh good = triangle();
     MikkTSpaceGenerator generator;

@@ -225,4 +225,123 @@ TEST_F(TangentsCli, MikkTSpaceNamesChartsWithNoFrame) {
     EXPECT_EQ(r3.out.find("MikkTSpace gives them"), std::string::npos) << r3.out;
 }
 
+TEST_F(TangentsCli, ThreadCountOutOfRangeIsAUsageError) {
+    const std::string in = kData + "/meshes/spot/spot_control_mesh.obj";
+    for (const char* n : {"0", "2000", "-1"}) {
+        const CliRun r =
+            surfgrad("mesh tangents '" + in + "' --threads " + n + " -o '" + path("a.glb") + "'");
+        EXPECT_EQ(r.exitCode, 2) << n << "\n" << r.err;
+        EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(path("a.glb")));
+    }
+}
+
+// A height-field grid of n x n quads (2 n^2 triangles) with mirrored UVs
+// (u folds at x = 1/2: MikkTSpace splits the vertices there) and vertex
+// normals, as OBJ text: shared v/vt/vn indices, or every corner with its
+// own v, vt and vn lines (as many exporters write).
+std::string gridObj(int n, bool cornerOwnIndices) {
+    std::string obj;
+    auto point = [&](int i, int j, std::string& v, std::string& vt, std::string& vn) {
+        const float x = float(i) / float(n), y = float(j) / float(n);
+        const float z = 0.1f * std::sin(6.0f * x) * std::cos(5.0f * y);
+        const glm::vec3 nrm =
+            glm::normalize(glm::vec3(-0.6f * std::cos(6.0f * x) * std::cos(5.0f * y),
+                                     0.5f * std::sin(6.0f * x) * std::sin(5.0f * y), 1.0f));
+        const float u = x < 0.5f ? 2.0f * x : 2.0f - 2.0f * x;
+        char buf[128];
+        std::snprintf(buf, sizeof buf, "v %.7g %.7g %.7g\n", x, y, z);
+        v = buf;
+        std::snprintf(buf, sizeof buf, "vt %.7g %.7g\n", u, y);
+        vt = buf;
+        std::snprintf(buf, sizeof buf, "vn %.7g %.7g %.7g\n", nrm.x, nrm.y, nrm.z);
+        vn = buf;
+    };
+    std::string v, vt, vn;
+    if (!cornerOwnIndices) {
+        std::string vs, vts, vns;
+        for (int j = 0; j <= n; ++j)
+            for (int i = 0; i <= n; ++i) {
+                point(i, j, v, vt, vn);
+                vs += v, vts += vt, vns += vn;
+            }
+        obj = vs + vts + vns;
+    }
+    auto id = [&](int i, int j) { return std::to_string(j * (n + 1) + i + 1); };
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            const int tri[2][3][2] = {{{i, j}, {i + 1, j}, {i + 1, j + 1}},
+                                      {{i, j}, {i + 1, j + 1}, {i, j + 1}}};
+            for (const auto& t : tri) {
+                if (cornerOwnIndices) {
+                    std::string vs, vts, vns;
+                    for (const auto& c : t) {
+                        point(c[0], c[1], v, vt, vn);
+                        vs += v, vts += vt, vns += vn;
+                    }
+                    obj += vs + vts + vns + "f -3/-3/-3 -2/-2/-2 -1/-1/-1\n";
+                } else {
+                    obj += "f";
+                    for (const auto& c : t) {
+                        const std::string k = id(c[0], c[1]);
+                        obj += " " + k + "/" + k + "/" + k;
+                    }
+                    obj += "\n";
+                }
+            }
+        }
+    return obj;
+}
+
+// Above the generator's parallel cut-over (2 * 110^2 = 24200 triangles):
+// the written file is the same bytes at 1 and 3 threads (and all cores).
+TEST_F(TangentsCli, OutputIsTheSameBytesForEveryThreadCount) {
+    const std::string in = path("grid.obj");
+    std::ofstream(in) << gridObj(110, false);
+    std::vector<std::string> bytes;
+    for (const char* threads : {"1", "3", ""}) {
+        const std::string out = path(std::string("grid") + threads + ".glb");
+        const std::string opt = *threads ? std::string(" --threads ") + threads : "";
+        const CliRun r = surfgrad("mesh tangents '" + in + "'" + opt + " -o '" + out + "'");
+        ASSERT_EQ(r.exitCode, 0) << r.err;
+        std::ifstream f(out, std::ios::binary);
+        bytes.emplace_back(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    }
+    ASSERT_GT(bytes[0].size(), 100000u);
+    EXPECT_TRUE(bytes[0] == bytes[1]) << "--threads 1 and --threads 3 differ";
+    EXPECT_TRUE(bytes[0] == bytes[2]) << "--threads 1 and all cores differ";
+}
+
+// Every corner with its own v/vt/vn indices: the output has only the
+// distinct vertices, the same arrays (order: first occurrence) and the
+// same tangents as the file with shared indices.
+TEST_F(TangentsCli, CornersWithTheirOwnIndicesAreWeldedByValue) {
+    const int n = 40;
+    std::ofstream(path("shared.obj")) << gridObj(n, false);
+    std::ofstream(path("corners.obj")) << gridObj(n, true);
+    const CliRun a =
+        surfgrad("mesh tangents '" + path("shared.obj") + "' -o '" + path("a.glb") + "' --json");
+    const CliRun b =
+        surfgrad("mesh tangents '" + path("corners.obj") + "' -o '" + path("b.glb") + "' --json");
+    ASSERT_EQ(a.exitCode, 0) << a.err;
+    ASSERT_EQ(b.exitCode, 0) << b.err;
+    EXPECT_NE(a.out.find("\"welded_vertices\":0"), std::string::npos) << a.out;
+    // 6 n^2 corners, (n + 1)^2 distinct points.
+    EXPECT_NE(b.out.find("\"welded_vertices\":" + std::to_string(6 * n * n - (n + 1) * (n + 1))),
+              std::string::npos)
+        << b.out;
+    const Written wa = readGlb(path("a.glb")), wb = readGlb(path("b.glb"));
+    // (n + 1)^2 points plus the copies MikkTSpace splits at the fold.
+    ASSERT_GT(wa.positions.size(), size_t((n + 1) * (n + 1)));
+    ASSERT_EQ(wa.positions.size(), wb.positions.size());
+    auto same = [](const auto& x, const auto& y) {
+        return x.size() == y.size() &&
+               std::memcmp(x.data(), y.data(), x.size() * sizeof(x[0])) == 0;
+    };
+    EXPECT_TRUE(same(wa.positions, wb.positions));
+    EXPECT_TRUE(same(wa.normals, wb.normals));
+    EXPECT_TRUE(same(wa.uvs, wb.uvs));
+    EXPECT_TRUE(same(wa.tangents, wb.tangents));
+}
+
 } // namespace

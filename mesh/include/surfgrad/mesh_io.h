@@ -216,6 +216,15 @@ Scene parseGltf(std::string_view bytes, const std::string& file,
 // Morph targets carry their position deltas. Isolated vertices are dropped.
 RenderMesh toRenderMesh(const PolygonMesh& mesh);
 
+// Welds vertices whose every attribute is bitwise equal (position,
+// normal, every UV set, tangent, every morph target's deltas): files that
+// give each face corner its own v/vt/vn indices (as many exporters write)
+// come out with one vertex per distinct value tuple. Welded vertices are
+// numbered in order of their first occurrence (by vertex index), the index
+// buffer is rewritten, and a mesh without duplicates is left unchanged.
+// Returns the number of vertices removed. Deterministic; serial.
+size_t weldVerticesByValue(RenderMesh& mesh);
+
 // The reverse for subdivision: welds render vertices with bitwise-equal
 // positions (and equal morph position deltas) into cage vertices; UV sets
 // and normals become face-varying channels. Triangles become triangle faces.

@@ -31,6 +31,7 @@
 // mikktspaceInputProblem() and raise sg::io::InputError with the reason.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -112,10 +113,23 @@ inline constexpr MikkTSpaceFrame kMikkTSpaceDefaultFrame{};
 // sentence naming the vertex or corner; empty when it satisfies them all.
 std::string mikktspaceInputProblem(const MikkTSpaceInput& input);
 
+// Wall time of one step of the last MikkTSpaceGenerator::generate() call
+// (the steps of docs/tangents.md), for the benchmark.
+struct MikkTSpaceStepTime {
+    const char* step; // static string
+    double ms;
+};
+
+// Inputs with fewer triangles than this run on the calling thread whatever
+// the thread count: below it the parallel steps cost more than they save
+// (measured with tangents_bench --cutover).
+inline constexpr size_t kMikkTSpaceParallelCutover = 20000;
+
 // The fast implementation: output identical (bit for bit) to
-// mikktspaceReferenceFrames(). Keeps its scratch buffers between calls, so
-// reuse one generator for many meshes or frames. Not thread-safe (one
-// generator per thread).
+// mikktspaceReferenceFrames(), for every thread count. Keeps its scratch
+// buffers between calls, so reuse one generator for many meshes or frames.
+// Not thread-safe (one generator per calling thread); generate() itself
+// runs its long steps on several cores (setThreads).
 class MikkTSpaceGenerator {
 public:
     MikkTSpaceGenerator();
@@ -135,10 +149,28 @@ public:
     // check exactly that and for benchmarks.
     void setWideSimd(bool enabled);
 
+    // How many threads generate() may use, by the convention of
+    // surfgrad/threads.h: 0 (the default) = all cores (still capped by any
+    // tbb::global_control the caller holds), 1 = the calling thread only,
+    // 2..kMaxThreads (1024) a task arena of that size (sg::runWithThreads,
+    // created by each call at or above the cut-over). The output is the
+    // same bits for every value. Precondition (contract):
+    // 0 <= threads <= kMaxThreads.
+    void setThreads(int threads);
+    // Inputs with fewer triangles than `triangles` run on the calling
+    // thread (default kMikkTSpaceParallelCutover); 0 sends every input
+    // through the parallel steps (the tests use it on small meshes).
+    void setParallelCutover(size_t triangles);
+
+    // The steps of the last generate() call and their wall times, in order.
+    std::span<const MikkTSpaceStepTime> lastStepTimes() const;
+
 private:
     struct Scratch;
     Scratch* scratch_;
     bool wideSimd_ = true;
+    int threads_ = 0;
+    size_t parallelCutover_ = kMikkTSpaceParallelCutover;
 };
 
 // The oracle: a plain, step-by-step implementation of the published
@@ -167,7 +199,11 @@ void mikktspaceAnglesFromCos(std::span<float> cosinesToAngles, bool allowWideSim
 // default frame. Preconditions: the mesh has normals, uvSet indexes
 // mesh.uvSets, and MikkTSpaceInput's hold for that set
 // (tangentInputProblem(mesh, TangentMethod::MikkTSpace, uvSet) is empty).
-void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet);
+// `threads`: MikkTSpaceGenerator::setThreads (0 = all cores, 1 = this
+// thread, up to kMaxThreads; meshes below kMikkTSpaceParallelCutover
+// triangles stay on this thread); the result is the same bits for every
+// count.
+void generateMikkTSpaceTangents(RenderMesh& mesh, int uvSet, int threads = 0);
 
 // Triangles of UV set `uvSet` whose UV area is within the rounding of their
 // coordinates: |(t1 - t0) x (t2 - t0)| <= 16 * 2^-23 * M * L, M the largest
@@ -259,10 +295,11 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
 // be the subdivider's limit frame), Pixel (tangents cleared,
 // tangentUvSet = -1: the shader builds the frame). Returns the number of
 // vertices added (MikkTSpace) or irregular (Limit); 0 for Pixel.
-// Preconditions: those of the method's function (tangentInputProblem() is
-// empty).
+// `threads` goes to generateMikkTSpaceTangents (the other methods run on
+// this thread). Preconditions: those of the method's function
+// (tangentInputProblem() is empty), 0 <= threads <= kMaxThreads.
 size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet,
-                        const LimitFrame* frame = nullptr);
+                        const LimitFrame* frame = nullptr, int threads = 0);
 
 // Why generateTangents(mesh, method, uvSet, frame) would violate its
 // preconditions, as a sentence (MikkTSpace: no vertex normals, no UV set
