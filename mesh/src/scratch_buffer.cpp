@@ -8,6 +8,20 @@
 #include <sys/mman.h>
 #endif
 
+// Under AddressSanitizer every block comes from operator new, so that ASan
+// sees it (overflows, use after free, the max_allocation_size_mb limit the
+// memory tests of a sanitizer build rely on).
+#if defined(__SANITIZE_ADDRESS__)
+#define SG_SCRATCH_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SG_SCRATCH_ASAN 1
+#endif
+#endif
+#if defined(__linux__) && defined(MADV_HUGEPAGE) && !defined(SG_SCRATCH_ASAN)
+#define SG_SCRATCH_OS_PAGES 1
+#endif
+
 namespace sg::mesh::detail {
 
 namespace {
@@ -19,7 +33,7 @@ size_t roundUp(size_t bytes, size_t to) {
 } // namespace
 
 void* scratchAllocate(size_t bytes, size_t alignment) {
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#if defined(SG_SCRATCH_OS_PAGES)
     if (bytes >= kHugePageMinBytes) {
         // Map one huge page more than needed and unmap the unaligned head
         // and the tail, leaving a 2 MiB-aligned block.
@@ -43,7 +57,7 @@ void* scratchAllocate(size_t bytes, size_t alignment) {
 
 void scratchFree(void* p, size_t bytes, size_t alignment) noexcept {
     if (!p) return;
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
+#if defined(SG_SCRATCH_OS_PAGES)
     if (bytes >= kHugePageMinBytes) {
         munmap(p, roundUp(bytes, kHugePageBytes));
         return;

@@ -11,7 +11,8 @@
 //    relies on zeros), as it must anyway when a buffer is reused.
 //  - Large blocks (>= kHugePageMinBytes) come straight from the operating
 //    system, 2 MiB-aligned, with transparent huge pages requested
-//    (madvise(MADV_HUGEPAGE), Linux; elsewhere the ordinary allocator):
+//    (madvise(MADV_HUGEPAGE), Linux; elsewhere, and under AddressSanitizer
+//    so that it sees every block, the ordinary allocator):
 //    the first touch then faults 2 MiB pages instead of 4 KiB ones. On a
 //    virtual machine where a 4 KiB fault costs ~20-30 us this is most of
 //    a first call's extra time (touching 128 MiB: ~600 ms with 4 KiB
