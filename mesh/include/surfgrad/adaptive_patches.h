@@ -168,8 +168,9 @@ struct AdaptivePatches {
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
                                      int isolation, const std::string& file = {}, int threads = 0);
 // Patches (and stencil rows) below which buildAdaptivePatches and
-// updateAdaptivePoints stay on the calling thread.
-// PLACEHOLDER
+// updateAdaptivePoints stay on the calling thread. Not measured on its own:
+// a guess of the order of kSerialBelowFaces (subdivision.h; one patch's
+// corner descent costs more than one refined face's loops, hence lower).
 inline constexpr size_t kAdaptiveSerialBelowPatches = 8192;
 
 // Recomputes patches.points from new cage positions (cagePointCount

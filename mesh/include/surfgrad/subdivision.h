@@ -32,8 +32,11 @@ inline constexpr int kMaxSubdivisionLevel = 8;
 // Serial cut-over of SubdivisionSettings::threads: a build whose level-N
 // face count (estimated from the cage, before refining) is below this runs
 // on the calling thread whatever the count, and so do its update() calls.
-// PLACEHOLDER
-inline constexpr uint64_t kSerialBelowFaces = 16384;
+// Measured (mesh_bench --threads-only, cut-over probe: spot refined warm,
+// every loop on TBB, 2 cores under a load average of ~7, so rough): 2
+// threads cost 1.8x one thread's time at 2,880 faces and 1.5x at 11,520,
+// and saved time from 46,080 up; the cut-over sits between, at 2^15.
+inline constexpr uint64_t kSerialBelowFaces = 32768;
 
 struct SubdivisionSettings {
     int level = 2;         // uniform refinement level, 0..kMaxSubdivisionLevel
