@@ -20,6 +20,17 @@
 //  2. Animated cage at level 4: full re-refinement vs the factored stencil
 //     update (positions; then + normals), and for limit frames (positions,
 //     dP/du, dP/dv).
+//  Sections 1 and 2 run at SubdivisionSettings::threads = 1.
+//  3. Threads: each job at 1 thread and at all threads (TBB's default
+//     concurrency) side by side, timed interleaved, with the speed-up and
+//     the efficiency (speed-up / threads) and the process CPU time of the
+//     threaded call: refinement (first call: a fresh Subdivider; warm: a
+//     reused one; + the render mesh), the factored stencil update
+//     (positions + normals), the limit build and the limit stencil update,
+//     on spot at levels 4 and 5 and bob at levels 3 and 4 (1.03M and 4.1M
+//     triangles); then the cut-over probe: refinement of spot at levels 1-4
+//     with the cut-over off (serialBelowFaces = 0), where threads start to
+//     pay (SubdivisionSettings::serialBelowFaces, kSerialBelowFaces).
 //
 // Allocation policy: by default glibc's (large freed blocks go back to the
 // OS, so a call that allocates fresh buffers page-faults them in again).
@@ -28,7 +39,7 @@
 // choice, applied to every row alike (OpenMesh and Far allocate per call,
 // ours reuses its buffers either way); the library never changes it.
 //
-// Usage: mesh_bench [--runs N] [--max-level L] [--keep-memory]
+// Usage: mesh_bench [--runs N] [--max-level L] [--keep-memory] [--threads-only]
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Tools/Subdivider/Uniform/CatmullClarkT.hh>
 #include <opensubdiv/far/primvarRefiner.h>
@@ -38,6 +49,8 @@
 #include <opensubdiv/far/topologyRefinerFactory.h>
 
 #include <malloc.h>
+#include <tbb/info.h>
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
@@ -140,11 +153,171 @@ void plainFar(const PolygonMesh& cage, int level, std::vector<glm::vec3>& outPos
 struct OmTraits : OpenMesh::DefaultTraits {};
 using OmMesh = OpenMesh::PolyMesh_ArrayKernelT<OmTraits>;
 
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return 1e3 * double(t.tv_sec) + 1e-6 * double(t.tv_nsec);
+}
+
+// One job at 1 thread and at `threads` (0: all cores), interleaved as
+// interleavedMediansMs does; job(threads) runs it once. Prints the row:
+// medians, speed-up, efficiency, and the median process CPU time of the
+// threaded call (above its wall time: the threads were busy).
+void threadRow(const char* what, const char* input, int runs, int allThreads,
+               const std::function<void(int)>& job) {
+    std::vector<double> wall1, wallN, cpuN;
+    for (int i = 0; i < runs; ++i) {
+        job(1);
+        auto t0 = Clock::now();
+        job(1);
+        wall1.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        job(0);
+        const double c0 = processCpuMs();
+        t0 = Clock::now();
+        job(0);
+        wallN.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+        cpuN.push_back(processCpuMs() - c0);
+    }
+    auto med = [](std::vector<double> v) {
+        std::sort(v.begin(), v.end());
+        return v[v.size() / 2];
+    };
+    const double one = med(wall1), many = med(wallN), cpu = med(cpuN);
+    std::printf("| %-40s | %-16s | %9.3f | %9.3f | %6.2fx | %5.2f | %9.3f |\n", what, input, one,
+                many, one / many, one / many / double(allThreads), cpu);
+}
+
+void threadHeader(const char* title, int allThreads) {
+    std::printf("\n| %-40s | %-16s | %9s | %6s ms | %7s | %5s | %9s |\n", title, "input",
+                "1 thr ms", (std::to_string(allThreads) + " thr").c_str(), "speedup", "eff.",
+                "CPU ms N");
+    std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(42, '-').c_str(),
+                std::string(18, '-').c_str(), std::string(11, '-').c_str(),
+                std::string(11, '-').c_str(), std::string(9, '-').c_str(),
+                std::string(7, '-').c_str(), std::string(11, '-').c_str());
+}
+
+// Section 3 (see the top of the file).
+void threadsSection(const PolygonMesh& spot, const PolygonMesh& bob, int runs) {
+    const int all = tbb::info::default_concurrency();
+    std::printf("\n## Threads: 1 thread vs all %d (TBB default concurrency), medians of %d "
+                "interleaved runs; efficiency = speed-up / %d\n",
+                all, runs, all);
+    struct Input {
+        const char* name;
+        const PolygonMesh* cage;
+        int level;
+    };
+    const Input inputs[] = {{"spot L4 (94k tri)", &spot, 4},
+                            {"spot L5 (375k tri)", &spot, 5},
+                            {"bob L3 (1.03M tri)", &bob, 3},
+                            {"bob L4 (4.1M tri)", &bob, 4}};
+    threadHeader("refinement (pos+UV), new topology", all);
+    for (const Input& in : inputs) {
+        SubdivisionSettings s;
+        s.level = in.level;
+        s.buildRenderMesh = false;
+        s.reuseTopology = false;
+        Subdivider warm[2];
+        threadRow("warm (reused Subdivider)", in.name, runs, all, [&](int threads) {
+            s.threads = threads;
+            warm[threads == 1 ? 0 : 1].build(*in.cage, s);
+        });
+        threadRow("first call (fresh Subdivider)", in.name, runs, all, [&](int threads) {
+            s.threads = threads;
+            Subdivider fresh(*in.cage, s);
+        });
+        s.buildRenderMesh = true;
+        threadRow("warm + render mesh (normals)", in.name, runs, all, [&](int threads) {
+            s.threads = threads;
+            warm[threads == 1 ? 0 : 1].build(*in.cage, s);
+        });
+    }
+    threadHeader("factored stencils, per frame", all);
+    for (const Input& in : inputs) {
+        SubdivisionSettings s;
+        s.level = in.level;
+        s.animate = true;
+        s.threads = 0;
+        Subdivider anim(*in.cage, s);
+        RenderMesh out = anim.renderMesh();
+        std::vector<glm::vec3> moved = in.cage->positions;
+        size_t k = 0;
+        // update() runs at its build's count: a one-thread build beside it.
+        s.threads = 1;
+        Subdivider anim1(*in.cage, s);
+        RenderMesh out1 = anim1.renderMesh();
+        threadRow("update: positions + normals", in.name, runs, all, [&](int threads) {
+            moved[k++ % moved.size()].x += 1e-4f;
+            if (threads == 1)
+                anim1.update(moved, out1, nullptr, true);
+            else
+                anim.update(moved, out, nullptr, true);
+        });
+        s.threads = 0;
+        s.reuseTopology = true;
+        s.animate = false;
+        s.buildRenderMesh = false;
+        Subdivider same[2];
+        PolygonMesh cage = *in.cage;
+        threadRow("rebuild, same topology (stencils)", in.name, runs, all, [&](int threads) {
+            s.threads = threads;
+            cage.positions[k++ % cage.positions.size()].x += 1e-4f;
+            same[threads == 1 ? 0 : 1].build(cage, s);
+        });
+    }
+    const Input limitInputs[] = {{"spot L3", &spot, 3}, {"spot L4", &spot, 4}, {"bob L2", &bob, 2}};
+    threadHeader("limit evaluation", all);
+    for (const Input& in : limitInputs) {
+        SubdivisionSettings s;
+        s.level = in.level;
+        s.limit = true;
+        Subdivider full[2];
+        threadRow("limit build (P, N, UV, frame)", in.name, std::max(3, runs / 3), all,
+                  [&](int threads) {
+                      s.threads = threads;
+                      full[threads == 1 ? 0 : 1].build(*in.cage, s);
+                  });
+        s.animate = true;
+        s.threads = 1;
+        Subdivider a1(*in.cage, s);
+        s.threads = 0;
+        Subdivider aN(*in.cage, s);
+        RenderMesh o1 = a1.renderMesh(), oN = aN.renderMesh();
+        LimitFrame f1 = a1.limitFrame(), fN = aN.limitFrame();
+        std::vector<glm::vec3> moved = in.cage->positions;
+        size_t k = 0;
+        threadRow("limit stencil update (P, dP, N)", in.name, runs, all, [&](int threads) {
+            moved[k++ % moved.size()].y += 1e-4f;
+            if (threads == 1)
+                a1.update(moved, o1, &f1);
+            else
+                aN.update(moved, oN, &fN);
+        });
+    }
+    // Cut-over probe: the loops on TBB at every size.
+    threadHeader("cut-over probe (serialBelowFaces 0)", all);
+    for (int level = 1; level <= 4; ++level) {
+        SubdivisionSettings s;
+        s.level = level;
+        s.buildRenderMesh = false;
+        s.reuseTopology = false;
+        s.serialBelowFaces = 0;
+        Subdivider warm[2];
+        char name[48];
+        std::snprintf(name, sizeof name, "spot L%d (%d quads)", level, 180 << (2 * level));
+        threadRow("refinement, warm", name, runs, all, [&](int threads) {
+            s.threads = threads;
+            warm[threads == 1 ? 0 : 1].build(spot, s);
+        });
+    }
+}
+
 } // namespace
 
 int main(int argc, char** argv) {
     int runs = 15, maxLevel = 5;
-    bool keepMemory = false;
+    bool keepMemory = false, threadsOnly = false;
     for (int i = 1; i < argc; ++i) {
         if (!std::strcmp(argv[i], "--runs") && i + 1 < argc)
             runs = std::max(3, std::atoi(argv[++i]));
@@ -152,6 +325,8 @@ int main(int argc, char** argv) {
             maxLevel = std::clamp(std::atoi(argv[++i]), 1, 6);
         else if (!std::strcmp(argv[i], "--keep-memory"))
             keepMemory = true;
+        else if (!std::strcmp(argv[i], "--threads-only"))
+            threadsOnly = true;
     }
     if (keepMemory) {
         // 32 MB is glibc's largest mmap threshold on 64-bit; every buffer
@@ -165,6 +340,12 @@ int main(int argc, char** argv) {
     const std::string spotPath =
         std::string(SURFGRAD_DATA_DIR) + "/meshes/spot/spot_control_mesh.obj";
     PolygonMesh spot = loadPolygonMesh(spotPath);
+    if (threadsOnly) {
+        const PolygonMesh bob =
+            loadPolygonMesh(std::string(SURFGRAD_DATA_DIR) + "/meshes/bob/bob_tri.obj");
+        threadsSection(spot, bob, runs);
+        return 0;
+    }
     std::printf("spot control cage: %zu vertices, %zu faces, 1 UV set; %d runs per row (median, "
                 "candidates interleaved, each warm), single "
                 "thread; allocator: %s\n\n",
@@ -200,6 +381,7 @@ int main(int argc, char** argv) {
         std::vector<glm::vec2> fu;
         SubdivisionSettings s;
         s.level = level;
+        s.threads = 1;
         s.buildRenderMesh = false;
         s.reuseTopology = false; // a new topology each call: nothing but buffer capacity is kept
         SubdivisionSettings sFar = s;
@@ -290,6 +472,7 @@ int main(int argc, char** argv) {
     {
         SubdivisionSettings s;
         s.level = 4;
+        s.threads = 1;
         s.buildRenderMesh = false;
         s.reuseTopology = false; // a full re-refinement, as a user without stencils does
         Subdivider full, fullPositions;
@@ -369,6 +552,7 @@ int main(int argc, char** argv) {
     {
         SubdivisionSettings s;
         s.level = 4;
+        s.threads = 1;
         s.limit = true;
         Subdivider full;
         double rebuild = medianMs(std::max(3, runs / 3), [&] {
@@ -386,5 +570,8 @@ int main(int argc, char** argv) {
         std::printf("|   limit update weights: %zu (adaptive points, local points, %zu samples)\n",
                     anim.stencilWeightCount(), anim.renderMesh().vertexCount());
     }
+    const PolygonMesh bob =
+        loadPolygonMesh(std::string(SURFGRAD_DATA_DIR) + "/meshes/bob/bob_tri.obj");
+    threadsSection(spot, bob, runs);
     return 0;
 }

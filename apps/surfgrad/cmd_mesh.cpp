@@ -8,12 +8,12 @@
 //       (non-manifold files are described, not refused).
 //   mesh subdivide FILE --level N [--scheme catmark|loop|bilinear]
 //       [--boundary none|edge-only|edge-and-corner] [--fvar smooth|...|all]
-//       [--limit] [--max-memory SIZE] -o OUT [--json] [--repair]
+//       [--limit] [--max-memory SIZE] [--threads N] -o OUT [--json] [--repair]
 //       OUT .obj/.ply: the refined polygons (OBJ keeps crease tags); .gltf/.glb:
 //       the triangulated render mesh with normals. Flags override the file's
 //       tags, tags override the defaults.
 //   mesh morph FILE --weights w0,w1,... -o OUT [--normals recompute|blend]
-//       [--level N [--limit]] [--max-memory SIZE] [--json] [--repair]
+//       [--level N [--limit]] [--max-memory SIZE] [--threads N] [--json] [--repair]
 //       Level 0: the morph is applied to the file's own vertices; level N:
 //       to the cage, which is then subdivided.
 // A subdivision whose estimated peak memory is above --max-memory (default:
@@ -21,7 +21,9 @@
 // naming the level, the face count and the bytes needed. One of at least
 // kProgressFaces faces (seconds: level 8 of a 180-face cage takes about 5)
 // says so on stderr before it starts and again before the output is
-// written.
+// written. --threads N (1..1024, default all cores): the subdivision's
+// threads (SubdivisionSettings::threads); the output files are the same
+// bytes for every count.
 //
 // Other files attach more `mesh` subcommands to the group this returns
 // (see commands.h). Notes about dropped or converted data go to stderr as
@@ -90,10 +92,13 @@ struct SchemeFlags {
     }
 };
 
-SubdivisionSettings budgeted(uint64_t maxMemory) {
+// Settings of a CLI subdivision: the --max-memory budget and --threads
+// (0: all cores, already capped by limitThreads).
+SubdivisionSettings budgeted(uint64_t maxMemory, int threads) {
     SubdivisionSettings s;
     s.memoryBudget = maxMemory;
     s.memoryBudgetHint = kMaxMemoryHint;
+    s.threads = threads;
     return s;
 }
 
@@ -197,15 +202,17 @@ void runInfo(const std::string& file, bool asJson, bool repair) {
 }
 
 void runSubdivide(const std::string& file, int level, const SchemeFlags& flags, bool limit,
-                  const std::string& out, bool asJson, bool repair, uint64_t maxMemory) {
+                  const std::string& out, bool asJson, bool repair, uint64_t maxMemory,
+                  int threads) {
     io::checkOutputPath(out, {file});
+    const auto threadLimit = limitThreads(threads);
     auto t0 = std::chrono::steady_clock::now();
     LoadOptions lo;
     lo.repair = repair;
     LoadReport report;
     PolygonMesh cage = loadPolygonMesh(file, lo, &report);
     double loadSeconds = secondsSince(t0);
-    SubdivisionSettings s = budgeted(maxMemory);
+    SubdivisionSettings s = budgeted(maxMemory, threads);
     s.level = level;
     s.limit = limit;
     s.options = flags.resolve(cage);
@@ -293,8 +300,9 @@ std::vector<float> parseWeights(const std::string& text) {
 
 void runMorph(const std::string& file, const std::string& weightsText,
               const std::string& normalsMode, int level, bool limit, const std::string& out,
-              bool asJson, bool repair, uint64_t maxMemory) {
+              bool asJson, bool repair, uint64_t maxMemory, int threads) {
     io::checkOutputPath(out, {file});
+    const auto threadLimit = limitThreads(threads);
     std::vector<float> weights = parseWeights(weightsText);
     MorphNormals mode = normalsMode == "blend" ? MorphNormals::Blend : MorphNormals::Recompute;
     LoadOptions lo;
@@ -332,7 +340,7 @@ void runMorph(const std::string& file, const std::string& weightsText,
         morphCagePositions(cage, weights, morphed.positions);
         morphed.morphTargets.clear();
         morphed.morphWeights.clear();
-        SubdivisionSettings s = budgeted(maxMemory);
+        SubdivisionSettings s = budgeted(maxMemory, threads);
         s.level = level;
         s.limit = limit;
         s.options = cage.options;
@@ -403,6 +411,7 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto repair = std::make_shared<bool>(false);
         auto flags = std::make_shared<SchemeFlags>();
         auto maxMemory = std::make_shared<uint64_t>(0);
+        auto threads = std::make_shared<int>(0);
         cmd->add_option("FILE", *file, "control cage (" + std::string(kMeshFormatsText) + ")")
             ->required();
         cmd->add_option("--level", *level, "uniform refinement level")
@@ -411,6 +420,7 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         flags->add(cmd);
         cmd->add_flag("--limit", *limit, "positions, normals and UVs on the limit surface");
         addMaxMemoryOption(cmd, *maxMemory);
+        addThreadsOption(cmd, *threads);
         cmd->add_option("-o,--output", *out,
                         "output .obj/.ply (polygons) or .gltf/.glb (triangles with normals)")
             ->required();
@@ -419,7 +429,8 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         cmd->add_flag("--repair", *repair,
                       "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
-            runSubdivide(*file, *level, *flags, *limit, *out, *asJson, *repair, *maxMemory);
+            runSubdivide(*file, *level, *flags, *limit, *out, *asJson, *repair, *maxMemory,
+                         *threads);
             status = 0;
         });
     }
@@ -435,6 +446,7 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
         auto asJson = std::make_shared<bool>(false);
         auto repair = std::make_shared<bool>(false);
         auto maxMemory = std::make_shared<uint64_t>(0);
+        auto threads = std::make_shared<int>(0);
         cmd->add_option("FILE", *file,
                         "mesh with morph targets (" + std::string(kMeshFormatsText) +
                             "; only glTF files carry morph targets)")
@@ -449,11 +461,13 @@ CLI::App* addMeshCommands(CLI::App& app, int& status) {
             ->check(CLI::Range(0, kMaxSubdivisionLevel));
         cmd->add_flag("--limit", *limit, "evaluate the limit surface of the morphed cage");
         addMaxMemoryOption(cmd, *maxMemory);
+        addThreadsOption(cmd, *threads);
         cmd->add_flag("--json", *asJson, "print JSON");
         cmd->add_flag("--repair", *repair,
                       "drop degenerate faces and weld exact duplicate vertices first");
         cmd->callback([=, &status] {
-            runMorph(*file, *weights, *normals, *level, *limit, *out, *asJson, *repair, *maxMemory);
+            runMorph(*file, *weights, *normals, *level, *limit, *out, *asJson, *repair, *maxMemory,
+                     *threads);
             status = 0;
         });
     }

@@ -54,6 +54,8 @@
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/osd_primvar.h"
+#include "surfgrad/threads.h"
+#include "subdivision_parallel.h"
 #include "uniform_refiner.h"
 
 namespace sg::mesh {
@@ -218,12 +220,55 @@ std::unique_ptr<Far::TopologyRefiner> createRefiner(const Descriptor& d, const S
 // Rows are kept in the order PrimvarRefiner computed them (face points
 // before the edge and vertex points that reuse them), each with its
 // destination.
+//
+// Waves (for threads): rows [waves[i], waves[i + 1]) read no point that a
+// row of the same wave writes, so a wave's rows can run in any order and
+// the waves run in order; each row's sum runs in its recorded order, so the
+// result is the same bits as the serial loop. A PrimvarRefiner level has
+// two waves (face points; edge and vertex points, which read face points).
 struct StencilBlock {
     uint32_t dstBase = 0, count = 0;
     std::vector<uint32_t> dst;     // per row: destination offset from dstBase (empty: row i -> i)
     std::vector<uint32_t> offsets; // count + 1
     std::vector<uint32_t> src;     // global point indices
     std::vector<float> weight;
+    std::vector<uint32_t> waves; // row boundaries, waves.front() = 0, waves.back() = count
+
+    uint32_t dstOf(uint32_t row) const { return dst.empty() ? row : dst[row]; }
+    // Splits the rows into waves (serial, O(weights)). A row that reads a
+    // point this block writes only later (never seen in OpenSubdiv's
+    // tables: it would read the previous apply's value) makes the whole
+    // block one serial wave.
+    void computeWaves() {
+        constexpr uint32_t kUnwritten = UINT32_MAX, kLater = UINT32_MAX - 1;
+        uint32_t span = 0;
+        for (uint32_t i = 0; i < count; ++i) span = std::max(span, dstOf(i) + 1);
+        std::vector<uint32_t> waveOf(span, kUnwritten);
+        for (uint32_t i = 0; i < count; ++i) waveOf[dstOf(i)] = kLater;
+        waves.assign(1, 0);
+        uint32_t wave = 0;
+        for (uint32_t i = 0; i < count; ++i) {
+            bool newWave = false;
+            for (uint32_t k = offsets[i]; k < offsets[i + 1]; ++k) {
+                if (src[k] < dstBase || src[k] - dstBase >= span) continue;
+                const uint32_t w = waveOf[src[k] - dstBase];
+                if (w == kLater) {
+                    waves.assign({0, count}); // read before write: serial
+                    serial = true;
+                    return;
+                }
+                newWave |= w == wave;
+            }
+            if (newWave) {
+                waves.push_back(i);
+                ++wave;
+            }
+            waveOf[dstOf(i)] = wave;
+        }
+        waves.push_back(count);
+        serial = false;
+    }
+    bool serial = false;
 };
 
 struct FactoredStencils {
@@ -292,6 +337,7 @@ struct FactoredStencils {
         b.offsets.push_back(uint32_t(rows.src.size()));
         b.src = std::move(rows.src);
         b.weight = std::move(rows.weight);
+        b.computeWaves();
         blocks.push_back(std::move(b));
     }
 
@@ -315,6 +361,7 @@ struct FactoredStencils {
         b.offsets[b.count] = at;
         b.src.assign(idx.begin(), idx.begin() + at);
         b.weight.assign(w.begin(), w.begin() + at);
+        b.computeWaves();
         blocks.push_back(std::move(b));
     }
 
@@ -324,19 +371,29 @@ struct FactoredStencils {
         return n;
     }
 
-    // points[0, numControl) must hold the control values.
+    // points[0, numControl) must hold the control values. Blocks in order,
+    // each block's waves in order, a wave's rows on TBB with par.on (each
+    // row's sum in its recorded order: the same bits for any thread count).
     template <class V>
-    void apply(V* points) const {
+    void apply(V* points, const detail::Parallel& par = {}) const {
         for (const StencilBlock& b : blocks) {
             const uint32_t* off = b.offsets.data();
             const uint32_t* src = b.src.data();
             const float* w = b.weight.data();
             V* dst = points + b.dstBase;
             const uint32_t* row = b.dst.empty() ? nullptr : b.dst.data();
-            for (uint32_t i = 0; i < b.count; ++i) {
-                V acc(0.0f);
-                for (uint32_t k = off[i]; k < off[i + 1]; ++k) acc += w[k] * points[src[k]];
-                dst[row ? row[i] : i] = acc;
+            auto rows = [&](size_t begin, size_t end) {
+                for (size_t i = begin; i < end; ++i) {
+                    V acc(0.0f);
+                    for (uint32_t k = off[i]; k < off[i + 1]; ++k) acc += w[k] * points[src[k]];
+                    dst[row ? row[i] : i] = acc;
+                }
+            };
+            for (size_t v = 0; v + 1 < b.waves.size(); ++v) {
+                const uint32_t first = b.waves[v];
+                (b.serial ? detail::Parallel{} : par)
+                    .blocks(b.waves[v + 1] - first,
+                            [&](size_t lo, size_t hi) { rows(first + lo, first + hi); });
             }
         }
     }
@@ -388,10 +445,11 @@ struct SampleTable {
     }
     // V: the points' type (glm::vec3, or glm::vec4 with xyz in the first
     // three lanes, the arithmetic then done on 4 lanes); Out: the results'.
+    // With par.on, samples on TBB (each writes its own three outputs).
     template <class V, class Out>
-    void evaluate(const V* points, Out* value, Out* du, Out* dv) const {
-        const size_t n = offsets.size() - 1;
-        for (size_t s = 0; s < n; ++s) {
+    void evaluate(const V* points, Out* value, Out* du, Out* dv,
+                  const detail::Parallel& par = {}) const {
+        par.each(offsets.size() - 1, [&](size_t s) {
             V a(0.0f), b(0.0f), c(0.0f);
             for (uint32_t k = offsets[s]; k < offsets[s + 1]; ++k) {
                 const V& x = points[point[k]];
@@ -403,7 +461,16 @@ struct SampleTable {
             value[s] = Out(a);
             du[s] = Out(b);
             dv[s] = Out(c);
-        }
+        });
+    }
+    // Appends `block`'s samples (a table of consecutive samples built on
+    // its own, offsets from 0).
+    void append(const SampleTable& block) {
+        const uint32_t base = uint32_t(point.size());
+        point.insert(point.end(), block.point.begin(), block.point.end());
+        weight.insert(weight.end(), block.weight.begin(), block.weight.end());
+        for (size_t i = 1; i < block.offsets.size(); ++i)
+            offsets.push_back(base + block.offsets[i]);
     }
 };
 
@@ -492,6 +559,9 @@ struct Subdivider::Impl {
         smoothGroup; // per render vertex: first copy with the same (vertex, sector)
     std::vector<uint32_t> positionRep; // per render vertex: first copy of the same refined vertex
     SubdivisionTimings timings;
+    // Whether this build's loops (and update()'s) run on TBB: settings.threads
+    // != 1 and the refined mesh at or above kSerialBelowFaces (build()).
+    detail::Parallel par;
 
     // Reused between builds.
     Descriptor descriptor;
@@ -532,6 +602,8 @@ struct Subdivider::Impl {
     mutable std::vector<glm::vec4> points4;
 
     void build(const PolygonMesh& cage);
+    void update(std::span<const glm::vec3> cagePositions, RenderMesh& out, LimitFrame* outFrame,
+                bool recomputeNormals) const;
     void checkBuildable(const PolygonMesh& cage) const;
     void keepTopologyKey(const PolygonMesh& cage);
     void checkMemoryBudget(const PolygonMesh& cage) const;
@@ -553,10 +625,24 @@ struct Subdivider::Impl {
     void locateHomes(const Far::TopologyRefiner& uniform, const LimitPatches& lp, LimitHomes& homes,
                      std::vector<uint8_t>& dropFace);
     void buildSamples(const LimitPatches& lp, LimitHomes& homes);
+    void addSample(const LimitPatches& lp, LimitHomes& homes, const std::vector<uint32_t>& faceOf,
+                   size_t r, SampleTable& table);
     void evaluatePositions(const PolygonMesh& cage);
     void evaluateUvSets(const PolygonMesh& cage, const LimitPatches& lp, const LimitHomes& homes);
     void copyLimitToRefined(const PolygonMesh& cage);
     void buildRender();
+    // render.positions and render.uvSets (sized) from refined().
+    void copyToRender() {
+        const size_t nR = renderToRefined.size();
+        par.each(nR,
+                 [&](size_t r) { render.positions[r] = refined.positions[renderToRefined[r]]; });
+        for (size_t s = 0; s < refined.uvSets.size(); ++s) {
+            const FaceVaryingChannel& set = refined.uvSets[s];
+            par.each(nR, [&](size_t r) {
+                render.uvSets[s][r] = set.values[set.indices[split.renderFirstCorner[r]]];
+            });
+        }
+    }
     // Copies of one vertex evaluated from different home faces differ in the
     // last bits; make them bitwise equal (no cracks): positions per refined
     // vertex, normals per smooth group.
@@ -565,28 +651,39 @@ struct Subdivider::Impl {
     // triangles' normals, whichever diagonal splits it), summed per smooth
     // group (vertex and sector) and normalized; the same for a build and
     // every update(). `scratch` holds the sums.
+    //
+    // Threads: each face's normal, then each group's sum over its faces in
+    // corner order (normalGroups: the order in which the serial loop over
+    // faces and corners adds them), so the sums are the same bits for every
+    // thread count.
     void polygonNormals(const glm::vec3* pos, glm::vec3* nrm,
                         std::vector<glm::vec3>& scratch) const {
         const size_t nR = smoothGroup.size();
-        scratch.assign(nR, glm::vec3(0.0f));
+        const size_t nF = refined.faceSizes.size();
         const uint32_t* crv = split.cornerRenderVertex.data();
-        size_t c = 0;
-        for (uint32_t k : refined.faceSizes) {
-            if (crv[c] != UINT32_MAX) { // holes of refined() (limit builds) have no render vertices
-                glm::vec3 n;
-                if (k == 4) {
-                    n = glm::cross(pos[crv[c + 2]] - pos[crv[c]],
-                                   pos[crv[c + 3]] - pos[crv[c + 1]]);
-                } else {
-                    n = glm::vec3(0.0f);
-                    for (uint32_t j = 0; j < k; ++j)
-                        n += glm::cross(pos[crv[c + j]], pos[crv[c + (j + 1) % k]]);
-                }
-                for (uint32_t j = 0; j < k; ++j) scratch[smoothGroup[crv[c + j]]] += n;
+        const uint32_t* off = normalFaceOffsets.data();
+        faceNormals.resize(nF);
+        par.each(nF, [&](size_t f) {
+            const uint32_t c = off[f], k = off[f + 1] - c;
+            if (crv[c] == UINT32_MAX) return; // holes of refined() (limit builds)
+            glm::vec3 n;
+            if (k == 4) {
+                n = glm::cross(pos[crv[c + 2]] - pos[crv[c]], pos[crv[c + 3]] - pos[crv[c + 1]]);
+            } else {
+                n = glm::vec3(0.0f);
+                for (uint32_t j = 0; j < k; ++j)
+                    n += glm::cross(pos[crv[c + j]], pos[crv[c + (j + 1) % k]]);
             }
-            c += k;
-        }
-        for (size_t r = 0; r < nR; ++r) {
+            faceNormals[f] = n;
+        });
+        scratch.resize(nR);
+        par.each(nR, [&](size_t g) {
+            glm::vec3 sum(0.0f);
+            for (uint32_t i = groupOffsets[g]; i < groupOffsets[g + 1]; ++i)
+                sum += faceNormals[groupFaces[i]];
+            scratch[g] = sum;
+        });
+        par.each(nR, [&](size_t r) {
             const glm::vec3& a = scratch[smoothGroup[r]];
             float len = glm::length(a);
             // A vanishing sum (a fin whose faces cancel, or degenerate faces)
@@ -595,15 +692,41 @@ struct Subdivider::Impl {
                 nrm[r] = a / len;
             else if (!(glm::length(nrm[r]) > 0.5f))
                 nrm[r] = glm::vec3(0.0f, 0.0f, 1.0f);
+        });
+    }
+    // polygonNormals' gather lists (after smoothGroup and the split): per
+    // smooth group (indexed by its first render vertex) the face of each of
+    // its corners, in corner order.
+    void normalGroups() {
+        const size_t nR = smoothGroup.size();
+        normalFaceOffsets = faceOffsets(refined);
+        const uint32_t* crv = split.cornerRenderVertex.data();
+        const size_t nF = refined.faceSizes.size();
+        groupOffsets.assign(nR + 1, 0);
+        for (size_t f = 0; f < nF; ++f) {
+            for (uint32_t c = normalFaceOffsets[f]; c < normalFaceOffsets[f + 1]; ++c) {
+                if (crv[c] != UINT32_MAX) ++groupOffsets[smoothGroup[crv[c]] + 1];
+            }
+        }
+        for (size_t g = 0; g < nR; ++g) groupOffsets[g + 1] += groupOffsets[g];
+        groupFaces.resize(groupOffsets[nR]);
+        std::vector<uint32_t> at(groupOffsets.begin(), groupOffsets.end() - 1);
+        for (size_t f = 0; f < nF; ++f) {
+            for (uint32_t c = normalFaceOffsets[f]; c < normalFaceOffsets[f + 1]; ++c) {
+                if (crv[c] != UINT32_MAX) groupFaces[at[smoothGroup[crv[c]]]++] = uint32_t(f);
+            }
         }
     }
+    std::vector<uint32_t> normalFaceOffsets, groupOffsets, groupFaces;
+    mutable std::vector<glm::vec3> faceNormals;
     mutable std::vector<glm::vec3> normalScratch;
 
+    // (A first copy is never written, so copies can run in any order.)
     void unifyCopies(glm::vec3* pos, glm::vec3* nrm) const {
-        for (size_t r = 0; r < positionRep.size(); ++r) {
-            pos[r] = pos[positionRep[r]];
-            nrm[r] = nrm[smoothGroup[r]];
-        }
+        par.each(positionRep.size(), [&](size_t r) {
+            if (positionRep[r] != r) pos[r] = pos[positionRep[r]];
+            if (smoothGroup[r] != r) nrm[r] = nrm[smoothGroup[r]];
+        });
     }
 };
 
@@ -741,21 +864,25 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
     auto interpolateVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
         out.resize(fast.level(N).numVerts);
         if (N == 1) {
-            fast.interpolate(1,
-                             detail::Vec4Writer<glm::vec3, glm::vec3>{control.data(), out.data()});
+            fast.interpolate(
+                1, detail::Vec4Writer<glm::vec3, glm::vec3>{control.data(), out.data()}, par);
             return;
         }
         levelPoints[1].resize(fast.level(1).numVerts);
         fast.interpolate(
-            1, detail::Vec4Writer<glm::vec3, glm::vec4>{control.data(), levelPoints[1].data()});
+            1, detail::Vec4Writer<glm::vec3, glm::vec4>{control.data(), levelPoints[1].data()},
+            par);
         for (int l = 2; l < N; ++l) {
             levelPoints[size_t(l)].resize(fast.level(l).numVerts);
-            fast.interpolate(
-                l, detail::Vec4Writer<glm::vec4, glm::vec4>{levelPoints[size_t(l) - 1].data(),
-                                                            levelPoints[size_t(l)].data()});
+            fast.interpolate(l,
+                             detail::Vec4Writer<glm::vec4, glm::vec4>{
+                                 levelPoints[size_t(l) - 1].data(), levelPoints[size_t(l)].data()},
+                             par);
         }
-        fast.interpolate(N, detail::Vec4Writer<glm::vec4, glm::vec3>{
-                                levelPoints[size_t(N) - 1].data(), out.data()});
+        fast.interpolate(
+            N,
+            detail::Vec4Writer<glm::vec4, glm::vec3>{levelPoints[size_t(N) - 1].data(), out.data()},
+            par);
     };
     refineVertexData(cage, refined, interpolateVec3);
     refined.uvSets.resize(nSets);
@@ -768,7 +895,8 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
                 l == N ? refined.uvSets[s].values : levelValues[size_t(l)];
             dstBuf.resize(fast.numFVarValues(l, int(s)));
             fast.interpolateFaceVarying(
-                l, detail::ArrayWriter<glm::vec2>{src, dstBuf.data(), glm::vec2(0.0f)}, int(s));
+                l, detail::ArrayWriter<glm::vec2>{src, dstBuf.data(), glm::vec2(0.0f)}, int(s),
+                par);
             src = dstBuf.data();
         }
     }
@@ -778,7 +906,7 @@ void Subdivider::Impl::refineUniformFast(const PolygonMesh& cage) {
     fast.takeLastFaceVertices(refined.faceVertices);
     for (size_t s = 0; s < nSets; ++s) fast.takeLastFaceValues(int(s), refined.uvSets[s].indices);
     levelToRefined.resize(last.numVerts);
-    std::iota(levelToRefined.begin(), levelToRefined.end(), 0u);
+    par.each(last.numVerts, [&](size_t v) { levelToRefined[v] = uint32_t(v); });
     refined.morphWeights = cage.morphWeights;
     timings.convertOut = sw.lap();
 }
@@ -1025,14 +1153,14 @@ void Subdivider::Impl::locateHomes(const Far::TopologyRefiner& uniform, const Li
     homes.offsets = faceOffsets(refined);
     dropFace.assign(refined.faceSizes.size(), 0);
     homes.cornerHandle.assign(homes.cornerPtex.size(), nullptr);
-    for (size_t f = 0; f < refined.faceSizes.size(); ++f) {
+    par.each(refined.faceSizes.size(), [&](size_t f) {
         for (uint32_t c = homes.offsets[f]; c < homes.offsets[f + 1]; ++c) {
             glm::vec2& uv = homes.cornerUV[c];
             uv = glm::vec2(clampParam(uv.x), clampParam(uv.y));
             homes.cornerHandle[c] = lp.patchMap->FindPatch(int(homes.cornerPtex[c]), uv.x, uv.y);
             if (!homes.cornerHandle[c]) dropFace[f] = 1;
         }
-    }
+    });
     refined.holes.clear();
     for (uint32_t f = 0; f < dropFace.size(); ++f) {
         if (dropFace[f]) refined.holes.push_back(f);
@@ -1051,57 +1179,71 @@ void Subdivider::Impl::locateHomes(const Far::TopologyRefiner& uniform, const Li
 // that face's side. The shift is 2^-12 of the face's size, so derivatives
 // move by O(2^-12 h |P''|), far below float noise in the tangent plane.
 void Subdivider::Impl::buildSamples(const LimitPatches& lp, LimitHomes& homes) {
-    constexpr float kInward = 1.0f / 4096.0f;
-    const Far::PatchTable& patches = *lp.patches;
     const std::vector<uint32_t>& offsets = homes.offsets;
     const size_t nR = split.renderFirstCorner.size();
     const std::vector<uint32_t> faceOf = detail::cornerFaces(offsets);
     homes.derivUV.resize(nR);
     homes.derivHandle.resize(nR);
     samples.clear();
-    float wP[20], wDu[20], wDv[20];
     frame = LimitFrame();
     frame.ptexFace.resize(nR);
     frame.ptexUV.resize(nR);
-    for (size_t r = 0; r < nR; ++r) {
-        uint32_t c = split.renderFirstCorner[r];
-        uint32_t f = faceOf[c];
-        glm::vec2 centre(0.0f);
-        bool onePtex = true;
-        for (uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
-            centre += homes.cornerUV[k];
-            onePtex &= homes.cornerPtex[k] == homes.cornerPtex[c];
-        }
-        centre /= float(offsets[f + 1] - offsets[f]);
-        // A level-0 polygon that is not a quad spans one ptex sub-face per
-        // corner; the corner sits at (0,0) of its sub-face, whose centre is (0.5,0.5).
-        if (!onePtex) centre = glm::vec2(0.5f);
-        glm::vec2 d = homes.cornerUV[c] + kInward * (centre - homes.cornerUV[c]);
-        glm::vec2& derivUV = homes.derivUV[r];
-        const Far::PatchMap::Handle*& derivHandle = homes.derivHandle[r];
-        derivUV = glm::vec2(clampParam(d.x), clampParam(d.y));
-        derivHandle = lp.patchMap->FindPatch(int(homes.cornerPtex[c]), derivUV.x, derivUV.y);
-        if (!derivHandle)
-            derivHandle = homes.cornerHandle[c]; // cannot happen inside a face with patches
+    // Fixed blocks of render vertices, each its own table, appended in
+    // block order: the same table for every thread count.
+    std::vector<SampleTable> block((nR + detail::kFixedBlock - 1) / detail::kFixedBlock);
+    par.fixedBlocks(nR, [&](size_t k, size_t begin, size_t end) {
+        SampleTable& t = block[k];
+        t.clear();
+        for (size_t r = begin; r < end; ++r) addSample(lp, homes, faceOf, r, t);
+    });
+    for (const SampleTable& t : block) samples.append(t);
+}
 
-        const Far::PatchMap::Handle* h = homes.cornerHandle[c];
-        float u = clampParam(homes.cornerUV[c].x), v = clampParam(homes.cornerUV[c].y);
-        float wValue[20];
-        patches.EvaluateBasis(*h, u, v, wValue, wDu, wDv);
-        // A regular (B-spline) patch has well-defined derivatives at its
-        // corners: evaluate the home face's patch at the corner itself (fewer
-        // non-zero weights, no shift); end caps keep the shifted point.
-        glm::vec2 at = derivUV;
-        if (patches.GetPatchDescriptor(*derivHandle).GetType() == Far::PatchDescriptor::REGULAR)
-            at = glm::vec2(u, v);
-        patches.EvaluateBasis(*derivHandle, at.x, at.y, wP, wDu, wDv);
-        int n = patches.GetPatchVertices(*derivHandle).size();
-        toPtexUnits(patches.GetPatchParam(*derivHandle), n, wDu, wDv);
-        samples.add(patches.GetPatchVertices(*h), wValue, patches.GetPatchVertices(*derivHandle),
-                    wDu, wDv);
-        frame.ptexFace[r] = homes.cornerPtex[c];
-        frame.ptexUV[r] = glm::vec2(u, v);
+// buildSamples for render vertex r, appended to `table`.
+void Subdivider::Impl::addSample(const LimitPatches& lp, LimitHomes& homes,
+                                 const std::vector<uint32_t>& faceOf, size_t r,
+                                 SampleTable& table) {
+    constexpr float kInward = 1.0f / 4096.0f;
+    const Far::PatchTable& patches = *lp.patches;
+    const std::vector<uint32_t>& offsets = homes.offsets;
+    float wP[20], wDu[20], wDv[20];
+    uint32_t c = split.renderFirstCorner[r];
+    uint32_t f = faceOf[c];
+    glm::vec2 centre(0.0f);
+    bool onePtex = true;
+    for (uint32_t k = offsets[f]; k < offsets[f + 1]; ++k) {
+        centre += homes.cornerUV[k];
+        onePtex &= homes.cornerPtex[k] == homes.cornerPtex[c];
     }
+    centre /= float(offsets[f + 1] - offsets[f]);
+    // A level-0 polygon that is not a quad spans one ptex sub-face per
+    // corner; the corner sits at (0,0) of its sub-face, whose centre is (0.5,0.5).
+    if (!onePtex) centre = glm::vec2(0.5f);
+    glm::vec2 d = homes.cornerUV[c] + kInward * (centre - homes.cornerUV[c]);
+    glm::vec2& derivUV = homes.derivUV[r];
+    const Far::PatchMap::Handle*& derivHandle = homes.derivHandle[r];
+    derivUV = glm::vec2(clampParam(d.x), clampParam(d.y));
+    derivHandle = lp.patchMap->FindPatch(int(homes.cornerPtex[c]), derivUV.x, derivUV.y);
+    if (!derivHandle)
+        derivHandle = homes.cornerHandle[c]; // cannot happen inside a face with patches
+
+    const Far::PatchMap::Handle* h = homes.cornerHandle[c];
+    float u = clampParam(homes.cornerUV[c].x), v = clampParam(homes.cornerUV[c].y);
+    float wValue[20];
+    patches.EvaluateBasis(*h, u, v, wValue, wDu, wDv);
+    // A regular (B-spline) patch has well-defined derivatives at its
+    // corners: evaluate the home face's patch at the corner itself (fewer
+    // non-zero weights, no shift); end caps keep the shifted point.
+    glm::vec2 at = derivUV;
+    if (patches.GetPatchDescriptor(*derivHandle).GetType() == Far::PatchDescriptor::REGULAR)
+        at = glm::vec2(u, v);
+    patches.EvaluateBasis(*derivHandle, at.x, at.y, wP, wDu, wDv);
+    int n = patches.GetPatchVertices(*derivHandle).size();
+    toPtexUnits(patches.GetPatchParam(*derivHandle), n, wDu, wDv);
+    table.add(patches.GetPatchVertices(*h), wValue, patches.GetPatchVertices(*derivHandle), wDu,
+              wDv);
+    frame.ptexFace[r] = homes.cornerPtex[c];
+    frame.ptexUV[r] = glm::vec2(u, v);
 }
 
 // Limit positions, dP/du, dP/dv and normals of the render vertices, and the
@@ -1112,20 +1254,20 @@ void Subdivider::Impl::evaluatePositions(const PolygonMesh& cage) {
     // Positions relative to `origin` (boxCentre: morph deltas need none).
     auto evalVec3 = [&](const std::vector<glm::vec3>& control, glm::vec3 origin, glm::vec3* value,
                         std::vector<glm::vec3>& du, std::vector<glm::vec3>& dv) {
-        for (size_t v = 0; v < control.size(); ++v) points[v] = control[v] - origin;
-        limitStencils.apply(points.data());
+        par.each(control.size(), [&](size_t v) { points[v] = control[v] - origin; });
+        limitStencils.apply(points.data(), par);
         du.resize(nR);
         dv.resize(nR);
-        samples.evaluate(points.data(), value, du.data(), dv.data());
-        for (size_t r = 0; r < nR; ++r) value[r] += origin;
+        samples.evaluate(points.data(), value, du.data(), dv.data(), par);
+        par.each(nR, [&](size_t r) { value[r] += origin; });
     };
     evalVec3(cage.positions, boxCentre(cage.positions.data(), cage.positions.size()),
              render.positions.data(), frame.dPdu, frame.dPdv);
     render.normals.resize(nR);
-    for (size_t r = 0; r < nR; ++r) {
+    par.each(nR, [&](size_t r) {
         // Fallback for a degenerate limit point: the refined face normal.
         render.normals[r] = safeNormal(frame.dPdu[r], frame.dPdv[r], render.normals[r]);
-    }
+    });
     unifyCopies(render.positions.data(), render.normals.data());
     frame.morphDPdu.resize(cage.morphTargets.size());
     frame.morphDPdv.resize(cage.morphTargets.size());
@@ -1134,7 +1276,9 @@ void Subdivider::Impl::evaluatePositions(const PolygonMesh& cage) {
                  render.morphTargets[t].positionDeltas.data(), frame.morphDPdu[t],
                  frame.morphDPdv[t]);
         std::vector<glm::vec3>& d = render.morphTargets[t].positionDeltas;
-        for (size_t r = 0; r < nR; ++r) d[r] = d[positionRep[r]];
+        par.each(nR, [&](size_t r) {
+            if (positionRep[r] != r) d[r] = d[positionRep[r]];
+        });
     }
 }
 
@@ -1185,7 +1329,6 @@ void Subdivider::Impl::evaluateUvSets(const PolygonMesh& cage, const LimitPatche
                                       const LimitHomes& homes) {
     const Far::PatchTable& patches = *lp.patches;
     const size_t nR = split.renderFirstCorner.size();
-    float wP[20], wDu[20], wDv[20];
     frame.dUVdu.assign(cage.uvSets.size(), {});
     frame.dUVdv.assign(cage.uvSets.size(), {});
     for (size_t s = 0; s < cage.uvSets.size(); ++s) {
@@ -1193,6 +1336,7 @@ void Subdivider::Impl::evaluateUvSets(const PolygonMesh& cage, const LimitPatche
         const std::vector<glm::vec2> values = limitUvPoints(cage, lp, s);
         auto evalUv = [&](const Far::PatchMap::Handle* h, glm::vec2 at, glm::vec2& value,
                           glm::vec2& du, glm::vec2& dv) {
+            float wP[20], wDu[20], wDv[20];
             patches.EvaluateBasisFaceVarying(*h, at.x, at.y, wP, wDu, wDv, nullptr, nullptr,
                                              nullptr, ch);
             Far::ConstIndexArray cvs = patches.GetPatchFVarValues(*h, ch);
@@ -1208,7 +1352,7 @@ void Subdivider::Impl::evaluateUvSets(const PolygonMesh& cage, const LimitPatche
         std::vector<glm::vec2>& outUV = render.uvSets[s];
         frame.dUVdu[s].resize(nR);
         frame.dUVdv[s].resize(nR);
-        for (size_t r = 0; r < nR; ++r) {
+        par.each(nR, [&](size_t r) {
             uint32_t c = split.renderFirstCorner[r];
             glm::vec2 q, du, dv, unused;
             evalUv(homes.cornerHandle[c],
@@ -1218,7 +1362,7 @@ void Subdivider::Impl::evaluateUvSets(const PolygonMesh& cage, const LimitPatche
             outUV[r] = q;
             frame.dUVdu[s][r] = du;
             frame.dUVdv[s][r] = dv;
-        }
+        });
     }
 }
 
@@ -1271,14 +1415,9 @@ void Subdivider::Impl::buildRender() {
     renderToRefined = split.renderSourceVertex;
     render.name = refined.name;
     render.positions.resize(nR);
-    for (size_t r = 0; r < nR; ++r) render.positions[r] = refined.positions[renderToRefined[r]];
     render.uvSets.resize(refined.uvSets.size());
-    for (size_t s = 0; s < refined.uvSets.size(); ++s) {
-        render.uvSets[s].resize(nR);
-        for (size_t r = 0; r < nR; ++r)
-            render.uvSets[s][r] =
-                refined.uvSets[s].values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
-    }
+    for (size_t s = 0; s < refined.uvSets.size(); ++s) render.uvSets[s].resize(nR);
+    copyToRender();
     render.indices = split.indices;
     render.tangents.clear();
     render.tangentUvSet = -1;
@@ -1303,6 +1442,7 @@ void Subdivider::Impl::buildRender() {
         }
     }
     render.normals.assign(nR, glm::vec3(0.0f));
+    normalGroups();
     polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
     render.morphTargets.resize(refined.morphTargets.size());
     for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
@@ -1310,9 +1450,10 @@ void Subdivider::Impl::buildRender() {
         render.morphTargets[t].normalDeltas.clear();
         render.morphTargets[t].tangentDeltas.clear();
         render.morphTargets[t].positionDeltas.resize(nR);
-        for (size_t r = 0; r < nR; ++r)
+        par.each(nR, [&](size_t r) {
             render.morphTargets[t].positionDeltas[r] =
                 refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+        });
     }
     render.morphWeights = refined.morphWeights;
     if (!render.morphTargets.empty() && render.morphWeights.empty())
@@ -1322,7 +1463,7 @@ void Subdivider::Impl::buildRender() {
         if (levelToRefined[v] != UINT32_MAX) refinedToLevel[levelToRefined[v]] = v;
     }
     renderToLevel.resize(nR);
-    for (size_t r = 0; r < nR; ++r) renderToLevel[r] = refinedToLevel[renderToRefined[r]];
+    par.each(nR, [&](size_t r) { renderToLevel[r] = refinedToLevel[renderToRefined[r]]; });
     // refined() normals: per vertex, from the first render vertex using it.
     refined.normals.assign(refined.positions.size(), glm::vec3(0.0f, 0.0f, 1.0f));
     for (size_t r = nR; r-- > 0;) refined.normals[renderToRefined[r]] = render.normals[r];
@@ -1416,12 +1557,12 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     auto refineVec3 = [&](const std::vector<glm::vec3>& control, std::vector<glm::vec3>& out) {
         points.resize(uniformStencils.numPoints);
         std::copy(control.begin(), control.end(), points.begin());
-        uniformStencils.apply(points.data());
+        uniformStencils.apply(points.data(), par);
         const glm::vec3* levelN = points.data() + (uniformStencils.numPoints - nLevel);
         out.resize(refined.positions.size());
-        for (size_t v = 0; v < nLevel; ++v) {
+        par.each(nLevel, [&](size_t v) {
             if (levelToRefined[v] != UINT32_MAX) out[levelToRefined[v]] = levelN[v];
-        }
+        });
     };
     refineVec3(cage.positions, refined.positions);
     for (size_t t = 0; t < cage.morphTargets.size(); ++t)
@@ -1430,7 +1571,7 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
         const FactoredStencils& f = fvarStencils[s];
         uvPoints.resize(f.numPoints);
         std::copy(cage.uvSets[s].values.begin(), cage.uvSets[s].values.end(), uvPoints.begin());
-        f.apply(uvPoints.data());
+        f.apply(uvPoints.data(), par);
         std::vector<glm::vec2>& values = refined.uvSets[s].values;
         values.assign(uvPoints.end() - std::ptrdiff_t(values.size()), uvPoints.end());
     }
@@ -1445,18 +1586,12 @@ void Subdivider::Impl::rebuildValues(const PolygonMesh& cage) {
     } else {
         if (renderValid) {
             const size_t nR = renderToRefined.size();
-            for (size_t r = 0; r < nR; ++r)
-                render.positions[r] = refined.positions[renderToRefined[r]];
-            for (size_t s = 0; s < refined.uvSets.size(); ++s) {
-                for (size_t r = 0; r < nR; ++r)
-                    render.uvSets[s][r] =
-                        refined.uvSets[s]
-                            .values[refined.uvSets[s].indices[split.renderFirstCorner[r]]];
-            }
+            copyToRender();
             for (size_t t = 0; t < refined.morphTargets.size(); ++t) {
-                for (size_t r = 0; r < nR; ++r)
+                par.each(nR, [&](size_t r) {
                     render.morphTargets[t].positionDeltas[r] =
                         refined.morphTargets[t].positionDeltas[renderToRefined[r]];
+                });
             }
             render.morphWeights = refined.morphWeights;
             polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
@@ -1578,7 +1713,7 @@ void Subdivider::Impl::build(const PolygonMesh& cage) {
         fastDeclined = settings.limit ? "limit evaluation" : (N < 1 ? "level 0" : "not asked");
     }
     if (fastBuilt) {
-        fast.refine(N);
+        fast.refine(N, par);
         timings.topology = sw.lap();
         refineUniformFast(cage);
         sw.lap();
@@ -1653,11 +1788,28 @@ Subdivider::~Subdivider() = default;
 Subdivider::Subdivider(Subdivider&&) noexcept = default;
 Subdivider& Subdivider::operator=(Subdivider&&) noexcept = default;
 
+// Elements per task with serialBelowFaces = 0: small cages then exercise
+// many block boundaries.
+constexpr size_t kTestGrain = 16;
+
 void Subdivider::build(const PolygonMesh& cage, const SubdivisionSettings& settings,
                        const std::string& file) {
+    SG_EXPECTS(settings.threads >= 0 && settings.threads <= kMaxThreads,
+               "SubdivisionSettings::threads is 0 (all cores) or 1..1024");
     impl_->settings = settings;
     impl_->file = file.empty() ? (cage.name.empty() ? std::string("(mesh)") : cage.name) : file;
-    impl_->build(cage);
+    // Threads only where they pay: a refined mesh below serialBelowFaces
+    // stays on the calling thread (the estimate is the budget check's).
+    const long double faces =
+        settings.level >= 0 && settings.level <= kMaxSubdivisionLevel
+            ? refinedFaceEstimate(cage, settings.options.scheme, settings.level)
+            : 0.0L;
+    impl_->par.on = settings.threads != 1 && faces >= (long double)settings.serialBelowFaces;
+    impl_->par.grain = settings.serialBelowFaces == 0 ? kTestGrain : detail::kGrain;
+    if (impl_->par.on)
+        runWithThreads(settings.threads, [&] { impl_->build(cage); });
+    else
+        impl_->build(cage);
 }
 
 const SubdivisionSettings& Subdivider::settings() const {
@@ -1700,46 +1852,53 @@ void Subdivider::update(std::span<const glm::vec3> cagePositions, RenderMesh& ou
     SG_EXPECTS(cagePositions.size() == m.cageVertices, "one position per cage vertex");
     SG_EXPECTS(out.positions.size() == m.render.positions.size(),
                "`out` starts as a copy of renderMesh()");
+    if (m.par.on)
+        runWithThreads(m.settings.threads,
+                       [&] { m.update(cagePositions, out, frame, recomputeNormals); });
+    else
+        m.update(cagePositions, out, frame, recomputeNormals);
+}
+
+void Subdivider::Impl::update(std::span<const glm::vec3> cagePositions, RenderMesh& out,
+                              LimitFrame* outFrame, bool recomputeNormals) const {
     const size_t nR = out.positions.size();
-    if (m.settings.limit) {
+    if (settings.limit) {
         // Relative to the box centre, as a build evaluates them.
         const glm::vec3 origin = boxCentre(cagePositions.data(), cagePositions.size());
-        m.points4.resize(m.limitStencils.numPoints);
-        for (size_t v = 0; v < cagePositions.size(); ++v)
-            m.points4[v] = glm::vec4(cagePositions[v] - origin, 0.0f);
-        m.limitStencils.apply(m.points4.data());
+        points4.resize(limitStencils.numPoints);
+        par.each(cagePositions.size(),
+                 [&](size_t v) { points4[v] = glm::vec4(cagePositions[v] - origin, 0.0f); });
+        limitStencils.apply(points4.data(), par);
         glm::vec3 *du, *dv;
         std::vector<glm::vec3> tmpU, tmpV;
-        if (frame) {
-            frame->dPdu.resize(nR);
-            frame->dPdv.resize(nR);
-            du = frame->dPdu.data();
-            dv = frame->dPdv.data();
+        if (outFrame) {
+            outFrame->dPdu.resize(nR);
+            outFrame->dPdv.resize(nR);
+            du = outFrame->dPdu.data();
+            dv = outFrame->dPdv.data();
         } else {
             tmpU.resize(nR);
             tmpV.resize(nR);
             du = tmpU.data();
             dv = tmpV.data();
         }
-        m.samples.evaluate(m.points4.data(), out.positions.data(), du, dv);
-        for (size_t r = 0; r < nR; ++r) out.positions[r] += origin;
+        samples.evaluate(points4.data(), out.positions.data(), du, dv, par);
+        par.each(nR, [&](size_t r) { out.positions[r] += origin; });
         out.normals.resize(nR);
         if (recomputeNormals) {
-            for (size_t r = 0; r < nR; ++r)
-                out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]);
+            par.each(nR,
+                     [&](size_t r) { out.normals[r] = safeNormal(du[r], dv[r], out.normals[r]); });
         }
-        m.unifyCopies(out.positions.data(), out.normals.data());
+        unifyCopies(out.positions.data(), out.normals.data());
         return;
     }
-    m.points4.resize(m.uniformStencils.numPoints);
-    for (size_t v = 0; v < cagePositions.size(); ++v)
-        m.points4[v] = glm::vec4(cagePositions[v], 0.0f);
-    m.uniformStencils.apply(m.points4.data());
-    const glm::vec4* levelN =
-        m.points4.data() + (m.uniformStencils.numPoints - m.levelToRefined.size());
-    for (size_t r = 0; r < nR; ++r) out.positions[r] = glm::vec3(levelN[m.renderToLevel[r]]);
-    if (recomputeNormals)
-        m.polygonNormals(out.positions.data(), out.normals.data(), m.normalScratch);
+    points4.resize(uniformStencils.numPoints);
+    par.each(cagePositions.size(),
+             [&](size_t v) { points4[v] = glm::vec4(cagePositions[v], 0.0f); });
+    uniformStencils.apply(points4.data(), par);
+    const glm::vec4* levelN = points4.data() + (uniformStencils.numPoints - levelToRefined.size());
+    par.each(nR, [&](size_t r) { out.positions[r] = glm::vec3(levelN[renderToLevel[r]]); });
+    if (recomputeNormals) polygonNormals(out.positions.data(), out.normals.data(), normalScratch);
 }
 
 } // namespace sg::mesh
@@ -2047,7 +2206,8 @@ std::vector<uint32_t> rootVertices(const Far::TopologyRefiner& refiner,
 } // namespace
 
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
-                                     int isolation, const std::string& file) {
+                                     int isolation, const std::string& file, int threads) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads, "threads is 0 (all cores) or 1..1024");
     if (options.scheme != Scheme::Catmark)
         throw InputError(file, "scheme",
                          std::string("adaptive patches need Catmull-Clark (catmark), not ") +
@@ -2075,7 +2235,7 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
     out.isolation = isolation;
     out.cagePointCount = uint32_t(cage.positions.size());
     recordAdaptiveStencils(*refiner, *table, out, file);
-    updateAdaptivePoints(out, cage.positions);
+    updateAdaptivePoints(out, cage.positions, threads);
 
     for (int a = 0; a < table->GetNumPatchArrays(); ++a) {
         AdaptivePatchArray arr;
@@ -2104,8 +2264,21 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
             levelBase[size_t(l)] + uint32_t(refiner->GetLevel(l).GetNumVertices());
     out.cornerVertices.resize(out.params.size());
     const Far::PatchParamTable& pt = table->GetPatchParamTable();
+    std::vector<uint8_t> found(out.params.size(), 0);
+    detail::Parallel par;
+    par.on = threads != 1 && out.params.size() >= kAdaptiveSerialBelowPatches;
+    auto corners = [&] {
+        par.each(out.params.size(), [&](size_t p) {
+            found[p] =
+                patchCorners(*refiner, ptexToFace, ptex, levelBase, pt[p], out.cornerVertices[p]);
+        });
+    };
+    if (par.on)
+        runWithThreads(threads, corners);
+    else
+        corners();
     for (size_t p = 0; p < out.params.size(); ++p) {
-        if (!patchCorners(*refiner, ptexToFace, ptex, levelBase, pt[p], out.cornerVertices[p]))
+        if (!found[p])
             throw InputError(file, "patch " + std::to_string(p),
                              "the refined face of an adaptive patch was not found");
     }
@@ -2117,10 +2290,12 @@ AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOption
     return out;
 }
 
-void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions) {
+void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions,
+                          int threads) {
     SG_EXPECTS(cagePositions.size() == patches.cagePointCount &&
                    patches.points.size() >= patches.cagePointCount,
                "updateAdaptivePoints: one position per cage vertex");
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads, "threads is 0 (all cores) or 1..1024");
     std::copy(cagePositions.begin(), cagePositions.end(), patches.points.begin());
     // The passes in order; within a pass the rows are independent (each
     // reads only points of earlier passes), so point order is pass order.
@@ -2128,12 +2303,26 @@ void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> c
     const uint32_t* off = patches.stencilOffsets.data();
     const uint32_t* idx = patches.stencilIndices.data();
     const float* w = patches.stencilWeights.data();
-    const size_t rows = patches.points.size() - patches.cagePointCount;
-    for (size_t r = 0; r < rows; ++r) {
-        glm::vec3 p(0.0f);
-        for (uint32_t k = off[r]; k < off[r + 1]; ++k) p += w[k] * points[idx[k]];
-        points[patches.cagePointCount + r] = p;
-    }
+    const uint32_t cage = patches.cagePointCount;
+    const size_t rows = patches.points.size() - cage;
+    detail::Parallel par;
+    par.on = threads != 1 && rows >= kAdaptiveSerialBelowPatches;
+    auto run = [&] {
+        const std::vector<uint32_t>& passes = patches.stencilPasses;
+        for (size_t p = 0; p + 1 < passes.size(); ++p) {
+            const uint32_t first = passes[p] - cage;
+            par.each(passes[p + 1] - passes[p], [&](size_t i) {
+                const size_t r = first + i;
+                glm::vec3 q(0.0f);
+                for (uint32_t k = off[r]; k < off[r + 1]; ++k) q += w[k] * points[idx[k]];
+                points[cage + r] = q;
+            });
+        }
+    };
+    if (par.on)
+        runWithThreads(threads, run);
+    else
+        run();
 }
 
 } // namespace sg::mesh

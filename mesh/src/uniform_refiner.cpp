@@ -441,7 +441,7 @@ bool UniformRefiner::classifyFVar(const PolygonMesh& cage, size_t channel, std::
 
 // ---- Refinement ------------------------------------------------------------------
 
-void UniformRefiner::refine(int levels) {
+void UniformRefiner::refine(int levels, const Parallel& par) {
     SG_EXPECTS(levels >= 1, "at least one level");
     levels_ = levels;
     if (level_.size() < size_t(levels) + 1) level_.resize(size_t(levels) + 1);
@@ -450,11 +450,11 @@ void UniformRefiner::refine(int levels) {
         const RefineLevel& P = level_[size_t(l) - 1];
         RefineLevel& C = level_[size_t(l)];
         const bool last = l == levels;
-        refineTopology(P, C, last);
+        refineTopology(P, C, last, par);
         C.tagged = P.tagged;
-        if (P.tagged) refineSharpness(P, C);
+        if (P.tagged) refineSharpness(P, C, par);
         C.fvar.resize(channels);
-        for (size_t s = 0; s < channels; ++s) refineFVar(P, C, s, last);
+        for (size_t s = 0; s < channels; ++s) refineFVar(P, C, s, last, par);
     }
 }
 
@@ -472,7 +472,7 @@ struct ChildNumbering {
 // Face vertices: child j of a quad keeps its parent corner at position j
 // (v_j, e_j, centre, e_j-1 rotated by j); a child of another polygon starts
 // at its parent corner.
-void childFaceVertices(const RefineLevel& P, RefineLevel& C) {
+void childFaceVertices(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const ChildNumbering at(P);
     const uint32_t nF = P.numFaces;
     const uint32_t* pfo = P.faceOffsets.data();
@@ -482,21 +482,23 @@ void childFaceVertices(const RefineLevel& P, RefineLevel& C) {
     uint32_t* cfv = C.faceVerts.data();
     const bool quads = P.numCorners == 4 * nF; // every level after the first
     if (quads) {
-        for (uint32_t f = 0; f < nF; ++f) {
+        par.each(nF, [&](size_t fi) {
+            const uint32_t f = uint32_t(fi);
             const uint32_t* v = pfv + 4 * f;
             const uint32_t* e = pfe + 4 * f;
             const uint32_t fc = at.firstFace + f;
             const uint32_t e0 = at.firstEdge + e[0], e1 = at.firstEdge + e[1],
                            e2 = at.firstEdge + e[2], e3 = at.firstEdge + e[3];
-            uint32_t* out = cfv + 16 * f;
+            uint32_t* out = cfv + 16 * size_t(f);
             out[0] = v[0], out[1] = e0, out[2] = fc, out[3] = e3;
             out[4] = e0, out[5] = v[1], out[6] = e1, out[7] = fc;
             out[8] = fc, out[9] = e1, out[10] = v[2], out[11] = e2;
             out[12] = e3, out[13] = fc, out[14] = e2, out[15] = v[3];
-        }
+        });
         return;
     }
-    for (uint32_t f = 0; f < nF; ++f) {
+    par.each(nF, [&](size_t fi) {
+        const uint32_t f = uint32_t(fi);
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t jp = j ? j - 1 : k - 1;
@@ -515,22 +517,23 @@ void childFaceVertices(const RefineLevel& P, RefineLevel& C) {
                 out[3] = ep;
             }
         }
-    }
+    });
 }
 
 // Face edges: the half of each parent edge at the corner, the two interior
 // edges.
-void childFaceEdges(const RefineLevel& P, RefineLevel& C) {
+void childFaceEdges(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const uint32_t nF = P.numFaces, nC = P.numCorners;
     const uint32_t* pfo = P.faceOffsets.data();
     const uint32_t* pfv = P.faceVerts.data();
     const uint32_t* pfe = P.faceEdges.data();
     const uint32_t* pev = P.edgeVerts.data();
     sized(C.faceOffsets, C.numFaces + 1);
-    for (uint32_t c = 0; c <= C.numFaces; ++c) C.faceOffsets[c] = 4 * c;
+    par.each(size_t(C.numFaces) + 1, [&](size_t c) { C.faceOffsets[c] = 4 * uint32_t(c); });
     sized(C.faceEdges, C.numCorners);
     uint32_t* cfe = C.faceEdges.data();
-    for (uint32_t f = 0; f < nF; ++f) {
+    par.each(nF, [&](size_t fi) {
+        const uint32_t f = uint32_t(fi);
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t jp = j ? j - 1 : k - 1;
@@ -550,12 +553,12 @@ void childFaceEdges(const RefineLevel& P, RefineLevel& C) {
                 out[3] = halfPrev;
             }
         }
-    }
+    });
 }
 
 // Edge vertices and edge faces: interior edges of faces first, then the
 // two halves of each parent edge.
-void childEdges(const RefineLevel& P, RefineLevel& C) {
+void childEdges(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const ChildNumbering at(P);
     const uint32_t nF = P.numFaces, nE = P.numEdges, nC = P.numCorners;
     const uint32_t* pfo = P.faceOffsets.data();
@@ -568,7 +571,8 @@ void childEdges(const RefineLevel& P, RefineLevel& C) {
     uint32_t* cev = C.edgeVerts.data();
     uint32_t* cef = C.edgeFaces.data();
     uint16_t* ceif = C.edgeInFace.data();
-    for (uint32_t f = 0; f < nF; ++f) {
+    par.each(nF, [&](size_t fi) {
+        const uint32_t f = uint32_t(fi);
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         for (uint32_t j = 0; j < k; ++j) {
             const uint32_t c = off + j, jn = j + 1 == k ? 0 : j + 1;
@@ -579,8 +583,9 @@ void childEdges(const RefineLevel& P, RefineLevel& C) {
             cef[2 * c + 1] = off + jn;
             ceif[2 * c + 1] = uint16_t(k == 4 ? ((jn + 2) & 3) : 2);
         }
-    }
-    for (uint32_t e = 0; e < nE; ++e) {
+    });
+    par.each(nE, [&](size_t ei) {
+        const uint32_t e = uint32_t(ei);
         const uint32_t nfE = P.edgeFaceCount(e);
         for (uint32_t j = 0; j < 2; ++j) {
             const uint32_t c = nC + 2 * e + j;
@@ -598,7 +603,7 @@ void childEdges(const RefineLevel& P, RefineLevel& C) {
                 ceif[2 * c + i] = uint16_t(k == 4 ? eif : (childOfEdge ? 3 : 0));
             }
         }
-    }
+    });
 }
 
 // Offsets of the vertex-face and vertex-edge relations (vertices of
@@ -639,7 +644,7 @@ void childVertexOffsets(const RefineLevel& P, RefineLevel& C) {
 
 // Faces and edges around the child vertices of parent vertices and of
 // parent faces, counter-clockwise.
-void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C) {
+void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const ChildNumbering at(P);
     const uint32_t nV = P.numVerts, nF = P.numFaces, nC = P.numCorners;
     const uint32_t* pfo = P.faceOffsets.data();
@@ -649,7 +654,8 @@ void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C) {
     uint32_t* cve = C.vertEdges.data();
     uint16_t* cvie = C.vertInEdge.data();
     uint32_t* cvr = C.vertRing.data();
-    for (uint32_t v = 0; v < nV; ++v) {
+    par.each(nV, [&](size_t vi) {
+        const uint32_t v = uint32_t(vi);
         uint32_t fo = C.vertFaceOffsets[v];
         for (uint32_t i = P.vertFaceOffsets[v]; i < P.vertFaceOffsets[v + 1]; ++i, ++fo) {
             const uint32_t pf = P.vertFaces[i], vif = P.vertInFace[i];
@@ -663,8 +669,9 @@ void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C) {
             cvie[eo] = 1;
             cvr[eo] = at.firstEdge + P.vertEdges[i];
         }
-    }
-    for (uint32_t f = 0; f < nF; ++f) {
+    });
+    par.each(nF, [&](size_t fi) {
+        const uint32_t f = uint32_t(fi);
         const uint32_t off = pfo[f], k = pfo[f + 1] - off;
         const uint32_t fo = C.vertFaceOffsets[at.firstFace + f];
         const uint32_t eo = C.vertEdgeOffsets[at.firstFace + f];
@@ -675,13 +682,13 @@ void childVertexAndFaceVertexRelations(const RefineLevel& P, RefineLevel& C) {
             cvie[eo + j] = 0;
             cvr[eo + j] = at.firstEdge + pfe[off + (j ? j - 1 : k - 1)];
         }
-    }
+    });
 }
 
 // Faces and edges around the child vertices of parent edges,
 // counter-clockwise: (half, face edge, half, ...), the first half being the
 // one the first face's edge direction leaves.
-void edgeVertexRelations(const RefineLevel& P, RefineLevel& C) {
+void edgeVertexRelations(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const ChildNumbering at(P);
     const uint32_t nE = P.numEdges, nC = P.numCorners;
     const uint32_t* pfo = P.faceOffsets.data();
@@ -689,7 +696,8 @@ void edgeVertexRelations(const RefineLevel& P, RefineLevel& C) {
     const uint32_t* pev = P.edgeVerts.data();
     uint32_t* cvf = C.vertFaces.data();
     uint16_t* cvif = C.vertInFace.data();
-    for (uint32_t e = 0; e < nE; ++e) {
+    par.each(nE, [&](size_t ei) {
+        const uint32_t e = uint32_t(ei);
         const uint32_t nfE = P.edgeFaceCount(e);
         uint32_t fo = C.vertFaceOffsets[at.firstEdge + e];
         const uint32_t eo = C.vertEdgeOffsets[at.firstEdge + e];
@@ -722,7 +730,7 @@ void edgeVertexRelations(const RefineLevel& P, RefineLevel& C) {
                 std::swap(ring[1], ring[2]);
             }
         }
-    }
+    });
 }
 
 } // namespace
@@ -731,58 +739,62 @@ void edgeVertexRelations(const RefineLevel& P, RefineLevel& C) {
 // of a quad keep the parent's orientation (child j has its parent corner at
 // position j), those of other polygons start at the parent corner. The
 // last level gets its face vertices only.
-void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool last) {
+void UniformRefiner::refineTopology(const RefineLevel& P, RefineLevel& C, bool last,
+                                    const Parallel& par) {
     C.numVerts = P.numVerts + P.numFaces + P.numEdges;
     C.numFaces = P.numCorners;
     C.numCorners = 4 * P.numCorners;
     C.numEdges = 2 * P.numEdges + P.numCorners;
     C.triangles = false;
-    childFaceVertices(P, C);
+    childFaceVertices(P, C, par);
     if (last) return;
-    childFaceEdges(P, C);
-    childEdges(P, C);
+    childFaceEdges(P, C, par);
+    childEdges(P, C, par);
     childVertexOffsets(P, C);
-    childVertexAndFaceVertexRelations(P, C);
-    edgeVertexRelations(P, C);
+    childVertexAndFaceVertexRelations(P, C, par);
+    edgeVertexRelations(P, C, par);
 }
 
 // Vtr::Refinement::subdivideSharpnessValues + reclassifySemisharpVertices.
-void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
+void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C, const Parallel& par) {
     const Crease crease(options_);
     const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges, nC = P.numCorners;
     const uint32_t firstEdge = nV + nF;
     C.edgeSharpness.assign(C.numEdges, 0.0f);
     C.edgeTags.assign(C.numEdges, 0);
-    std::vector<float> around;
-    for (uint32_t e = 0; e < nE; ++e) {
-        const uint8_t tag = P.edgeTags[e];
-        for (uint32_t j = 0; j < 2; ++j) {
-            const uint32_t c = nC + 2 * e + j;
-            uint8_t ctag = tag;
-            float s = 0.0f;
-            if (tag & kEdgeInfSharp) {
-                s = Crease::SHARPNESS_INFINITE;
-            } else if (tag & kEdgeSemiSharp) {
-                if (crease.IsUniform()) {
-                    s = crease.SubdivideUniformSharpness(P.edgeSharpness[e]);
-                } else {
-                    const uint32_t pv = P.edgeVerts[2 * e + j];
-                    around.clear();
-                    for (uint32_t i = P.vertEdgeOffsets[pv]; i < P.vertEdgeOffsets[pv + 1]; ++i)
-                        around.push_back(P.edgeSharpness[P.vertEdges[i]]);
-                    s = crease.SubdivideEdgeSharpnessAtVertex(P.edgeSharpness[e],
-                                                              int(around.size()), around.data());
+    par.blocks(nE, [&](size_t b, size_t end) {
+        std::vector<float> around;
+        for (uint32_t e = uint32_t(b); e < end; ++e) {
+            const uint8_t tag = P.edgeTags[e];
+            for (uint32_t j = 0; j < 2; ++j) {
+                const uint32_t c = nC + 2 * e + j;
+                uint8_t ctag = tag;
+                float s = 0.0f;
+                if (tag & kEdgeInfSharp) {
+                    s = Crease::SHARPNESS_INFINITE;
+                } else if (tag & kEdgeSemiSharp) {
+                    if (crease.IsUniform()) {
+                        s = crease.SubdivideUniformSharpness(P.edgeSharpness[e]);
+                    } else {
+                        const uint32_t pv = P.edgeVerts[2 * e + j];
+                        around.clear();
+                        for (uint32_t i = P.vertEdgeOffsets[pv]; i < P.vertEdgeOffsets[pv + 1]; ++i)
+                            around.push_back(P.edgeSharpness[P.vertEdges[i]]);
+                        s = crease.SubdivideEdgeSharpnessAtVertex(
+                            P.edgeSharpness[e], int(around.size()), around.data());
+                    }
+                    if (!Crease::IsSharp(s)) ctag &= uint8_t(~kEdgeSemiSharp);
                 }
-                if (!Crease::IsSharp(s)) ctag &= uint8_t(~kEdgeSemiSharp);
+                C.edgeSharpness[c] = s;
+                C.edgeTags[c] = ctag;
             }
-            C.edgeSharpness[c] = s;
-            C.edgeTags[c] = ctag;
         }
-    }
+    });
     C.vertSharpness.assign(C.numVerts, 0.0f);
     C.vertTags.assign(C.numVerts, 0);
     C.vertRules.assign(C.numVerts, uint8_t(Crease::RULE_SMOOTH));
-    for (uint32_t v = 0; v < nV; ++v) {
+    par.each(nV, [&](size_t vi) {
+        const uint32_t v = uint32_t(vi);
         uint8_t tag = P.vertTags[v];
         float s = 0.0f;
         if (tag & kVertInfSharp) {
@@ -794,8 +806,9 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
         C.vertSharpness[v] = s;
         C.vertTags[v] = tag;
         C.vertRules[v] = P.vertRules[v];
-    }
-    for (uint32_t e = 0; e < nE; ++e) {
+    });
+    par.each(nE, [&](size_t ei) {
+        const uint32_t e = uint32_t(ei);
         const uint8_t etag = P.edgeTags[e];
         const uint32_t cv = firstEdge + e;
         uint8_t tag = uint8_t(((etag & kEdgeBoundary) ? kVertBoundary : 0) |
@@ -810,13 +823,14 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
         }
         C.vertTags[cv] = tag;
         C.vertRules[cv] = rule;
-    }
-    for (uint32_t v = 0; v < nV; ++v) {
+    });
+    par.each(nV, [&](size_t vi) {
+        const uint32_t v = uint32_t(vi);
         const uint8_t ptag = P.vertTags[v];
-        if (!(ptag & (kVertSemiSharp | kVertSemiSharpEdges))) continue;
+        if (!(ptag & (kVertSemiSharp | kVertSemiSharpEdges))) return;
         uint8_t& ctag = C.vertTags[v];
         const bool decayed = (ptag & kVertSemiSharp) && !(ctag & kVertSemiSharp);
-        if (!(ptag & kVertSemiSharpEdges) && !decayed) continue;
+        if (!(ptag & kVertSemiSharpEdges) && !decayed) return;
         int infCount = 0, semiCount = 0;
         for (uint32_t i = P.vertEdgeOffsets[v]; i < P.vertEdgeOffsets[v + 1]; ++i) {
             const uint8_t t = C.edgeTags[nC + 2 * P.vertEdges[i] + P.vertInEdge[i]];
@@ -828,13 +842,14 @@ void UniformRefiner::refineSharpness(const RefineLevel& P, RefineLevel& C) {
         if (!(ctag & kVertSemiSharp) && !(ctag & kVertInfSharp)) {
             C.vertRules[v] = uint8_t(crease.DetermineVertexVertexRule(0.0f, infCount + semiCount));
         }
-    }
+    });
 }
 
 // Vtr::FVarRefinement for a uniform manifold split: values per child vertex
 // (one per face child, one or two per edge child, the parent's per vertex
 // child), their tags and crease spans, and each child corner's value.
-void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t channel, bool last) {
+void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t channel, bool last,
+                                const Parallel& par) {
     const FVarLevelData& PF = P.fvar[channel];
     FVarLevelData& CF = C.fvar[channel];
     const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges, nC = P.numCorners;
@@ -852,23 +867,7 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
         total += (PF.edgeTags[e] & kFvEdgeMismatch) ? P.edgeFaceCount(e) : 1;
     }
     CF.valueOffsets[C.numVerts] = total;
-
-    if (!last) { // (the last level's value tags are never read)
-        sized(CF.valueTags, total);
-        const uint8_t splitTag = fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease)
-                                                       : uint8_t(kValueMismatch);
-        for (uint32_t v = 0; v < nV; ++v) {
-            for (uint32_t s = CF.valueOffsets[v]; s < CF.valueOffsets[v + 1]; ++s)
-                CF.valueTags[s] = PF.valueTags[PF.valueOffsets[v] + (s - CF.valueOffsets[v])];
-        }
-        for (uint32_t f = 0; f < nF; ++f) CF.valueTags[CF.valueOffsets[firstFace + f]] = 0;
-        for (uint32_t e = 0; e < nE; ++e) {
-            const uint8_t t = (PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear)) ? splitTag : 0;
-            for (uint32_t i = CF.valueOffsets[firstEdge + e];
-                 i < CF.valueOffsets[firstEdge + e + 1]; ++i)
-                CF.valueTags[i] = t;
-        }
-    }
+    if (!last) fvarValueTags(P, C, channel, par); // (the last level's are never read)
 
     // Each child corner's value: the sibling of its parent corner for a
     // vertex child, the side of the seam for an edge child, the only value
@@ -880,85 +879,127 @@ void UniformRefiner::refineFVar(const RefineLevel& P, RefineLevel& C, size_t cha
     const bool quads = nC == 4 * nF;
     if (quads) {
         // As below with k = 4 (every level after the first).
-        for (uint32_t f = 0; f < nF; ++f) {
-            const uint32_t* v = P.faceVerts.data() + 4 * f;
-            const uint32_t* e = P.faceEdges.data() + 4 * f;
+        par.each(nF, [&](size_t fi) {
+            const uint32_t f = uint32_t(fi);
+            const uint32_t* v = P.faceVerts.data() + 4 * size_t(f);
+            const uint32_t* e = P.faceEdges.data() + 4 * size_t(f);
             uint16_t se[4]; // side of each edge's seam this face is on
             for (uint32_t j = 0; j < 4; ++j)
                 se[j] = ((PF.edgeTags[e[j]] & kFvEdgeMismatch) && P.edgeFaces[2 * e[j] + 1] == f)
                             ? 1
                             : 0;
-            const uint16_t* sv = PF.cornerSibling.data() + 4 * f;
+            const uint16_t* sv = PF.cornerSibling.data() + 4 * size_t(f);
             const uint32_t fc = cvo[firstFace + f];
             const uint32_t ev[4] = {cvo[firstEdge + e[0]] + se[0], cvo[firstEdge + e[1]] + se[1],
                                     cvo[firstEdge + e[2]] + se[2], cvo[firstEdge + e[3]] + se[3]};
-            uint32_t* out = CF.faceValues.data() + 16 * f;
+            uint32_t* out = CF.faceValues.data() + 16 * size_t(f);
             out[0] = cvo[v[0]] + sv[0], out[1] = ev[0], out[2] = fc, out[3] = ev[3];
             out[4] = ev[0], out[5] = cvo[v[1]] + sv[1], out[6] = ev[1], out[7] = fc;
             out[8] = fc, out[9] = ev[1], out[10] = cvo[v[2]] + sv[2], out[11] = ev[2];
             out[12] = ev[3], out[13] = fc, out[14] = ev[2], out[15] = cvo[v[3]] + sv[3];
             if (!last) {
-                uint16_t* cs = CF.cornerSibling.data() + 16 * f;
+                uint16_t* cs = CF.cornerSibling.data() + 16 * size_t(f);
                 cs[0] = sv[0], cs[1] = se[0], cs[2] = 0, cs[3] = se[3];
                 cs[4] = se[0], cs[5] = sv[1], cs[6] = se[1], cs[7] = 0;
                 cs[8] = 0, cs[9] = se[1], cs[10] = sv[2], cs[11] = se[2];
                 cs[12] = se[3], cs[13] = 0, cs[14] = se[2], cs[15] = sv[3];
             }
-        }
-    }
-    for (uint32_t f = 0; !quads && f < nF; ++f) {
-        const uint32_t off = pfo[f], k = pfo[f + 1] - off;
-        for (uint32_t j = 0; j < k; ++j) {
-            const uint32_t jp = j ? j - 1 : k - 1;
-            const uint32_t eNext = P.faceEdges[off + j], ePrev = P.faceEdges[off + jp];
-            const uint16_t sv = PF.cornerSibling[off + j];
-            const uint16_t sn =
-                ((PF.edgeTags[eNext] & kFvEdgeMismatch) && P.edgeFaces[2 * eNext + 1] == f) ? 1 : 0;
-            const uint16_t sp =
-                ((PF.edgeTags[ePrev] & kFvEdgeMismatch) && P.edgeFaces[2 * ePrev + 1] == f) ? 1 : 0;
-            const uint32_t vals[4] = {
-                CF.valueOffsets[P.faceVerts[off + j]] + sv, CF.valueOffsets[firstEdge + eNext] + sn,
-                CF.valueOffsets[firstFace + f], CF.valueOffsets[firstEdge + ePrev] + sp};
-            const uint16_t sibs[4] = {sv, sn, 0, sp};
-            const uint32_t at = 4 * (off + j), rot = k == 4 ? j : 0;
-            for (uint32_t m = 0; m < 4; ++m) {
-                CF.faceValues[at + ((m + rot) & 3)] = vals[m];
-                if (!last) CF.cornerSibling[at + ((m + rot) & 3)] = sibs[m];
+        });
+    } else {
+        par.each(nF, [&](size_t fi) {
+            const uint32_t f = uint32_t(fi);
+            const uint32_t off = pfo[f], k = pfo[f + 1] - off;
+            for (uint32_t j = 0; j < k; ++j) {
+                const uint32_t jp = j ? j - 1 : k - 1;
+                const uint32_t eNext = P.faceEdges[off + j], ePrev = P.faceEdges[off + jp];
+                const uint16_t sv = PF.cornerSibling[off + j];
+                const uint16_t sn =
+                    ((PF.edgeTags[eNext] & kFvEdgeMismatch) && P.edgeFaces[2 * eNext + 1] == f) ? 1
+                                                                                                : 0;
+                const uint16_t sp =
+                    ((PF.edgeTags[ePrev] & kFvEdgeMismatch) && P.edgeFaces[2 * ePrev + 1] == f) ? 1
+                                                                                                : 0;
+                const uint32_t vals[4] = {CF.valueOffsets[P.faceVerts[off + j]] + sv,
+                                          CF.valueOffsets[firstEdge + eNext] + sn,
+                                          CF.valueOffsets[firstFace + f],
+                                          CF.valueOffsets[firstEdge + ePrev] + sp};
+                const uint16_t sibs[4] = {sv, sn, 0, sp};
+                const uint32_t at = 4 * (off + j), rot = k == 4 ? j : 0;
+                for (uint32_t m = 0; m < 4; ++m) {
+                    CF.faceValues[at + ((m + rot) & 3)] = vals[m];
+                    if (!last) CF.cornerSibling[at + ((m + rot) & 3)] = sibs[m];
+                }
             }
-        }
+        });
     }
     if (last) return;
 
     CF.edgeTags.assign(C.numEdges, 0);
-    for (uint32_t e = 0; e < nE; ++e)
+    par.each(nE, [&](size_t e) {
         CF.edgeTags[nC + 2 * e] = CF.edgeTags[nC + 2 * e + 1] = PF.edgeTags[e];
-    if (fvarSmoothBoundaries_) {
-        CF.creaseStart.assign(total, 0);
-        CF.creaseEnd.assign(total, 0);
-        // Edge children on a seam: side i spans the two child faces 2i, 2i+1.
-        for (uint32_t e = 0; e < nE; ++e) {
-            const uint32_t first = CF.valueOffsets[firstEdge + e],
-                           n = CF.valueOffsets[firstEdge + e + 1] - first;
-            if (!(CF.valueTags[first] & kValueMismatch)) continue;
-            for (uint32_t i = 0; i < n; ++i) {
-                if (CF.valueTags[first + i] & kValueCrease) {
-                    CF.creaseStart[first + i] = uint16_t(2 * i);
-                    CF.creaseEnd[first + i] = uint16_t(2 * i + 1);
-                }
+    });
+    if (fvarSmoothBoundaries_) fvarCreaseSpans(P, C, channel, par);
+}
+
+// refineFVar's value tags of a level that is refined further: a vertex
+// child keeps its parent's values' tags, a face child's value matches, an
+// edge child's values on a seam (or a linear edge) are mismatched (and
+// creases with smooth boundaries).
+void UniformRefiner::fvarValueTags(const RefineLevel& P, RefineLevel& C, size_t channel,
+                                   const Parallel& par) {
+    const FVarLevelData& PF = P.fvar[channel];
+    FVarLevelData& CF = C.fvar[channel];
+    const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges;
+    const uint32_t firstFace = nV, firstEdge = nV + nF;
+    sized(CF.valueTags, CF.valueOffsets.back());
+    const uint8_t splitTag =
+        fvarSmoothBoundaries_ ? uint8_t(kValueMismatch | kValueCrease) : uint8_t(kValueMismatch);
+    par.each(nV, [&](size_t v) {
+        for (uint32_t s = CF.valueOffsets[v]; s < CF.valueOffsets[v + 1]; ++s)
+            CF.valueTags[s] = PF.valueTags[PF.valueOffsets[v] + (s - CF.valueOffsets[v])];
+    });
+    par.each(nF, [&](size_t f) { CF.valueTags[CF.valueOffsets[firstFace + f]] = 0; });
+    par.each(nE, [&](size_t e) {
+        const uint8_t t = (PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear)) ? splitTag : 0;
+        for (uint32_t i = CF.valueOffsets[firstEdge + e]; i < CF.valueOffsets[firstEdge + e + 1];
+             ++i)
+            CF.valueTags[i] = t;
+    });
+}
+
+// refineFVar's crease spans (smooth face-varying boundaries): an edge
+// child's value on side i of a seam spans the child faces 2i, 2i+1; a
+// vertex child keeps its parent's spans (same face order).
+void UniformRefiner::fvarCreaseSpans(const RefineLevel& P, RefineLevel& C, size_t channel,
+                                     const Parallel& par) {
+    const FVarLevelData& PF = P.fvar[channel];
+    FVarLevelData& CF = C.fvar[channel];
+    const uint32_t nV = P.numVerts, nF = P.numFaces, nE = P.numEdges;
+    const uint32_t firstEdge = nV + nF;
+    const uint32_t total = CF.valueOffsets.back();
+    CF.creaseStart.assign(total, 0);
+    CF.creaseEnd.assign(total, 0);
+    par.each(nE, [&](size_t e) {
+        const uint32_t first = CF.valueOffsets[firstEdge + e],
+                       n = CF.valueOffsets[firstEdge + e + 1] - first;
+        if (!(CF.valueTags[first] & kValueMismatch)) return;
+        for (uint32_t i = 0; i < n; ++i) {
+            if (CF.valueTags[first + i] & kValueCrease) {
+                CF.creaseStart[first + i] = uint16_t(2 * i);
+                CF.creaseEnd[first + i] = uint16_t(2 * i + 1);
             }
         }
-        // Vertex children keep their parent's spans (same face order).
-        for (uint32_t v = 0; v < nV; ++v) {
-            const uint32_t first = CF.valueOffsets[v], n = CF.valueOffsets[v + 1] - first;
-            if (!(CF.valueTags[first] & kValueMismatch)) continue;
-            for (uint32_t s = 0; s < n; ++s) {
-                if (CF.valueTags[first + s] & kValueCrease) {
-                    CF.creaseStart[first + s] = PF.creaseStart[PF.valueOffsets[v] + s];
-                    CF.creaseEnd[first + s] = PF.creaseEnd[PF.valueOffsets[v] + s];
-                }
+    });
+    par.each(nV, [&](size_t v) {
+        const uint32_t first = CF.valueOffsets[v], n = CF.valueOffsets[v + 1] - first;
+        if (!(CF.valueTags[first] & kValueMismatch)) return;
+        for (uint32_t s = 0; s < n; ++s) {
+            if (CF.valueTags[first + s] & kValueCrease) {
+                CF.creaseStart[first + s] = PF.creaseStart[PF.valueOffsets[v] + s];
+                CF.creaseEnd[first + s] = PF.creaseEnd[PF.valueOffsets[v] + s];
             }
         }
-    }
+    });
 }
 
 // ---- Masks and face-varying neighbourhoods ---------------------------------------

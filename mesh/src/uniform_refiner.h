@@ -55,6 +55,7 @@
 #include <utility>
 #include <vector>
 
+#include "subdivision_parallel.h"
 #include "surfgrad/polygon_mesh.h"
 
 namespace sg::mesh::detail {
@@ -122,8 +123,11 @@ public:
     bool accept(const OpenSubdiv::Far::TopologyRefiner& base, const PolygonMesh& cage,
                 std::string& why);
 
-    // Refines the topology to `levels` >= 1 levels (after accept()).
-    void refine(int levels);
+    // Refines the topology to `levels` >= 1 levels (after accept()). With
+    // par.on the per-element loops of each level run on TBB (disjoint
+    // outputs; offsets are prefix sums on the calling thread): the same
+    // topology for every thread count.
+    void refine(int levels, const Parallel& par = {});
 
     int maxLevel() const { return levels_; }
     const RefineLevel& level(int l) const { return level_[size_t(l)]; }
@@ -151,12 +155,18 @@ public:
 
     // PrimvarRefiner::Interpolate(level, src, dst): vertex data of level
     // `level` - 1 to level `level`, through a writer (ArrayWriter below;
-    // taken by value so its accumulator can live in registers).
+    // taken by value so its accumulator can live in registers). In three
+    // phases (face, edge, vertex points); with par.on each phase runs on
+    // TBB with one copy of the writer per block, so the writer must write
+    // child `begin(child)`'s value only (ArrayWriter, Vec4Writer; not a
+    // recorder that appends): each child's sum is formed in the same order
+    // as serially, bit for bit.
     template <class Writer>
-    void interpolate(int level, Writer writer) const;
+    void interpolate(int level, Writer writer, const Parallel& par = {}) const;
     // PrimvarRefiner::InterpolateFaceVarying(level, src, dst, channel).
     template <class Writer>
-    void interpolateFaceVarying(int level, Writer writer, int channel) const;
+    void interpolateFaceVarying(int level, Writer writer, int channel,
+                                const Parallel& par = {}) const;
 
 private:
     // Sdc neighbourhoods (OpenSubdiv's EDGE / VERTEX interfaces, with the
@@ -253,10 +263,17 @@ private:
     void creaseEndValues(const RefineLevel& P, const FVarLevelData& F, uint32_t v, uint32_t sibling,
                          uint32_t out[2]) const;
 
+    template <class Writer>
+    void fvarVertexValues(const RefineLevel& P, const RefineLevel& C, const FVarLevelData& PF,
+                          uint32_t v, const uint32_t* childValue, Writer& w) const;
+
     bool classifyFVar(const PolygonMesh& cage, size_t channel, std::string& why);
-    void refineTopology(const RefineLevel& P, RefineLevel& C, bool last);
-    void refineSharpness(const RefineLevel& P, RefineLevel& C);
-    void refineFVar(const RefineLevel& P, RefineLevel& C, size_t channel, bool last);
+    void refineTopology(const RefineLevel& P, RefineLevel& C, bool last, const Parallel& par);
+    void refineSharpness(const RefineLevel& P, RefineLevel& C, const Parallel& par);
+    void refineFVar(const RefineLevel& P, RefineLevel& C, size_t channel, bool last,
+                    const Parallel& par);
+    void fvarValueTags(const RefineLevel& P, RefineLevel& C, size_t channel, const Parallel& par);
+    void fvarCreaseSpans(const RefineLevel& P, RefineLevel& C, size_t channel, const Parallel& par);
 
     OpenSubdiv::Sdc::Options options_;
     bool fvarLinear_ = false, fvarSmoothBoundaries_ = true;
@@ -376,137 +393,52 @@ inline void UniformRefiner::vertexEdgeValues(const RefineLevel& P, const FVarLev
 }
 
 template <class Writer>
-void UniformRefiner::interpolate(int level, Writer w) const {
+void UniformRefiner::interpolate(int level, Writer writer, const Parallel& par) const {
     const RefineLevel& P = level_[size_t(level) - 1];
     const RefineLevel& C = level_[size_t(level)];
     const uint32_t firstFaceChild = P.numVerts, firstEdgeChild = P.numVerts + P.numFaces;
     // Face points: the average of the face's vertices (Sdc face mask 1/n).
-    for (uint32_t f = 0; f < P.numFaces; ++f) {
-        const uint32_t* fv = P.faceVerts.data() + P.faceOffsets[f];
-        const uint32_t n = P.faceOffsets[f + 1] - P.faceOffsets[f];
-        const float wf = 1.0f / float(n);
-        w.begin(firstFaceChild + f);
-        for (uint32_t i = 0; i < n; ++i) w.add(fv[i], wf);
-        w.end();
-    }
+    par.blocks(P.numFaces, [&](size_t b, size_t end) {
+        Writer w = writer;
+        for (uint32_t f = uint32_t(b); f < end; ++f) {
+            const uint32_t* fv = P.faceVerts.data() + P.faceOffsets[f];
+            const uint32_t n = P.faceOffsets[f + 1] - P.faceOffsets[f];
+            const float wf = 1.0f / float(n);
+            w.begin(firstFaceChild + f);
+            for (uint32_t i = 0; i < n; ++i) w.add(fv[i], wf);
+            w.end();
+        }
+    });
     // Edge points: both ends, then the face points of the edge's faces.
-    float vw[2], fw[2];
-    for (uint32_t e = 0; e < P.numEdges; ++e) {
-        const int nf = edgeMask(P, C, e, vw, fw);
-        w.begin(firstEdgeChild + e);
-        w.add(P.edgeVerts[2 * e], vw[0]);
-        w.add(P.edgeVerts[2 * e + 1], vw[1]);
-        for (int i = 0; i < nf; ++i)
-            w.addChild(firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)], fw[i]);
-        w.end();
-    }
+    par.blocks(P.numEdges, [&](size_t b, size_t end) {
+        Writer w = writer;
+        float vw[2], fw[2];
+        for (uint32_t e = uint32_t(b); e < end; ++e) {
+            const int nf = edgeMask(P, C, e, vw, fw);
+            w.begin(firstEdgeChild + e);
+            w.add(P.edgeVerts[2 * e], vw[0]);
+            w.add(P.edgeVerts[2 * e + 1], vw[1]);
+            for (int i = 0; i < nf; ++i)
+                w.addChild(firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)], fw[i]);
+            w.end();
+        }
+    });
     // Vertex points: face points, then the far ends of the edges, then the
     // vertex itself (PrimvarRefiner applies the smaller weights first).
-    std::vector<float> buffer;
-    for (uint32_t v = 0; v < P.numVerts; ++v) {
-        const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
-        const uint32_t* rv = P.vertRing.data() + P.vertEdgeOffsets[v];
-        const uint32_t nf = P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
-        const uint32_t ne = P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
-        w.begin(v);
-        if (nf == ne && nf < uint32_t(kSmoothTable) && smoothVertex(P, v)) {
-            const float ring = smoothRingWeight_[nf];
-            for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], ring);
-            for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], ring);
-            w.add(v, smoothVertexWeight_[nf]);
-            w.end();
-            continue;
-        }
-        buffer.resize(1 + 2 * size_t(ne));
-        Mask m{buffer.data(), buffer.data() + 1, buffer.data() + 1 + ne};
-        vertexMask(P, C, v, m);
-        if (m.nf > 0) {
-            for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], m.fw[i]);
-        }
-        if (m.ne > 0) {
-            for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], m.ew[i]);
-        }
-        w.add(v, m.vw[0]);
-        w.end();
-    }
-}
-
-template <class Writer>
-void UniformRefiner::interpolateFaceVarying(int level, Writer w, int channel) const {
-    const RefineLevel& P = level_[size_t(level) - 1];
-    const RefineLevel& C = level_[size_t(level)];
-    const FVarLevelData& PF = P.fvar[size_t(channel)];
-    const FVarLevelData& CF = C.fvar[size_t(channel)];
-    const uint32_t firstFaceChild = P.numVerts, firstEdgeChild = P.numVerts + P.numFaces;
-    const uint32_t* childValue = CF.valueOffsets.data(); // first value of each child vertex
-    // Face values: the average of the face's values.
-    for (uint32_t f = 0; f < P.numFaces; ++f) {
-        const uint32_t* fv = PF.faceValues.data() + P.faceOffsets[f];
-        const uint32_t n = P.faceOffsets[f + 1] - P.faceOffsets[f];
-        const float wf = 1.0f / float(n);
-        w.begin(childValue[firstFaceChild + f]);
-        for (uint32_t i = 0; i < n; ++i) w.add(fv[i], wf);
-        w.end();
-    }
-    // Edge values: continuous edges take the vertex data's mask (linear
-    // channels the midpoint); each side of a seam its own midpoint.
-    float vw[2], fw[2];
-    uint32_t ends[2];
-    for (uint32_t e = 0; e < P.numEdges; ++e) {
-        const uint32_t first = childValue[firstEdgeChild + e];
-        if (!(PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear))) {
-            int nf = 0;
-            if (fvarLinear_)
-                vw[0] = vw[1] = 0.5f;
-            else
-                nf = edgeMask(P, C, e, vw, fw);
-            edgeFaceValues(P, PF, e, 0, ends);
-            w.begin(first);
-            w.add(ends[0], vw[0]);
-            w.add(ends[1], vw[1]);
-            for (int i = 0; i < nf; ++i)
-                w.addChild(childValue[firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)]], fw[i]);
-            w.end();
-        } else {
-            const uint32_t count = childValue[firstEdgeChild + e + 1] - first;
-            for (uint32_t i = 0; i < count; ++i) {
-                edgeFaceValues(P, PF, e, i, ends);
-                w.begin(first + i);
-                w.add(ends[0], 0.5f);
-                w.add(ends[1], 0.5f);
-                w.end();
-            }
-        }
-    }
-    // Vertex values.
-    std::vector<float> buffer;
-    uint32_t smallEdgeValues[kSmoothTable];
-    std::vector<uint32_t> bigEdgeValues;
-    for (uint32_t v = 0; v < P.numVerts; ++v) {
-        const uint32_t firstChild = childValue[v];
-        const bool matches = !(PF.valueTags[PF.valueOffsets[v]] & kValueMismatch);
-        if (matches) {
-            w.begin(firstChild);
-            if (fvarLinear_) {
-                w.add(valueAt(PF, v, 0), 1.0f);
-                w.end();
-                continue;
-            }
+    par.blocks(P.numVerts, [&](size_t b, size_t end) {
+        Writer w = writer;
+        std::vector<float> buffer;
+        for (uint32_t v = uint32_t(b); v < end; ++v) {
             const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
+            const uint32_t* rv = P.vertRing.data() + P.vertEdgeOffsets[v];
             const uint32_t nf = P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
             const uint32_t ne = P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
-            uint32_t* edgeValues = smallEdgeValues;
-            if (ne > uint32_t(kSmoothTable)) {
-                bigEdgeValues.resize(ne);
-                edgeValues = bigEdgeValues.data();
-            }
-            vertexEdgeValues(P, PF, v, edgeValues);
+            w.begin(v);
             if (nf == ne && nf < uint32_t(kSmoothTable) && smoothVertex(P, v)) {
                 const float ring = smoothRingWeight_[nf];
-                for (uint32_t i = 0; i < nf; ++i)
-                    w.addChild(childValue[firstFaceChild + vf[i]], ring);
-                for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], ring);
-                w.add(valueAt(PF, v, 0), smoothVertexWeight_[nf]);
+                for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], ring);
+                for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], ring);
+                w.add(v, smoothVertexWeight_[nf]);
                 w.end();
                 continue;
             }
@@ -514,32 +446,150 @@ void UniformRefiner::interpolateFaceVarying(int level, Writer w, int channel) co
             Mask m{buffer.data(), buffer.data() + 1, buffer.data() + 1 + ne};
             vertexMask(P, C, v, m);
             if (m.nf > 0) {
-                for (uint32_t i = 0; i < nf; ++i)
-                    w.addChild(childValue[firstFaceChild + vf[i]], m.fw[i]);
+                for (uint32_t i = 0; i < nf; ++i) w.addChild(firstFaceChild + vf[i], m.fw[i]);
             }
             if (m.ne > 0) {
-                for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], m.ew[i]);
+                for (uint32_t i = 0; i < ne; ++i) w.add(rv[i], m.ew[i]);
             }
-            w.add(valueAt(PF, v, 0), m.vw[0]);
+            w.add(v, m.vw[0]);
             w.end();
-            continue;
         }
-        // A seam through the vertex: each value is a corner (kept) or a
-        // crease along its two seam edges (3/4, 1/8, 1/8).
-        const uint32_t count = childValue[v + 1] - firstChild;
-        for (uint32_t s = 0; s < count; ++s) {
-            w.begin(firstChild + s);
-            const uint32_t pv = valueAt(PF, v, s);
-            if (fvarLinear_ || !(PF.valueTags[PF.valueOffsets[v] + s] & kValueCrease)) {
-                w.add(pv, 1.0f);
+    });
+}
+
+template <class Writer>
+void UniformRefiner::interpolateFaceVarying(int level, Writer writer, int channel,
+                                            const Parallel& par) const {
+    const RefineLevel& P = level_[size_t(level) - 1];
+    const RefineLevel& C = level_[size_t(level)];
+    const FVarLevelData& PF = P.fvar[size_t(channel)];
+    const FVarLevelData& CF = C.fvar[size_t(channel)];
+    const uint32_t firstFaceChild = P.numVerts, firstEdgeChild = P.numVerts + P.numFaces;
+    const uint32_t* childValue = CF.valueOffsets.data(); // first value of each child vertex
+    // Face values: the average of the face's values.
+    par.blocks(P.numFaces, [&](size_t b, size_t end) {
+        Writer w = writer;
+        for (uint32_t f = uint32_t(b); f < end; ++f) {
+            const uint32_t* fv = PF.faceValues.data() + P.faceOffsets[f];
+            const uint32_t n = P.faceOffsets[f + 1] - P.faceOffsets[f];
+            const float wf = 1.0f / float(n);
+            w.begin(childValue[firstFaceChild + f]);
+            for (uint32_t i = 0; i < n; ++i) w.add(fv[i], wf);
+            w.end();
+        }
+    });
+    // Edge values: continuous edges take the vertex data's mask (linear
+    // channels the midpoint); each side of a seam its own midpoint.
+    par.blocks(P.numEdges, [&](size_t b, size_t end) {
+        Writer w = writer;
+        float vw[2], fw[2];
+        uint32_t ends[2];
+        for (uint32_t e = uint32_t(b); e < end; ++e) {
+            const uint32_t first = childValue[firstEdgeChild + e];
+            if (!(PF.edgeTags[e] & (kFvEdgeMismatch | kFvEdgeLinear))) {
+                int nf = 0;
+                if (fvarLinear_)
+                    vw[0] = vw[1] = 0.5f;
+                else
+                    nf = edgeMask(P, C, e, vw, fw);
+                edgeFaceValues(P, PF, e, 0, ends);
+                w.begin(first);
+                w.add(ends[0], vw[0]);
+                w.add(ends[1], vw[1]);
+                for (int i = 0; i < nf; ++i)
+                    w.addChild(childValue[firstFaceChild + P.edgeFaces[2 * e + uint32_t(i)]],
+                               fw[i]);
+                w.end();
             } else {
-                creaseEndValues(P, PF, v, s, ends);
-                w.add(ends[0], 0.125f);
-                w.add(ends[1], 0.125f);
-                w.add(pv, 0.75f);
+                const uint32_t count = childValue[firstEdgeChild + e + 1] - first;
+                for (uint32_t i = 0; i < count; ++i) {
+                    edgeFaceValues(P, PF, e, i, ends);
+                    w.begin(first + i);
+                    w.add(ends[0], 0.5f);
+                    w.add(ends[1], 0.5f);
+                    w.end();
+                }
             }
-            w.end();
         }
+    });
+    // Vertex values.
+    par.blocks(P.numVerts, [&](size_t b, size_t end) {
+        Writer w = writer;
+        for (uint32_t v = uint32_t(b); v < end; ++v) fvarVertexValues(P, C, PF, v, childValue, w);
+    });
+}
+
+// The child values of parent vertex v (interpolateFaceVarying's vertex
+// phase).
+template <class Writer>
+void UniformRefiner::fvarVertexValues(const RefineLevel& P, const RefineLevel& C,
+                                      const FVarLevelData& PF, uint32_t v,
+                                      const uint32_t* childValue, Writer& w) const {
+    const uint32_t firstFaceChild = P.numVerts;
+    const uint32_t firstChild = childValue[v];
+    const bool matches = !(PF.valueTags[PF.valueOffsets[v]] & kValueMismatch);
+    if (matches) {
+        w.begin(firstChild);
+        if (fvarLinear_) {
+            w.add(valueAt(PF, v, 0), 1.0f);
+            w.end();
+            return;
+        }
+        const uint32_t* vf = P.vertFaces.data() + P.vertFaceOffsets[v];
+        const uint32_t nf = P.vertFaceOffsets[v + 1] - P.vertFaceOffsets[v];
+        const uint32_t ne = P.vertEdgeOffsets[v + 1] - P.vertEdgeOffsets[v];
+        uint32_t smallEdgeValues[kSmoothTable];
+        std::vector<uint32_t> bigEdgeValues;
+        uint32_t* edgeValues = smallEdgeValues;
+        if (ne > uint32_t(kSmoothTable)) {
+            bigEdgeValues.resize(ne);
+            edgeValues = bigEdgeValues.data();
+        }
+        vertexEdgeValues(P, PF, v, edgeValues);
+        if (nf == ne && nf < uint32_t(kSmoothTable) && smoothVertex(P, v)) {
+            const float ring = smoothRingWeight_[nf];
+            for (uint32_t i = 0; i < nf; ++i) w.addChild(childValue[firstFaceChild + vf[i]], ring);
+            for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], ring);
+            w.add(valueAt(PF, v, 0), smoothVertexWeight_[nf]);
+            w.end();
+            return;
+        }
+        float smallMask[1 + 2 * kSmoothTable];
+        std::vector<float> bigMask;
+        float* buffer = smallMask;
+        if (ne > uint32_t(kSmoothTable)) {
+            bigMask.resize(1 + 2 * size_t(ne));
+            buffer = bigMask.data();
+        }
+        Mask m{buffer, buffer + 1, buffer + 1 + ne};
+        vertexMask(P, C, v, m);
+        if (m.nf > 0) {
+            for (uint32_t i = 0; i < nf; ++i)
+                w.addChild(childValue[firstFaceChild + vf[i]], m.fw[i]);
+        }
+        if (m.ne > 0) {
+            for (uint32_t i = 0; i < ne; ++i) w.add(edgeValues[i], m.ew[i]);
+        }
+        w.add(valueAt(PF, v, 0), m.vw[0]);
+        w.end();
+        return;
+    }
+    // A seam through the vertex: each value is a corner (kept) or a
+    // crease along its two seam edges (3/4, 1/8, 1/8).
+    uint32_t ends[2];
+    const uint32_t count = childValue[v + 1] - firstChild;
+    for (uint32_t s = 0; s < count; ++s) {
+        w.begin(firstChild + s);
+        const uint32_t pv = valueAt(PF, v, s);
+        if (fvarLinear_ || !(PF.valueTags[PF.valueOffsets[v] + s] & kValueCrease)) {
+            w.add(pv, 1.0f);
+        } else {
+            creaseEndValues(P, PF, v, s, ends);
+            w.add(ends[0], 0.125f);
+            w.add(ends[1], 0.125f);
+            w.add(pv, 0.75f);
+        }
+        w.end();
     }
 }
 

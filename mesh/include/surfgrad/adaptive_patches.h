@@ -160,14 +160,28 @@ struct AdaptivePatches {
 // bilinear cages take the uniform path), an isolation outside 1..10
 // (element "isolation"), or a cage OpenSubdiv refuses. Holes: hole faces
 // get no patches. Every UV set of the cage becomes an AdaptiveUvSet.
+// threads (surfgrad/threads.h: 0 all cores, 1..1024; outside is a contract
+// violation): the corner vertices of every patch and the stencil passes
+// run on TBB for cages of at least kAdaptiveSerialBelowPatches patches,
+// with the same result for every count; OpenSubdiv's refinement, patch
+// table and stencil tables, and the owner maps, stay serial.
 AdaptivePatches buildAdaptivePatches(const PolygonMesh& cage, const SubdivOptions& options,
-                                     int isolation, const std::string& file = {});
+                                     int isolation, const std::string& file = {}, int threads = 0);
+// Patches (and stencil rows) below which buildAdaptivePatches and
+// updateAdaptivePoints stay on the calling thread. Not measured on its own:
+// a guess of the order of kSerialBelowFaces (subdivision.h; one patch's
+// corner descent costs more than one refined face's loops, hence lower).
+inline constexpr size_t kAdaptiveSerialBelowPatches = 8192;
 
 // Recomputes patches.points from new cage positions (cagePointCount
 // entries): copies the cage into points[0, cagePointCount), then applies
 // the stencil passes in order (the layout and summation order above): what
 // an animated cage needs per frame (the GPU applies the same passes in a
-// compute stage, bit for bit the same points).
-void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions);
+// compute stage, bit for bit the same points). threads as in
+// buildAdaptivePatches: the rows of a pass on TBB (each row's sum in the
+// order above, so the points are the same bits for every count), serial
+// below kAdaptiveSerialBelowPatches rows.
+void updateAdaptivePoints(AdaptivePatches& patches, std::span<const glm::vec3> cagePositions,
+                          int threads = 0);
 
 } // namespace sg::mesh

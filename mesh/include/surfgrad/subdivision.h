@@ -29,6 +29,15 @@ namespace sg::mesh {
 
 inline constexpr int kMaxSubdivisionLevel = 8;
 
+// Serial cut-over of SubdivisionSettings::threads: a build whose level-N
+// face count (estimated from the cage, before refining) is below this runs
+// on the calling thread whatever the count, and so do its update() calls.
+// Measured (mesh_bench --threads-only, cut-over probe: spot refined warm,
+// every loop on TBB, 2 cores under a load average of ~7, so rough): 2
+// threads cost 1.8x one thread's time at 2,880 faces and 1.5x at 11,520,
+// and saved time from 46,080 up; the cut-over sits between, at 2^15.
+inline constexpr uint64_t kSerialBelowFaces = 32768;
+
 struct SubdivisionSettings {
     int level = 2;         // uniform refinement level, 0..kMaxSubdivisionLevel
     SubdivOptions options; // scheme and rules (start from cage.options, apply flags)
@@ -65,6 +74,27 @@ struct SubdivisionSettings {
     // with semi-sharp creasing, take OpenSubdiv's Far (see
     // Subdivider::usedSpecializedRefiner). false: always Far.
     bool specializedRefiner = true;
+    // Threads (surfgrad/threads.h): 0 all cores, 1 the calling thread only,
+    // 2..1024 a task arena of that many; a count outside 0..1024 is a
+    // contract violation (surfgrad/contract.h). build() and update() give
+    // the same refined(), renderMesh() and limitFrame() bit for bit for
+    // every count: the parallel loops write disjoint outputs, each
+    // element's sums run in the serial order, and lists gathered per
+    // element are cut in fixed blocks. On TBB: the specialised refiner's
+    // topology and interpolation per level, factored stencil application
+    // (update(), rebuilds of the same topology), render vertices and
+    // normals, and with limit the home locations, the per-sample basis
+    // weights, positions, derivatives and UVs. Serial: OpenSubdiv's own
+    // steps (the level-0 factory, Far's RefineUniform/RefineAdaptive,
+    // PrimvarRefiner for cages the specialised refiner declines, the
+    // PatchTableFactory, stencil recording), the render-vertex split and the
+    // offsets (prefix sums). Builds below serialBelowFaces stay serial.
+    int threads = 0;
+    // Level-N faces below which a build (and its update() calls) stays on
+    // the calling thread whatever `threads` says. Default: the measured
+    // cut-over; 0 runs every build's loops on TBB in blocks of 16 elements
+    // (tests: small cages then cross many block boundaries).
+    uint64_t serialBelowFaces = kSerialBelowFaces;
 };
 
 // Seconds spent in each stage of the last build() (steady clock).
