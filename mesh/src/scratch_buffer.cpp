@@ -62,6 +62,8 @@ void scratchFree(void* p, size_t bytes, size_t alignment) noexcept {
         munmap(p, roundUp(bytes, kHugePageBytes));
         return;
     }
+#else
+    (void)bytes;
 #endif
     ::operator delete(p, std::align_val_t(alignment));
 }
