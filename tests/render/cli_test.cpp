@@ -458,6 +458,30 @@ TEST(FeaturesCli, BakeTakesCurvesWritesExrAndEndsProgressAt100) {
     EXPECT_EQ(r.err.back(), '\n');
 }
 
+// `features bake --threads N`: 1..1024 (0 and 2000 are usage errors naming
+// the option); the maps file is the same bytes at 1 and 3 threads.
+TEST(FeaturesCli, BakeThreadsAreCheckedAndGiveTheSameFile) {
+    fs::path dir = scratch("features_bake_threads");
+    const std::string svg = std::string(SURFGRAD_DATA_DIR) + "/svg/paw-print.svg";
+    for (const char* bad : {"0", "2000"}) {
+        CmdResult r =
+            run("features bake --svg " + svg + " --size 160 -o x.exr --threads " + bad, dir);
+        EXPECT_EQ(r.exitCode, 2) << r.output();
+        EXPECT_NE(r.err.find("--threads"), std::string::npos) << r.err;
+        EXPECT_FALSE(fs::exists(dir / "x.exr"));
+    }
+    for (const char* threads : {"1", "3"}) {
+        CmdResult r =
+            run("features bake --svg " + svg + " --size 160 --mode quadratic --near exact -o t" +
+                    threads + ".exr --threads " + threads,
+                dir);
+        ASSERT_EQ(r.exitCode, 0) << r.output();
+    }
+    const std::string one = fileBytes(dir / "t1.exr");
+    EXPECT_FALSE(one.empty());
+    EXPECT_TRUE(one == fileBytes(dir / "t3.exr"));
+}
+
 // `features sample`: a header line names the columns; a point outside the
 // map is an error naming its line (it used to get plausible values).
 TEST(FeaturesCli, SampleHasAHeaderAndRefusesPointsOutsideTheMap) {
