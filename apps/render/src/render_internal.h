@@ -81,8 +81,10 @@ TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
 // contract violation); rows of texels run in parallel, each texel's sum in
 // its own sample order, so level 0 is the same bits for every count. Maps
 // of fewer than kFeatureChainSerialBelowSize texels per side run on the
-// calling thread (at 32^2 level 0 takes about a millisecond, where a task
-// arena costs about as much as a second core saves).
+// calling thread. The cut-over is an estimate, not a benchmark: a texel in
+// reach of a curve costs 64 evaluator samples (tens of microseconds), so a
+// 32^2 map is milliseconds of compute-bound work against an arena's start
+// of tens of microseconds.
 inline constexpr int kFeatureChainSamples = 8;
 inline constexpr int kFeatureChainSerialBelowSize = 32;
 struct FeatureChainTextures {

@@ -199,11 +199,14 @@ struct BakeOptions {
 };
 
 // Serial cut-over of bake() and FeatureMaps::packGpu(): maps of fewer
-// texels per side run on the calling thread. Measured on a 2-core machine
-// (bench/features_bench threads): at 64^2 a whole bake takes under a
-// millisecond and the arena and tasks cost about as much as the second core
-// saves; from 128^2 the distance, smoothing and validation passes gain.
-inline constexpr int kBakeSerialBelowSize = 128;
+// texels per side run on the calling thread. Measured (bench/features_bench
+// threads, 2-core machine under load): whole bakes of 2,000 segments with
+// parallel loops ran at 0.80-1.00x the speed of serial ones at
+// 32^2..192^2 (the arena and the tasks cost more than the second core saves
+// on a few milliseconds of mostly memory-bound work) and broke even at
+// 256^2; the distance pass and the optimisation gain from 512^2 (1.4-2x at
+// 1024^2).
+inline constexpr int kBakeSerialBelowSize = 256;
 
 // What the bake did (for --json and the tests).
 struct BakeStats {
