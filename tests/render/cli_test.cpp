@@ -472,7 +472,7 @@ TEST(FeaturesCli, BakeThreadsAreCheckedAndGiveTheSameFile) {
     }
     for (const char* threads : {"1", "3"}) {
         CmdResult r =
-            run("features bake --svg " + svg + " --size 160 --mode quadratic --near exact -o t" +
+            run("features bake --svg " + svg + " --size 256 --mode quadratic --near exact -o t" +
                     threads + ".exr --threads " + threads,
                 dir);
         ASSERT_EQ(r.exitCode, 0) << r.output();
