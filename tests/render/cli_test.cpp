@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -458,8 +460,22 @@ TEST(FeaturesCli, BakeTakesCurvesWritesExrAndEndsProgressAt100) {
     EXPECT_EQ(r.err.back(), '\n');
 }
 
+// An OpenEXR file's bytes without the value of its capDate attribute (the
+// time of writing, "YYYY:MM:DD HH:MM:SS"): two saves of the same maps differ
+// only there.
+std::string withoutCapDate(std::string bytes) {
+    const std::string key("capDate\0string\0", 15);
+    const size_t at = bytes.find(key);
+    if (at == std::string::npos || at + key.size() + 4 > bytes.size()) return bytes;
+    int32_t length = 0;
+    std::memcpy(&length, bytes.data() + at + key.size(), 4);
+    bytes.erase(at + key.size() + 4, size_t(length));
+    return bytes;
+}
+
 // `features bake --threads N`: 1..1024 (0 and 2000 are usage errors naming
-// the option); the maps file is the same bytes at 1 and 3 threads.
+// the option); the maps file is the same bytes at 1 and 3 threads (but for
+// the time of writing).
 TEST(FeaturesCli, BakeThreadsAreCheckedAndGiveTheSameFile) {
     fs::path dir = scratch("features_bake_threads");
     const std::string svg = std::string(SURFGRAD_DATA_DIR) + "/svg/paw-print.svg";
@@ -478,8 +494,8 @@ TEST(FeaturesCli, BakeThreadsAreCheckedAndGiveTheSameFile) {
         ASSERT_EQ(r.exitCode, 0) << r.output();
     }
     const std::string one = fileBytes(dir / "t1.exr");
-    EXPECT_FALSE(one.empty());
-    EXPECT_TRUE(one == fileBytes(dir / "t3.exr"));
+    ASSERT_NE(withoutCapDate(one).size(), one.size()); // the attribute was found
+    EXPECT_TRUE(withoutCapDate(one) == withoutCapDate(fileBytes(dir / "t3.exr")));
 }
 
 // `features sample`: a header line names the columns; a point outside the
