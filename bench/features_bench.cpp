@@ -1,21 +1,30 @@
 // features_bench: feature-curve maps (Parilov, Rosenberg, Zorin 2005;
-// Parilov, Zorin 2008) on the CPU, one core.
+// Parilov, Zorin 2008) on the CPU.
 //
-//  bake      preprocessing time: linear mode on a 512^2 map with 2,000
-//            segments (goal < 100 ms), quadratic mode on a CJK glyph at
-//            512^2 (goal < 2 s), plus the lucide SVGs. Medians of CPU
-//            (thread) time over several runs, with the phase split; the
+//  bake      preprocessing time at one thread: linear mode on a 512^2 map
+//            with 2,000 segments (goal < 100 ms), quadratic mode on a CJK
+//            glyph at 512^2 (goal < 2 s), plus the lucide SVGs. Medians of
+//            CPU time over several runs, with the phase split; the
 //            baseline is the bake's own distance pass (the brute-force
 //            distance field every distance-based normal map needs), so the
 //            ratio shows what the configurations, signatures, optimisation
 //            and smoothing add.
+//  threads   each stage of the bake (scan, optimise, distance, smooth) and
+//            the GPU packing with the exact near field's lists, at 1 thread
+//            and at all cores (BakeOptions::threads = 0) side by side,
+//            interleaved, wall-clock medians, on 512^2 and 1024^2 maps
+//            (1M texels): the random polylines (linear) and the CJK glyph
+//            (quadratic, with the near field); speed-up and efficiency
+//            (speed-up / threads). Then the serial cut-over: whole bakes of
+//            the polylines at 32^2..256^2, serial against parallel loops.
 //  accuracy  crease position and normal error at 16x-64x magnification,
 //            per map resolution 64..1024, for a plain bilinear normal map of
 //            the same resolution, linear maps and quadratic maps, against
 //            the exact distance and gradient of the input curves.
 //
-// Run: build/bin/features_bench [bake|accuracy] [--runs N]
+// Run: build/bin/features_bench [bake|threads|accuracy] [--runs N]
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -23,8 +32,10 @@
 #include <string>
 #include <vector>
 
+#include "bake_internal.h"
 #include "surfgrad/curves.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/threads.h"
 
 using namespace sg::features;
 using glm::dvec2;
@@ -98,6 +109,7 @@ BakeRow timeBake(const std::string& what, const std::string& input, const CurveN
     r.segments = int(net.segments.size());
     r.size = o.size;
     r.goal = goal;
+    o.threads = 1; // the one-core table; the threads section compares counts
     std::vector<double> cpu, wall, dist, scan, opt, smooth;
     for (int k = 0; k < runs; ++k) {
         FeatureMaps m = bake(net, o, &r.st);
@@ -174,7 +186,7 @@ void benchBake(int runs) {
             std::printf("(skipping %s: %s)\n", path.c_str(), e.what());
         }
     }
-    std::printf("\nPreprocessing, one core (median of %d runs; CPU = thread time, wall includes "
+    std::printf("\nPreprocessing, one thread (median of %d runs; CPU = process time, wall includes "
                 "waiting on a shared "
                 "machine)\n",
                 runs);
@@ -195,6 +207,146 @@ void benchBake(int runs) {
                     r.optimize * 1e3, r.smooth * 1e3, r.st.texelsWithFeatures, r.st.curvedSegments,
                     r.st.invalidTexels, r.st.optimizedTexels, r.st.fallbackTexels, goal.c_str());
     }
+}
+
+// ---------------------------------------------------------------------------
+// Threads.
+
+double secondsSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The CJK glyph with the most quadratic segments (empty without the font).
+CurveNetwork cjkGlyph(std::string& name) {
+    CurveNetwork glyph;
+    for (const char* ch :
+         {"\xe9\xbe\x8d", "\xe9\xac\xb1", "\xe5\xbf\x83", "\xe6\x84\x9b", "\xe7\xb9\x81"}) {
+        try {
+            CurveNetwork g = loadFont("/usr/share/fonts/truetype/wqy/wqy-microhei.ttc", ch);
+            auto quads = [](const CurveNetwork& n) {
+                int q = 0;
+                for (const auto& s : n.segments) q += s.kind == Segment::Kind::Quadratic;
+                return q;
+            };
+            if (glyph.segments.empty() || quads(g) > quads(glyph)) {
+                glyph = g;
+                name = ch;
+            }
+        } catch (const std::exception&) {
+            break;
+        }
+    }
+    return glyph;
+}
+
+// One stage's wall-clock medians at 1 thread and at all cores.
+struct StageRow {
+    std::string input, stage;
+    int size = 0, threads = 1;
+    std::vector<double> one, all;
+};
+
+void printStageRows(const std::vector<StageRow>& rows) {
+    std::printf("| input | map | stage | 1 thread ms | %s ms | speed-up | efficiency |\n",
+                rows.empty() ? "N threads"
+                             : (std::to_string(rows[0].threads) + " threads").c_str());
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (const StageRow& r : rows) {
+        const double a = median(r.one), b = median(r.all);
+        const double speedUp = b > 0 ? a / b : 0.0;
+        std::printf("| %s | %d^2 | %s | %.2f | %.2f | %.2fx | %.2f |\n", r.input.c_str(), r.size,
+                    r.stage.c_str(), a * 1e3, b * 1e3, speedUp, speedUp / r.threads);
+    }
+}
+
+void benchThreads(int runs) {
+    std::string glyphName;
+    const CurveNetwork glyph = cjkGlyph(glyphName);
+    struct Input {
+        std::string name;
+        CurveNetwork net;
+        BakeMode mode;
+        bool near;
+    };
+    std::vector<Input> inputs{
+        {"500 random polylines, linear", polylineNetwork(), BakeMode::Linear, false}};
+    if (!glyph.segments.empty())
+        inputs.push_back({"WenQuanYi " + glyphName + ", quadratic + near field", glyph,
+                          BakeMode::Quadratic, true});
+    std::vector<StageRow> rows;
+    double cpuOne = 0.0, cpuAll = 0.0;
+    for (const Input& in : inputs) {
+        for (int size : {512, 1024}) {
+            BakeOptions o;
+            o.size = size;
+            o.mode = in.mode;
+            o.nearField = in.near;
+            const char* stages[] = {
+                "scan (serial)",         "optimise",         "distance", "smooth",
+                "pack GPU + near lists", "whole bake + pack"};
+            std::vector<StageRow> r(6);
+            for (int k = 0; k < 6; ++k) r[size_t(k)] = {in.name, stages[k], size, 1, {}, {}};
+            for (int run = 0; run < runs; ++run) {
+                for (int threads : {1, 0}) {
+                    o.threads = threads;
+                    BakeStats st;
+                    const auto t0 = std::chrono::steady_clock::now();
+                    FeatureMaps m = bake(in.net, o, &st);
+                    const auto t1 = std::chrono::steady_clock::now();
+                    GpuFeatureMaps g = m.packGpu(threads);
+                    const double pack = secondsSince(t1), total = secondsSince(t0);
+                    (threads == 1 ? cpuOne : cpuAll) += st.cpuSeconds;
+                    const double v[6] = {st.wallSecondsScan,
+                                         st.wallSecondsOptimize,
+                                         st.wallSecondsDistance,
+                                         st.wallSecondsSmooth,
+                                         pack,
+                                         total};
+                    for (int k = 0; k < 6; ++k) {
+                        (threads == 1 ? r[size_t(k)].one : r[size_t(k)].all).push_back(v[k]);
+                        if (threads == 0) r[size_t(k)].threads = st.threads;
+                    }
+                    (void)g;
+                }
+            }
+            rows.insert(rows.end(), r.begin(), r.end());
+        }
+    }
+    std::printf("\nStages at 1 thread and at all cores (BakeOptions::threads = 0), same run, "
+                "interleaved; wall-clock medians of %d runs (a shared machine: not quiet "
+                "timings). Bake CPU time (all threads), summed: %.0f ms at 1 thread, %.0f ms at "
+                "all cores.\n",
+                runs, cpuOne * 1e3, cpuAll * 1e3);
+    printStageRows(rows);
+
+    // Serial cut-over: the whole bake with serial loops against parallel
+    // loops on all cores (detail::bakeSteps bypasses bake()'s cut-over).
+    std::printf("\nSerial cut-over (bake() runs maps below kBakeSerialBelowSize = %d on the "
+                "calling thread): whole bakes of the polylines fitted into the map, wall-clock "
+                "medians of %d runs\n",
+                kBakeSerialBelowSize, runs * 3);
+    std::vector<StageRow> cut;
+    const CurveNetwork net = polylineNetwork();
+    for (int size : {32, 64, 96, 128, 192, 256}) {
+        BakeOptions o;
+        o.size = size;
+        o.marginTexels = 2.0;
+        StageRow r{"500 random polylines, linear", "whole bake", size, 1, {}, {}};
+        for (int run = 0; run < runs * 3; ++run) {
+            BakeStats st;
+            auto t0 = std::chrono::steady_clock::now();
+            (void)sg::features::detail::bakeSteps(net, o, {false}, st);
+            r.one.push_back(secondsSince(t0));
+            t0 = std::chrono::steady_clock::now();
+            sg::runWithThreads(0, [&] {
+                r.threads = tbb::this_task_arena::max_concurrency();
+                (void)sg::features::detail::bakeSteps(net, o, {true}, st);
+            });
+            r.all.push_back(secondsSince(t0));
+        }
+        cut.push_back(r);
+    }
+    printStageRows(cut);
 }
 
 // ---------------------------------------------------------------------------
@@ -390,6 +542,7 @@ int main(int argc, char** argv) {
             what = argv[i];
     }
     if (what == "all" || what == "bake") benchBake(runs);
+    if (what == "all" || what == "threads") benchThreads(runs);
     if (what == "all" || what == "accuracy") benchAccuracy();
     return 0;
 }

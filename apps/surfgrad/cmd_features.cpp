@@ -4,7 +4,7 @@
 //   features bake (--curves F | --svg F | --font F --text STR [--face I])
 //                 --size N [--mode linear|quadratic] [--margin T] [--band T]
 //                 [--smooth K] [--near exact|paper] [--near-width T]
-//                 -o MAPS.exr [--json] [--progress]
+//                 [--threads N] -o MAPS.exr [--json] [--progress]
 //     Bakes a curve network (--curves: JSON, docs/features-input.md) into
 //     feature maps (OpenEXR only). Texel space: x right, y up, texel (i, j)
 //     covers [i, i+1] x [j, j+1]; the input is scaled uniformly and centred
@@ -15,7 +15,8 @@
 //     100%. --near exact keeps the exact near field (the input pieces with
 //     their per-curve profiles and widths; curves without a width count as
 //     --near-width, default 3 texels); paper (default) stores the papers'
-//     maps only.
+//     maps only. --threads N: worker threads (1..1024, default all cores);
+//     the maps are the same bits for every count.
 //   features sample MAPS.exr --points F [--near exact|paper]
 //     F holds one "x y" (texel space) per line; prints the header line
 //     "x y dist grad_x grad_y", then one line per point: the distance
@@ -71,6 +72,7 @@ struct BakeArgs {
     double nearWidth = 3.0;
     bool printJson = false;
     bool progress = false; // report progress however short the bake
+    int threads = 0;       // 0: all cores
 };
 
 // Progress lines "features bake: PHASE NN%" on stderr; every phase that
@@ -122,6 +124,7 @@ void runBake(const BakeArgs& a) {
     }
     const fs::path in = !a.json.empty() ? a.json : !a.svg.empty() ? a.svg : a.font;
     io::checkOutputPath(a.out, {in});
+    const auto threadLimit = limitThreads(a.threads);
     CurveNetwork net;
     if (!a.json.empty()) {
         net = loadCurvesJson(a.json);
@@ -140,6 +143,7 @@ void runBake(const BakeArgs& a) {
     opt.smoothIterations = a.smooth;
     opt.nearField = parseNear("bake", a.near) == NearMode::Exact;
     opt.nearWidthTexels = a.nearWidth;
+    opt.threads = a.threads;
     auto progress = std::make_shared<BakeProgress>(a.progress);
     opt.progress = [progress](const char* phase, double fraction) {
         progress->report(phase, fraction);
@@ -170,11 +174,16 @@ void runBake(const BakeArgs& a) {
         j["optimized_texels"] = st.optimizedTexels;
         j["fallback_texels"] = st.fallbackTexels;
         j["seconds"] = st.seconds;
+        j["threads"] = st.threads;
         j["cpu_seconds"] = st.cpuSeconds;
         j["cpu_seconds_phases"] = {{"scan", st.secondsScan},
                                    {"optimize", st.secondsOptimize},
                                    {"distance", st.secondsDistance},
                                    {"smooth", st.secondsSmooth}};
+        j["seconds_phases"] = {{"scan", st.wallSecondsScan},
+                               {"optimize", st.wallSecondsOptimize},
+                               {"distance", st.wallSecondsDistance},
+                               {"smooth", st.wallSecondsSmooth}};
         j["input_to_texel"] = {{"scale", {st.inputToTexel.scale.x, st.inputToTexel.scale.y}},
                                {"offset", {st.inputToTexel.offset.x, st.inputToTexel.offset.y}}};
         j["memory"] = {{"gpu_bytes_per_texel", FeatureMaps::kGpuBytesPerTexel},
@@ -182,7 +191,7 @@ void runBake(const BakeArgs& a) {
                        {"file_bytes", fileBytes},
                        {"file_bytes_per_texel", fileBytes / texels}};
         if (maps.hasNearField()) {
-            GpuFeatureMaps gpu = maps.packGpu();
+            GpuFeatureMaps gpu = maps.packGpu(a.threads);
             j["near"] = {{"pieces", st.nearPieces},
                          {"band_texels", st.nearBandTexels},
                          {"profiles", maps.profiles},
@@ -425,6 +434,7 @@ void addFeaturesCommands(CLI::App& app, int& status) {
     bakeCmd->add_option("--near-width", bakeArgs->nearWidth,
                         "Profile width (texels) of curves without their own, for the near "
                         "field's band (default 3)");
+    addThreadsOption(bakeCmd, bakeArgs->threads);
     bakeCmd->add_option("-o,--output", bakeArgs->out, "Output maps (.exr)")->required();
     bakeCmd->callback([bakeArgs] { runBake(*bakeArgs); });
 

@@ -31,7 +31,9 @@
 //     across a texel edge that carries a discontinuity point and those with
 //     no curve within the band (no gradient). The distance is never
 //     smoothed (bake_distance.cpp).
-// bake() below runs these steps in order, one named function each.
+// bake() below runs these steps in order, one named function each; steps
+// 4-6 and the configurations run on several threads (BakeOptions::threads,
+// bake_parallel.h), step 3 on the calling thread.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -40,7 +42,9 @@
 #include <time.h>
 
 #include "bake_internal.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/io.h"
+#include "surfgrad/threads.h"
 
 namespace sg::features {
 
@@ -56,13 +60,23 @@ using Clock = std::chrono::steady_clock;
 double wallSince(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
-// CPU time of the calling thread: phase timings that stay meaningful on a
-// shared machine.
-double threadCpu() {
+// CPU time of the process (every thread of the bake): phase timings that
+// stay meaningful on a shared machine.
+double processCpu() {
     timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
     return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
+
+// CPU and wall-clock time of one phase.
+struct PhaseTimer {
+    double cpu0 = processCpu();
+    Clock::time_point wall0 = Clock::now();
+    void stop(double& cpuSeconds, double& wallSeconds) const {
+        cpuSeconds = processCpu() - cpu0;
+        wallSeconds = wallSince(wall0);
+    }
+};
 
 constexpr double kJoinTol = 1e-7; // texels: segment ends closer than this are one point
 constexpr double kMaxCoord = 1e6; // texels: larger coordinates are absurd input
@@ -552,8 +566,8 @@ void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const B
                  Grid& g, BakeStats& st) {
     const int n = g.n;
     const size_t nc = size_t(n + 1) * size_t(n + 1);
-    g.hAcc.assign(nc, {});
-    g.vAcc.assign(nc, {});
+    g.hAcc.clear();
+    g.vAcc.clear();
     g.segMask.assign(size_t(n) * size_t(n), 0);
     g.quadMask.assign(size_t(n) * size_t(n), 0);
     g.straightMask.assign(size_t(n) * size_t(n), 0);
@@ -575,9 +589,8 @@ void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const B
     g.vPos.assign(nc, -1.0);
     g.hAng.assign(nc, 0.0);
     g.vAng.assign(nc, 0.0);
-    for (size_t k = 0; k < nc; ++k) {
-        for (int dir = 0; dir < 2; ++dir) {
-            const EdgeAcc& acc = dir == 0 ? g.hAcc[k] : g.vAcc[k];
+    for (int dir = 0; dir < 2; ++dir) {
+        for (const auto& [k, acc] : dir == 0 ? g.hAcc : g.vAcc) {
             if (acc.count == 0) continue;
             double theta = 0.0;
             if (std::hypot(acc.sumCos, acc.sumSin) > 1e-9 * acc.count)
@@ -586,60 +599,118 @@ void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const B
             (dir == 0 ? g.hAng : g.vAng)[k] = quantizeAngle(theta);
         }
     }
-    g.hAcc.clear();
-    g.hAcc.shrink_to_fit();
-    g.vAcc.clear();
-    g.vAcc.shrink_to_fit();
+    g.hAcc = {};
+    g.vAcc = {};
 }
 
+// Rows of texels per block of the per-texel passes.
+constexpr size_t kRowsPerBlock = 8;
+
 // The configuration word bits 0-11 of every texel (after the straightening
-// rules of the quadratic mode) and the edge points, into the maps.
-void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeStats& st) {
+// rules of the quadratic mode) and the edge points, into the maps. Blocks
+// of rows in parallel (ex); their counters are summed in block order.
+void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeStats& st,
+                         const Exec& ex) {
     const int n = g.n;
     const size_t nc = size_t(n + 1) * size_t(n + 1);
     maps.seg.assign(nc, 0);
-    ValidationCounters counters;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            size_t ti = g.ti(i, j);
-            bool anyPoint = false;
-            for (int e = 0; e < 4; ++e) anyPoint |= const_cast<Grid&>(g).pos(i, j, e) >= 0.0;
-            if (anyPoint || g.segMask[ti]) ++st.texelsWithFeatures;
-            if (!g.segMask[ti]) continue;
-            ++st.texelsWithSegments;
-            LocalTexel t = decodeTexel(g, i, j);
-            if (mode == BakeMode::Quadratic) validateTexel(t, &counters);
-            uint32_t word = uint32_t(t.nseg);
-            for (int s = 0; s < t.nseg; ++s) {
-                word |= uint32_t(t.a[s]) << (2 + 5 * s);
-                word |= uint32_t(t.b[s]) << (4 + 5 * s);
-                if (t.curved[s]) {
-                    word |= 1u << (6 + 5 * s);
-                    ++st.curvedSegments;
+    struct Counts {
+        int withFeatures = 0, withSegments = 0, curved = 0, kept = 0;
+        ValidationCounters validation;
+    };
+    std::vector<Counts> counts(blockCount(size_t(n), kRowsPerBlock));
+    forBlocks(ex, size_t(n), kRowsPerBlock, [&](size_t b, size_t j0, size_t j1) {
+        Counts& c = counts[b];
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < n; ++i) {
+                size_t ti = g.ti(i, j);
+                bool anyPoint = false;
+                for (int e = 0; e < 4; ++e) anyPoint |= const_cast<Grid&>(g).pos(i, j, e) >= 0.0;
+                if (anyPoint || g.segMask[ti]) ++c.withFeatures;
+                if (!g.segMask[ti]) continue;
+                ++c.withSegments;
+                LocalTexel t = decodeTexel(g, i, j);
+                if (mode == BakeMode::Quadratic) validateTexel(t, &c.validation);
+                uint32_t word = uint32_t(t.nseg);
+                for (int s = 0; s < t.nseg; ++s) {
+                    word |= uint32_t(t.a[s]) << (2 + 5 * s);
+                    word |= uint32_t(t.b[s]) << (4 + 5 * s);
+                    if (t.curved[s]) {
+                        word |= 1u << (6 + 5 * s);
+                        ++c.curved;
+                    }
+                    ++c.kept;
                 }
-                ++st.segmentsKept;
+                maps.seg[maps.index(i, j)] = uint16_t(word);
             }
-            maps.seg[maps.index(i, j)] = uint16_t(word);
         }
+    });
+    for (const Counts& c : counts) {
+        st.texelsWithFeatures += c.withFeatures;
+        st.texelsWithSegments += c.withSegments;
+        st.curvedSegments += c.curved;
+        st.segmentsKept += c.kept;
+        st.straightenedThetaMin += c.validation.thetaMin;
+        st.straightenedFlat += c.validation.flat;
+        st.straightenedCrossing += c.validation.cross;
     }
-    st.straightenedThetaMin = counters.thetaMin;
-    st.straightenedFlat = counters.flat;
-    st.straightenedCrossing = counters.cross;
     maps.hPos.assign(nc, -1.0f);
     maps.vPos.assign(nc, -1.0f);
     maps.hAngle.assign(nc, 0.0f);
     maps.vAngle.assign(nc, 0.0f);
-    for (size_t k = 0; k < nc; ++k) {
-        maps.hPos[k] = float(g.hPos[k]);
-        maps.vPos[k] = float(g.vPos[k]);
-        // Angles in both modes: linear maps use them for the gradient on the
-        // curve (the curve's normal), quadratic maps also for the shape.
-        maps.hAngle[k] = g.hPos[k] >= 0.0 ? float(g.hAng[k]) : 0.0f;
-        maps.vAngle[k] = g.vPos[k] >= 0.0 ? float(g.vAng[k]) : 0.0f;
-    }
+    forBlocks(ex, nc, kRowsPerBlock * size_t(n + 1), [&](size_t, size_t k0, size_t k1) {
+        for (size_t k = k0; k < k1; ++k) {
+            maps.hPos[k] = float(g.hPos[k]);
+            maps.vPos[k] = float(g.vPos[k]);
+            // Angles in both modes: linear maps use them for the gradient on
+            // the curve (the curve's normal), quadratic maps also for the
+            // shape.
+            maps.hAngle[k] = g.hPos[k] >= 0.0 ? float(g.hAng[k]) : 0.0f;
+            maps.vAngle[k] = g.vPos[k] >= 0.0 ? float(g.vAng[k]) : 0.0f;
+        }
+    });
 }
 
 } // namespace
+
+FeatureMaps detail::bakeSteps(const CurveNetwork& net, const BakeOptions& opt, const Exec& ex,
+                              BakeStats& st) {
+    checkOptions(opt); // step 1
+    st.size = opt.size;
+    const TexelTransform xf = inputToTexel(net, opt);
+    st.inputToTexel = xf;
+    const std::vector<OSeg> segs = toTexelSpace(net, xf);
+
+    Grid g;
+    g.n = opt.size;
+    PhaseTimer phase;
+    scanConvert(net, segs, opt, g, st); // steps 2-3
+    phase.stop(st.secondsScan, st.wallSecondsScan);
+
+    phase = {};
+    if (opt.mode == BakeMode::Quadratic) optimizeSignatures(g, st, opt.progress, ex); // step 4
+    phase.stop(st.secondsOptimize, st.wallSecondsOptimize);
+
+    FeatureMaps maps;
+    maps.size = opt.size;
+    maps.mode = opt.mode;
+    maps.inputToTexel = xf;
+    maps.bandTexels = opt.bandTexels;
+    maps.smoothIterations = opt.smoothIterations;
+    maps.source = net.source;
+    storeConfigurations(g, opt.mode, maps, st, ex);
+    g = {}; // the grid's memory back before the distance pass allocates
+
+    phase = {};
+    computeDistances(segs, opt.bandTexels, maps, opt.progress, ex); // step 5
+    phase.stop(st.secondsDistance, st.wallSecondsDistance);
+
+    phase = {};
+    smoothGradients(opt.bandTexels, opt.smoothIterations, maps, ex); // step 6
+    phase.stop(st.secondsSmooth, st.wallSecondsSmooth);
+    if (opt.nearField) keepNearPieces(net, segs, opt, xf, maps, st); // exact near field
+    return maps;
+}
 
 Grid detail::scanGrid(const CurveNetwork& net, const BakeOptions& opt, BakeStats& st) {
     checkOptions(opt);
@@ -652,44 +723,22 @@ Grid detail::scanGrid(const CurveNetwork& net, const BakeOptions& opt, BakeStats
 }
 
 FeatureMaps bake(const CurveNetwork& net, const BakeOptions& opt, BakeStats* statsOut) {
-    auto t0 = Clock::now();
-    const double cpu0 = threadCpu();
-    checkOptions(opt); // step 1
+    SG_EXPECTS(opt.threads >= 0 && opt.threads <= kMaxThreads,
+               "BakeOptions::threads is 0 (all cores) .. kMaxThreads");
+    const auto t0 = Clock::now();
+    const double cpu0 = processCpu();
     BakeStats st;
-    st.size = opt.size;
-    const TexelTransform xf = inputToTexel(net, opt);
-    st.inputToTexel = xf;
-    const std::vector<OSeg> segs = toTexelSpace(net, xf);
-
-    Grid g;
-    g.n = opt.size;
-    double tPhase = threadCpu();
-    scanConvert(net, segs, opt, g, st); // steps 2-3
-    st.secondsScan = threadCpu() - tPhase;
-
-    tPhase = threadCpu();
-    if (opt.mode == BakeMode::Quadratic) optimizeSignatures(g, st, opt.progress); // step 4
-    st.secondsOptimize = threadCpu() - tPhase;
-
     FeatureMaps maps;
-    maps.size = opt.size;
-    maps.mode = opt.mode;
-    maps.inputToTexel = xf;
-    maps.bandTexels = opt.bandTexels;
-    maps.smoothIterations = opt.smoothIterations;
-    maps.source = net.source;
-    storeConfigurations(g, opt.mode, maps, st);
-
-    tPhase = threadCpu();
-    computeDistances(segs, opt.bandTexels, maps, opt.progress); // step 5
-    st.secondsDistance = threadCpu() - tPhase;
-
-    tPhase = threadCpu();
-    smoothGradients(opt.bandTexels, opt.smoothIterations, maps); // step 6
-    st.secondsSmooth = threadCpu() - tPhase;
-    if (opt.nearField) keepNearPieces(net, segs, opt, xf, maps, st); // exact near field
+    if (opt.threads == 1 || opt.size < kBakeSerialBelowSize) {
+        maps = bakeSteps(net, opt, Exec{false}, st);
+    } else {
+        maps = runWithThreads(opt.threads, [&] {
+            st.threads = tbb::this_task_arena::max_concurrency();
+            return bakeSteps(net, opt, Exec{true}, st);
+        });
+    }
     st.seconds = wallSince(t0);
-    st.cpuSeconds = threadCpu() - cpu0;
+    st.cpuSeconds = processCpu() - cpu0;
     if (statsOut) *statsOut = st;
     return maps;
 }

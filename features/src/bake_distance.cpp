@@ -13,6 +13,12 @@
 //     neighbours, excluding those across a texel edge that carries a
 //     discontinuity point and those with no curve within the band (no
 //     gradient). The distance is never smoothed.
+//
+// Threads (bake_parallel.h): step 5 splits the grid into bands of corner
+// rows; each band takes the pieces that reach it in input order, so every
+// corner sees the same sequence of candidates (the first strictly closest
+// piece wins) as in one pass. Step 6 is a Jacobi iteration (reads one
+// buffer, writes the other): rows in parallel.
 #include <bit>
 #include <chrono>
 
@@ -60,14 +66,19 @@ CornerBox cornerBox(const Quad& q, double band, int n) {
             std::max(0, int(std::ceil(lo.y))), std::min(n, int(std::floor(hi.y)))};
 }
 
+// Corner rows [j0, j1] of one band of the distance pass.
+struct RowBand {
+    int j0, j1;
+};
+
 // A straight piece: the closest point in closed form; only corners inside
-// the capsule of radius `band` are visited.
-void lineDistances(const Quad& q, double band, DistanceField& f) {
+// the capsule of radius `band` are visited, in the rows of `rows`.
+void lineDistances(const Quad& q, double band, DistanceField& f, RowBand rows) {
     const CornerBox box = cornerBox(q, band, f.maps.size);
     dvec2 p0 = q.p0, e = q.p2 - q.p0;
     double len = glm::length(e);
     dvec2 eu = e / len, fe = e / (len * len);
-    for (int j = box.j0; j <= box.j1; ++j) {
+    for (int j = std::max(box.j0, rows.j0); j <= std::min(box.j1, rows.j1); ++j) {
         // Row interval of the capsule: the union of the two end discs and
         // the strip along the segment.
         double dy = j - p0.y, xa = 1e300, xb = -1e300;
@@ -118,10 +129,10 @@ void lineDistances(const Quad& q, double band, DistanceField& f) {
 }
 
 // A curved piece: the exact closest point (cubic roots) at every corner of
-// its bounding box grown by the band.
-void curveDistances(const Quad& q, double band, DistanceField& f) {
+// its bounding box grown by the band, in the rows of `rows`.
+void curveDistances(const Quad& q, double band, DistanceField& f, RowBand rows) {
     const CornerBox box = cornerBox(q, band, f.maps.size);
-    for (int j = box.j0; j <= box.j1; ++j) {
+    for (int j = std::max(box.j0, rows.j0); j <= std::min(box.j1, rows.j1); ++j) {
         for (int i = box.i0; i <= box.i1; ++i) {
             dvec2 p(i, j);
             double u;
@@ -136,32 +147,48 @@ void curveDistances(const Quad& q, double band, DistanceField& f) {
     }
 }
 
+// Corner rows per band of the distance pass: a piece costs its set-up in
+// every band it reaches, a band is one task.
+constexpr int kDistanceBandRows = 16;
+// Rows of corners per block of the smoothing passes.
+constexpr size_t kSmoothBlockRows = 16;
+
 } // namespace
 
 void computeDistances(const std::vector<TexelPiece>& pieces, double band, FeatureMaps& maps,
-                      const std::function<void(const char*, double)>& progress) {
-    const size_t nc = size_t(maps.size + 1) * size_t(maps.size + 1);
+                      const std::function<void(const char*, double)>& progress, const Exec& ex) {
+    const int m = maps.size + 1;
+    const size_t nc = size_t(m) * size_t(m);
     maps.dist.assign(nc, float(band));
     maps.gradX.assign(nc, 0.0f);
     maps.gradY.assign(nc, 0.0f);
     maps.left.assign(nc, 0);
     DistanceField f{maps, std::vector<double>(nc, band * band)};
-    auto last = std::chrono::steady_clock::now();
+    // The pieces of each band, in input order.
+    const size_t bands = blockCount(size_t(m), kDistanceBandRows);
+    std::vector<std::vector<uint32_t>> inBand(bands);
     for (size_t k = 0; k < pieces.size(); ++k) {
-        if (pieces[k].line)
-            lineDistances(pieces[k].q, band, f);
-        else
-            curveDistances(pieces[k].q, band, f);
-        if (progress && (k & 255) == 255 &&
-            std::chrono::steady_clock::now() - last > std::chrono::milliseconds(200)) {
-            progress("distance", double(k + 1) / double(pieces.size()));
-            last = std::chrono::steady_clock::now();
-        }
+        const CornerBox box = cornerBox(pieces[k].q, band, maps.size);
+        if (box.j0 > box.j1 || box.i0 > box.i1) continue; // off the map
+        for (int b = box.j0 / kDistanceBandRows; b <= box.j1 / kDistanceBandRows; ++b)
+            inBand[size_t(b)].push_back(uint32_t(k));
     }
-    if (progress) progress("distance", 1.0); // the end, whatever the throttle skipped
+    PhaseProgress report(progress, "distance", bands);
+    forBlocks(ex, bands, 1, [&](size_t b, size_t, size_t) {
+        const RowBand rows{int(b) * kDistanceBandRows,
+                           std::min(m - 1, int(b + 1) * kDistanceBandRows - 1)};
+        for (uint32_t k : inBand[b]) {
+            if (pieces[k].line)
+                lineDistances(pieces[k].q, band, f, rows);
+            else
+                curveDistances(pieces[k].q, band, f, rows);
+        }
+        report.add(1);
+    });
+    report.finish();
 }
 
-void smoothGradients(double band, int iterations, FeatureMaps& maps) {
+void smoothGradients(double band, int iterations, FeatureMaps& maps, const Exec& ex) {
     // Neighbour links per corner (bits: +x, -x, +y, -y): not across an edge
     // with a discontinuity point, and only between corners that have a
     // curve within the band (others carry no gradient).
@@ -169,49 +196,55 @@ void smoothGradients(double band, int iterations, FeatureMaps& maps) {
     const size_t nc = size_t(m) * size_t(m);
     std::vector<uint8_t> links(nc, 0);
     const float inBand = float(band) * 0.9999f;
-    for (int j = 0; j < m; ++j) {
-        for (int i = 0; i < m; ++i) {
-            size_t k = maps.index(i, j);
-            if (!(maps.dist[k] < inBand)) continue;
-            uint8_t l = 0;
-            if (i + 1 < m && !(maps.hPos[k] >= 0.0f) && maps.dist[k + 1] < inBand) l |= 1;
-            if (i > 0 && !(maps.hPos[k - 1] >= 0.0f) && maps.dist[k - 1] < inBand) l |= 2;
-            if (j + 1 < m && !(maps.vPos[k] >= 0.0f) && maps.dist[k + size_t(m)] < inBand) l |= 4;
-            if (j > 0 && !(maps.vPos[k - size_t(m)] >= 0.0f) && maps.dist[k - size_t(m)] < inBand)
-                l |= 8;
-            links[k] = l;
+    forBlocks(ex, size_t(m), kSmoothBlockRows, [&](size_t, size_t rows0, size_t rows1) {
+        for (int j = int(rows0); j < int(rows1); ++j) {
+            for (int i = 0; i < m; ++i) {
+                size_t k = maps.index(i, j);
+                if (!(maps.dist[k] < inBand)) continue;
+                uint8_t l = 0;
+                if (i + 1 < m && !(maps.hPos[k] >= 0.0f) && maps.dist[k + 1] < inBand) l |= 1;
+                if (i > 0 && !(maps.hPos[k - 1] >= 0.0f) && maps.dist[k - 1] < inBand) l |= 2;
+                if (j + 1 < m && !(maps.vPos[k] >= 0.0f) && maps.dist[k + size_t(m)] < inBand)
+                    l |= 4;
+                if (j > 0 && !(maps.vPos[k - size_t(m)] >= 0.0f) &&
+                    maps.dist[k - size_t(m)] < inBand)
+                    l |= 8;
+                links[k] = l;
+            }
         }
-    }
+    });
     std::vector<float> gx2(maps.gradX), gy2(maps.gradY);
     float weight[16];
     for (int l = 0; l < 16; ++l) weight[l] = l ? 0.5f / float(std::popcount(unsigned(l))) : 0.0f;
     for (int it = 0; it < iterations; ++it) {
         const float* gx = maps.gradX.data();
         const float* gy = maps.gradY.data();
-        for (size_t k = 0; k < nc; ++k) {
-            uint8_t l = links[k];
-            if (!l) continue;
-            float sx = 0, sy = 0;
-            if (l & 1) {
-                sx += gx[k + 1];
-                sy += gy[k + 1];
+        forBlocks(ex, nc, kSmoothBlockRows * size_t(m), [&](size_t, size_t k0, size_t k1) {
+            for (size_t k = k0; k < k1; ++k) {
+                uint8_t l = links[k];
+                if (!l) continue;
+                float sx = 0, sy = 0;
+                if (l & 1) {
+                    sx += gx[k + 1];
+                    sy += gy[k + 1];
+                }
+                if (l & 2) {
+                    sx += gx[k - 1];
+                    sy += gy[k - 1];
+                }
+                if (l & 4) {
+                    sx += gx[k + size_t(m)];
+                    sy += gy[k + size_t(m)];
+                }
+                if (l & 8) {
+                    sx += gx[k - size_t(m)];
+                    sy += gy[k - size_t(m)];
+                }
+                float w = weight[l];
+                gx2[k] = 0.5f * gx[k] + w * sx;
+                gy2[k] = 0.5f * gy[k] + w * sy;
             }
-            if (l & 2) {
-                sx += gx[k - 1];
-                sy += gy[k - 1];
-            }
-            if (l & 4) {
-                sx += gx[k + size_t(m)];
-                sy += gy[k + size_t(m)];
-            }
-            if (l & 8) {
-                sx += gx[k - size_t(m)];
-                sy += gy[k - size_t(m)];
-            }
-            float w = weight[l];
-            gx2[k] = 0.5f * gx[k] + w * sx;
-            gy2[k] = 0.5f * gy[k] + w * sy;
-        }
+        });
         maps.gradX.swap(gx2);
         maps.gradY.swap(gy2);
         // Corners without links keep their value in both buffers.

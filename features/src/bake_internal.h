@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bake_geometry.h"
+#include "bake_parallel.h"
 #include "surfgrad/feature_maps.h"
 
 namespace sg::features::detail {
@@ -51,8 +52,9 @@ struct TexelPiece {
 struct Grid {
     int n = 0; // texels per side
     // Edges over grid corners (index j * (n+1) + i): h = (i,j)-(i+1,j),
-    // v = (i,j)-(i,j+1).
-    std::vector<EdgeAcc> hAcc, vAcc;
+    // v = (i,j)-(i,j+1). The accumulators hold only the edges a curve
+    // crosses (a dense array was most of the scan's time: page faults).
+    std::unordered_map<size_t, EdgeAcc> hAcc, vAcc;
     std::vector<double> hPos, hAng, vPos, vAng; // final, quantized; pos < 0: no point
     // Per texel (index j * n + i).
     std::vector<uint8_t> segMask;      // segment types present
@@ -170,8 +172,23 @@ bool compassSearch(TexelProblem& p, std::vector<double>& x);
 
 // Runs the signature optimisation of TOG 2008 sec. 4 on every texel whose
 // signature is invalid, straightening what it cannot repair.
+// Texels whose optimisations may depend on each other (one reads what the
+// other writes: the edge points of a texel and of its four neighbours) are
+// at most this far apart in x and in y; the parallel schedule keeps their
+// serial order.
+inline constexpr int kOptimizeReach = 2;
+// In parallel (ex), texels farther apart than kOptimizeReach run at once,
+// in waves that keep the serial order of dependent texels: the result is
+// the serial one.
 void optimizeSignatures(Grid& g, BakeStats& stats,
-                        const std::function<void(const char*, double)>& progress);
+                        const std::function<void(const char*, double)>& progress,
+                        const Exec& ex = {});
+
+// Steps 1-6 of the bake (bake.cpp) with the loops of `ex`, whatever the
+// map size (bake() applies the serial cut-over and the thread count; the
+// bench measures the cut-over with this).
+FeatureMaps bakeSteps(const CurveNetwork& net, const BakeOptions& opt, const Exec& ex,
+                      BakeStats& st);
 
 // Steps 1-3 of the bake (bake.cpp): the grid after scan conversion, as the
 // optimisation of step 4 starts from it (the optimiser's bench uses it).
@@ -180,13 +197,17 @@ Grid scanGrid(const CurveNetwork& net, const BakeOptions& opt, BakeStats& st);
 // Step 5 (bake_distance.cpp): distance and gradient at every grid corner
 // within `band` texels of a piece, exact in double (TOG 2008 sec. 4,
 // "Rasterization of distance field"); fills maps.dist, gradX, gradY, left.
+// In parallel (ex), bands of corner rows each take the pieces in input
+// order: the result is the serial one.
 void computeDistances(const std::vector<TexelPiece>& pieces, double band, FeatureMaps& maps,
-                      const std::function<void(const char*, double)>& progress);
+                      const std::function<void(const char*, double)>& progress,
+                      const Exec& ex = {});
 
 // Step 6 (bake_distance.cpp): constrained Laplacian smoothing of the
 // gradient (TOG 2008 sec. 4); needs maps.hPos/vPos (the edges it does not
 // smooth across) and the distances.
-void smoothGradients(double band, int iterations, FeatureMaps& maps);
+// (A Jacobi iteration: rows in parallel with ex give the serial result.)
+void smoothGradients(double band, int iterations, FeatureMaps& maps, const Exec& ex = {});
 
 // The exact near field (near_field.cpp): the bake keeps the pieces with
 // their profiles and widths (throws InputError for unknown profiles, too
@@ -195,7 +216,8 @@ void keepNearPieces(const CurveNetwork& net, const std::vector<TexelPiece>& segs
                     const BakeOptions& opt, const TexelTransform& xf, FeatureMaps& maps,
                     BakeStats& st);
 // ... and packing derives the GPU lists and piece texture from them.
-void packNearField(const FeatureMaps& m, GpuFeatureMaps& g);
+// (Texels in parallel with ex; overflow slots assigned in texel order.)
+void packNearField(const FeatureMaps& m, GpuFeatureMaps& g, const Exec& ex = {});
 // Bounds the work of building the lists (pieces times the texels their
 // boxes grown by the band cover, at most kNearWorkBudget): InputError
 // naming `source` beyond it, so untrusted maps cannot make packing hang.

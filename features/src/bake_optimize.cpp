@@ -21,6 +21,15 @@
 // of the input crossings. A texel the search cannot make valid has its
 // segments straightened, which is always valid (the linear partition of
 // TR2005).
+//
+// Threads: optimising texel T reads the edge points of T and of its four
+// neighbours (their validity, energy and the Catmull-Rom start) and writes
+// T's edge points and its straightening bit, so two texels more than
+// kOptimizeReach apart in x or y never see each other's work. Each invalid
+// texel gets a wave number one above the largest of the earlier (row-major)
+// invalid texels within that reach; a wave's texels run in parallel and the
+// waves in order. Every texel then sees exactly the state the serial loop
+// gives it: the same result for every thread count.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -239,49 +248,109 @@ bool optimizeTexel(Grid& g, int i, int j) {
 
 } // namespace
 
-void optimizeSignatures(Grid& g, BakeStats& stats,
-                        const std::function<void(const char*, double)>& progress) {
+namespace {
+
+constexpr size_t kRowsPerBlock = 8; // rows of texels per block of the validation passes
+
+// The invalid texels (row-major) with the validation counters of every
+// candidate texel, blocks of rows in parallel.
+std::vector<std::pair<int, int>> invalidTexels(const Grid& g, ValidationCounters& counters,
+                                               const Exec& ex) {
     const int n = g.n;
-    std::vector<std::pair<int, int>> work;
-    ValidationCounters counters;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            size_t ti = g.ti(i, j);
-            if (!(g.segMask[ti] & g.quadMask[ti])) continue;
-            LocalTexel t = decodeTexel(g, i, j);
-            if (validateTexel(t, &counters) > 0.0) work.emplace_back(i, j);
-        }
-    }
-    stats.eq7Failures = counters.eq7;
-    stats.invalidTexels = int(work.size());
-    auto last = std::chrono::steady_clock::now();
-    for (size_t w = 0; w < work.size(); ++w) {
-        auto [i, j] = work[w];
-        size_t ti = g.ti(i, j);
-        if (texelViolation(g, i, j) <= 0.0 || optimizeTexel(g, i, j)) {
-            ++stats.optimizedTexels;
-        } else {
-            g.straightMask[ti] |= g.segMask[ti];
-            ++stats.fallbackTexels;
-        }
-        auto now = std::chrono::steady_clock::now();
-        if (progress && now - last > std::chrono::milliseconds(200)) {
-            progress("optimize", double(w + 1) / double(work.size()));
-            last = now;
-        }
-    }
-    // Safety net: anything still invalid becomes straight (always valid).
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            size_t ti = g.ti(i, j);
-            if (!(g.segMask[ti] & g.quadMask[ti] & ~g.straightMask[ti])) continue;
-            if (texelViolation(g, i, j) > 0.0) {
-                g.straightMask[ti] |= g.segMask[ti];
-                ++stats.fallbackTexels;
+    struct Block {
+        std::vector<std::pair<int, int>> work;
+        ValidationCounters counters;
+    };
+    std::vector<Block> blocks(blockCount(size_t(n), kRowsPerBlock));
+    forBlocks(ex, size_t(n), kRowsPerBlock, [&](size_t b, size_t j0, size_t j1) {
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < n; ++i) {
+                size_t ti = g.ti(i, j);
+                if (!(g.segMask[ti] & g.quadMask[ti])) continue;
+                LocalTexel t = decodeTexel(g, i, j);
+                if (validateTexel(t, &blocks[b].counters) > 0.0) blocks[b].work.emplace_back(i, j);
             }
         }
+    });
+    std::vector<std::pair<int, int>> work;
+    for (const Block& b : blocks) {
+        work.insert(work.end(), b.work.begin(), b.work.end());
+        counters.thetaMin += b.counters.thetaMin;
+        counters.flat += b.counters.flat;
+        counters.eq7 += b.counters.eq7;
+        counters.cross += b.counters.cross;
     }
-    if (progress) progress("optimize", 1.0);
+    return work;
+}
+
+// Wave of each work item: 1 + the largest wave of the earlier items within
+// kOptimizeReach (each texel is in the list at most once); the items of
+// each wave in list order.
+std::vector<std::vector<size_t>> optimizationWaves(const Grid& g,
+                                                   const std::vector<std::pair<int, int>>& work) {
+    std::vector<int> waveAt(size_t(g.n) * size_t(g.n), -1);
+    std::vector<std::vector<size_t>> waves;
+    for (size_t w = 0; w < work.size(); ++w) {
+        auto [i, j] = work[w];
+        int wave = 0;
+        for (int dj = -kOptimizeReach; dj <= kOptimizeReach; ++dj) {
+            for (int di = -kOptimizeReach; di <= kOptimizeReach; ++di) {
+                int ni = i + di, nj = j + dj;
+                if (ni < 0 || nj < 0 || ni >= g.n || nj >= g.n) continue;
+                wave = std::max(wave, waveAt[g.ti(ni, nj)] + 1);
+            }
+        }
+        waveAt[g.ti(i, j)] = wave;
+        if (size_t(wave) >= waves.size()) waves.resize(size_t(wave) + 1);
+        waves[size_t(wave)].push_back(w);
+    }
+    return waves;
+}
+
+} // namespace
+
+void optimizeSignatures(Grid& g, BakeStats& stats,
+                        const std::function<void(const char*, double)>& progress, const Exec& ex) {
+    const int n = g.n;
+    ValidationCounters counters;
+    const std::vector<std::pair<int, int>> work = invalidTexels(g, counters, ex);
+    stats.eq7Failures = counters.eq7;
+    stats.invalidTexels = int(work.size());
+    // 1: repaired (valid or optimised), 0: straightened.
+    std::vector<uint8_t> repaired(work.size(), 0);
+    PhaseProgress report(progress, "optimize", work.size());
+    for (const std::vector<size_t>& wave : optimizationWaves(g, work)) {
+        forBlocks(ex, wave.size(), 1, [&](size_t, size_t w0, size_t w1) {
+            for (size_t k = w0; k < w1; ++k) {
+                const size_t w = wave[k];
+                auto [i, j] = work[w];
+                size_t ti = g.ti(i, j);
+                if (texelViolation(g, i, j) <= 0.0 || optimizeTexel(g, i, j))
+                    repaired[w] = 1;
+                else
+                    g.straightMask[ti] |= g.segMask[ti];
+            }
+            report.add(w1 - w0);
+        });
+    }
+    for (uint8_t r : repaired) ++(r ? stats.optimizedTexels : stats.fallbackTexels);
+    // Safety net: anything still invalid becomes straight (always valid).
+    // Each texel's test reads only its own state.
+    std::vector<int> fallbacks(blockCount(size_t(n), kRowsPerBlock), 0);
+    forBlocks(ex, size_t(n), kRowsPerBlock, [&](size_t b, size_t j0, size_t j1) {
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < n; ++i) {
+                size_t ti = g.ti(i, j);
+                if (!(g.segMask[ti] & g.quadMask[ti] & ~g.straightMask[ti])) continue;
+                if (texelViolation(g, i, j) > 0.0) {
+                    g.straightMask[ti] |= g.segMask[ti];
+                    ++fallbacks[b];
+                }
+            }
+        }
+    });
+    for (int f : fallbacks) stats.fallbackTexels += f;
+    report.finish();
 }
 
 } // namespace sg::features::detail

@@ -7,6 +7,7 @@
 #include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/io.h"
+#include "surfgrad/threads.h"
 
 namespace sg::features {
 
@@ -48,28 +49,40 @@ uint32_t halfPair(float a, float b) {
 
 } // namespace
 
-GpuFeatureMaps FeatureMaps::packGpu() const {
+namespace {
+
+// packGpu's loops with the loops of `ex` (rows of texels in parallel).
+GpuFeatureMaps packGpuRows(const FeatureMaps& m, const detail::Exec& ex) {
+    constexpr size_t kRowsPerBlock = 16;
+    const int size = m.size;
     GpuFeatureMaps g;
     g.size = size;
     g.cornerPairs.assign(size_t(size) * size_t(size + 1) * 4, 0u);
     g.edges.assign(size_t(size) * size_t(size) * 4, 0u);
-    for (int j = 0; j <= size; ++j) {
-        for (int i = 0; i < size; ++i) {
-            size_t a = index(i, j), b = index(i + 1, j);
-            uint32_t* c = &g.cornerPairs[(size_t(j) * size_t(size) + size_t(i)) * 4];
-            c[0] = halfPair(dist[a], dist[b]);
-            c[1] = halfPair(gradX[a], gradY[a]);
-            c[2] = halfPair(gradX[b], gradY[b]);
-            c[3] = j < size ? configWord(i, j) : 0u;
+    detail::forBlocks(ex, size_t(size) + 1, kRowsPerBlock, [&](size_t, size_t j0, size_t j1) {
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < size; ++i) {
+                size_t a = m.index(i, j), b = m.index(i + 1, j);
+                uint32_t* c = &g.cornerPairs[(size_t(j) * size_t(size) + size_t(i)) * 4];
+                c[0] = halfPair(m.dist[a], m.dist[b]);
+                c[1] = halfPair(m.gradX[a], m.gradY[a]);
+                c[2] = halfPair(m.gradX[b], m.gradY[b]);
+                c[3] = j < size ? m.configWord(i, j) : 0u;
+                if (j < size)
+                    m.edgeWords(i, j, &g.edges[(size_t(j) * size_t(size) + size_t(i)) * 4]);
+            }
         }
-    }
-    for (int j = 0; j < size; ++j) {
-        for (int i = 0; i < size; ++i) {
-            edgeWords(i, j, &g.edges[(size_t(j) * size_t(size) + size_t(i)) * 4]);
-        }
-    }
-    detail::packNearField(*this, g);
+    });
+    detail::packNearField(m, g, ex);
     return g;
+}
+
+} // namespace
+
+GpuFeatureMaps FeatureMaps::packGpu(int threads) const {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads, "threads is 0 (all cores) .. kMaxThreads");
+    if (threads == 1 || size < kBakeSerialBelowSize) return packGpuRows(*this, {false});
+    return runWithThreads(threads, [&] { return packGpuRows(*this, {true}); });
 }
 
 double FeatureMaps::canonicalBytesPerTexel() const {

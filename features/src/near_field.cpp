@@ -14,6 +14,10 @@
 // piece: it is never nearest in T and is left out; every other piece is
 // listed. T is in the band when min_k F(s_k) - r < band. Distances are
 // exact, in double, on the binary32 pieces the GPU reads.
+//
+// Threads: the texels' lists are built in blocks of rows in parallel; the
+// lists longer than the 8 header slots get their overflow slots afterwards,
+// in texel order, as one pass would.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -142,7 +146,7 @@ void packPieces(const FeatureMaps& m, GpuFeatureMaps& g) {
 
 } // namespace
 
-void packNearField(const FeatureMaps& m, GpuFeatureMaps& g) {
+void packNearField(const FeatureMaps& m, GpuFeatureMaps& g, const Exec& ex) {
     g.nearHeight = 0;
     g.nearLists.clear();
     g.pieces.clear();
@@ -157,33 +161,54 @@ void packNearField(const FeatureMaps& m, GpuFeatureMaps& g) {
     const int bins = (n + kBinTexels - 1) / kBinTexels;
     const std::vector<std::vector<int>> binned = binPieces(m.pieces, n, reach);
     std::vector<uint32_t> headers(size_t(n) * size_t(n) * 4, 0u);
+    auto put = [](uint32_t* t, size_t slot, int piece) {
+        t[slot / 2] |= uint32_t(piece + 1) << (16 * (slot % 2));
+    };
+    // Per block of rows: its statistics and its long lists (texel, pieces).
+    struct Block {
+        int bandTexels = 0, maxPieces = 0;
+        long long total = 0;
+        std::vector<std::pair<size_t, std::vector<int>>> longLists;
+    };
+    constexpr size_t kRowsPerBlock = 8;
+    std::vector<Block> blocks(blockCount(size_t(n), kRowsPerBlock));
+    forBlocks(ex, size_t(n), kRowsPerBlock, [&](size_t b, size_t j0, size_t j1) {
+        Block& blk = blocks[b];
+        for (int j = int(j0); j < int(j1); ++j) {
+            for (int i = 0; i < n; ++i) {
+                const auto& bin =
+                    binned[size_t(j / kBinTexels) * size_t(bins) + size_t(i / kBinTexels)];
+                std::vector<int> list = texelList(m.pieces, bin, i, j, band, reach);
+                if (list.empty()) continue;
+                ++blk.bandTexels;
+                blk.total += (long long)list.size();
+                blk.maxPieces = std::max(blk.maxPieces, int(list.size()));
+                const size_t texel = size_t(j) * size_t(n) + size_t(i);
+                if (list.size() <= 8) {
+                    for (size_t k = 0; k < list.size(); ++k) put(&headers[texel * 4], k, list[k]);
+                    continue;
+                }
+                blk.longLists.emplace_back(texel, std::move(list));
+            }
+        }
+    });
     std::vector<uint32_t> overflow; // 4 words per texel, 8 slots
     long long total = 0;
-    for (int j = 0; j < n; ++j) {
-        for (int i = 0; i < n; ++i) {
-            const auto& bin =
-                binned[size_t(j / kBinTexels) * size_t(bins) + size_t(i / kBinTexels)];
-            std::vector<int> list = texelList(m.pieces, bin, i, j, band, reach);
-            if (list.empty()) continue;
-            ++g.nearStats.bandTexels;
-            total += (long long)list.size();
-            g.nearStats.maxPieces = std::max(g.nearStats.maxPieces, int(list.size()));
-            uint32_t* h = &headers[(size_t(j) * size_t(n) + size_t(i)) * 4];
-            auto put = [](uint32_t* t, size_t slot, int piece) {
-                t[slot / 2] |= uint32_t(piece + 1) << (16 * (slot % 2));
-            };
-            if (list.size() <= 8) {
-                for (size_t k = 0; k < list.size(); ++k) put(h, k, list[k]);
-                continue;
-            }
+    for (Block& blk : blocks) {
+        g.nearStats.bandTexels += blk.bandTexels;
+        total += blk.total;
+        g.nearStats.maxPieces = std::max(g.nearStats.maxPieces, blk.maxPieces);
+        for (const auto& [texel, list] : blk.longLists) {
             ++g.nearStats.overflowTexels;
             const size_t start = overflow.size() / 4;
             overflow.resize(overflow.size() + 4 * ((list.size() + 7) / 8), 0u);
             for (size_t k = 0; k < list.size(); ++k) put(&overflow[start * 4], k, list[k]);
+            uint32_t* h = &headers[texel * 4];
             h[0] = uint32_t(list.size());
             h[1] = uint32_t(start);
             h[3] = 0x80000000u;
         }
+        blk.longLists = {};
     }
     g.nearStats.meanPieces =
         g.nearStats.bandTexels ? double(total) / double(g.nearStats.bandTexels) : 0.0;

@@ -1,11 +1,13 @@
 // The documented preconditions of features/ (contract checks,
 // surfgrad/contract.h): texel coordinates inside the maps, for the C++
-// emulation of the evaluator's texelFetch and for the packing helpers.
+// emulation of the evaluator's texelFetch and for the packing helpers; a
+// thread count within 0..kMaxThreads for the bake and the packing.
 #include <array>
 #include <vector>
 
 #include "contract_death.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/threads.h"
 
 namespace {
 
@@ -29,6 +31,27 @@ TEST_F(ContractDeath, PackingHelpersTakeTexelsInsideTheMap) {
     std::array<float, 64> record{};
     SG_EXPECT_CONTRACT_DEATH(
         sg::features::packEvalRecord(gpu, 0, 0, glm::vec2(0.5f), record.data()), "inside the map");
+}
+
+TEST_F(ContractDeath, ThreadCountsOutsideZeroTo1024) {
+    sg::features::CurveNetwork net;
+    net.curves.resize(1);
+    sg::features::Segment s;
+    s.p0 = {0.0, 0.0};
+    s.p2 = {1.0, 1.0};
+    s.p1 = {0.5, 0.5};
+    net.segments.push_back(s);
+    sg::features::BakeOptions o;
+    o.size = 16;
+    o.marginTexels = 2.0;
+    o.threads = sg::kMaxThreads;
+    const sg::features::FeatureMaps maps = sg::features::bake(net, o); // the largest count
+    (void)maps.packGpu(sg::kMaxThreads);
+    for (int threads : {-1, sg::kMaxThreads + 1}) {
+        o.threads = threads;
+        SG_EXPECT_CONTRACT_DEATH(sg::features::bake(net, o), "BakeOptions::threads is 0");
+        SG_EXPECT_CONTRACT_DEATH(maps.packGpu(threads), "threads is 0");
+    }
 }
 
 } // namespace

@@ -105,6 +105,38 @@ TEST(FeatureAa, ChainLevelsAverageLevelZero) {
     }
 }
 
+// The chain is the same bits at 1, 2, 3 and 7 threads (rows of level 0 in
+// parallel), with and without the exact near field.
+TEST(FeatureAa, ChainIsTheSameAtEveryThreadCount) {
+    F::CurveNetwork net = F::loadSvg(std::string(SURFGRAD_DATA_DIR) + "/svg/paw-print.svg");
+    F::BakeOptions o;
+    o.size = 96;
+    o.mode = F::BakeMode::Quadratic;
+    o.nearField = true;
+    const F::FeatureMaps maps = F::bake(net, o);
+    FeatureMapsAsset asset;
+    asset.gpu = maps.packGpu();
+    asset.bandTexels = maps.bandTexels;
+    asset.nearBandTexels = maps.nearBandTexels;
+    for (bool near : {false, true}) {
+        FeatureChainSource c = chainSource("vgroove", 1.0f, 0.5f, 2.5f, 0);
+        c.nearExact = near;
+        const detail::FeatureChainTextures one =
+            detail::featureChainTextures(asset, c, detail::kFeatureChainSamples, 1);
+        for (int threads : {2, 3, 7}) {
+            SCOPED_TRACE("near " + std::to_string(near) + ", threads " + std::to_string(threads));
+            const detail::FeatureChainTextures m =
+                detail::featureChainTextures(asset, c, detail::kFeatureChainSamples, threads);
+            for (int part = 0; part < 2; ++part) {
+                ASSERT_EQ(one.part[part].levels.size(), m.part[part].levels.size());
+                for (size_t l = 0; l < m.part[part].levels.size(); ++l)
+                    EXPECT_TRUE(one.part[part].levels[l].data == m.part[part].levels[l].data)
+                        << "part " << part << " level " << l;
+            }
+        }
+    }
+}
+
 TEST(FeatureAa, StraightCreaseGivesTheTwoValuedVariance) {
     // A V-groove of depth D = 2 and half-width w = 4 (w0 = w: no blend
     // band) along x = x0 = 32.5: the slope is (-D/w, 0) on [x0 - w, x0),

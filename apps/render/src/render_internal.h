@@ -77,13 +77,23 @@ TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
 // part 0 texA, part 1 texB. The midpoint rule's error on a texel a crease
 // crosses is at most the area of the samples' cells the crease cuts, about
 // 1/samplesPerAxis of the slope jump (tests/render).
+// threads (surfgrad/threads.h): 0 = all cores, 1..kMaxThreads (else a
+// contract violation); rows of texels run in parallel, each texel's sum in
+// its own sample order, so level 0 is the same bits for every count. Maps
+// of fewer than kFeatureChainSerialBelowSize texels per side run on the
+// calling thread. The cut-over is an estimate, not a benchmark: a texel in
+// reach of a curve costs 64 evaluator samples (tens of microseconds), so a
+// 32^2 map is milliseconds of compute-bound work against an arena's start
+// of tens of microseconds.
 inline constexpr int kFeatureChainSamples = 8;
+inline constexpr int kFeatureChainSerialBelowSize = 32;
 struct FeatureChainTextures {
     TextureImage part[2];
 };
 FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
                                           const FeatureChainSource& src,
-                                          int samplesPerAxis = kFeatureChainSamples);
+                                          int samplesPerAxis = kFeatureChainSamples,
+                                          int threads = 0);
 
 // Refuses (InputError naming `name`) a texture of `residentBytes` (and
 // `transientBytes` more while it is built) that does not fit the budget of

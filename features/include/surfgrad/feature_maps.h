@@ -182,9 +182,31 @@ struct BakeOptions {
     double nearWidthTexels = 3.0;
     double nearMarginTexels = 1.0;
     // Called with a phase name and its completed fraction (0..1) at most
-    // every few milliseconds; may be empty.
+    // every few milliseconds, always from the calling thread; may be empty.
     std::function<void(const char* phase, double fraction)> progress;
+    // Threads (surfgrad/threads.h): 0 = all cores, 1 = the calling thread,
+    // 2..kMaxThreads = that many; outside 0..kMaxThreads is a contract
+    // violation. The maps are the same bits for every count: the loops over
+    // texels and corners write disjoint outputs, the distance pass splits the
+    // map into bands of rows that each take the pieces in input order, the
+    // smoothing is a Jacobi iteration, and the signature optimisation
+    // (quadratic mode) runs the invalid texels in waves of texels at least
+    // three texels apart whose order among dependent texels is the serial
+    // one. Scan conversion (the accumulation of crossings in stroke order)
+    // stays serial. Maps smaller than kBakeSerialBelowSize run on the
+    // calling thread whatever the count.
+    int threads = 0;
 };
+
+// Serial cut-over of bake() and FeatureMaps::packGpu(): maps of fewer
+// texels per side run on the calling thread. Measured (bench/features_bench
+// threads, 2-core machine under load): whole bakes of 2,000 segments with
+// parallel loops ran at 0.80-1.00x the speed of serial ones at
+// 32^2..192^2 (the arena and the tasks cost more than the second core saves
+// on a few milliseconds of mostly memory-bound work) and broke even at
+// 256^2; the distance pass and the optimisation gain from 512^2 (1.4-2x at
+// 1024^2).
+inline constexpr int kBakeSerialBelowSize = 256;
 
 // What the bake did (for --json and the tests).
 struct BakeStats {
@@ -205,11 +227,15 @@ struct BakeStats {
     int fallbackTexels = 0;       // ... and were made valid by straightening instead
     int nearPieces = 0;           // pieces kept for the exact near field
     double nearBandTexels = 0.0;  // its band (0: no near field)
+    int threads = 1;              // threads the bake ran on (1: serial)
     double seconds = 0.0;         // wall-clock time of the whole bake
-    double cpuSeconds = 0.0;      // CPU time of the calling thread (the bake is single-threaded)
-    // CPU time of the phases: scan conversion and configurations, signature
-    // optimisation (quadratic mode), distances, smoothing.
+    double cpuSeconds = 0.0;      // CPU time of the process during the bake (all its threads)
+    // CPU time of the process (all its threads) in the phases: scan
+    // conversion and configurations, signature optimisation (quadratic
+    // mode), distances, smoothing; and their wall-clock time.
     double secondsScan = 0.0, secondsOptimize = 0.0, secondsDistance = 0.0, secondsSmooth = 0.0;
+    double wallSecondsScan = 0.0, wallSecondsOptimize = 0.0, wallSecondsDistance = 0.0,
+           wallSecondsSmooth = 0.0;
 };
 
 struct GpuFeatureMaps;
@@ -258,7 +284,10 @@ struct FeatureMaps {
     uint32_t configWord(int i, int j) const;
     // Edge words of texel (i, j): S, E, N, W.
     void edgeWords(int i, int j, uint32_t out[4]) const;
-    GpuFeatureMaps packGpu() const;
+    // The GPU layout (and the exact near field's lists). `threads` as
+    // BakeOptions::threads (0 = all cores; the same bits for every count;
+    // maps below kBakeSerialBelowSize on the calling thread).
+    GpuFeatureMaps packGpu(int threads = 0) const;
 
     // Bytes per texel of the GPU layout and of the in-memory canonical form.
     static constexpr double kGpuBytesPerTexel = 32.0;

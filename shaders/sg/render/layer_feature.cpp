@@ -7,13 +7,20 @@
 
 #include <algorithm>
 
+#include <tbb/parallel_for.h>
+
+#include "surfgrad/threads.h"
+
 namespace sg::render {
 
 namespace detail {
 
 FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
-                                          const FeatureChainSource& src, int samplesPerAxis) {
+                                          const FeatureChainSource& src, int samplesPerAxis,
+                                          int threads) {
     SG_EXPECTS(samplesPerAxis >= 1 && maps.gpu.size >= 1, "a chain of loaded maps");
+    SG_EXPECTS(threads >= 0 && threads <= sg::kMaxThreads,
+               "threads is 0 (all cores) .. kMaxThreads");
     namespace G = sg::glsl;
     const sg::features::GpuFeatureMaps& gpu = maps.gpu;
     const int n = gpu.size;
@@ -36,7 +43,7 @@ FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
     std::vector<glm::vec4> texelsB(size_t(n) * size_t(n), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     const double inv = 1.0 / double(samplesPerAxis);
     const double norm = 1.0 / (double(samplesPerAxis) * double(samplesPerAxis));
-    for (int j = 0; j < n; ++j)
+    auto row = [&](int j) {
         for (int i = 0; i < n; ++i) {
             const size_t at = size_t(j) * size_t(n) + size_t(i);
             if (sg::features::sample(gpu, glm::vec2(i + 0.5f, j + 0.5f), nm).dist > reach)
@@ -54,6 +61,13 @@ FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
             texelsA[at] = glm::vec4(sumA * norm);
             texelsB[at] = glm::vec4(sumB * norm);
         }
+    };
+    // Rows write disjoint texels: any schedule gives the same bits.
+    if (threads == 1 || n < kFeatureChainSerialBelowSize) {
+        for (int j = 0; j < n; ++j) row(j);
+    } else {
+        sg::runWithThreads(threads, [&] { tbb::parallel_for(0, n, row); });
+    }
     return {makeTexture(n, n, std::move(texelsA), Wrap::Clamp),
             makeTexture(n, n, std::move(texelsB), Wrap::Clamp)};
 }
