@@ -26,6 +26,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
 
 #include "mesh_internal.h"
 #include "scratch_buffer.h"
@@ -541,9 +542,13 @@ PolygonMesh assemble(std::vector<ObjBlock>& blocks, const std::vector<BlockBase>
         mesh.positions, blocks, bases, &BlockBase::positions, total.positions,
         [](ObjBlock & k) -> auto& { return k.mesh_.positions; });
     // Zero-filled on this thread, then written in parallel, block by block.
-    mesh.faceVertices.resize(total.corners);
-    std::vector<uint32_t> uvIndices(anyUv ? total.corners : 0);
-    if (keepNormals) mesh.normalIndices.resize(total.corners);
+    std::vector<uint32_t> uvIndices;
+    for (auto* v : {&mesh.faceVertices, &uvIndices, &mesh.normalIndices}) {
+        if (v == &uvIndices && !anyUv) continue;
+        if (v == &mesh.normalIndices && !keepNormals) continue;
+        detail::reserveWithHugePages(*v, total.corners);
+        v->resize(total.corners);
+    }
     const size_t nUv = total.uvs, nN = total.normals, nV = total.positions;
     forEachBlock(nB, [&](size_t b) {
         const ObjBlock& k = blocks[b];
@@ -723,7 +728,14 @@ PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const I
     if (threads == 1 || text.size() < kObjParallelMinBytes)
         return parseSerial(text, file, limits, report, faceLines);
     return runWithThreads(threads, [&] {
-        return parseBlocks(text, file, limits, report, faceLines, kObjBlockBytes);
+        // About two blocks per thread (at least kObjBlockBytes): a block's
+        // arrays are then large enough for huge pages (scratch_buffer.h; on
+        // a VM the page faults of many small blocks cost more than the
+        // parse). The result does not depend on the blocks.
+        const size_t perThread =
+            text.size() / (2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency())));
+        return parseBlocks(text, file, limits, report, faceLines,
+                           std::max(kObjBlockBytes, perThread));
     });
 }
 

@@ -211,7 +211,8 @@ Scene loadScene(const std::filesystem::path& path, const LoadOptions& options = 
 //
 // parseObj and the OBJ loaders read a text of kObjParallelMinBytes or more
 // (the measured cut-over: below it the threads cost more than they save)
-// in line-aligned blocks of about kObjBlockBytes on `threads` threads
+// in line-aligned blocks (about two per thread, at least kObjBlockBytes)
+// on `threads` threads
 // (surfgrad/threads.h; 0 <= threads <= kMaxThreads, a contract), then join
 // them in file order: the mesh, the report's notes and, for a malformed
 // file, the error (the first one in file order, with its line) are the
