@@ -83,7 +83,9 @@ void runTangents(const TangentsOptions& o, int& status) {
     double readSeconds = 0, tangentSeconds = 0;
     const bool subdivide = *method == mesh::TangentMethod::Limit || o.level > 0;
     if (subdivide) {
-        const mesh::PolygonMesh cage = mesh::loadPolygonMesh(o.input);
+        mesh::LoadOptions load;
+        load.threads = o.threads;
+        const mesh::PolygonMesh cage = mesh::loadPolygonMesh(o.input, load);
         mesh::SubdivisionSettings settings;
         settings.memoryBudget = o.maxMemory;
         settings.memoryBudgetHint = kMaxMemoryHint;
@@ -106,8 +108,10 @@ void runTangents(const TangentsOptions& o, int& status) {
         tangentSeconds = secondsSince(t1);
     } else {
         if (!o.scheme.empty()) throw CliError("--scheme needs --level N > 0 (or --method limit)");
-        result = mesh::loadRenderMesh(o.input);
-        welded = mesh::weldVerticesByValue(result);
+        mesh::LoadOptions load;
+        load.threads = o.threads;
+        result = mesh::loadRenderMesh(o.input, load);
+        welded = mesh::weldVerticesByValue(result, o.threads);
         readSeconds = secondsSince(t0);
         const auto t1 = std::chrono::steady_clock::now();
         if (o.uvSet < 0 || size_t(o.uvSet) >= result.uvSets.size())

@@ -10,9 +10,14 @@
 #include <cstring>
 
 #include "mesh_internal.h"
+#include "scratch_buffer.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
+#include "surfgrad/threads.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace sg::mesh {
 
@@ -185,7 +190,9 @@ VertexArrays vertexArraysOf(RenderMesh& mesh) {
 
 } // namespace
 
-size_t weldVerticesByValue(RenderMesh& mesh) {
+size_t weldVerticesByValue(RenderMesh& mesh, int threads) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     const size_t n = mesh.positions.size();
     if (n < 2) return 0;
     const VertexArrays va = vertexArraysOf(mesh);
@@ -207,25 +214,45 @@ size_t weldVerticesByValue(RenderMesh& mesh) {
             if (std::memcmp(bytes + a * stride, bytes + b * stride, stride) != 0) return false;
         return true;
     };
-    // Open addressing on vertex indices, in vertex order: a vertex takes
-    // the id of the first equal vertex met, else the next new id.
+    // Every vertex's hash (bit patterns of all its attributes), in parallel
+    // above the cut-over: each task writes its own range.
+    // Scratch storage (scratch_buffer.h: huge pages, no zero fill).
+    detail::ScratchVector<uint64_t> hash(n);
+    auto hashRange = [&](size_t b, size_t e) {
+        for (size_t v = b; v < e; ++v) hash[v] = hashOf(v);
+    };
+    if (threads == 1 || n < kWeldParallelMinVertices) {
+        hashRange(0, n);
+    } else {
+        runWithThreads(threads, [&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 16384),
+                              [&](const auto& r) { hashRange(r.begin(), r.end()); });
+        });
+    }
+    // Open addressing in vertex order (serial: the numbering is by first
+    // occurrence): a vertex takes the id of the first equal vertex met,
+    // else the next new id. A slot holds the hash's high half and the
+    // vertex, so most probes compare no vertex data.
     size_t tableSize = 64;
     while (tableSize < 2 * n) tableSize *= 2;
     const size_t mask = tableSize - 1;
-    std::vector<uint32_t> table(tableSize, UINT32_MAX);
-    std::vector<uint32_t> newId(n);
+    detail::ScratchVector<uint64_t> table(tableSize);
+    std::fill(table.begin(), table.end(), UINT64_MAX);
+    detail::ScratchVector<uint32_t> newId(n);
     std::vector<uint32_t> firstOf; // new id -> first old vertex
     firstOf.reserve(n);
     for (size_t v = 0; v < n; ++v) {
-        for (size_t slot = size_t(hashOf(v)) & mask;; slot = (slot + 1) & mask) {
-            const uint32_t w = table[slot];
-            if (w == UINT32_MAX) {
-                table[slot] = uint32_t(v);
+        const uint64_t high = hash[v] & 0xFFFFFFFF00000000ull;
+        for (size_t slot = size_t(hash[v]) & mask;; slot = (slot + 1) & mask) {
+            const uint64_t entry = table[slot];
+            if (entry == UINT64_MAX) {
+                table[slot] = high | v;
                 newId[v] = uint32_t(firstOf.size());
                 firstOf.push_back(uint32_t(v));
                 break;
             }
-            if (same(w, v)) {
+            const uint32_t w = uint32_t(entry);
+            if ((entry & 0xFFFFFFFF00000000ull) == high && same(w, v)) {
                 newId[v] = newId[w];
                 break;
             }

@@ -6,9 +6,24 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
+#include <atomic>
+#include <cerrno>
+
+#if defined(__unix__)
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#endif
+
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+
 #include "mesh_internal.h"
+#include "scratch_buffer.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
+#include "surfgrad/threads.h"
 
 namespace sg::mesh {
 
@@ -202,17 +217,80 @@ void checkRenderMesh(RenderMesh& mesh, const std::string& file, bool repair, Loa
     if (mesh.normals.empty()) computeVertexNormals(mesh);
 }
 
+// A text file's bytes, for the OBJ reader: io::readFile's checks and
+// messages (it is called for every case but a plain regular file within
+// the limit), read into scratch storage (no zero fill; huge pages for a
+// large file) by `threads` threads, each reading its own 8 MiB pieces with
+// pread (the copy from the page cache and the first touch of the pages
+// are most of the time).
+detail::ScratchVector<char> readText(const std::filesystem::path& path, size_t maxBytes,
+                                     int threads) {
+    detail::ScratchVector<char> text;
+    auto viaReadFile = [&] {
+        const std::string s = io::readFile(path, maxBytes);
+        text.assign(s.begin(), s.end());
+        return std::move(text);
+    };
+#if defined(__unix__)
+    struct Fd {
+        int fd;
+        ~Fd() {
+            if (fd >= 0) ::close(fd);
+        }
+    } f{::open(path.c_str(), O_RDONLY | O_CLOEXEC)};
+    struct stat st {};
+    if (f.fd < 0 || ::fstat(f.fd, &st) != 0 || !S_ISREG(st.st_mode) || st.st_size < 0 ||
+        uint64_t(st.st_size) > maxBytes) {
+        return viaReadFile();
+    }
+    const size_t size = size_t(st.st_size);
+    text.resize(size);
+    constexpr size_t kPieceBytes = size_t(8) << 20;
+    const size_t pieces = (size + kPieceBytes - 1) / kPieceBytes;
+    std::atomic<bool> shortRead{false};
+    auto readPiece = [&](size_t i) {
+        size_t at = i * kPieceBytes;
+        const size_t end = std::min(size, at + kPieceBytes);
+        while (at < end) {
+            const ssize_t got = ::pread(f.fd, text.data() + at, end - at, off_t(at));
+            if (got <= 0) {
+                if (got < 0 && errno == EINTR) continue;
+                shortRead = true; // the file shrank or cannot be read
+                return;
+            }
+            at += size_t(got);
+        }
+    };
+    if (threads == 1 || pieces < 2) {
+        for (size_t i = 0; i < pieces; ++i) readPiece(i);
+    } else {
+        runWithThreads(threads, [&] {
+            tbb::parallel_for(size_t(0), pieces, readPiece, tbb::simple_partitioner());
+        });
+    }
+    if (shortRead) return viaReadFile();
+    return text;
+#else
+    (void)threads;
+    return viaReadFile();
+#endif
+}
+
 } // namespace
 
 PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions& options,
                             LoadReport* report) {
+    SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     const std::string file = path.string();
     const std::string ext = meshFormat(path);
     PolygonMesh mesh;
     std::vector<uint32_t> faceLines;
     if (ext == ".obj") {
-        std::string text = io::readFile(path, options.limits.maxFileBytes);
-        mesh = detail::parseObjImpl(text, file, options.limits, report, &faceLines);
+        const detail::ScratchVector<char> text =
+            readText(path, options.limits.maxFileBytes, options.threads);
+        mesh = detail::parseObjImpl(std::string_view(text.data(), text.size()), file,
+                                    options.limits, report, &faceLines, options.threads);
     } else if (ext == ".off" || ext == ".ply" || ext == ".stl") {
         if (!std::filesystem::is_regular_file(path))
             io::readFile(path, 0); // throws the usual "no such file"
@@ -230,6 +308,8 @@ PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions
 
 RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& options,
                           LoadReport* report) {
+    SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         RenderMesh mesh = mergeScene(readGltf(path, options, report), report);
@@ -243,6 +323,8 @@ RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& 
 }
 
 Scene loadScene(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {
+    SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         Scene scene = readGltf(path, options, report);

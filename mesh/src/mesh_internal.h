@@ -131,8 +131,9 @@ std::vector<uint32_t> coincidentVertexGroups(const RenderMesh& mesh);
 void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
                          const uint32_t* cornerSector, RenderSplit& out);
 
+// `threads`: parseObj's (surfgrad/mesh_io.h).
 PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
-                         LoadReport* report, std::vector<uint32_t>* faceLines);
+                         LoadReport* report, std::vector<uint32_t>* faceLines, int threads);
 // faceLines (OBJ files: the line of each face) also switches messages to
 // the file's own numbering: vertices and faces from 1, faces with their
 // line ("face 25 (line 161): uses vertex 52 twice"); without it, 0-based.

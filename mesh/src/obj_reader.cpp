@@ -18,13 +18,21 @@
 // Untrusted input: every count is bounded by InputLimits, every number is
 // parsed with std::from_chars (no locale, no exceptions), and every error
 // names the line.
+#include <algorithm>
 #include <charconv>
 #include <cstring>
 #include <string_view>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
+#include <tbb/task_arena.h>
+
 #include "mesh_internal.h"
 #include "scratch_buffer.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/threads.h"
 
 namespace sg::mesh {
 
@@ -57,15 +65,20 @@ bool parseInt(std::string_view tok, int64_t& out) {
     return r.ec == std::errc() && r.ptr == tok.data() + tok.size();
 }
 
-class ObjParser {
-public:
-    ObjParser(const std::string& file, const InputLimits& limits, LoadReport* report)
-        : file_(file), limits_(limits), report_(report) {}
+// One run of statements: the whole text (the serial reader, exact mode)
+// or one line-aligned block of it (block mode). In block mode everything
+// the file before the block decides is left for the assembly: line numbers
+// and the v/vt/vn counts are local, a negative (relative) index is stored
+// as local count + index and listed in rel*, and any InputError only marks
+// the block (the serial reader then names the first error of the file).
+struct ObjBlock {
+    ObjBlock(const std::string& file, const InputLimits& limits, bool blockMode)
+        : file_(file), limits_(limits), blockMode_(blockMode) {}
 
-    PolygonMesh parse(std::string_view text, std::vector<uint32_t>* faceLines);
-
-private:
     void reserveFor(std::string_view text);
+    // The statements of `text`; throws InputError at the first bad one.
+    void parseLines(std::string_view text);
+
     [[noreturn]] void fail(const std::string& reason) const {
         throw InputError(file_, "line " + std::to_string(lineNo_), reason);
     }
@@ -74,10 +87,15 @@ private:
     void normal(Tokenizer& t);
     void face(Tokenizer& t);
     void tag(Tokenizer& t);
-    // Resolves a 1-based or negative OBJ index against `count` entries so far.
-    int64_t resolve(int64_t idx, size_t count, const char* what) const {
+    // Resolves a 1-based or negative OBJ index against `count` entries so
+    // far (block mode: a negative one is resolved later, see rel*).
+    int64_t resolve(int64_t idx, size_t count, const char* what, std::vector<uint32_t>& rel) {
         if (idx == 0) fail(std::string(what) + " index 0 (OBJ indices start at 1)");
         if (idx < 0) {
+            if (blockMode_) {
+                rel.push_back(uint32_t(cornerV_.size()));
+                return int64_t(count) + idx;
+            }
             if (uint64_t(-idx) > count)
                 fail(std::string(what) + " index " + std::to_string(idx) +
                      " reaches before the first " + what);
@@ -88,23 +106,25 @@ private:
 
     const std::string& file_;
     const InputLimits& limits_;
-    LoadReport* report_;
-    size_t lineNo_ = 0;
+    bool blockMode_;
+    size_t lineNo_ = 0; // lines read (block mode: within the block)
 
-    PolygonMesh mesh_;
+    PolygonMesh mesh_; // positions, faceSizes, tags, options, explicitTags
     std::vector<glm::vec2> uvs_;
     std::vector<glm::vec3> normals_;
-    // Per corner, 0-based (or -1 when the corner has none); resolved and
-    // range-checked after the whole file is read (forward references).
+    // Per corner, 0-based (or -1 when the corner has none); range-checked
+    // after the whole file is read (forward references).
     std::vector<int64_t> cornerV_, cornerT_, cornerN_;
-    std::vector<uint32_t> faceLine_;
-    size_t cornersWithoutUv_ = 0;
+    // Block mode: corners (local numbers) whose v, vt or vn index was
+    // negative, stored relative to the block's first v, vt or vn.
+    std::vector<uint32_t> relV_, relT_, relN_;
+    std::vector<uint32_t> faceLine_; // block mode: line within the block
     size_t ignored_ = 0;
     std::string firstIgnored_;
     std::vector<std::string> unknownTags_;
 };
 
-void ObjParser::vertex(Tokenizer& t) {
+void ObjBlock::vertex(Tokenizer& t) {
     glm::vec3 p;
     std::string_view tok;
     for (int i = 0; i < 3; ++i) {
@@ -123,7 +143,7 @@ void ObjParser::vertex(Tokenizer& t) {
     mesh_.positions.push_back(p); // a 4th (w) or colour values are ignored
 }
 
-void ObjParser::texcoord(Tokenizer& t) {
+void ObjBlock::texcoord(Tokenizer& t) {
     glm::vec2 uv(0.0f);
     std::string_view tok;
     if (!t.next(tok)) fail("vt without coordinates");
@@ -135,7 +155,7 @@ void ObjParser::texcoord(Tokenizer& t) {
     uvs_.push_back(uv);
 }
 
-void ObjParser::normal(Tokenizer& t) {
+void ObjBlock::normal(Tokenizer& t) {
     glm::vec3 n;
     std::string_view tok;
     for (int i = 0; i < 3; ++i) {
@@ -148,7 +168,7 @@ void ObjParser::normal(Tokenizer& t) {
     normals_.push_back(n);
 }
 
-void ObjParser::face(Tokenizer& t) {
+void ObjBlock::face(Tokenizer& t) {
     std::string_view tok;
     uint32_t degree = 0;
     while (t.next(tok)) {
@@ -171,14 +191,14 @@ void ObjParser::face(Tokenizer& t) {
         }
         int64_t v = 0, vt = -1, vn = -1;
         if (!parseInt(parts[0], v)) fail("bad vertex index '" + io::printable(tok, 32) + "'");
-        v = resolve(v, mesh_.positions.size(), "vertex");
+        v = resolve(v, mesh_.positions.size(), "vertex", relV_);
         if (nParts > 1 && !parts[1].empty()) {
             if (!parseInt(parts[1], vt)) fail("bad texture index '" + io::printable(tok, 32) + "'");
-            vt = resolve(vt, uvs_.size(), "texture coordinate");
+            vt = resolve(vt, uvs_.size(), "texture coordinate", relT_);
         }
         if (nParts > 2 && !parts[2].empty()) {
             if (!parseInt(parts[2], vn)) fail("bad normal index '" + io::printable(tok, 32) + "'");
-            vn = resolve(vn, normals_.size(), "normal");
+            vn = resolve(vn, normals_.size(), "normal", relN_);
         }
         cornerV_.push_back(v);
         cornerT_.push_back(vt);
@@ -193,7 +213,7 @@ void ObjParser::face(Tokenizer& t) {
     faceLine_.push_back(uint32_t(std::min<size_t>(lineNo_, UINT32_MAX)));
 }
 
-void ObjParser::tag(Tokenizer& t) {
+void ObjBlock::tag(Tokenizer& t) {
     std::string_view name, counts, tok;
     if (!t.next(name)) fail("'t' without a tag name");
     if (!t.next(counts))
@@ -317,7 +337,7 @@ void ObjParser::tag(Tokenizer& t) {
 // within its limit), reserved before parsing: no reallocation copies, and
 // fresh blocks get huge pages before they are filled (scratch_buffer.h: on
 // a VM the first touch of 4 KiB pages is most of the cost of a large file).
-void ObjParser::reserveFor(std::string_view text) {
+void ObjBlock::reserveFor(std::string_view text) {
     size_t v = 0, vt = 0, vn = 0, f = 0;
     for (size_t pos = 0; pos < text.size();) {
         const char* p = text.data() + pos;
@@ -342,8 +362,7 @@ void ObjParser::reserveFor(std::string_view text) {
     for (auto* c : {&cornerV_, &cornerT_, &cornerN_}) reserve(*c, 3 * f, limits_.maxCorners);
 }
 
-PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceLines) {
-    reserveFor(text);
+void ObjBlock::parseLines(std::string_view text) {
     size_t pos = 0;
     while (pos < text.size()) {
         size_t eol = text.find('\n', pos);
@@ -369,103 +388,371 @@ PolygonMesh ObjParser::parse(std::string_view text, std::vector<uint32_t>* faceL
             if (ignored_++ == 0) firstIgnored_ = io::printable(kw, 16);
         }
     }
-    // Resolve corners now that every list is complete.
-    const size_t nC = cornerV_.size();
-    mesh_.faceVertices.resize(nC);
-    bool anyUv = false, allUv = true, anyN = false, allN = true;
-    for (size_t c = 0; c < nC; ++c) {
-        anyUv |= cornerT_[c] >= 0;
-        allUv &= cornerT_[c] >= 0;
-        anyN |= cornerN_[c] >= 0;
-        allN &= cornerN_[c] >= 0;
+}
+
+// Where a block's items start in the file's arrays (and, for the sum over
+// every block, how many there are).
+struct BlockBase {
+    size_t positions = 0, uvs = 0, normals = 0, corners = 0, faces = 0, lines = 0;
+    void add(const ObjBlock& b) {
+        positions += b.mesh_.positions.size();
+        uvs += b.uvs_.size();
+        normals += b.normals_.size();
+        corners += b.cornerV_.size();
+        faces += b.mesh_.faceSizes.size();
+        lines += b.lineNo_;
     }
-    // Which line a corner came from, for messages.
-    std::vector<uint32_t> offsets = faceOffsets(mesh_);
-    auto cornerLine = [&](size_t c) {
-        size_t f = size_t(std::upper_bound(offsets.begin(), offsets.end(), uint32_t(c)) -
-                          offsets.begin()) -
-                   1;
-        return faceLine_[std::min(f, faceLine_.size() - 1)];
-    };
-    for (size_t c = 0; c < nC; ++c) {
-        if (uint64_t(cornerV_[c]) >= mesh_.positions.size()) {
-            throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                             "vertex index " + std::to_string(cornerV_[c] + 1) +
-                                 " is out of range (" + std::to_string(mesh_.positions.size()) +
-                                 " vertices)");
+};
+
+// f(b) for every block: on this thread for one block, else in parallel
+// (each call writes only block b's own data or its own slice of an output).
+template <class F>
+void forEachBlock(size_t count, F&& f) {
+    if (count == 1) {
+        f(size_t(0));
+        return;
+    }
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, count, 1),
+        [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t b = r.begin(); b != r.end(); ++b) f(b);
+        },
+        tbb::simple_partitioner());
+}
+
+// out = the blocks' vectors get(block) one after another (moved for one block).
+template <class T, class Get>
+void concatenate(std::vector<T>& out, std::vector<ObjBlock>& blocks,
+                 const std::vector<BlockBase>& bases, size_t BlockBase::*base, size_t total,
+                 Get get) {
+    if (blocks.size() == 1) {
+        out = std::move(get(blocks[0]));
+        return;
+    }
+    detail::reserveWithHugePages(out, total);
+    out.resize(total);
+    forEachBlock(blocks.size(), [&](size_t b) {
+        const std::vector<T>& v = get(blocks[b]);
+        std::copy(v.begin(), v.end(), out.begin() + ptrdiff_t(bases[b].*base));
+    });
+}
+
+// Per block, what the corners' resolution needs to know.
+struct CornerSummary {
+    bool anyUv = false, allUv = true, anyN = false, allN = true;
+    size_t withoutUv = 0;
+    // First corner (local number) whose index is out of range, per kind.
+    size_t badV = SIZE_MAX, badT = SIZE_MAX, badN = SIZE_MAX;
+    // The count the serial reader names with a bad vt index (the vt values
+    // plus the (0,0) fallback once a corner without vt came before).
+    size_t badTBound = 0;
+};
+
+// The line of a block's corner c (for messages).
+uint32_t cornerLine(const ObjBlock& block, const BlockBase& base, size_t c) {
+    size_t f = 0;
+    for (size_t first = 0; f < block.mesh_.faceSizes.size(); ++f) {
+        first += block.mesh_.faceSizes[f];
+        if (c < first) break;
+    }
+    f = std::min(f, block.faceLine_.size() - 1);
+    return uint32_t(std::min<size_t>(base.lines + block.faceLine_[f], UINT32_MAX));
+}
+
+// The tags of every block in file order (creases, corners and holes
+// appended; an option set by a later tag replaces an earlier one, as the
+// serial reader does) and the report's notes.
+void applyTagsAndNotes(PolygonMesh& mesh, std::vector<ObjBlock>& blocks, LoadReport* report,
+                       size_t withoutUv, bool anyUv, bool allUv, bool anyN, bool allN) {
+    size_t ignored = 0;
+    std::string firstIgnored;
+    std::vector<std::string> unknownTags;
+    for (ObjBlock& k : blocks) {
+        const PolygonMesh& m = k.mesh_;
+        mesh.creases.insert(mesh.creases.end(), m.creases.begin(), m.creases.end());
+        mesh.corners.insert(mesh.corners.end(), m.corners.begin(), m.corners.end());
+        mesh.holes.insert(mesh.holes.end(), m.holes.begin(), m.holes.end());
+        if (m.explicitTags & kTagBoundary) mesh.options.boundary = m.options.boundary;
+        if (m.explicitTags & kTagFVar) mesh.options.fvar = m.options.fvar;
+        if (m.explicitTags & kTagCreaseMethod) mesh.options.creaseMethod = m.options.creaseMethod;
+        if (m.explicitTags & kTagTriangles) mesh.options.triangles = m.options.triangles;
+        if (m.explicitTags & kTagScheme) mesh.options.scheme = m.options.scheme;
+        mesh.explicitTags |= m.explicitTags;
+        if (ignored == 0 && k.ignored_ > 0) firstIgnored = k.firstIgnored_;
+        ignored += k.ignored_;
+        // A block keeps its first 16 distinct names: every name among the
+        // file's first 16 is among its block's first 16.
+        for (const std::string& tag : k.unknownTags_) {
+            if (std::find(unknownTags.begin(), unknownTags.end(), tag) == unknownTags.end() &&
+                unknownTags.size() < 16) {
+                unknownTags.push_back(tag);
+            }
         }
-        mesh_.faceVertices[c] = uint32_t(cornerV_[c]);
+    }
+    if (!report) return;
+    if (anyUv && withoutUv && !allUv) {
+        report->notes.push_back(std::to_string(withoutUv) +
+                                " face corners without vt got UV (0,0)");
+    }
+    if (anyN && !allN)
+        report->notes.push_back("vn on some corners only: normals ignored (recomputed)");
+    if (ignored) {
+        report->notes.push_back("ignored " + std::to_string(ignored) + " statements (first: '" +
+                                firstIgnored + "')");
+    }
+    for (const std::string& tag : unknownTags)
+        report->notes.push_back("ignored unknown tag '" + tag + "'");
+}
+
+// The mesh from parsed blocks in file order (one block: the serial reader),
+// their relative indices already resolved: corner indices range-checked
+// (the first bad one in file order throws, v before vt before vn, as the
+// serial reader checks them), arrays concatenated, tags applied in order.
+PolygonMesh assemble(std::vector<ObjBlock>& blocks, const std::vector<BlockBase>& bases,
+                     const BlockBase& total, const std::string& file, LoadReport* report,
+                     std::vector<uint32_t>* faceLines) {
+    const size_t nB = blocks.size();
+    std::vector<CornerSummary> sum(nB);
+    forEachBlock(nB, [&](size_t b) {
+        const ObjBlock& k = blocks[b];
+        CornerSummary& s = sum[b];
+        for (size_t c = 0; c < k.cornerV_.size(); ++c) {
+            s.anyUv |= k.cornerT_[c] >= 0;
+            s.allUv &= k.cornerT_[c] >= 0;
+            s.anyN |= k.cornerN_[c] >= 0;
+            s.allN &= k.cornerN_[c] >= 0;
+            s.withoutUv += k.cornerT_[c] < 0;
+        }
+    });
+    bool anyUv = false, allUv = true, anyN = false, allN = true;
+    size_t withoutUv = 0;
+    std::vector<size_t> withoutUvBefore(nB);
+    for (size_t b = 0; b < nB; ++b) {
+        anyUv |= sum[b].anyUv;
+        allUv &= sum[b].allUv;
+        anyN |= sum[b].anyN;
+        allN &= sum[b].allN;
+        withoutUvBefore[b] = withoutUv;
+        withoutUv += sum[b].withoutUv;
+    }
+    const bool keepNormals = anyN && allN;
+
+    PolygonMesh mesh;
+    concatenate(
+        mesh.positions, blocks, bases, &BlockBase::positions, total.positions,
+        [](ObjBlock & k) -> auto& { return k.mesh_.positions; });
+    // Zero-filled on this thread, then written in parallel, block by block.
+    std::vector<uint32_t> uvIndices;
+    for (auto* v : {&mesh.faceVertices, &uvIndices, &mesh.normalIndices}) {
+        if (v == &uvIndices && !anyUv) continue;
+        if (v == &mesh.normalIndices && !keepNormals) continue;
+        detail::reserveWithHugePages(*v, total.corners);
+        v->resize(total.corners);
+    }
+    const size_t nUv = total.uvs, nN = total.normals, nV = total.positions;
+    forEachBlock(nB, [&](size_t b) {
+        const ObjBlock& k = blocks[b];
+        CornerSummary& s = sum[b];
+        const size_t c0 = bases[b].corners;
+        for (size_t c = 0; c < k.cornerV_.size(); ++c) {
+            if (uint64_t(k.cornerV_[c]) >= nV && s.badV == SIZE_MAX) s.badV = c;
+            mesh.faceVertices[c0 + c] = uint32_t(k.cornerV_[c]);
+        }
+        if (anyUv) {
+            bool fallbackBefore = withoutUvBefore[b] > 0;
+            for (size_t c = 0; c < k.cornerT_.size(); ++c) {
+                if (k.cornerT_[c] < 0) {
+                    fallbackBefore = true;
+                    uvIndices[c0 + c] = uint32_t(nUv);
+                    continue;
+                }
+                if (uint64_t(k.cornerT_[c]) >= nUv + fallbackBefore && s.badT == SIZE_MAX) {
+                    s.badT = c;
+                    s.badTBound = nUv + fallbackBefore;
+                }
+                uvIndices[c0 + c] = uint32_t(k.cornerT_[c]);
+            }
+        }
+        if (keepNormals) {
+            for (size_t c = 0; c < k.cornerN_.size(); ++c) {
+                if (uint64_t(k.cornerN_[c]) >= nN && s.badN == SIZE_MAX) s.badN = c;
+                mesh.normalIndices[c0 + c] = uint32_t(k.cornerN_[c]);
+            }
+        }
+    });
+    auto firstBad = [&](size_t CornerSummary::*bad) -> size_t {
+        for (size_t b = 0; b < nB; ++b)
+            if (sum[b].*bad != SIZE_MAX) return b;
+        return SIZE_MAX;
+    };
+    auto lineOf = [&](size_t b, size_t c) {
+        return "line " + std::to_string(cornerLine(blocks[b], bases[b], c));
+    };
+    if (size_t b = firstBad(&CornerSummary::badV); b != SIZE_MAX) {
+        const size_t c = sum[b].badV;
+        throw InputError(file, lineOf(b, c),
+                         "vertex index " + std::to_string(blocks[b].cornerV_[c] + 1) +
+                             " is out of range (" + std::to_string(nV) + " vertices)");
+    }
+    if (size_t b = firstBad(&CornerSummary::badT); anyUv && b != SIZE_MAX) {
+        const size_t c = sum[b].badT;
+        throw InputError(file, lineOf(b, c),
+                         "texture coordinate index " + std::to_string(blocks[b].cornerT_[c] + 1) +
+                             " is out of range (" + std::to_string(sum[b].badTBound) + " vt)");
+    }
+    if (size_t b = firstBad(&CornerSummary::badN); keepNormals && b != SIZE_MAX) {
+        const size_t c = sum[b].badN;
+        throw InputError(file, lineOf(b, c),
+                         "normal index " + std::to_string(blocks[b].cornerN_[c] + 1) +
+                             " is out of range (" + std::to_string(nN) + " vn)");
     }
     if (anyUv) {
         FaceVaryingChannel ch;
         ch.name = "vt";
-        ch.values = std::move(uvs_);
-        ch.indices.resize(nC);
-        uint32_t fallback = UINT32_MAX;
-        for (size_t c = 0; c < nC; ++c) {
-            if (cornerT_[c] < 0) {
-                if (fallback == UINT32_MAX) {
-                    fallback = uint32_t(ch.values.size());
-                    ch.values.push_back(glm::vec2(0.0f));
-                }
-                ch.indices[c] = fallback;
-                ++cornersWithoutUv_;
-                continue;
-            }
-            if (uint64_t(cornerT_[c]) >= ch.values.size()) {
-                throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                                 "texture coordinate index " + std::to_string(cornerT_[c] + 1) +
-                                     " is out of range (" + std::to_string(ch.values.size()) +
-                                     " vt)");
-            }
-            ch.indices[c] = uint32_t(cornerT_[c]);
-        }
-        mesh_.uvSets.push_back(std::move(ch));
+        concatenate(
+            ch.values, blocks, bases, &BlockBase::uvs, total.uvs,
+            [](ObjBlock & k) -> auto& { return k.uvs_; });
+        if (withoutUv > 0) ch.values.push_back(glm::vec2(0.0f));
+        ch.indices = std::move(uvIndices);
+        mesh.uvSets.push_back(std::move(ch));
     }
-    if (anyN && allN) {
-        mesh_.normalIndices.resize(nC);
-        for (size_t c = 0; c < nC; ++c) {
-            if (uint64_t(cornerN_[c]) >= normals_.size()) {
-                throw InputError(file_, "line " + std::to_string(cornerLine(c)),
-                                 "normal index " + std::to_string(cornerN_[c] + 1) +
-                                     " is out of range (" + std::to_string(normals_.size()) +
-                                     " vn)");
+    if (keepNormals) {
+        concatenate(
+            mesh.normals, blocks, bases, &BlockBase::normals, total.normals,
+            [](ObjBlock & k) -> auto& { return k.normals_; });
+    }
+    concatenate(
+        mesh.faceSizes, blocks, bases, &BlockBase::faces, total.faces,
+        [](ObjBlock & k) -> auto& { return k.mesh_.faceSizes; });
+    if (faceLines) {
+        concatenate(
+            *faceLines, blocks, bases, &BlockBase::faces, total.faces,
+            [](ObjBlock & k) -> auto& { return k.faceLine_; });
+        if (nB > 1) {
+            forEachBlock(nB, [&](size_t b) {
+                uint32_t* out = faceLines->data() + bases[b].faces;
+                for (size_t f = 0; f < blocks[b].faceLine_.size(); ++f)
+                    out[f] = uint32_t(std::min<size_t>(bases[b].lines + out[f], UINT32_MAX));
+            });
+        }
+    }
+    applyTagsAndNotes(mesh, blocks, report, withoutUv, anyUv, allUv, anyN, allN);
+    return mesh;
+}
+
+// The serial reader: the whole text as one block.
+PolygonMesh parseSerial(std::string_view text, const std::string& file, const InputLimits& limits,
+                        LoadReport* report, std::vector<uint32_t>* faceLines) {
+    std::vector<ObjBlock> blocks;
+    blocks.emplace_back(file, limits, false);
+    blocks[0].reserveFor(text);
+    blocks[0].parseLines(text);
+    BlockBase total;
+    total.add(blocks[0]);
+    return assemble(blocks, {BlockBase{}}, total, file, report, faceLines);
+}
+
+// Line-aligned blocks of at least blockBytes (the last one may be shorter).
+std::vector<std::string_view> splitLines(std::string_view text, size_t blockBytes) {
+    std::vector<std::string_view> pieces;
+    for (size_t pos = 0; pos < text.size();) {
+        size_t end = text.size();
+        if (text.size() - pos > blockBytes) {
+            const void* eol = std::memchr(text.data() + pos + blockBytes - 1, '\n',
+                                          text.size() - (pos + blockBytes - 1));
+            if (eol) end = size_t(static_cast<const char*>(eol) - text.data()) + 1;
+        }
+        pieces.push_back(text.substr(pos, end - pos));
+        pos = end;
+    }
+    return pieces;
+}
+
+// The block reader, on the current arena's threads. Whenever the file
+// holds an error (a bad statement in any block, a count above its limit,
+// a relative index before the first element) the serial reader reads it
+// again, so the message is the serial one: the first error in file order.
+PolygonMesh parseBlocks(std::string_view text, const std::string& file, const InputLimits& limits,
+                        LoadReport* report, std::vector<uint32_t>* faceLines, size_t blockBytes) {
+    const std::vector<std::string_view> pieces = splitLines(text, std::max<size_t>(blockBytes, 1));
+    const size_t nB = pieces.size();
+    std::vector<ObjBlock> blocks;
+    blocks.reserve(nB);
+    for (size_t b = 0; b < nB; ++b) blocks.emplace_back(file, limits, true);
+    std::vector<char> failed(nB, 0);
+    forEachBlock(nB, [&](size_t b) {
+        try {
+            blocks[b].reserveFor(pieces[b]);
+            blocks[b].parseLines(pieces[b]);
+        } catch (const InputError&) {
+            failed[b] = 1;
+        }
+    });
+    auto serial = [&] { return parseSerial(text, file, limits, report, faceLines); };
+    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return serial();
+    std::vector<BlockBase> bases(nB);
+    BlockBase total;
+    for (size_t b = 0; b < nB; ++b) {
+        bases[b] = total;
+        total.add(blocks[b]);
+    }
+    if (total.positions > limits.maxVertices || total.uvs > limits.maxCorners ||
+        total.normals > limits.maxCorners || total.corners > limits.maxCorners ||
+        total.faces > limits.maxFaces) {
+        return serial();
+    }
+    // Relative indices: add the counts of the blocks before.
+    forEachBlock(nB, [&](size_t b) {
+        ObjBlock& k = blocks[b];
+        auto shift = [&](const std::vector<uint32_t>& rel, std::vector<int64_t>& idx, size_t n) {
+            for (uint32_t c : rel) {
+                idx[c] += int64_t(n);
+                if (idx[c] < 0) failed[b] = 1; // reaches before the first
             }
-            mesh_.normalIndices[c] = uint32_t(cornerN_[c]);
-        }
-        mesh_.normals = std::move(normals_);
-    }
-    if (report_) {
-        if (cornersWithoutUv_ && !allUv) {
-            report_->notes.push_back(std::to_string(cornersWithoutUv_) +
-                                     " face corners without vt got UV (0,0)");
-        }
-        if (anyN && !allN)
-            report_->notes.push_back("vn on some corners only: normals ignored (recomputed)");
-        if (ignored_) {
-            report_->notes.push_back("ignored " + std::to_string(ignored_) +
-                                     " statements (first: '" + firstIgnored_ + "')");
-        }
-        for (const std::string& tag : unknownTags_)
-            report_->notes.push_back("ignored unknown tag '" + tag + "'");
-    }
-    if (faceLines) *faceLines = std::move(faceLine_);
-    return std::move(mesh_);
+        };
+        shift(k.relV_, k.cornerV_, bases[b].positions);
+        shift(k.relT_, k.cornerT_, bases[b].uvs);
+        shift(k.relN_, k.cornerN_, bases[b].normals);
+    });
+    if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return serial();
+    return assemble(blocks, bases, total, file, report, faceLines);
 }
 
 } // namespace
 
 namespace detail {
 PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
-                         LoadReport* report, std::vector<uint32_t>* faceLines) {
-    ObjParser parser(file, limits, report);
-    return parser.parse(text, faceLines);
+                         LoadReport* report, std::vector<uint32_t>* faceLines, int threads) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+    if (threads == 1 || text.size() < kObjParallelMinBytes)
+        return parseSerial(text, file, limits, report, faceLines);
+    return runWithThreads(threads, [&] {
+        // About two blocks per thread (at least kObjBlockBytes): a block's
+        // arrays are then large enough for huge pages (scratch_buffer.h; on
+        // a VM the page faults of many small blocks cost more than the
+        // parse). The result does not depend on the blocks.
+        const size_t perThread =
+            text.size() / (2 * size_t(std::max(1, tbb::this_task_arena::max_concurrency())));
+        return parseBlocks(text, file, limits, report, faceLines,
+                           std::max(kObjBlockBytes, perThread));
+    });
+}
+
+PolygonMesh parseObjInBlocks(std::string_view text, const std::string& file,
+                             const InputLimits& limits, LoadReport* report, int threads,
+                             size_t blockBytes, std::vector<uint32_t>* faceLines) {
+    SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
+               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+    if (blockBytes == 0) return parseSerial(text, file, limits, report, faceLines);
+    return runWithThreads(
+        threads, [&] { return parseBlocks(text, file, limits, report, faceLines, blockBytes); });
 }
 } // namespace detail
 
 PolygonMesh parseObj(std::string_view text, const std::string& file, const InputLimits& limits,
-                     LoadReport* report) {
-    return detail::parseObjImpl(text, file, limits, report, nullptr);
+                     LoadReport* report, int threads) {
+    return detail::parseObjImpl(text, file, limits, report, nullptr, threads);
 }
 
 } // namespace sg::mesh

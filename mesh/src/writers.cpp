@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "mesh_internal.h"
+#include "scratch_buffer.h"
 #include "surfgrad/mesh_io.h"
 
 namespace sg::mesh {
@@ -82,6 +83,12 @@ public:
         accessors.push_back(acc);
         return int(accessors.size() - 1);
     }
+    // Room for `bytes` of buffer data, reserved at once (no reallocation
+    // copies), huge pages requested before the first touch.
+    void reserve(size_t bytes) {
+        bin.reserve(bytes);
+        detail::adviseHugePages(bin.data(), bin.capacity());
+    }
     int vec3(const std::vector<glm::vec3>& v, bool minMax) {
         return accessor(v.data(), v.size(), 3, 5126, 34962, minMax,
                         reinterpret_cast<const float*>(v.data()));
@@ -110,6 +117,13 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
                       const WriteOptions& options, bool binary) {
     GltfBuilder b;
     const size_t nV = mesh.positions.size();
+    {
+        // Every accessor below, plus up to 3 bytes of padding each.
+        size_t bytes = nV * (12 + 12 + 16 + 8 * mesh.uvSets.size()) + mesh.indices.size() * 4;
+        bytes += mesh.morphTargets.size() * 3 * nV * 12;
+        const size_t accessors = 5 + mesh.uvSets.size() + 3 * mesh.morphTargets.size();
+        b.reserve(bytes + 4 * accessors);
+    }
     json attributes;
     attributes["POSITION"] = b.vec3(mesh.positions, true);
     if (!mesh.normals.empty()) attributes["NORMAL"] = b.vec3(mesh.normals, false);
@@ -198,6 +212,8 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
     uint64_t total = 12 + 8 + js.size() + 8 + b.bin.size();
     if (total > UINT32_MAX)
         throw InputError(path.string(), "", "mesh too large for a GLB file (4 GiB)");
+    out.reserve(size_t(total));
+    detail::adviseHugePages(out.data(), out.capacity());
     u32(0x46546C67u); // "glTF"
     u32(2);
     u32(uint32_t(total));

@@ -105,6 +105,18 @@ TEST_F(ContractDeath, MikkTSpaceThreadCountInRange) {
         "threads");
 }
 
+TEST_F(ContractDeath, ObjReaderThreadCountInRange) {
+    sg::mesh::parseObj(sg::test::kCubeObj, "cube.obj", {}, nullptr, 1024);
+    SG_EXPECT_CONTRACT_DEATH(sg::mesh::parseObj(sg::test::kCubeObj, "cube.obj", {}, nullptr, -1),
+                             "threads");
+    SG_EXPECT_CONTRACT_DEATH(sg::mesh::parseObj(sg::test::kCubeObj, "cube.obj", {}, nullptr, 1025),
+                             "threads");
+    sg::mesh::LoadOptions options;
+    options.threads = 2000;
+    SG_EXPECT_CONTRACT_DEATH(sg::mesh::loadRenderMesh("cube.obj", options), "threads");
+    SG_EXPECT_CONTRACT_DEATH(sg::mesh::loadPolygonMesh("cube.obj", options), "threads");
+}
+
 TEST_F(ContractDeath, MikkTSpaceInputPreconditions) {
     const RenderMesh good = triangle();
     MikkTSpaceGenerator generator;

@@ -77,6 +77,12 @@ struct LoadReport {
 
 struct LoadOptions {
     bool repair = false; // see validate()
+    // Threads for reading (surfgrad/threads.h: 0 = all cores, 1 = the
+    // calling thread only, 2..1024 an arena): an OBJ of at least
+    // kObjParallelMinBytes is read and parsed in blocks on several threads.
+    // The mesh, the report and every error message are the same for every
+    // count. 0 <= threads <= kMaxThreads (a contract).
+    int threads = 0;
     // Accept non-manifold topology (edges with 3+ faces, bowtie vertices,
     // inconsistent orientation) instead of throwing; only `mesh info` uses
     // this, to describe such files. Everything else is still checked.
@@ -202,11 +208,32 @@ Scene loadScene(const std::filesystem::path& path, const LoadOptions& options = 
 // names the input in messages. parseObj returns the unvalidated cage;
 // parseGltf reads .glb when the bytes start with the GLB magic, else JSON;
 // external URIs are resolved against baseDir (empty: refused).
+//
+// parseObj and the OBJ loaders read a text of kObjParallelMinBytes or more
+// (the measured cut-over: below it the threads cost more than they save)
+// in line-aligned blocks (about two per thread, at least kObjBlockBytes)
+// on `threads` threads
+// (surfgrad/threads.h; 0 <= threads <= kMaxThreads, a contract), then join
+// them in file order: the mesh, the report's notes and, for a malformed
+// file, the error (the first one in file order, with its line) are the
+// same as one thread's for every count.
+inline constexpr size_t kObjParallelMinBytes = size_t(2) << 20;
+inline constexpr size_t kObjBlockBytes = size_t(1) << 20;
 PolygonMesh parseObj(std::string_view text, const std::string& file, const InputLimits& limits = {},
-                     LoadReport* report = nullptr);
+                     LoadReport* report = nullptr, int threads = 0);
 Scene parseGltf(std::string_view bytes, const std::string& file,
                 const std::filesystem::path& baseDir, const InputLimits& limits = {},
                 LoadReport* report = nullptr);
+
+namespace detail {
+// For tests and the fuzz target: parseObj's block reader at any size, in
+// blocks of at least blockBytes (blockBytes 0: the serial reader); the
+// result must equal the serial reader's, error messages included.
+// faceLines (optional): the line of each face, as the loaders use it.
+PolygonMesh parseObjInBlocks(std::string_view text, const std::string& file,
+                             const InputLimits& limits, LoadReport* report, int threads,
+                             size_t blockBytes, std::vector<uint32_t>* faceLines = nullptr);
+} // namespace detail
 
 // ---- Conversions -----------------------------------------------------------
 
@@ -222,8 +249,13 @@ RenderMesh toRenderMesh(const PolygonMesh& mesh);
 // come out with one vertex per distinct value tuple. Welded vertices are
 // numbered in order of their first occurrence (by vertex index), the index
 // buffer is rewritten, and a mesh without duplicates is left unchanged.
-// Returns the number of vertices removed. Deterministic; serial.
-size_t weldVerticesByValue(RenderMesh& mesh);
+// Returns the number of vertices removed. The same result for every
+// `threads` (surfgrad/threads.h; 0 <= threads <= kMaxThreads, a contract):
+// the hashes of the attribute bit patterns are computed in parallel from
+// kWeldParallelMinVertices vertices on (the measured cut-over), the
+// numbering pass is serial.
+inline constexpr size_t kWeldParallelMinVertices = 65536;
+size_t weldVerticesByValue(RenderMesh& mesh, int threads = 0);
 
 // The reverse for subdivision: welds render vertices with bitwise-equal
 // positions (and equal morph position deltas) into cage vertices; UV sets
