@@ -327,7 +327,7 @@ void benchThreads(int runs) {
                 kBakeSerialBelowSize, runs * 3);
     std::vector<StageRow> cut;
     const CurveNetwork net = polylineNetwork();
-    for (int size : {32, 64, 96, 128, 192, 256}) {
+    for (int size : {16, 24, 32, 64, 128, 256}) {
         BakeOptions o;
         o.size = size;
         o.marginTexels = 2.0;

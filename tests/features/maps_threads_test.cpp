@@ -2,8 +2,9 @@
 // FeatureMaps::packGpu(threads)): the maps, their GPU layout and the exact
 // near field's lists are the same bits at 1, 2, 3 and 7 threads and at 0
 // (all cores), on the lucide SVGs, the test fonts and random curve networks
-// (rapidcheck), in both modes; the bake's counters too. Maps are at least
-// kBakeSerialBelowSize texels per side, so the parallel loops run.
+// (rapidcheck), in both modes; the bake's counters too. Maps are 256
+// texels per side or more (far above kBakeSerialBelowSize), so the parallel
+// loops run.
 #include <gtest/gtest.h>
 #include <rapidcheck.h>
 
@@ -88,6 +89,12 @@ BakeStats expectSameAtEveryCount(const CurveNetwork& net, BakeOptions o) {
     return s1;
 }
 
+// Maps of this size and more: far above the serial cut-over
+// (kBakeSerialBelowSize), with enough rows for many blocks of every parallel
+// loop and signatures the optimisation has to fix.
+constexpr int kTestMapSize = 256;
+static_assert(kTestMapSize >= kBakeSerialBelowSize);
+
 TEST(FeatureMapsThreads, SvgsAndFontsGiveTheSameMapsAtEveryCount) {
     std::vector<std::pair<std::string, CurveNetwork>> inputs;
     for (const char* svg : {"carrot", "chart-spline", "flag", "flame", "infinity", "line-squiggle",
@@ -104,7 +111,7 @@ TEST(FeatureMapsThreads, SvgsAndFontsGiveTheSameMapsAtEveryCount) {
         for (BakeMode mode : {BakeMode::Linear, BakeMode::Quadratic}) {
             SCOPED_TRACE(name + " " + toString(mode));
             BakeOptions o;
-            o.size = kBakeSerialBelowSize;
+            o.size = kTestMapSize;
             o.mode = mode;
             o.nearField = true;
             invalid += expectSameAtEveryCount(net, o).invalidTexels;
@@ -119,7 +126,7 @@ TEST(FeatureMapsThreads, SvgsAndFontsGiveTheSameMapsAtEveryCount) {
 // cut-over), either mode, with or without the exact near field.
 TEST(FeatureMapsThreads, RandomNetworksGiveTheSameMapsAtEveryCount) {
     const bool ok = rc::check("random curve networks: the same maps at 1, 2, 3 and 7 threads", [] {
-        const int size = *rc::gen::inRange(kBakeSerialBelowSize, kBakeSerialBelowSize + 65);
+        const int size = *rc::gen::inRange(kTestMapSize, kTestMapSize + 65);
         const int curves = *rc::gen::inRange(1, 12);
         CurveNetwork net;
         for (int c = 0; c < curves; ++c) {

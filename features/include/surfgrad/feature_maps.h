@@ -200,13 +200,13 @@ struct BakeOptions {
 
 // Serial cut-over of bake() and FeatureMaps::packGpu(): maps of fewer
 // texels per side run on the calling thread. Measured (bench/features_bench
-// threads, 2-core machine under load): whole bakes of 2,000 segments with
-// parallel loops ran at 0.80-1.00x the speed of serial ones at
-// 32^2..192^2 (the arena and the tasks cost more than the second core saves
-// on a few milliseconds of mostly memory-bound work) and broke even at
-// 256^2; the distance pass and the optimisation gain from 512^2 (1.4-2x at
-// 1024^2).
-inline constexpr int kBakeSerialBelowSize = 256;
+// threads, its cut-over table, on the idle 2-core reference machine): whole
+// bakes of 500 polylines with parallel loops ran 1.61-1.77x faster than
+// serial ones at every size from 32^2 to 256^2 (6.3 vs 3.6 ms at 32^2), so
+// only maps below 32^2, where a bake is a millisecond or less, stay serial.
+// (A first measurement on the same machine under a load of ~7 had put the
+// break-even at 256^2: there the second core was taken by other work.)
+inline constexpr int kBakeSerialBelowSize = 32;
 
 // What the bake did (for --json and the tests).
 struct BakeStats {

@@ -32,10 +32,11 @@ inline constexpr int kMaxSubdivisionLevel = 8;
 // Serial cut-over of SubdivisionSettings::threads: a build whose level-N
 // face count (estimated from the cage, before refining) is below this runs
 // on the calling thread whatever the count, and so do its update() calls.
-// Measured (mesh_bench --threads-only, cut-over probe: spot refined warm,
-// every loop on TBB, 2 cores under a load average of ~7, so rough): 2
-// threads cost 1.8x one thread's time at 2,880 faces and 1.5x at 11,520,
-// and saved time from 46,080 up; the cut-over sits between, at 2^15.
+// Measured (mesh_bench --threads-only, idle 2-core machine): with every
+// loop on TBB, refinement of spot at 2,880 faces took 2.3x one thread's time
+// and at 46,080 faces 1.17x, but the stencil updates of a build of 46,080
+// faces already gain 1.7x (and refinement itself from ~184k faces up):
+// the cut-over sits at 2^15, for the per-frame updates.
 inline constexpr uint64_t kSerialBelowFaces = 32768;
 
 struct SubdivisionSettings {
