@@ -28,24 +28,7 @@ using sg::mesh::MikkTSpaceInput;
 
 const std::string kData = SURFGRAD_DATA_DIR;
 
-MikkTSpaceInput inputOf(const sg::test::SoupMesh& m) {
-    MikkTSpaceInput in;
-    in.positions = m.positions;
-    in.normals = m.normals;
-    in.uvs = m.uvs;
-    in.cornerVertices = m.corners;
-    in.faceSizes = m.faceSizes;
-    return in;
-}
-
-MikkTSpaceInput inputOf(const sg::test::GltfPrimitive& p) {
-    MikkTSpaceInput in;
-    in.positions = p.positions;
-    in.normals = p.normals;
-    in.uvs = p.uvs;
-    in.cornerVertices = p.indices;
-    return in;
-}
+using sg::test::inputOf;
 
 std::vector<glm::vec4> fastTangents(const MikkTSpaceInput& in) {
     std::vector<glm::vec4> t;

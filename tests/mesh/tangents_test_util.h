@@ -18,6 +18,8 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
+#include "surfgrad/tangents.h"
+
 namespace sg::test {
 
 struct GltfPrimitive {
@@ -94,6 +96,26 @@ struct SoupMesh {
     std::vector<uint32_t> corners;
     std::vector<uint32_t> faceSizes; // empty: triangles
 };
+
+// The generator's view of a soup or a glTF primitive (spans into it: the
+// mesh must outlive the input).
+inline sg::mesh::MikkTSpaceInput inputOf(const SoupMesh& m) {
+    sg::mesh::MikkTSpaceInput in;
+    in.positions = m.positions;
+    in.normals = m.normals;
+    in.uvs = m.uvs;
+    in.cornerVertices = m.corners;
+    in.faceSizes = m.faceSizes;
+    return in;
+}
+inline sg::mesh::MikkTSpaceInput inputOf(const GltfPrimitive& p) {
+    sg::mesh::MikkTSpaceInput in;
+    in.positions = p.positions;
+    in.normals = p.normals;
+    in.uvs = p.uvs;
+    in.cornerVertices = p.indices;
+    return in;
+}
 
 // What the adversarial generator puts in.
 struct SoupOptions {

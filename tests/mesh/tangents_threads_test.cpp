@@ -24,15 +24,7 @@ using sg::mesh::MikkTSpaceInput;
 
 const std::string kData = SURFGRAD_DATA_DIR;
 
-MikkTSpaceInput inputOf(const sg::test::SoupMesh& m) {
-    MikkTSpaceInput in;
-    in.positions = m.positions;
-    in.normals = m.normals;
-    in.uvs = m.uvs;
-    in.cornerVertices = m.corners;
-    in.faceSizes = m.faceSizes;
-    return in;
-}
+using sg::test::inputOf;
 
 // Every corner its own vertex (same values): the weld does all the merging.
 sg::test::SoupMesh unwelded(const sg::test::SoupMesh& m) {
@@ -162,12 +154,7 @@ TEST(MikkTSpaceThreads, EqualsOneThreadOnGltfSamples) {
     for (const char* file : {"/gltf/NormalTangentMirrorTest/glTF/NormalTangentMirrorTest.gltf",
                              "/gltf/NormalTangentTest/glTF/NormalTangentTest.gltf"}) {
         const auto p = sg::test::readGltfPrimitive(kData + file);
-        MikkTSpaceInput in;
-        in.positions = p.positions;
-        in.normals = p.normals;
-        in.uvs = p.uvs;
-        in.cornerVertices = p.indices;
-        EXPECT_EQ(countThreadMismatches(in), 0) << file;
+        EXPECT_EQ(countThreadMismatches(inputOf(p)), 0) << file;
     }
 }
 
