@@ -296,6 +296,12 @@ struct alignas(32) TriDerivatives {
     float magT;
 };
 
+// A corner of one triangle range at a vertex another range owns (step 6).
+struct Spill {
+    uint32_t vertex;
+    Incidence entry;
+};
+
 // Per-entry terms of a vertex's incidence list, structure of arrays: the
 // derivatives projected into the plane of the vertex normal, and the
 // corner angle (first the clamped cosine, then the angle).
@@ -658,6 +664,10 @@ struct Buffers {
     // the weld's table slot then class representative per staged vertex.
     ScratchVector<size_t> blockCounts;
     ScratchVector<uint32_t> cursor, repOf;
+    // Step 6 in parallel: the owner ranges' first welded ids, and each
+    // triangle range's corners at other ranges' vertices.
+    std::vector<uint32_t> ownStart;
+    std::vector<std::vector<Spill>> spills;
     std::vector<MikkTSpaceStepTime> stepTimes;
     // Steps 7-8 scratch: the calling thread's, and each worker's.
     FrameScratch frameScratch;
@@ -832,13 +842,15 @@ void stageVertexValues(Pass& p) {
     const size_t used = s.firstUse.size();
     s.hashes.resize(used);
     s.staged.resize(used);
-    for (size_t i = 0; i < used; ++i) {
-        const uint32_t v = s.firstUse[i];
-        const glm::vec3 pos = p.in.positions[v], n = p.in.normals[v];
-        const glm::vec2 uv = p.in.uvs[v];
-        s.staged[i] = {mikk::toVec3(pos), mikk::toVec3(n), uv};
-        s.hashes[i] = weldHash(pos, n, uv);
-    }
+    p.forBlocks(used, 1, [&](size_t, size_t b, size_t e) {
+        for (size_t i = b; i < e; ++i) {
+            const uint32_t v = s.firstUse[i];
+            const glm::vec3 pos = p.in.positions[v], n = p.in.normals[v];
+            const glm::vec2 uv = p.in.uvs[v];
+            s.staged[i] = {mikk::toVec3(pos), mikk::toVec3(n), uv};
+            s.hashes[i] = weldHash(pos, n, uv);
+        }
+    });
 }
 
 // Pass 3: each staged vertex looked up in an open-addressing table (slot =
@@ -1033,6 +1045,9 @@ void weld(Pass& p) {
     // The parallel weld does ~2.3x the serial weld's work (extra passes over
     // the corners, atomics; tangents_bench per-step times with the parallel
     // steps on one effective core), so it only pays with more threads.
+    // Below that, passes 1 and 3 (first use, classes: sequential by nature)
+    // run on this thread and passes 2 and 4 (per vertex, per corner) in
+    // parallel blocks.
     constexpr int kParallelWeldThreads = 4;
     if (p.parallel && tbb::this_task_arena::max_concurrency() >= kParallelWeldThreads) {
         weldParallel(p);
@@ -1054,8 +1069,11 @@ void weld(Pass& p) {
             if (s.stagedId[i] == nextId) s.welded[nextId++] = s.staged[i];
     }
     // Pass 4: welded id per triangle corner.
-    s.triWelded.resize(p.triCount * 3);
-    for (size_t c = 0; c < p.triCount * 3; ++c) s.triWelded[c] = s.vertexClass[p.triVertex[c]];
+    const size_t cornerCount = p.triCount * 3;
+    s.triWelded.resize(cornerCount);
+    p.forBlocks(cornerCount, 1, [&](size_t, size_t b, size_t e) {
+        for (size_t c = b; c < e; ++c) s.triWelded[c] = s.vertexClass[p.triVertex[c]];
+    });
     p.wv = s.welded.data();
     p.weldedCount = s.welded.size();
 }
@@ -1206,57 +1224,98 @@ void oneOrientationPerQuad(Pass& p) {
 // ascending triangle order (the order of the reference's sorted edge list
 // and of its sorted subgroups).
 //
-// In parallel: the welded ids are split into one range per thread of the
-// arena; each range's task scans every corner in triangle order and counts,
-// then places, only the corners at its own vertices. Every list is thus
-// filled in ascending triangle order by one task, as in the serial loop
-// (no atomics, no sorting); the scan of the corner array is repeated per
-// range but is sequential.
+// In parallel: the triangles are split into one contiguous range per
+// thread of the arena, and the welded ids into as many owner ranges, range
+// k owning the ids first used in triangle range k (ids are numbered by
+// first use, so its boundary is estimated from the last triangles of the
+// range before). Each task counts, then places, the corners of its own
+// triangles at vertices it owns; a corner at another range's vertex is
+// kept in the task's spill list. A list is then, in ascending triangle
+// order: the spills of earlier ranges (placed first, serially, in range
+// order), the owner's own corners (in parallel: owners are disjoint), the
+// spills of later ranges (serially, in range order). The result is the
+// unique sorted table, whatever the split; the split only decides how
+// much is spilled (vertices shared across range boundaries: a small part
+// on meshes whose triangle order has locality, all of it at worst). Every
+// corner is read twice, as in the serial loop, whatever the thread count.
 void buildIncidenceParallel(Pass& p) {
     Buffers& s = p.s;
     const size_t weldedCount = p.weldedCount, goodCount = p.goodCount;
     const uint32_t* const gWelded = p.gWelded;
-    const size_t ranges =
-        std::clamp<size_t>(size_t(tbb::this_task_arena::max_concurrency()), 1, 64);
-    auto rangeStart = [&](size_t r) { return uint32_t(weldedCount * r / ranges); };
+    const size_t ranges = std::clamp<size_t>(size_t(tbb::this_task_arena::max_concurrency()), 1,
+                                             std::min<size_t>(64, std::max<size_t>(goodCount, 1)));
+    auto triStart = [&](size_t k) { return goodCount * k / ranges; };
+    // Owner boundaries: 1 + the largest id among the last few triangles of
+    // the range before (the next new id when they introduced one), kept
+    // non-decreasing.
+    std::vector<uint32_t>& ownStart = s.ownStart;
+    ownStart.assign(ranges + 1, 0);
+    for (size_t k = 1; k < ranges; ++k) {
+        const size_t end = triStart(k),
+                     begin = std::max(triStart(k - 1), end - std::min<size_t>(end, 8));
+        uint32_t next = ownStart[k - 1];
+        for (size_t j = begin * 3; j < end * 3; ++j) next = std::max(next, gWelded[j] + 1);
+        ownStart[k] = uint32_t(std::min<size_t>(next, weldedCount));
+    }
+    ownStart[ranges] = uint32_t(weldedCount);
+    auto packedOf = [&](size_t t) {
+        return uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
+               ((s.flags[t] & kOrient) ? 4u : 0u);
+    };
     s.incidenceStart.resize(weldedCount + 1);
     s.cursor.resize(weldedCount);
-    // Counts of vertex w into incidenceStart[w + 1] (ranges write disjoint entries).
+    s.spills.resize(std::max(s.spills.size(), ranges));
+    // Own corners counted into incidenceStart[w + 1]; the others spilled.
     tbb::parallel_for(
         size_t(0), ranges,
-        [&](size_t r) {
-            const uint32_t lo = rangeStart(r), hi = rangeStart(r + 1);
+        [&](size_t k) {
+            const uint32_t lo = ownStart[k], hi = ownStart[k + 1];
             std::fill(s.incidenceStart.begin() + ptrdiff_t(lo) + 1,
                       s.incidenceStart.begin() + ptrdiff_t(hi) + 1, 0u);
-            for (size_t j = 0; j < goodCount * 3; ++j) {
-                const uint32_t w = gWelded[j];
-                if (w >= lo && w < hi) ++s.incidenceStart[w + 1];
+            std::vector<Spill>& spill = s.spills[k];
+            spill.clear();
+            for (size_t t = triStart(k); t < triStart(k + 1); ++t) {
+                const uint32_t* w = gWelded + t * 3;
+                for (uint32_t i = 0; i < 3; ++i) {
+                    if (w[i] >= lo && w[i] < hi) {
+                        ++s.incidenceStart[w[i] + 1];
+                    } else {
+                        spill.push_back({w[i], {packedOf(t) | i, w[(i + 2) % 3], w[(i + 1) % 3]}});
+                    }
+                }
             }
         },
         tbb::simple_partitioner());
+    for (size_t k = 0; k < ranges; ++k)
+        for (const Spill& x : s.spills[k]) ++s.incidenceStart[x.vertex + 1];
     s.incidenceStart[0] = 0;
     for (size_t w = 0; w < weldedCount; ++w) {
         s.incidenceStart[w + 1] += s.incidenceStart[w];
         s.cursor[w] = s.incidenceStart[w];
     }
     s.incidence.resize(goodCount * 3);
+    // Spills at vertices owned by a later range come before the owner's own
+    // corners.
+    for (size_t k = 0; k < ranges; ++k)
+        for (const Spill& x : s.spills[k])
+            if (x.vertex >= ownStart[k + 1]) s.incidence[s.cursor[x.vertex]++] = x.entry;
     tbb::parallel_for(
         size_t(0), ranges,
-        [&](size_t r) {
-            const uint32_t lo = rangeStart(r), hi = rangeStart(r + 1);
-            auto mine = [&](uint32_t w) { return w >= lo && w < hi; };
-            for (size_t t = 0; t < goodCount; ++t) {
+        [&](size_t k) {
+            const uint32_t lo = ownStart[k], hi = ownStart[k + 1];
+            for (size_t t = triStart(k); t < triStart(k + 1); ++t) {
                 const uint32_t* w = gWelded + t * 3;
-                const bool m0 = mine(w[0]), m1 = mine(w[1]), m2 = mine(w[2]);
-                if (!(m0 || m1 || m2)) continue;
-                const uint32_t tc = uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
-                                    ((s.flags[t] & kOrient) ? 4u : 0u);
-                if (m0) s.incidence[s.cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
-                if (m1) s.incidence[s.cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
-                if (m2) s.incidence[s.cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
+                const uint32_t tc = packedOf(t);
+                if (w[0] >= lo && w[0] < hi) s.incidence[s.cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
+                if (w[1] >= lo && w[1] < hi) s.incidence[s.cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
+                if (w[2] >= lo && w[2] < hi) s.incidence[s.cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
             }
         },
         tbb::simple_partitioner());
+    // Spills at vertices owned by an earlier range come after.
+    for (size_t k = 0; k < ranges; ++k)
+        for (const Spill& x : s.spills[k])
+            if (x.vertex < ownStart[k]) s.incidence[s.cursor[x.vertex]++] = x.entry;
 }
 
 void buildIncidence(Pass& p) {
