@@ -41,6 +41,7 @@
 
 #include <time.h>
 
+#include "surfgrad/scratch_buffer.h"
 #include "bake_internal.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/io.h"
@@ -585,10 +586,10 @@ void scanConvert(const CurveNetwork& net, const std::vector<OSeg>& segs, const B
     }
     // Every phase reports its end (its intermediate reports are throttled).
     if (opt.progress) opt.progress("scan", 1.0);
-    g.hPos.assign(nc, -1.0);
-    g.vPos.assign(nc, -1.0);
-    g.hAng.assign(nc, 0.0);
-    g.vAng.assign(nc, 0.0);
+    sg::detail::assignWithHugePages(g.hPos, nc, -1.0);
+    sg::detail::assignWithHugePages(g.vPos, nc, -1.0);
+    sg::detail::assignWithHugePages(g.hAng, nc, 0.0);
+    sg::detail::assignWithHugePages(g.vAng, nc, 0.0);
     for (int dir = 0; dir < 2; ++dir) {
         for (const auto& [k, acc] : dir == 0 ? g.hAcc : g.vAcc) {
             if (acc.count == 0) continue;
@@ -613,7 +614,7 @@ void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeSt
                          const Exec& ex) {
     const int n = g.n;
     const size_t nc = size_t(n + 1) * size_t(n + 1);
-    maps.seg.assign(nc, 0);
+    sg::detail::assignWithHugePages(maps.seg, nc, uint16_t(0));
     struct Counts {
         int withFeatures = 0, withSegments = 0, curved = 0, kept = 0;
         ValidationCounters validation;
@@ -654,10 +655,10 @@ void storeConfigurations(const Grid& g, BakeMode mode, FeatureMaps& maps, BakeSt
         st.straightenedFlat += c.validation.flat;
         st.straightenedCrossing += c.validation.cross;
     }
-    maps.hPos.assign(nc, -1.0f);
-    maps.vPos.assign(nc, -1.0f);
-    maps.hAngle.assign(nc, 0.0f);
-    maps.vAngle.assign(nc, 0.0f);
+    sg::detail::assignWithHugePages(maps.hPos, nc, -1.0f);
+    sg::detail::assignWithHugePages(maps.vPos, nc, -1.0f);
+    sg::detail::assignWithHugePages(maps.hAngle, nc, 0.0f);
+    sg::detail::assignWithHugePages(maps.vAngle, nc, 0.0f);
     forBlocks(ex, nc, kRowsPerBlock * size_t(n + 1), [&](size_t, size_t k0, size_t k1) {
         for (size_t k = k0; k < k1; ++k) {
             maps.hPos[k] = float(g.hPos[k]);

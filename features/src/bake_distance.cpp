@@ -22,6 +22,7 @@
 #include <bit>
 #include <chrono>
 
+#include "surfgrad/scratch_buffer.h"
 #include "bake_internal.h"
 
 namespace sg::features::detail {
@@ -159,10 +160,10 @@ void computeDistances(const std::vector<TexelPiece>& pieces, double band, Featur
                       const std::function<void(const char*, double)>& progress, const Exec& ex) {
     const int m = maps.size + 1;
     const size_t nc = size_t(m) * size_t(m);
-    maps.dist.assign(nc, float(band));
-    maps.gradX.assign(nc, 0.0f);
-    maps.gradY.assign(nc, 0.0f);
-    maps.left.assign(nc, 0);
+    sg::detail::assignWithHugePages(maps.dist, nc, float(band));
+    sg::detail::assignWithHugePages(maps.gradX, nc, 0.0f);
+    sg::detail::assignWithHugePages(maps.gradY, nc, 0.0f);
+    sg::detail::assignWithHugePages(maps.left, nc, uint8_t(0));
     DistanceField f{maps, std::vector<double>(nc, band * band)};
     // The pieces of each band, in input order.
     const size_t bands = blockCount(size_t(m), kDistanceBandRows);

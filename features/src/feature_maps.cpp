@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "surfgrad/scratch_buffer.h"
 #include "bake_internal.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/feature_maps.h"
@@ -57,8 +58,8 @@ GpuFeatureMaps packGpuRows(const FeatureMaps& m, const detail::Exec& ex) {
     const int size = m.size;
     GpuFeatureMaps g;
     g.size = size;
-    g.cornerPairs.assign(size_t(size) * size_t(size + 1) * 4, 0u);
-    g.edges.assign(size_t(size) * size_t(size) * 4, 0u);
+    sg::detail::assignWithHugePages(g.cornerPairs, size_t(size) * size_t(size + 1) * 4, 0u);
+    sg::detail::assignWithHugePages(g.edges, size_t(size) * size_t(size) * 4, 0u);
     detail::forBlocks(ex, size_t(size) + 1, kRowsPerBlock, [&](size_t, size_t j0, size_t j1) {
         for (int j = int(j0); j < int(j1); ++j) {
             for (int i = 0; i < size; ++i) {

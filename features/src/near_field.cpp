@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "surfgrad/scratch_buffer.h"
 #include "bake_internal.h"
 #include "surfgrad/io.h"
 
@@ -121,7 +122,8 @@ uint32_t floatBits(float f) {
 void packPieces(const FeatureMaps& m, GpuFeatureMaps& g) {
     const int texels = SG_FEAT_PIECE_BASE + 2 * int(m.pieces.size());
     g.piecesHeight = (texels + SG_FEAT_PIECES_WIDTH - 1) / SG_FEAT_PIECES_WIDTH;
-    g.pieces.assign(size_t(g.piecesHeight) * SG_FEAT_PIECES_WIDTH * 4, 0u);
+    sg::detail::assignWithHugePages(g.pieces, size_t(g.piecesHeight) * SG_FEAT_PIECES_WIDTH * 4,
+                                    0u);
     auto texel = [&](int at) { return &g.pieces[size_t(at) * 4]; };
     for (size_t e = 0; e < m.profiles.size(); ++e) {
         glsl::SgFeatProfile pr = makeProfile(m.profiles[e], 1.0f, 0.0f, 1.0f);

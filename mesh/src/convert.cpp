@@ -10,7 +10,7 @@
 #include <cstring>
 
 #include "mesh_internal.h"
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -217,7 +217,7 @@ size_t weldVerticesByValue(RenderMesh& mesh, int threads) {
     // Every vertex's hash (bit patterns of all its attributes), in parallel
     // above the cut-over: each task writes its own range.
     // Scratch storage (scratch_buffer.h: huge pages, no zero fill).
-    detail::ScratchVector<uint64_t> hash(n);
+    sg::detail::ScratchVector<uint64_t> hash(n);
     auto hashRange = [&](size_t b, size_t e) {
         for (size_t v = b; v < e; ++v) hash[v] = hashOf(v);
     };
@@ -236,9 +236,9 @@ size_t weldVerticesByValue(RenderMesh& mesh, int threads) {
     size_t tableSize = 64;
     while (tableSize < 2 * n) tableSize *= 2;
     const size_t mask = tableSize - 1;
-    detail::ScratchVector<uint64_t> table(tableSize);
+    sg::detail::ScratchVector<uint64_t> table(tableSize);
     std::fill(table.begin(), table.end(), UINT64_MAX);
-    detail::ScratchVector<uint32_t> newId(n);
+    sg::detail::ScratchVector<uint32_t> newId(n);
     std::vector<uint32_t> firstOf; // new id -> first old vertex
     firstOf.reserve(n);
     for (size_t v = 0; v < n; ++v) {

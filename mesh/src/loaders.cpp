@@ -19,7 +19,7 @@
 #include <tbb/partitioner.h>
 
 #include "mesh_internal.h"
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/subdivision.h"
@@ -223,9 +223,9 @@ void checkRenderMesh(RenderMesh& mesh, const std::string& file, bool repair, Loa
 // large file) by `threads` threads, each reading its own 8 MiB pieces with
 // pread (the copy from the page cache and the first touch of the pages
 // are most of the time).
-detail::ScratchVector<char> readText(const std::filesystem::path& path, size_t maxBytes,
-                                     int threads) {
-    detail::ScratchVector<char> text;
+sg::detail::ScratchVector<char> readText(const std::filesystem::path& path, size_t maxBytes,
+                                         int threads) {
+    sg::detail::ScratchVector<char> text;
     auto viaReadFile = [&] {
         const std::string s = io::readFile(path, maxBytes);
         text.assign(s.begin(), s.end());
@@ -287,7 +287,7 @@ PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions
     PolygonMesh mesh;
     std::vector<uint32_t> faceLines;
     if (ext == ".obj") {
-        const detail::ScratchVector<char> text =
+        const sg::detail::ScratchVector<char> text =
             readText(path, options.limits.maxFileBytes, options.threads);
         mesh = detail::parseObjImpl(std::string_view(text.data(), text.size()), file,
                                     options.limits, report, &faceLines, options.threads);

@@ -52,7 +52,7 @@
 #endif
 
 #include "mikktspace_common.h"
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 #include "surfgrad/threads.h"
 
 namespace sg::mesh {
@@ -613,7 +613,7 @@ size_t faceDerivatives4(const WeldedVertex* wv, const uint32_t* tri, TriDerivati
 
 namespace {
 
-using detail::ScratchVector;
+using sg::detail::ScratchVector;
 
 // Steps 7-8 scratch, one per thread.
 struct FrameScratch {
@@ -2062,8 +2062,8 @@ void MikkTSpaceGenerator::generate(const MikkTSpaceInput& in,
     // buffer needs no clearing.
     // Fresh output storage gets huge pages before the fill touches it
     // (scratch_buffer.h: the first call's page faults).
-    detail::reserveWithHugePages(cornerTangents, p.cornerCount);
-    if (frames) detail::reserveWithHugePages(*frames, p.cornerCount);
+    sg::detail::reserveWithHugePages(cornerTangents, p.cornerCount);
+    if (frames) sg::detail::reserveWithHugePages(*frames, p.cornerCount);
     if (p.trianglesOnly && !frames)
         cornerTangents.resize(p.cornerCount);
     else

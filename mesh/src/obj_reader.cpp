@@ -29,7 +29,7 @@
 #include <tbb/task_arena.h>
 
 #include "mesh_internal.h"
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/threads.h"
@@ -351,7 +351,7 @@ void ObjBlock::reserveFor(std::string_view text) {
         pos = eol ? size_t(static_cast<const char*>(eol) - text.data()) + 1 : text.size();
     }
     auto reserve = [](auto& vec, size_t n, size_t limit) {
-        detail::reserveWithHugePages(vec, std::min(n, limit));
+        sg::detail::reserveWithHugePages(vec, std::min(n, limit));
     };
     reserve(mesh_.positions, v, limits_.maxVertices);
     reserve(uvs_, vt, limits_.maxCorners);
@@ -429,7 +429,7 @@ void concatenate(std::vector<T>& out, std::vector<ObjBlock>& blocks,
         out = std::move(get(blocks[0]));
         return;
     }
-    detail::reserveWithHugePages(out, total);
+    sg::detail::reserveWithHugePages(out, total);
     out.resize(total);
     forEachBlock(blocks.size(), [&](size_t b) {
         const std::vector<T>& v = get(blocks[b]);
@@ -546,7 +546,7 @@ PolygonMesh assemble(std::vector<ObjBlock>& blocks, const std::vector<BlockBase>
     for (auto* v : {&mesh.faceVertices, &uvIndices, &mesh.normalIndices}) {
         if (v == &uvIndices && !anyUv) continue;
         if (v == &mesh.normalIndices && !keepNormals) continue;
-        detail::reserveWithHugePages(*v, total.corners);
+        sg::detail::reserveWithHugePages(*v, total.corners);
         v->resize(total.corners);
     }
     const size_t nUv = total.uvs, nN = total.normals, nV = total.positions;

@@ -13,7 +13,7 @@
 #include <cstring>
 
 #include "mesh_internal.h"
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 #include "surfgrad/mesh_io.h"
 
 namespace sg::mesh {
@@ -87,7 +87,7 @@ public:
     // copies), huge pages requested before the first touch.
     void reserve(size_t bytes) {
         bin.reserve(bytes);
-        detail::adviseHugePages(bin.data(), bin.capacity());
+        sg::detail::adviseHugePages(bin.data(), bin.capacity());
     }
     int vec3(const std::vector<glm::vec3>& v, bool minMax) {
         return accessor(v.data(), v.size(), 3, 5126, 34962, minMax,
@@ -213,7 +213,7 @@ std::string gltfBytes(const std::filesystem::path& path, const RenderMesh& mesh,
     if (total > UINT32_MAX)
         throw InputError(path.string(), "", "mesh too large for a GLB file (4 GiB)");
     out.reserve(size_t(total));
-    detail::adviseHugePages(out.data(), out.capacity());
+    sg::detail::adviseHugePages(out.data(), out.capacity());
     u32(0x46546C67u); // "glTF"
     u32(2);
     u32(uint32_t(total));

@@ -1,6 +1,6 @@
 // Scratch buffers (scratch_buffer.h): large blocks mapped from the
 // operating system, 2 MiB-aligned, with transparent huge pages requested.
-#include "scratch_buffer.h"
+#include "surfgrad/scratch_buffer.h"
 
 #include <cstdint>
 
@@ -22,7 +22,7 @@
 #define SG_SCRATCH_OS_PAGES 1
 #endif
 
-namespace sg::mesh::detail {
+namespace sg::detail {
 
 namespace {
 
@@ -81,4 +81,4 @@ void adviseHugePages(void* p, size_t bytes) noexcept {
 #endif
 }
 
-} // namespace sg::mesh::detail
+} // namespace sg::detail

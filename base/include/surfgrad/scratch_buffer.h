@@ -1,6 +1,6 @@
-// Scratch vectors for the long jobs of the mesh module (the MikkTSpace
-// generator's buffers, the OBJ reader's blocks): what makes a first call
-// cost close to a warm one.
+// Scratch vectors for the long jobs (the MikkTSpace generator's buffers,
+// the OBJ reader's blocks, the feature bake's grids): what makes a first
+// call cost close to a warm one.
 //
 //  - No zero fill: resize() default-initializes new elements (for the
 //    trivial types used here: leaves them indeterminate), so a buffer that
@@ -25,7 +25,7 @@
 #include <utility>
 #include <vector>
 
-namespace sg::mesh::detail {
+namespace sg::detail {
 
 inline constexpr size_t kHugePageBytes = size_t(2) << 20;
 inline constexpr size_t kHugePageMinBytes = size_t(4) << 20;
@@ -78,4 +78,17 @@ void reserveWithHugePages(std::vector<T>& v, size_t n) {
     v.swap(grown);
 }
 
-} // namespace sg::mesh::detail
+// v = n copies of `value`, like v.assign(n, value); storage too small for
+// n is replaced (not grown: the contents are overwritten anyway) by fresh
+// storage with huge pages requested before the fill touches it.
+template <class T>
+void assignWithHugePages(std::vector<T>& v, size_t n, const T& value) {
+    if (v.capacity() < n) {
+        std::vector<T>().swap(v);
+        v.reserve(n);
+        adviseHugePages(v.data(), n * sizeof(T));
+    }
+    v.assign(n, value);
+}
+
+} // namespace sg::detail
