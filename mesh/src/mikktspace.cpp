@@ -1220,6 +1220,12 @@ void oneOrientationPerQuad(Pass& p) {
 
 // --- Step 6: adjacency, as a vertex -> incident corners table -------------------------
 
+// Incidence::packed of good triangle t without the corner bits: the index
+// and the triangle's group-with-any and orientation flags.
+inline uint32_t packedTriangle(const uint8_t* flags, size_t t) {
+    return uint32_t(t) << 4 | ((flags[t] & kAny) ? 8u : 0u) | ((flags[t] & kOrient) ? 4u : 0u);
+}
+
 // Each welded vertex's incident corners of good triangles, each list in
 // ascending triangle order (the order of the reference's sorted edge list
 // and of its sorted subgroups).
@@ -1258,10 +1264,6 @@ void buildIncidenceParallel(Pass& p) {
         ownStart[k] = uint32_t(std::min<size_t>(next, weldedCount));
     }
     ownStart[ranges] = uint32_t(weldedCount);
-    auto packedOf = [&](size_t t) {
-        return uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) |
-               ((s.flags[t] & kOrient) ? 4u : 0u);
-    };
     s.incidenceStart.resize(weldedCount + 1);
     s.cursor.resize(weldedCount);
     s.spills.resize(std::max(s.spills.size(), ranges));
@@ -1280,7 +1282,9 @@ void buildIncidenceParallel(Pass& p) {
                     if (w[i] >= lo && w[i] < hi) {
                         ++s.incidenceStart[w[i] + 1];
                     } else {
-                        spill.push_back({w[i], {packedOf(t) | i, w[(i + 2) % 3], w[(i + 1) % 3]}});
+                        spill.push_back({w[i],
+                                         {packedTriangle(s.flags.data(), t) | i, w[(i + 2) % 3],
+                                          w[(i + 1) % 3]}});
                     }
                 }
             }
@@ -1305,7 +1309,7 @@ void buildIncidenceParallel(Pass& p) {
             const uint32_t lo = ownStart[k], hi = ownStart[k + 1];
             for (size_t t = triStart(k); t < triStart(k + 1); ++t) {
                 const uint32_t* w = gWelded + t * 3;
-                const uint32_t tc = packedOf(t);
+                const uint32_t tc = packedTriangle(s.flags.data(), t);
                 if (w[0] >= lo && w[0] < hi) s.incidence[s.cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
                 if (w[1] >= lo && w[1] < hi) s.incidence[s.cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
                 if (w[2] >= lo && w[2] < hi) s.incidence[s.cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
@@ -1341,8 +1345,7 @@ void buildIncidence(Pass& p) {
             __builtin_prefetch(s.incidence.data() + cursor[wa[1]], 1);
             __builtin_prefetch(s.incidence.data() + cursor[wa[2]], 1);
         }
-        const uint32_t tc =
-            uint32_t(t) << 4 | ((s.flags[t] & kAny) ? 8u : 0u) | ((s.flags[t] & kOrient) ? 4u : 0u);
+        const uint32_t tc = packedTriangle(s.flags.data(), t);
         s.incidence[cursor[w[0]]++] = {tc | 0u, w[2], w[1]};
         s.incidence[cursor[w[1]]++] = {tc | 1u, w[0], w[2]};
         s.incidence[cursor[w[2]]++] = {tc | 2u, w[1], w[0]};
