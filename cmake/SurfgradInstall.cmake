@@ -177,4 +177,28 @@ if(SURFGRAD_BUILD_VIEWER)
     list(APPEND _sg_dev_depends libglfw3-dev libimgui-dev)
 endif()
 string(REPLACE ";" ", " CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS "${_sg_dev_depends}")
+# python3-surfgrad: the Python module (python/CMakeLists.txt installs it in
+# /usr/lib/python3/dist-packages/surfgrad). Built for one Python minor
+# version (the extension's ABI); the scenes' "data:" paths resolve to the
+# surfgrad package's /usr/share/surfgrad/data.
+if(SURFGRAD_PYTHON_BUILT)
+    install(FILES "${PROJECT_SOURCE_DIR}/packaging/copyright"
+            DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/python3-surfgrad" COMPONENT python)
+    list(APPEND CPACK_COMPONENTS_ALL python)
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_NAME python3-surfgrad)
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_SECTION python)
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_SHLIBDEPS ON)
+    set(_sg_pymaj ${SURFGRAD_PYTHON_VERSION_MAJOR})
+    set(_sg_pymin ${SURFGRAD_PYTHON_VERSION_MINOR})
+    math(EXPR _sg_pynext "${_sg_pymin} + 1")
+    set(CPACK_DEBIAN_PYTHON_PACKAGE_DEPENDS
+        "surfgrad (= ${PROJECT_VERSION}), python3 (>= ${_sg_pymaj}.${_sg_pymin}), python3 (<< ${_sg_pymaj}.${_sg_pynext}), python3-numpy, libegl1, libgl1, libegl-mesa0, libgl1-mesa-dri")
+    set(CPACK_DEBIAN_PYTHON_DESCRIPTION "surface-gradient bump mapping on subdivision meshes (Python module)
+The Python module surfgrad: MikkTSpace-exact and limit tangents, OpenSubdiv
+subdivision with limit frames and animated cages, blendshapes, the
+height-field-correct normal-map operations, feature-curve bakes, headless
+rendering and the shared shader functions, on numpy arrays.
+.
+License: ${SURFGRAD_LICENSE} (/usr/share/doc/surfgrad/copyright).")
+endif()
 include(CPack)

@@ -173,4 +173,24 @@ fi
 grep -qF "$src/data/install-test/only-installed.png: does not exist" override.out ||
     fail "override: $(cat override.out)"
 [ ! -e sentinel2.png ] || fail "a failed render left an output file"
+
+# The Python module (when it was built): `import surfgrad` from the moved
+# prefix with only its dist-packages folder on PYTHONPATH, and the same
+# MikkTSpace vertex count as the installed CLI's for spot.
+if [ -n "${SURFGRAD_PYTHON:-}" ]; then
+    step "import surfgrad from the installed prefix"
+    pydir="$(cd "$prefix" && find . -path '*/dist-packages/surfgrad/__init__.py' | head -1)"
+    [ -n "$pydir" ] || fail "no lib/python3*/dist-packages/surfgrad/__init__.py in the prefix"
+    pydir="$prefix/$(dirname "$(dirname "$pydir")")"
+    for f in __init__.pyi normalmap.pyi features.pyi py.typed; do
+        [ -f "$pydir/surfgrad/$f" ] || fail "surfgrad/$f not installed"
+    done
+    py_v="$(PYTHONPATH="$pydir" "$SURFGRAD_PYTHON" -c '
+import sys, surfgrad
+assert surfgrad.__file__.startswith(sys.argv[2]), surfgrad.__file__
+mesh, added = surfgrad.generate_tangents(surfgrad.load_mesh(sys.argv[1]))
+print(mesh.vertex_count, mesh.triangle_count)' "$mesh" "$pydir")" || fail "import surfgrad (installed) failed"
+    [ "$py_v" = "$cli_v $cli_t" ] ||
+        fail "the installed module's tangents give $py_v vertices/triangles, the CLI's $cli_v $cli_t"
+fi
 step "passed"

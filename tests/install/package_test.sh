@@ -192,4 +192,38 @@ if command -v man >/dev/null; then
         fail "man -l surfgrad.1: $(cat "$work/man.err")"
     ! grep -q 'warning' "$work/man.err" || fail "man -l surfgrad.1: $(cat "$work/man.err")"
 fi
+
+# ---- 5. python3-surfgrad (when the module was built): control fields,
+# contents, and `import surfgrad` from the unpacked package.
+if [ -n "${SURFGRAD_PYTHON:-}" ]; then
+    step "python3-surfgrad"
+    py="$work/python3-surfgrad_${version}_${arch}.deb"
+    [ -f "$py" ] || fail "$(basename "$py") not written: $(ls "$work")"
+    expect_field "$py" Package python3-surfgrad
+    expect_field "$py" Version "$version"
+    expect_field "$py" Section python
+    py_deps="$(field "$py" Depends)"
+    for want in "surfgrad (= $version)" 'python3 (>= 3.' 'python3 (<< 3.' python3-numpy 'libc6 (>= ' \
+                'libtbb' 'libopenimageio' 'libegl1'; do
+        grep -qF "$want" <<<"$py_deps" || fail "python3-surfgrad Depends lacks $want: $py_deps"
+    done
+    list "$py" >"$work/py.list"
+    for f in __init__.py __init__.pyi normalmap.pyi features.pyi py.typed; do
+        has py "/usr/lib/python3/dist-packages/surfgrad/$f"
+    done
+    grep -q '^/usr/lib/python3/dist-packages/surfgrad/_surfgrad.*\.so$' "$work/py.list" ||
+        fail "python3-surfgrad lacks the extension module"
+    has py /usr/share/doc/python3-surfgrad/copyright
+    both="$(comm -12 <(grep -v '/$' "$work/run.list" "$work/dev.list" | cut -d: -f2 | sort) \
+                     <(grep -v '/$' "$work/py.list" | sort))"
+    [ -z "$both" ] || fail "files in python3-surfgrad and another package: $both"
+    dpkg-deb -x "$py" "$root"
+    PYTHONPATH="$root/usr/lib/python3/dist-packages" "$SURFGRAD_PYTHON" -c '
+import sys, surfgrad
+assert surfgrad.__file__.startswith(sys.argv[1]), surfgrad.__file__
+cage = surfgrad.load_cage(sys.argv[2])
+print(cage.vertex_count, cage.face_count)' "$root/usr/lib/python3/dist-packages" \
+        "$root/usr/share/surfgrad/data/meshes/spot/spot_control_mesh.obj" >py.out 2>&1 ||
+        { cat py.out >&2; fail "import surfgrad from the unpacked python3-surfgrad"; }
+fi
 step "passed"
