@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """What the Python binding adds to the C++ calls, on a >= 1M-triangle mesh.
 
-Input: the mesh of bench/tangents_bench.cpp, built the same way in numpy:
-blub (data/meshes/blub/blub_triangulated.obj, loaded with surfgrad.load_mesh:
-area-weighted normals, split at UV seams) split 1-to-4 at edge midpoints
-(positions, normals and UVs interpolated, normals renormalised) three times:
-909,312 triangles.
+Input (--mesh): spot (data/meshes/spot/spot_control_mesh.obj) refined by
+surfgrad.Subdivider to Catmull-Clark level 6, the render mesh split at UV
+seams: 1,499,136 triangles (default); or the mesh of bench/tangents_bench.cpp
+built the same way in numpy: blub (load_mesh: area-weighted normals, split at
+UV seams) split 1-to-4 at edge midpoints (positions, normals and UVs
+interpolated, normals renormalised) three times: 909,312 triangles.
 
 Rows (medians of --runs, one process, so the ratios are same-run figures):
   mikktspace()          surfgrad.mikktspace(...): argument checks, the input
@@ -21,6 +22,7 @@ Also Subdivider (spot, Catmull-Clark level 4) against its own stage timings,
 and to_height on a 1024^2 slope grid (a copy in, the result moved out).
 
   PYTHONPATH=build/python python3 bench/python_binding_bench.py [--runs N] [--threads N]
+      [--mesh spot|blub]
 """
 import argparse
 import os
@@ -74,16 +76,26 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=9)
     ap.add_argument("--threads", type=int, default=1, help="generator threads (default 1)")
+    ap.add_argument("--mesh", choices=["spot", "blub"], default="spot",
+                    help="spot: Catmull-Clark level 6, 1.5M triangles (default); blub: split x3")
     ap.add_argument("--data", default=os.environ.get("SURFGRAD_DATA_DIR",
                                                      str(Path(__file__).resolve().parents[1] / "data")))
     args = ap.parse_args()
     data = Path(args.data)
 
-    mesh = surfgrad.load_mesh(data / "meshes/blub/blub_triangulated.obj")
-    p, n, uv, t = mesh.positions.copy(), mesh.normals.copy(), mesh.uv_sets[0].copy(), mesh.indices.copy()
-    for _ in range(3):
-        p, n, uv, t = split4(p, n, uv, t)
-    print(f"input: blub split 1-to-4 x3: {len(t)} triangles, {len(p)} vertices; "
+    if args.mesh == "blub":
+        mesh = surfgrad.load_mesh(data / "meshes/blub/blub_triangulated.obj")
+        p, n = mesh.positions.copy(), mesh.normals.copy()
+        uv, t = mesh.uv_sets[0].copy(), mesh.indices.copy()
+        for _ in range(3):
+            p, n, uv, t = split4(p, n, uv, t)
+        what = "blub split 1-to-4 x3"
+    else:
+        cage = surfgrad.load_cage(data / "meshes/spot/spot_control_mesh.obj")
+        mesh = surfgrad.Subdivider(cage, 6).render_mesh
+        p, n, uv, t = mesh.positions, mesh.normals, mesh.uv_sets[0], mesh.indices
+        what = "spot Catmull-Clark level 6 (split at UV seams)"
+    print(f"input: {what}: {len(t)} triangles, {len(p)} vertices; "
           f"threads {args.threads}; {args.runs} runs; surfgrad {surfgrad.__version__}")
 
     rows = []

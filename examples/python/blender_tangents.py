@@ -24,8 +24,8 @@ in mesh.loops).
 
 The numpy core (inputs_from_loops, loop_tangents, attribute_values, compute_loop_tangents) does
 not import bpy: tests/python/test_blender_core.py runs it on meshes laid out as Blender does.
-Tested against surfgrad's API only; the bpy calls follow Blender 3.6-4.x (mesh.corner_normals from
-4.1, calc_normals_split before).
+Run with Debian 12's Blender 3.4 (the ctest python_blender when blender is installed); the bpy
+calls also follow Blender 4.x (mesh.corner_normals from 4.1, calc_normals_split before).
 """
 import argparse
 import sys
@@ -205,6 +205,12 @@ def main(argv):
     parser.add_argument("--as-vector", action="store_true", help="FLOAT_VECTOR + FLOAT sign")
     parser.add_argument("--threads", type=int, default=0, help="0: all cores")
     parser.add_argument("--compare", action="store_true", help="against Blender's calc_tangents")
+    parser.add_argument(
+        "--max-angle",
+        type=float,
+        metavar="DEG",
+        help="with --compare: exit 1 when an angle exceeds DEG or a sign differs",
+    )
     parser.add_argument("--save", nargs="?", const="", metavar="OUT.blend", help="write the .blend")
     args = parser.parse_args(argv)
 
@@ -229,6 +235,9 @@ def main(argv):
         worst = float(np.degrees(np.arctan2(cross, dot)).max()) if len(dot) else 0.0
         signs = int((tangents[:, 3] == theirs[:, 3]).sum())
         print(f"  against calc_tangents: max angle {worst:.2e} deg, signs agree {signs}/{len(dot)}")
+        if args.max_angle is not None and (worst > args.max_angle or signs != len(dot)):
+            print(f"blender_tangents.py: differs from calc_tangents beyond {args.max_angle} deg")
+            sys.exit(1)
     if args.save is not None:
         if args.save:
             bpy.ops.wm.save_as_mainfile(filepath=args.save, copy=True)

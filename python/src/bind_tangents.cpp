@@ -44,19 +44,22 @@ struct MikkArrays {
             corners = requireArray<uint32_t>(c, "corner_vertices", {{kAny, "C"}});
             faceSizes = requireArray<uint32_t>(fs, "face_sizes", {{kAny, "F"}});
         }
-        // Named per argument first; mikktspaceInputProblem() then checks
-        // the ranges (|p|, |uv| <= 2^60, |n| <= 16) and the face sizes.
-        requireBounded(positions, "positions", 0x1p60f);
-        requireBounded(normals, "normals", 16.0f);
-        requireBounded(uvs, "uvs", 0x1p60f);
-        requireIndicesBelow(valuesOf(corners), size_t(v), "corner_vertices", "vertices");
         input.positions = rowsOf<glm::vec3>(positions);
         input.normals = rowsOf<glm::vec3>(normals);
         input.uvs = rowsOf<glm::vec2>(uvs);
         input.cornerVertices = valuesOf(corners);
         if (!fs.is_none()) input.faceSizes = valuesOf(faceSizes);
+        // One scan of the preconditions (finite, |p|, |uv| <= 2^60, |n| <=
+        // 16, indices, face sizes); when it finds a problem, the checks per
+        // argument name the array, row and column.
         const std::string problem = sg::mesh::mikktspaceInputProblem(input);
-        if (!problem.empty()) throw py::value_error("mikktspace input: " + problem);
+        if (!problem.empty()) {
+            requireBounded(positions, "positions", 0x1p60f);
+            requireBounded(normals, "normals", 16.0f);
+            requireBounded(uvs, "uvs", 0x1p60f);
+            requireIndicesBelow(valuesOf(corners), size_t(v), "corner_vertices", "vertices");
+            throw py::value_error("mikktspace input: " + problem);
+        }
     }
 };
 

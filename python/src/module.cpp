@@ -17,6 +17,8 @@ void bindErrors(py::module_& m) {
     inputError.doc() = "Malformed untrusted input (a file, scene or curve text): "
                        "str(e) is '<file>: <element>: <reason>'; the attributes file, "
                        "element and reason hold the parts.";
+    // Class-level defaults; every raised instance sets its own.
+    for (const char* part : {"file", "element", "reason"}) inputError.attr(part) = py::str("");
     py::register_exception_translator([](std::exception_ptr p) {
         try {
             if (p) std::rethrow_exception(p);

@@ -71,8 +71,11 @@ class RenderMesh:
     tangents: F32             # (V, 4) or (0, 4)
     tangent_uv_set: int       # the UV set the tangents belong to, -1: none
     uv_sets: list[F32]        # each (V, 2); the list is new, its arrays are views
-    morph_targets: list[MorphTarget]
-    morph_weights: F32        # (K,) default weights
+    @property
+    def morph_targets(self) -> list[MorphTarget]: ...
+    @property
+    def morph_weights(self) -> F32:
+        """(K,) default weights (a copy)."""
     @property
     def vertex_count(self) -> int: ...
     @property
@@ -93,16 +96,33 @@ class PolygonMesh:
                  corners: Sequence[tuple[int, float]] = (), holes: Sequence[int] = (),
                  name: str = "") -> None: ...
     name: str
-    positions: F32            # (V, 3)
-    face_sizes: U32           # (F,) corners per face, >= 3
-    face_vertices: U32        # (C,) = sum(face_sizes) vertex indices, CCW
-    normals: F32              # (N, 3) face-varying normal values, or (0, 3)
-    normal_indices: U32       # (C,) or (0,)
-    scheme: str               # "catmark" | "loop" | "bilinear"
-    creases: list[tuple[int, int, float]]  # (v0, v1, sharpness)
-    corners: list[tuple[int, float]]       # (vertex, sharpness)
-    holes: list[int]          # face indices
-    morph_weights: F32
+    positions: F32            # (V, 3) view, assignable in place
+    @property
+    def face_sizes(self) -> U32:
+        """(F,) corners per face (>= 3); a read-only view."""
+    @property
+    def face_vertices(self) -> U32:
+        """(C,) = sum(face_sizes) vertex indices, CCW; a read-only view."""
+    @property
+    def normals(self) -> F32:
+        """(N, 3) face-varying normal values, or (0, 3) (a copy)."""
+    @property
+    def normal_indices(self) -> U32:
+        """(C,) or (0,) (a copy)."""
+    @property
+    def scheme(self) -> str:
+        """"catmark" | "loop" | "bilinear"."""
+    @property
+    def creases(self) -> list[tuple[int, int, float]]:
+        """(v0, v1, sharpness) per tagged edge; sharpness >= 10 is infinite."""
+    @property
+    def corners(self) -> list[tuple[int, float]]:
+        """(vertex, sharpness) per corner tag."""
+    @property
+    def holes(self) -> list[int]:
+        """Face indices tagged as holes (sorted)."""
+    @property
+    def morph_weights(self) -> F32: ...
     @property
     def uv_sets(self) -> list[tuple[str, F32, U32]]:
         """(name, values (K, 2), indices (C,)) per UV set (copies)."""
@@ -164,7 +184,11 @@ def mikktspace(positions: F32, normals: F32, uvs: F32, corner_vertices: U32,
                frames: bool = False) -> F32 | dict[str, F32]:
     """MikkTSpace tangents per face corner, bit-identical to the reference
     mikktspace.c. positions/normals (V, 3), uvs (V, 2), corner_vertices
-    (C,) or (T, 3); face_sizes (F,) of 3 or 4 (None: triangles). Returns
+    (C,) or (T, 3); face_sizes (F,) (None: triangles): faces of other than
+    3 or 4 corners are ignored as by the reference (their corners get
+    (0, 0, 0, 0); triangulate first). Values: finite, |positions|, |uvs|
+    <= 2^60, |normal components| <= 16 (ValueError naming the array).
+    Returns
     (C, 4) = (tangent, sign); frames=True returns a dict with tangent (C, 3),
     mag_s (C,), bitangent (C, 3), mag_t (C,), sign (C,)."""
 
@@ -224,10 +248,13 @@ class Subdivider:
     @property
     def render_to_refined_vertex(self) -> U32: ...
     def update(self, cage_positions: F32, *, out: RenderMesh | None = None,
-               normals: bool = True) -> RenderMesh:
+               normals: bool = True,
+               frame: bool = False) -> RenderMesh | tuple[RenderMesh, LimitFrame]:
         """Positions and normals of render_mesh for new (V, 3) cage
         positions through the stencil tables (animate=True). `out` (a copy
-        of render_mesh) is written in place and returned; else a new mesh."""
+        of render_mesh) is written in place and returned; else a new mesh.
+        frame=True (limit=True) returns (mesh, LimitFrame) with the moved
+        surface's dpdu and dpdv."""
     @property
     def timings(self) -> dict[str, float]: ...
     @property
@@ -235,7 +262,11 @@ class Subdivider:
     @property
     def stencil_weight_count(self) -> int: ...
 
-def estimate_subdivision_cost(cage: PolygonMesh, level: int, *, limit: bool = False) -> dict[str, int]: ...
+def estimate_subdivision_cost(cage: PolygonMesh, level: int, *,
+                              limit: bool = False) -> dict[str, int]:
+    """Level-N counts and the peak heap bytes of a build, from the cage
+    alone: faces, vertices, edges, corners, fvar_values, render_vertices,
+    bytes."""
 
 # ---------------------------------------------------------------------------
 # Blendshapes
@@ -266,5 +297,8 @@ def eval_signature(name: str) -> dict[str, Any]:
     kind ("float", "bool", "int"), optional, default, doc."""
 def eval(name: str, **inputs: npt.ArrayLike) -> dict[str, F32]:
     """Runs a shared shader function (the C++ build) over arrays: each input
-    (..., width) or a scalar broadcast; omitted optional inputs take their
-    defaults. Returns each output as (..., width)."""
+    (..., width) (width-1 inputs: (..., 1) or (...)), the record axes
+    broadcast against the other inputs'; omitted optional inputs take their
+    defaults. Returns each output as (..., width) ((...) for width 1).
+    Values finite with |x| <= 1e18; bool inputs 0 or 1, int inputs
+    integers in their range."""

@@ -22,12 +22,20 @@ class FeatureMaps:
     @property
     def has_near_field(self) -> bool: ...
     @property
-    def stats(self) -> dict[str, Any]: ...
+    def stats(self) -> dict[str, Any] | None:
+        """What the bake did (None for loaded maps): size,
+        input_to_texel_scale, input_to_texel_offset, texels_with_features,
+        texels_with_segments, segments_kept, segments_dropped,
+        curved_segments, invalid_texels, optimized_texels, fallback_texels,
+        near_pieces, threads, seconds."""
     def distance(self) -> F32:
         """(N + 1, N + 1) corner distances (texels, clamped to the band)."""
     def sample(self, points: F32, near: str = "exact") -> dict[str, npt.NDArray]:
         """What the shader computes at (M, 2) texel positions: dist (M,),
-        grad (M, 2), side (M,), profile (M,) int32, width (M,)."""
+        grad (M, 2) unit, side (M,) +-1, profile (M,) int32 (the nearest
+        curve's entry in the map's profile table in the exact near field,
+        -1 elsewhere: the layer's profile), width (M,) (texels; 0: the
+        layer's width)."""
     def save(self, path: StrPath) -> None: ...
 
 def load(path: StrPath) -> FeatureMaps: ...

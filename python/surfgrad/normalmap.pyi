@@ -61,7 +61,9 @@ def mips(slopes: F32, layout: str = "lean", progress: Progress = None) -> list[F
 def write_mips(path: StrPath, levels: Sequence[F32], layout: str = "lean",
                wrap: str = "repeat") -> None: ...
 def read_mips(path: StrPath) -> tuple[list[F32], list[str], str]:
-    """(levels, channel names, layout)."""
+    """(levels, channel names, layout): layout "lean", "toksvig", "naive", or
+    the file's surfgrad:layout attribute as stored (empty for a plain EXR,
+    then one level per MIP level, channels in file order)."""
 def shade(normals: F32, light: tuple[float, float, float] = (0.4, 0.5, 0.77)) -> F32: ...
 
 def rasterize_frames(mesh: object, uv_set: int, width: int, height: int,

@@ -4,6 +4,7 @@
 import re
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -76,3 +77,54 @@ def test_long_calls_release_the_gil():
     assert durations and durations[0] > 0.02, "the call must last long enough to tell"
     observed = (seen[-1] - seen[0]) if len(seen) > 1 else 0.0
     assert observed > 0.5 * durations[0], (observed, durations[0])
+
+
+def stub_names(stub):
+    """Public top-level functions and classes of a .pyi file, and each class's public members."""
+    import ast
+
+    tree = ast.parse(stub.read_text())
+    names, members = set(), {}
+    for node in tree.body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)) and not node.name.startswith("_"):
+            names.add(node.name)
+        if isinstance(node, ast.ClassDef):
+            own = set()
+            for item in node.body:
+                if isinstance(item, ast.FunctionDef) and not item.name.startswith("_"):
+                    own.add(item.name)
+                elif isinstance(item, ast.AnnAssign) and isinstance(item.target, ast.Name):
+                    own.add(item.target.id)
+            members[node.name] = own
+    return names, members
+
+
+@pytest.mark.parametrize(
+    "stub, module_name",
+    [
+        ("__init__.pyi", "surfgrad"),
+        ("normalmap.pyi", "surfgrad.normalmap"),
+        ("features.pyi", "surfgrad.features"),
+    ],
+)
+def test_type_stubs_describe_exactly_the_module(stub, module_name):
+    # The stubs are the documented API: every function and class they declare exists (with
+    # every member), and the module has nothing public they do not declare.
+    import importlib
+
+    module = importlib.import_module(module_name)
+    path = Path(surfgrad.__file__).with_name(stub)
+    names, members = stub_names(path)
+    public = {
+        n
+        for n in dir(module)
+        if not n.startswith("_")
+        and (callable(getattr(module, n)) or isinstance(getattr(module, n), type))
+        and not isinstance(getattr(module, n), type(surfgrad))
+    }
+    assert names - public == set(), f"declared in {stub} but missing from {module_name}"
+    assert public - names == set(), f"in {module_name} but not declared in {stub}"
+    for cls, own in members.items():
+        obj = getattr(module, cls)
+        missing = {m for m in own if not hasattr(obj, m)}
+        assert not missing, f"{module_name}.{cls} lacks {sorted(missing)} declared in {stub}"
