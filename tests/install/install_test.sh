@@ -179,15 +179,16 @@ grep -qF "$src/data/install-test/only-installed.png: does not exist" override.ou
 # MikkTSpace vertex count as the installed CLI's for spot.
 if [ -n "${SURFGRAD_PYTHON:-}" ]; then
     step "import surfgrad from the installed prefix"
-    pydir="$(cd "$prefix" && find . -path '*/dist-packages/surfgrad/__init__.py' | head -1)"
+    pydir="$(cd "$prefix" && find . -path '*/dist-packages/surfgrad/__init__.py' | sed 's|^\./||' | head -1)"
     [ -n "$pydir" ] || fail "no lib/python3*/dist-packages/surfgrad/__init__.py in the prefix"
     pydir="$prefix/$(dirname "$(dirname "$pydir")")"
     for f in __init__.pyi normalmap.pyi features.pyi py.typed; do
         [ -f "$pydir/surfgrad/$f" ] || fail "surfgrad/$f not installed"
     done
     py_v="$(PYTHONPATH="$pydir" "$SURFGRAD_PYTHON" -c '
-import sys, surfgrad
-assert surfgrad.__file__.startswith(sys.argv[2]), surfgrad.__file__
+import os, sys, surfgrad
+real = os.path.realpath
+assert real(surfgrad.__file__).startswith(real(sys.argv[2])), surfgrad.__file__
 mesh, added = surfgrad.generate_tangents(surfgrad.load_mesh(sys.argv[1]))
 print(mesh.vertex_count, mesh.triangle_count)' "$mesh" "$pydir")" || fail "import surfgrad (installed) failed"
     [ "$py_v" = "$cli_v $cli_t" ] ||

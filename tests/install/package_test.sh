@@ -219,8 +219,9 @@ if [ -n "${SURFGRAD_PYTHON:-}" ]; then
     [ -z "$both" ] || fail "files in python3-surfgrad and another package: $both"
     dpkg-deb -x "$py" "$root"
     PYTHONPATH="$root/usr/lib/python3/dist-packages" "$SURFGRAD_PYTHON" -c '
-import sys, surfgrad
-assert surfgrad.__file__.startswith(sys.argv[1]), surfgrad.__file__
+import os, sys, surfgrad
+real = os.path.realpath
+assert real(surfgrad.__file__).startswith(real(sys.argv[1])), surfgrad.__file__
 cage = surfgrad.load_cage(sys.argv[2])
 print(cage.vertex_count, cage.face_count)' "$root/usr/lib/python3/dist-packages" \
         "$root/usr/share/surfgrad/data/meshes/spot/spot_control_mesh.obj" >py.out 2>&1 ||
