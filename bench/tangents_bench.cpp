@@ -52,6 +52,7 @@
 #include <tbb/info.h>
 
 #include "surfgrad/mesh_io.h"
+#include "surfgrad/mikktspace_reference.h"
 #include "surfgrad/tangents.h"
 
 namespace {

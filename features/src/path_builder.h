@@ -38,7 +38,6 @@ public:
     bool hasSubpath() const { return open_; }
     glm::dvec2 current() const { return cur_; }
     glm::dvec2 subpathStart() const { return start_; }
-    std::size_t primitiveCount() const { return prims_.size(); }
 
     // Converts everything into a network (approximating cubics and arcs
     // within opt's tolerance relative to the control-point bounds of all

@@ -16,6 +16,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "surfgrad/mikktspace_reference.h"
 #include "surfgrad/tangents.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -12,6 +12,7 @@
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/morph.h"
 #include "surfgrad/subdivision.h"
+#include "surfgrad/mikktspace_reference.h"
 #include "surfgrad/tangents.h"
 
 namespace {

@@ -17,6 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "hardcase.h"
+#include "surfgrad/mikktspace_reference.h"
 #include "surfgrad/tangents.h"
 #include "tangents_test_util.h"
 

@@ -13,6 +13,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "surfgrad/mikktspace_reference.h"
 #include "surfgrad/tangents.h"
 #include "tangents_test_util.h"
 

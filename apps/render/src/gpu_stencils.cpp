@@ -46,9 +46,7 @@ GpuStencils& GpuStencils::operator=(GpuStencils&& o) noexcept {
         std::fill(o.buf_, o.buf_ + 3, 0u);
         points_ = o.points_;
         passes_ = std::move(o.passes_);
-        pointCount_ = o.pointCount_;
         cagePointCount_ = o.cagePointCount_;
-        bytes_ = o.bytes_;
     }
     return *this;
 }
@@ -61,7 +59,6 @@ uint64_t GpuStencils::upload(const sg::mesh::AdaptivePatches& ap, GLuint pointsB
                "GpuStencils::upload: one stencil row per point past the cage, passes cover them");
     if (!buf_[0]) glCreateBuffers(3, buf_);
     points_ = pointsBuffer;
-    pointCount_ = uint32_t(ap.points.size());
     cagePointCount_ = ap.cagePointCount;
     passes_ = ap.stencilPasses;
     const GLsizeiptr offBytes = GLsizeiptr(ap.stencilOffsets.size() * 4);
@@ -76,8 +73,7 @@ uint64_t GpuStencils::upload(const sg::mesh::AdaptivePatches& ap, GLuint pointsB
                       GL_STATIC_DRAW);
     glNamedBufferData(points_, GLsizeiptr(std::max<size_t>(ap.points.size(), 1) * 12), nullptr,
                       GL_DYNAMIC_COPY);
-    bytes_ = uint64_t(offBytes + idxBytes + wBytes);
-    return bytes_;
+    return uint64_t(offBytes + idxBytes + wBytes);
 }
 
 uint64_t GpuStencils::apply(std::span<const glm::vec3> cage, const sg::gl::Program& program) {

@@ -50,17 +50,13 @@ public:
 
     bool uploaded() const { return buf_[0] != 0; }
     GLuint pointsBuffer() const { return points_; }
-    uint32_t pointCount() const { return pointCount_; }
     uint32_t cagePointCount() const { return cagePointCount_; }
-    // Bytes of the buffers this object owns (the stencil rows).
-    uint64_t bufferBytes() const { return bytes_; }
 
 private:
     GLuint buf_[3] = {}; // offsets (binding 5), indices (6), weights (7)
     GLuint points_ = 0;  // not owned
-    uint32_t pointCount_ = 0, cagePointCount_ = 0;
+    uint32_t cagePointCount_ = 0;
     std::vector<uint32_t> passes_; // AdaptivePatches::stencilPasses
-    uint64_t bytes_ = 0;
 };
 
 // Reads `count` points (xyz floats) back from a points buffer (tests, the

@@ -309,10 +309,12 @@ std::vector<glm::vec4> packLayerRecords(const MaterialPlan& plan, const View& vi
 std::vector<glm::vec4> packLightRecords(const Scene& scene, const View& view) {
     std::vector<glm::vec4> r;
     for (const Light& l : scene.lights) {
+        // Record w: the light type shading.glsl tests (SG_LIGHT_*).
         if (l.point) {
-            r.emplace_back(glm::vec3(l.position - view.cameraPos), 1.0f); // binary64
+            r.emplace_back(glm::vec3(l.position - view.cameraPos),
+                           float(SG_LIGHT_POINT)); // binary64
         } else {
-            r.emplace_back(-l.direction, 0.0f);
+            r.emplace_back(-l.direction, float(SG_LIGHT_DIRECTIONAL));
         }
         r.emplace_back(l.color * l.intensity, 0.0f);
     }

@@ -77,52 +77,29 @@
 // The shared evaluator, compiled as C++. Samplers over CPU arrays first, so
 // fetch.glsl's texelFetch/textureSize calls resolve to them.
 namespace sg::glsl {
-// Both textures of the GPU layout hold 4 x 32-bit words per texel.
-struct SgFeatCornerSampler {
+// A texture of 4 x 32-bit words per texel over a CPU array: what the GLSL
+// build reads as a usampler2D with texelFetch. The layout's four textures
+// (corner pairs and edges; the near field's lists and pieces) are distinct
+// types of this one template, so each evaluator parameter names its
+// texture, with one texelFetch and one textureSize for all.
+template <int Texture>
+struct SgFeatU32Sampler {
     const uint32_t* rgba = nullptr; // (width x height) RGBA texels, row-major, row 0 first
     int width = 0;
     int height = 0;
 };
-struct SgFeatEdgeSampler {
-    const uint32_t* rgba = nullptr;
-    int width = 0;
-    int height = 0;
-};
-inline uvec4 texelFetch(const SgFeatCornerSampler& s, ivec2 p, int /*lod*/) {
+using SgFeatCornerSampler = SgFeatU32Sampler<0>;
+using SgFeatEdgeSampler = SgFeatU32Sampler<1>;
+using SgFeatNearSampler = SgFeatU32Sampler<2>;  // exact near field (near.glsl)
+using SgFeatPieceSampler = SgFeatU32Sampler<3>; // exact near field (near.glsl)
+template <int Texture>
+inline uvec4 texelFetch(const SgFeatU32Sampler<Texture>& s, ivec2 p, int /*lod*/) {
     SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the map");
     const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
     return uvec4(t[0], t[1], t[2], t[3]);
 }
-inline uvec4 texelFetch(const SgFeatEdgeSampler& s, ivec2 p, int /*lod*/) {
-    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the map");
-    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
-    return uvec4(t[0], t[1], t[2], t[3]);
-}
-inline ivec2 textureSize(const SgFeatEdgeSampler& s, int /*lod*/) {
-    return ivec2(s.width, s.height);
-}
-// The two textures of the exact near field (near.glsl).
-struct SgFeatNearSampler {
-    const uint32_t* rgba = nullptr;
-    int width = 0;
-    int height = 0;
-};
-struct SgFeatPieceSampler {
-    const uint32_t* rgba = nullptr;
-    int width = 0;
-    int height = 0;
-};
-inline uvec4 texelFetch(const SgFeatNearSampler& s, ivec2 p, int /*lod*/) {
-    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the texture");
-    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
-    return uvec4(t[0], t[1], t[2], t[3]);
-}
-inline uvec4 texelFetch(const SgFeatPieceSampler& s, ivec2 p, int /*lod*/) {
-    SG_EXPECTS(p.x >= 0 && p.y >= 0 && p.x < s.width && p.y < s.height, "texel inside the texture");
-    const uint32_t* t = s.rgba + 4 * (size_t(p.y) * size_t(s.width) + size_t(p.x));
-    return uvec4(t[0], t[1], t[2], t[3]);
-}
-inline ivec2 textureSize(const SgFeatNearSampler& s, int /*lod*/) {
+template <int Texture>
+inline ivec2 textureSize(const SgFeatU32Sampler<Texture>& s, int /*lod*/) {
     return ivec2(s.width, s.height);
 }
 // The C++ build always has the exact near field (the GLSL build only when a

@@ -126,8 +126,9 @@ struct MikkTSpaceStepTime {
 // speed at 2k triangles, 1.04x at 5k, 1.31x at 10k, 1.5-1.7x from 20k).
 inline constexpr size_t kMikkTSpaceParallelCutover = 10000;
 
-// The fast implementation: output identical (bit for bit) to
-// mikktspaceReferenceFrames(), for every thread count. Keeps its scratch
+// The fast implementation: output identical (bit for bit) to the oracle's
+// (mikktspaceReferenceFrames, surfgrad/mikktspace_reference.h), for every
+// thread count. Keeps its scratch
 // buffers between calls, so reuse one generator for many meshes or frames.
 // Not thread-safe (one generator per calling thread); generate() itself
 // runs its long steps on several cores (setThreads).
@@ -174,11 +175,10 @@ private:
     size_t parallelCutover_ = kMikkTSpaceParallelCutover;
 };
 
-// The oracle: a plain, step-by-step implementation of the published
-// algorithm (see docs/tangents.md for the steps). Slow (std::map welding,
-// per-group allocations) but simple; used by the tests and the benchmark to
-// check the fast path. Same preconditions.
-std::vector<MikkTSpaceFrame> mikktspaceReferenceFrames(const MikkTSpaceInput& input);
+// The oracle the fast generator is tested against, a plain step-by-step
+// implementation of the published algorithm, is test-only: target
+// surfgrad_mesh_oracle, header surfgrad/mikktspace_reference.h (mesh/oracle/;
+// not installed).
 
 // The reference's rounding of a corner angle, (float)acos((double)cosine),
 // for cosine in [-1, 1] (clamp first), bit for bit, mostly without calling

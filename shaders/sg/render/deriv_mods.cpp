@@ -24,7 +24,7 @@ glm::vec4 packAB(const Modifier& m) {
 // SCALE (alpha): h' = alpha h, d' = alpha d.
 const ModifierKind kScale{
     .name = "scale",
-    .id = 1,
+    .id = SG_MOD_SCALE,
     .sigCode = 's',
     .fields = {"alpha"},
     .doc = "h, d times alpha",
@@ -39,7 +39,7 @@ const ModifierKind kScale{
 // CURVE (P, H): f'(h) = 1 / (1 + P (h - H)^2).
 const ModifierKind kCurve{
     .name = "curve",
-    .id = 2,
+    .id = SG_MOD_CURVE,
     .sigCode = 'c',
     .fields = {"boost", "center"},
     .doc = "slope curve f'(h) = 1 / (1 + P (h - H)^2)",
@@ -58,7 +58,7 @@ const ModifierKind kCurve{
 // carried through the lookup warp's Jacobian (the identity without DEFORM).
 const ModifierKind kModulate{
     .name = "modulate",
-    .id = 3,
+    .id = SG_MOD_MODULATE,
     .sigCode = 'm',
     .fields = {"mask", "channel", "gain"},
     .doc = "product with a mask (product rule)",
@@ -86,7 +86,7 @@ const ModifierKind kModulate{
 // DEFORM (A, B): the lookup warps to (s, t + A sin(B s)); d' = J^T d.
 const ModifierKind kDeform{
     .name = "deform",
-    .id = 4,
+    .id = SG_MOD_DEFORM,
     .sigCode = 'd',
     .fields = {"amplitude", "frequency"},
     .doc = "warped lookup (s, t + A sin(B s)), d' = J^T d",

@@ -23,8 +23,8 @@
 #include "sg/render/common.glsl"
 #include "sg/deriv_edit.glsl"
 
-#define SG_MOD_MAX 4
-#define SG_MOD_NONE 0
+// Record ids (x of each record); the C++ registry entries
+// (sg/render/deriv_mods.cpp) use these names, not copies of the numbers.
 #define SG_MOD_SCALE 1
 #define SG_MOD_CURVE 2
 #define SG_MOD_MODULATE 3

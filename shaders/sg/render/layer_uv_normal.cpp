@@ -8,6 +8,13 @@
 
 namespace sg::render {
 
+// NormalEncoding (surfgrad/render/scene.h) is the record value the shader
+// compares with SG_ENC_* (sg/render/common.glsl): one list, checked here.
+static_assert(int(NormalEncoding::Rgb) == SG_ENC_RGB && int(NormalEncoding::Rg) == SG_ENC_RG &&
+                  int(NormalEncoding::Ag) == SG_ENC_AG &&
+                  int(NormalEncoding::Float) == SG_ENC_FLOAT,
+              "NormalEncoding and SG_ENC_* agree");
+
 namespace detail {
 
 TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,

@@ -47,7 +47,9 @@ struct LayerKind;
 // A derivative-space modifier kind (shaders/sg/render/deriv_mods.cpp).
 struct ModifierKind;
 enum class Space { World, Object };
-enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 }; // SG_ENC_*
+// The values are SG_ENC_* of sg/render/common.glsl (a static_assert in
+// sg/render/layer_uv_normal.cpp keeps them equal).
+enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 };
 // Moment textures of a normal map (layer_uv_normal_aa.glsl): LEAN's
 // (E[d], E[d.x^2], E[d.y^2]) and (E[d.x d.y]), Toksvig's E[n].
 enum class TexMoments { None = 0, LeanA = 1, LeanB = 2, Toksvig = 3 };

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "mikktspace_common.h"
+#include "surfgrad/mikktspace_reference.h"
 
 namespace sg::mesh {
 
