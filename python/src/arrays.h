@@ -21,7 +21,10 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <functional>
 #include <memory>
+#include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -97,6 +100,52 @@ std::vector<V> copyRows(const py::array_t<float>& a) {
     auto rows = rowsOf<V>(a);
     return {rows.begin(), rows.end()};
 }
+
+// A copy of a C++ array as a new numpy array: glm rows as (N, width),
+// scalars as (N,). For attributes read as copies (tags, frames, weights).
+template <class T>
+py::array copyToArray(const std::vector<T>& values) {
+    auto copy = values;
+    if constexpr (std::is_arithmetic_v<T>) {
+        const auto n = py::ssize_t(copy.size());
+        return moveToArray(std::move(copy), {n});
+    } else {
+        return moveToArray(std::move(copy));
+    }
+}
+
+// An optional Python callable handed to C++ as a progress callback that
+// the C++ side calls with the GIL released (from the calling thread or a
+// worker thread, one call at a time). The call takes the GIL; the first
+// Python exception it raises stops further calls and is raised again by
+// rethrow() once the C++ work is back. Keep the object alive while the
+// callback may be called.
+class PyCallback {
+public:
+    explicit PyCallback(py::object callable) : callable_(std::move(callable)) {}
+    // A std::function calling the callable with `convert(args...)`'s
+    // arguments (a tuple), or an empty function when the callable is None.
+    template <class... Args, class Convert>
+    std::function<void(Args...)> bind(Convert convert) {
+        if (callable_.is_none()) return {};
+        return [this, convert](Args... args) {
+            py::gil_scoped_acquire acquire;
+            if (error_) return;
+            try {
+                callable_(*convert(args...));
+            } catch (py::error_already_set& e) {
+                error_ = std::move(e);
+            }
+        };
+    }
+    void rethrow() {
+        if (error_) throw std::move(*error_);
+    }
+
+private:
+    py::object callable_;
+    std::optional<py::error_already_set> error_;
+};
 
 // Checks a thread count (0..kMaxThreads) and throws ValueError naming
 // `arg` otherwise.

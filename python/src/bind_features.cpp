@@ -166,18 +166,9 @@ bakeMaps(const std::optional<std::filesystem::path>& source, const std::optional
     opt.smoothIterations = smooth;
     opt.nearField = nearField;
     opt.threads = requireThreads(threads);
-    std::optional<py::error_already_set> callbackError;
-    if (!progress.is_none()) {
-        opt.progress = [&](const char* phase, double fraction) {
-            py::gil_scoped_acquire acquire;
-            if (callbackError) return;
-            try {
-                progress(phase, fraction);
-            } catch (py::error_already_set& e) {
-                callbackError = std::move(e);
-            }
-        };
-    }
+    PyCallback callback(progress);
+    opt.progress = callback.bind<const char*, double>(
+        [](const char* phase, double fraction) { return py::make_tuple(phase, fraction); });
     fm::FeatureMaps maps;
     fm::BakeStats stats;
     const fm::CurveNetwork net = networkFrom(source, svg, json, font, text);
@@ -185,7 +176,7 @@ bakeMaps(const std::optional<std::filesystem::path>& source, const std::optional
         py::gil_scoped_release release;
         maps = fm::bake(net, opt, &stats);
     }
-    if (callbackError) throw std::move(*callbackError);
+    callback.rethrow();
     return PyFeatureMaps(std::move(maps), stats);
 }
 

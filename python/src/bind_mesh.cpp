@@ -225,19 +225,14 @@ void bindRenderMesh(py::module_& m) {
                                       "A blendshape of a RenderMesh: per-vertex deltas, object "
                                       "space (arrays are copies).")
         .def_readonly("name", &sg::mesh::MorphTarget::name)
-        .def_property_readonly("position_deltas",
-                               [](const sg::mesh::MorphTarget& t) {
-                                   auto v = t.positionDeltas;
-                                   return moveToArray(std::move(v));
-                               })
-        .def_property_readonly("normal_deltas",
-                               [](const sg::mesh::MorphTarget& t) {
-                                   auto v = t.normalDeltas;
-                                   return moveToArray(std::move(v));
-                               })
+        .def_property_readonly(
+            "position_deltas",
+            [](const sg::mesh::MorphTarget& t) { return copyToArray(t.positionDeltas); })
+        .def_property_readonly(
+            "normal_deltas",
+            [](const sg::mesh::MorphTarget& t) { return copyToArray(t.normalDeltas); })
         .def_property_readonly("tangent_deltas", [](const sg::mesh::MorphTarget& t) {
-            auto v = t.tangentDeltas;
-            return moveToArray(std::move(v));
+            return copyToArray(t.tangentDeltas);
         });
 
     py::class_<RenderMesh> c(m, "RenderMesh", R"(Indexed triangle mesh with split vertices
@@ -325,11 +320,7 @@ shape and never changes the vertex count.)");
             "Replaces UV set `index` with (V, 2) float32 `uvs` (index == len(uv_sets) appends).")
         .def_property_readonly("morph_targets", [](const RenderMesh& r) { return r.morphTargets; })
         .def_property_readonly("morph_weights",
-                               [](const RenderMesh& r) {
-                                   auto w = r.morphWeights;
-                                   const auto n = py::ssize_t(w.size());
-                                   return moveToArray(std::move(w), {n});
-                               })
+                               [](const RenderMesh& r) { return copyToArray(r.morphWeights); })
         .def_property_readonly("vertex_count", &RenderMesh::vertexCount)
         .def_property_readonly("triangle_count", &RenderMesh::triangleCount)
         .def("copy", [](const RenderMesh& r) { return RenderMesh(r); })
@@ -370,28 +361,17 @@ like a loader (InputError naming the face, vertex or tag).)");
                 return readOnly(viewOf(r.faceVertices.data(), r.faceVertices.size(), 1, self));
             })
         .def_property_readonly("normals",
-                               [](const PolygonMesh& r) {
-                                   auto v = r.normals;
-                                   return moveToArray(std::move(v));
-                               })
+                               [](const PolygonMesh& r) { return copyToArray(r.normals); })
         .def_property_readonly("normal_indices",
-                               [](const PolygonMesh& r) {
-                                   auto v = r.normalIndices;
-                                   const auto n = py::ssize_t(v.size());
-                                   return moveToArray(std::move(v), {n});
-                               })
+                               [](const PolygonMesh& r) { return copyToArray(r.normalIndices); })
         .def_property_readonly(
             "scheme", [](const PolygonMesh& r) { return sg::mesh::toString(r.options.scheme); })
         .def_property_readonly("uv_sets",
                                [](const PolygonMesh& r) {
                                    py::list sets;
                                    for (const auto& ch : r.uvSets) {
-                                       auto values = ch.values;
-                                       auto idx = ch.indices;
-                                       const auto n = py::ssize_t(idx.size());
-                                       sets.append(
-                                           py::make_tuple(ch.name, moveToArray(std::move(values)),
-                                                          moveToArray(std::move(idx), {n})));
+                                       sets.append(py::make_tuple(ch.name, copyToArray(ch.values),
+                                                                  copyToArray(ch.indices)));
                                    }
                                    return sets;
                                })
@@ -414,18 +394,13 @@ like a loader (InputError naming the face, vertex or tag).)");
                                [](const PolygonMesh& r) {
                                    py::list out;
                                    for (const auto& t : r.morphTargets) {
-                                       auto d = t.positionDeltas;
                                        out.append(
-                                           py::make_tuple(t.name, moveToArray(std::move(d))));
+                                           py::make_tuple(t.name, copyToArray(t.positionDeltas)));
                                    }
                                    return out;
                                })
         .def_property_readonly("morph_weights",
-                               [](const PolygonMesh& r) {
-                                   auto w = r.morphWeights;
-                                   const auto n = py::ssize_t(w.size());
-                                   return moveToArray(std::move(w), {n});
-                               })
+                               [](const PolygonMesh& r) { return copyToArray(r.morphWeights); })
         .def_property_readonly("vertex_count", &PolygonMesh::vertexCount)
         .def_property_readonly("face_count", &PolygonMesh::faceCount)
         .def_property_readonly("corner_count", &PolygonMesh::cornerCount)

@@ -141,28 +141,6 @@ nm::MapFormat parseFormat(const std::string& encoding, const std::string& green,
     return f;
 }
 
-// A Progress that calls a Python callable (with the GIL) from the calling
-// thread; a Python exception it raises is kept and raised afterwards.
-struct PyProgress {
-    py::object callback;
-    std::optional<py::error_already_set> error;
-    nm::Progress get() {
-        if (callback.is_none()) return {};
-        return [this](double fraction) {
-            py::gil_scoped_acquire acquire;
-            if (error) return;
-            try {
-                callback(fraction);
-            } catch (py::error_already_set& e) {
-                error = std::move(e);
-            }
-        };
-    }
-    void rethrow() {
-        if (error) throw std::move(*error);
-    }
-};
-
 nm::ScalarField heightOr(const py::object& height, const nm::DerivField& d, nm::Wrap wrap,
                          const char* arg) {
     if (height.is_none()) {
@@ -320,11 +298,12 @@ void bindFeeding(py::module_& m) {
         [](py::handle slopes, const std::string& wrap, py::object progress) {
             auto d = gridArg<glm::vec2>(slopes, "slopes");
             const auto w = parseWrap(wrap);
-            PyProgress p{std::move(progress), {}};
+            PyCallback p(std::move(progress));
+            const nm::Progress report = p.bind<double>([](double f) { return py::make_tuple(f); });
             nm::ScalarField h;
             {
                 py::gil_scoped_release release;
-                h = nm::toHeight(d, w, p.get());
+                h = nm::toHeight(d, w, report);
             }
             p.rethrow();
             return gridToArray(std::move(h));
@@ -430,17 +409,18 @@ void bindMips(py::module_& m) {
         [](py::handle slopes, const std::string& layout, py::object progress) {
             auto d = gridArg<glm::vec2>(slopes, "slopes");
             const std::string name = layoutName(layout);
-            PyProgress p{std::move(progress), {}};
+            PyCallback p(std::move(progress));
+            const nm::Progress report = p.bind<double>([](double f) { return py::make_tuple(f); });
             std::vector<nm::Image> levels;
             {
                 py::gil_scoped_release release;
                 if (name == nm::kLeanLayout) {
-                    levels = nm::mipChain(nm::leanLevel0(d), p.get());
+                    levels = nm::mipChain(nm::leanLevel0(d), report);
                 } else if (name == nm::kToksvigLayout) {
-                    levels = nm::mipChain(nm::toksvigLevel0(nm::normalsFromSlopes(d)), p.get());
+                    levels = nm::mipChain(nm::toksvigLevel0(nm::normalsFromSlopes(d)), report);
                     nm::finishToksvig(levels);
                 } else {
-                    levels = nm::mipChain(nm::naiveMipLevel0(nm::normalsFromSlopes(d)), p.get());
+                    levels = nm::mipChain(nm::naiveMipLevel0(nm::normalsFromSlopes(d)), report);
                     nm::finishNaiveMips(levels);
                 }
             }

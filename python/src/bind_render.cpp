@@ -74,21 +74,10 @@ py::array renderScene(py::handle sceneArg, int width, int height, const std::str
     }
     if (!std::isfinite(seconds)) throw py::value_error("seconds: not finite");
     Scene scene = sceneFrom(sceneArg);
-    // A Python exception raised by the progress callback stops reporting
-    // and is raised again once the render is back on this thread.
-    std::optional<py::error_already_set> callbackError;
-    std::function<void(int, int)> report;
-    if (!progress.is_none()) {
-        report = [&](int done, int total) {
-            py::gil_scoped_acquire acquire;
-            if (callbackError) return;
-            try {
-                progress(double(done) / double(std::max(total, 1)));
-            } catch (py::error_already_set& e) {
-                callbackError = std::move(e);
-            }
-        };
-    }
+    PyCallback callback(progress);
+    const auto report = callback.bind<int, int>([](int done, int total) {
+        return py::make_tuple(double(done) / double(std::max(total, 1)));
+    });
     Image image;
     {
         py::gil_scoped_release release;
@@ -106,7 +95,7 @@ py::array renderScene(py::handle sceneArg, int width, int height, const std::str
             image = renderCpu(scene, assets, view, options);
         }
     }
-    if (callbackError) throw std::move(*callbackError);
+    callback.rethrow();
     std::vector<glm::vec4> pixels = std::move(image.pixels);
     return moveToArray(std::move(pixels), {image.height, image.width, 4});
 }

@@ -27,10 +27,7 @@ namespace {
 
 py::list copiesOf(const std::vector<std::vector<glm::vec2>>& sets) {
     py::list out;
-    for (const auto& s : sets) {
-        auto c = s;
-        out.append(moveToArray(std::move(c)));
-    }
+    for (const auto& s : sets) out.append(copyToArray(s));
     return out;
 }
 
@@ -139,28 +136,14 @@ void bindLimitFrame(py::module_& m) {
     py::class_<LimitFrame>(m, "LimitFrame", R"(Limit-surface derivatives aligned with a render
 mesh's vertices, each w.r.t. the vertex's ptex (u, v): dPdu in object units
 per unit parameter, dUVdu in UV units (t up). Arrays are copies.)")
-        .def_property_readonly("dpdu",
-                               [](const LimitFrame& f) {
-                                   auto v = f.dPdu;
-                                   return moveToArray(std::move(v));
-                               })
-        .def_property_readonly("dpdv",
-                               [](const LimitFrame& f) {
-                                   auto v = f.dPdv;
-                                   return moveToArray(std::move(v));
-                               })
+        .def_property_readonly("dpdu", [](const LimitFrame& f) { return copyToArray(f.dPdu); })
+        .def_property_readonly("dpdv", [](const LimitFrame& f) { return copyToArray(f.dPdv); })
         .def_property_readonly("duvdu", [](const LimitFrame& f) { return copiesOf(f.dUVdu); })
         .def_property_readonly("duvdv", [](const LimitFrame& f) { return copiesOf(f.dUVdv); })
         .def_property_readonly("ptex_face",
-                               [](const LimitFrame& f) {
-                                   auto v = f.ptexFace;
-                                   const auto n = py::ssize_t(v.size());
-                                   return moveToArray(std::move(v), {n});
-                               })
-        .def_property_readonly("ptex_uv", [](const LimitFrame& f) {
-            auto v = f.ptexUV;
-            return moveToArray(std::move(v));
-        });
+                               [](const LimitFrame& f) { return copyToArray(f.ptexFace); })
+        .def_property_readonly("ptex_uv",
+                               [](const LimitFrame& f) { return copyToArray(f.ptexUV); });
 }
 
 void bindSubdivider(py::module_& m) {
@@ -191,12 +174,9 @@ machine) raises InputError before allocating.)")
                                    if (s.get().limitFrame().empty()) return std::nullopt;
                                    return s.get().limitFrame();
                                })
-        .def_property_readonly("render_to_refined_vertex",
-                               [](const PySubdivider& s) {
-                                   auto v = s.get().renderToRefinedVertex();
-                                   const auto n = py::ssize_t(v.size());
-                                   return moveToArray(std::move(v), {n});
-                               })
+        .def_property_readonly(
+            "render_to_refined_vertex",
+            [](const PySubdivider& s) { return copyToArray(s.get().renderToRefinedVertex()); })
         .def("update", &PySubdivider::update, py::arg("cage_positions"), py::kw_only(),
              py::arg("out") = py::none(), py::arg("normals") = true, py::arg("frame") = false,
              "Positions and normals of render_mesh for new (V, 3) cage positions through the "

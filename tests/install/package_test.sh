@@ -56,8 +56,11 @@ for deb in "$run" "$dev"; do
     expect_field "$deb" Architecture "$arch"
     field "$deb" Maintainer | grep -Eq '^[^<>]+ <[^<>@ ]+@[^<>@ ]+>$' ||
         fail "$(basename "$deb"): Maintainer '$(field "$deb" Maintainer)' is not 'name <email>'"
-    [ -n "$(field "$deb" Description)" ] || fail "$(basename "$deb"): no Description"
-    field "$deb" Description | grep -q "License: Apache-2.0" ||
+    # Into a variable first: `grep -q` closing the pipe early can give
+    # dpkg-deb a SIGPIPE, which pipefail would report as a failure.
+    description="$(field "$deb" Description)"
+    [ -n "$description" ] || fail "$(basename "$deb"): no Description"
+    grep -q "License: Apache-2.0" <<<"$description" ||
         fail "$(basename "$deb"): the Description does not give the SPDX license Apache-2.0"
 done
 expect_field "$run" Section graphics
