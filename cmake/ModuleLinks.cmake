@@ -3,6 +3,10 @@
 # links, PUBLIC and PRIVATE, generator expressions evaluated). The ctest
 # module_links (cmake/CheckModuleLinks.cmake) reads it to enforce the
 # module dependency rules and to compare the graph with docs/architecture.md.
+# OPTIONAL names modules a configuration may leave out (the Python module in
+# a sanitizer build, the viewer without GLFW): each one that is not a target
+# here gets the line "<module>|#not-configured", so the check can tell a
+# module this build skipped from a name the page invented.
 function(_surfgrad_collect_targets dir out)
     get_property(_targets DIRECTORY "${dir}" PROPERTY BUILDSYSTEM_TARGETS)
     get_property(_subdirs DIRECTORY "${dir}" PROPERTY SUBDIRECTORIES)
@@ -14,9 +18,14 @@ function(_surfgrad_collect_targets dir out)
 endfunction()
 
 function(surfgrad_write_module_links)
-    cmake_parse_arguments(M "" "OUTPUT" "" ${ARGN})
+    cmake_parse_arguments(M "" "OUTPUT" "OPTIONAL" ${ARGN})
     _surfgrad_collect_targets("${PROJECT_SOURCE_DIR}" _all)
     set(_content "")
+    foreach(_t IN LISTS M_OPTIONAL)
+        if(NOT _t IN_LIST _all)
+            string(APPEND _content "${_t}|#not-configured\n")
+        endif()
+    endforeach()
     foreach(_t IN LISTS _all)
         get_target_property(_type ${_t} TYPE)
         if(_type MATCHES "^(STATIC_LIBRARY|SHARED_LIBRARY|MODULE_LIBRARY|OBJECT_LIBRARY|EXECUTABLE)$")
