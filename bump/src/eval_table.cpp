@@ -166,6 +166,14 @@ std::string evalGpuBody() {
     return "#include \"sg/eval/eval.comp.glsl\"\n";
 }
 
+std::string evalGpuVertexBody() {
+    return "#include \"sg/eval/eval.vert.glsl\"\n";
+}
+
+std::vector<std::string> evalGpuFeedback() {
+    return {"vOut0", "vOut1", "vOut2"};
+}
+
 std::vector<std::string> evalGpuDefines(const Entry& e) {
     return {"SG_EVAL_KERNEL " + std::to_string(e.kernel)};
 }

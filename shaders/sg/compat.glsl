@@ -1,8 +1,11 @@
 // surfgrad shared-shader common subset: GLSL side.
 //
 // Every file under shaders/sg/ is compiled twice from this one source: by the
-// GL driver as GLSL 4.50, and by the C++ compiler through GLM (the C++ side of
+// GL driver as GLSL, and by the C++ compiler through GLM (the C++ side of
 // these macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP).
+// The GLSL side compiles as GLSL 4.50, GLSL 3.30 core and GLSL ES 3.00
+// (WebGL2, GLES 3), and as Vulkan GLSL to SPIR-V (docs/engines.md): what
+// only 4.x has is written here once with a 3.30/ES path (SG_GLSL_LEGACY).
 // The subset (checked by the build in both languages):
 //   - float literals carry an f suffix (1.0f): GLM does not mix float/double;
 //   - no swizzles (write vec2(v.x, v.y)), no array constructors, no globals:
@@ -16,6 +19,19 @@
 #define SG_COMPAT_GLSL
 
 #ifndef SG_CPP
+// GLSL before 4.00 and GLSL ES have no frexp/ldexp, imulExtended, fma or
+// precise, GLSL 3.30 no unpackHalf2x16; ES 3.00 also needs default
+// precisions (highp: the shared math is binary32, and the feature maps'
+// integer textures hold 32-bit words).
+#if defined(GL_ES) || __VERSION__ < 400
+#define SG_GLSL_LEGACY 1
+#endif
+#ifdef GL_ES
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+precision highp usampler2D;
+#endif
 #define SG_OUT(T) out T
 #define SG_INOUT(T) inout T
 // Storage class of every shared function: nothing in GLSL, `inline` in C++
@@ -61,6 +77,19 @@ SG_FN vec2 sgSafeNormalize2(vec2 v, vec2 fallback) {
     return (m >= SG_FLT_MIN && m <= SG_FLT_MAX) ? s * inversesqrt(dot(s, s)) : fallback;
 }
 
+// v with every component of magnitude below SG_FLT_MIN (a denormal) set to
+// zero: what a GPU that flushes denormals reads. The shared functions apply
+// it where such a component could decide a branch or a sign, so a GPU that
+// flushes, a GPU that does not (llvmpipe's compute stage keeps denormals,
+// its vertex stage flushes them) and the CPU build take the same path.
+SG_FN vec3 sgFlushDenorm3(vec3 v) {
+    return vec3(abs(v.x) >= SG_FLT_MIN ? v.x : 0.0f, abs(v.y) >= SG_FLT_MIN ? v.y : 0.0f,
+                abs(v.z) >= SG_FLT_MIN ? v.z : 0.0f);
+}
+SG_FN vec2 sgFlushDenorm2(vec2 v) {
+    return vec2(abs(v.x) >= SG_FLT_MIN ? v.x : 0.0f, abs(v.y) >= SG_FLT_MIN ? v.y : 0.0f);
+}
+
 // Largest absolute component.
 SG_FN float sgMaxAbs2(vec2 v) { return max(abs(v.x), abs(v.y)); }
 SG_FN float sgMaxAbs3(vec3 v) { return max(max(abs(v.x), abs(v.y)), abs(v.z)); }
@@ -83,6 +112,77 @@ SG_FN vec3 sgScaleToUnitMax3(vec3 v) {
 SG_FN vec3 sgDivScale3(vec3 v, float k) { return sgMaxAbs3(v) >= SG_FLT_MIN ? v / k : vec3(0.0f); }
 SG_FN vec2 sgDivScale2(vec2 v, float k) { return sgMaxAbs2(v) >= SG_FLT_MIN ? v / k : vec2(0.0f); }
 
+// frexp and ldexp of normal binary32 values, written with the bit pattern
+// (floatBitsToInt exists in GLSL 3.30 and ES 3.00) where the language lacks
+// them. Same results as the built-ins on the domain the shared code uses:
+//   sgFrexp: x normal (SG_FLT_MIN <= |x| <= SG_FLT_MAX): x = m 2^e with
+//            0.5 <= |m| < 1; exact (only the exponent field changes);
+//   sgLdexp: m 2^e for -252 <= e <= 252 and m 2^(e/2) a normal number
+//            or m = 0 (the callers: m in [2^-5, 2^24) or 0, e in [-120, 64]). The power of
+//            two is applied as two exact factors, 2^(e/2) first, so only
+//            the second product rounds: one rounding, like ldexp (a result
+//            in the denormal range is then flushed by a GPU as its ldexp's
+//            is).
+//   sgIMulExtended: the 64-bit product a * b of two signed 32-bit integers
+//            as its high and low words (imulExtended); exact. The legacy
+//            path multiplies 16-bit halves as unsigned integers and then
+//            corrects the high word for the signs (two's complement).
+//   sgUnpackHalf2x16: the two binary16 halves of a 32-bit word as floats
+//            (low half first), unpackHalf2x16; exact (every binary16 value,
+//            denormals, infinities and NaNs included, is a binary32 value).
+#if defined(SG_CPP) || !defined(SG_GLSL_LEGACY) || defined(GL_ES)
+SG_FN vec2 sgUnpackHalf2x16(uint w) { return unpackHalf2x16(w); }
+#else
+SG_FN float sgHalfToFloat(uint h) {
+    uint e = (h >> 10u) & 0x1fu;
+    uint m = h & 0x3ffu;
+    // Denormal halves: m 2^-24, exact. Else rebias the exponent (15 -> 127;
+    // the all-ones exponent of infinities and NaNs stays all ones).
+    float v = e == 0u ? float(m) * 5.9604644775390625e-8f
+                      : uintBitsToFloat(((e == 31u ? 255u : e + 112u) << 23u) | (m << 13u));
+    return (h & 0x8000u) != 0u ? -v : v;
+}
+SG_FN vec2 sgUnpackHalf2x16(uint w) {
+    return vec2(sgHalfToFloat(w & 0xffffu), sgHalfToFloat(w >> 16u));
+}
+#endif
+#if defined(SG_CPP) || !defined(SG_GLSL_LEGACY)
+SG_FN float sgFrexp(float x, SG_OUT(int) e) { return frexp(x, e); }
+SG_FN float sgLdexp(float m, int e) { return ldexp(m, e); }
+SG_FN void sgIMulExtended(int a, int b, SG_OUT(int) hi, SG_OUT(int) lo) {
+    imulExtended(a, b, hi, lo);
+}
+#else
+SG_FN float sgFrexp(float x, SG_OUT(int) e) {
+    int bits = floatBitsToInt(x);
+    e = ((bits >> 23) & 0xff) - 126;
+    return intBitsToFloat((bits & int(0x807fffffu)) | (126 << 23));
+}
+SG_FN float sgLdexp(float m, int e) {
+    int e1 = e / 2;
+    int e2 = e - e1;
+    return (m * intBitsToFloat((e1 + 127) << 23)) * intBitsToFloat((e2 + 127) << 23);
+}
+SG_FN void sgIMulExtended(int a, int b, SG_OUT(int) hi, SG_OUT(int) lo) {
+    uint ua = uint(a);
+    uint ub = uint(b);
+    uint a0 = ua & 0xffffu;
+    uint a1 = ua >> 16u;
+    uint b0 = ub & 0xffffu;
+    uint b1 = ub >> 16u;
+    uint p00 = a0 * b0;
+    uint p01 = a0 * b1;
+    uint p10 = a1 * b0;
+    uint mid = (p00 >> 16u) + (p01 & 0xffffu) + (p10 & 0xffffu); // < 3 * 2^16
+    uint uhi = a1 * b1 + (p01 >> 16u) + (p10 >> 16u) + (mid >> 16u);
+    // Unsigned to signed product: subtract b 2^32 when a < 0, a 2^32 when b < 0.
+    if (a < 0) uhi -= ub;
+    if (b < 0) uhi -= ua;
+    lo = int((p00 & 0xffffu) | (mid << 16u));
+    hi = int(uhi);
+}
+#endif
+
 // The product vMax * f.x * f.y * f.z * f.w of non-negative factors, clamped to
 // SG_BIG, computed on exponents and mantissas (frexp/ldexp) so that no
 // intermediate product overflows or underflows whatever the order of
@@ -95,15 +195,21 @@ SG_FN float sgBoundedGain(float vMax, vec4 f) {
     if (!(lo >= SG_FLT_MIN)) return 0.0f;
     if (!(hi <= SG_FLT_MAX)) return SG_BIG;
     int ev;
-    float mv = frexp(vMax, ev);
-    ivec4 e;
-    vec4 m = frexp(f, e);
-    int expSum = ev + e.x + e.y + e.z + e.w;
+    int ex;
+    int ey;
+    int ez;
+    int ew;
+    float mv = sgFrexp(vMax, ev);
+    float mx = sgFrexp(f.x, ex);
+    float my = sgFrexp(f.y, ey);
+    float mz = sgFrexp(f.z, ez);
+    float mw = sgFrexp(f.w, ew);
+    int expSum = ev + ex + ey + ez + ew;
     // Each mantissa is in [0.5, 1): the product is in [1/32, 1).
-    float mant = mv * ((m.x * m.y) * (m.z * m.w));
+    float mant = mv * ((mx * my) * (mz * mw));
     if (expSum > 64) return SG_BIG; // >= 2^59 > SG_BIG: same as the clamp below
     if (expSum < -120) return 0.0f;
-    return min(ldexp(mant, expSum), SG_BIG);
+    return min(sgLdexp(mant, expSum), SG_BIG);
 }
 
 // v * f.x * f.y * f.z * f.w (non-negative factors; pass 1.0f for unused

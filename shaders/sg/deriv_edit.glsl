@@ -69,7 +69,10 @@ SG_FN vec2 sgCurveHermite(float x, vec4 knots, vec2 slopes) {
 // Written as 1 / (1 + q^2), q = sqrt(P) |h - H| clamped to SG_BIG, so the
 // square cannot overflow (beyond the clamp the slope is below 1e-36).
 SG_FN float sgCurveBoostSlope(float h, float boostP, float centreH) {
-    float q = min(sqrt(max(boostP, 0.0f)) * abs(h - centreH), SG_BIG);
+    // P below SG_FLT_MIN is 0 in every build (a flushing GPU reads 0; sqrt of
+    // a denormal P times a huge |h - H| would not be small).
+    float p = boostP >= SG_FLT_MIN ? boostP : 0.0f;
+    float q = min(sqrt(p) * abs(h - centreH), SG_BIG);
     return 1.0f / (1.0f + q * q);
 }
 

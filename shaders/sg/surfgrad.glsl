@@ -156,7 +156,13 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3)
     // to n up to ~FLT_EPSILON |tRaw| / |t|.
     vec3 t1 = tRaw - dot(tRaw, f.nrmBase) * f.nrmBase;
     float l2 = dot(t1, t1);
-    float partW = smoothstep(9.5367432e-7f, 6.1035156e-5f, l2 / dot(tRaw, tRaw)); // 2^-20, 2^-14
+    // The part off the normal and the normalization on vectors scaled to
+    // unit largest component: sigmas near 1e-19 per pixel would otherwise
+    // square into denormals, which a flushing GPU drops term by term.
+    float rRaw = 1.0f / sgMaxAbs3(tRaw);
+    vec3 tRawS = tRaw * rRaw;
+    vec3 t1S = t1 * rRaw;
+    float partW = smoothstep(9.5367432e-7f, 6.1035156e-5f, dot(t1S, t1S) / dot(tRawS, tRawS)); // 2^-20, 2^-14
     // The chart's shape on the surface (sgChartWeight), from the position's
     // own screen derivatives scaled to unit largest component (the ratio
     // does not change; no product of tiny or huge derivatives leaves the
@@ -169,7 +175,7 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3)
     float shape = 2.0f * abs(det) * length(cross(ux, uy)) / (dot(aS, aS) + dot(aT, aT));
     bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && l2 >= SG_FLT_MIN;
     float w = valid ? sgChartWeight(st, k, det, shape) * partW : 0.0f;
-    vec3 t = valid ? t1 * (inversesqrt(l2) * w) : vec3(0.0f);
+    vec3 t = valid ? sgSafeNormalize(t1, vec3(0.0f)) * w : vec3(0.0f);
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
 }
@@ -209,7 +215,9 @@ SG_FN vec3 sgSurfgradFromScreenDerivScaled(SgFrame f, vec2 dHdxyDir, float gainA
     vec3 vR2 = cross(f.nrmBase, px);
     float det = dot(px, vR1);
     float rcpDet = sgSignedRcp(det);
-    vec3 w = (det < 0.0f ? -1.0f : 1.0f) * (dHdxyDir.x * vR1 + dHdxyDir.y * vR2);
+    // A det below SG_FLT_MIN (a denormal: rounding noise of px, py of unit
+    // scale) counts as positive in every build, flushed or not.
+    vec3 w = (det <= -SG_FLT_MIN ? -1.0f : 1.0f) * (dHdxyDir.x * vR1 + dHdxyDir.y * vR2);
     return sgBoundedScale3(w, vec4(abs(rcpDet), 1.0f / k, gainA, gainB));
 }
 
@@ -231,7 +239,9 @@ SG_FN vec3 sgSurfgradFromScreenDeriv(SgFrame f, vec2 dHdxy) {
 // dH/dx = (texDim * deriv) . dSTdx is evaluated on unit-scaled factors and
 // the scales are passed as gains, so no product overflows.
 SG_FN vec3 sgSurfgradScaleDependent(SgFrame f, vec2 deriv, vec2 dSTdx, vec2 dSTdy, vec2 texDim) {
-    vec2 dHdST = texDim * deriv;
+    // A denormal derivative is zero in every build (times texDim it would
+    // be a normal value that a flushing GPU never sees).
+    vec2 dHdST = texDim * sgFlushDenorm2(deriv);
     float dm = sgMaxAbs2(dHdST);
     float sm = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
     if (!(dm >= SG_FLT_MIN) || !(sm >= SG_FLT_MIN) || !(dm <= SG_FLT_MAX) || !(sm <= SG_FLT_MAX)) {

@@ -22,11 +22,34 @@ std::vector<std::string> list() {
     return out;
 }
 
+const char* targetName(Target t) {
+    switch (t) {
+    case Target::Glsl450:
+        return "glsl450";
+    case Target::Glsl330:
+        return "glsl330";
+    case Target::Es300:
+        return "es300";
+    }
+    return "?";
+}
+
+bool parseTarget(std::string_view name, Target& out) {
+    for (Target t : kTargets) {
+        if (name == targetName(t)) {
+            out = t;
+            return true;
+        }
+    }
+    return false;
+}
+
 namespace {
 
 struct Expander {
     Assembled& out;
     std::set<std::string> included;
+    bool joinContinuations = false; // GLSL before 4.20 has no line continuation
 
     int fileIndex(const std::string& name) {
         auto it = std::find(out.files.begin(), out.files.end(), name);
@@ -46,6 +69,21 @@ struct Expander {
         int lineNo = 0;
         while (std::getline(in, line)) {
             ++lineNo;
+            // A backslash at the end joins the next line. The joined lines
+            // are kept as empty lines after it, so numbering stays the file's.
+            int joined = 0;
+            std::string next;
+            while (joinContinuations && !line.empty() && line.back() == '\\' &&
+                   std::getline(in, next)) {
+                line.back() = ' ';
+                line += next;
+                ++joined;
+            }
+            if (joined > 0) {
+                lineNo += joined;
+                out.text += line + '\n' + std::string(size_t(joined), '\n');
+                continue;
+            }
             size_t p = line.find_first_not_of(" \t");
             if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
                 size_t q0 = line.find('"', p + 8);
@@ -80,15 +118,27 @@ struct Expander {
 } // namespace
 
 Assembled assemble(std::string_view body, std::string_view bodyName,
-                   const std::vector<std::string>& defines) {
+                   const std::vector<std::string>& defines, Target target) {
     Assembled a;
-    a.text = "#version 450 core\n";
+    switch (target) {
+    case Target::Glsl450:
+        a.text = "#version 450 core\n";
+        break;
+    case Target::Glsl330:
+        a.text = "#version 330 core\n";
+        break;
+    case Target::Es300:
+        // Precisions for the body's own declarations; sg/compat.glsl states
+        // them again for programs that include the library without this.
+        a.text = "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+        break;
+    }
     for (const auto& d : defines) {
         std::string def = d;
         std::replace(def.begin(), def.end(), '=', ' ');
         a.text += "#define " + def + "\n";
     }
-    Expander e{a, {}};
+    Expander e{a, {}, target == Target::Glsl330};
     e.expand(body, std::string(bodyName), 0);
     return a;
 }

@@ -43,12 +43,39 @@ const char* eglErrorName(EGLint e) {
 }
 } // namespace
 
+Api apiFor(shaders::Target target) {
+    switch (target) {
+    case shaders::Target::Glsl450:
+        return Api::Gl45Core;
+    case shaders::Target::Glsl330:
+        return Api::Gl33Core;
+    case shaders::Target::Es300:
+        return Api::Es30;
+    }
+    return Api::Gl45Core;
+}
+
+const char* apiName(Api api) {
+    switch (api) {
+    case Api::Gl45Core:
+        return "OpenGL 4.5 core";
+    case Api::Gl33Core:
+        return "OpenGL 3.3 core";
+    case Api::Es30:
+        return "OpenGL ES 3.0";
+    }
+    return "?";
+}
+
 struct HeadlessContext::Impl {
     EGLDisplay display = EGL_NO_DISPLAY;
     EGLContext context = EGL_NO_CONTEXT;
+    Api api = Api::Gl45Core;
 };
 
-HeadlessContext::HeadlessContext() : impl_(std::make_unique<Impl>()) {
+HeadlessContext::HeadlessContext(Api api) : impl_(std::make_unique<Impl>()) {
+    impl_->api = api;
+    const bool es = api == Api::Es30;
     if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless") &&
         !epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base")) {
         throw GlError("headless OpenGL: EGL has no surfaceless platform "
@@ -59,24 +86,34 @@ HeadlessContext::HeadlessContext() : impl_(std::make_unique<Impl>()) {
     if (impl_->display == EGL_NO_DISPLAY) eglFail("eglGetPlatformDisplayEXT(surfaceless)");
     EGLint major = 0, minor = 0;
     if (!eglInitialize(impl_->display, &major, &minor)) eglFail("eglInitialize");
-    if (!eglBindAPI(EGL_OPENGL_API)) eglFail("eglBindAPI(EGL_OPENGL_API)");
+    if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API)) {
+        eglFail(es ? "eglBindAPI(EGL_OPENGL_ES_API)" : "eglBindAPI(EGL_OPENGL_API)");
+    }
 
-    const EGLint cfgAttribs[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_SURFACE_TYPE,
-                                 EGL_PBUFFER_BIT, EGL_NONE};
+    const EGLint cfgAttribs[] = {EGL_RENDERABLE_TYPE,
+                                 es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT,
+                                 EGL_SURFACE_TYPE,
+                                 EGL_PBUFFER_BIT,
+                                 EGL_NONE};
     EGLConfig config = nullptr;
     EGLint numConfigs = 0;
     if (!eglChooseConfig(impl_->display, cfgAttribs, &config, 1, &numConfigs) || numConfigs < 1) {
         config = nullptr; // EGL_KHR_no_config_context
     }
-    const EGLint ctxAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
-                                 4,
-                                 EGL_CONTEXT_MINOR_VERSION,
-                                 5,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                 EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-                                 EGL_NONE};
-    impl_->context = eglCreateContext(impl_->display, config, EGL_NO_CONTEXT, ctxAttribs);
-    if (impl_->context == EGL_NO_CONTEXT) eglFail("eglCreateContext(OpenGL 4.5 core)");
+    const EGLint glAttribs[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                api == Api::Gl45Core ? 4 : 3,
+                                EGL_CONTEXT_MINOR_VERSION,
+                                api == Api::Gl45Core ? 5 : 3,
+                                EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                EGL_NONE};
+    const EGLint esAttribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0,
+                                EGL_NONE};
+    impl_->context =
+        eglCreateContext(impl_->display, config, EGL_NO_CONTEXT, es ? esAttribs : glAttribs);
+    if (impl_->context == EGL_NO_CONTEXT) {
+        eglFail(std::string("eglCreateContext(") + apiName(api) + ")");
+    }
     makeCurrent();
 }
 
@@ -101,6 +138,9 @@ std::string HeadlessContext::renderer() const {
 std::string HeadlessContext::version() const {
     const auto* s = reinterpret_cast<const char*>(glGetString(GL_VERSION));
     return s ? s : "";
+}
+Api HeadlessContext::api() const {
+    return impl_->api;
 }
 
 void checkError(const char* what) {
@@ -149,7 +189,8 @@ const char* stageName(Stage s) {
 }
 } // namespace
 
-Program::Program(const std::vector<std::pair<Stage, shaders::Assembled>>& stages) {
+Program::Program(const std::vector<std::pair<Stage, shaders::Assembled>>& stages,
+                 const std::vector<std::string>& feedback) {
     id_ = glCreateProgram();
     std::vector<GLuint> shaderIds;
     auto cleanup = [&] {
@@ -176,6 +217,12 @@ Program::Program(const std::vector<std::pair<Stage, shaders::Assembled>>& stages
                           shaders::annotateLog(log, src.files));
         }
         glAttachShader(id_, sh);
+    }
+    if (!feedback.empty()) {
+        std::vector<const char*> names;
+        for (const auto& f : feedback) names.push_back(f.c_str());
+        glTransformFeedbackVaryings(id_, GLsizei(names.size()), names.data(),
+                                    GL_INTERLEAVED_ATTRIBS);
     }
     glLinkProgram(id_);
     cleanup();
@@ -251,6 +298,88 @@ std::vector<float> runCompute(const Program& program, const std::vector<float>& 
     glDeleteBuffers(2, bufs);
     glUseProgram(0);
     checkError("runCompute");
+    return output;
+}
+
+std::vector<float> runTransformFeedback(const Program& program, const std::vector<float>& input,
+                                        int inStride, int outStride, size_t count) {
+    if (inStride <= 0 || outStride <= 0) {
+        throw GlError("runTransformFeedback: strides must be positive");
+    }
+    if (input.size() < count * size_t(inStride)) {
+        throw GlError("runTransformFeedback: input holds fewer than count * inStride floats");
+    }
+    std::vector<float> output(count * size_t(outStride));
+    if (count == 0) return output;
+    const int inVec4 = (inStride + 3) / 4, outVec4 = (outStride + 3) / 4;
+    GLint maxAttribs = 16;
+    glGetIntegerv(GL_MAX_VERTEX_ATTRIBS, &maxAttribs);
+    if (inVec4 > maxAttribs) {
+        throw GlError("runTransformFeedback: " + std::to_string(inVec4) +
+                      " vec4 inputs exceed GL_MAX_VERTEX_ATTRIBS (" + std::to_string(maxAttribs) +
+                      ")");
+    }
+    // Records per draw: bounds the two buffers to a few tens of MB.
+    const size_t perDraw = size_t(1) << 18;
+    const size_t outRecordBytes = size_t(outVec4) * 4 * sizeof(float);
+
+    // A surfaceless context has no default framebuffer, and a draw needs a
+    // complete one even with the rasterizer discarded: a 1x1 colour target.
+    GLuint fbo = 0, rbo = 0;
+    glGenRenderbuffers(1, &rbo);
+    glBindRenderbuffer(GL_RENDERBUFFER, rbo);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+    GLuint vao = 0, bufs[2] = {0, 0};
+    glGenVertexArrays(1, &vao);
+    glGenBuffers(2, bufs);
+    glBindVertexArray(vao);
+    glBindBuffer(GL_ARRAY_BUFFER, bufs[0]);
+    for (int k = 0; k < inVec4; ++k) {
+        glEnableVertexAttribArray(GLuint(k));
+        glVertexAttribPointer(GLuint(k), std::min(4, inStride - 4 * k), GL_FLOAT, GL_FALSE,
+                              GLsizei(size_t(inStride) * sizeof(float)),
+                              reinterpret_cast<const void*>(size_t(k) * 4 * sizeof(float)));
+    }
+    glUseProgram(program.id());
+    glEnable(GL_RASTERIZER_DISCARD);
+    for (size_t first = 0; first < count; first += perDraw) {
+        const size_t n = std::min(perDraw, count - first);
+        glBindBuffer(GL_ARRAY_BUFFER, bufs[0]);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * size_t(inStride) * sizeof(float)),
+                     input.data() + first * size_t(inStride), GL_STREAM_DRAW);
+        glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, bufs[1]);
+        glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, GLsizeiptr(n * outRecordBytes), nullptr,
+                     GL_STREAM_READ);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, bufs[1]);
+        glBeginTransformFeedback(GL_POINTS);
+        glDrawArrays(GL_POINTS, 0, GLsizei(n));
+        glEndTransformFeedback();
+        // ES 3.0 has no glGetBufferSubData: map the captured records.
+        const auto* mapped = static_cast<const float*>(glMapBufferRange(
+            GL_TRANSFORM_FEEDBACK_BUFFER, 0, GLsizeiptr(n * outRecordBytes), GL_MAP_READ_BIT));
+        if (!mapped) {
+            glDisable(GL_RASTERIZER_DISCARD);
+            throw GlError("runTransformFeedback: glMapBufferRange of the feedback buffer failed");
+        }
+        for (size_t r = 0; r < n; ++r) {
+            std::memcpy(&output[(first + r) * size_t(outStride)], mapped + r * size_t(outVec4) * 4,
+                        size_t(outStride) * sizeof(float));
+        }
+        glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+    }
+    glDisable(GL_RASTERIZER_DISCARD);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+    glBindVertexArray(0);
+    glDeleteBuffers(2, bufs);
+    glDeleteVertexArrays(1, &vao);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rbo);
+    glUseProgram(0);
+    checkError("runTransformFeedback");
     return output;
 }
 

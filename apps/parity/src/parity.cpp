@@ -50,15 +50,46 @@ std::vector<float> evalCpuAll(const eval::Entry& e, const std::vector<float>& in
 
 std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector<float>& inputs) {
     ctx_.makeCurrent();
+    const shaders::Target target = this->target();
+    const std::string name = "eval[" + e.name + "]";
     auto it = programs_.find(e.kernel);
     if (it == programs_.end()) {
-        auto src =
-            shaders::assemble(eval::evalGpuBody(), "eval[" + e.name + "]", eval::evalGpuDefines(e));
-        it = programs_.emplace(e.kernel, gl::Program({{gl::Stage::Compute, src}})).first;
+        const auto defines = eval::evalGpuDefines(e);
+        if (!vertexStage_) {
+            auto src = shaders::assemble(eval::evalGpuBody(), name, defines);
+            it = programs_.emplace(e.kernel, gl::Program({{gl::Stage::Compute, src}})).first;
+        } else {
+            // No compute stage: the vertex entry under transform feedback,
+            // with the empty fragment stage a GLSL ES program must have.
+            auto vs = shaders::assemble(eval::evalGpuVertexBody(), name, defines, target);
+            auto fs = shaders::assemble("out vec4 fragColor;\n"
+                                        "void main() { fragColor = vec4(0.0); }\n",
+                                        name + " fragment", {}, target);
+            it = programs_
+                     .emplace(e.kernel, gl::Program({{gl::Stage::Vertex, vs}, {gl::Stage::Fragment, fs}},
+                                                    eval::evalGpuFeedback()))
+                     .first;
+        }
     }
     const size_t in = size_t(eval::inStride());
-    return gl::runCompute(it->second, inputs, eval::inStride(), eval::outStride(),
-                          inputs.size() / in);
+    if (!vertexStage_) {
+        return gl::runCompute(it->second, inputs, eval::inStride(), eval::outStride(),
+                              inputs.size() / in);
+    }
+    return gl::runTransformFeedback(it->second, inputs, eval::inStride(), eval::outStride(),
+                                    inputs.size() / in);
+}
+
+shaders::Target GpuEvaluator::target() const {
+    switch (ctx_.api()) {
+    case gl::Api::Gl45Core:
+        return shaders::Target::Glsl450;
+    case gl::Api::Gl33Core:
+        return shaders::Target::Glsl330;
+    case gl::Api::Es30:
+        return shaders::Target::Es300;
+    }
+    return shaders::Target::Glsl450;
 }
 
 double mixedError(const eval::Entry& e, const double* a, const double* ref) {

@@ -105,6 +105,11 @@ void evalDouble(const Entry& e, const double* in, double* out);
 // sg::shaders::assemble(body, name, defines) using evalGpuDefines(e)).
 std::string evalGpuBody();
 std::vector<std::string> evalGpuDefines(const Entry& e);
+// The same kernels as a vertex program for dialects without compute shaders
+// (GLSL 3.30, ES 3.00; sg::gl::runTransformFeedback), and the names of its
+// captured outputs in record order.
+std::string evalGpuVertexBody();
+std::vector<std::string> evalGpuFeedback();
 
 // Input records for entry e: `count` records of inStride() floats, made by
 // its generator. About 40% are adversarial: zero vectors, normals at the

@@ -34,16 +34,34 @@ struct ShaderSourceError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// The GLSL dialect a program is assembled for (docs/engines.md). The
+// library source is one; compat.glsl adapts it to the dialect by
+// __VERSION__ and GL_ES, and assemble() writes the header:
+//   Glsl450  "#version 450 core" (desktop GL 4.5; glslang -V makes Vulkan
+//            SPIR-V from the same text);
+//   Glsl330  "#version 330 core" (GL 3.3: no compute or tessellation
+//            stages; backslash line continuations are joined, since GLSL
+//            before 4.20 has none);
+//   Es300    "#version 300 es" with highp defaults (WebGL2, GLES 3.0: no
+//            compute or tessellation stages).
+enum class Target { Glsl450, Glsl330, Es300 };
+inline constexpr Target kTargets[] = {Target::Glsl450, Target::Glsl330, Target::Es300};
+// "glsl450", "glsl330", "es300".
+const char* targetName(Target t);
+// The target named `name` (as targetName writes it); false when none is.
+bool parseTarget(std::string_view name, Target& out);
+
 struct Assembled {
     std::string text;               // complete GLSL source, #version first
     std::vector<std::string> files; // source-string number -> file name
 };
 
-// Builds a complete GLSL 4.50 program from `body` (named `bodyName` in
-// messages): the #version line, then one `#define NAME VALUE` per entry of
-// `defines` ("NAME" or "NAME VALUE"), then the body with includes expanded.
+// Builds a complete program of dialect `target` (GLSL 4.50 by default)
+// from `body` (named `bodyName` in messages): the #version line (with ES's
+// default precisions), then one `#define NAME VALUE` per entry of `defines`
+// ("NAME" or "NAME VALUE"), then the body with includes expanded.
 Assembled assemble(std::string_view body, std::string_view bodyName,
-                   const std::vector<std::string>& defines = {});
+                   const std::vector<std::string>& defines = {}, Target target = Target::Glsl450);
 
 // Maps "S:L" / "S(L)" locations in a driver info log to "file:L".
 std::string annotateLog(std::string_view log, const std::vector<std::string>& files);

@@ -41,14 +41,14 @@
 SG_FN SgFeatTexel sgFeatFetch(SG_FEAT_CORNER_SAMPLER corners, SG_FEAT_EDGE_SAMPLER edges, ivec2 ij) {
     uvec4 lo = texelFetch(corners, ij, 0);                     // corners SW, SE
     uvec4 hi = texelFetch(corners, ivec2(ij.x, ij.y + 1), 0);  // corners NW, NE
-    vec2 dLo = unpackHalf2x16(lo.x);
-    vec2 dHi = unpackHalf2x16(hi.x);
+    vec2 dLo = sgUnpackHalf2x16(lo.x);
+    vec2 dHi = sgUnpackHalf2x16(hi.x);
     SgFeatTexel tx;
     tx.dist = vec4(dLo.x, dLo.y, dHi.y, dHi.x);
-    tx.grad0 = unpackHalf2x16(lo.y);
-    tx.grad1 = unpackHalf2x16(lo.z);
-    tx.grad2 = unpackHalf2x16(hi.z);
-    tx.grad3 = unpackHalf2x16(hi.y);
+    tx.grad0 = sgUnpackHalf2x16(lo.y);
+    tx.grad1 = sgUnpackHalf2x16(lo.z);
+    tx.grad2 = sgUnpackHalf2x16(hi.z);
+    tx.grad3 = sgUnpackHalf2x16(hi.y);
     tx.cfg = lo.w;
     // Fetched for every texel: where branches run under masks, skipping it
     // for texels without features saves nothing.

@@ -193,7 +193,7 @@ SG_FN SgFeatPiece sgFeatFetchPiece(SG_FEAT_PIECE_SAMPLER pieces, int index, vec2
     c.p0 = uintBitsToFloat(uvec2(t0.x, t0.y)) - origin;
     c.p1 = uintBitsToFloat(uvec2(t0.z, t0.w)) - origin;
     c.p2 = uintBitsToFloat(uvec2(t1.x, t1.y)) - origin;
-    vec2 w = unpackHalf2x16(t1.z);
+    vec2 w = sgUnpackHalf2x16(t1.z);
     c.width0 = w.x;
     c.width1 = w.y;
     c.curved = (t1.w & 1u) != 0u;

@@ -124,7 +124,7 @@ SG_FN vec4 sgPerlinNoise(vec3 p) {
 // fraction in [0, 1) (`frac`), for a binary32 freq in [1, SG_FLT_MAX] and a
 // 32-bit lattice coordinate `cell`: freq = m 2^(e - 24) with m a 24-bit
 // integer (frexp), so freq * cell is the 56-bit product m * cell
-// (imulExtended) times 2^(e - 24); its fraction has at most 23 bits and is
+// (sgIMulExtended) times 2^(e - 24); its fraction has at most 23 bits and is
 // exact in binary32. Integer arithmetic only: both builds agree bit for
 // bit. Other freq (never made by lacunarities >= 1): 0, 0.
 SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(float) frac) {
@@ -132,11 +132,11 @@ SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(flo
     frac = 0.0f;
     if (!(freq >= 1.0f) || !(freq <= SG_FLT_MAX)) return;
     int e;
-    float mant = frexp(freq, e);
+    float mant = sgFrexp(freq, e);
     int m = int(mant * 16777216.0f); // in [2^23, 2^24): exact
     int hi;
     int lo;
-    imulExtended(m, cell, hi, lo);
+    sgIMulExtended(m, cell, hi, lo);
     int shift = 24 - e; // freq * cell = (hi 2^32 + lo) 2^-shift, shift <= 23
     if (shift <= -32) return; // a multiple of 2^32
     if (shift <= 0) {
@@ -144,7 +144,7 @@ SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(flo
         return;
     }
     whole = (uint(lo) >> uint(shift)) | (uint(hi) << uint(32 - shift));
-    frac = ldexp(float(uint(lo) & ((1u << uint(shift)) - 1u)), -shift);
+    frac = sgLdexp(float(uint(lo) & ((1u << uint(shift)) - 1u)), -shift);
 }
 
 // One octave, frequency freq, at the lattice argument cell + q (cell a

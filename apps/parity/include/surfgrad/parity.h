@@ -81,16 +81,26 @@ struct Row {
     size_t worstRecord = 0;         // index of the well-conditioned record with maxMixedErr
 };
 
-// GPU evaluation of many records: one compute program per entry, compiled
-// on first use and owned by this object (destroy it before the context).
+// GPU evaluation of many records: one program per entry, compiled on first
+// use and owned by this object (destroy it before the context). The shader
+// dialect follows the context's API: a compute program on OpenGL 4.5 (GLSL
+// 4.50), a transform-feedback vertex program on OpenGL 3.3 (GLSL 3.30) and
+// OpenGL ES 3.0 (GLSL ES 3.00).
+// `vertexStage` runs the vertex program on a 4.5 context too, which tells a
+// difference of the stage (how a driver compiles vertex shaders) from one
+// of the dialect.
 class GpuEvaluator {
 public:
-    explicit GpuEvaluator(gl::HeadlessContext& ctx) : ctx_(ctx) {}
+    explicit GpuEvaluator(gl::HeadlessContext& ctx, bool vertexStage = false)
+        : ctx_(ctx), vertexStage_(vertexStage || ctx.api() != gl::Api::Gl45Core) {}
     std::vector<float> evalAll(const eval::Entry& e, const std::vector<float>& inputs);
     gl::HeadlessContext& context() { return ctx_; }
+    shaders::Target target() const;
+    bool vertexStage() const { return vertexStage_; }
 
 private:
     gl::HeadlessContext& ctx_;
+    bool vertexStage_;
     std::map<int, gl::Program> programs_;
 };
 
