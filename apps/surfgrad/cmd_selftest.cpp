@@ -1,11 +1,13 @@
-// `surfgrad selftest [--records N] [--seed S] [--verbose]`: the CPU/GPU
+// `surfgrad selftest [--records N] [--seed S] [--target T] [--verbose]`: the CPU/GPU
 // parity suite of every shared shader function, printed as a table
 // (function, inputs, max abs error, max rel error, NaN count, ...; the
 // measures are defined in parity.h). Exits 1 when any function produces a
 // non-finite value, breaks an invariant of its contract, exceeds its
 // tolerance or has more ill-conditioned records than its tolerance allows
 // (each entry's, shaders/sg/eval/kernels.glsl; printed with its reason for a
-// function that fails).
+// function that fails). --target runs the GLSL build in another dialect:
+// glsl330 on an OpenGL 3.3 core context, es300 on an OpenGL ES 3.0 context
+// (the kernels as a transform-feedback vertex program, docs/engines.md).
 #include <CLI/CLI.hpp>
 
 #include <chrono>
@@ -22,19 +24,27 @@ void addSelftestCommand(CLI::App& app, int& status) {
     auto seed = std::make_shared<uint64_t>(20261122);
     auto verbose = std::make_shared<bool>(false);
     auto only = std::make_shared<std::string>();
+    auto target = std::make_shared<std::string>("glsl450");
     cmd->add_option("--records", *records, "Input records per function (default 100000)")
         ->check(CLI::Range(size_t(1), size_t(10000000)));
     cmd->add_option("--seed", *seed, "Random seed");
     cmd->add_option("--only", *only, "Run only this entry (see `surfgrad eval --list`)");
+    cmd->add_option("--target", *target,
+                    "Shader dialect of the GPU build: glsl450 (compute, default), glsl330 "
+                    "(OpenGL 3.3 core) or es300 (OpenGL ES 3.0)")
+        ->check(CLI::IsMember({"glsl450", "glsl330", "es300"}));
     cmd->add_flag("--verbose", *verbose, "Print the worst record of every function");
-    cmd->callback([&status, records, seed, verbose, only] {
+    cmd->callback([&status, records, seed, verbose, only, target] {
         if (!only->empty() && !eval::findEntry(*only)) {
             throw CliError("selftest: unknown entry '" + *only + "'");
         }
+        shaders::Target dialect = shaders::Target::Glsl450;
+        shaders::parseTarget(*target, dialect); // checked by IsMember
         auto t0 = std::chrono::steady_clock::now();
-        gl::HeadlessContext ctx;
+        gl::HeadlessContext ctx(gl::apiFor(dialect));
         parity::GpuEvaluator gpuEval(ctx);
-        std::printf("surfgrad selftest: C++ (GLM, binary32) build vs GLSL build on %s\n",
+        std::printf("surfgrad selftest: C++ (GLM, binary32) build vs GLSL build (%s, %s) on %s\n",
+                    shaders::targetName(dialect), gpuEval.vertexStage() ? "vertex" : "compute",
                     ctx.renderer().c_str());
         std::printf("%-22s %7s %10s %10s %10s %9s %7s %8s %6s %9s %9s  %s\n", "function", "inputs",
                     "max abs", "max rel", "max mixed", "tolerance", "NaN/Inf", "ill-cond", "expl",

@@ -7,6 +7,12 @@
 //   everything else -> fragment (library files get an empty main()).
 // A file that needs defines to compile standalone lists them in a comment
 // line `// glslang-validate: NAME VALUE[, NAME VALUE...]`.
+// Every file also compiles in the other dialects (docs/engines.md): GLSL
+// 3.30 core and GLSL ES 3.00 (assembled for that target), and Vulkan (the
+// GLSL 4.50 text through glslangValidator -V, the SPIR-V through spirv-val),
+// except compute and tessellation files (stages only GLSL 4.50 has here)
+// and files that name their dialects in a line `// glsl-targets: ...`
+// (glsl450, glsl330, es300, vulkan).
 // The last test proves the check can fail: a broken snippet is rejected.
 #include <gtest/gtest.h>
 
@@ -93,6 +99,43 @@ TEST(GlslValidate, EmbeddedListIsEveryShaderFileInTheSourceTree) {
     EXPECT_GE(embedded.size(), 6u);
 }
 
+// The dialects a file must compile in, besides GLSL 4.50 (see the top).
+std::set<std::string> extraTargetsOf(const std::string& path, const std::string& text) {
+    const std::string stage = stageOf(path);
+    if (stage == "comp" || stage == "tesc" || stage == "tese") return {};
+    std::set<std::string> all = {"glsl330", "es300", "vulkan"};
+    const std::string key = "// glsl-targets:";
+    const size_t p = text.find(key);
+    if (p == std::string::npos) return all;
+    std::set<std::string> named;
+    std::stringstream items(text.substr(p + key.size(), text.find('\n', p) - p - key.size()));
+    std::string item;
+    while (items >> item) {
+        if (item.back() == ',') item.pop_back();
+        if (all.count(item)) named.insert(item);
+    }
+    return named;
+}
+
+// glslangValidator -V (Vulkan 1.1 SPIR-V), then spirv-val on the module.
+RunResult validateVulkan(const std::string& source, const std::string& stage,
+                         const std::string& tag) {
+    const fs::path& dir = sg::test::processScratchDir("surfgrad_glslang");
+    std::string safe = tag;
+    for (char& c : safe) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    const fs::path file = dir / (safe + "_vk." + stage), spv = dir / (safe + ".spv");
+    {
+        std::ofstream out(file);
+        out << source;
+    }
+    RunResult r = sg::test::runCommand(
+        "glslangValidator -V --target-env vulkan1.1 " + sg::test::shellQuote(file) + " -o " +
+        sg::test::shellQuote(spv) + " && spirv-val " + sg::test::shellQuote(spv));
+    fs::remove(file);
+    fs::remove(spv);
+    return r;
+}
+
 class GlslFile : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(GlslFile, CompilesStandalone) {
@@ -107,6 +150,45 @@ TEST_P(GlslFile, CompilesStandalone) {
     const RunResult r = validate(src.text, stage, path);
     EXPECT_EQ(r.exitCode, 0) << path << " (" << stage << "):\n"
                              << sg::shaders::annotateLog(r.output(), src.files);
+}
+
+TEST_P(GlslFile, CompilesInEveryDialectItTargets) {
+    const std::string path = GetParam();
+    const std::string text = sg::shaders::find(path);
+    const std::string stage = stageOf(path);
+    std::string body = "#include \"" + path + "\"\n";
+    const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
+    if (!hasMain) body += "void main() {}\n";
+    const std::vector<std::string> defines = definesOf(text);
+    for (const std::string& t : extraTargetsOf(path, text)) {
+        sg::shaders::Target target = sg::shaders::Target::Glsl450;
+        const bool vulkan = t == "vulkan";
+        if (!vulkan) {
+            ASSERT_TRUE(sg::shaders::parseTarget(t, target)) << t;
+        }
+        const auto src = sg::shaders::assemble(body, "validate[" + path + "]", defines, target);
+        const RunResult r = vulkan ? validateVulkan(src.text, stage, path)
+                                   : validate(src.text, stage, path + "_" + t);
+        EXPECT_EQ(r.exitCode, 0) << path << " (" << stage << ", " << t << "):\n"
+                                 << sg::shaders::annotateLog(r.output(), src.files);
+    }
+}
+
+// The dialect checks can fail: frexp (GLSL 4.00) under GLSL 3.30 and ES
+// 3.00, a default-block uniform in Vulkan GLSL.
+TEST(GlslValidate, DialectChecksCanFail) {
+    const std::string frexpUse = "float f(float x) { int e; return frexp(x, e); }\n"
+                                 "void main() {}\n";
+    for (auto t : {sg::shaders::Target::Glsl330, sg::shaders::Target::Es300}) {
+        const auto src = sg::shaders::assemble(frexpUse, "frexp", {}, t);
+        const RunResult r =
+            validate(src.text, "frag", std::string("frexp_") + sg::shaders::targetName(t));
+        EXPECT_NE(r.exitCode, 0) << sg::shaders::targetName(t);
+    }
+    const auto loose = sg::shaders::assemble("uniform float uLoose;\nout vec4 c;\n"
+                                             "void main() { c = vec4(uLoose); }\n",
+                                             "loose");
+    EXPECT_NE(validateVulkan(loose.text, "frag", "loose").exitCode, 0);
 }
 
 std::vector<std::string> shaderFiles() {

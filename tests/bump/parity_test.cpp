@@ -26,7 +26,8 @@ using namespace sg;
 // source takes its legacy paths, e.g. frexp/ldexp from the bit pattern,
 // sg/compat.glsl). All three hold the same tolerances: a dialect changes
 // how the source is spelled, not the binary32 arithmetic it asks for.
-template <gl::Api A> class ParityOn : public ::testing::TestWithParam<std::string> {
+template <gl::Api A>
+class ParityOn : public ::testing::TestWithParam<std::string> {
 protected:
     static void SetUpTestSuite() {
         ctx_ = new gl::HeadlessContext(A);
@@ -72,8 +73,8 @@ void expectParity(parity::GpuEvaluator& gpu, const std::string& name) {
         const auto gpuOut = gpu.evalAll(e, rec);
         std::vector<double> x(rec.begin(), rec.end()), ref(size_t(eval::outStride()));
         eval::evalDouble(e, x.data(), ref.data());
-        ADD_FAILURE() << "worst record #" << row.worstRecord << ", mixed error "
-                      << row.maxMixedErr << " > " << e.tolerance << "\n"
+        ADD_FAILURE() << "worst record #" << row.worstRecord << ", mixed error " << row.maxMixedErr
+                      << " > " << e.tolerance << "\n"
                       << parity::describeRecord(e, rec.data(), cpu.data(), gpuOut.data(),
                                                 ref.data());
     }
@@ -118,8 +119,9 @@ void expectHardCasesKeepTheContract(parity::GpuEvaluator& gpu, const std::string
     }
     const std::string dialect = shaders::targetName(gpu.target());
     sg::test::reportHardCase({"adversarial",
-                              e.name + ", every input component one of 0, +-1e18, +-1e-30, "
-                                       "1e-40, +-1, 0.5 (4000 records, CPU and GPU " +
+                              e.name +
+                                  ", every input component one of 0, +-1e18, +-1e-30, "
+                                  "1e-40, +-1, 0.5 (4000 records, CPU and GPU " +
                                   dialect + ")",
                               "records breaking the contract (parity::checkInvariants)", "0", "0"});
 }
@@ -151,8 +153,7 @@ std::string entryTestName(const ::testing::TestParamInfo<std::string>& p) {
 INSTANTIATE_TEST_SUITE_P(AllEntries, Parity, ::testing::ValuesIn(entryNames()), entryTestName);
 INSTANTIATE_TEST_SUITE_P(AllEntries, ParityGlsl330, ::testing::ValuesIn(entryNames()),
                          entryTestName);
-INSTANTIATE_TEST_SUITE_P(AllEntries, ParityEs300, ::testing::ValuesIn(entryNames()),
-                         entryTestName);
+INSTANTIATE_TEST_SUITE_P(AllEntries, ParityEs300, ::testing::ValuesIn(entryNames()), entryTestName);
 
 // The contract checks themselves can fail.
 TEST(ParityContract, InvariantCheckRejectsBadOutputs) {

@@ -90,11 +90,8 @@ HeadlessContext::HeadlessContext(Api api) : impl_(std::make_unique<Impl>()) {
         eglFail(es ? "eglBindAPI(EGL_OPENGL_ES_API)" : "eglBindAPI(EGL_OPENGL_API)");
     }
 
-    const EGLint cfgAttribs[] = {EGL_RENDERABLE_TYPE,
-                                 es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT,
-                                 EGL_SURFACE_TYPE,
-                                 EGL_PBUFFER_BIT,
-                                 EGL_NONE};
+    const EGLint cfgAttribs[] = {EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT,
+                                 EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_NONE};
     EGLConfig config = nullptr;
     EGLint numConfigs = 0;
     if (!eglChooseConfig(impl_->display, cfgAttribs, &config, 1, &numConfigs) || numConfigs < 1) {

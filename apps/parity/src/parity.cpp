@@ -66,8 +66,9 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
                                         "void main() { fragColor = vec4(0.0); }\n",
                                         name + " fragment", {}, target);
             it = programs_
-                     .emplace(e.kernel, gl::Program({{gl::Stage::Vertex, vs}, {gl::Stage::Fragment, fs}},
-                                                    eval::evalGpuFeedback()))
+                     .emplace(e.kernel,
+                              gl::Program({{gl::Stage::Vertex, vs}, {gl::Stage::Fragment, fs}},
+                                          eval::evalGpuFeedback()))
                      .first;
         }
     }

@@ -5,6 +5,8 @@
 // three captured vec4 outputs. SG_EVAL_KERNEL (a define set by the host)
 // selects the function, as in eval.comp.glsl.
 // glslang-validate: SG_EVAL_KERNEL 0
+// glsl-targets: glsl330 es300 (this entry exists for them; Vulkan and GL 4.5
+// run eval.comp.glsl)
 #include "sg/eval/kernels.glsl"
 
 #if SG_EVAL_IN > 28 || SG_EVAL_OUT > 12

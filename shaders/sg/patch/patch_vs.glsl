@@ -4,6 +4,7 @@
 // arrays' indices. The patch index travels with the vertex: it is not taken
 // from gl_PrimitiveID, which Mesa's llvmpipe restarts within large patch
 // draws.
+// glsl-targets: glsl450 (the points and indices are std430 buffers)
 layout(std430, binding = 0) readonly buffer SgPatchPoints {
     float sgPoints[]; // xyz per control point, object space
 };

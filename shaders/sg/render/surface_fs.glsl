@@ -4,6 +4,8 @@
 // sg/render/surface_vs.glsl, plus SG_LIGHT_COUNT (>= 1) and
 // SG_LAYER_RECORDS (>= 1, vec4 records of packed layer parameters).
 // glslang-validate: SG_LIGHT_COUNT 1, SG_LAYER_RECORDS 1
+// glsl-targets: glsl450 (the renderer's desktop program: dFdxFine,
+// default-block uniforms)
 #ifndef SG_RENDER_SURFACE_FS_GLSL
 #define SG_RENDER_SURFACE_FS_GLSL
 
