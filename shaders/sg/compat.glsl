@@ -21,16 +21,16 @@
 #ifndef SG_CPP
 // GLSL before 4.00 and GLSL ES have no frexp/ldexp, imulExtended, fma or
 // precise, GLSL 3.30 no unpackHalf2x16; ES 3.00 also needs default
-// precisions (highp: the shared math is binary32, and the feature maps'
-// integer textures hold 32-bit words).
+// precisions (highp: the shared math is binary32). Sampler precisions are
+// set where samplers are declared (sg/features/layout.glsl for the feature
+// maps' usampler2D, which has no default) or by the program: ES's default
+// lowp sampler2D returns lowp values (docs/engines.md).
 #if defined(GL_ES) || __VERSION__ < 400
 #define SG_GLSL_LEGACY 1
 #endif
 #ifdef GL_ES
 precision highp float;
 precision highp int;
-precision highp sampler2D;
-precision highp usampler2D;
 #endif
 #define SG_OUT(T) out T
 #define SG_INOUT(T) inout T

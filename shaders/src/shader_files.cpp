@@ -130,7 +130,8 @@ Assembled assemble(std::string_view body, std::string_view bodyName,
     case Target::Es300:
         // Precisions for the body's own declarations; sg/compat.glsl states
         // them again for programs that include the library without this.
-        a.text = "#version 300 es\nprecision highp float;\nprecision highp int;\n";
+        a.text = "#version 300 es\nprecision highp float;\nprecision highp int;\n"
+                 "precision highp sampler2D;\nprecision highp usampler2D;\n";
         break;
     }
     for (const auto& d : defines) {

@@ -42,7 +42,8 @@ struct ShaderSourceError : std::runtime_error {
 //   Glsl330  "#version 330 core" (GL 3.3: no compute or tessellation
 //            stages; backslash line continuations are joined, since GLSL
 //            before 4.20 has none);
-//   Es300    "#version 300 es" with highp defaults (WebGL2, GLES 3.0: no
+//   Es300    "#version 300 es" with highp defaults for float, int,
+//            sampler2D and usampler2D (WebGL2, GLES 3.0: no
 //            compute or tessellation stages).
 enum class Target { Glsl450, Glsl330, Es300 };
 inline constexpr Target kTargets[] = {Target::Glsl450, Target::Glsl330, Target::Es300};

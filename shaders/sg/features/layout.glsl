@@ -27,6 +27,12 @@
 
 #include "sg/compat.glsl"
 
+#ifdef GL_ES
+// The feature maps are 32-bit integer textures; ES 3.00 gives usampler2D no
+// default precision.
+precision highp usampler2D;
+#endif
+
 // 1: the full evaluator (maps baked in quadratic mode, and linear maps);
 // 0: straight segments only, cheaper (maps baked in linear mode). Define it
 // before including any sg/features file.
