@@ -57,6 +57,14 @@ std::string evalKernelGpuBody() {
     return "#include \"sg/features/kernels.comp.glsl\"\n";
 }
 
+std::string evalKernelGpuVertexBody() {
+    return "#include \"sg/features/kernels.vert.glsl\"\n";
+}
+
+std::vector<std::string> evalKernelGpuFeedback() {
+    return {"vOut0", "vOut1"};
+}
+
 std::vector<std::string> evalKernelGpuDefines(int kernel) {
     return {"SG_FEAT_EVAL_KERNEL " + std::to_string(kernel)};
 }

@@ -141,6 +141,55 @@ TEST_F(FeatureMapsGpu, KernelParity) {
     }
 }
 
+// The same kernel parity in the dialects without compute shaders: GLSL
+// 3.30 on an OpenGL 3.3 core context and GLSL ES 3.00 on an OpenGL ES 3.0
+// context, the kernels as a transform-feedback vertex program
+// (sg/features/kernels.vert.glsl). Same records, same tolerances: a dialect
+// changes how the source is spelled, not its binary32 arithmetic (llvmpipe's
+// vertex stage flushes denormals, its compute stage keeps them; the shared
+// code decides nothing on a denormal).
+TEST(FeatureKernelDialects, KernelParityOnGlsl330AndEs300) {
+    for (const auto api : {sg::gl::Api::Gl33Core, sg::gl::Api::Es30}) {
+        sg::gl::HeadlessContext ctx(api);
+        const auto target =
+            api == sg::gl::Api::Es30 ? sg::shaders::Target::Es300 : sg::shaders::Target::Glsl330;
+        for (const Kernel& k : kernels()) {
+            const std::string name =
+                std::string("features-kernel ") + sg::shaders::targetName(target);
+            auto vs = sg::shaders::assemble(evalKernelGpuVertexBody(), name,
+                                            evalKernelGpuDefines(k.id), target);
+            auto fs = sg::shaders::assemble("out vec4 fragColor;\n"
+                                            "void main() { fragColor = vec4(0.0); }\n",
+                                            name + " fragment", {}, target);
+            sg::gl::Program prog({{sg::gl::Stage::Vertex, vs}, {sg::gl::Stage::Fragment, fs}},
+                                 evalKernelGpuFeedback());
+            std::vector<float> in = k.inputs(20261122u);
+            const size_t n = in.size() / size_t(kEvalInStride);
+            std::vector<float> cpu(n * size_t(kEvalOutStride));
+            for (size_t r = 0; r < n; ++r)
+                evalKernelCpu(k.id, &in[r * size_t(kEvalInStride)],
+                              &cpu[r * size_t(kEvalOutStride)]);
+            std::vector<float> gpu =
+                sg::gl::runTransformFeedback(prog, in, kEvalInStride, kEvalOutStride, n);
+            double worst = 0;
+            size_t nonFinite = 0;
+            for (size_t i = 0; i < cpu.size(); ++i) {
+                if (!std::isfinite(cpu[i]) || !std::isfinite(gpu[i])) {
+                    ++nonFinite;
+                    continue;
+                }
+                worst = std::max(worst, double(std::fabs(cpu[i] - gpu[i])) /
+                                            std::max(1.0, double(std::fabs(cpu[i]))));
+            }
+            std::printf("%-8s %-7s %7zu records: max difference %.2e (tolerance %.0e)\n",
+                        k.name.c_str(), sg::shaders::targetName(target), n, worst, k.tolerance);
+            EXPECT_EQ(nonFinite, 0u) << k.name << " " << sg::shaders::targetName(target);
+            EXPECT_LE(worst, k.tolerance)
+                << k.name << " " << sg::shaders::targetName(target) << ": " << k.reason;
+        }
+    }
+}
+
 // Linear maps through the straight-only build (SG_FEAT_CURVED 0), which
 // must give the full evaluator's results on them.
 TEST_F(FeatureMapsGpu, StraightOnlyBuildMatchesOnLinearMaps) {

@@ -375,6 +375,11 @@ void evalKernelCpu(int kernel, const float* in, float* out);
 // (assemble with sg::shaders::assemble, run with sg::gl::runCompute).
 std::string evalKernelGpuBody(); // includes sg/features/kernels.comp.glsl
 std::vector<std::string> evalKernelGpuDefines(int kernel);
+// The same kernels as a vertex program for dialects without compute shaders
+// (GLSL 3.30, ES 3.00; run with sg::gl::runTransformFeedback), and the names
+// of its captured outputs in record order.
+std::string evalKernelGpuVertexBody(); // includes sg/features/kernels.vert.glsl
+std::vector<std::string> evalKernelGpuFeedback();
 // Body of the texture-path compute program (sg/features/sample.comp.glsl):
 // samplers uFeatCorners / uFeatEdges, records of 2 floats -> 4 floats.
 std::string sampleGpuBody();
