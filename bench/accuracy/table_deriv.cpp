@@ -7,6 +7,13 @@
 //  position/UV derivatives (height derivative analytic, chain rule):
 //    dFdxFine / dFdyFine of position and UV (the prologue, listing 16);
 //    dFdxCoarse / dFdyCoarse (on llvmpipe the same values: docs/platform.md);
+//    coarse derivatives emulated: the differences of the 2x2 quad's first
+//      row and first column for all four pixels, what GPUs that compute
+//      coarse derivatives once per quad return (and what dFdx gives in
+//      GLSL 3.30 and ES 3.00, which have no dFdxFine, on such GPUs; the ray
+//      is traced again at the quad's pixels, so no driver behaviour is
+//      assumed; the same emulation of the fine differences reproduces
+//      dFdxFine, checked in the notes);
 //    analytic dPdx/dPdy of listing 17 (sgScreenDerivOfPos) with the UV
 //      derivatives still from dFdxFine;
 //    listing 17 plus analytic UV derivatives (the UV Jacobian of the sphere's
@@ -70,8 +77,8 @@ vec2 chart(vec3 n) {
     return vec2(atan(n.x, -n.y) / kTwoPi + 0.5, asin(clamp(n.z, -1.0, 1.0)) / 3.14159265359 + 0.5);
 }
 
-void main() {
-    vec2 xy = gl_FragCoord.xy;
+// The sphere seen through window position xy.
+void traceSphere(vec2 xy, out vec3 relPos, out vec3 n, out vec2 st, out bool hit) {
     vec4 a = uInvScr * vec4(xy, 0.0, 1.0);
     vec4 b = uInvScr * vec4(xy, 1.0, 1.0);
     vec3 origin = a.xyz / a.w;
@@ -79,14 +86,47 @@ void main() {
     vec3 oc = origin + uCamPos; // origin - centre, centre = -uCamPos in relative space
     float pb = dot(oc, dir);
     float disc = pb * pb - (dot(oc, oc) - uRadius * uRadius);
-    bool hit = disc >= 0.0;
+    hit = disc >= 0.0;
     // Misses (helper lanes of silhouette quads) take the closest point of the ray.
     float t = -pb - (hit ? sqrt(disc) : 0.0);
-    vec3 relPos = origin + t * dir;
-    vec3 n = normalize(relPos + uCamPos);
-    vec2 st = chart(n);
+    relPos = origin + t * dir;
+    n = normalize(relPos + uCamPos);
+    st = chart(n);
+}
 
-#if defined(POS_COARSE)
+void main() {
+    vec2 xy = gl_FragCoord.xy;
+    vec3 relPos;
+    vec3 n;
+    vec2 st;
+    bool hit;
+    traceSphere(xy, relPos, n, st, hit);
+
+#if defined(POS_QUAD_EMU_COARSE) || defined(POS_QUAD_EMU_FINE)
+    // The quad's pixel centres: (q0.x, row) and (q0.x + 1, row) for the x
+    // difference, (column, q0.y) and (column, q0.y + 1) for y; coarse takes
+    // the quad's first row and column for every pixel, fine the pixel's own.
+    vec2 q0 = floor(xy * 0.5) * 2.0 + vec2(0.5);
+#if defined(POS_QUAD_EMU_COARSE)
+    vec2 rowCol = q0;
+#else
+    vec2 rowCol = xy;
+#endif
+    vec3 p0;
+    vec3 p1;
+    vec3 nq;
+    vec2 s0;
+    vec2 s1;
+    bool hq;
+    traceSphere(vec2(q0.x, rowCol.y), p0, nq, s0, hq);
+    traceSphere(vec2(q0.x + 1.0, rowCol.y), p1, nq, s1, hq);
+    vec3 dPdx = p1 - p0;
+    vec2 dSTdx = s1 - s0;
+    traceSphere(vec2(rowCol.x, q0.y), p0, nq, s0, hq);
+    traceSphere(vec2(rowCol.x, q0.y + 1.0), p1, nq, s1, hq);
+    vec3 dPdy = p1 - p0;
+    vec2 dSTdy = s1 - s0;
+#elif defined(POS_COARSE)
     vec3 dPdx = dFdxCoarse(relPos);
     vec3 dPdy = dFdyCoarse(relPos);
     vec2 dSTdx = dFdxCoarse(st);
@@ -213,6 +253,7 @@ void tableDerivatives(const Options& o) {
     const std::vector<Variant> variants = {
         {"dFdxFine P, st; analytic dh/dst (L8)", {}, 0},
         {"dFdxCoarse P, st; analytic dh/dst", {"POS_COARSE"}, 0},
+        {"quad-coarse P, st (emulated); analytic dh/dst", {"POS_QUAD_EMU_COARSE"}, 0},
         {"L17 dPdx + dFdxFine st; analytic dh/dst", {"POS_L17"}, 0},
         {"L17 dPdx + analytic dst/dx; analytic dh/dst", {"POS_L17_ST"}, 0},
         {"1-tap dFdxFine(h), analytic h", {"H_TAP1_ANALYTIC"}, 0},
@@ -251,6 +292,9 @@ void tableDerivatives(const Options& o) {
         d.push_back("ACCURACY");
         acc.push_back(makeProgram(fullscreenVertexShader(), fs, "deriv_acc", d));
     }
+    // The emulation checked: its fine form must give dFdxFine's normals.
+    const sg::gl::Program fineEmu =
+        makeProgram(fullscreenVertexShader(), fs, "deriv_acc", {"POS_QUAD_EMU_FINE", "ACCURACY"});
     const glm::mat4 invScr(sph.invScr);
     auto use = [&](size_t k, const sg::gl::Program& p) {
         glUseProgram(p.id());
@@ -312,7 +356,7 @@ void tableDerivatives(const Options& o) {
     Target target(size, size, 2);
     std::vector<ErrorStats> nStats, dStats;
     std::vector<glm::vec4> fineNormals;
-    double coarseVsFine = 0;
+    double coarseVsFine = 0, fineEmuVsFine = 0;
     size_t used = 0;
     for (size_t k = 0; k < variants.size(); ++k) {
         target.clear();
@@ -337,6 +381,23 @@ void tableDerivatives(const Options& o) {
         dStats.push_back(errorStats(de));
     }
 
+    {
+        target.clear();
+        glUseProgram(fineEmu.id());
+        glUniformMatrix4fv(fineEmu.uniform("uInvScr"), 1, GL_FALSE, &invScr[0][0]);
+        glUniform3f(fineEmu.uniform("uCamPos"), float(sph.camPos.x), float(sph.camPos.y),
+                    float(sph.camPos.z));
+        glUniform1f(fineEmu.uniform("uRadius"), float(sph.radius));
+        glUniform3f(fineEmu.uniform("uHeightParams"), float(sph.amp), float(sph.fs), float(sph.ft));
+        fullscreen.draw();
+        const auto nrm = target.read(0);
+        for (size_t i = 0; i < px; ++i) {
+            if (counted[i])
+                fineEmuVsFine = std::max(fineEmuVsFine,
+                                         angleDeg(glm::dvec3(nrm[i]), glm::dvec3(fineNormals[i])));
+        }
+    }
+
     Target timTarget(size, size, 1, false);
     const auto ms = timeVariants(
         variants.size(),
@@ -357,7 +418,7 @@ void tableDerivatives(const Options& o) {
     t.header = {"method",           "p50 deg",          "p90 deg",  "p99 deg", "max deg",
                 "dPdx rel err p50", "dPdx rel err max", "frame ms", "ratio"};
     for (size_t k = 0; k < variants.size(); ++k) {
-        const bool posRow = k < 4;
+        const bool posRow = k < 5;
         t.add({variants[k].name, fmtErr(nStats[k].p50), fmtErr(nStats[k].p90),
                fmtErr(nStats[k].p99), fmtErr(nStats[k].max), posRow ? fmtErr(dStats[k].p50) : "",
                posRow ? fmtErr(dStats[k].max) : "", fmt(ms[k], 2), fmtRatio(ms[k] / ms[0])});
@@ -376,7 +437,14 @@ void tableDerivatives(const Options& o) {
         fmt(1.0 / (dsPerPixel * mapW[2]), 2) + " pixels per texel.");
     t.notes.push_back(
         "dFdxCoarse vs dFdxFine on this driver: largest normal difference " + fmtErr(coarseVsFine) +
-        " degrees (llvmpipe computes coarse derivatives like fine ones: docs/platform.md).");
+        " degrees (llvmpipe computes coarse derivatives like fine ones: docs/platform.md). "
+        "The quad emulation with each pixel's own row and column against dFdxFine: " +
+        fmtErr(fineEmuVsFine) +
+        " degrees, so the emulated coarse row is what a GPU whose "
+        "dFdxCoarse uses the quad's first row and column (and dFdx in GLSL 3.30 and ES 3.00 "
+        "on such a GPU) gives.");
+    t.notes.push_back("The emulated row's time is the emulation's (four more rays per pixel), "
+                      "not a GPU's: there a coarse derivative costs no more than a fine one.");
     t.notes.push_back("Cost: " + std::to_string(size) + "^2 pass on " + o.renderer +
                       " (ray-sphere in every "
                       "variant), " +
