@@ -141,6 +141,17 @@ glslangValidator -l -I"$prefix/share/surfgrad/shaders" "$src/tests/install/consu
 if glslangValidator -l "$src/tests/install/consumer.frag" >/dev/null 2>&1; then
     fail "consumer.frag validated without the include path (the test would prove nothing)"
 fi
+# The same shader in the other dialects (docs/engines.md): GLSL 3.30 core,
+# GLSL ES 3.00 (WebGL2) and Vulkan SPIR-V (checked by spirv-val).
+for dialect in 330 es300; do
+    glslangValidator -l -I"$prefix/share/surfgrad/shaders" \
+        "$src/tests/install/consumer_$dialect.frag" >"$work/glslang.log" 2>&1 ||
+        { cat "$work/glslang.log" >&2; fail "consumer_$dialect.frag does not validate"; }
+done
+glslangValidator -V -I"$prefix/share/surfgrad/shaders" "$src/tests/install/consumer_vulkan.frag" \
+    -o "$work/consumer.spv" >"$work/glslang.log" 2>&1 ||
+    { cat "$work/glslang.log" >&2; fail "consumer_vulkan.frag does not compile to SPIR-V"; }
+spirv-val "$work/consumer.spv" || fail "consumer_vulkan.frag: spirv-val rejects the SPIR-V"
 
 # ---- 5. the installed CLI and its data
 step "installed surfgrad render share/surfgrad/examples/terrain/scene.json"
