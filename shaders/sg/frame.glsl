@@ -58,15 +58,16 @@ SG_FN vec3 sgGeometricNormal(vec3 dPdx, vec3 dPdy) {
 
 // Recomputes the tangent-plane projections and the orientation sign of a
 // frame whose nrmBase, dPdx and dPdy are set (listing 16, last three lines).
-// Denormal components of the derivatives and of the sigmas are zero in
-// every build (sgFlushDenorm3): a derivative of 1e-39 times one of 1e2 is a
-// normal triple product whose sign a flushing GPU would not see.
+// Denormal components of the derivatives are zero in every build
+// (sgFlushDenorm3): a derivative of 1e-39 times one of 1e2 is a normal
+// triple product whose sign a flushing GPU would not see. (The sigmas need
+// no flush: the parity suites on a flushing stage pass without one.)
 SG_FN SgFrame sgFrameUpdateSigmas(SgFrame f) {
     SgFrame r = f;
     r.dPdx = sgFlushDenorm3(f.dPdx);
     r.dPdy = sgFlushDenorm3(f.dPdy);
-    r.sigmaX = sgFlushDenorm3(r.dPdx - dot(r.dPdx, f.nrmBase) * f.nrmBase);
-    r.sigmaY = sgFlushDenorm3(r.dPdy - dot(r.dPdy, f.nrmBase) * f.nrmBase);
+    r.sigmaX = r.dPdx - dot(r.dPdx, f.nrmBase) * f.nrmBase;
+    r.sigmaY = r.dPdy - dot(r.dPdy, f.nrmBase) * f.nrmBase;
     // The triple product cannot overflow in the SG_BIG domain (|dPdx| |dPdy|
     // <= 3e36). A product below SG_FLT_MIN (derivatives below ~1e-19 per
     // pixel, or parallel ones) is a denormal that GPUs flush: it counts as
