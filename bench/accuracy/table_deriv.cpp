@@ -383,12 +383,7 @@ void tableDerivatives(const Options& o) {
 
     {
         target.clear();
-        glUseProgram(fineEmu.id());
-        glUniformMatrix4fv(fineEmu.uniform("uInvScr"), 1, GL_FALSE, &invScr[0][0]);
-        glUniform3f(fineEmu.uniform("uCamPos"), float(sph.camPos.x), float(sph.camPos.y),
-                    float(sph.camPos.z));
-        glUniform1f(fineEmu.uniform("uRadius"), float(sph.radius));
-        glUniform3f(fineEmu.uniform("uHeightParams"), float(sph.amp), float(sph.fs), float(sph.ft));
+        use(0, fineEmu); // the first row's uniforms (analytic height, no map)
         fullscreen.draw();
         const auto nrm = target.read(0);
         for (size_t i = 0; i < px; ++i) {

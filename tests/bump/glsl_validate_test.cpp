@@ -31,17 +31,21 @@ namespace fs = std::filesystem;
 
 using RunResult = sg::test::CommandResult;
 
-// Writes `source` to a temporary file with the stage's extension and runs
-// glslangValidator on it.
-RunResult validate(const std::string& source, const std::string& stage, const std::string& tag) {
+// Writes `source` to a scratch file named after `tag` with extension `ext`.
+fs::path writeScratch(const std::string& source, const std::string& tag, const std::string& ext) {
     const fs::path& dir = sg::test::processScratchDir("surfgrad_glslang");
     std::string safe = tag;
     for (char& c : safe) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-    const fs::path file = dir / (safe + "." + stage);
-    {
-        std::ofstream out(file);
-        out << source;
-    }
+    const fs::path file = dir / (safe + "." + ext);
+    std::ofstream out(file);
+    out << source;
+    return file;
+}
+
+// Writes `source` to a temporary file with the stage's extension and runs
+// glslangValidator on it.
+RunResult validate(const std::string& source, const std::string& stage, const std::string& tag) {
+    const fs::path file = writeScratch(source, tag, stage);
     RunResult r = sg::test::runCommand("glslangValidator " + sg::test::shellQuote(file));
     fs::remove(file);
     return r;
@@ -120,14 +124,8 @@ std::set<std::string> extraTargetsOf(const std::string& path, const std::string&
 // glslangValidator -V (Vulkan 1.1 SPIR-V), then spirv-val on the module.
 RunResult validateVulkan(const std::string& source, const std::string& stage,
                          const std::string& tag) {
-    const fs::path& dir = sg::test::processScratchDir("surfgrad_glslang");
-    std::string safe = tag;
-    for (char& c : safe) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-    const fs::path file = dir / (safe + "_vk." + stage), spv = dir / (safe + ".spv");
-    {
-        std::ofstream out(file);
-        out << source;
-    }
+    const fs::path file = writeScratch(source, tag + "_vk", stage);
+    const fs::path spv = fs::path(file).replace_extension(".spv");
     RunResult r = sg::test::runCommand(
         "glslangValidator -V --target-env vulkan1.1 " + sg::test::shellQuote(file) + " -o " +
         sg::test::shellQuote(spv) + " && spirv-val " + sg::test::shellQuote(spv));
@@ -138,13 +136,20 @@ RunResult validateVulkan(const std::string& source, const std::string& stage,
 
 class GlslFile : public ::testing::TestWithParam<std::string> {};
 
+// A program body that includes file `path` (text `text`), with an empty
+// main() when the file has none.
+std::string standaloneBody(const std::string& path, const std::string& text) {
+    std::string body = "#include \"" + path + "\"\n";
+    const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
+    if (!hasMain) body += "void main() {}\n";
+    return body;
+}
+
 TEST_P(GlslFile, CompilesStandalone) {
     const std::string path = GetParam();
     const std::string text = sg::shaders::find(path);
     const std::string stage = stageOf(path);
-    std::string body = "#include \"" + path + "\"\n";
-    const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
-    if (!hasMain) body += "void main() {}\n";
+    const std::string body = standaloneBody(path, text);
     std::vector<std::string> defines = definesOf(text);
     const auto src = sg::shaders::assemble(body, "validate[" + path + "]", defines);
     const RunResult r = validate(src.text, stage, path);
@@ -156,9 +161,7 @@ TEST_P(GlslFile, CompilesInEveryDialectItTargets) {
     const std::string path = GetParam();
     const std::string text = sg::shaders::find(path);
     const std::string stage = stageOf(path);
-    std::string body = "#include \"" + path + "\"\n";
-    const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
-    if (!hasMain) body += "void main() {}\n";
+    const std::string body = standaloneBody(path, text);
     const std::vector<std::string> defines = definesOf(text);
     for (const std::string& t : extraTargetsOf(path, text)) {
         sg::shaders::Target target = sg::shaders::Target::Glsl450;

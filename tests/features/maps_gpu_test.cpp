@@ -151,18 +151,13 @@ TEST_F(FeatureMapsGpu, KernelParity) {
 TEST(FeatureKernelDialects, KernelParityOnGlsl330AndEs300) {
     for (const auto api : {sg::gl::Api::Gl33Core, sg::gl::Api::Es30}) {
         sg::gl::HeadlessContext ctx(api);
-        const auto target =
-            api == sg::gl::Api::Es30 ? sg::shaders::Target::Es300 : sg::shaders::Target::Glsl330;
+        const auto target = sg::gl::targetFor(api);
         for (const Kernel& k : kernels()) {
             const std::string name =
                 std::string("features-kernel ") + sg::shaders::targetName(target);
             auto vs = sg::shaders::assemble(evalKernelGpuVertexBody(), name,
                                             evalKernelGpuDefines(k.id), target);
-            auto fs = sg::shaders::assemble("out vec4 fragColor;\n"
-                                            "void main() { fragColor = vec4(0.0); }\n",
-                                            name + " fragment", {}, target);
-            sg::gl::Program prog({{sg::gl::Stage::Vertex, vs}, {sg::gl::Stage::Fragment, fs}},
-                                 evalKernelGpuFeedback());
+            sg::gl::Program prog = sg::gl::feedbackProgram(vs, target, evalKernelGpuFeedback());
             std::vector<float> in = k.inputs(20261122u);
             const size_t n = in.size() / size_t(kEvalInStride);
             std::vector<float> cpu(n * size_t(kEvalOutStride));

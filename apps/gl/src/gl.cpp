@@ -55,6 +55,18 @@ Api apiFor(shaders::Target target) {
     return Api::Gl45Core;
 }
 
+shaders::Target targetFor(Api api) {
+    switch (api) {
+    case Api::Gl45Core:
+        return shaders::Target::Glsl450;
+    case Api::Gl33Core:
+        return shaders::Target::Glsl330;
+    case Api::Es30:
+        return shaders::Target::Es300;
+    }
+    return shaders::Target::Glsl450;
+}
+
 const char* apiName(Api api) {
     switch (api) {
     case Api::Gl45Core:
@@ -342,6 +354,18 @@ std::vector<float> runTransformFeedback(const Program& program, const std::vecto
     }
     glUseProgram(program.id());
     glEnable(GL_RASTERIZER_DISCARD);
+    // Restores the state and frees the objects, on return and on error.
+    auto release = [&] {
+        glDisable(GL_RASTERIZER_DISCARD);
+        glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
+        glBindVertexArray(0);
+        glDeleteBuffers(2, bufs);
+        glDeleteVertexArrays(1, &vao);
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        glDeleteFramebuffers(1, &fbo);
+        glDeleteRenderbuffers(1, &rbo);
+        glUseProgram(0);
+    };
     for (size_t first = 0; first < count; first += perDraw) {
         const size_t n = std::min(perDraw, count - first);
         glBindBuffer(GL_ARRAY_BUFFER, bufs[0]);
@@ -358,7 +382,7 @@ std::vector<float> runTransformFeedback(const Program& program, const std::vecto
         const auto* mapped = static_cast<const float*>(glMapBufferRange(
             GL_TRANSFORM_FEEDBACK_BUFFER, 0, GLsizeiptr(n * outRecordBytes), GL_MAP_READ_BIT));
         if (!mapped) {
-            glDisable(GL_RASTERIZER_DISCARD);
+            release();
             throw GlError("runTransformFeedback: glMapBufferRange of the feedback buffer failed");
         }
         for (size_t r = 0; r < n; ++r) {
@@ -367,17 +391,17 @@ std::vector<float> runTransformFeedback(const Program& program, const std::vecto
         }
         glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
     }
-    glDisable(GL_RASTERIZER_DISCARD);
-    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
-    glBindVertexArray(0);
-    glDeleteBuffers(2, bufs);
-    glDeleteVertexArrays(1, &vao);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteRenderbuffers(1, &rbo);
-    glUseProgram(0);
+    release();
     checkError("runTransformFeedback");
     return output;
+}
+
+Program feedbackProgram(const shaders::Assembled& vertex, shaders::Target target,
+                        const std::vector<std::string>& feedback) {
+    const auto fragment = shaders::assemble("out vec4 fragColor;\n"
+                                            "void main() { fragColor = vec4(0.0); }\n",
+                                            "feedback fragment", {}, target);
+    return Program({{Stage::Vertex, vertex}, {Stage::Fragment, fragment}}, feedback);
 }
 
 } // namespace sg::gl

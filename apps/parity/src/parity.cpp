@@ -59,16 +59,10 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
             auto src = shaders::assemble(eval::evalGpuBody(), name, defines);
             it = programs_.emplace(e.kernel, gl::Program({{gl::Stage::Compute, src}})).first;
         } else {
-            // No compute stage: the vertex entry under transform feedback,
-            // with the empty fragment stage a GLSL ES program must have.
+            // No compute stage: the vertex entry under transform feedback.
             auto vs = shaders::assemble(eval::evalGpuVertexBody(), name, defines, target);
-            auto fs = shaders::assemble("out vec4 fragColor;\n"
-                                        "void main() { fragColor = vec4(0.0); }\n",
-                                        name + " fragment", {}, target);
             it = programs_
-                     .emplace(e.kernel,
-                              gl::Program({{gl::Stage::Vertex, vs}, {gl::Stage::Fragment, fs}},
-                                          eval::evalGpuFeedback()))
+                     .emplace(e.kernel, gl::feedbackProgram(vs, target, eval::evalGpuFeedback()))
                      .first;
         }
     }
@@ -82,15 +76,7 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
 }
 
 shaders::Target GpuEvaluator::target() const {
-    switch (ctx_.api()) {
-    case gl::Api::Gl45Core:
-        return shaders::Target::Glsl450;
-    case gl::Api::Gl33Core:
-        return shaders::Target::Glsl330;
-    case gl::Api::Es30:
-        return shaders::Target::Es300;
-    }
-    return shaders::Target::Glsl450;
+    return gl::targetFor(ctx_.api());
 }
 
 double mixedError(const eval::Entry& e, const double* a, const double* ref) {

@@ -30,8 +30,9 @@ struct GlError : std::runtime_error {
 // Es30 Es300 (an implementation may give a later ES 3.x; ES 3.00 shaders
 // run on all of them).
 enum class Api { Gl45Core, Gl33Core, Es30 };
-// The API whose shading language is `target`.
+// The API whose shading language is `target`, and the reverse.
 Api apiFor(shaders::Target target);
+shaders::Target targetFor(Api api);
 // "OpenGL 4.5 core", "OpenGL 3.3 core", "OpenGL ES 3.0".
 const char* apiName(Api api);
 
@@ -101,6 +102,11 @@ std::vector<float> runCompute(const Program& program, const std::vector<float>& 
 // Uses only calls of GL 3.3 core and ES 3.0.
 std::vector<float> runTransformFeedback(const Program& program, const std::vector<float>& input,
                                         int inStride, int outStride, size_t count);
+// A program for runTransformFeedback: the assembled vertex stage `vertex`
+// (of dialect `target`), the empty fragment stage a GLSL ES program must
+// have, and `feedback`, the captured outputs in record order.
+Program feedbackProgram(const shaders::Assembled& vertex, shaders::Target target,
+                        const std::vector<std::string>& feedback);
 
 // Throws GlError naming `what` if glGetError reports an error.
 void checkError(const char* what);
