@@ -58,11 +58,17 @@ install(FILES "${PROJECT_SOURCE_DIR}/packaging/copyright" "${PROJECT_SOURCE_DIR}
 install(FILES "${PROJECT_SOURCE_DIR}/packaging/copyright"
         DESTINATION "${CMAKE_INSTALL_DATAROOTDIR}/doc/surfgrad-dev" COMPONENT development)
 
-# ---- the GLSL library: share/surfgrad/shaders/sg/**.glsl, so that
-# `#include "sg/surfgrad.glsl"` resolves with only share/surfgrad/shaders
-# on the include path (and C++ sees the same files through surfgrad::shaders).
+# ---- the shader library: share/surfgrad/shaders/sg/**.glsl and its HLSL
+# entries (**.hlsl), so that `#include "sg/surfgrad.glsl"` (GLSL) and
+# `#include "sg/surfgrad.hlsl"` (HLSL) resolve with only
+# share/surfgrad/shaders on the include path (and C++ sees the same files
+# through surfgrad::shaders).
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/shaders/sg" DESTINATION "${SURFGRAD_INSTALL_SHADERDIR}"
-        COMPONENT development FILES_MATCHING PATTERN "*.glsl")
+        COMPONENT development FILES_MATCHING PATTERN "*.glsl" PATTERN "*.hlsl")
+# ... and as one file per language (shaders/flat, written by the build).
+install(FILES "${SURFGRAD_FLAT_DIR}/surfgrad.glsl" "${SURFGRAD_FLAT_DIR}/surfgrad.hlsl"
+              "${SURFGRAD_FLAT_DIR}/surfgrad.ush"
+        DESTINATION "${SURFGRAD_INSTALL_SHADERDIR}/flat" COMPONENT development)
 
 # ---- data and examples: the installed `surfgrad render
 # share/surfgrad/examples/terrain/scene.json` finds "../data/..." beside it

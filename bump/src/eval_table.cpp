@@ -166,6 +166,10 @@ std::string evalGpuBody() {
     return "#include \"sg/eval/eval.comp.glsl\"\n";
 }
 
+std::string evalHlslBody() {
+    return "#include \"sg/eval/eval.hlsl\"\n";
+}
+
 std::string evalGpuVertexBody() {
     return "#include \"sg/eval/eval.vert.glsl\"\n";
 }

@@ -184,7 +184,7 @@ std::vector<float> kernelInputsNearPiece(uint32_t seed) {
         r.set("p1", curved ? f1 : 0.5f * (f0 + f2));
         r.set("p2", f2);
         r.set("curved", curved ? 1.0f : 0.0f);
-        r.set("point", pt);
+        r.set("query", pt);
         out.insert(out.end(), rec.begin(), rec.end());
     }
     return out;

@@ -57,6 +57,10 @@ std::string evalKernelGpuBody() {
     return "#include \"sg/features/kernels.comp.glsl\"\n";
 }
 
+std::string evalKernelHlslBody() {
+    return "#include \"sg/features/kernels.hlsl\"\n";
+}
+
 std::string evalKernelGpuVertexBody() {
     return "#include \"sg/features/kernels.vert.glsl\"\n";
 }

@@ -1,8 +1,10 @@
 // surfgrad shared-shader common subset: GLSL side.
 //
-// Every file under shaders/sg/ is compiled twice from this one source: by the
-// GL driver as GLSL, and by the C++ compiler through GLM (the C++ side of
-// these macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP).
+// Every file under shaders/sg/ is compiled from this one source: by the GL
+// driver as GLSL, by the C++ compiler through GLM (the C++ side of these
+// macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP), and
+// as HLSL (the HLSL side is sg/compat_hlsl.glsl, selected by SG_HLSL, which
+// sg/surfgrad.hlsl defines).
 // The GLSL side compiles as GLSL 4.50, GLSL 3.30 core and GLSL ES 3.00
 // (WebGL2, GLES 3), and as Vulkan GLSL to SPIR-V (docs/engines.md): what
 // only 4.x has is written here once with a 3.30/ES path (SG_GLSL_LEGACY).
@@ -10,15 +12,21 @@
 //   - float literals carry an f suffix (1.0f): GLM does not mix float/double;
 //   - no swizzles (write vec2(v.x, v.y)), no array constructors, no globals:
 //     state travels in structs (SgFrame);
+//   - no splat constructors: sgVec3(x) (below), not vec3(x), which HLSL
+//     rejects; matrices built from columns and read by column, never
+//     multiplied by a vector (sg/compat_hlsl.glsl says why);
 //   - out/inout parameters through SG_OUT(T)/SG_INOUT(T); every function is
 //     declared `SG_FN type name(...)`;
 //   - no implicit int->float promotion in vector arithmetic;
-//   - identifiers avoid keywords of both languages (sample, patch, new, ...).
+//   - identifiers avoid keywords of all three languages (sample, patch, new,
+//     and HLSL's line, point, linear, triangle, vector, matrix, half, ...).
 // OpenSubdiv's osd/patchBasis.h is the model for this arrangement.
 #ifndef SG_COMPAT_GLSL
 #define SG_COMPAT_GLSL
 
-#ifndef SG_CPP
+#if defined(SG_HLSL)
+#include "sg/compat_hlsl.glsl"
+#elif !defined(SG_CPP)
 // GLSL before 4.00 and GLSL ES have no frexp/ldexp, imulExtended, fma or
 // precise, GLSL 3.30 no unpackHalf2x16; ES 3.00 also needs default
 // precisions (highp: the shared math is binary32). Sampler precisions are
@@ -57,6 +65,16 @@ precision highp int;
 // such a huge gradient, so nothing a renderer sees changes. For inputs in
 // the domain every shared function returns finite values.
 #define SG_BIG 1.0e18f
+
+// A vector with every component x ("splat"). The shared source writes
+// sgVec3(x) where GLSL and C++ would take vec3(x): HLSL's constructors take
+// as many components as the type has (DXC and FXC reject float3(x)).
+SG_FN vec2 sgVec2(float x) { return vec2(x, x); }
+SG_FN vec3 sgVec3(float x) { return vec3(x, x, x); }
+SG_FN vec4 sgVec4(float x) { return vec4(x, x, x, x); }
+SG_FN ivec2 sgIvec2(int x) { return ivec2(x, x); }
+SG_FN ivec3 sgIvec3(int x) { return ivec3(x, x, x); }
+SG_FN uvec4 sgUvec4(uint x) { return uvec4(x, x, x, x); }
 
 // Normalize that survives huge and tiny inputs: dividing by the largest
 // absolute component first keeps dot(s, s) in [1, 3], so it neither
@@ -101,7 +119,7 @@ SG_FN float sgMaxAbs4(vec4 v) { return max(max(abs(v.x), abs(v.y)), max(abs(v.z)
 // and their signs are those of the unscaled products.
 SG_FN vec3 sgScaleToUnitMax3(vec3 v) {
     float m = sgMaxAbs3(v);
-    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec3(0.0f);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return sgVec3(0.0f);
     return v / m;
 }
 
@@ -109,8 +127,8 @@ SG_FN vec3 sgScaleToUnitMax3(vec3 v) {
 // whose largest component is below SG_FLT_MIN treated as zero (a GPU flushes
 // such denormals; the CPU would carry them into products): both builds then
 // see the same zero vector.
-SG_FN vec3 sgDivScale3(vec3 v, float k) { return sgMaxAbs3(v) >= SG_FLT_MIN ? v / k : vec3(0.0f); }
-SG_FN vec2 sgDivScale2(vec2 v, float k) { return sgMaxAbs2(v) >= SG_FLT_MIN ? v / k : vec2(0.0f); }
+SG_FN vec3 sgDivScale3(vec3 v, float k) { return sgMaxAbs3(v) >= SG_FLT_MIN ? v / k : sgVec3(0.0f); }
+SG_FN vec2 sgDivScale2(vec2 v, float k) { return sgMaxAbs2(v) >= SG_FLT_MIN ? v / k : sgVec2(0.0f); }
 
 // frexp and ldexp of normal binary32 values, written with the bit pattern
 // (floatBitsToInt exists in GLSL 3.30 and ES 3.00) where the language lacks
@@ -218,12 +236,12 @@ SG_FN float sgBoundedGain(float vMax, vec4 f) {
 // at least SG_FLT_MIN.
 SG_FN vec3 sgBoundedScale3(vec3 v, vec4 f) {
     float m = sgMaxAbs3(v);
-    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec3(0.0f);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return sgVec3(0.0f);
     return (v / m) * sgBoundedGain(m, f);
 }
 SG_FN vec2 sgBoundedScale2(vec2 v, vec4 f) {
     float m = sgMaxAbs2(v);
-    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return vec2(0.0f);
+    if (!(m >= SG_FLT_MIN) || !(m <= SG_FLT_MAX)) return sgVec2(0.0f);
     return (v / m) * sgBoundedGain(m, f);
 }
 

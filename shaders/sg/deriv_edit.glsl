@@ -28,7 +28,7 @@ SG_FN vec2 sgDerivAdd(vec2 d1, float alpha, vec2 d2, float beta) { return alpha 
 // [0, SG_DERIV_MAX_LAYERS]). Weights summing to 1 give a blend, any weights
 // an additive mix.
 SG_FN vec2 sgDerivBlend(vec2 d[SG_DERIV_MAX_LAYERS], float w[SG_DERIV_MAX_LAYERS], int count) {
-    vec2 sum = vec2(0.0f);
+    vec2 sum = sgVec2(0.0f);
     int n = clamp(count, 0, SG_DERIV_MAX_LAYERS);
     for (int i = 0; i < n; ++i) sum += w[i] * d[i];
     return sum;

@@ -98,8 +98,8 @@ SG_FN SgFrame sgPrologue(vec3 vtxNormal, vec3 dPdx, vec3 dPdy, bool isFrontFacin
     f.resolveSign = (isBackFace && bfaceMode == SG_BFACE_FLIP) ? -1.0f : 1.0f;
     f.dPdx = dPdx;
     f.dPdy = dPdy;
-    f.sigmaX = vec3(0.0f);
-    f.sigmaY = vec3(0.0f);
+    f.sigmaX = sgVec3(0.0f);
+    f.sigmaY = sgVec3(0.0f);
     f.flipSign = 1.0f;
     return sgFrameUpdateSigmas(f);
 }
@@ -196,9 +196,9 @@ SG_FN SgFrame sgFrameWithBase(SgFrame f, vec3 nrmBase) {
 // zero normal, a zero matrix or a near point at infinity gives zeros.
 SG_FN void sgScreenDerivOfPos(SG_OUT(vec3) dPdx, SG_OUT(vec3) dPdy, vec3 pos, vec3 norm,
                               mat4 invViewProjScr, float x0, float y0) {
-    dPdx = vec3(0.0f);
-    dPdy = vec3(0.0f);
-    vec3 n = sgSafeNormalize(norm, vec3(0.0f));
+    dPdx = sgVec3(0.0f);
+    dPdy = sgVec3(0.0f);
+    vec3 n = sgSafeNormalize(norm, sgVec3(0.0f));
     float mMax = max(max(sgMaxAbs4(invViewProjScr[0]), sgMaxAbs4(invViewProjScr[1])),
                      max(sgMaxAbs4(invViewProjScr[2]), sgMaxAbs4(invViewProjScr[3])));
     if (!(mMax >= SG_FLT_MIN) || !(mMax <= SG_FLT_MAX) || sgMaxAbs3(n) == 0.0f) return;
@@ -230,8 +230,8 @@ SG_FN void sgScreenDerivOfPos(SG_OUT(vec3) dPdx, SG_OUT(vec3) dPdy, vec3 pos, ve
     float t = dot(n, pos - nearPos) * rcpNDotD;
     vec3 wX = nearDx + t * rayDirDx;
     vec3 wY = nearDy + t * rayDirDy;
-    dPdx = sgBoundedScale3(wX - rayDir * (dot(n, wX) * rcpNDotD), vec4(1.0f));
-    dPdy = sgBoundedScale3(wY - rayDir * (dot(n, wY) * rcpNDotD), vec4(1.0f));
+    dPdx = sgBoundedScale3(wX - rayDir * (dot(n, wX) * rcpNDotD), sgVec4(1.0f));
+    dPdy = sgBoundedScale3(wY - rayDir * (dot(n, wY) * rcpNDotD), sgVec4(1.0f));
 }
 
 #endif

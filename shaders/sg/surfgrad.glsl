@@ -175,7 +175,7 @@ SG_FN void sgGenBasisTB(SgFrame f, vec2 st, vec2 dSTdx, vec2 dSTdy, SG_OUT(vec3)
     float shape = 2.0f * abs(det) * length(cross(ux, uy)) / (dot(aS, aS) + dot(aT, aT));
     bool valid = k >= SG_FLT_MIN && k <= SG_FLT_MAX && l2 >= SG_FLT_MIN;
     float w = valid ? sgChartWeight(st, k, det, shape) * partW : 0.0f;
-    vec3 t = valid ? sgSafeNormalize(t1, vec3(0.0f)) * w : vec3(0.0f);
+    vec3 t = valid ? sgSafeNormalize(t1, sgVec3(0.0f)) * w : sgVec3(0.0f);
     vT = t;
     vB = (signDet * f.flipSign) * cross(f.nrmBase, t);
 }
@@ -208,7 +208,7 @@ SG_FN vec3 sgSurfgradFromPerturbedNormal(SgFrame f, vec3 v) {
 // (sgBoundedScale3). Zero dPdx and dPdy give the zero vector.
 SG_FN vec3 sgSurfgradFromScreenDerivScaled(SgFrame f, vec2 dHdxyDir, float gainA, float gainB) {
     float k = max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
-    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return vec3(0.0f);
+    if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX)) return sgVec3(0.0f);
     vec3 px = sgDivScale3(f.dPdx, k);
     vec3 py = sgDivScale3(f.dPdy, k);
     vec3 vR1 = cross(py, f.nrmBase);
@@ -245,7 +245,7 @@ SG_FN vec3 sgSurfgradScaleDependent(SgFrame f, vec2 deriv, vec2 dSTdx, vec2 dSTd
     float dm = sgMaxAbs2(dHdST);
     float sm = max(sgMaxAbs2(dSTdx), sgMaxAbs2(dSTdy));
     if (!(dm >= SG_FLT_MIN) || !(sm >= SG_FLT_MIN) || !(dm <= SG_FLT_MAX) || !(sm <= SG_FLT_MAX)) {
-        return vec3(0.0f);
+        return sgVec3(0.0f);
     }
     vec2 d = dHdST / dm;
     vec2 sx = sgDivScale2(dSTdx, sm);
@@ -276,7 +276,7 @@ SG_FN vec2 sgProjectVecToTextureSpace(SgFrame f, vec3 dir, vec2 dSTdx, vec2 dSTd
     float dm = sgMaxAbs3(dir);
     if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(sm >= SG_FLT_MIN) || !(sm <= SG_FLT_MAX) ||
         !(dm >= SG_FLT_MIN) || !(dm <= SG_FLT_MAX)) {
-        return vec2(0.0f);
+        return sgVec2(0.0f);
     }
     vec3 px = sgDivScale3(f.dPdx, k);
     vec3 py = sgDivScale3(f.dPdy, k);
@@ -312,7 +312,7 @@ SG_FN vec3 sgTexSpaceOffsToSurface(SgFrame f, vec2 dSTdx, vec2 dSTdy, vec2 corrO
     float sm = max(sgMaxAbs3(f.sigmaX), sgMaxAbs3(f.sigmaY));
     if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(om >= SG_FLT_MIN) || !(sm >= SG_FLT_MIN) ||
         !(sm <= SG_FLT_MAX)) {
-        return vec3(0.0f);
+        return sgVec3(0.0f);
     }
     vec2 sx = sgDivScale2(dSTdx, k);
     vec2 sy = sgDivScale2(dSTdy, k);
@@ -339,10 +339,10 @@ SG_FN vec3 sgSurfgradFromVolumeGradient(SgFrame f, vec3 grad) {
 // so large k cannot underflow every weight to 0. k > 0. A normal with no
 // component above 0.2 (not unit length) gets equal weights.
 SG_FN vec3 sgTriplanarWeights(vec3 nrm, float k) {
-    vec3 b = max(abs(nrm) - vec3(0.2f), vec3(0.0f));
+    vec3 b = max(abs(nrm) - sgVec3(0.2f), sgVec3(0.0f));
     float bMax = max(max(b.x, b.y), b.z);
-    if (!(bMax >= SG_FLT_MIN)) return vec3(1.0f / 3.0f);
-    vec3 w = pow(b / bMax, vec3(max(k, SG_FLT_EPSILON)));
+    if (!(bMax >= SG_FLT_MIN)) return sgVec3(1.0f / 3.0f);
+    vec3 w = pow(b / bMax, sgVec3(max(k, SG_FLT_EPSILON)));
     return w / (w.x + w.y + w.z);
 }
 

@@ -30,6 +30,8 @@ const char* targetName(Target t) {
         return "glsl330";
     case Target::Es300:
         return "es300";
+    case Target::Hlsl:
+        return "hlsl";
     }
     return "?";
 }
@@ -50,6 +52,15 @@ struct Expander {
     Assembled& out;
     std::set<std::string> included;
     bool joinContinuations = false; // GLSL before 4.20 has no line continuation
+    bool namedLines = false;        // HLSL: #line L "file" (GLSL: #line L S)
+    bool markers = false;           // flatten(): a comment per file instead of #line
+
+    std::string lineDirective(int line, int self) const {
+        const std::string& file = out.files[size_t(self)];
+        if (markers) return line == 1 ? "// ---- " + file + "\n" : "// ---- (" + file + ")\n";
+        const std::string source = namedLines ? '"' + file + '"' : std::to_string(self);
+        return "#line " + std::to_string(line) + " " + source + "\n";
+    }
 
     int fileIndex(const std::string& name) {
         auto it = std::find(out.files.begin(), out.files.end(), name);
@@ -63,7 +74,7 @@ struct Expander {
             throw ShaderSourceError(name + ": #include nesting deeper than 32 (a cycle?)");
         }
         const int self = fileIndex(name);
-        out.text += "#line 1 " + std::to_string(self) + "\n";
+        out.text += lineDirective(1, self);
         std::istringstream in{std::string(text)};
         std::string line;
         int lineNo = 0;
@@ -102,8 +113,7 @@ struct Expander {
                     }
                     included.insert(path);
                     expand(src, path, depth + 1);
-                    out.text +=
-                        "#line " + std::to_string(lineNo + 1) + " " + std::to_string(self) + "\n";
+                    out.text += lineDirective(lineNo + 1, self);
                 } else {
                     out.text += "\n";
                 }
@@ -133,15 +143,46 @@ Assembled assemble(std::string_view body, std::string_view bodyName,
         a.text = "#version 300 es\nprecision highp float;\nprecision highp int;\n"
                  "precision highp sampler2D;\nprecision highp usampler2D;\n";
         break;
+    case Target::Hlsl:
+        break;
     }
     for (const auto& d : defines) {
         std::string def = d;
         std::replace(def.begin(), def.end(), '=', ' ');
         a.text += "#define " + def + "\n";
     }
-    Expander e{a, {}, target == Target::Glsl330};
+    Expander e{a, {}, target == Target::Glsl330, target == Target::Hlsl};
     e.expand(body, std::string(bodyName), 0);
     return a;
+}
+
+std::string flatten(std::string_view entryPath, std::string_view banner) {
+    const char* text = find(entryPath);
+    if (!text) {
+        throw ShaderSourceError("flatten: no embedded shader file \"" + std::string(entryPath) +
+                                "\"");
+    }
+    Assembled a;
+    for (std::string_view rest = banner; !rest.empty();) {
+        const size_t eol = rest.find('\n');
+        a.text += "// " + std::string(rest.substr(0, eol)) + "\n";
+        rest = eol == std::string_view::npos ? std::string_view() : rest.substr(eol + 1);
+    }
+    Expander e{a, {std::string(entryPath)}, true, false, true};
+    e.expand(text, std::string(entryPath), 0);
+    return a.text;
+}
+
+std::vector<FlatFile> flatLibrary() {
+    const std::string note = "Generated from shaders/sg by the surfgrad build "
+                             "(sg::shaders::flatten). Do not edit: edit shaders/sg.\n";
+    const std::string glsl =
+        flatten("sg/surfgrad.glsl",
+                "surfgrad shader library, GLSL (4.50, 3.30, ES 3.00, Vulkan): one file.\n" + note);
+    const std::string hlsl =
+        flatten("sg/surfgrad.hlsl",
+                "surfgrad shader library, HLSL (Unity, Unreal, D3D): one file.\n" + note);
+    return {{"surfgrad.glsl", glsl}, {"surfgrad.hlsl", hlsl}, {"surfgrad.ush", hlsl}};
 }
 
 std::string annotateLog(std::string_view log, const std::vector<std::string>& files) {

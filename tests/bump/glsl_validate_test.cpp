@@ -18,6 +18,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -94,7 +95,8 @@ TEST(GlslValidate, EmbeddedListIsEveryShaderFileInTheSourceTree) {
     std::set<std::string> onDisk;
     const fs::path root = fs::path(SURFGRAD_SOURCE_DIR) / "shaders";
     for (const auto& e : fs::recursive_directory_iterator(root)) {
-        if (e.is_regular_file() && e.path().extension() == ".glsl") {
+        const auto ext = e.path().extension();
+        if (e.is_regular_file() && (ext == ".glsl" || ext == ".hlsl")) {
             onDisk.insert(fs::relative(e.path(), root).generic_string());
         }
     }
@@ -194,8 +196,174 @@ TEST(GlslValidate, DialectChecksCanFail) {
     EXPECT_NE(validateVulkan(loose.text, "frag", "loose").exitCode, 0);
 }
 
+bool endsWith(const std::string& s, const std::string& suffix) {
+    return s.size() >= suffix.size() &&
+           s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The GLSL files (the HLSL entries are checked by HlslFile below).
 std::vector<std::string> shaderFiles() {
-    return sg::shaders::list();
+    std::vector<std::string> glsl;
+    for (const std::string& f : sg::shaders::list())
+        if (endsWith(f, ".glsl")) glsl.push_back(f);
+    return glsl;
+}
+
+std::vector<std::string> hlslFiles() {
+    std::vector<std::string> hlsl;
+    for (const std::string& f : sg::shaders::list())
+        if (endsWith(f, ".hlsl")) hlsl.push_back(f);
+    return hlsl;
+}
+
+// glslang's HLSL front end (-D) to Vulkan SPIR-V, then spirv-val; with
+// `metal`, also SPIRV-Cross's Metal translation of that SPIR-V (its text on
+// stdout; there is no Metal compiler here to compile it).
+RunResult validateHlsl(const std::string& source, const std::string& stage, const std::string& tag,
+                       bool metal = false) {
+    const fs::path file = writeScratch(source, tag + "_hlsl", "hlsl");
+    const fs::path spv = fs::path(file).replace_extension(".spv");
+    const std::string spvQ = sg::test::shellQuote(spv);
+    RunResult r = sg::test::runCommand("glslangValidator -D -V --target-env vulkan1.1 -S " + stage +
+                                       " -e main " + sg::test::shellQuote(file) + " -o " + spvQ +
+                                       " >&2 && spirv-val " + spvQ +
+                                       (metal ? " && spirv-cross --msl " + spvQ : std::string()));
+    fs::remove(file);
+    fs::remove(spv);
+    return r;
+}
+
+// Every HLSL entry compiles with glslang's HLSL front end: an entry with
+// its own main() as a compute program (its `// glslang-validate:` defines
+// set), a library header (sg/surfgrad.hlsl) inside a pixel shader that
+// calls the per-pixel frame, a normal-map gradient and the resolve. The
+// SPIR-V passes spirv-val, and SPIRV-Cross translates it to Metal.
+class HlslFile : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(HlslFile, CompilesWithGlslangHlslFrontEnd) {
+    const std::string path = GetParam();
+    const std::string text = sg::shaders::find(path);
+    const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
+    std::string body = "#include \"" + path + "\"\n";
+    if (!hasMain) {
+        body += "float4 main(float3 relPos : TEXCOORD0, float3 nrm : TEXCOORD1,\n"
+                "            float2 uv : TEXCOORD2) : SV_Target {\n"
+                "    SgFrame f = sgPrologue(nrm, ddx_fine(relPos), ddy_fine(relPos), true, 0);\n"
+                "    float3 vT;\n    float3 vB;\n"
+                "    sgGenBasisTB(f, uv, ddx_fine(uv), ddy_fine(uv), vT, vB);\n"
+                "    float2 d = sgTspaceNormalToDeriv(uv, false);\n"
+                "    return float4(sgResolve(f, sgSurfgradFromTBN(d, vT, vB)), 1.0f);\n}\n";
+    }
+    const auto src = sg::shaders::assemble(body, "validate[" + path + "]", definesOf(text),
+                                           sg::shaders::Target::Hlsl);
+    const RunResult r = validateHlsl(src.text, hasMain ? "comp" : "frag", path, true);
+    EXPECT_EQ(r.exitCode, 0) << path << ":\n" << r.output();
+    // SPIRV-Cross wrote a Metal entry point from it.
+    const char* entry = hasMain ? "kernel void main0(" : "fragment main0_out main0(";
+    EXPECT_NE(r.out.find(entry), std::string::npos) << path << ": no Metal entry\n" << r.out;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllHlslEntries, HlslFile, ::testing::ValuesIn(hlslFiles()),
+                         [](const auto& p) {
+                             std::string n = p.param;
+                             for (char& c : n)
+                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return n;
+                         });
+
+// The single-file library (share/surfgrad/shaders/flat, written by the
+// build's surfgrad_flatten): the files on disk are flatLibrary()'s text,
+// i.e. what the source tree gives now, not a stale or hand-edited copy.
+TEST(FlatLibrary, FilesAreTheSourceTreeFlattened) {
+    const fs::path dir = fs::path(SURFGRAD_BINARY_DIR) / "shaders" / "flat";
+    for (const auto& f : sg::shaders::flatLibrary()) {
+        std::ifstream in(dir / f.name, std::ios::binary);
+        ASSERT_TRUE(in) << (dir / f.name) << " is missing";
+        const std::string onDisk((std::istreambuf_iterator<char>(in)),
+                                 std::istreambuf_iterator<char>());
+        EXPECT_EQ(onDisk, f.text) << f.name;
+        const std::regex directive(R"((^|\n)\s*#\s*(include|line)\b)");
+        EXPECT_FALSE(std::regex_search(f.text, directive)) << f.name;
+    }
+}
+
+// ... and each compiles in its languages with nothing on the include path:
+// the GLSL file after `#version` in GLSL 4.50, 3.30, ES 3.00 (with a sampler
+// precision) and Vulkan, the HLSL file through glslang's HLSL front end.
+TEST(FlatLibrary, CompilesWithoutAnIncludePath) {
+    // Vulkan wants explicit locations, GLSL 3.30 has none for fragment inputs.
+    const std::string vulkanInputs = "layout(location = 0) in vec3 vRelPos;\n"
+                                     "layout(location = 1) in vec3 vNormal;\n"
+                                     "layout(location = 2) in vec2 vUv;\n"
+                                     "layout(location = 0) out vec4 outColor;\n";
+    const std::string glInputs =
+        "in vec3 vRelPos;\nin vec3 vNormal;\nin vec2 vUv;\nout vec4 outColor;\n";
+    const std::string use =
+        "void main() {\n"
+        "    SgFrame f = sgPrologue(vNormal, dFdx(vRelPos), dFdy(vRelPos),\n"
+        "                           gl_FrontFacing, SG_BFACE_NONE);\n"
+        "    vec3 vT;\n    vec3 vB;\n"
+        "    sgGenBasisTB(f, vUv, dFdx(vUv), dFdy(vUv), vT, vB);\n"
+        "    vec2 d = sgTspaceNormalToDeriv(vUv, false);\n"
+        "    outColor = vec4(sgResolve(f, sgSurfgradFromTBN(d, vT, vB)), 1.0);\n"
+        "}\n";
+    for (const auto& f : sg::shaders::flatLibrary()) {
+        if (endsWith(f.name, ".glsl")) {
+            const std::pair<const char*, const char*> versions[] = {
+                {"450", "#version 450 core\n"},
+                {"330", "#version 330 core\n"},
+                {"es300", "#version 300 es\nprecision highp float;\n"}};
+            for (const auto& [tag, header] : versions) {
+                const RunResult r =
+                    validate(header + f.text + glInputs + use, "frag", "flat_" + std::string(tag));
+                EXPECT_EQ(r.exitCode, 0) << f.name << " " << tag << ":\n" << r.output();
+            }
+            const RunResult vk =
+                validateVulkan("#version 450 core\n" + f.text + vulkanInputs + use, "frag", "flat");
+            EXPECT_EQ(vk.exitCode, 0) << f.name << " vulkan:\n" << vk.output();
+        } else {
+            const std::string main =
+                "float4 main(float3 relPos : TEXCOORD0, float3 nrm : TEXCOORD1,\n"
+                "            float2 uv : TEXCOORD2) : SV_Target {\n"
+                "    SgFrame f = sgPrologue(nrm, ddx_fine(relPos), ddy_fine(relPos), true, 0);\n"
+                "    return float4(f.nrmBase, 1.0f);\n}\n";
+            const RunResult r = validateHlsl(f.text + main, "frag", "flat_" + f.name);
+            EXPECT_EQ(r.exitCode, 0) << f.name << ":\n" << r.output();
+        }
+    }
+}
+
+// Splat constructors (vec3(x) from one scalar) in a file's code: GLSL and
+// C++ take them, HLSL's float3(x) does not (DXC, FXC), so the shared source
+// writes sgVec3(x) (sg/compat.glsl). Finds the literal and SG_* constant
+// arguments, the splats this source writes; returns "line: text" per hit.
+std::vector<std::string> splatConstructors(const std::string& text) {
+    static const std::regex splat(
+        R"(\b[iub]?vec[234]\(\s*(-?[0-9][0-9.]*(e[-+]?[0-9]+)?[fu]?|SG_[A-Z0-9_]+)\s*\))");
+    std::vector<std::string> hits;
+    std::istringstream in(text);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+        const std::string code = line.substr(0, line.find("//"));
+        if (std::regex_search(code, splat)) hits.push_back(std::to_string(n) + ": " + line);
+    }
+    return hits;
+}
+
+// The shared functions (files declaring SG_FN functions, compiled as GLSL,
+// C++ and HLSL) hold no splat constructor.
+TEST(GlslSubset, SharedFunctionsWriteNoSplatConstructor) {
+    for (const std::string& path : shaderFiles()) {
+        const std::string text = sg::shaders::find(path);
+        if (text.find("SG_FN ") == std::string::npos) continue;
+        for (const std::string& hit : splatConstructors(text))
+            ADD_FAILURE() << path << ":" << hit << " (write sgVecN(x), sg/compat.glsl)";
+    }
+    // The check can fail.
+    EXPECT_EQ(splatConstructors("    vec3 a = vec3(0.0f);\n").size(), 1u);
+    EXPECT_EQ(splatConstructors("    uvec4 u = uvec4(0u); // vec2(1.0f)\n").size(), 1u);
+    EXPECT_EQ(splatConstructors("    vec3 e = vec3(SG_FLT_EPSILON);\n").size(), 1u);
+    EXPECT_TRUE(splatConstructors("    vec3 b = vec3(0.0f, 1.0f, 0.0f) + sgVec3(2.0f);\n").empty());
 }
 
 INSTANTIATE_TEST_SUITE_P(AllShaders, GlslFile, ::testing::ValuesIn(shaderFiles()),

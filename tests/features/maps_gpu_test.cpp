@@ -7,6 +7,7 @@
 
 #include <random>
 
+#include "hlsl_round_trip.h"
 #include "maps_test_util.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/shader_files.h"
@@ -148,6 +149,35 @@ TEST_F(FeatureMapsGpu, KernelParity) {
 // changes how the source is spelled, not its binary32 arithmetic (llvmpipe's
 // vertex stage flushes denormals, its compute stage keeps them; the shared
 // code decides nothing on a denormal).
+namespace {
+
+// The GPU results of kernel k's parity records against the C++ build:
+// finite, and within the kernel's tolerance (mixed measure).
+void expectKernelParity(const Kernel& k, const std::vector<float>& in,
+                        const std::vector<float>& gpu, const char* dialect) {
+    const size_t n = in.size() / size_t(kEvalInStride);
+    std::vector<float> cpu(n * size_t(kEvalOutStride));
+    for (size_t r = 0; r < n; ++r)
+        evalKernelCpu(k.id, &in[r * size_t(kEvalInStride)], &cpu[r * size_t(kEvalOutStride)]);
+    ASSERT_EQ(gpu.size(), cpu.size());
+    double worst = 0;
+    size_t nonFinite = 0;
+    for (size_t i = 0; i < cpu.size(); ++i) {
+        if (!std::isfinite(cpu[i]) || !std::isfinite(gpu[i])) {
+            ++nonFinite;
+            continue;
+        }
+        worst = std::max(worst, double(std::fabs(cpu[i] - gpu[i])) /
+                                    std::max(1.0, double(std::fabs(cpu[i]))));
+    }
+    std::printf("%-8s %-7s %7zu records: max difference %.2e (tolerance %.0e)\n", k.name.c_str(),
+                dialect, n, worst, k.tolerance);
+    EXPECT_EQ(nonFinite, 0u) << k.name << " " << dialect;
+    EXPECT_LE(worst, k.tolerance) << k.name << " " << dialect << ": " << k.reason;
+}
+
+} // namespace
+
 TEST(FeatureKernelDialects, KernelParityOnGlsl330AndEs300) {
     for (const auto api : {sg::gl::Api::Gl33Core, sg::gl::Api::Es30}) {
         sg::gl::HeadlessContext ctx(api);
@@ -158,30 +188,30 @@ TEST(FeatureKernelDialects, KernelParityOnGlsl330AndEs300) {
             auto vs = sg::shaders::assemble(evalKernelGpuVertexBody(), name,
                                             evalKernelGpuDefines(k.id), target);
             sg::gl::Program prog = sg::gl::feedbackProgram(vs, target, evalKernelGpuFeedback());
-            std::vector<float> in = k.inputs(20261122u);
+            const std::vector<float> in = k.inputs(20261122u);
             const size_t n = in.size() / size_t(kEvalInStride);
-            std::vector<float> cpu(n * size_t(kEvalOutStride));
-            for (size_t r = 0; r < n; ++r)
-                evalKernelCpu(k.id, &in[r * size_t(kEvalInStride)],
-                              &cpu[r * size_t(kEvalOutStride)]);
-            std::vector<float> gpu =
-                sg::gl::runTransformFeedback(prog, in, kEvalInStride, kEvalOutStride, n);
-            double worst = 0;
-            size_t nonFinite = 0;
-            for (size_t i = 0; i < cpu.size(); ++i) {
-                if (!std::isfinite(cpu[i]) || !std::isfinite(gpu[i])) {
-                    ++nonFinite;
-                    continue;
-                }
-                worst = std::max(worst, double(std::fabs(cpu[i] - gpu[i])) /
-                                            std::max(1.0, double(std::fabs(cpu[i]))));
-            }
-            std::printf("%-8s %-7s %7zu records: max difference %.2e (tolerance %.0e)\n",
-                        k.name.c_str(), sg::shaders::targetName(target), n, worst, k.tolerance);
-            EXPECT_EQ(nonFinite, 0u) << k.name << " " << sg::shaders::targetName(target);
-            EXPECT_LE(worst, k.tolerance)
-                << k.name << " " << sg::shaders::targetName(target) << ": " << k.reason;
+            expectKernelParity(
+                k, in, sg::gl::runTransformFeedback(prog, in, kEvalInStride, kEvalOutStride, n),
+                sg::shaders::targetName(target));
         }
+    }
+}
+
+// The HLSL spelling of the kernels (sg/features/kernels.hlsl): glslang's
+// HLSL front end to SPIR-V, SPIRV-Cross to GLSL 4.50, run as a compute
+// program (hlsl_round_trip.h). Same records and tolerances.
+TEST(FeatureKernelDialects, KernelParityThroughHlsl) {
+    sg::gl::HeadlessContext ctx(sg::gl::Api::Gl45Core);
+    for (const Kernel& k : kernels()) {
+        const std::string name = "features-kernel-" + std::to_string(k.id);
+        sg::gl::Program prog = sg::test::hlslComputeProgram(
+            sg::shaders::assemble(evalKernelHlslBody(), name, evalKernelGpuDefines(k.id),
+                                  sg::shaders::Target::Hlsl),
+            name);
+        const std::vector<float> in = k.inputs(20261122u);
+        const size_t n = in.size() / size_t(kEvalInStride);
+        expectKernelParity(k, in, sg::gl::runCompute(prog, in, kEvalInStride, kEvalOutStride, n),
+                           "hlsl");
     }
 }
 
@@ -313,8 +343,8 @@ TEST_F(FeatureMapsGpu, NearPieceFiniteOnArbitraryPieces) {
         }
         r[slot("curved")] = (k % 5) ? 1.0f : 0.0f;
         glm::vec2 pt = (k % 7 == 0) ? p[0] : glm::vec2(u(rng), u(rng)) * scale * 2.0f;
-        r[slot("point")] = pt.x;
-        r[slot("point") + 1] = pt.y;
+        r[slot("query")] = pt.x;
+        r[slot("query") + 1] = pt.y;
     }
     std::vector<float> cpu(n * size_t(kEvalOutStride));
     for (size_t k = 0; k < n; ++k)

@@ -152,6 +152,16 @@ glslangValidator -V -I"$prefix/share/surfgrad/shaders" "$src/tests/install/consu
     -o "$work/consumer.spv" >"$work/glslang.log" 2>&1 ||
     { cat "$work/glslang.log" >&2; fail "consumer_vulkan.frag does not compile to SPIR-V"; }
 spirv-val "$work/consumer.spv" || fail "consumer_vulkan.frag: spirv-val rejects the SPIR-V"
+# HLSL (Unity, Unreal, D3D): sg/surfgrad.hlsl through glslang's HLSL front
+# end (-D), then spirv-val; Metal is SPIRV-Cross's translation of that SPIR-V.
+glslangValidator -D -V -S frag -e main -I"$prefix/share/surfgrad/shaders" \
+    "$src/tests/install/consumer.hlsl" -o "$work/consumer_hlsl.spv" >"$work/glslang.log" 2>&1 ||
+    { cat "$work/glslang.log" >&2; fail "consumer.hlsl does not compile to SPIR-V"; }
+spirv-val "$work/consumer_hlsl.spv" || fail "consumer.hlsl: spirv-val rejects the SPIR-V"
+spirv-cross --msl "$work/consumer_hlsl.spv" --output "$work/consumer.metal" ||
+    fail "consumer.hlsl: SPIRV-Cross cannot write it as Metal"
+grep -q "fragment main0_out main0" "$work/consumer.metal" ||
+    fail "consumer.metal has no fragment entry point"
 
 # ---- 5. the installed CLI and its data
 step "installed surfgrad render share/surfgrad/examples/terrain/scene.json"

@@ -51,6 +51,8 @@ Api apiFor(shaders::Target target) {
         return Api::Gl33Core;
     case shaders::Target::Es300:
         return Api::Es30;
+    case shaders::Target::Hlsl: // runs as its GLSL 4.50 translation
+        return Api::Gl45Core;
     }
     return Api::Gl45Core;
 }

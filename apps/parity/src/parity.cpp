@@ -6,6 +6,7 @@
 #include <cstring>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "surfgrad/shader_files.h"
 
@@ -48,6 +49,14 @@ std::vector<float> evalCpuAll(const eval::Entry& e, const std::vector<float>& in
     return result;
 }
 
+GpuEvaluator::GpuEvaluator(gl::HeadlessContext& ctx, ProgramFactory factory, shaders::Target source)
+    : ctx_(ctx), vertexStage_(false), factory_(std::move(factory)), source_(source) {
+    if (ctx.api() != gl::Api::Gl45Core) {
+        throw gl::GlError("GpuEvaluator: a program factory makes compute programs, which need an "
+                          "OpenGL 4.5 context");
+    }
+}
+
 std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector<float>& inputs) {
     ctx_.makeCurrent();
     const shaders::Target target = this->target();
@@ -55,7 +64,9 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
     auto it = programs_.find(e.kernel);
     if (it == programs_.end()) {
         const auto defines = eval::evalGpuDefines(e);
-        if (!vertexStage_) {
+        if (factory_) {
+            it = programs_.emplace(e.kernel, factory_(e)).first;
+        } else if (!vertexStage_) {
             auto src = shaders::assemble(eval::evalGpuBody(), name, defines);
             it = programs_.emplace(e.kernel, gl::Program({{gl::Stage::Compute, src}})).first;
         } else {
@@ -76,7 +87,7 @@ std::vector<float> GpuEvaluator::evalAll(const eval::Entry& e, const std::vector
 }
 
 shaders::Target GpuEvaluator::target() const {
-    return gl::targetFor(ctx_.api());
+    return factory_ ? source_ : gl::targetFor(ctx_.api());
 }
 
 double mixedError(const eval::Entry& e, const double* a, const double* ref) {

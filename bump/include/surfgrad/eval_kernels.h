@@ -110,6 +110,10 @@ std::vector<std::string> evalGpuDefines(const Entry& e);
 // captured outputs in record order.
 std::string evalGpuVertexBody();
 std::vector<std::string> evalGpuFeedback();
+// The same kernels as an HLSL compute program (sg/eval/eval.hlsl; assemble
+// with Target::Hlsl and evalGpuDefines(e)): one thread per record, records
+// in buffer 0 and results in buffer 1, their count the result buffer's.
+std::string evalHlslBody();
 
 // Input records for entry e: `count` records of inStride() floats, made by
 // its generator. About 40% are adversarial: zero vectors, normals at the

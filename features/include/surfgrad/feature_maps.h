@@ -380,6 +380,10 @@ std::vector<std::string> evalKernelGpuDefines(int kernel);
 // of its captured outputs in record order.
 std::string evalKernelGpuVertexBody(); // includes sg/features/kernels.vert.glsl
 std::vector<std::string> evalKernelGpuFeedback();
+// The same kernels as an HLSL compute program (sg/features/kernels.hlsl;
+// assemble with Target::Hlsl and evalKernelGpuDefines): records in buffer
+// 0, results in buffer 1, their count the result buffer's.
+std::string evalKernelHlslBody();
 // Body of the texture-path compute program (sg/features/sample.comp.glsl):
 // samplers uFeatCorners / uFeatEdges, records of 2 floats -> 4 floats.
 std::string sampleGpuBody();

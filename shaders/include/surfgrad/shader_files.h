@@ -45,11 +45,20 @@ struct ShaderSourceError : std::runtime_error {
 //   Es300    "#version 300 es" with highp defaults for float, int,
 //            sampler2D and usampler2D (WebGL2, GLES 3.0: no
 //            compute or tessellation stages).
-enum class Target { Glsl450, Glsl330, Es300 };
+//   Hlsl     no header: the body is an HLSL file that includes
+//            sg/surfgrad.hlsl (or defines SG_HLSL before the library), and
+//            compat.glsl spells the source as HLSL (sg/compat_hlsl.glsl).
+//            No GL driver compiles it: the test suite translates it
+//            (glslang's HLSL front end to SPIR-V, SPIRV-Cross to GLSL 4.50)
+//            and runs the translation on an OpenGL 4.5 context. Its #line
+//            directives name files as strings (`#line L "file"`).
+enum class Target { Glsl450, Glsl330, Es300, Hlsl };
+// The GLSL dialects, which a GL context of this machine compiles and runs.
 inline constexpr Target kTargets[] = {Target::Glsl450, Target::Glsl330, Target::Es300};
-// "glsl450", "glsl330", "es300".
+// "glsl450", "glsl330", "es300", "hlsl".
 const char* targetName(Target t);
-// The target named `name` (as targetName writes it); false when none is.
+// The GLSL target (kTargets) named `name` (as targetName writes it); false
+// when none is.
 bool parseTarget(std::string_view name, Target& out);
 
 struct Assembled {
@@ -63,6 +72,26 @@ struct Assembled {
 // ("NAME" or "NAME VALUE"), then the body with includes expanded.
 Assembled assemble(std::string_view body, std::string_view bodyName,
                    const std::vector<std::string>& defines = {}, Target target = Target::Glsl450);
+
+// The library entry `entryPath` (e.g. "sg/surfgrad.hlsl") as ONE file: its
+// includes expanded in place, each file once, a `// ---- path` comment
+// where each begins (no #line, no #version), continuation lines joined,
+// `banner` (lines, each written as a comment) first. For engines with no
+// #include of their own or with rules about include names (WebGL and
+// three.js take shader strings; Unreal includes only .ush files): the
+// build writes share/surfgrad/shaders/flat/ from it (docs/engines.md).
+// Throws ShaderSourceError for an unknown entry or include.
+std::string flatten(std::string_view entryPath, std::string_view banner);
+
+// The single-file library the build installs in share/surfgrad/shaders/flat
+// (surfgrad_flatten): surfgrad.glsl (every GLSL dialect; the program writes
+// its #version and, for ES, its precisions), surfgrad.hlsl and surfgrad.ush
+// (the same HLSL text; Unreal includes only .ush/.usf files).
+struct FlatFile {
+    std::string name; // file name, e.g. "surfgrad.hlsl"
+    std::string text;
+};
+std::vector<FlatFile> flatLibrary();
 
 // Maps "S:L" / "S(L)" locations in a driver info log to "file:L".
 std::string annotateLog(std::string_view log, const std::vector<std::string>& files);

@@ -101,7 +101,7 @@ SG_REC_DEFINE_IO(SgEvalIn, SgEvalOut, SG_EVAL_OUT)
 SG_FN SgFrame sgEvalFrame(vec3 n, vec3 dPdx, vec3 dPdy) {
     return sgPrologue(n, dPdx, dPdy, true, SG_BFACE_NONE);
 }
-SG_FN SgFrame sgEvalFrameN(vec3 n) { return sgEvalFrame(n, vec3(0.0f), vec3(0.0f)); }
+SG_FN SgFrame sgEvalFrameN(vec3 n) { return sgEvalFrame(n, sgVec3(0.0f), sgVec3(0.0f)); }
 
 // Fields several functions share.
 #define SG_EVAL_N_IN(F) F(vec3, n, ("base normal (unit length; normalized if not)", sgGenNormal))
@@ -535,7 +535,7 @@ SG_FN SgEvalOut sgEvalDerivBlend(SgEvalIn sgRecIn) {
     vec2 layers[SG_DERIV_MAX_LAYERS];
     float weights[SG_DERIV_MAX_LAYERS];
     for (int i = 0; i < SG_DERIV_MAX_LAYERS; ++i) {
-        layers[i] = vec2(0.0f);
+        layers[i] = sgVec2(0.0f);
         weights[i] = 0.0f;
     }
     layers[0] = d0;

@@ -166,11 +166,11 @@ SG_FN SgFeatGeom sgFeatDecode(SgFeatTexel tx) {
     // Centre vertex r_m: where the straight path (as a line) meets the other.
     bool vCurved = g.pathV.curved;
     SgFeatCurve other = vCurved ? g.pathV : g.pathH;
-    SgFeatCurve line = vCurved ? g.pathH : g.pathV;
-    vec2 dir = line.p2 - line.p0;
-    float u = sgFeatLineCurveParam(other, line.p0, dir, false);
+    SgFeatCurve straight = vCurved ? g.pathH : g.pathV;
+    vec2 dir = straight.p2 - straight.p0;
+    float u = sgFeatLineCurveParam(other, straight.p0, dir, false);
     g.rm = sgFeatCurvePoint(other, u);
-    float ul = clamp(dot(g.rm - line.p0, dir) / max(dot(dir, dir), 1e-12f), 0.0f, 1.0f);
+    float ul = clamp(dot(g.rm - straight.p0, dir) / max(dot(dir, dir), 1e-12f), 0.0f, 1.0f);
     g.uV = vCurved ? u : ul;
     g.uH = vCurved ? ul : u;
     return g;
@@ -328,7 +328,7 @@ SG_FN float sgFeatCornerSign(uint cfg, int k) { return sgFeatCornerLeft(cfg, k) 
 // The reconstruction at texel-local p in [0, 1]^2 (values outside are
 // clamped). Never NaN or Inf for finite texel data.
 SG_FN SgFeatResult sgFeatEval(SgFeatTexel tx, vec2 pIn) {
-    vec2 p = clamp(pIn, vec2(0.0f), vec2(1.0f));
+    vec2 p = clamp(pIn, sgVec2(0.0f), sgVec2(1.0f));
     SgFeatResult res;
     // No discontinuity: bilinear interpolation (TR2005 section 4.3).
     vec3 c0 = vec3(tx.dist.x, tx.grad0.x, tx.grad0.y);
@@ -399,7 +399,7 @@ SG_FN SgFeatResult sgFeatEval(SgFeatTexel tx, vec2 pIn) {
     // vanishing one (no curve within the band) stays 0.
     vec2 gr = vec2(val.y, val.z);
     float l2 = dot(gr, gr);
-    res.grad = l2 > 1e-24f ? gr * inversesqrt(l2) : vec2(0.0f);
+    res.grad = l2 > 1e-24f ? gr * inversesqrt(l2) : sgVec2(0.0f);
     res.profile = -1;
     res.width = 0.0f;
     return res;

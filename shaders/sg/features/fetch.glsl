@@ -32,6 +32,9 @@
 #ifdef SG_CPP
 #define SG_FEAT_CORNER_SAMPLER const SgFeatCornerSampler&
 #define SG_FEAT_EDGE_SAMPLER const SgFeatEdgeSampler&
+#elif defined(SG_HLSL)
+#define SG_FEAT_CORNER_SAMPLER Texture2D<uint4>
+#define SG_FEAT_EDGE_SAMPLER Texture2D<uint4>
 #else
 #define SG_FEAT_CORNER_SAMPLER usampler2D
 #define SG_FEAT_EDGE_SAMPLER usampler2D
@@ -59,8 +62,8 @@ SG_FN SgFeatTexel sgFeatFetch(SG_FEAT_CORNER_SAMPLER corners, SG_FEAT_EDGE_SAMPL
 // Texel containing texel-space point texelPos (clamped to the map: the map
 // is clamp-to-edge; the right and top borders belong to the last texel).
 SG_FN ivec2 sgFeatTexelOf(ivec2 size, vec2 texelPos, SG_OUT(vec2) local) {
-    vec2 pc = clamp(texelPos, vec2(0.0f), vec2(size));
-    ivec2 ij = min(ivec2(floor(pc)), size - ivec2(1));
+    vec2 pc = clamp(texelPos, sgVec2(0.0f), vec2(size));
+    ivec2 ij = min(ivec2(floor(pc)), size - sgIvec2(1));
     local = pc - vec2(ij);
     return ij;
 }

@@ -141,7 +141,7 @@ SG_FN SgFeatEvalOut sgFeatKernelProfile(SgFeatEvalIn sgRecIn) {
     F(vec2, p1, ("middle control point"))                                                            \
     F(vec2, p2, ("last control point"))                                                              \
     F(bool, curved, ("quadratic (else the line p0 p2)"))                                             \
-    F(vec2, point, ("the point (texels)"))
+    F(vec2, query, ("the query point (texels)"))
 #define SG_FEAT_NEAR_PIECE_OUT_FIELDS(F)                                                              \
     F(float, dist, ("distance to the piece (texels)"))                                               \
     F(vec2, grad, ("unit gradient of the distance"))                                                 \
@@ -159,13 +159,13 @@ SG_FN SgFeatEvalOut sgFeatKernelNearPiece(SgFeatEvalIn sgRecIn) {
     c.profile = -1;
     c.width0 = 0.0f;
     c.width1 = 0.0f;
-    SgFeatResult r = sgFeatNearResult(sgFeatClosestOnPiece(c, point), c);
+    SgFeatResult r = sgFeatNearResult(sgFeatClosestOnPiece(c, query), c);
     dist = r.dist;
     grad = r.grad;
     side = r.side;
 #else
     dist = 0.0f;
-    grad = vec2(0.0f);
+    grad = sgVec2(0.0f);
     side = 0.0f;
 #endif
     SG_REC_RETURN(SgFeatEvalOut, SG_FEAT_NEAR_PIECE_OUT_FIELDS)

@@ -125,7 +125,7 @@ SG_FN SgFeatNearHit sgFeatClosestOnPiece(SgFeatPiece c, vec2 p) {
     if (!c.curved) {
         // Straight: the projection, clamped.
         float uLine = bb > SG_FLT_MIN ? clamp(-dot(d0, b) / bb, 0.0f, 1.0f) : 0.0f;
-        return sgFeatHitAt(d0, b, vec2(0.0f), uLine);
+        return sgFeatHitAt(d0, b, sgVec2(0.0f), uLine);
     }
     vec2 a = c.p0 - 2.0f * c.p1 + c.p2;
     // The increasing intervals of f: the roots of f' (numerically stable
@@ -175,13 +175,16 @@ SG_FN SgFeatResult sgFeatNearResult(SgFeatNearHit h, SgFeatPiece c) {
 #ifdef SG_CPP
 #define SG_FEAT_NEAR_SAMPLER const SgFeatNearSampler&
 #define SG_FEAT_PIECE_SAMPLER const SgFeatPieceSampler&
+#elif defined(SG_HLSL)
+#define SG_FEAT_NEAR_SAMPLER Texture2D<uint4>
+#define SG_FEAT_PIECE_SAMPLER Texture2D<uint4>
 #else
 #define SG_FEAT_NEAR_SAMPLER usampler2D
 #define SG_FEAT_PIECE_SAMPLER usampler2D
 #endif
 
-SG_FN ivec2 sgFeatPieceTexel(int linear) {
-    return ivec2(linear % SG_FEAT_PIECES_WIDTH, linear / SG_FEAT_PIECES_WIDTH);
+SG_FN ivec2 sgFeatPieceTexel(int flatIndex) {
+    return ivec2(flatIndex % SG_FEAT_PIECES_WIDTH, flatIndex / SG_FEAT_PIECES_WIDTH);
 }
 
 // Piece `index`, with `origin` subtracted from its points (2 fetches).
@@ -224,13 +227,13 @@ SG_FN SgFeatResult sgFeatNearEval(SG_FEAT_NEAR_SAMPLER nearMap, SG_FEAT_PIECE_SA
     uvec4 slots = header;
     SgFeatNearHit best;
     best.dist2 = SG_FLT_MAX;
-    best.toPoint = vec2(0.0f);
+    best.toPoint = sgVec2(0.0f);
     best.tangent = vec2(1.0f, 0.0f);
     best.u = 0.0f;
     SgFeatPiece bestPiece;
-    bestPiece.p0 = vec2(0.0f);
-    bestPiece.p1 = vec2(0.0f);
-    bestPiece.p2 = vec2(0.0f);
+    bestPiece.p0 = sgVec2(0.0f);
+    bestPiece.p1 = sgVec2(0.0f);
+    bestPiece.p2 = sgVec2(0.0f);
     bestPiece.curved = false;
     bestPiece.profile = -1;
     bestPiece.width0 = 0.0f;
@@ -245,7 +248,7 @@ SG_FN SgFeatResult sgFeatNearEval(SG_FEAT_NEAR_SAMPLER nearMap, SG_FEAT_PIECE_SA
         SgFeatPiece c = sgFeatFetchPiece(pieces, int(idx) - 1, vec2(ij));
         // The piece lies in the box of its control points: skip the closest
         // point when that box is no nearer than the best so far.
-        vec2 outside = max(max(min(min(c.p0, c.p1), c.p2) - p, p - max(max(c.p0, c.p1), c.p2)), vec2(0.0f));
+        vec2 outside = max(max(min(min(c.p0, c.p1), c.p2) - p, p - max(max(c.p0, c.p1), c.p2)), sgVec2(0.0f));
         if (dot(outside, outside) < best.dist2) {
             SgFeatNearHit h = sgFeatClosestOnPiece(c, p);
             if (h.dist2 < best.dist2) {

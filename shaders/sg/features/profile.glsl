@@ -68,7 +68,7 @@ SG_FN vec2 sgFeatProfileHeightSlope(SgFeatProfile pr, float d, float side) {
         return vec2(dd * (1.0f - t) * (1.0f - t), -2.0f * dd * (1.0f - t) / w);
     }
     if (pr.kind == SG_FEAT_PROFILE_STEP) {
-        if (side < 0.0f) return vec2(0.0f);
+        if (side < 0.0f) return sgVec2(0.0f);
         return vec2(dd * (1.0f - (1.0f - t) * (1.0f - t)), 2.0f * dd * (1.0f - t) / w);
     }
     if (pr.kind == SG_FEAT_PROFILE_SEAM) {

@@ -215,7 +215,7 @@ SG_FN SgPatchBasis sgPatchBasisNormalized(int patchType, uint field1, vec2 uv) {
     } else { // SG_PATCH_QUADS (bilinear): corners (0,0), (1,0), (1,1), (0,1)
         vec4 s = vec4(1.0f - uv.x, uv.x, uv.x, 1.0f - uv.x);
         vec4 t = vec4(1.0f - uv.y, 1.0f - uv.y, uv.y, uv.y);
-        b.point = sgPatchTensor16(vec4(0.0f), vec4(0.0f));
+        b.point = sgPatchTensor16(sgVec4(0.0f), sgVec4(0.0f));
         b.du = b.point;
         b.dv = b.point;
         for (int i = 0; i < 4; ++i) {
@@ -235,7 +235,7 @@ SG_FN SgPatchBasis sgPatchBasisNormalized(int patchType, uint field1, vec2 uv) {
 // [0,1] of the patch's square are clamped to it (no extrapolation: the
 // Gregory factors and boundary folds are only meant for the square).
 SG_FN SgPatchBasis sgPatchBasis(int patchType, uint field1, vec2 faceUv) {
-    vec2 uv = clamp(sgPatchNormalizeUv(field1, faceUv), vec2(0.0f), vec2(1.0f));
+    vec2 uv = clamp(sgPatchNormalizeUv(field1, faceUv), sgVec2(0.0f), sgVec2(1.0f));
     SgPatchBasis b = sgPatchBasisNormalized(patchType, field1, uv);
     float scale = float(1 << sgPatchDepth(field1));
     for (int i = 0; i < SG_PATCH_MAX_POINTS; ++i) {

@@ -41,8 +41,8 @@
 // of |v| is left (v along n up to binary32 rounding of the projection).
 SG_FN vec3 sgTangentPart(vec3 v, vec3 n) {
     vec3 t = v - dot(v, n) * n;
-    if (!(length(t) > 1.0e-4f * length(v))) return vec3(0.0f);
-    return sgSafeNormalize(t, vec3(0.0f));
+    if (!(length(t) > 1.0e-4f * length(v))) return sgVec3(0.0f);
+    return sgSafeNormalize(t, sgVec3(0.0f));
 }
 
 // Some unit vector orthogonal to unit n.
@@ -82,12 +82,12 @@ SG_FN vec4 sgPatchLimitTangent(vec3 dPdu, vec3 dPdv, vec2 dSTdu, vec2 dSTdv, vec
                                SG_OUT(int) resolved) {
     float kP = max(sgMaxAbs3(dPdu), sgMaxAbs3(dPdv));
     bool finiteP = kP >= SG_FLT_MIN && kP <= SG_FLT_MAX;
-    vec3 pu = finiteP ? sgDivScale3(dPdu, kP) : vec3(0.0f);
-    vec3 pv = finiteP ? sgDivScale3(dPdv, kP) : vec3(0.0f);
+    vec3 pu = finiteP ? sgDivScale3(dPdu, kP) : sgVec3(0.0f);
+    vec3 pv = finiteP ? sgDivScale3(dPdv, kP) : sgVec3(0.0f);
     float kJ = max(sgMaxAbs2(dSTdu), sgMaxAbs2(dSTdv));
     bool finiteJ = kJ >= SG_FLT_MIN && kJ <= SG_FLT_MAX;
-    vec2 ju = finiteJ ? sgDivScale2(dSTdu, kJ) : vec2(0.0f);
-    vec2 jv = finiteJ ? sgDivScale2(dSTdv, kJ) : vec2(0.0f);
+    vec2 ju = finiteJ ? sgDivScale2(dSTdu, kJ) : sgVec2(0.0f);
+    vec2 jv = finiteJ ? sgDivScale2(dSTdv, kJ) : sgVec2(0.0f);
     // J = [[a b], [c d]] = [[ds/du ds/dv], [dt/du dt/dv]], entries <= 1.
     float a = ju.x, b = jv.x, c = ju.y, d = jv.y;
     float det = a * d - b * c;
@@ -96,14 +96,14 @@ SG_FN vec4 sgPatchLimitTangent(vec3 dPdu, vec3 dPdv, vec2 dSTdu, vec2 dSTdv, vec
         length(cross(pu, pv)) > SG_LIMIT_TANGENT_MIN_REL_DET * max(dot(pu, pu), dot(pv, pv));
     float w = uvRegular && det < 0.0f ? -1.0f : 1.0f;
     // Along dP/ds: (d pu - c pv) / det, without the division.
-    vec3 dPds = uvRegular ? w * (d * pu - c * pv) : vec3(0.0f);
+    vec3 dPds = uvRegular ? w * (d * pu - c * pv) : sgVec3(0.0f);
     vec3 t = sgTangentPart(dPds, unitNormal);
     resolved = surfaceRegular ? SG_LIMIT_TANGENT_REGULAR : SG_LIMIT_TANGENT_DEGENERATE_SURFACE;
-    if (t == vec3(0.0f)) {
+    if (t == sgVec3(0.0f)) {
         if (surfaceRegular) resolved = SG_LIMIT_TANGENT_DEGENERATE_UV;
         t = sgTangentPart(pu, unitNormal);
-        if (t == vec3(0.0f)) t = sgTangentPart(pv, unitNormal);
-        if (t == vec3(0.0f)) t = sgAnyOrthogonal(unitNormal);
+        if (t == sgVec3(0.0f)) t = sgTangentPart(pv, unitNormal);
+        if (t == sgVec3(0.0f)) t = sgAnyOrthogonal(unitNormal);
     }
     return vec4(t, w);
 }

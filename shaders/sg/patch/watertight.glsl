@@ -55,10 +55,10 @@ struct SgPatchTransitions {
 // No transition edges.
 SG_FN SgPatchTransitions sgPatchNoTransitions() {
     SgPatchTransitions t;
-    t.lo = uvec4(0u);
-    t.hi = uvec4(0u);
-    t.mid = uvec4(0u);
-    t.loLevel = vec4(0.0f);
+    t.lo = sgUvec4(0u);
+    t.hi = sgUvec4(0u);
+    t.mid = sgUvec4(0u);
+    t.loLevel = sgVec4(0.0f);
     return t;
 }
 

@@ -82,7 +82,7 @@ SG_FN SgHeightDeriv sgModCurve(SgHeightDeriv s, vec4 op) {
 SG_FN SgHeightDeriv sgModModulate(SgHeightDeriv s, vec4 op, sampler2D mask, vec2 st, vec2 dSTdx,
                                   vec2 dSTdy, mat2 jac) {
     int ch = sgRecInt(op.y);
-    vec2 texel = vec2(1.0f) / vec2(textureSize(mask, 0));
+    vec2 texel = sgVec2(1.0f) / vec2(textureSize(mask, 0));
     float mc = op.z * sgTexelChannel(textureGrad(mask, st, dSTdx, dSTdy), ch);
     float ms1 = sgTexelChannel(textureGrad(mask, st + vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);
     float ms0 = sgTexelChannel(textureGrad(mask, st - vec2(texel.x, 0.0f), dSTdx, dSTdy), ch);

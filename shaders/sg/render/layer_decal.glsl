@@ -91,11 +91,11 @@ struct SgDecalHit {
 SG_FN SgDecalHit sgDecalProject(SgFrame f, vec3 relPos, SgDecalParams p) {
     SgDecalHit h;
     vec3 r = relPos - p.origin;
-    vec3 inv = vec3(1.0f) / max(vec3(p.halfSize.x, p.halfSize.y, sgDecalHalfDepth(p, relPos)),
-                                vec3(SG_FLT_EPSILON));
+    vec3 inv = sgVec3(1.0f) / max(vec3(p.halfSize.x, p.halfSize.y, sgDecalHalfDepth(p, relPos)),
+                                sgVec3(SG_FLT_EPSILON));
     h.l = vec3(dot(r, p.axisX), dot(r, p.axisY), dot(r, p.axisZ)) * inv;
     h.fade = sgDecalFade(p, h.l, f.nrmBase);
-    h.st = 0.5f * vec2(h.l.x, h.l.y) + vec2(0.5f);
+    h.st = 0.5f * vec2(h.l.x, h.l.y) + sgVec2(0.5f);
     h.dSTdx = 0.5f * vec2(dot(f.dPdx, p.axisX) * inv.x, dot(f.dPdx, p.axisY) * inv.y);
     h.dSTdy = 0.5f * vec2(dot(f.dPdy, p.axisX) * inv.x, dot(f.dPdy, p.axisY) * inv.y);
     return h;
@@ -103,7 +103,7 @@ SG_FN SgDecalHit sgDecalProject(SgFrame f, vec3 relPos, SgDecalParams p) {
 
 SG_FN vec3 sgLayerDecal(SgFrame f, vec3 relPos, SgDecalParams p, sampler2D tex) {
     SgDecalHit h = sgDecalProject(f, relPos, p);
-    if (!(h.fade > 0.0f)) return vec3(0.0f);
+    if (!(h.fade > 0.0f)) return sgVec3(0.0f);
     vec2 d = sgSampleTspaceDeriv(tex, h.st, h.dSTdx, h.dSTdy, p.encoding, p.flipV);
     return sgBumpScale(h.fade * p.strength, sgSurfgradFromDecal(f, d, p.axisX, p.axisY, false));
 }

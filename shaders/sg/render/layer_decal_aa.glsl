@@ -21,7 +21,7 @@
 SG_FN vec3 sgLayerDecalAa(SgFrame f, vec3 relPos, SgDecalParams p, int mode, sampler2D texA,
                           sampler2D texB, SG_INOUT(mat3) slopeCov) {
     SgDecalHit h = sgDecalProject(f, relPos, p);
-    if (!(h.fade > 0.0f)) return vec3(0.0f);
+    if (!(h.fade > 0.0f)) return sgVec3(0.0f);
     SgSlopeDist s = sgSampleSlopes(mode, texA, texB, h.st, h.dSTdx, h.dSTdy, p.flipV);
     float k = h.fade * p.strength;
     vec3 ja = k * sgSurfgradFromVolumeGradient(f, p.axisX);

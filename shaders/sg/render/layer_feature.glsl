@@ -81,7 +81,7 @@ SG_FN SgFeatProfile sgUnpackFeatProfile(vec4 p0, vec4 p1, vec4 t0, vec4 t1, vec4
 // The layer's surface gradient from a sampled result r and its profile.
 SG_FN vec3 sgLayerFeatureFrom(SgUvFrame uv, SgFeatureLayerParams p, SgFeatProfile pr, SgFeatResult r,
                               sampler2D baseMap) {
-    vec2 baseDeriv = vec2(0.0f);
+    vec2 baseDeriv = sgVec2(0.0f);
     if (p.hasBase) {
         baseDeriv = sgSampleTspaceDeriv(baseMap, uv.st, uv.dSTdx, uv.dSTdy, p.baseEncoding, p.baseFlipV);
     }

@@ -59,7 +59,7 @@ SG_FN vec2 sgFeatAaSlope(SgFeatResult r, SgFeatProfile pr, bool paperMode) {
         vec3 n = sgFeatNormalPaper(r, pr, vec3(0.0f, 0.0f, 1.0f));
         return sgTspaceNormalToDeriv(vec2(n.x, n.y), false);
     }
-    return sgFeatDeriv(r, pr, vec2(0.0f));
+    return sgFeatDeriv(r, pr, sgVec2(0.0f));
 }
 
 // A result far from every curve (no slope): what the layer holds where the
@@ -67,7 +67,7 @@ SG_FN vec2 sgFeatAaSlope(SgFeatResult r, SgFeatProfile pr, bool paperMode) {
 SG_FN SgFeatResult sgFeatAaFarResult() {
     SgFeatResult r;
     r.dist = 1e4f;
-    r.grad = vec2(0.0f);
+    r.grad = sgVec2(0.0f);
     r.side = 1.0f;
     r.profile = -1;
     r.width = 0.0f;
@@ -114,7 +114,7 @@ SG_FN float sgFeatAaCovScale(float rhoTexels) {
 SG_FN vec3 sgFeatAaCombine(SgUvFrame uv, SgFeatureLayerParams p, vec2 dExact, float rhoTexels,
                            sampler2D chainA, sampler2D chainB, SG_INOUT(mat3) slopeCov) {
     vec2 mean = dExact;
-    vec3 cov = vec3(0.0f);
+    vec3 cov = sgVec3(0.0f);
     float covScale = sgFeatAaCovScale(rhoTexels);
     if (covScale > 0.0f) {
         vec2 st = uv.st * p.tiling + p.offset;

@@ -65,7 +65,7 @@ SG_FN SgNoiseParams sgUnpackNoise(vec4 r0, vec4 r1, vec4 r2, vec4 r3, vec4 r4) {
 
 // One 16-bit half of the packed cell (clamped: records hold [0, 65535]).
 SG_FN uvec3 sgNoiseCellHalf(vec3 h) {
-    return uvec3(clamp(floor(h + vec3(0.5f)), vec3(0.0f), vec3(65535.0f)));
+    return uvec3(clamp(floor(h + sgVec3(0.5f)), sgVec3(0.0f), sgVec3(65535.0f)));
 }
 
 // originCell from its halves: hi 2^16 + lo, as the 32-bit two's complement

@@ -129,10 +129,10 @@ struct SgParallaxSearch {
 SG_FN SgParallaxSearch sgParallaxSearch(SgFrame f, SgUvFrame uv, vec3 toEye, float scale,
                                         bool offsetLimited) {
     SgParallaxSearch r;
-    r.st = vec2(0.0f);
-    r.surf = vec3(0.0f);
-    r.scr = vec2(0.0f);
-    vec3 e = sgSafeNormalize(toEye, vec3(0.0f));
+    r.st = sgVec2(0.0f);
+    r.surf = sgVec3(0.0f);
+    r.scr = sgVec2(0.0f);
+    vec3 e = sgSafeNormalize(toEye, sgVec3(0.0f));
     float k = max(sgMaxAbs3(f.dPdx), sgMaxAbs3(f.dPdy));
     float sm = max(sgMaxAbs2(uv.dSTdx), sgMaxAbs2(uv.dSTdy));
     if (!(k >= SG_FLT_MIN) || !(k <= SG_FLT_MAX) || !(sm >= SG_FLT_MIN) || !(sm <= SG_FLT_MAX) ||
@@ -223,7 +223,7 @@ SG_FN vec3 sgParallaxCorrectNormal(SgFrame f, vec2 scrOffs, vec3 dNdx, vec3 dNdy
 // dot(nrmBase, n): double-sided modes flip it). Zero for a zero n.
 SG_FN vec3 sgParallaxUnitNormalDeriv(SgFrame f, vec3 vtxNormal, vec3 dN) {
     float len = length(vtxNormal);
-    if (!(len >= SG_FLT_MIN) || !(len <= SG_FLT_MAX)) return vec3(0.0f);
+    if (!(len >= SG_FLT_MIN) || !(len <= SG_FLT_MAX)) return sgVec3(0.0f);
     vec3 u = vtxNormal / len;
     float s = dot(f.nrmBase, u) < 0.0f ? -1.0f : 1.0f;
     return sgBoundedScale3(s * (dN - u * dot(u, dN)), vec4(1.0f / len, 1.0f, 1.0f, 1.0f));

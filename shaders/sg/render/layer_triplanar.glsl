@@ -63,9 +63,9 @@ SG_FN vec3 sgLayerTriplanar(SgFrame f, SgVolumeSpace vs, SgTriplanarParams p, sa
     vec3 qx = p.scale * vs.dPdx;
     vec3 qy = p.scale * vs.dPdy;
     // A plane whose weight is 0 contributes nothing: skip its fetch.
-    vec2 dX = vec2(0.0f);
-    vec2 dY = vec2(0.0f);
-    vec2 dZ = vec2(0.0f);
+    vec2 dX = sgVec2(0.0f);
+    vec2 dY = sgVec2(0.0f);
+    vec2 dZ = sgVec2(0.0f);
     if (w.x > 0.0f) {
         dX = sgSampleTspaceDeriv(texX, vec2(zs * q.z, q.y), vec2(zs * qx.z, qx.y),
                                  vec2(zs * qy.z, qy.y), p.encoding, p.flipV);

@@ -74,7 +74,7 @@ SG_FN void sgTriplanarPlaneJacobian(SgFrame f, SgVolumeSpace vs, SgTriplanarPara
 SG_FN vec3 sgTriplanarPlaneAa(SgFrame f, SgVolumeSpace vs, SgTriplanarParams p, int mode,
                               int axis, float w, sampler2D texA, sampler2D texB,
                               SG_INOUT(mat3) slopeCov) {
-    if (!(w > 0.0f)) return vec3(0.0f);
+    if (!(w > 0.0f)) return sgVec3(0.0f);
     vec2 st = sgTriplanarPlaneSt(axis, sgTriplanarTexPos(vs, p), p.rightHanded);
     vec2 dx = sgTriplanarPlaneSt(axis, p.scale * vs.dPdx, p.rightHanded);
     vec2 dy = sgTriplanarPlaneSt(axis, p.scale * vs.dPdy, p.rightHanded);

@@ -62,8 +62,8 @@ SG_FN vec3 sgNoiseLatticeGradient(uint h) {
 // share.
 SG_FN vec4 sgPerlinNoiseCell(uvec3 cell, vec3 f) {
     // Quintic fade and its derivative (C2 continuous noise).
-    vec3 u = f * f * f * (f * (f * 6.0f - vec3(15.0f)) + vec3(10.0f));
-    vec3 du = 30.0f * f * f * (f * (f - vec3(2.0f)) + vec3(1.0f));
+    vec3 u = f * f * f * (f * (f * 6.0f - sgVec3(15.0f)) + sgVec3(10.0f));
+    vec3 du = 30.0f * f * f * (f * (f - sgVec3(2.0f)) + sgVec3(1.0f));
 
     vec3 g000 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell)));
     vec3 g100 = sgNoiseLatticeGradient(sgNoiseHash(ivec3(cell + uvec3(1u, 0u, 0u))));
@@ -194,7 +194,7 @@ SG_FN vec4 sgNoiseOctavesAt(int type, ivec3 cell, vec3 q, int octaves, float lac
                             float gain, float footprint) {
     int count = type == SG_NOISE_PERLIN ? 1 : clamp(octaves, 1, SG_NOISE_MAX_OCTAVES);
     float value = 0.0f;
-    vec3 grad = vec3(0.0f);
+    vec3 grad = sgVec3(0.0f);
     float freq = 1.0f;
     float amp = 1.0f;
     for (int o = 0; o < SG_NOISE_MAX_OCTAVES; ++o) {
@@ -219,7 +219,7 @@ SG_FN vec4 sgNoiseOctavesAt(int type, ivec3 cell, vec3 q, int octaves, float lac
 // The same at p (domain units, no cell): sgNoiseOctavesAt with cell 0.
 SG_FN vec4 sgNoiseOctaves(int type, vec3 p, int octaves, float lacunarity, float gain,
                           float footprint) {
-    return sgNoiseOctavesAt(type, ivec3(0), p, octaves, lacunarity, gain, footprint);
+    return sgNoiseOctavesAt(type, sgIvec3(0), p, octaves, lacunarity, gain, footprint);
 }
 
 // Gritz's composite g(f) = sign(f) |f|^k (k >= 1) and its gradient

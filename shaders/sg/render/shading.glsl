@@ -52,7 +52,7 @@ SG_FN vec3 sgShadeLight(vec3 nrm, vec3 relPos, vec4 r0, vec4 r1, vec3 baseColor,
     float vis = 1.0f / (4.0f * (nDotL * (1.0f - k) + k) * (nDotV * (1.0f - k) + k));
     float fresnel = 0.04f + 0.96f * pow(1.0f - vDotH, 5.0f);
     vec3 diffuse = baseColor * (1.0f / SG_PI);
-    return (diffuse + vec3(ggx * vis * fresnel)) * radiance * nDotL;
+    return (diffuse + sgVec3(ggx * vis * fresnel)) * radiance * nDotL;
 }
 
 // Hemispherical ambient: `ambient` from above (+y), half of it from below.
@@ -82,10 +82,10 @@ SG_FN float sgSrgbEncode(float x) {
     return c <= 0.0031308f ? 12.92f * c : 1.055f * pow(c, 1.0f / 2.4f) - 0.055f;
 }
 SG_FN vec3 sgToneMap(vec3 radiance, float exposure) {
-    vec3 c = max(radiance * exposure, vec3(0.0f));
+    vec3 c = max(radiance * exposure, sgVec3(0.0f));
     float lum = dot(c, vec3(0.2126f, 0.7152f, 0.0722f));
     vec3 byLum = c / (1.0f + lum);
-    vec3 byChannel = c / (vec3(1.0f) + c);
+    vec3 byChannel = c / (sgVec3(1.0f) + c);
     vec3 t = mix(byLum, byChannel, byChannel);
     return vec3(sgSrgbEncode(t.x), sgSrgbEncode(t.y), sgSrgbEncode(t.z));
 }

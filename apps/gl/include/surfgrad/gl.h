@@ -30,7 +30,8 @@ struct GlError : std::runtime_error {
 // Es30 Es300 (an implementation may give a later ES 3.x; ES 3.00 shaders
 // run on all of them).
 enum class Api { Gl45Core, Gl33Core, Es30 };
-// The API whose shading language is `target`, and the reverse.
+// The API whose shading language is `target` (Hlsl: Gl45Core, which runs
+// the GLSL 4.50 translation of an HLSL program), and the reverse.
 Api apiFor(shaders::Target target);
 shaders::Target targetFor(Api api);
 // "OpenGL 4.5 core", "OpenGL 3.3 core", "OpenGL ES 3.0".

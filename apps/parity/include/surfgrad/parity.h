@@ -42,6 +42,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -89,10 +90,19 @@ struct Row {
 // `vertexStage` runs the vertex program on a 4.5 context too, which tells a
 // difference of the stage (how a driver compiles vertex shaders) from one
 // of the dialect.
+//
+// A program factory replaces the library's own programs: it makes, for an
+// entry, a compute program with its records in shader-storage binding 0
+// and its results in binding 1 (gl::runCompute) on a 4.5 context, e.g. one
+// translated from another source language; `source` names that language
+// in reports (tests/bump/parity_hlsl_test.cpp: Target::Hlsl).
 class GpuEvaluator {
 public:
+    using ProgramFactory = std::function<gl::Program(const eval::Entry&)>;
+
     explicit GpuEvaluator(gl::HeadlessContext& ctx, bool vertexStage = false)
         : ctx_(ctx), vertexStage_(vertexStage || ctx.api() != gl::Api::Gl45Core) {}
+    GpuEvaluator(gl::HeadlessContext& ctx, ProgramFactory factory, shaders::Target source);
     std::vector<float> evalAll(const eval::Entry& e, const std::vector<float>& inputs);
     gl::HeadlessContext& context() { return ctx_; }
     shaders::Target target() const;
@@ -101,6 +111,8 @@ public:
 private:
     gl::HeadlessContext& ctx_;
     bool vertexStage_;
+    ProgramFactory factory_;
+    shaders::Target source_ = shaders::Target::Glsl450;
     std::map<int, gl::Program> programs_;
 };
 

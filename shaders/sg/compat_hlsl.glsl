@@ -1,0 +1,76 @@
+// surfgrad shared-shader common subset: HLSL side (Unity, Unreal, D3D11/12,
+// and glslang's or DXC's HLSL front ends to SPIR-V).
+//
+// The third language of the one shared source (the GLSL side is
+// sg/compat.glsl, the C++ side surfgrad/glsl_cpp.h). An HLSL file includes
+// sg/surfgrad.hlsl, which defines SG_HLSL and includes the GLSL sources;
+// sg/compat.glsl then takes its macros from here. This is the arrangement of
+// OpenSubdiv's osd/patchBasisCommon.h (OSD_PATCH_BASIS_HLSL): the GLSL names
+// of the subset are spelled as HLSL types and built-ins by the preprocessor.
+//
+// What the mapping relies on (docs/engines.md, "HLSL"):
+//   - matrices: the shared code builds them from columns (mat2(c0, c1),
+//     mat4(c0, c1, c2, c3)) and reads columns back with m[i]; it never
+//     multiplies a matrix by a vector. floatNxM(r0, r1, ...) takes rows and
+//     m[i] returns row i, so HLSL holds the transpose of GLSL's matrix and
+//     every access the subset allows means the same;
+//   - no splat constructors (vec3(x)): HLSL's constructors take as many
+//     components as the type has, so the subset writes sgVec3(x)
+//     (sg/compat.glsl);
+//   - frexp/ldexp/imulExtended/unpackHalf2x16: HLSL's frexp returns its
+//     exponent as a float, and the others differ or are missing, so HLSL
+//     takes the bit-pattern path of GLSL 3.30 (SG_GLSL_LEGACY);
+//   - GLSL's mod is x - y floor(x/y); HLSL's fmod truncates: the subset does
+//     not use mod (a check in tests/bump/glsl_validate_test.cpp).
+#ifndef SG_COMPAT_HLSL_GLSL
+#define SG_COMPAT_HLSL_GLSL
+
+#define SG_GLSL_LEGACY 1
+
+#define vec2 float2
+#define vec3 float3
+#define vec4 float4
+#define ivec2 int2
+#define ivec3 int3
+#define ivec4 int4
+#define uvec2 uint2
+#define uvec3 uint3
+#define uvec4 uint4
+#define bvec2 bool2
+#define bvec3 bool3
+#define bvec4 bool4
+#define mat2 float2x2
+#define mat3 float3x3
+#define mat4 float4x4
+
+#define fract frac
+#define mix lerp
+#define inversesqrt rsqrt
+#define dFdx ddx
+#define dFdy ddy
+#define dFdxFine ddx_fine
+#define dFdyFine ddy_fine
+#define dFdxCoarse ddx_coarse
+#define dFdyCoarse ddy_coarse
+#define floatBitsToInt asint
+#define floatBitsToUint asuint
+#define intBitsToFloat asfloat
+#define uintBitsToFloat asfloat
+
+// texelFetch and textureSize of the unsigned integer textures the shared
+// code reads (the feature maps, sg/features/fetch.glsl), as GLSL spells
+// them: level `lod` of an HLSL Texture2D<uint4>.
+uint4 texelFetch(Texture2D<uint4> tex, int2 texel, int lod) { return tex.Load(int3(texel, lod)); }
+int2 textureSize(Texture2D<uint4> tex, int lod) {
+    uint width;
+    uint height;
+    uint levels;
+    tex.GetDimensions(uint(lod), width, height, levels);
+    return int2(int(width), int(height));
+}
+
+#define SG_OUT(T) out T
+#define SG_INOUT(T) inout T
+#define SG_FN
+
+#endif
