@@ -79,7 +79,9 @@ install(DIRECTORY "${PROJECT_SOURCE_DIR}/examples/" DESTINATION "${SURFGRAD_INST
         COMPONENT runtime USE_SOURCE_PERMISSIONS
         # examples/CMakeLists.txt only adds the sample programs to this build;
         # each program's own CMakeLists.txt also builds it on its own.
-        REGEX "/examples/CMakeLists\\.txt$" EXCLUDE)
+        REGEX "/examples/CMakeLists\\.txt$" EXCLUDE
+        # the three.js example's npm packages: `npm ci` makes them (README)
+        PATTERN "node_modules" EXCLUDE)
 # The installed scenes name their maps "data:../examples/data/..." instead
 # of "../data/...": "data:" resolves to the installation's data directory
 # (beside which the examples' own maps are installed), so a scene copied

@@ -3,7 +3,7 @@
 // Every file under shaders/sg/ is compiled from this one source: by the GL
 // driver as GLSL, by the C++ compiler through GLM (the C++ side of these
 // macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP), and
-// as HLSL (the HLSL side is sg/compat_hlsl.glsl, selected by SG_HLSL, which
+// as HLSL (the HLSL side is sg/compat.hlsl, selected by SG_HLSL, which
 // sg/surfgrad.hlsl defines).
 // The GLSL side compiles as GLSL 4.50, GLSL 3.30 core and GLSL ES 3.00
 // (WebGL2, GLES 3), and as Vulkan GLSL to SPIR-V (docs/engines.md): what
@@ -14,7 +14,7 @@
 //     state travels in structs (SgFrame);
 //   - no splat constructors: sgVec3(x) (below), not vec3(x), which HLSL
 //     rejects; matrices built from columns and read by column, never
-//     multiplied by a vector (sg/compat_hlsl.glsl says why);
+//     multiplied by a vector (sg/compat.hlsl says why);
 //   - out/inout parameters through SG_OUT(T)/SG_INOUT(T); every function is
 //     declared `SG_FN type name(...)`;
 //   - no implicit int->float promotion in vector arithmetic;
@@ -25,7 +25,7 @@
 #define SG_COMPAT_GLSL
 
 #if defined(SG_HLSL)
-#include "sg/compat_hlsl.glsl"
+#include "sg/compat.hlsl"
 #elif !defined(SG_CPP)
 // GLSL before 4.00 and GLSL ES have no frexp/ldexp, imulExtended, fma or
 // precise, GLSL 3.30 no unpackHalf2x16; ES 3.00 also needs default

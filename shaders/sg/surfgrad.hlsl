@@ -2,7 +2,7 @@
 // and DXC's HLSL front ends): `#include "sg/surfgrad.hlsl"` gives every
 // function of sg/surfgrad.glsl, with the same names, arguments and results
 // as in GLSL and C++, compiled from the same source through the macro layer
-// of sg/compat_hlsl.glsl (docs/engines.md, "HLSL").
+// of sg/compat.hlsl (docs/engines.md, "HLSL").
 #ifndef SG_SURFGRAD_HLSL
 #define SG_SURFGRAD_HLSL
 

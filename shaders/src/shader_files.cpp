@@ -156,20 +156,20 @@ Assembled assemble(std::string_view body, std::string_view bodyName,
     return a;
 }
 
-std::string flatten(std::string_view entryPath, std::string_view banner) {
-    const char* text = find(entryPath);
-    if (!text) {
-        throw ShaderSourceError("flatten: no embedded shader file \"" + std::string(entryPath) +
-                                "\"");
-    }
+std::string flatten(const std::vector<std::string>& entryPaths, std::string_view banner) {
     Assembled a;
     for (std::string_view rest = banner; !rest.empty();) {
         const size_t eol = rest.find('\n');
         a.text += "// " + std::string(rest.substr(0, eol)) + "\n";
         rest = eol == std::string_view::npos ? std::string_view() : rest.substr(eol + 1);
     }
-    Expander e{a, {std::string(entryPath)}, true, false, true};
-    e.expand(text, std::string(entryPath), 0);
+    Expander e{a, {}, true, false, true};
+    for (const std::string& entry : entryPaths) {
+        const char* text = find(entry);
+        if (!text) throw ShaderSourceError("flatten: no embedded shader file \"" + entry + "\"");
+        if (!e.included.insert(entry).second) continue;
+        e.expand(text, entry, 0);
+    }
     return a.text;
 }
 
@@ -177,10 +177,10 @@ std::vector<FlatFile> flatLibrary() {
     const std::string note = "Generated from shaders/sg by the surfgrad build "
                              "(sg::shaders::flatten). Do not edit: edit shaders/sg.\n";
     const std::string glsl =
-        flatten("sg/surfgrad.glsl",
+        flatten({"sg/surfgrad.glsl", "sg/render/noise.glsl"},
                 "surfgrad shader library, GLSL (4.50, 3.30, ES 3.00, Vulkan): one file.\n" + note);
     const std::string hlsl =
-        flatten("sg/surfgrad.hlsl",
+        flatten({"sg/surfgrad.hlsl", "sg/render/noise.glsl"},
                 "surfgrad shader library, HLSL (Unity, Unreal, D3D): one file.\n" + note);
     return {{"surfgrad.glsl", glsl}, {"surfgrad.hlsl", hlsl}, {"surfgrad.ush", hlsl}};
 }

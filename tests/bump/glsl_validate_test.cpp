@@ -220,13 +220,15 @@ std::vector<std::string> hlslFiles() {
 // `metal`, also SPIRV-Cross's Metal translation of that SPIR-V (its text on
 // stdout; there is no Metal compiler here to compile it).
 RunResult validateHlsl(const std::string& source, const std::string& stage, const std::string& tag,
-                       bool metal = false) {
+                       bool metal = false, const fs::path& includeDir = {}) {
     const fs::path file = writeScratch(source, tag + "_hlsl", "hlsl");
     const fs::path spv = fs::path(file).replace_extension(".spv");
     const std::string spvQ = sg::test::shellQuote(spv);
+    const std::string include =
+        includeDir.empty() ? std::string() : " -I" + sg::test::shellQuote(includeDir);
     RunResult r = sg::test::runCommand("glslangValidator -D -V --target-env vulkan1.1 -S " + stage +
-                                       " -e main " + sg::test::shellQuote(file) + " -o " + spvQ +
-                                       " >&2 && spirv-val " + spvQ +
+                                       " -e main" + include + " " + sg::test::shellQuote(file) +
+                                       " -o " + spvQ + " >&2 && spirv-val " + spvQ +
                                        (metal ? " && spirv-cross --msl " + spvQ : std::string()));
     fs::remove(file);
     fs::remove(spv);
@@ -244,7 +246,10 @@ TEST_P(HlslFile, CompilesWithGlslangHlslFrontEnd) {
     const std::string path = GetParam();
     const std::string text = sg::shaders::find(path);
     const bool hasMain = std::regex_search(text, std::regex(R"(\bvoid\s+main\s*\()"));
-    std::string body = "#include \"" + path + "\"\n";
+    // A library file (no main) after the HLSL entry, whose SG_HLSL selects
+    // the HLSL spelling (sg/compat.hlsl is only read that way).
+    std::string body = hasMain ? "" : "#include \"sg/surfgrad.hlsl\"\n";
+    body += "#include \"" + path + "\"\n";
     if (!hasMain) {
         body += "float4 main(float3 relPos : TEXCOORD0, float3 nrm : TEXCOORD1,\n"
                 "            float2 uv : TEXCOORD2) : SV_Target {\n"
@@ -333,6 +338,34 @@ TEST(FlatLibrary, CompilesWithoutAnIncludePath) {
     }
 }
 
+// The engine snippets of docs/engines.md (examples/engines/) compile
+// against the installed single-file library as an engine would include
+// them, each called from a pixel shader (glslang's HLSL front end, then
+// spirv-val; Unity's and Unreal's own compilers are not on this machine).
+TEST(EngineSnippets, CompileAgainstTheFlatLibrary) {
+    const fs::path flat = fs::path(SURFGRAD_BINARY_DIR) / "shaders" / "flat";
+    const fs::path dir = fs::path(SURFGRAD_SOURCE_DIR) / "examples" / "engines";
+    const std::string in =
+        "float4 main(float3 p : TEXCOORD0, float3 n : TEXCOORD1,\n"
+        "            float2 uv : TEXCOORD2, bool ff : SV_IsFrontFace) : SV_Target {\n"
+        "    const float3 nts = float3(0.1f, 0.2f, 0.97f);\n";
+    const std::pair<const char*, std::string> snippets[] = {
+        {"SurfgradUnity.hlsl",
+         in + "    float3 o;\n    SurfgradNormalMap_float(p, n, uv, nts, ff, o);\n"
+              "    return float4(o, 1.0f);\n}\n"},
+        {"SurfgradUnreal.ush",
+         in + "    return float4(SurfgradNormalMap(p, n, uv, nts, ff), 1.0f);\n}\n"},
+    };
+    for (const auto& [name, main] : snippets) {
+        std::ifstream file(dir / name);
+        ASSERT_TRUE(file) << (dir / name);
+        const std::string text((std::istreambuf_iterator<char>(file)),
+                               std::istreambuf_iterator<char>());
+        const RunResult r = validateHlsl(text + main, "frag", name, false, flat);
+        EXPECT_EQ(r.exitCode, 0) << name << ":\n" << r.output();
+    }
+}
+
 // Splat constructors (vec3(x) from one scalar) in a file's code: GLSL and
 // C++ take them, HLSL's float3(x) does not (DXC, FXC), so the shared source
 // writes sgVec3(x) (sg/compat.glsl). Finds the literal and SG_* constant
@@ -348,6 +381,22 @@ std::vector<std::string> splatConstructors(const std::string& text) {
         if (std::regex_search(code, splat)) hits.push_back(std::to_string(n) + ": " + line);
     }
     return hits;
+}
+
+// GLSL's mod(x, y) is x - y floor(x / y); HLSL's fmod truncates, so the
+// shared functions use neither (write x - y * floor(x / y)).
+TEST(GlslSubset, SharedFunctionsUseNoMod) {
+    const std::regex mod(R"(\bmod\s*\()");
+    for (const std::string& path : shaderFiles()) {
+        const std::string text = sg::shaders::find(path);
+        if (text.find("SG_FN ") == std::string::npos) continue;
+        std::istringstream in(text);
+        std::string line;
+        for (int n = 1; std::getline(in, line); ++n) {
+            if (std::regex_search(line.substr(0, line.find("//")), mod))
+                ADD_FAILURE() << path << ":" << n << ": " << line;
+        }
+    }
 }
 
 // The shared functions (files declaring SG_FN functions, compiled as GLSL,

@@ -49,7 +49,7 @@ using ParityGlsl330 = ParityOn<gl::Api::Gl33Core>;
 using ParityEs300 = ParityOn<gl::Api::Es30>;
 
 // The HLSL spelling of the source (sg/eval/eval.hlsl through
-// sg/compat_hlsl.glsl), checked by numbers: each entry's HLSL program goes
+// sg/compat.hlsl), checked by numbers: each entry's HLSL program goes
 // through glslang's HLSL front end to SPIR-V and SPIRV-Cross back to GLSL
 // 4.50 (hlsl_round_trip.h), and runs as a compute program on the 4.5
 // context. Same records and tolerances as the GLSL suites.

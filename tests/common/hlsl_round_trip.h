@@ -38,8 +38,9 @@ inline std::string translateHlslCompute(const shaders::Assembled& hlsl, const st
     for (const std::string& step : steps) {
         const CommandResult r = runCommand(step);
         if (r.exitCode != 0) {
-            throw std::runtime_error("HLSL round trip of " + name + ": `" + step + "` failed (exit " +
-                                     std::to_string(r.exitCode) + "):\n" + r.output());
+            throw std::runtime_error("HLSL round trip of " + name + ": `" + step +
+                                     "` failed (exit " + std::to_string(r.exitCode) + "):\n" +
+                                     r.output());
         }
     }
     std::ifstream in(glsl);

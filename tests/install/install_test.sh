@@ -63,9 +63,14 @@ done
 (cd "$prefix/include" && find . -type f) | sort >"$work/headers.got"
 diff -u "$work/headers.want" "$work/headers.got" >&2 || fail "installed headers differ from the modules' include/ trees"
 # GLSL library and data: the same files as the source tree.
-diff <(cd "$src/shaders/sg" && find . -name '*.glsl' | sort) \
+diff <(cd "$src/shaders/sg" && find . -name '*.glsl' -o -name '*.hlsl' | sort) \
      <(cd "$prefix/share/surfgrad/shaders/sg" && find . -type f | sort) >&2 ||
     fail "share/surfgrad/shaders/sg differs from shaders/sg"
+# The single-file library (docs/engines.md), as the build wrote it.
+for f in surfgrad.glsl surfgrad.hlsl surfgrad.ush; do
+    cmp -s "$build/shaders/flat/$f" "$prefix/share/surfgrad/shaders/flat/$f" ||
+        fail "share/surfgrad/shaders/flat/$f is not the build's shaders/flat/$f"
+done
 diff -r "$src/data" "$prefix/share/surfgrad/data" >/dev/null || fail "share/surfgrad/data differs from data/"
 for f in terrain/scene.json data/rock_normal.png engine-integration/CMakeLists.txt \
          engine-integration/bumped.frag consumer-tangents/main.cpp; do

@@ -106,6 +106,8 @@ has dev /usr/include/surfgrad/tangents.h
 has dev /usr/include/surfgrad/render/scene.h
 has dev /usr/share/surfgrad/shaders/sg/surfgrad.glsl
 has dev /usr/share/surfgrad/shaders/sg/compat.glsl
+has dev /usr/share/surfgrad/shaders/sg/surfgrad.hlsl
+has dev /usr/share/surfgrad/shaders/flat/surfgrad.ush
 cfgdir="$(grep -x '/usr/lib.*/cmake/surfgrad/' "$work/dev.list" || true)"
 [ -n "$cfgdir" ] || fail "surfgrad-dev has no /usr/lib*/cmake/surfgrad/"
 for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake \

@@ -47,7 +47,7 @@ struct ShaderSourceError : std::runtime_error {
 //            compute or tessellation stages).
 //   Hlsl     no header: the body is an HLSL file that includes
 //            sg/surfgrad.hlsl (or defines SG_HLSL before the library), and
-//            compat.glsl spells the source as HLSL (sg/compat_hlsl.glsl).
+//            compat.glsl spells the source as HLSL (sg/compat.hlsl).
 //            No GL driver compiles it: the test suite translates it
 //            (glslang's HLSL front end to SPIR-V, SPIRV-Cross to GLSL 4.50)
 //            and runs the translation on an OpenGL 4.5 context. Its #line
@@ -73,20 +73,21 @@ struct Assembled {
 Assembled assemble(std::string_view body, std::string_view bodyName,
                    const std::vector<std::string>& defines = {}, Target target = Target::Glsl450);
 
-// The library entry `entryPath` (e.g. "sg/surfgrad.hlsl") as ONE file: its
-// includes expanded in place, each file once, a `// ---- path` comment
-// where each begins (no #line, no #version), continuation lines joined,
-// `banner` (lines, each written as a comment) first. For engines with no
-// #include of their own or with rules about include names (WebGL and
-// three.js take shader strings; Unreal includes only .ush files): the
-// build writes share/surfgrad/shaders/flat/ from it (docs/engines.md).
-// Throws ShaderSourceError for an unknown entry or include.
-std::string flatten(std::string_view entryPath, std::string_view banner);
+// The library files `entryPaths` (e.g. {"sg/surfgrad.hlsl"}) as ONE file:
+// each with its includes expanded in place, every file once, a
+// `// ---- path` comment where each begins (no #line, no #version),
+// continuation lines joined, `banner` (lines, each written as a comment)
+// first. For engines with no #include of their own or with rules about
+// include names (WebGL and three.js take shader strings; Unreal includes
+// only .ush files): the build writes share/surfgrad/shaders/flat/ from it
+// (docs/engines.md). Throws ShaderSourceError for an unknown file.
+std::string flatten(const std::vector<std::string>& entryPaths, std::string_view banner);
 
 // The single-file library the build installs in share/surfgrad/shaders/flat
 // (surfgrad_flatten): surfgrad.glsl (every GLSL dialect; the program writes
 // its #version and, for ES, its precisions), surfgrad.hlsl and surfgrad.ush
-// (the same HLSL text; Unreal includes only .ush/.usf files).
+// (the same HLSL text; Unreal includes only .ush/.usf files). Each holds the
+// core library (sg/surfgrad.glsl) and the volume noise (sg/render/noise.glsl).
 struct FlatFile {
     std::string name; // file name, e.g. "surfgrad.hlsl"
     std::string text;

@@ -121,15 +121,15 @@ SG_FN vec4 sgPerlinNoise(vec3 p) {
 }
 
 // freq * cell exactly, as its whole part modulo 2^32 (`whole`) and its
-// fraction in [0, 1) (`frac`), for a binary32 freq in [1, SG_FLT_MAX] and a
+// fraction in [0, 1) (`fraction`), for a binary32 freq in [1, SG_FLT_MAX] and a
 // 32-bit lattice coordinate `cell`: freq = m 2^(e - 24) with m a 24-bit
 // integer (frexp), so freq * cell is the 56-bit product m * cell
 // (sgIMulExtended) times 2^(e - 24); its fraction has at most 23 bits and is
 // exact in binary32. Integer arithmetic only: both builds agree bit for
 // bit. Other freq (never made by lacunarities >= 1): 0, 0.
-SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(float) frac) {
+SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(float) fraction) {
     whole = 0u;
-    frac = 0.0f;
+    fraction = 0.0f;
     if (!(freq >= 1.0f) || !(freq <= SG_FLT_MAX)) return;
     int e;
     float mant = sgFrexp(freq, e);
@@ -144,7 +144,7 @@ SG_FN void sgNoiseScaleCell(int cell, float freq, SG_OUT(uint) whole, SG_OUT(flo
         return;
     }
     whole = (uint(lo) >> uint(shift)) | (uint(hi) << uint(32 - shift));
-    frac = sgLdexp(float(uint(lo) & ((1u << uint(shift)) - 1u)), -shift);
+    fraction = sgLdexp(float(uint(lo) & ((1u << uint(shift)) - 1u)), -shift);
 }
 
 // One octave, frequency freq, at the lattice argument cell + q (cell a

@@ -21,9 +21,9 @@
 //     exponent as a float, and the others differ or are missing, so HLSL
 //     takes the bit-pattern path of GLSL 3.30 (SG_GLSL_LEGACY);
 //   - GLSL's mod is x - y floor(x/y); HLSL's fmod truncates: the subset does
-//     not use mod (a check in tests/bump/glsl_validate_test.cpp).
-#ifndef SG_COMPAT_HLSL_GLSL
-#define SG_COMPAT_HLSL_GLSL
+//     not use mod (GlslSubset.SharedFunctionsUseNoMod checks).
+#ifndef SG_COMPAT_HLSL
+#define SG_COMPAT_HLSL
 
 #define SG_GLSL_LEGACY 1
 
