@@ -3,8 +3,8 @@
 // Every file under shaders/sg/ is compiled from this one source: by the GL
 // driver as GLSL, by the C++ compiler through GLM (the C++ side of these
 // macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP), and
-// as HLSL (the HLSL side is sg/compat.hlsl, selected by SG_HLSL, which
-// sg/surfgrad.hlsl defines).
+// as HLSL (the HLSL side is sg/compat.hlsl, which defines SG_HLSL and which
+// sg/surfgrad.hlsl includes first).
 // The GLSL side compiles as GLSL 4.50, GLSL 3.30 core and GLSL ES 3.00
 // (WebGL2, GLES 3), and as Vulkan GLSL to SPIR-V (docs/engines.md): what
 // only 4.x has is written here once with a 3.30/ES path (SG_GLSL_LEGACY).
@@ -13,8 +13,9 @@
 //   - no swizzles (write vec2(v.x, v.y)), no array constructors, no globals:
 //     state travels in structs (SgFrame);
 //   - no splat constructors: sgVec3(x) (below), not vec3(x), which HLSL
-//     rejects; matrices built from columns and read by column, never
-//     multiplied by a vector (sg/compat.hlsl says why);
+//     rejects; matrices built from columns (sgMat3Diag(d), not mat3(d)) and
+//     read by column, never multiplied by a vector; no == of vectors
+//     (sgIsZero3); no mod (sg/compat.hlsl says why);
 //   - out/inout parameters through SG_OUT(T)/SG_INOUT(T); every function is
 //     declared `SG_FN type name(...)`;
 //   - no implicit int->float promotion in vector arithmetic;
@@ -25,7 +26,10 @@
 #define SG_COMPAT_GLSL
 
 #if defined(SG_HLSL)
-#include "sg/compat.hlsl"
+// HLSL: sg/compat.hlsl, included before this file (by sg/surfgrad.hlsl and
+// the other .hlsl entries), has spelled the subset. (It is not included
+// here: includes are expanded before the preprocessor runs, so every GLSL
+// program would carry its text.)
 #elif !defined(SG_CPP)
 // GLSL before 4.00 and GLSL ES have no frexp/ldexp, imulExtended, fma or
 // precise, GLSL 3.30 no unpackHalf2x16; ES 3.00 also needs default
@@ -75,6 +79,16 @@ SG_FN vec4 sgVec4(float x) { return vec4(x, x, x, x); }
 SG_FN ivec2 sgIvec2(int x) { return ivec2(x, x); }
 SG_FN ivec3 sgIvec3(int x) { return ivec3(x, x, x); }
 SG_FN uvec4 sgUvec4(uint x) { return uvec4(x, x, x, x); }
+
+// v == vec3(0): every component exactly zero (written per component: a
+// vector == is a bool in GLSL and C++ but a bool3 in HLSL).
+SG_FN bool sgIsZero3(vec3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
+
+// The diagonal matrix d I (GLSL's mat3(d); HLSL's float3x3(d) is no
+// diagonal matrix).
+SG_FN mat3 sgMat3Diag(float d) {
+    return mat3(vec3(d, 0.0f, 0.0f), vec3(0.0f, d, 0.0f), vec3(0.0f, 0.0f, d));
+}
 
 // Normalize that survives huge and tiny inputs: dividing by the largest
 // absolute component first keeps dot(s, s) in [1, 3], so it neither

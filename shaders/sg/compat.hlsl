@@ -3,15 +3,16 @@
 //
 // The third language of the one shared source (the GLSL side is
 // sg/compat.glsl, the C++ side surfgrad/glsl_cpp.h). An HLSL file includes
-// sg/surfgrad.hlsl, which defines SG_HLSL and includes the GLSL sources;
-// sg/compat.glsl then takes its macros from here. This is the arrangement of
+// sg/surfgrad.hlsl, which includes this file (defining SG_HLSL) and then the
+// GLSL sources; sg/compat.glsl then leaves the spelling to the macros here. This is the arrangement of
 // OpenSubdiv's osd/patchBasisCommon.h (OSD_PATCH_BASIS_HLSL): the GLSL names
 // of the subset are spelled as HLSL types and built-ins by the preprocessor.
 //
 // What the mapping relies on (docs/engines.md, "HLSL"):
 //   - matrices: the shared code builds them from columns (mat2(c0, c1),
-//     mat4(c0, c1, c2, c3)) and reads columns back with m[i]; it never
-//     multiplies a matrix by a vector. floatNxM(r0, r1, ...) takes rows and
+//     mat4(c0, c1, c2, c3), outerProduct, sgMat3Diag), adds and scales
+//     them and reads columns and elements back (m[i], m[i][j]); it never
+//     multiplies a matrix by a vector or by a matrix. floatNxM(r0, r1, ...) takes rows and
 //     m[i] returns row i, so HLSL holds the transpose of GLSL's matrix and
 //     every access the subset allows means the same;
 //   - no splat constructors (vec3(x)): HLSL's constructors take as many
@@ -24,6 +25,8 @@
 //     not use mod (GlslSubset.SharedFunctionsUseNoMod checks).
 #ifndef SG_COMPAT_HLSL
 #define SG_COMPAT_HLSL
+
+#define SG_HLSL 1
 
 #define SG_GLSL_LEGACY 1
 
@@ -66,6 +69,33 @@ int2 textureSize(Texture2D<uint4> tex, int lod) {
     uint height;
     uint levels;
     tex.GetDimensions(uint(lod), width, height, levels);
+    return int2(int(width), int(height));
+}
+
+// outerProduct(c, r): GLSL's matrix with column j = c r[j], held as HLSL
+// rows (see "matrices" above).
+float2x2 outerProduct(float2 c, float2 r) { return float2x2(c * r.x, c * r.y); }
+float3x3 outerProduct(float3 c, float3 r) { return float3x3(c * r.x, c * r.y, c * r.z); }
+
+// sampler2D: a texture and its sampler state travel together (HLSL keeps
+// them apart), and texture/textureGrad/textureLod/textureSize read them.
+// `texture` is an HLSL keyword, so the GLSL name is spelled sgTexture.
+struct SgSampler2D {
+    Texture2D<float4> tex;
+    SamplerState state;
+};
+#define sampler2D SgSampler2D
+#define texture sgTexture
+float4 sgTexture(SgSampler2D s, float2 st) { return s.tex.Sample(s.state, st); }
+float4 textureGrad(SgSampler2D s, float2 st, float2 dSTdx, float2 dSTdy) {
+    return s.tex.SampleGrad(s.state, st, dSTdx, dSTdy);
+}
+float4 textureLod(SgSampler2D s, float2 st, float lod) { return s.tex.SampleLevel(s.state, st, lod); }
+int2 textureSize(SgSampler2D s, int lod) {
+    uint width;
+    uint height;
+    uint levels;
+    s.tex.GetDimensions(uint(lod), width, height, levels);
     return int2(int(width), int(height));
 }
 

@@ -6,7 +6,7 @@
 #ifndef SG_SURFGRAD_HLSL
 #define SG_SURFGRAD_HLSL
 
-#define SG_HLSL 1
+#include "sg/compat.hlsl"
 #include "sg/surfgrad.glsl"
 
 #endif

@@ -276,6 +276,41 @@ INSTANTIATE_TEST_SUITE_P(AllHlslEntries, HlslFile, ::testing::ValuesIn(hlslFiles
                              return n;
                          });
 
+// Every file of shared functions (one that declares SG_FN functions: the
+// core, the feature-curve evaluator, the layer kinds' functions, the patch
+// basis) compiles as HLSL too, after the HLSL entry, with glslang's HLSL
+// front end: sampler2D is sg/compat.hlsl's SgSampler2D (a Texture2D and its
+// SamplerState), matrices are held transposed.
+class SharedHlsl : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SharedHlsl, CompilesAsHlsl) {
+    const std::string path = GetParam();
+    const std::string text = sg::shaders::find(path);
+    const std::string body = "#include \"sg/surfgrad.hlsl\"\n#include \"" + path +
+                             "\"\nfloat4 main(float2 uv : TEXCOORD0) : SV_Target {\n"
+                             "    return float4(uv, 0.0f, 1.0f);\n}\n";
+    const auto src = sg::shaders::assemble(body, "validate[" + path + "]", definesOf(text),
+                                           sg::shaders::Target::Hlsl);
+    const RunResult r = validateHlsl(src.text, "frag", path + "_shared");
+    EXPECT_EQ(r.exitCode, 0) << path << ":\n" << r.output();
+}
+
+std::vector<std::string> sharedFiles() {
+    std::vector<std::string> shared;
+    for (const std::string& f : shaderFiles())
+        if (std::string(sg::shaders::find(f)).find("SG_FN ") != std::string::npos)
+            shared.push_back(f);
+    return shared;
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedFunctionFiles, SharedHlsl, ::testing::ValuesIn(sharedFiles()),
+                         [](const auto& p) {
+                             std::string n = p.param;
+                             for (char& c : n)
+                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+                             return n;
+                         });
+
 // The single-file library (share/surfgrad/shaders/flat, written by the
 // build's surfgrad_flatten): the files on disk are flatLibrary()'s text,
 // i.e. what the source tree gives now, not a stale or hand-edited copy.

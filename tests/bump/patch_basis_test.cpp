@@ -178,7 +178,7 @@ TEST(PatchBasis, MatchesFarEvaluateBasisOnEveryCatmarkShape) {
                         // same products differently and Gregory's rational
                         // factors divide once vs multiply by a reciprocal:
                         // a few ulp of the largest term.
-                        EXPECT_NEAR(b.point.v[i], w[i], 2e-6f) << "point weight " << i;
+                        EXPECT_NEAR(b.pos.v[i], w[i], 2e-6f) << "point weight " << i;
                         EXPECT_NEAR(b.du.v[i], wu[i], 8e-6f * depthScale) << "du weight " << i;
                         EXPECT_NEAR(b.dv.v[i], wv[i], 8e-6f * depthScale) << "dv weight " << i;
                     }

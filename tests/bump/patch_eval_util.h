@@ -50,7 +50,7 @@ PatchValue<T> applyBasis(const sg::glsl::SgPatchBasis& b, const uint32_t* idx,
                          const std::vector<T>& values) {
     PatchValue<T> s;
     for (int i = 0; i < b.count; ++i) {
-        s.value += b.point.v[i] * values[idx[i]];
+        s.value += b.pos.v[i] * values[idx[i]];
         s.du += b.du.v[i] * values[idx[i]];
         s.dv += b.dv.v[i] * values[idx[i]];
     }

@@ -169,7 +169,7 @@ glm::vec3 cpuEvalSite(const AdaptivePatches& ap, uint32_t p, glm::vec2 uv) {
     glm::vec3 pos(0.0f);
     const uint32_t* idx =
         &ap.indices[arr.firstIndex + (p - arr.firstPatch) * uint32_t(arr.pointsPerPatch)];
-    for (int i = 0; i < b.count; ++i) pos += b.point.v[i] * ap.points[idx[i]];
+    for (int i = 0; i < b.count; ++i) pos += b.pos.v[i] * ap.points[idx[i]];
     return pos;
 }
 

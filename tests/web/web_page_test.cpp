@@ -56,7 +56,8 @@ Capture capturePage(const std::string& query) {
     Capture c;
     std::ifstream in(out, std::ios::binary);
     if (r.exitCode != 0 || !in) return c;
-    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                               std::istreambuf_iterator<char>());
     if (bytes.size() < 8) return c;
     auto u32 = [&](size_t at) {
         return uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
@@ -71,9 +72,8 @@ Capture capturePage(const std::string& query) {
 
 // The page's default layers, blends and views all draw without an error.
 TEST(WebPage, LoadsWithoutErrorsInEveryMode) {
-    for (const char* query :
-         {"size=160x120&panel=0", "size=160x120&blend=whiteout", "size=160x120&blend=udn",
-          "size=160x120&blend=rnm&view=normal"}) {
+    for (const char* query : {"size=160x120&panel=0", "size=160x120&blend=whiteout",
+                              "size=160x120&blend=udn", "size=160x120&blend=rnm&view=normal"}) {
         SCOPED_TRACE(query);
         const Capture c = capturePage(query);
         ASSERT_EQ(c.width, 160);
@@ -130,8 +130,8 @@ TEST(WebPage, NormalViewAgreesWithTheRenderer) {
             const glm::dvec3 b = glm::normalize(glm::dvec3(o));
             angles.push_back(glm::degrees(std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0))));
             if (angles.back() > 20.0 && ++farOff <= 8) {
-                std::printf("  (%d, %d): page %d %d %d, renderer %.3f %.3f %.3f\n", x, y, p[0], p[1],
-                            p[2], o.x, o.y, o.z);
+                std::printf("  (%d, %d): page %d %d %d, renderer %.3f %.3f %.3f\n", x, y, p[0],
+                            p[1], p[2], o.x, o.y, o.z);
             }
         }
     }
@@ -141,11 +141,14 @@ TEST(WebPage, NormalViewAgreesWithTheRenderer) {
         ppm << "P6\n" << 2 * w << " " << h << "\n255\n";
         for (int y = 0; y < h; ++y) {
             for (int x = 0; x < w; ++x)
-                ppm.write(reinterpret_cast<const char*>(&page.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]), 3);
+                ppm.write(reinterpret_cast<const char*>(
+                              &page.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]),
+                          3);
             for (int x = 0; x < w; ++x) {
                 const glm::vec4 o = ours.at(x, h - 1 - y);
                 for (int k = 0; k < 3; ++k)
-                    ppm.put(char(std::clamp(int(std::lround((0.5f * o[k] + 0.5f) * 255.0f)), 0, 255)));
+                    ppm.put(
+                        char(std::clamp(int(std::lround((0.5f * o[k] + 0.5f) * 255.0f)), 0, 255)));
             }
         }
     }

@@ -270,7 +270,7 @@ glm::vec3 evalPoint(const sg::mesh::AdaptivePatches& ap, const std::vector<uint3
     glm::vec3 pos(0.0f), su(0.0f), sv(0.0f);
     for (int i = 0; i < b.count; ++i) {
         const glm::vec3 c = ap.points[idx[i]];
-        pos += b.point.v[i] * c;
+        pos += b.pos.v[i] * c;
         su += b.du.v[i] * c;
         sv += b.dv.v[i] * c;
     }
@@ -290,7 +290,7 @@ glm::vec2 evalUv(const sg::mesh::AdaptiveUvSet& set, uint32_t p, glm::vec2 faceU
     glm::vec2 st(0.0f), su(0.0f), sv(0.0f);
     for (int i = 0; i < b.count; ++i) {
         const glm::vec2 x = set.values[idx[i]];
-        st += b.point.v[i] * x;
+        st += b.pos.v[i] * x;
         su += b.du.v[i] * x;
         sv += b.dv.v[i] * x;
     }

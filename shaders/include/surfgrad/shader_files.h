@@ -46,8 +46,8 @@ struct ShaderSourceError : std::runtime_error {
 //            sampler2D and usampler2D (WebGL2, GLES 3.0: no
 //            compute or tessellation stages).
 //   Hlsl     no header: the body is an HLSL file that includes
-//            sg/surfgrad.hlsl (or defines SG_HLSL before the library), and
-//            compat.glsl spells the source as HLSL (sg/compat.hlsl).
+//            sg/surfgrad.hlsl (or sg/compat.hlsl before other library
+//            files), whose macros spell the source as HLSL.
 //            No GL driver compiles it: the test suite translates it
 //            (glslang's HLSL front end to SPIR-V, SPIRV-Cross to GLSL 4.50)
 //            and runs the translation on an OpenGL 4.5 context. Its #line

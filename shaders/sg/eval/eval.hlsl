@@ -7,7 +7,7 @@
 // The record count is the output buffer's length (no constant buffer: the
 // harness binds the two buffers and nothing else).
 // glslang-validate: SG_EVAL_KERNEL 0
-#define SG_HLSL 1
+#include "sg/compat.hlsl"
 #include "sg/eval/kernels.glsl"
 
 [[vk::binding(0)]] StructuredBuffer<float> inData : register(t0);

@@ -7,7 +7,7 @@
 // The record count is the output buffer's length (no constant buffer: the
 // harness binds the two buffers and nothing else).
 // glslang-validate: SG_FEAT_EVAL_KERNEL 0
-#define SG_HLSL 1
+#include "sg/compat.hlsl"
 #define SG_FEAT_NEAR 1
 #include "sg/features/kernels.glsl"
 

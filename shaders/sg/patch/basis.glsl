@@ -52,7 +52,7 @@ struct SgPatchRow {
 // derivatives with respect to the ptex face's (u,v) (not the patch's own
 // sub-domain: the depth scale is applied). count: control points used.
 struct SgPatchBasis {
-    SgPatchRow point;
+    SgPatchRow pos;
     SgPatchRow du;
     SgPatchRow dv;
     int count;
@@ -200,7 +200,7 @@ SG_FN SgPatchBasis sgPatchBasisNormalized(int patchType, uint field1, vec2 uv) {
         float g0 = sgGregoryFactor(su, sv), g2 = sgGregoryFactor(sv, cu);
         float g4 = sgGregoryFactor(cu, cv), g6 = sgGregoryFactor(cv, su);
         vec4 gA = vec4(g0, 1.0f - g0, g2, 1.0f - g2), gB = vec4(g4, 1.0f - g4, g6, 1.0f - g6);
-        b.point = sgGregoryTensor20(s, t, gA, gB);
+        b.pos = sgGregoryTensor20(s, t, gA, gB);
         b.du = sgGregoryTensor20(sd, t, gA, gB);
         b.dv = sgGregoryTensor20(s, td, gA, gB);
         b.count = 20;
@@ -208,18 +208,18 @@ SG_FN SgPatchBasis sgPatchBasisNormalized(int patchType, uint field1, vec2 uv) {
         vec4 s = sgBSplineCurve(uv.x), t = sgBSplineCurve(uv.y);
         vec4 sd = sgBSplineCurveDeriv(uv.x), td = sgBSplineCurveDeriv(uv.y);
         int mask = sgPatchBoundaryMask(field1);
-        b.point = sgBSplineFoldBoundary(sgPatchTensor16(s, t), mask);
+        b.pos = sgBSplineFoldBoundary(sgPatchTensor16(s, t), mask);
         b.du = sgBSplineFoldBoundary(sgPatchTensor16(sd, t), mask);
         b.dv = sgBSplineFoldBoundary(sgPatchTensor16(s, td), mask);
         b.count = 16;
     } else { // SG_PATCH_QUADS (bilinear): corners (0,0), (1,0), (1,1), (0,1)
         vec4 s = vec4(1.0f - uv.x, uv.x, uv.x, 1.0f - uv.x);
         vec4 t = vec4(1.0f - uv.y, 1.0f - uv.y, uv.y, uv.y);
-        b.point = sgPatchTensor16(sgVec4(0.0f), sgVec4(0.0f));
-        b.du = b.point;
-        b.dv = b.point;
+        b.pos = sgPatchTensor16(sgVec4(0.0f), sgVec4(0.0f));
+        b.du = b.pos;
+        b.dv = b.pos;
         for (int i = 0; i < 4; ++i) {
-            b.point.v[i] = s[i] * t[i];
+            b.pos.v[i] = s[i] * t[i];
             b.du.v[i] = (i == 0 || i == 3 ? -1.0f : 1.0f) * t[i];
             b.dv.v[i] = (i < 2 ? -1.0f : 1.0f) * s[i];
         }

@@ -99,11 +99,11 @@ SG_FN vec4 sgPatchLimitTangent(vec3 dPdu, vec3 dPdv, vec2 dSTdu, vec2 dSTdv, vec
     vec3 dPds = uvRegular ? w * (d * pu - c * pv) : sgVec3(0.0f);
     vec3 t = sgTangentPart(dPds, unitNormal);
     resolved = surfaceRegular ? SG_LIMIT_TANGENT_REGULAR : SG_LIMIT_TANGENT_DEGENERATE_SURFACE;
-    if (t == sgVec3(0.0f)) {
+    if (sgIsZero3(t)) {
         if (surfaceRegular) resolved = SG_LIMIT_TANGENT_DEGENERATE_UV;
         t = sgTangentPart(pu, unitNormal);
-        if (t == sgVec3(0.0f)) t = sgTangentPart(pv, unitNormal);
-        if (t == sgVec3(0.0f)) t = sgAnyOrthogonal(unitNormal);
+        if (sgIsZero3(t)) t = sgTangentPart(pv, unitNormal);
+        if (sgIsZero3(t)) t = sgAnyOrthogonal(unitNormal);
     }
     return vec4(t, w);
 }

@@ -136,7 +136,7 @@ vec2 patchUv(uint p, uint set, vec2 faceUv) {
     vec2 st = vec2(0.0);
     for (int i = 0; i < b.count; ++i) {
         uint v = sgUvPatches[base + 2u + uint(i)];
-        st += b.point.v[i] * vec2(sgUvValues[2u * v], sgUvValues[2u * v + 1u]);
+        st += b.pos.v[i] * vec2(sgUvValues[2u * v], sgUvValues[2u * v + 1u]);
     }
     return st;
 }
@@ -153,7 +153,7 @@ void patchUvDeriv(uint p, uint set, vec2 faceUv, out vec2 st, out vec2 du, out v
     for (int i = 0; i < b.count; ++i) {
         uint v = sgUvPatches[base + 2u + uint(i)];
         vec2 x = vec2(sgUvValues[2u * v], sgUvValues[2u * v + 1u]);
-        s0 += b.point.v[i] * x;
+        s0 += b.pos.v[i] * x;
         s1 += b.du.v[i] * x;
         s2 += b.dv.v[i] * x;
     }
@@ -224,7 +224,7 @@ void evalFromBuffers(uint p, vec2 uv, out vec3 pos, out vec3 du, out vec3 dv) {
     precise vec3 sp = vec3(0.0), su = vec3(0.0), sv = vec3(0.0);
     for (int i = 0; i < b.count; ++i) {
         vec3 c = controlPoint(first, i);
-        sp += b.point.v[i] * c;
+        sp += b.pos.v[i] * c;
         su += b.du.v[i] * c;
         sv += b.dv.v[i] * c;
     }
@@ -279,7 +279,7 @@ void main() {
         du = vec3(0.0);
         dv = vec3(0.0);
         for (int i = 0; i < b.count; ++i) {
-            pos += b.point.v[i] * tcCtrlObj[i];
+            pos += b.pos.v[i] * tcCtrlObj[i];
             du += b.du.v[i] * tcCtrlObj[i];
             dv += b.dv.v[i] * tcCtrlObj[i];
         }

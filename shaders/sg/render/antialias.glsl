@@ -35,7 +35,7 @@
 // no projection onto the tangent plane; its trace (var x + var y) is added
 // as an isotropic variance. The result is a matrix with that trace, not a
 // covariance in the tangent plane: only sgSlopeCovTrace reads it.
-SG_FN mat3 sgSlopeCovUnmapped(float trace) { return mat3(trace / 3.0f); }
+SG_FN mat3 sgSlopeCovUnmapped(float trace) { return sgMat3Diag(trace / 3.0f); }
 
 // Frame-space covariance of d.x * a + d.y * b for a slope d of covariance
 // cov2 = (var x, var y, cov xy). a, b: the layer's Jacobian columns (e.g.
