@@ -99,6 +99,8 @@ configure_build engine-integration
 # The config reports the installed directories (consumer-tangents prints them).
 grep -qF "surfgrad_SHADER_DIR=$prefix/share/surfgrad/shaders" "$work/configure-consumer-tangents.log" ||
     fail "surfgrad_SHADER_DIR is not $prefix/share/surfgrad/shaders: $(grep surfgrad_ "$work/configure-consumer-tangents.log")"
+grep -qF "surfgrad_SHADER_FLAT_DIR=$prefix/share/surfgrad/shaders/flat" "$work/configure-consumer-tangents.log" ||
+    fail "surfgrad_SHADER_FLAT_DIR is not $prefix/share/surfgrad/shaders/flat"
 grep -qF "surfgrad_DATA_DIR=$prefix/share/surfgrad/data" "$work/configure-consumer-tangents.log" ||
     fail "surfgrad_DATA_DIR is not $prefix/share/surfgrad/data"
 
