@@ -1,9 +1,10 @@
-// The blend methods of blend.glsl compiled as C++ (sg::glsl::studyBlend*),
-// next to the shared bump math (surfgrad/bump.h).
+// The normal-map blends of sg/normal_blends.glsl compiled as C++
+// (sg::glsl::sgNormalBlend*), next to the shared bump math
+// (surfgrad/bump.h).
 #pragma once
 
 #include "surfgrad/bump.h"
 
 namespace sg::glsl {
-#include "blend.glsl"
+#include "sg/normal_blends.glsl"
 } // namespace sg::glsl

@@ -1,6 +1,6 @@
 // Table 3, blend method (docs/accuracy-cost.md): two tangent-space normal
 // maps of known height layers on one UV set, blended by each method of
-// blend.glsl on the GPU; error against the normal of the summed heights
+// sg/normal_blends.glsl on the GPU; error against the normal of the summed heights
 // (Mikkelsen 2019 eq. 2-3; Loviscach 2008 "Adding"), in double. Three slope
 // regimes (each layer's steepest slope 0.25, 1 and 3, i.e. 14, 45 and 72
 // degrees). Order dependence: the largest angle between blend(a, b) and
@@ -15,7 +15,6 @@
 #include <string>
 
 #include "blend.h"
-#include "blend_glsl.h"
 #include "tables.h"
 
 namespace study {
@@ -50,18 +49,18 @@ uniform vec3 uN;
 uniform vec2 uRot; // (cos, sin) of the detail's rotation step
 layout(location = 0) out vec4 oColor;
 vec3 blendOne(SgFrame f, vec3 a, vec3 b) {
-#if METHOD == STUDY_BLEND_SURFGRAD
-    return studyBlendSurfgrad(f, uT, uB3, a, b);
-#elif METHOD == STUDY_BLEND_LINEAR
-    return studyToFrame(f, uT, uB3, studyBlendLinear(a, b));
-#elif METHOD == STUDY_BLEND_OVERLAY
-    return studyToFrame(f, uT, uB3, studyBlendOverlay(a, b));
-#elif METHOD == STUDY_BLEND_UDN
-    return studyToFrame(f, uT, uB3, studyBlendUdn(a, b));
-#elif METHOD == STUDY_BLEND_WHITEOUT
-    return studyToFrame(f, uT, uB3, studyBlendWhiteout(a, b));
+#if METHOD == SG_NORMAL_BLEND_SURFGRAD
+    return sgNormalBlendSurfgrad(f, uT, uB3, a, b);
+#elif METHOD == SG_NORMAL_BLEND_LINEAR
+    return sgTangentNormalToFrame(f, uT, uB3, sgNormalBlendLinear(a, b));
+#elif METHOD == SG_NORMAL_BLEND_OVERLAY
+    return sgTangentNormalToFrame(f, uT, uB3, sgNormalBlendOverlay(a, b));
+#elif METHOD == SG_NORMAL_BLEND_UDN
+    return sgTangentNormalToFrame(f, uT, uB3, sgNormalBlendUdn(a, b));
+#elif METHOD == SG_NORMAL_BLEND_WHITEOUT
+    return sgTangentNormalToFrame(f, uT, uB3, sgNormalBlendWhiteout(a, b));
 #else
-    return studyToFrame(f, uT, uB3, studyBlendRnm(a, b));
+    return sgTangentNormalToFrame(f, uT, uB3, sgNormalBlendRnm(a, b));
 #endif
 }
 void main() {
@@ -86,7 +85,7 @@ void main() {
 }
 )";
 
-const char* kMethodNames[STUDY_BLEND_COUNT] = {
+const char* kMethodNames[SG_NORMAL_BLEND_COUNT] = {
     "surface gradient (sum)", "linear", "overlay", "UDN", "whiteout", "RNM"};
 
 } // namespace
@@ -108,8 +107,8 @@ void tableBlend(const Options& o) {
     const double slopes[3] = {0.25, 1.0, 3.0};
 
     std::vector<sg::gl::Program> one, loop;
-    const std::string fs = std::string(kBlendGlsl) + kFragment;
-    for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
+    const std::string fs = std::string("#include \"sg/normal_blends.glsl\"\n") + kFragment;
+    for (int m = 0; m < SG_NORMAL_BLEND_COUNT; ++m) {
         const std::string def = "METHOD " + std::to_string(m);
         one.push_back(makeProgram(fullscreenVertexShader(), fs, "blend", {def}));
         loop.push_back(makeProgram(fullscreenVertexShader(), fs, "blend_loop", {def, "LOOP"}));
@@ -130,8 +129,8 @@ void tableBlend(const Options& o) {
     };
 
     // errors[method][regime], order dependence (steep) per method.
-    std::vector<std::vector<ErrorStats>> stats(STUDY_BLEND_COUNT, std::vector<ErrorStats>(3));
-    std::vector<double> orderMax(STUDY_BLEND_COUNT, 0.0);
+    std::vector<std::vector<ErrorStats>> stats(SG_NORMAL_BLEND_COUNT, std::vector<ErrorStats>(3));
+    std::vector<double> orderMax(SG_NORMAL_BLEND_COUNT, 0.0);
     Target target(w, w, 1);
     glDisable(GL_DEPTH_TEST);
     for (int r = 0; r < 3; ++r) {
@@ -153,7 +152,7 @@ void tableBlend(const Options& o) {
         }
         const unsigned texA = makeFloatTexture(w, w, 4, ta, true, true);
         const unsigned texB = makeFloatTexture(w, w, 4, tb, true, true);
-        for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
+        for (int m = 0; m < SG_NORMAL_BLEND_COUNT; ++m) {
             std::vector<glm::vec4> ab, ba;
             for (int order = 0; order < 2; ++order) {
                 glBindTextureUnit(0, order == 0 ? texA : texB);
@@ -201,7 +200,7 @@ void tableBlend(const Options& o) {
     glBindTextureUnit(1, texB);
     Target tim(tw, tw, 1, false);
     const auto msOne = timeVariants(
-        STUDY_BLEND_COUNT,
+        SG_NORMAL_BLEND_COUNT,
         [&](size_t m) {
             tim.clear();
             setUniforms(one[m], false);
@@ -209,7 +208,7 @@ void tableBlend(const Options& o) {
         },
         o);
     const auto msLoop = timeVariants(
-        STUDY_BLEND_COUNT,
+        SG_NORMAL_BLEND_COUNT,
         [&](size_t m) {
             tim.clear();
             setUniforms(loop[m], false);
@@ -225,7 +224,7 @@ void tableBlend(const Options& o) {
     t.header = {"method",       "gentle p50", "gentle max",   "moderate p50",
                 "moderate max", "steep p50",  "steep max",    "order max",
                 "1 blend ms",   "ratio",      "16 blends ms", "ratio"};
-    for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
+    for (int m = 0; m < SG_NORMAL_BLEND_COUNT; ++m) {
         const auto& s = stats[size_t(m)];
         t.add({kMethodNames[m], fmtErr(s[0].p50), fmtErr(s[0].max), fmtErr(s[1].p50),
                fmtErr(s[1].max), fmtErr(s[2].p50), fmtErr(s[2].max), fmtErr(orderMax[size_t(m)]),

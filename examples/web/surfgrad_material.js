@@ -5,8 +5,9 @@
 // (listings 4-6, each set with its own per-pixel frame), triplanar
 // (listings 13-14), a decal (listing 15), volume noise (section 2.7); they
 // add, and sgResolve makes the normal once. The common tangent-space blends
-// of two normal maps (whiteout, UDN, RNM) are here for comparison: they
-// assume that both maps share one tangent frame, which two UV sets do not.
+// of two normal maps (whiteout, UDN, RNM; the library's sg/normal_blends.glsl)
+// are offered for comparison: they assume that both maps share one tangent
+// frame, which two UV sets do not.
 
 export const layerNames = ['base', 'detail', 'triplanar', 'decal', 'noise'];
 export const blendNames = ['surfgrad', 'whiteout', 'udn', 'rnm'];
@@ -87,13 +88,6 @@ vec3 unpackScaled(vec4 texel, float strength) {
     vec2 xy = strength * (2.0 * texel.xy - 1.0);
     return vec3(xy, sqrt(max(1.0 - dot(xy, xy), 0.0)));
 }
-vec3 blendWhiteout(vec3 a, vec3 b) { return normalize(vec3(a.xy + b.xy, a.z * b.z)); }
-vec3 blendUdn(vec3 a, vec3 b) { return normalize(vec3(a.xy + b.xy, a.z)); }
-vec3 blendRnm(vec3 a, vec3 b) {
-    vec3 t = a + vec3(0.0, 0.0, 1.0);
-    vec3 u = b * vec3(-1.0, -1.0, 1.0);
-    return normalize(t * dot(t, u) / t.z - u);
-}
 
 void main() {
     SgFrame f = sgPrologue(vNormal, dFdx(vRelPos), dFdy(vRelPos), gl_FrontFacing,
@@ -119,11 +113,13 @@ void main() {
     } else if (layerOn(0) || layerOn(1)) {
         vec3 a = layerOn(0) ? unpackScaled(baseTexel, uNormalScale) : vec3(0.0, 0.0, 1.0);
         vec3 b = layerOn(1) ? unpackScaled(detailTexel, uDetailStrength) : vec3(0.0, 0.0, 1.0);
-        vec3 n = uBlend == 1 ? blendWhiteout(a, b) : uBlend == 2 ? blendUdn(a, b) : blendRnm(a, b);
+        // The library's versions of the common blends (sg/normal_blends.glsl).
+        vec3 n = uBlend == 1 ? sgNormalBlendWhiteout(a, b)
+               : uBlend == 2 ? sgNormalBlendUdn(a, b) : sgNormalBlendRnm(a, b);
         // Both in UV set 0's frame: the blends' assumption.
         vec3 t = sgSafeNormalize(set0.vT, vec3(1.0, 0.0, 0.0));
         vec3 bt = sgSafeNormalize(set0.vB, vec3(0.0, 1.0, 0.0));
-        grad += sgSurfgradFromPerturbedNormal(f, n.x * t + n.y * bt + n.z * f.nrmBase);
+        grad += sgSurfgradFromPerturbedNormal(f, sgTangentNormalToFrame(f, t, bt, n));
     }
 
     // Triplanar (listings 13, 14): maps sampled with (z, y), (x, z), (x, y).

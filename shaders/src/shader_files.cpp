@@ -177,10 +177,10 @@ std::vector<FlatFile> flatLibrary() {
     const std::string note = "Generated from shaders/sg by the surfgrad build "
                              "(sg::shaders::flatten). Do not edit: edit shaders/sg.\n";
     const std::string glsl =
-        flatten({"sg/surfgrad.glsl", "sg/render/noise.glsl"},
+        flatten({"sg/surfgrad.glsl", "sg/render/noise.glsl", "sg/normal_blends.glsl"},
                 "surfgrad shader library, GLSL (4.50, 3.30, ES 3.00, Vulkan): one file.\n" + note);
     const std::string hlsl =
-        flatten({"sg/surfgrad.hlsl", "sg/render/noise.glsl"},
+        flatten({"sg/surfgrad.hlsl", "sg/render/noise.glsl", "sg/normal_blends.glsl"},
                 "surfgrad shader library, HLSL (Unity, Unreal, D3D): one file.\n" + note);
     return {{"surfgrad.glsl", glsl}, {"surfgrad.hlsl", hlsl}, {"surfgrad.ush", hlsl}};
 }

@@ -196,6 +196,13 @@ TEST(GlslValidate, DialectChecksCanFail) {
     EXPECT_NE(validateVulkan(loose.text, "frag", "loose").exitCode, 0);
 }
 
+// A shader path as a test name: every character but letters and digits '_'.
+std::string paramName(const ::testing::TestParamInfo<std::string>& p) {
+    std::string n = p.param;
+    for (char& c : n) c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return n;
+}
+
 bool endsWith(const std::string& s, const std::string& suffix) {
     return s.size() >= suffix.size() &&
            s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -268,13 +275,7 @@ TEST_P(HlslFile, CompilesWithGlslangHlslFrontEnd) {
     EXPECT_NE(r.out.find(entry), std::string::npos) << path << ": no Metal entry\n" << r.out;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllHlslEntries, HlslFile, ::testing::ValuesIn(hlslFiles()),
-                         [](const auto& p) {
-                             std::string n = p.param;
-                             for (char& c : n)
-                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(AllHlslEntries, HlslFile, ::testing::ValuesIn(hlslFiles()), paramName);
 
 // Every file of shared functions (one that declares SG_FN functions: the
 // core, the feature-curve evaluator, the layer kinds' functions, the patch
@@ -304,12 +305,7 @@ std::vector<std::string> sharedFiles() {
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedFunctionFiles, SharedHlsl, ::testing::ValuesIn(sharedFiles()),
-                         [](const auto& p) {
-                             std::string n = p.param;
-                             for (char& c : n)
-                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                             return n;
-                         });
+                         paramName);
 
 // The single-file library (share/surfgrad/shaders/flat, written by the
 // build's surfgrad_flatten): the files on disk are flatLibrary()'s text,
@@ -450,13 +446,7 @@ TEST(GlslSubset, SharedFunctionsWriteNoSplatConstructor) {
     EXPECT_TRUE(splatConstructors("    vec3 b = vec3(0.0f, 1.0f, 0.0f) + sgVec3(2.0f);\n").empty());
 }
 
-INSTANTIATE_TEST_SUITE_P(AllShaders, GlslFile, ::testing::ValuesIn(shaderFiles()),
-                         [](const auto& p) {
-                             std::string n = p.param;
-                             for (char& c : n)
-                                 c = std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-                             return n;
-                         });
+INSTANTIATE_TEST_SUITE_P(AllShaders, GlslFile, ::testing::ValuesIn(shaderFiles()), paramName);
 
 // The check can fail: a type error, an undeclared identifier and a C++-only
 // construct (a float literal with an `f` suffix is legal GLSL, but `auto`

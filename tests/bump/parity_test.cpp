@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <random>
 
@@ -28,12 +29,15 @@ using namespace sg;
 // source takes its legacy paths, e.g. frexp/ldexp from the bit pattern,
 // sg/compat.glsl). All three hold the same tolerances: a dialect changes
 // how the source is spelled, not the binary32 arithmetic it asks for.
-template <gl::Api A>
-class ParityOn : public ::testing::TestWithParam<std::string> {
+// The context and evaluator of one suite (Suite: the fixture, so that each
+// suite owns its pair); the fixture's SetUpTestSuite opens them.
+template <class Suite>
+class ParitySuite : public ::testing::TestWithParam<std::string> {
 protected:
-    static void SetUpTestSuite() {
-        ctx_ = new gl::HeadlessContext(A);
-        gpu_ = new parity::GpuEvaluator(*ctx_, std::getenv("SG_PARITY_VERTEX") != nullptr);
+    static void open(gl::Api api,
+                     const std::function<parity::GpuEvaluator*(gl::HeadlessContext&)>& make) {
+        ctx_ = new gl::HeadlessContext(api);
+        gpu_ = make(*ctx_);
     }
     static void TearDownTestSuite() {
         delete gpu_;
@@ -44,6 +48,16 @@ protected:
     static inline gl::HeadlessContext* ctx_ = nullptr;
     static inline parity::GpuEvaluator* gpu_ = nullptr;
 };
+
+template <gl::Api A>
+class ParityOn : public ParitySuite<ParityOn<A>> {
+protected:
+    static void SetUpTestSuite() {
+        ParitySuite<ParityOn<A>>::open(A, [](gl::HeadlessContext& ctx) {
+            return new parity::GpuEvaluator(ctx, std::getenv("SG_PARITY_VERTEX") != nullptr);
+        });
+    }
+};
 using Parity = ParityOn<gl::Api::Gl45Core>;
 using ParityGlsl330 = ParityOn<gl::Api::Gl33Core>;
 using ParityEs300 = ParityOn<gl::Api::Es30>;
@@ -53,29 +67,22 @@ using ParityEs300 = ParityOn<gl::Api::Es30>;
 // through glslang's HLSL front end to SPIR-V and SPIRV-Cross back to GLSL
 // 4.50 (hlsl_round_trip.h), and runs as a compute program on the 4.5
 // context. Same records and tolerances as the GLSL suites.
-class ParityHlsl : public ::testing::TestWithParam<std::string> {
+class ParityHlsl : public ParitySuite<ParityHlsl> {
 protected:
     static void SetUpTestSuite() {
-        ctx_ = new gl::HeadlessContext(gl::Api::Gl45Core);
-        gpu_ = new parity::GpuEvaluator(
-            *ctx_,
-            [](const eval::Entry& e) {
-                const std::string name = "eval-" + std::to_string(e.kernel);
-                return sg::test::hlslComputeProgram(shaders::assemble(eval::evalHlslBody(), name,
-                                                                      eval::evalGpuDefines(e),
-                                                                      shaders::Target::Hlsl),
-                                                    name);
-            },
-            shaders::Target::Hlsl);
+        open(gl::Api::Gl45Core, [](gl::HeadlessContext& ctx) {
+            return new parity::GpuEvaluator(
+                ctx,
+                [](const eval::Entry& e) {
+                    const std::string name = "eval-" + std::to_string(e.kernel);
+                    return sg::test::hlslComputeProgram(
+                        shaders::assemble(eval::evalHlslBody(), name, eval::evalGpuDefines(e),
+                                          shaders::Target::Hlsl),
+                        name);
+                },
+                shaders::Target::Hlsl);
+        });
     }
-    static void TearDownTestSuite() {
-        delete gpu_;
-        delete ctx_;
-        gpu_ = nullptr;
-        ctx_ = nullptr;
-    }
-    static inline gl::HeadlessContext* ctx_ = nullptr;
-    static inline parity::GpuEvaluator* gpu_ = nullptr;
 };
 
 std::vector<std::string> entryNames() {

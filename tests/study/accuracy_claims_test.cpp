@@ -73,22 +73,22 @@ TEST(StudyBlend, SurfaceGradientSumIsExactAndOrderIndependent) {
     f.resolveSign = 1.0f;
     const vec3 t(1, 0, 0), b(0, 1, 0);
     double worstSurfgrad = 0;
-    double medianClassic[STUDY_BLEND_COUNT] = {};
-    std::vector<double> errs[STUDY_BLEND_COUNT];
+    double medianClassic[SG_NORMAL_BLEND_COUNT] = {};
+    std::vector<double> errs[SG_NORMAL_BLEND_COUNT];
     for (int k = 0; k < 4000; ++k) {
         const glm::dvec2 ga(slope(rng), slope(rng)), gb(slope(rng), slope(rng));
         const glm::dvec3 na = glm::normalize(glm::dvec3(-ga, 1.0)),
                          nb = glm::normalize(glm::dvec3(-gb, 1.0));
         const glm::dvec3 truth = glm::normalize(glm::dvec3(-(ga + gb), 1.0));
-        for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
-            const vec3 r = studyBlend(m, f, t, b, vec3(na), vec3(nb));
+        for (int m = 0; m < SG_NORMAL_BLEND_COUNT; ++m) {
+            const vec3 r = sgNormalBlend(m, f, t, b, vec3(na), vec3(nb));
             errs[m].push_back(angleDeg(glm::dvec3(r), truth));
         }
-        worstSurfgrad = std::max(worstSurfgrad, errs[STUDY_BLEND_SURFGRAD].back());
+        worstSurfgrad = std::max(worstSurfgrad, errs[SG_NORMAL_BLEND_SURFGRAD].back());
         // Order independence: the derivatives add, and binary32 addition
         // commutes, so the result is bit for bit the same.
-        const vec3 ab = studyBlendSurfgrad(f, t, b, vec3(na), vec3(nb));
-        const vec3 ba = studyBlendSurfgrad(f, t, b, vec3(nb), vec3(na));
+        const vec3 ab = sgNormalBlendSurfgrad(f, t, b, vec3(na), vec3(nb));
+        const vec3 ba = sgNormalBlendSurfgrad(f, t, b, vec3(nb), vec3(na));
         ASSERT_EQ(ab.x, ba.x);
         ASSERT_EQ(ab.y, ba.y);
         ASSERT_EQ(ab.z, ba.z);
@@ -96,8 +96,8 @@ TEST(StudyBlend, SurfaceGradientSumIsExactAndOrderIndependent) {
     // binary32 rounding of unit vectors and derivatives up to 2: a few
     // 1e-7 rad, i.e. ~1e-5 degrees; 1e-3 degrees is 100x that.
     EXPECT_LT(worstSurfgrad, 1e-3);
-    for (int m = 0; m < STUDY_BLEND_COUNT; ++m) {
-        if (m == STUDY_BLEND_SURFGRAD) continue;
+    for (int m = 0; m < SG_NORMAL_BLEND_COUNT; ++m) {
+        if (m == SG_NORMAL_BLEND_SURFGRAD) continue;
         medianClassic[m] = median(errs[m]);
         // Table 3 measures 1.8 (UDN) to 18 (linear) degrees at these slopes;
         // 0.5 degrees is far below every one and 500x the surfgrad bound.

@@ -87,7 +87,8 @@ std::string flatten(const std::vector<std::string>& entryPaths, std::string_view
 // (surfgrad_flatten): surfgrad.glsl (every GLSL dialect; the program writes
 // its #version and, for ES, its precisions), surfgrad.hlsl and surfgrad.ush
 // (the same HLSL text; Unreal includes only .ush/.usf files). Each holds the
-// core library (sg/surfgrad.glsl) and the volume noise (sg/render/noise.glsl).
+// core library (sg/surfgrad.glsl), the volume noise (sg/render/noise.glsl)
+// and the common normal-map blends (sg/normal_blends.glsl).
 struct FlatFile {
     std::string name; // file name, e.g. "surfgrad.hlsl"
     std::string text;
