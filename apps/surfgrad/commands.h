@@ -56,6 +56,8 @@ void addRenderCommands(CLI::App& app, int& status);
 void addFeaturesCommands(CLI::App& app, int& status);
 // `surfgrad normalmap ...` (cmd_normalmap.cpp, apps/normalmap).
 void addNormalmapCommands(CLI::App& app, int& status);
+// `surfgrad bake HIGH CAGE ...` (cmd_bake.cpp, apps/bake).
+void addBakeCommand(CLI::App& app, int& status);
 
 // `surfgrad mesh ...` (cmd_mesh.cpp): adds the `mesh` group with info,
 // subdivide and morph, and returns the group so other files can attach more

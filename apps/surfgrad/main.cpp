@@ -141,6 +141,7 @@ int main(int argc, char** argv) {
     sg::cli::describeMeshGroup(*meshGroup);
     sg::cli::addFeaturesCommands(app, status);
     sg::cli::addNormalmapCommands(app, status);
+    sg::cli::addBakeCommand(app, status);
     addFooter(app);
     requireFiniteFloats(app);
     if (const int usage = unknownCommand(app, argc, argv); usage != 0) return usage;

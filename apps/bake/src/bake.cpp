@@ -1,0 +1,283 @@
+// bake(): texel centres -> limit-surface points (uv_cover, limit_patches),
+// rays along +- the limit normal into the high mesh (high_mesh), the hit's
+// displacement and normal in the limit frame, padding around the charts.
+// See surfgrad/bake.h for the contract and the papers.
+#include "surfgrad/bake.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "high_mesh.h"
+#include "limit_patches.h"
+#include "surfgrad/contract.h"
+#include "surfgrad/io.h"
+#include "surfgrad/patch_basis.h"
+#include "surfgrad/threads.h"
+#include "uv_cover.h"
+
+namespace sg::bake {
+
+namespace {
+
+namespace G = sg::glsl;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const std::string& file) {
+    if (s.width < 1 || s.height < 1 || s.width > kMaxBakeSide || s.height > kMaxBakeSide ||
+        size_t(s.width) * size_t(s.height) > kMaxBakeTexels)
+        throw io::InputError(file, "size",
+                             std::to_string(s.width) + "x" + std::to_string(s.height) +
+                                 ": expected sides 1.." + std::to_string(kMaxBakeSide) +
+                                 " and at most " + std::to_string(kMaxBakeTexels) + " texels");
+    if (cage.options.scheme != mesh::Scheme::Catmark)
+        throw io::InputError(file, "scheme",
+                             std::string("the bake evaluates Catmull-Clark limit surfaces; the "
+                                         "cage is ") +
+                                 mesh::toString(cage.options.scheme));
+    if (s.uvSet < 0 || size_t(s.uvSet) >= cage.uvSets.size())
+        throw io::InputError(file, "uv set " + std::to_string(s.uvSet),
+                             "the cage has " + std::to_string(cage.uvSets.size()) +
+                                 " UV set(s): the maps need a UV layout");
+    if (s.isolation < 1 || s.isolation > 10)
+        throw io::InputError(file, "isolation",
+                             std::to_string(s.isolation) + ": expected 1..10");
+    if (s.padTexels < 0 || s.padTexels > 1024)
+        throw io::InputError(file, "padding",
+                             std::to_string(s.padTexels) + ": expected 0..1024 texels");
+    if (!std::isfinite(s.maxDistance) || s.maxDistance < 0)
+        throw io::InputError(file, "max distance",
+                             "expected a finite distance >= 0 (0: the default)");
+}
+
+// 5 % of the cage's bounding-box diagonal (bake.h).
+double defaultDistance(const mesh::PolygonMesh& cage) {
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (const glm::vec3& p : cage.positions) {
+        lo = glm::min(lo, glm::dvec3(p));
+        hi = glm::max(hi, glm::dvec3(p));
+    }
+    return 0.05 * glm::length(hi - lo);
+}
+
+BakeResult emptyResult(int w, int h) {
+    BakeResult r;
+    r.width = w;
+    r.height = h;
+    r.state = normalmap::Grid<uint8_t>(w, h, uint8_t(TexelState::Empty));
+    r.displacement = normalmap::ScalarField(w, h, 0.0f);
+    r.objectNormal = normalmap::NormalField(w, h, glm::vec3(0.0f));
+    r.limitPosition = normalmap::NormalField(w, h, glm::vec3(0.0f));
+    r.limitNormal = normalmap::NormalField(w, h, glm::vec3(0.0f));
+    r.limitTangent = normalmap::Grid<glm::vec4>(w, h, glm::vec4(0.0f));
+    return r;
+}
+
+// One texel on its patch: Newton to the exact UV, the limit frame, the rays.
+struct TexelBaker {
+    const detail::LimitPatches& patches;
+    const detail::HighMesh& high;
+    float tFar;
+    glm::vec2 texelsPerUv;
+
+    struct Outcome {
+        float residualTexels = 0.0f; // |st - texel centre| left by Newton
+        bool overlap = false;        // the runner-up patch is elsewhere on the surface
+    };
+
+    Outcome operator()(const detail::TexelClaim& c, int i, int j, BakeResult& r) const {
+        Outcome o;
+        const glm::vec2 target = (glm::vec2(float(i), float(j)) + 0.5f) / texelsPerUv;
+        float residual = 0.0f;
+        const glm::vec2 uv = patches.invertUv(c.patch, target, c.patchUv, residual);
+        const detail::SurfaceSample s = patches.sample(c.patch, uv);
+        o.residualTexels = residual * std::max(texelsPerUv.x, texelsPerUv.y);
+        if (c.otherPatch != UINT32_MAX) o.overlap = elsewhere(c, target, s);
+        const glm::vec3 n = G::sgSafeNormalize(glm::cross(s.dPdu, s.dPdv), glm::vec3(0, 0, 1));
+        int resolved = 0;
+        const glm::vec4 tangent = G::sgPatchLimitTangent(s.dPdu, s.dPdv, s.dSTdu, s.dSTdv, n,
+                                                         resolved);
+        r.limitPosition.at(i, j) = s.pos;
+        r.limitNormal.at(i, j) = n;
+        r.limitTangent.at(i, j) = tangent;
+        const detail::RayHit up = high.cast(s.pos, n, tFar);
+        const detail::RayHit down = high.cast(s.pos, -n, tFar);
+        // The hit nearest the limit point; outwards on a tie.
+        const bool useDown = down.hit && (!up.hit || down.t < up.t);
+        if (!up.hit && !down.hit) {
+            r.state.at(i, j) = uint8_t(TexelState::Miss);
+        } else {
+            r.state.at(i, j) = uint8_t(TexelState::Hit);
+            r.displacement.at(i, j) = useDown ? -down.t : up.t;
+            r.objectNormal.at(i, j) = useDown ? down.normal : up.normal;
+        }
+        return o;
+    }
+
+    // Whether the runner-up claim's point with the same UV is more than
+    // half a texel (of surface length, from the UV chart's Jacobian) away:
+    // two charts on one texel, not the two sides of a shared patch edge
+    // (those meet within the claim tolerance, a thousandth of a texel).
+    bool elsewhere(const detail::TexelClaim& c, glm::vec2 target,
+                   const detail::SurfaceSample& s) const {
+        float residual = 0.0f;
+        const glm::vec2 uv = patches.invertUv(c.otherPatch, target, c.otherUv, residual);
+        const glm::vec3 other = patches.sample(c.otherPatch, uv).pos;
+        const float areaP = glm::length(glm::cross(s.dPdu, s.dPdv));
+        const float areaSt = std::abs(s.dSTdu.x * s.dSTdv.y - s.dSTdv.x * s.dSTdu.y);
+        const float texel = std::max(texelsPerUv.x, texelsPerUv.y);
+        const float texelLength = areaSt > 0.0f ? std::sqrt(areaP / areaSt) / texel : 0.0f;
+        return glm::length(other - s.pos) > 0.5f * texelLength;
+    }
+};
+
+// Every texel of the cover, in blocks of rows (progress between blocks);
+// sets the residual and overlap statistics.
+void bakeTexels(const detail::UvCover& cover, const TexelBaker& baker, BakeResult& r,
+                const BakeProgress& progress) {
+    const int blockRows = std::max(1, (1 << 16) / r.width);
+    std::vector<float> rowResidual(size_t(r.height), 0.0f);
+    std::vector<size_t> rowOverlaps(size_t(r.height), 0);
+    for (int j0 = 0; j0 < r.height; j0 += blockRows) {
+        const int j1 = std::min(r.height, j0 + blockRows);
+        tbb::parallel_for(tbb::blocked_range<int>(j0, j1), [&](const tbb::blocked_range<int>& rr) {
+            for (int j = rr.begin(); j != rr.end(); ++j)
+                for (int i = 0; i < r.width; ++i) {
+                    const detail::TexelClaim& c = cover.claims[size_t(j) * size_t(r.width) + size_t(i)];
+                    if (c.patch == UINT32_MAX) continue;
+                    const TexelBaker::Outcome o = baker(c, i, j, r);
+                    rowResidual[size_t(j)] = std::max(rowResidual[size_t(j)], o.residualTexels);
+                    rowOverlaps[size_t(j)] += o.overlap ? 1 : 0;
+                }
+        });
+        if (progress) progress("texels", double(j1) / double(r.height));
+    }
+    r.stats.maxUvResidualTexels = *std::max_element(rowResidual.begin(), rowResidual.end());
+    for (size_t n : rowOverlaps) r.stats.overlapTexels += n;
+}
+
+// Texels that take the values of the nearest hit (breadth first over the
+// 8-neighbourhood from every hit, in row-major order, neighbours in a fixed
+// order): misses at any distance, empty texels up to padTexels rings.
+void pad(BakeResult& r, int padTexels) {
+    const int w = r.width, h = r.height;
+    std::vector<int> ring(size_t(w) * size_t(h), -1);
+    std::vector<uint32_t> source(ring.size(), UINT32_MAX);
+    std::deque<uint32_t> queue;
+    for (uint32_t t = 0; t < ring.size(); ++t)
+        if (r.state.v[t] == uint8_t(TexelState::Hit)) {
+            ring[t] = 0;
+            source[t] = t;
+            queue.push_back(t);
+        }
+    static constexpr int kDi[8] = {1, -1, 0, 0, 1, -1, 1, -1};
+    static constexpr int kDj[8] = {0, 0, 1, -1, 1, 1, -1, -1};
+    while (!queue.empty()) {
+        const uint32_t t = queue.front();
+        queue.pop_front();
+        const int i = int(t % uint32_t(w)), j = int(t / uint32_t(w));
+        for (int k = 0; k < 8; ++k) {
+            const int ni = i + kDi[k], nj = j + kDj[k];
+            if (ni < 0 || nj < 0 || ni >= w || nj >= h) continue;
+            const uint32_t n = uint32_t(nj) * uint32_t(w) + uint32_t(ni);
+            if (ring[n] >= 0) continue;
+            const bool miss = r.state.v[n] == uint8_t(TexelState::Miss);
+            if (!miss && ring[t] + 1 > padTexels) continue;
+            ring[n] = ring[t] + 1;
+            source[n] = source[t];
+            queue.push_back(n);
+        }
+    }
+    for (uint32_t t = 0; t < ring.size(); ++t) {
+        if (ring[t] <= 0) continue;
+        const uint32_t s = source[t];
+        if (r.state.v[t] == uint8_t(TexelState::Empty)) {
+            r.state.v[t] = uint8_t(TexelState::Padded);
+            ++r.stats.padded;
+        }
+        r.displacement.v[t] = r.displacement.v[s];
+        r.objectNormal.v[t] = r.objectNormal.v[s];
+        r.tangentSlopes.v[t] = r.tangentSlopes.v[s];
+    }
+}
+
+BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
+                    const BakeSettings& s, const std::string& cageFile,
+                    const std::string& highFile, const BakeProgress& progress) {
+    BakeResult r = emptyResult(s.width, s.height);
+    BakeStats& st = r.stats;
+    st.maxDistance = s.maxDistance > 0 ? s.maxDistance : defaultDistance(cage);
+    auto t = Clock::now();
+    const detail::LimitPatches patches(cage, s.isolation, s.uvSet, cageFile, s.threads);
+    st.patches = patches.patchCount();
+    st.secondsPatches = secondsSince(t);
+    t = Clock::now();
+    const detail::HighMesh hm(high, highFile);
+    st.secondsHighMesh = secondsSince(t);
+    t = Clock::now();
+    if (progress) progress("cover", 0.0);
+    const detail::UvCover cover = detail::coverTexels(patches, s.width, s.height);
+    if (progress) progress("cover", 1.0);
+    st.secondsCover = secondsSince(t);
+    st.chartTexels = cover.chartTexels;
+    if (cover.chartTexels == 0)
+        throw io::InputError(cageFile, "uv set " + std::to_string(s.uvSet),
+                             "no texel centre of the " + std::to_string(s.width) + "x" +
+                                 std::to_string(s.height) +
+                                 " map lies on the cage's UV layout inside [0, 1]^2");
+    t = Clock::now();
+    const TexelBaker baker{patches, hm, float(st.maxDistance),
+                           glm::vec2(float(s.width), float(s.height))};
+    bakeTexels(cover, baker, r, progress);
+    st.secondsTexels = secondsSince(t);
+    for (size_t k = 0; k < r.state.v.size(); ++k) {
+        if (r.state.v[k] == uint8_t(TexelState::Hit)) {
+            ++st.hits;
+            st.maxAbsDisplacement =
+                std::max(st.maxAbsDisplacement, double(std::abs(r.displacement.v[k])));
+        } else if (r.state.v[k] == uint8_t(TexelState::Miss)) {
+            ++st.misses;
+        }
+    }
+    if (st.hits == 0)
+        throw io::InputError(highFile, "",
+                             "no ray from the cage's limit surface (" +
+                                 std::to_string(st.chartTexels) +
+                                 " texels) hit the high mesh within " +
+                                 std::to_string(st.maxDistance) +
+                                 " object units: are both meshes in the same space and scale?");
+    t = Clock::now();
+    normalmap::TexelFrames frames;
+    frames.normal = r.limitNormal;
+    frames.tangent = r.limitTangent;
+    frames.covered = normalmap::Grid<uint8_t>(s.width, s.height, 0);
+    for (size_t k = 0; k < r.state.v.size(); ++k)
+        frames.covered.v[k] = r.state.v[k] == uint8_t(TexelState::Hit) ? 1 : 0;
+    r.tangentSlopes = normalmap::tangentFromObject(r.objectNormal, frames);
+    pad(r, s.padTexels);
+    st.secondsPad = secondsSince(t);
+    return r;
+}
+
+} // namespace
+
+BakeResult bake(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
+                const BakeSettings& settings, const std::string& cageFile,
+                const std::string& highFile, const BakeProgress& progress) {
+    SG_EXPECTS(threadCountProblem(settings.threads).empty(), "bake: threads outside 0..1024");
+    checkSettings(cage, settings, cageFile);
+    return runWithThreads(settings.threads, [&] {
+        return bakeImpl(cage, high, settings, cageFile, highFile, progress);
+    });
+}
+
+} // namespace sg::bake

@@ -1,0 +1,52 @@
+// Which patch and which point of it each texel centre of a UV layout lies
+// on: every patch's face-varying UV map is sampled on a grid of limit UVs
+// (cells of at most about one texel), each cell split into two triangles
+// and rasterised over the texel centres with the patch coordinates
+// interpolated linearly; the bake then refines that point by Newton's
+// method (LimitPatches::invertUv).
+//
+// Claims: a texel centre within kClaimTolTexels outside a triangle is
+// claimed too (the two sides of a shared patch edge evaluate it with
+// different rounding: neither may leave a crack); of several claims the one
+// deepest inside its triangle wins (signed distance to the nearest edge,
+// in texels), and the deepest claim of another patch is kept as the
+// runner-up. The bake evaluates both: the same surface point (a texel on a
+// shared patch edge) or two different ones (overlapping UV charts).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "limit_patches.h"
+
+namespace sg::bake::detail {
+
+inline constexpr float kClaimTolTexels = 1e-3f;
+// Grid cells per patch side: the smallest power of two that makes each
+// cell at most a texel along the patch's longest side in UV, capped here.
+inline constexpr int kMaxCellsPerSide = 1024;
+
+struct TexelClaim {
+    uint32_t patch = UINT32_MAX; // UINT32_MAX: no patch covers the texel
+    float depthTexels = 0.0f;    // signed distance inside its triangle
+    glm::vec2 patchUv{0.0f};     // linear estimate, before Newton
+    uint32_t otherPatch = UINT32_MAX; // runner-up of another patch (UINT32_MAX: none)
+    float otherDepthTexels = 0.0f;
+    glm::vec2 otherUv{0.0f};
+};
+
+struct UvCover {
+    std::vector<TexelClaim> claims; // width * height, row 0 at the bottom
+    size_t chartTexels = 0;
+};
+
+// threads: the grids of limit UVs are evaluated on TBB (one task per
+// block of patches, within the caller's arena); rasterisation runs on the
+// calling thread in patch order, so the claims are the same for every
+// count.
+UvCover coverTexels(const LimitPatches& patches, int width, int height);
+
+} // namespace sg::bake::detail

@@ -1,0 +1,243 @@
+// `surfgrad bake HIGH CAGE [--size N|WxH] [--uv-set K] [--isolation N]
+//  [--distance D] [--pad N] [--threads N] [--displacement OUT.exr]
+//  [--normal OUT.png [--encoding E] [--green gl|dx] [--bits B]]
+//  [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
+// bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
+// of CAGE in the layout of its UV set K (apps/bake, surfgrad/bake.h). Each
+// output is optional, at least one is required:
+//  - displacement: one float channel, object units along the limit normal
+//    (positive outwards): what the scene's "displacement" reads with
+//    "scale": 1 (.exr or .tif; integer images cannot hold signed heights);
+//  - normal: the tangent-space normal map in the limit frame (the frame of
+//    "tangents": "limit" and of the per-pixel frame on that surface), in
+//    the encodings of `surfgrad normalmap` (default rgb, +green up);
+//  - object-normal: the high mesh's normal in object space, 0.5 n + 0.5
+//    (what an object_normal layer with "space": "object" reads);
+//  - mask: one channel, 1 baked, 0.5 miss (its ray found no high mesh
+//    within the distance), 0.25 padding, 0 empty.
+// Every output path is checked before the bake starts; files are written
+// atomically and never over an input. Misses and overlapping UVs are
+// counted on stderr and in --json, never silently filled.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <string>
+
+#include "commands.h"
+#include "surfgrad/bake.h"
+#include "surfgrad/io.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/normalmap.h"
+
+namespace sg::cli {
+
+namespace {
+
+namespace nm = sg::normalmap;
+namespace fs = std::filesystem;
+
+struct BakeArgs {
+    std::string high, cage, size = "1024";
+    std::string displacement, normal, objectNormal, mask;
+    std::string encoding = "rgb", green = "gl", bits;
+    bake::BakeSettings settings;
+    bool json = false, progress = false;
+};
+
+void parseSize(const std::string& text, bake::BakeSettings& s) {
+    const size_t x = text.find('x');
+    try {
+        size_t used = 0;
+        s.width = std::stoi(text.substr(0, x), &used);
+        if (used != (x == std::string::npos ? text.size() : x)) throw std::invalid_argument("");
+        s.height = s.width;
+        if (x != std::string::npos) {
+            s.height = std::stoi(text.substr(x + 1), &used);
+            if (used != text.size() - x - 1) throw std::invalid_argument("");
+        }
+    } catch (const std::exception&) {
+        throw CliError("bake: --size " + text + ": expected N or WxH (texels)");
+    }
+    if (s.width < 1 || s.height < 1 || s.width > bake::kMaxBakeSide ||
+        s.height > bake::kMaxBakeSide || size_t(s.width) * size_t(s.height) > bake::kMaxBakeTexels)
+        throw CliError("bake: --size " + text + ": sides 1.." +
+                       std::to_string(bake::kMaxBakeSide) + ", at most " +
+                       std::to_string(bake::kMaxBakeTexels) + " texels");
+}
+
+// The outputs, checked before any work: extensions that can hold the data,
+// distinct paths, writable folders, never an input.
+void checkOutputs(const BakeArgs& a) {
+    std::vector<std::string> outs;
+    for (const std::string* o : {&a.displacement, &a.normal, &a.objectNormal, &a.mask})
+        if (!o->empty()) outs.push_back(*o);
+    if (outs.empty())
+        throw CliError("bake: nothing to write: give --displacement, --normal, --object-normal "
+                       "or --mask");
+    std::set<fs::path> seen;
+    for (const std::string& o : outs) {
+        if (!seen.insert(fs::weakly_canonical(o)).second)
+            throw CliError("bake: " + o + " is given for two outputs");
+        io::checkOutputPath(o, {a.high, a.cage});
+    }
+    if (!a.displacement.empty()) {
+        const std::string ext = lowerExtension(a.displacement);
+        if (ext != ".exr" && ext != ".tif" && ext != ".tiff")
+            throw CliError("bake: --displacement " + a.displacement +
+                           ": signed heights need a float image (.exr, .tif)");
+    }
+}
+
+std::vector<std::pair<std::string, std::string>> attrs(const std::string& what,
+                                                       const BakeArgs& a) {
+    return {{"surfgrad:op", "bake " + what},
+            {"surfgrad:frame", "limit"},
+            {"surfgrad:uvSet", std::to_string(a.settings.uvSet)}};
+}
+
+void writeOutputs(const BakeArgs& a, const bake::BakeResult& r) {
+    if (!a.displacement.empty()) {
+        nm::writeImage(a.displacement, nm::imageFromScalar(r.displacement, 0.0f, 1.0f, true),
+                       nm::defaultSampleType(a.displacement, true), attrs("displacement", a));
+    }
+    if (!a.normal.empty()) {
+        nm::MapFormat f;
+        f.encoding = nm::parseEncoding(a.encoding);
+        f.green = nm::parseGreen(a.green);
+        const bool needFloat = f.encoding == nm::Encoding::Signed;
+        const nm::SampleType type =
+            a.bits.empty() ? nm::defaultSampleType(a.normal, needFloat) : nm::parseSampleType(a.bits);
+        const bool isFloat = type == nm::SampleType::Half || type == nm::SampleType::Float;
+        auto at = attrs("normal", a);
+        at.emplace_back("surfgrad:encoding", std::string(nm::encodingName(f.encoding)));
+        at.emplace_back("surfgrad:green", a.green);
+        nm::writeImage(a.normal, nm::encodeSlopes(r.tangentSlopes, f, isFloat), type, at);
+    }
+    if (!a.objectNormal.empty()) {
+        nm::Image img{r.width, r.height, 3, false, {}};
+        img.texels.resize(size_t(r.width) * size_t(r.height) * 3);
+        for (size_t k = 0; k < r.objectNormal.v.size(); ++k)
+            for (int c = 0; c < 3; ++c) img.texels[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
+        nm::writeImage(a.objectNormal, img,
+                       a.bits.empty() ? nm::defaultSampleType(a.objectNormal, false)
+                                      : nm::parseSampleType(a.bits),
+                       attrs("object-normal", a));
+    }
+    if (!a.mask.empty()) {
+        nm::ScalarField m(r.width, r.height);
+        static constexpr float kLevel[4] = {0.0f, 1.0f, 0.5f, 0.25f}; // by TexelState
+        for (size_t k = 0; k < m.v.size(); ++k) m.v[k] = kLevel[r.state.v[k] & 3u];
+        nm::writeImage(a.mask, nm::imageFromScalar(m, 0.0f, 1.0f, false),
+                       nm::defaultSampleType(a.mask, false), attrs("mask", a));
+    }
+}
+
+nlohmann::json statsJson(const bake::BakeStats& s) {
+    return {{"chart_texels", s.chartTexels},
+            {"hits", s.hits},
+            {"misses", s.misses},
+            {"padded", s.padded},
+            {"overlap_texels", s.overlapTexels},
+            {"patches", s.patches},
+            {"max_uv_residual_texels", s.maxUvResidualTexels},
+            {"max_distance", s.maxDistance},
+            {"max_abs_displacement", s.maxAbsDisplacement},
+            {"seconds",
+             {{"patches", s.secondsPatches},
+              {"high_mesh", s.secondsHighMesh},
+              {"cover", s.secondsCover},
+              {"texels", s.secondsTexels},
+              {"pad", s.secondsPad}}}};
+}
+
+void runBake(BakeArgs a) {
+    parseSize(a.size, a.settings);
+    // Encodings are parsed before the bake, so a typo costs no time.
+    if (!a.normal.empty()) {
+        nm::parseEncoding(a.encoding);
+        nm::parseGreen(a.green);
+        if (!a.bits.empty()) nm::parseSampleType(a.bits);
+    }
+    checkOutputs(a);
+    const auto threadLimit = limitThreads(a.settings.threads);
+    const auto t0 = std::chrono::steady_clock::now();
+    mesh::PolygonMesh cage = mesh::loadPolygonMesh(a.cage);
+    mesh::RenderMesh high = mesh::loadRenderMesh(a.high);
+    const double readSeconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto start = std::chrono::steady_clock::now();
+    bake::BakeProgress progress;
+    std::string lastStage;
+    int lastPercent = -1;
+    progress = [&](const char* stage, double f) {
+        const bool show = a.progress || std::chrono::steady_clock::now() - start >
+                                            std::chrono::seconds(1);
+        const int pct = int(100.0 * f);
+        if (!show || (stage == lastStage && pct / 10 == lastPercent / 10 && pct != 100)) return;
+        lastStage = stage;
+        lastPercent = pct;
+        std::fprintf(stderr, "bake: %s %3d%%\n", stage, pct);
+    };
+    const bake::BakeResult r = bake::bake(cage, high, a.settings, a.cage, a.high, progress);
+    writeOutputs(a, r);
+    const bake::BakeStats& s = r.stats;
+    if (s.misses > 0)
+        std::fprintf(stderr,
+                     "surfgrad: note: bake: %zu of %zu texels missed the high mesh within %g "
+                     "(filled from the nearest hit; 0.5 in --mask)\n",
+                     s.misses, s.chartTexels, s.maxDistance);
+    if (s.overlapTexels > 0)
+        std::fprintf(stderr,
+                     "surfgrad: note: bake: %zu texels lie on overlapping UV charts of uv set %d "
+                     "(the first patch keeps each)\n",
+                     s.overlapTexels, a.settings.uvSet);
+    if (a.json) {
+        nlohmann::json j = statsJson(s);
+        j["seconds"]["read"] = readSeconds;
+        std::cout << j.dump(2) << "\n";
+    } else {
+        std::printf("baked %dx%d: %zu chart texels, %zu hits, %zu misses, %zu overlapping\n",
+                    r.width, r.height, s.chartTexels, s.hits, s.misses, s.overlapTexels);
+    }
+}
+
+} // namespace
+
+void addBakeCommand(CLI::App& app, int& status) {
+    auto a = std::make_shared<BakeArgs>();
+    CLI::App* c = app.add_subcommand(
+        "bake", "Bake a high-resolution mesh onto a Catmull-Clark cage's limit surface: "
+                "displacement, tangent- and object-space normal maps in the cage's UV layout");
+    c->add_option("high", a->high, "High-resolution mesh (any mesh format)")->required();
+    c->add_option("cage", a->cage, "Control cage with a UV set (Catmull-Clark)")->required();
+    c->add_option("--size", a->size, "Map size: N or WxH texels (default 1024)");
+    c->add_option("--uv-set", a->settings.uvSet, "The cage's UV set of the layout (default 0)");
+    c->add_option("--isolation", a->settings.isolation,
+                  "Adaptive isolation of the limit patches, 1..10 (default 4)");
+    c->add_option("--distance", a->settings.maxDistance,
+                  "How far rays look along +- the limit normal, object units (default 5% of the "
+                  "cage's bounding-box diagonal)");
+    c->add_option("--pad", a->settings.padTexels, "Texels of padding around charts (default 8)");
+    c->add_option("--displacement", a->displacement,
+                  "Displacement map (.exr/.tif, object units along the limit normal)");
+    c->add_option("--normal", a->normal, "Tangent-space normal map in the limit frame");
+    c->add_option("--encoding", a->encoding, "--normal's encoding: rgb, rg, ag, signed, deriv");
+    c->add_option("--green", a->green, "--normal's green: gl (+v up, default) or dx");
+    c->add_option("--bits", a->bits, "Samples of the normal maps: 8, 16, half, float");
+    c->add_option("--object-normal", a->objectNormal, "Object-space normal map (0.5 n + 0.5)");
+    c->add_option("--mask", a->mask, "Texel states: 1 baked, 0.5 miss, 0.25 padding, 0 empty");
+    c->add_flag("--json", a->json, "Print the counts and stage times as JSON");
+    c->add_flag("--progress", a->progress, "Report progress on stderr however short the bake");
+    addThreadsOption(c, a->settings.threads);
+    c->callback([a, &status] {
+        runBake(*a);
+        status = 0;
+    });
+}
+
+} // namespace sg::cli

@@ -1,0 +1,357 @@
+// The bake against answers known without it: a plane cage (limit surface
+// = the square, UV = (x, y)) under an analytic height field, a cube cage
+// under a sphere (displacement and normal from a double-precision
+// ray-sphere intersection at the baked limit point and normal), seams,
+// misses, bad input, and the same bits at every thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include "bake_meshes.h"
+#include "hardcase.h"
+#include "surfgrad/bake.h"
+#include "surfgrad/io.h"
+
+namespace sg::test {
+namespace {
+
+using bake::BakeResult;
+using bake::BakeSettings;
+using bake::TexelState;
+
+constexpr double kPi = std::numbers::pi;
+
+// h = A sin(2 pi x) cos(2 pi y) and its gradient.
+constexpr double kAmp = 0.02;
+double planeHeight(double x, double y) { return kAmp * std::sin(2 * kPi * x) * std::cos(2 * kPi * y); }
+glm::dvec2 planeGrad(double x, double y) {
+    return {kAmp * 2 * kPi * std::cos(2 * kPi * x) * std::cos(2 * kPi * y),
+            -kAmp * 2 * kPi * std::sin(2 * kPi * x) * std::sin(2 * kPi * y)};
+}
+
+bool hit(const BakeResult& r, int i, int j) { return r.state.at(i, j) == uint8_t(TexelState::Hit); }
+
+TEST(BakePlane, HeightFieldGivesItsHeightsAndSlopes) {
+    const int n = 256;
+    const float lo = -0.1f, hi = 1.1f;
+    const mesh::RenderMesh high = heightFieldMesh(n, lo, hi, planeHeight, planeGrad);
+    BakeSettings s;
+    s.width = s.height = 128;
+    s.maxDistance = 0.1;
+    const BakeResult r = bake::bake(planeCage(4), high, s, "plane.obj", "height.obj");
+    // Every texel centre lies on the square.
+    EXPECT_EQ(r.stats.chartTexels, size_t(128 * 128));
+    EXPECT_EQ(r.stats.hits, size_t(128 * 128));
+    EXPECT_EQ(r.stats.overlapTexels, 0u);
+    // Linear interpolation of h over triangles of diameter d errs by at most
+    // M d^2 / 2 (M: the largest second derivative along a line, at most
+    // 2 A (2 pi)^2 here); slopes of the interpolated vertex normals by
+    // d^2 / 2 times the third derivatives (2 A (2 pi)^3); plus binary32
+    // rounding of values of order 1 (1e-6).
+    const double d = std::sqrt(2.0) * (hi - lo) / n;
+    const double heightTol = 0.5 * d * d * 2 * kAmp * std::pow(2 * kPi, 2) + 1e-6;
+    const double slopeTol = 0.5 * d * d * 2 * kAmp * std::pow(2 * kPi, 3) + 1e-5;
+    double worstPos = 0, worstH = 0, worstSlope = 0;
+    for (int j = 0; j < r.height; ++j)
+        for (int i = 0; i < r.width; ++i) {
+            ASSERT_TRUE(hit(r, i, j)) << i << "," << j;
+            const double x = (i + 0.5) / r.width, y = (j + 0.5) / r.height;
+            const glm::vec3 p = r.limitPosition.at(i, j);
+            worstPos = std::max({worstPos, std::abs(p.x - x), std::abs(p.y - y), double(std::abs(p.z))});
+            worstH = std::max(worstH, std::abs(r.displacement.at(i, j) - planeHeight(x, y)));
+            const glm::dvec2 g = planeGrad(x, y);
+            const glm::vec2 sl = r.tangentSlopes.at(i, j);
+            worstSlope = std::max({worstSlope, std::abs(sl.x - g.x), std::abs(sl.y - g.y)});
+        }
+    // The texel's limit point is the texel centre itself: Newton on the UV
+    // map leaves binary32 rounding of coordinates of order 1.
+    EXPECT_LE(worstPos, 2e-6);
+    EXPECT_LE(worstH, heightTol);
+    EXPECT_LE(worstSlope, slopeTol);
+    std::printf("plane: position %.3g, height %.3g (tol %.3g), slope %.3g (tol %.3g)\n", worstPos,
+                worstH, heightTol, worstSlope, slopeTol);
+}
+
+TEST(BakePlane, HighMeshCoveringHalfTheSquareReportsTheOtherHalfAsMisses) {
+    // The high mesh spans x in [-0.1, 0.5]: texel columns whose centre is
+    // beyond 0.5 miss.
+    const mesh::RenderMesh high = heightFieldMesh(
+        64, -0.1f, 1.1f, [](double, double) { return 0.01; },
+        [](double, double) { return glm::dvec2(0.0); });
+    mesh::RenderMesh half;
+    half.positions = high.positions;
+    half.normals = high.normals;
+    for (size_t t = 0; t < high.indices.size(); t += 3) {
+        float xmax = -1;
+        for (int k = 0; k < 3; ++k) xmax = std::max(xmax, high.positions[high.indices[t + k]].x);
+        if (xmax <= 0.5f + 1e-6f)
+            for (int k = 0; k < 3; ++k) half.indices.push_back(high.indices[t + k]);
+    }
+    BakeSettings s;
+    s.width = s.height = 64;
+    s.maxDistance = 0.05;
+    const BakeResult r = bake::bake(planeCage(2), half, s);
+    EXPECT_EQ(r.stats.hits, size_t(32 * 64));
+    EXPECT_EQ(r.stats.misses, size_t(32 * 64));
+    for (int j = 0; j < 64; ++j)
+        for (int i = 0; i < 64; ++i) {
+            EXPECT_EQ(r.state.at(i, j), uint8_t(i < 32 ? TexelState::Hit : TexelState::Miss));
+            // Misses take the nearest hit's value (reported, never zero).
+            EXPECT_FLOAT_EQ(r.displacement.at(i, j), 0.01f);
+        }
+}
+
+TEST(BakePlane, HighMeshOutOfReachIsAnError) {
+    const mesh::RenderMesh high = heightFieldMesh(
+        8, 0.0f, 1.0f, [](double, double) { return 5.0; },
+        [](double, double) { return glm::dvec2(0.0); });
+    BakeSettings s;
+    s.width = s.height = 16;
+    try {
+        bake::bake(planeCage(2), high, s, "cage.obj", "high.obj");
+        FAIL() << "expected an InputError";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.file(), "high.obj");
+        EXPECT_NE(e.reason().find("same space and scale"), std::string::npos) << e.what();
+    }
+}
+
+// The cube cage's limit surface under a sphere of radius R: every texel's
+// expected displacement is the double-precision intersection of the ray
+// from its baked limit point along its baked limit normal with the exact
+// sphere, its expected normal the sphere's there.
+struct SphereCheck {
+    double worstT = 0, worstNormal = 0, worstNormalRad = 0, tolWorst = 0;
+};
+
+SphereCheck checkSphere(const BakeResult& r, double radius, double sagTol) {
+    SphereCheck c;
+    for (int j = 0; j < r.height; ++j)
+        for (int i = 0; i < r.width; ++i) {
+            if (!hit(r, i, j)) continue;
+            const glm::dvec3 p(r.limitPosition.at(i, j)), nn(r.limitNormal.at(i, j));
+            // |p + t n|^2 = R^2: the root nearest 0.
+            const double b = glm::dot(p, nn), cc = glm::dot(p, p) - radius * radius;
+            const double disc = std::sqrt(b * b - cc);
+            const double t1 = -b + disc, t2 = -b - disc;
+            const double t = std::abs(t1) < std::abs(t2) ? t1 : t2;
+            const glm::dvec3 q = p + t * nn;
+            // A chord of the tessellated sphere lies up to sagTol inside it,
+            // measured radially: along a ray at angle a to the radius that
+            // is sagTol / cos a.
+            const double cosA = std::abs(glm::dot(nn, q / radius));
+            const double tol = sagTol / cosA + 2e-6;
+            c.tolWorst = std::max(c.tolWorst, tol);
+            c.worstT = std::max(c.worstT, std::abs(r.displacement.at(i, j) - t) / tol);
+            // The angle by atan2 (acos loses half the digits near 0).
+            const glm::dvec3 on(r.objectNormal.at(i, j)), sn = q / radius;
+            const double ang = std::atan2(glm::length(glm::cross(on, sn)), glm::dot(on, sn));
+            // The high mesh's interpolated normal at its hit h is h's own
+            // direction (its vertices are radius times their normals); h
+            // lies on the ray within the sagitta bound of q, so the angle
+            // between them is at most that distance times sin a / R; plus
+            // binary32 rounding of unit vectors (1e-6 rad).
+            const double sinA = std::sqrt(std::max(0.0, 1 - cosA * cosA));
+            const double normalTol = sagTol / cosA * sinA / radius + 1e-6;
+            c.worstNormal = std::max(c.worstNormal, ang / normalTol);
+            c.worstNormalRad = std::max(c.worstNormalRad, ang);
+        }
+    return c;
+}
+
+TEST(BakeCube, SphereAroundTheLimitSurfaceGivesTheExactIntersection) {
+    const double radius = 0.7;
+    const int rings = 256;
+    BakeSettings s;
+    s.width = s.height = 256;
+    s.maxDistance = 0.5;
+    const BakeResult r = bake::bake(cubeCage(), sphereMesh(rings, radius), s);
+    EXPECT_EQ(r.stats.misses, 0u);
+    EXPECT_EQ(r.stats.overlapTexels, 0u);
+    EXPECT_GT(r.stats.hits, size_t(0.8 * 6 * (0.28 * 256) * (0.4 * 256)));
+    // Sagitta of a chord spanning the widest cell: R (1 - cos(dphi / 2)),
+    // dphi = pi / rings (the cells' diagonal is below sqrt(2) of that).
+    const double dphi = std::sqrt(2.0) * kPi / rings;
+    const double sag = radius * (1 - std::cos(dphi / 2));
+    const SphereCheck c = checkSphere(r, radius, sag);
+    EXPECT_LE(c.worstT, 1.0) << "displacement error beyond the sagitta bound (ratio)";
+    EXPECT_LE(c.worstNormal, 1.0) << "normal error beyond its bound (ratio)";
+    std::printf("cube->sphere: hits %zu, displacement error / bound %.3g (bound up to %.3g), "
+                "normal %.3g rad, max uv residual %.3g texels\n",
+                r.stats.hits, c.worstT, c.tolWorst, c.worstNormalRad, r.stats.maxUvResidualTexels);
+    EXPECT_LE(r.stats.maxUvResidualTexels, 0.05);
+}
+
+// Texels beside a seam: a chart's outermost texels lie half a texel from
+// the chart's edge, whose limit curve the neighbouring chart shares. Each
+// such texel's limit point has a point of another chart's outermost
+// texels within about one texel of surface length.
+TEST(BakeCube, TexelsOnBothSidesOfASeamMeetOnTheSurface) {
+    BakeSettings s;
+    s.width = s.height = 128;
+    s.maxDistance = 0.5;
+    s.padTexels = 0;
+    const BakeResult r = bake::bake(cubeCage(), sphereMesh(128, 0.7), s);
+    // Chart of a texel: which of the 3 x 2 atlas cells its centre is in.
+    auto chart = [&](int i, int j) {
+        return int(3.0 * (i + 0.5) / r.width) + 3 * int(2.0 * (j + 0.5) / r.height);
+    };
+    struct Edge {
+        glm::vec3 p;
+        int chart;
+    };
+    std::vector<Edge> edge;
+    float texelLen = 0; // largest distance between neighbouring texels' points
+    for (int j = 0; j < r.height; ++j)
+        for (int i = 0; i < r.width; ++i) {
+            if (!hit(r, i, j)) continue;
+            bool border = false;
+            for (auto [di, dj] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+                const int ni = i + di, nj = j + dj;
+                if (ni < 0 || nj < 0 || ni >= r.width || nj >= r.height || !hit(r, ni, nj)) {
+                    border = true;
+                } else {
+                    texelLen = std::max(texelLen, glm::length(r.limitPosition.at(i, j) -
+                                                              r.limitPosition.at(ni, nj)));
+                }
+            }
+            if (border) edge.push_back({r.limitPosition.at(i, j), chart(i, j)});
+        }
+    ASSERT_GT(edge.size(), 100u);
+    float worst = 0;
+    for (const Edge& e : edge) {
+        float best = INFINITY;
+        for (const Edge& o : edge)
+            if (o.chart != e.chart) best = std::min(best, glm::length(o.p - e.p));
+        worst = std::max(worst, best);
+    }
+    // Half a texel from each side plus the texel spacing along the seam:
+    // at most about 1.2 texel lengths apart.
+    EXPECT_LE(worst, 1.2f * texelLen) << "texel length " << texelLen;
+}
+
+TEST(BakeThreads, SameBitsAtEveryThreadCount) {
+    BakeSettings s;
+    s.width = 96;
+    s.height = 80;
+    s.maxDistance = 0.5;
+    s.threads = 1;
+    const mesh::RenderMesh high = sphereMesh(64, 0.7);
+    const BakeResult one = bake::bake(cubeCage(), high, s);
+    for (int threads : {2, 3, 7}) {
+        s.threads = threads;
+        const BakeResult r = bake::bake(cubeCage(), high, s);
+        EXPECT_EQ(r.state.v, one.state.v) << threads;
+        EXPECT_EQ(0, std::memcmp(r.displacement.v.data(), one.displacement.v.data(),
+                                 one.displacement.v.size() * sizeof(float)))
+            << threads;
+        EXPECT_EQ(0, std::memcmp(r.tangentSlopes.v.data(), one.tangentSlopes.v.data(),
+                                 one.tangentSlopes.v.size() * sizeof(glm::vec2)))
+            << threads;
+        EXPECT_EQ(0, std::memcmp(r.objectNormal.v.data(), one.objectNormal.v.data(),
+                                 one.objectNormal.v.size() * sizeof(glm::vec3)))
+            << threads;
+    }
+}
+
+void expectInputError(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
+                      const BakeSettings& s, const std::string& file, const std::string& element) {
+    try {
+        bake::bake(cage, high, s, "cage.obj", "high.obj");
+        ADD_FAILURE() << "expected an InputError about " << file << ": " << element;
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.file(), file) << e.what();
+        EXPECT_EQ(e.element(), element) << e.what();
+    }
+}
+
+TEST(BakeInput, BadInputIsRefusedNamingFileAndElement) {
+    const mesh::RenderMesh high = sphereMesh(16, 0.7);
+    BakeSettings s;
+    s.width = s.height = 32;
+    mesh::PolygonMesh noUv = cubeCage();
+    noUv.uvSets.clear();
+    expectInputError(noUv, high, s, "cage.obj", "uv set 0");
+    BakeSettings set1 = s;
+    set1.uvSet = 1;
+    expectInputError(cubeCage(), high, set1, "cage.obj", "uv set 1");
+    mesh::PolygonMesh loop = cubeCage();
+    loop.options.scheme = mesh::Scheme::Bilinear;
+    expectInputError(loop, high, s, "cage.obj", "scheme");
+    BakeSettings big = s;
+    big.width = bake::kMaxBakeSide + 1;
+    expectInputError(cubeCage(), high, big, "cage.obj", "size");
+    BakeSettings iso = s;
+    iso.isolation = 11;
+    expectInputError(cubeCage(), high, iso, "cage.obj", "isolation");
+    BakeSettings dist = s;
+    dist.maxDistance = std::nan("");
+    expectInputError(cubeCage(), high, dist, "cage.obj", "max distance");
+    mesh::RenderMesh nan = high;
+    nan.positions[5].y = std::nanf("");
+    expectInputError(cubeCage(), nan, s, "high.obj", "vertex 5");
+    mesh::RenderMesh empty;
+    expectInputError(cubeCage(), empty, s, "high.obj", "");
+    // UVs entirely outside [0, 1]^2: nothing to bake.
+    mesh::PolygonMesh away = cubeCage();
+    for (glm::vec2& uv : away.uvSets[0].values) uv += glm::vec2(3.0f, 0.0f);
+    expectInputError(away, high, s, "cage.obj", "uv set 0");
+}
+
+TEST(BakeInput, OverlappingChartsAreCountedOnce) {
+    // Two faces of the cube on the same UV square.
+    mesh::PolygonMesh cage = cubeCage();
+    for (int c = 0; c < 4; ++c) cage.uvSets[0].values[size_t(4 + c)] = cage.uvSets[0].values[size_t(c)];
+    BakeSettings s;
+    s.width = s.height = 64;
+    s.maxDistance = 0.5;
+    const BakeResult r = bake::bake(cage, sphereMesh(32, 0.7), s);
+    // Chart 0's texel centres: those in [0.05, 0.33] x [0.05, 0.45] of the
+    // 64 x 64 map. Every one is on both faces.
+    size_t chartTexels = 0;
+    for (int j = 0; j < 64; ++j)
+        for (int i = 0; i < 64; ++i) {
+            const double x = (i + 0.5) / 64, y = (j + 0.5) / 64;
+            chartTexels += x >= 0.05 && x <= 0.33 && y >= 0.05 && y <= 0.45 ? 1 : 0;
+        }
+    EXPECT_EQ(r.stats.overlapTexels, chartTexels);
+}
+
+// Stability: every position of the high mesh moved by -2..2 ulps moves
+// each baked displacement by a rounding-size amount, and never turns a
+// hit into a miss.
+TEST(BakeHardCase, HighMeshMovedByUlpsMovesDisplacementByRounding) {
+    const mesh::RenderMesh high = sphereMesh(64, 0.7);
+    mesh::RenderMesh moved = high;
+    uint32_t state = 12345u;
+    for (glm::vec3& p : moved.positions)
+        for (int k = 0; k < 3; ++k) {
+            state = state * 1664525u + 1013904223u;
+            const int ulps = int(state >> 29) % 5 - 2;
+            for (int u = 0; u < std::abs(ulps); ++u)
+                p[k] = std::nextafter(p[k], ulps > 0 ? INFINITY : -INFINITY);
+        }
+    BakeSettings s;
+    s.width = s.height = 128;
+    s.maxDistance = 0.5;
+    const BakeResult a = bake::bake(cubeCage(), high, s), b = bake::bake(cubeCage(), moved, s);
+    EXPECT_EQ(a.state.v, b.state.v);
+    double worst = 0;
+    for (size_t k = 0; k < a.displacement.v.size(); ++k)
+        if (a.state.v[k] == uint8_t(TexelState::Hit))
+            worst = std::max(worst, double(std::abs(a.displacement.v[k] - b.displacement.v[k])));
+    // Positions of order 1 moved by 2 ulps (2.4e-7) move the surface by as
+    // much; the ray's hit distance follows, plus its own rounding: 8 ulps
+    // of 1 (about 1e-6).
+    const double bound = 8 * std::numeric_limits<float>::epsilon();
+    hardCasePerturbedAtMost("generated", "bake: sphere high mesh (24k triangles) onto a cube cage",
+                            "every high-mesh coordinate moved by -2..2 ulps",
+                            "displacement change (object units)", worst, bound);
+}
+
+} // namespace
+} // namespace sg::test
