@@ -1,5 +1,6 @@
 // `surfgrad bake HIGH CAGE [--size N|WxH] [--uv-set K] [--isolation N]
-//  [--distance D] [--pad N] [--threads N] [--displacement OUT.exr]
+//  [--distance D] [--pad N] [--threads N] [--displacement OUT.exr
+//  [--displacement-bits half|float]]
 //  [--normal OUT.png [--encoding E] [--green gl|dx] [--bits B]]
 //  [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
@@ -44,7 +45,7 @@ namespace fs = std::filesystem;
 struct BakeArgs {
     std::string high, cage, size = "1024";
     std::string displacement, normal, objectNormal, mask;
-    std::string encoding = "rgb", green = "gl", bits;
+    std::string encoding = "rgb", green = "gl", bits, displacementBits = "float";
     bake::BakeSettings settings;
     bool json = false, progress = false;
 };
@@ -65,9 +66,8 @@ void parseSize(const std::string& text, bake::BakeSettings& s) {
     }
     if (s.width < 1 || s.height < 1 || s.width > bake::kMaxBakeSide ||
         s.height > bake::kMaxBakeSide || size_t(s.width) * size_t(s.height) > bake::kMaxBakeTexels)
-        throw CliError("bake: --size " + text + ": sides 1.." +
-                       std::to_string(bake::kMaxBakeSide) + ", at most " +
-                       std::to_string(bake::kMaxBakeTexels) + " texels");
+        throw CliError("bake: --size " + text + ": sides 1.." + std::to_string(bake::kMaxBakeSide) +
+                       ", at most " + std::to_string(bake::kMaxBakeTexels) + " texels");
 }
 
 // The outputs, checked before any work: extensions that can hold the data,
@@ -85,6 +85,9 @@ void checkOutputs(const BakeArgs& a) {
             throw CliError("bake: " + o + " is given for two outputs");
         io::checkOutputPath(o, {a.high, a.cage});
     }
+    if (a.displacementBits != "half" && a.displacementBits != "float")
+        throw CliError("bake: --displacement-bits " + a.displacementBits +
+                       ": expected half or float");
     if (!a.displacement.empty()) {
         const std::string ext = lowerExtension(a.displacement);
         if (ext != ".exr" && ext != ".tif" && ext != ".tiff")
@@ -93,8 +96,7 @@ void checkOutputs(const BakeArgs& a) {
     }
 }
 
-std::vector<std::pair<std::string, std::string>> attrs(const std::string& what,
-                                                       const BakeArgs& a) {
+std::vector<std::pair<std::string, std::string>> attrs(const std::string& what, const BakeArgs& a) {
     return {{"surfgrad:op", "bake " + what},
             {"surfgrad:frame", "limit"},
             {"surfgrad:uvSet", std::to_string(a.settings.uvSet)}};
@@ -103,15 +105,15 @@ std::vector<std::pair<std::string, std::string>> attrs(const std::string& what,
 void writeOutputs(const BakeArgs& a, const bake::BakeResult& r) {
     if (!a.displacement.empty()) {
         nm::writeImage(a.displacement, nm::imageFromScalar(r.displacement, 0.0f, 1.0f, true),
-                       nm::defaultSampleType(a.displacement, true), attrs("displacement", a));
+                       nm::parseSampleType(a.displacementBits), attrs("displacement", a));
     }
     if (!a.normal.empty()) {
         nm::MapFormat f;
         f.encoding = nm::parseEncoding(a.encoding);
         f.green = nm::parseGreen(a.green);
         const bool needFloat = f.encoding == nm::Encoding::Signed;
-        const nm::SampleType type =
-            a.bits.empty() ? nm::defaultSampleType(a.normal, needFloat) : nm::parseSampleType(a.bits);
+        const nm::SampleType type = a.bits.empty() ? nm::defaultSampleType(a.normal, needFloat)
+                                                   : nm::parseSampleType(a.bits);
         const bool isFloat = type == nm::SampleType::Half || type == nm::SampleType::Float;
         auto at = attrs("normal", a);
         at.emplace_back("surfgrad:encoding", std::string(nm::encodingName(f.encoding)));
@@ -122,7 +124,8 @@ void writeOutputs(const BakeArgs& a, const bake::BakeResult& r) {
         nm::Image img{r.width, r.height, 3, false, {}};
         img.texels.resize(size_t(r.width) * size_t(r.height) * 3);
         for (size_t k = 0; k < r.objectNormal.v.size(); ++k)
-            for (int c = 0; c < 3; ++c) img.texels[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
+            for (int c = 0; c < 3; ++c)
+                img.texels[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
         nm::writeImage(a.objectNormal, img,
                        a.bits.empty() ? nm::defaultSampleType(a.objectNormal, false)
                                       : nm::parseSampleType(a.bits),
@@ -175,8 +178,8 @@ void runBake(BakeArgs a) {
     std::string lastStage;
     int lastPercent = -1;
     progress = [&](const char* stage, double f) {
-        const bool show = a.progress || std::chrono::steady_clock::now() - start >
-                                            std::chrono::seconds(1);
+        const bool show =
+            a.progress || std::chrono::steady_clock::now() - start > std::chrono::seconds(1);
         const int pct = int(100.0 * f);
         if (!show || (stage == lastStage && pct / 10 == lastPercent / 10 && pct != 100)) return;
         lastStage = stage;
@@ -225,6 +228,8 @@ void addBakeCommand(CLI::App& app, int& status) {
     c->add_option("--pad", a->settings.padTexels, "Texels of padding around charts (default 8)");
     c->add_option("--displacement", a->displacement,
                   "Displacement map (.exr/.tif, object units along the limit normal)");
+    c->add_option("--displacement-bits", a->displacementBits,
+                  "Samples of the displacement map: float (default) or half");
     c->add_option("--normal", a->normal, "Tangent-space normal map in the limit frame");
     c->add_option("--encoding", a->encoding, "--normal's encoding: rgb, rg, ag, signed, deriv");
     c->add_option("--green", a->green, "--normal's green: gl (+v up, default) or dx");

@@ -35,16 +35,18 @@ const Files& files() {
     return f;
 }
 
-std::string q(const fs::path& p) { return shellQuote(p); }
+std::string q(const fs::path& p) {
+    return shellQuote(p);
+}
 
 TEST(BakeCli, WritesEveryMapAndReportsCounts) {
     const Files& f = files();
     const fs::path disp = f.dir / "disp.exr", normal = f.dir / "normal.png",
                    object = f.dir / "object.png", mask = f.dir / "mask.png";
-    const CommandResult r = runSurfgrad("bake " + q(f.high) + " " + q(f.cage) +
-                                        " --size 64x48 --distance 0.5 --displacement " + q(disp) +
-                                        " --normal " + q(normal) + " --object-normal " +
-                                        q(object) + " --mask " + q(mask) + " --json");
+    const CommandResult r =
+        runSurfgrad("bake " + q(f.high) + " " + q(f.cage) +
+                    " --size 64x48 --distance 0.5 --displacement " + q(disp) + " --normal " +
+                    q(normal) + " --object-normal " + q(object) + " --mask " + q(mask) + " --json");
     ASSERT_EQ(r.exitCode, 0) << r.output();
     const nlohmann::json j = nlohmann::json::parse(r.out);
     EXPECT_GT(j["hits"].get<size_t>(), 1000u);
@@ -73,10 +75,10 @@ TEST(BakeCli, WrongCommandLinesExitWithStatus2) {
     const Files& f = files();
     const std::string base = "bake " + q(f.high) + " " + q(f.cage);
     for (const std::string& args :
-         {std::string(" --size 64"),                                    // nothing to write
-          " --size 0 --mask " + q(f.dir / "m.png"),                     // bad size
-          " --size 64x --mask " + q(f.dir / "m.png"),                   // bad size
-          " --displacement " + q(f.dir / "d.png"),                      // integer displacement
+         {std::string(" --size 64"),                  // nothing to write
+          " --size 0 --mask " + q(f.dir / "m.png"),   // bad size
+          " --size 64x --mask " + q(f.dir / "m.png"), // bad size
+          " --displacement " + q(f.dir / "d.png"),    // integer displacement
           " --mask " + q(f.dir / "m.png") + " --normal " + q(f.dir / "m.png"), // same output twice
           " --mask " + q(f.dir / "m.png") + " --threads 0"}) {
         const CommandResult r = runSurfgrad(base + args);

@@ -85,8 +85,8 @@ inline mesh::RenderMesh heightFieldMesh(int n, float lo, float hi,
         }
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
-            const uint32_t v0 = uint32_t(j * (n + 1) + i), v1 = v0 + 1,
-                           v2 = v0 + uint32_t(n) + 2, v3 = v0 + uint32_t(n) + 1;
+            const uint32_t v0 = uint32_t(j * (n + 1) + i), v1 = v0 + 1, v2 = v0 + uint32_t(n) + 2,
+                           v3 = v0 + uint32_t(n) + 1;
             for (uint32_t v : {v0, v1, v2, v0, v2, v3}) m.indices.push_back(v);
         }
     return m;

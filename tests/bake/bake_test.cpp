@@ -27,13 +27,17 @@ constexpr double kPi = std::numbers::pi;
 
 // h = A sin(2 pi x) cos(2 pi y) and its gradient.
 constexpr double kAmp = 0.02;
-double planeHeight(double x, double y) { return kAmp * std::sin(2 * kPi * x) * std::cos(2 * kPi * y); }
+double planeHeight(double x, double y) {
+    return kAmp * std::sin(2 * kPi * x) * std::cos(2 * kPi * y);
+}
 glm::dvec2 planeGrad(double x, double y) {
     return {kAmp * 2 * kPi * std::cos(2 * kPi * x) * std::cos(2 * kPi * y),
             -kAmp * 2 * kPi * std::sin(2 * kPi * x) * std::sin(2 * kPi * y)};
 }
 
-bool hit(const BakeResult& r, int i, int j) { return r.state.at(i, j) == uint8_t(TexelState::Hit); }
+bool hit(const BakeResult& r, int i, int j) {
+    return r.state.at(i, j) == uint8_t(TexelState::Hit);
+}
 
 TEST(BakePlane, HeightFieldGivesItsHeightsAndSlopes) {
     const int n = 256;
@@ -61,7 +65,8 @@ TEST(BakePlane, HeightFieldGivesItsHeightsAndSlopes) {
             ASSERT_TRUE(hit(r, i, j)) << i << "," << j;
             const double x = (i + 0.5) / r.width, y = (j + 0.5) / r.height;
             const glm::vec3 p = r.limitPosition.at(i, j);
-            worstPos = std::max({worstPos, std::abs(p.x - x), std::abs(p.y - y), double(std::abs(p.z))});
+            worstPos =
+                std::max({worstPos, std::abs(p.x - x), std::abs(p.y - y), double(std::abs(p.z))});
             worstH = std::max(worstH, std::abs(r.displacement.at(i, j) - planeHeight(x, y)));
             const glm::dvec2 g = planeGrad(x, y);
             const glm::vec2 sl = r.tangentSlopes.at(i, j);
@@ -305,7 +310,8 @@ TEST(BakeInput, BadInputIsRefusedNamingFileAndElement) {
 TEST(BakeInput, OverlappingChartsAreCountedOnce) {
     // Two faces of the cube on the same UV square.
     mesh::PolygonMesh cage = cubeCage();
-    for (int c = 0; c < 4; ++c) cage.uvSets[0].values[size_t(4 + c)] = cage.uvSets[0].values[size_t(c)];
+    for (int c = 0; c < 4; ++c)
+        cage.uvSets[0].values[size_t(4 + c)] = cage.uvSets[0].values[size_t(c)];
     BakeSettings s;
     s.width = s.height = 64;
     s.maxDistance = 0.5;

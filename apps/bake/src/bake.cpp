@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -49,8 +48,7 @@ void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const s
                              "the cage has " + std::to_string(cage.uvSets.size()) +
                                  " UV set(s): the maps need a UV layout");
     if (s.isolation < 1 || s.isolation > 10)
-        throw io::InputError(file, "isolation",
-                             std::to_string(s.isolation) + ": expected 1..10");
+        throw io::InputError(file, "isolation", std::to_string(s.isolation) + ": expected 1..10");
     if (s.padTexels < 0 || s.padTexels > 1024)
         throw io::InputError(file, "padding",
                              std::to_string(s.padTexels) + ": expected 0..1024 texels");
@@ -104,8 +102,8 @@ struct TexelBaker {
         if (c.otherPatch != UINT32_MAX) o.overlap = elsewhere(c, target, s);
         const glm::vec3 n = G::sgSafeNormalize(glm::cross(s.dPdu, s.dPdv), glm::vec3(0, 0, 1));
         int resolved = 0;
-        const glm::vec4 tangent = G::sgPatchLimitTangent(s.dPdu, s.dPdv, s.dSTdu, s.dSTdv, n,
-                                                         resolved);
+        const glm::vec4 tangent =
+            G::sgPatchLimitTangent(s.dPdu, s.dPdv, s.dSTdu, s.dSTdv, n, resolved);
         r.limitPosition.at(i, j) = s.pos;
         r.limitNormal.at(i, j) = n;
         r.limitTangent.at(i, j) = tangent;
@@ -152,7 +150,8 @@ void bakeTexels(const detail::UvCover& cover, const TexelBaker& baker, BakeResul
         tbb::parallel_for(tbb::blocked_range<int>(j0, j1), [&](const tbb::blocked_range<int>& rr) {
             for (int j = rr.begin(); j != rr.end(); ++j)
                 for (int i = 0; i < r.width; ++i) {
-                    const detail::TexelClaim& c = cover.claims[size_t(j) * size_t(r.width) + size_t(i)];
+                    const detail::TexelClaim& c =
+                        cover.claims[size_t(j) * size_t(r.width) + size_t(i)];
                     if (c.patch == UINT32_MAX) continue;
                     const TexelBaker::Outcome o = baker(c, i, j, r);
                     rowResidual[size_t(j)] = std::max(rowResidual[size_t(j)], o.residualTexels);
@@ -172,7 +171,8 @@ void pad(BakeResult& r, int padTexels) {
     const int w = r.width, h = r.height;
     std::vector<int> ring(size_t(w) * size_t(h), -1);
     std::vector<uint32_t> source(ring.size(), UINT32_MAX);
-    std::deque<uint32_t> queue;
+    // First in, first out: a vector read from `head` (each texel enters once).
+    std::vector<uint32_t> queue;
     for (uint32_t t = 0; t < ring.size(); ++t)
         if (r.state.v[t] == uint8_t(TexelState::Hit)) {
             ring[t] = 0;
@@ -181,9 +181,8 @@ void pad(BakeResult& r, int padTexels) {
         }
     static constexpr int kDi[8] = {1, -1, 0, 0, 1, -1, 1, -1};
     static constexpr int kDj[8] = {0, 0, 1, -1, 1, 1, -1, -1};
-    while (!queue.empty()) {
-        const uint32_t t = queue.front();
-        queue.pop_front();
+    for (size_t head = 0; head < queue.size(); ++head) {
+        const uint32_t t = queue[head];
         const int i = int(t % uint32_t(w)), j = int(t / uint32_t(w));
         for (int k = 0; k < 8; ++k) {
             const int ni = i + kDi[k], nj = j + kDj[k];
@@ -211,8 +210,8 @@ void pad(BakeResult& r, int padTexels) {
 }
 
 BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
-                    const BakeSettings& s, const std::string& cageFile,
-                    const std::string& highFile, const BakeProgress& progress) {
+                    const BakeSettings& s, const std::string& cageFile, const std::string& highFile,
+                    const BakeProgress& progress) {
     BakeResult r = emptyResult(s.width, s.height);
     BakeStats& st = r.stats;
     st.maxDistance = s.maxDistance > 0 ? s.maxDistance : defaultDistance(cage);
@@ -249,20 +248,23 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
         }
     }
     if (st.hits == 0)
-        throw io::InputError(highFile, "",
-                             "no ray from the cage's limit surface (" +
-                                 std::to_string(st.chartTexels) +
-                                 " texels) hit the high mesh within " +
-                                 std::to_string(st.maxDistance) +
-                                 " object units: are both meshes in the same space and scale?");
+        throw io::InputError(
+            highFile, "",
+            "no ray from the cage's limit surface (" + std::to_string(st.chartTexels) +
+                " texels) hit the high mesh within " + std::to_string(st.maxDistance) +
+                " object units: are both meshes in the same space and scale?");
     t = Clock::now();
+    // The limit frame's grids lend themselves to the conversion (moved,
+    // not copied: hundreds of MB at 4096^2) and come back after it.
     normalmap::TexelFrames frames;
-    frames.normal = r.limitNormal;
-    frames.tangent = r.limitTangent;
+    frames.normal = std::move(r.limitNormal);
+    frames.tangent = std::move(r.limitTangent);
     frames.covered = normalmap::Grid<uint8_t>(s.width, s.height, 0);
     for (size_t k = 0; k < r.state.v.size(); ++k)
         frames.covered.v[k] = r.state.v[k] == uint8_t(TexelState::Hit) ? 1 : 0;
     r.tangentSlopes = normalmap::tangentFromObject(r.objectNormal, frames);
+    r.limitNormal = std::move(frames.normal);
+    r.limitTangent = std::move(frames.tangent);
     pad(r, s.padTexels);
     st.secondsPad = secondsSince(t);
     return r;

@@ -65,9 +65,9 @@ HighMesh::HighMesh(const mesh::RenderMesh& high, const std::string& file) {
     auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
                                                            RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                            high.positions.size()));
-    auto* ib = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t),
-        high.triangleCount()));
+    auto* ib = static_cast<uint32_t*>(
+        rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                3 * sizeof(uint32_t), high.triangleCount()));
     if (!vb || !ib) {
         rtcReleaseGeometry(geom);
         const std::string msg = embreeError(device_, "allocating the high mesh's buffers");
@@ -122,9 +122,9 @@ RayHit HighMesh::cast(glm::vec3 origin, glm::vec3 dir, float tFar) const {
     // Opposite vertex normals can cancel: the triangle's own normal then
     // (counter-clockwise front; a hit triangle has a non-zero area).
     const glm::vec3 p0 = positions_[tri[0]];
-    out.normal = len > 1e-6f ? n / len
-                             : glm::normalize(glm::cross(positions_[tri[1]] - p0,
-                                                         positions_[tri[2]] - p0));
+    out.normal = len > 1e-6f
+                     ? n / len
+                     : glm::normalize(glm::cross(positions_[tri[1]] - p0, positions_[tri[2]] - p0));
     return out;
 }
 

@@ -18,8 +18,7 @@ namespace G = sg::glsl;
 
 LimitPatches::LimitPatches(const mesh::PolygonMesh& cage, int isolation, int uvSet,
                            const std::string& file, int threads)
-    : ap_(mesh::buildAdaptivePatches(cage, cage.options, isolation, file, threads)),
-      uvSet_(uvSet) {
+    : ap_(mesh::buildAdaptivePatches(cage, cage.options, isolation, file, threads)), uvSet_(uvSet) {
     arrayOf_.resize(ap_.patchCount());
     for (uint32_t a = 0; a < ap_.arrays.size(); ++a) {
         const mesh::AdaptivePatchArray& arr = ap_.arrays[a];

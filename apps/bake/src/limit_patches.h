@@ -24,7 +24,7 @@
 namespace sg::bake::detail {
 
 struct SurfaceSample {
-    glm::vec3 pos{0.0f}, dPdu{0.0f}, dPdv{0.0f}; // object space
+    glm::vec3 pos{0.0f}, dPdu{0.0f}, dPdv{0.0f};  // object space
     glm::vec2 st{0.0f}, dSTdu{0.0f}, dSTdv{0.0f}; // the UV set (t up)
 };
 

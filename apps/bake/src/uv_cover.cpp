@@ -30,7 +30,7 @@ int cellsPerSide(const LimitPatches& lp, uint32_t p, glm::vec2 texelsPerUv) {
         extent = std::max(extent, 2.0f * glm::length(mid - c[k]));
     }
     int n = 1;
-    while (n < kMaxCellsPerSide && float(n) < extent) n *= 2;
+    while (n < kMaxCellsPerSide && float(n) * kCellTexels < extent) n *= 2;
     return n;
 }
 
@@ -45,11 +45,15 @@ PatchGrid patchGrid(const LimitPatches& lp, uint32_t p, glm::vec2 texelsPerUv) {
     return g;
 }
 
-float cross2(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
+float cross2(glm::vec2 a, glm::vec2 b) {
+    return a.x * b.y - a.y * b.x;
+}
 
 class Rasteriser {
 public:
-    Rasteriser(UvCover& cover, int width, int height) : cover_(cover), w_(width), h_(height) {}
+    // Claims texels of rows [rowLo, rowHi) only.
+    Rasteriser(UvCover& cover, int width, int height, int rowLo, int rowHi)
+        : cover_(cover), w_(width), h_(height), rowLo_(rowLo), rowHi_(rowHi) {}
 
     // Triangle of patch p: texel-space corners x and their patch coordinates.
     void triangle(uint32_t p, const glm::vec2 (&x)[3], const glm::vec2 (&uv)[3]) {
@@ -65,8 +69,8 @@ public:
         const glm::vec2 hi = glm::max(glm::max(x[0], x[1]), x[2]) + kClaimTolTexels;
         const int i0 = std::max(0, int(std::ceil(lo.x - 0.5f))),
                   i1 = std::min(w_ - 1, int(std::floor(hi.x - 0.5f)));
-        const int j0 = std::max(0, int(std::ceil(lo.y - 0.5f))),
-                  j1 = std::min(h_ - 1, int(std::floor(hi.y - 0.5f)));
+        const int j0 = std::max(rowLo_, int(std::ceil(lo.y - 0.5f))),
+                  j1 = std::min(rowHi_ - 1, int(std::floor(hi.y - 0.5f)));
         for (int j = j0; j <= j1; ++j)
             for (int i = i0; i <= i1; ++i) {
                 const glm::vec2 c(float(i) + 0.5f, float(j) + 0.5f);
@@ -91,7 +95,6 @@ private:
             c.patch = p;
             c.depthTexels = depth;
             c.patchUv = patchUv;
-            ++cover_.chartTexels;
         } else if (p == c.patch) {
             if (depth > c.depthTexels) {
                 c.depthTexels = depth;
@@ -112,40 +115,66 @@ private:
     }
 
     UvCover& cover_;
-    int w_, h_;
+    int w_, h_, rowLo_, rowHi_;
 };
+
+// The cells of one patch's grid whose rows reach [yLo, yHi] (texel y).
+void rasterisePatch(Rasteriser& raster, uint32_t p, const PatchGrid& g, float yLo, float yHi) {
+    const size_t row = size_t(g.n + 1);
+    const float step = 1.0f / float(g.n);
+    for (int j = 0; j < g.n; ++j)
+        for (int i = 0; i < g.n; ++i) {
+            const size_t k = size_t(j) * row + size_t(i);
+            const glm::vec2 x00 = g.texel[k], x10 = g.texel[k + 1], x11 = g.texel[k + row + 1],
+                            x01 = g.texel[k + row];
+            const float lo = std::min({x00.y, x10.y, x11.y, x01.y}),
+                        hi = std::max({x00.y, x10.y, x11.y, x01.y});
+            if (hi < yLo || lo > yHi) continue;
+            const glm::vec2 u00(float(i) * step, float(j) * step),
+                u10(float(i + 1) * step, float(j) * step),
+                u11(float(i + 1) * step, float(j + 1) * step),
+                u01(float(i) * step, float(j + 1) * step);
+            raster.triangle(p, {x00, x10, x11}, {u00, u10, u11});
+            raster.triangle(p, {x00, x11, x01}, {u00, u11, u01});
+        }
+}
 
 } // namespace
 
 UvCover coverTexels(const LimitPatches& lp, int width, int height) {
     const glm::vec2 texelsPerUv{float(width), float(height)};
     std::vector<PatchGrid> grids(lp.patchCount());
+    std::vector<glm::vec2> rowsOf(lp.patchCount()); // lowest and highest texel y of each grid
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, lp.patchCount(), 16),
                       [&](const tbb::blocked_range<uint32_t>& r) {
-                          for (uint32_t p = r.begin(); p != r.end(); ++p)
+                          for (uint32_t p = r.begin(); p != r.end(); ++p) {
                               grids[p] = patchGrid(lp, p, texelsPerUv);
+                              glm::vec2 y(INFINITY, -INFINITY);
+                              for (const glm::vec2& x : grids[p].texel)
+                                  y = glm::vec2(std::min(y.x, x.y), std::max(y.y, x.y));
+                              rowsOf[p] = y;
+                          }
                       });
     UvCover cover;
     cover.claims.resize(size_t(width) * size_t(height));
-    Rasteriser raster(cover, width, height);
-    for (uint32_t p = 0; p < lp.patchCount(); ++p) {
-        const PatchGrid& g = grids[p];
-        const size_t row = size_t(g.n + 1);
-        const float step = 1.0f / float(g.n);
-        for (int j = 0; j < g.n; ++j)
-            for (int i = 0; i < g.n; ++i) {
-                const size_t k = size_t(j) * row + size_t(i);
-                const glm::vec2 x00 = g.texel[k], x10 = g.texel[k + 1],
-                                x11 = g.texel[k + row + 1], x01 = g.texel[k + row];
-                const glm::vec2 u00(float(i) * step, float(j) * step),
-                    u10(float(i + 1) * step, float(j) * step),
-                    u11(float(i + 1) * step, float(j + 1) * step),
-                    u01(float(i) * step, float(j + 1) * step);
-                raster.triangle(p, {x00, x10, x11}, {u00, u10, u11});
-                raster.triangle(p, {x00, x11, x01}, {u00, u11, u01});
+    // Bands of rows on TBB: each band visits the patches in order and
+    // their cells in order, so every texel sees its claims in the serial
+    // order (the same claims for every thread count).
+    const int bandRows = kBandRows;
+    const int bands = (height + bandRows - 1) / bandRows;
+    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& br) {
+        for (int band = br.begin(); band != br.end(); ++band) {
+            const int rowLo = band * bandRows, rowHi = std::min(height, rowLo + bandRows);
+            // Texel centres of rows [rowLo, rowHi): y in [rowLo + 0.5, rowHi - 0.5].
+            const float yLo = float(rowLo) + 0.5f - 1.0f, yHi = float(rowHi) - 0.5f + 1.0f;
+            Rasteriser raster(cover, width, height, rowLo, rowHi);
+            for (uint32_t p = 0; p < lp.patchCount(); ++p) {
+                if (rowsOf[p].y < yLo || rowsOf[p].x > yHi) continue;
+                rasterisePatch(raster, p, grids[p], yLo, yHi);
             }
-        grids[p] = {}; // release as we go
-    }
+        }
+    });
+    for (const TexelClaim& c : cover.claims) cover.chartTexels += c.patch != UINT32_MAX ? 1 : 0;
     return cover;
 }
 

@@ -26,13 +26,20 @@ namespace sg::bake::detail {
 
 inline constexpr float kClaimTolTexels = 1e-3f;
 // Grid cells per patch side: the smallest power of two that makes each
-// cell at most a texel along the patch's longest side in UV, capped here.
+// cell at most kCellTexels texels along the patch's longest side in UV,
+// capped at kMaxCellsPerSide. Newton's method refines the linear estimate
+// inside a cell, so cells need not be smaller than a texel; two texels
+// keep the chords of curved chart edges far below the claim tolerance
+// (checked by the known-answer tests' residuals).
+inline constexpr float kCellTexels = 2.0f;
 inline constexpr int kMaxCellsPerSide = 1024;
+// Rows of texels per rasterisation task.
+inline constexpr int kBandRows = 32;
 
 struct TexelClaim {
-    uint32_t patch = UINT32_MAX; // UINT32_MAX: no patch covers the texel
-    float depthTexels = 0.0f;    // signed distance inside its triangle
-    glm::vec2 patchUv{0.0f};     // linear estimate, before Newton
+    uint32_t patch = UINT32_MAX;      // UINT32_MAX: no patch covers the texel
+    float depthTexels = 0.0f;         // signed distance inside its triangle
+    glm::vec2 patchUv{0.0f};          // linear estimate, before Newton
     uint32_t otherPatch = UINT32_MAX; // runner-up of another patch (UINT32_MAX: none)
     float otherDepthTexels = 0.0f;
     glm::vec2 otherUv{0.0f};
@@ -44,9 +51,9 @@ struct UvCover {
 };
 
 // threads: the grids of limit UVs are evaluated on TBB (one task per
-// block of patches, within the caller's arena); rasterisation runs on the
-// calling thread in patch order, so the claims are the same for every
-// count.
+// block of patches), then bands of kBandRows rows are rasterised on TBB,
+// each visiting the patches and cells in order, so every texel receives
+// its claims in the same order and the cover is the same for every count.
 UvCover coverTexels(const LimitPatches& patches, int width, int height);
 
 } // namespace sg::bake::detail

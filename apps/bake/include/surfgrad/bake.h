@@ -96,16 +96,19 @@ struct BakeStats {
     double maxDistance = 0; // the distance used (object units)
     double maxAbsDisplacement = 0;
     // Seconds per stage (steady clock).
+    // secondsPad: the limit-frame slopes and the padding.
     double secondsPatches = 0, secondsHighMesh = 0, secondsCover = 0, secondsTexels = 0,
            secondsPad = 0;
 };
 
 struct BakeResult {
     int width = 0, height = 0;
-    normalmap::Grid<uint8_t> state;       // TexelState per texel
-    normalmap::ScalarField displacement;  // object units along the limit normal (0 where empty/miss)
-    normalmap::NormalField objectNormal;  // the high mesh's unit normal, object space ((0,0,0) empty/miss)
-    normalmap::DerivField tangentSlopes;  // the same normal as slopes (dh/ds, dh/dt) in the limit frame
+    normalmap::Grid<uint8_t> state;      // TexelState per texel
+    normalmap::ScalarField displacement; // object units along the limit normal (0 where empty/miss)
+    normalmap::NormalField
+        objectNormal; // the high mesh's unit normal, object space ((0,0,0) empty/miss)
+    normalmap::DerivField
+        tangentSlopes; // the same normal as slopes (dh/ds, dh/dt) in the limit frame
     normalmap::NormalField limitPosition; // the texel's point on the limit surface (object space)
     normalmap::NormalField limitNormal;   // unit limit normal there
     normalmap::Grid<glm::vec4> limitTangent; // vec4(T, w) there (sg/patch/limit_tangent.glsl)
