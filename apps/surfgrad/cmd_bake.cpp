@@ -1,10 +1,13 @@
 // `surfgrad bake HIGH CAGE [--size N|WxH] [--uv-set K] [--isolation N]
-//  [--distance D] [--pad N] [--threads N] [--displacement OUT.exr
+//  [--surface limit|refined [--level N]] [--distance D] [--pad N] [--threads N] [--displacement
+//  OUT.exr
 //  [--displacement-bits half|float]]
 //  [--normal OUT.png [--encoding E] [--green gl|dx] [--bits B]]
 //  [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
-// of CAGE in the layout of its UV set K (apps/bake, surfgrad/bake.h). Each
+// of CAGE (or, --surface refined, onto CAGE refined to level N and
+// triangulated, with MikkTSpace frames) in the layout of its UV set K
+// (apps/bake, surfgrad/bake.h). Each
 // output is optional, at least one is required:
 //  - displacement: one float channel, object units along the limit normal
 //    (positive outwards): what the scene's "displacement" reads with
@@ -46,6 +49,7 @@ struct BakeArgs {
     std::string high, cage, size = "1024";
     std::string displacement, normal, objectNormal, mask;
     std::string encoding = "rgb", green = "gl", bits, displacementBits = "float";
+    std::string surface = "limit";
     bake::BakeSettings settings;
     bool json = false, progress = false;
 };
@@ -98,7 +102,9 @@ void checkOutputs(const BakeArgs& a) {
 
 std::vector<std::pair<std::string, std::string>> attrs(const std::string& what, const BakeArgs& a) {
     return {{"surfgrad:op", "bake " + what},
-            {"surfgrad:frame", "limit"},
+            {"surfgrad:frame", a.surface == "limit" ? "limit" : "mikktspace"},
+            {"surfgrad:surface",
+             a.surface == "limit" ? "limit" : "refined " + std::to_string(a.settings.refinedLevel)},
             {"surfgrad:uvSet", std::to_string(a.settings.uvSet)}};
 }
 
@@ -160,6 +166,12 @@ nlohmann::json statsJson(const bake::BakeStats& s) {
 
 void runBake(BakeArgs a) {
     parseSize(a.size, a.settings);
+    if (a.surface == "limit")
+        a.settings.surface = bake::BakeSurface::Limit;
+    else if (a.surface == "refined")
+        a.settings.surface = bake::BakeSurface::Refined;
+    else
+        throw CliError("bake: --surface " + a.surface + ": expected limit or refined");
     // Encodings are parsed before the bake, so a typo costs no time.
     if (!a.normal.empty()) {
         nm::parseEncoding(a.encoding);
@@ -220,6 +232,12 @@ void addBakeCommand(CLI::App& app, int& status) {
     c->add_option("cage", a->cage, "Control cage with a UV set (Catmull-Clark)")->required();
     c->add_option("--size", a->size, "Map size: N or WxH texels (default 1024)");
     c->add_option("--uv-set", a->settings.uvSet, "The cage's UV set of the layout (default 0)");
+    c->add_option("--surface", a->surface,
+                  "Surface measured from: limit (the Catmull-Clark limit surface, its limit "
+                  "frame; default) or refined (the cage refined to --level and triangulated, "
+                  "MikkTSpace frames: what triangle-mesh bakers do)");
+    c->add_option("--level", a->settings.refinedLevel,
+                  "--surface refined: uniform subdivision level (default 2)");
     c->add_option("--isolation", a->settings.isolation,
                   "Adaptive isolation of the limit patches, 1..10 (default 4)");
     c->add_option("--distance", a->settings.maxDistance,

@@ -13,10 +13,10 @@
 #include <tbb/parallel_for.h>
 
 #include "high_mesh.h"
-#include "limit_patches.h"
+#include "base_surface.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/io.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/subdivision.h"
 #include "surfgrad/threads.h"
 #include "uv_cover.h"
 
@@ -24,7 +24,6 @@ namespace sg::bake {
 
 namespace {
 
-namespace G = sg::glsl;
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) {
@@ -38,7 +37,7 @@ void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const s
                              std::to_string(s.width) + "x" + std::to_string(s.height) +
                                  ": expected sides 1.." + std::to_string(kMaxBakeSide) +
                                  " and at most " + std::to_string(kMaxBakeTexels) + " texels");
-    if (cage.options.scheme != mesh::Scheme::Catmark)
+    if (s.surface == BakeSurface::Limit && cage.options.scheme != mesh::Scheme::Catmark)
         throw io::InputError(file, "scheme",
                              std::string("the bake evaluates Catmull-Clark limit surfaces; the "
                                          "cage is ") +
@@ -47,6 +46,11 @@ void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const s
         throw io::InputError(file, "uv set " + std::to_string(s.uvSet),
                              "the cage has " + std::to_string(cage.uvSets.size()) +
                                  " UV set(s): the maps need a UV layout");
+    if (s.surface == BakeSurface::Refined &&
+        (s.refinedLevel < 0 || s.refinedLevel > mesh::kMaxSubdivisionLevel))
+        throw io::InputError(file, "level",
+                             std::to_string(s.refinedLevel) + ": expected 0.." +
+                                 std::to_string(mesh::kMaxSubdivisionLevel));
     if (s.isolation < 1 || s.isolation > 10)
         throw io::InputError(file, "isolation", std::to_string(s.isolation) + ": expected 1..10");
     if (s.padTexels < 0 || s.padTexels > 1024)
@@ -80,36 +84,36 @@ BakeResult emptyResult(int w, int h) {
     return r;
 }
 
-// One texel on its patch: Newton to the exact UV, the limit frame, the rays.
+// One texel: its point and frame on the base surface, the rays.
 struct TexelBaker {
-    const detail::LimitPatches& patches;
+    const detail::BaseSurface& base;
     const detail::HighMesh& high;
     float tFar;
     glm::vec2 texelsPerUv;
 
     struct Outcome {
-        float residualTexels = 0.0f; // |st - texel centre| left by Newton
-        bool overlap = false;        // the runner-up patch is elsewhere on the surface
+        float residualTexels = 0.0f; // |st - texel centre| left (limit: by Newton)
+        bool overlap = false;        // the runner-up primitive is elsewhere on the surface
     };
 
     Outcome operator()(const detail::TexelClaim& c, int i, int j, BakeResult& r) const {
         Outcome o;
         const glm::vec2 target = (glm::vec2(float(i), float(j)) + 0.5f) / texelsPerUv;
-        float residual = 0.0f;
-        const glm::vec2 uv = patches.invertUv(c.patch, target, c.patchUv, residual);
-        const detail::SurfaceSample s = patches.sample(c.patch, uv);
-        o.residualTexels = residual * std::max(texelsPerUv.x, texelsPerUv.y);
-        if (c.otherPatch != UINT32_MAX) o.overlap = elsewhere(c, target, s);
-        const glm::vec3 n = G::sgSafeNormalize(glm::cross(s.dPdu, s.dPdv), glm::vec3(0, 0, 1));
-        int resolved = 0;
-        const glm::vec4 tangent =
-            G::sgPatchLimitTangent(s.dPdu, s.dPdv, s.dSTdu, s.dSTdv, n, resolved);
-        r.limitPosition.at(i, j) = s.pos;
-        r.limitNormal.at(i, j) = n;
-        r.limitTangent.at(i, j) = tangent;
-        const detail::RayHit up = high.cast(s.pos, n, tFar);
-        const detail::RayHit down = high.cast(s.pos, -n, tFar);
-        // The hit nearest the limit point; outwards on a tie.
+        const detail::BaseSample b = base.at(c.patch, c.patchUv, target);
+        o.residualTexels = b.residualTexels;
+        // The runner-up claim's point with the same UV more than half a
+        // texel of surface length away: two charts on one texel, not the two
+        // sides of a shared edge (those meet within the claim tolerance, a
+        // thousandth of a texel).
+        if (c.otherPatch != UINT32_MAX)
+            o.overlap = glm::length(base.at(c.otherPatch, c.otherUv, target).pos - b.pos) >
+                        0.5f * b.texelLength;
+        r.limitPosition.at(i, j) = b.pos;
+        r.limitNormal.at(i, j) = b.normal;
+        r.limitTangent.at(i, j) = b.tangent;
+        const detail::RayHit up = high.cast(b.pos, b.normal, tFar);
+        const detail::RayHit down = high.cast(b.pos, -b.normal, tFar);
+        // The hit nearest the base point; outwards on a tie.
         const bool useDown = down.hit && (!up.hit || down.t < up.t);
         if (!up.hit && !down.hit) {
             r.state.at(i, j) = uint8_t(TexelState::Miss);
@@ -119,22 +123,6 @@ struct TexelBaker {
             r.objectNormal.at(i, j) = useDown ? down.normal : up.normal;
         }
         return o;
-    }
-
-    // Whether the runner-up claim's point with the same UV is more than
-    // half a texel (of surface length, from the UV chart's Jacobian) away:
-    // two charts on one texel, not the two sides of a shared patch edge
-    // (those meet within the claim tolerance, a thousandth of a texel).
-    bool elsewhere(const detail::TexelClaim& c, glm::vec2 target,
-                   const detail::SurfaceSample& s) const {
-        float residual = 0.0f;
-        const glm::vec2 uv = patches.invertUv(c.otherPatch, target, c.otherUv, residual);
-        const glm::vec3 other = patches.sample(c.otherPatch, uv).pos;
-        const float areaP = glm::length(glm::cross(s.dPdu, s.dPdv));
-        const float areaSt = std::abs(s.dSTdu.x * s.dSTdv.y - s.dSTdv.x * s.dSTdu.y);
-        const float texel = std::max(texelsPerUv.x, texelsPerUv.y);
-        const float texelLength = areaSt > 0.0f ? std::sqrt(areaP / areaSt) / texel : 0.0f;
-        return glm::length(other - s.pos) > 0.5f * texelLength;
     }
 };
 
@@ -216,15 +204,19 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
     BakeStats& st = r.stats;
     st.maxDistance = s.maxDistance > 0 ? s.maxDistance : defaultDistance(cage);
     auto t = Clock::now();
-    const detail::LimitPatches patches(cage, s.isolation, s.uvSet, cageFile, s.threads);
-    st.patches = patches.patchCount();
+    const glm::vec2 texelsPerUv(float(s.width), float(s.height));
+    const std::unique_ptr<detail::BaseSurface> base =
+        s.surface == BakeSurface::Limit
+            ? detail::limitBase(cage, s.isolation, s.uvSet, cageFile, s.threads, texelsPerUv)
+            : detail::triangleBase(cage, s.refinedLevel, s.uvSet, cageFile, s.threads, texelsPerUv);
+    st.patches = base->primitiveCount();
     st.secondsPatches = secondsSince(t);
     t = Clock::now();
     const detail::HighMesh hm(high, highFile);
     st.secondsHighMesh = secondsSince(t);
     t = Clock::now();
     if (progress) progress("cover", 0.0);
-    const detail::UvCover cover = detail::coverTexels(patches, s.width, s.height);
+    const detail::UvCover cover = base->cover(s.width, s.height);
     if (progress) progress("cover", 1.0);
     st.secondsCover = secondsSince(t);
     st.chartTexels = cover.chartTexels;
@@ -234,8 +226,7 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
                                  std::to_string(s.height) +
                                  " map lies on the cage's UV layout inside [0, 1]^2");
     t = Clock::now();
-    const TexelBaker baker{patches, hm, float(st.maxDistance),
-                           glm::vec2(float(s.width), float(s.height))};
+    const TexelBaker baker{*base, hm, float(st.maxDistance), texelsPerUv};
     bakeTexels(cover, baker, r, progress);
     st.secondsTexels = secondsSince(t);
     for (size_t k = 0; k < r.state.v.size(); ++k) {

@@ -141,6 +141,32 @@ void rasterisePatch(Rasteriser& raster, uint32_t p, const PatchGrid& g, float yL
 
 } // namespace
 
+namespace {
+
+// The band driver: bands of kBandRows rows on TBB, each calling
+// visit(raster, yLo, yHi) which rasterises every primitive reaching texel
+// rows [yLo, yHi] in primitive order, so every texel receives its claims
+// in the same order for every thread count.
+template <class Visit>
+UvCover coverInBands(int width, int height, const Visit& visit) {
+    UvCover cover;
+    cover.claims.resize(size_t(width) * size_t(height));
+    const int bands = (height + kBandRows - 1) / kBandRows;
+    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& br) {
+        for (int band = br.begin(); band != br.end(); ++band) {
+            const int rowLo = band * kBandRows, rowHi = std::min(height, rowLo + kBandRows);
+            // Texel centres of rows [rowLo, rowHi), one texel of margin.
+            const float yLo = float(rowLo) + 0.5f - 1.0f, yHi = float(rowHi) - 0.5f + 1.0f;
+            Rasteriser raster(cover, width, height, rowLo, rowHi);
+            visit(raster, yLo, yHi);
+        }
+    });
+    for (const TexelClaim& c : cover.claims) cover.chartTexels += c.patch != UINT32_MAX ? 1 : 0;
+    return cover;
+}
+
+} // namespace
+
 UvCover coverTexels(const LimitPatches& lp, int width, int height) {
     const glm::vec2 texelsPerUv{float(width), float(height)};
     std::vector<PatchGrid> grids(lp.patchCount());
@@ -155,27 +181,29 @@ UvCover coverTexels(const LimitPatches& lp, int width, int height) {
                               rowsOf[p] = y;
                           }
                       });
-    UvCover cover;
-    cover.claims.resize(size_t(width) * size_t(height));
-    // Bands of rows on TBB: each band visits the patches in order and
-    // their cells in order, so every texel sees its claims in the serial
-    // order (the same claims for every thread count).
-    const int bandRows = kBandRows;
-    const int bands = (height + bandRows - 1) / bandRows;
-    tbb::parallel_for(tbb::blocked_range<int>(0, bands, 1), [&](const tbb::blocked_range<int>& br) {
-        for (int band = br.begin(); band != br.end(); ++band) {
-            const int rowLo = band * bandRows, rowHi = std::min(height, rowLo + bandRows);
-            // Texel centres of rows [rowLo, rowHi): y in [rowLo + 0.5, rowHi - 0.5].
-            const float yLo = float(rowLo) + 0.5f - 1.0f, yHi = float(rowHi) - 0.5f + 1.0f;
-            Rasteriser raster(cover, width, height, rowLo, rowHi);
-            for (uint32_t p = 0; p < lp.patchCount(); ++p) {
-                if (rowsOf[p].y < yLo || rowsOf[p].x > yHi) continue;
-                rasterisePatch(raster, p, grids[p], yLo, yHi);
-            }
+    return coverInBands(width, height, [&](Rasteriser& raster, float yLo, float yHi) {
+        for (uint32_t p = 0; p < lp.patchCount(); ++p) {
+            if (rowsOf[p].y < yLo || rowsOf[p].x > yHi) continue;
+            rasterisePatch(raster, p, grids[p], yLo, yHi);
         }
     });
-    for (const TexelClaim& c : cover.claims) cover.chartTexels += c.patch != UINT32_MAX ? 1 : 0;
-    return cover;
+}
+
+UvCover coverTriangles(const mesh::RenderMesh& m, int uvSet, int width, int height) {
+    const glm::vec2 texelsPerUv{float(width), float(height)};
+    const std::vector<glm::vec2>& uv = m.uvSets[size_t(uvSet)];
+    const glm::vec2 bary[3] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    return coverInBands(width, height, [&](Rasteriser& raster, float yLo, float yHi) {
+        for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+            const uint32_t* v = &m.indices[size_t(t) * 3];
+            const glm::vec2 x[3] = {uv[v[0]] * texelsPerUv, uv[v[1]] * texelsPerUv,
+                                    uv[v[2]] * texelsPerUv};
+            if (std::max({x[0].y, x[1].y, x[2].y}) < yLo ||
+                std::min({x[0].y, x[1].y, x[2].y}) > yHi)
+                continue;
+            raster.triangle(t, x, bary);
+        }
+    });
 }
 
 } // namespace sg::bake::detail

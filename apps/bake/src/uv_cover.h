@@ -21,6 +21,7 @@
 #include <glm/vec2.hpp>
 
 #include "limit_patches.h"
+#include "surfgrad/render_mesh.h"
 
 namespace sg::bake::detail {
 
@@ -55,5 +56,10 @@ struct UvCover {
 // each visiting the patches and cells in order, so every texel receives
 // its claims in the same order and the cover is the same for every count.
 UvCover coverTexels(const LimitPatches& patches, int width, int height);
+
+// The same for a triangle mesh's UV set `uvSet`: each claim's `patch` is a
+// triangle and its patchUv the barycentric weights (b1, b2) of the
+// triangle's second and third corner (exact: nothing to refine).
+UvCover coverTriangles(const mesh::RenderMesh& mesh, int uvSet, int width, int height);
 
 } // namespace sg::bake::detail

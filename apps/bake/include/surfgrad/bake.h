@@ -56,10 +56,27 @@ namespace sg::bake {
 inline constexpr int kMaxBakeSide = 16384;
 inline constexpr size_t kMaxBakeTexels = size_t(1) << 26;
 
+// The surface the bake measures from (ray origins and directions, the
+// frame of the tangent-space map).
+enum class BakeSurface {
+    // The Catmull-Clark limit surface of the cage, the exact limit normal
+    // and limit frame: what the renderer draws for "mode": "adaptive" and
+    // "limit": true meshes.
+    Limit,
+    // The cage refined uniformly to `refinedLevel` and triangulated (no
+    // limit evaluation; any scheme), positions and vertex normals
+    // interpolated linearly, MikkTSpace tangents of that mesh: what
+    // triangle-mesh bakers measure from, and the frame a renderer drawing
+    // that refined mesh with "tangents": "mikktspace" reads.
+    Refined,
+};
+
 struct BakeSettings {
     int width = 1024, height = 1024; // map size in texels, 1..kMaxBakeSide
     int uvSet = 0;                   // the cage's UV set the maps are laid out in
-    int isolation = 4;               // adaptive isolation of the patch table, 1..10
+    BakeSurface surface = BakeSurface::Limit;
+    int refinedLevel = 2; // Refined: uniform level, 0..mesh::kMaxSubdivisionLevel
+    int isolation = 4;    // Limit: adaptive isolation of the patch table, 1..10
     // How far (object units) the ray looks along +- the limit normal; 0: 5 %
     // of the diagonal of the cage's bounding box. The hit nearest to the
     // limit point wins (outwards on a tie).
@@ -88,7 +105,7 @@ struct BakeStats {
     // patch edge). The claim deepest inside its patch's UV region keeps the
     // texel; the other point is not baked.
     size_t overlapTexels = 0;
-    size_t patches = 0;
+    size_t patches = 0; // primitives of the base surface: patches (Limit), triangles (Refined)
     // Largest |st(u,v) - texel centre| left after Newton's method, in
     // texels (a texel whose preimage lies on another patch keeps the
     // nearest point of its own patch: this is that distance).
@@ -109,9 +126,13 @@ struct BakeResult {
         objectNormal; // the high mesh's unit normal, object space ((0,0,0) empty/miss)
     normalmap::DerivField
         tangentSlopes; // the same normal as slopes (dh/ds, dh/dt) in the limit frame
-    normalmap::NormalField limitPosition; // the texel's point on the limit surface (object space)
-    normalmap::NormalField limitNormal;   // unit limit normal there
-    normalmap::Grid<glm::vec4> limitTangent; // vec4(T, w) there (sg/patch/limit_tangent.glsl)
+    // The base surface at each texel (Empty, Padded: zero): the point, its
+    // unit normal and the tangent frame of tangentSlopes (Limit: the limit
+    // tangent of sg/patch/limit_tangent.glsl; Refined: the interpolated
+    // MikkTSpace tangent, not normalised, sign in w).
+    normalmap::NormalField limitPosition;
+    normalmap::NormalField limitNormal;
+    normalmap::Grid<glm::vec4> limitTangent;
     BakeStats stats;
 };
 
@@ -121,7 +142,8 @@ using BakeProgress = std::function<void(const char* stage, double fraction)>;
 
 // Bakes `high` (a triangle mesh in the cage's object space; its normals are
 // used when present, else area-weighted vertex normals are computed) onto
-// the limit surface of `cage` (validated, Catmull-Clark). Throws
+// the base surface of `cage` (validated; Catmull-Clark for the limit
+// surface). Throws
 // io::InputError naming the file, element and reason for: a cage whose
 // scheme is not Catmull-Clark (file cageFile, element "scheme"), a UV set
 // the cage lacks ("uv set K"), a map size or texel count beyond the limits
