@@ -257,6 +257,7 @@ void addBakeCommand(CLI::App& app, int& status) {
     c->add_flag("--json", a->json, "Print the counts and stage times as JSON");
     c->add_flag("--progress", a->progress, "Report progress on stderr however short the bake");
     addThreadsOption(c, a->settings.threads);
+    addMaxMemoryOption(c, a->settings.memoryBudget);
     c->callback([a, &status] {
         runBake(*a);
         status = 0;

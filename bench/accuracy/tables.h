@@ -34,6 +34,7 @@ void tableParallax(const Options& o);    // 9: parallax and POM
 void tableFeatureAa(const Options& o);   // 10: feature curves antialiased
 void tableAdaptive(const Options& o);    // 11: adaptive patches vs uniform refinement
 void tableStability(const Options& o);   // 12: numerical stability
+void tableBake(const Options& o);        // 13: baking surface
 
 // In page order. Register a table here, one line.
 inline const std::vector<TableEntry>& registeredTables() {
@@ -50,6 +51,7 @@ inline const std::vector<TableEntry>& registeredTables() {
         {"feature-aa", "10. feature curves antialiased", tableFeatureAa},
         {"adaptive", "11. adaptive patches vs uniform refinement", tableAdaptive},
         {"stability", "12. numerical stability of hard cases", tableStability},
+        {"bake", "13. baking onto the limit surface vs the refined mesh", tableBake},
     };
     return tables;
 }

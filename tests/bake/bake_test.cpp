@@ -313,6 +313,9 @@ TEST(BakeInput, BadInputIsRefusedNamingFileAndElement) {
     BakeSettings big = s;
     big.width = bake::kMaxBakeSide + 1;
     expectInputError(cubeCage(), high, big, "cage.obj", "size");
+    BakeSettings budget = s;
+    budget.memoryBudget = 32 * 32 * bake::kBakeBytesPerTexel - 1;
+    expectInputError(cubeCage(), high, budget, "cage.obj", "size");
     BakeSettings iso = s;
     iso.isolation = 11;
     expectInputError(cubeCage(), high, iso, "cage.obj", "isolation");

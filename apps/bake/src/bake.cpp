@@ -37,6 +37,13 @@ void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const s
                              std::to_string(s.width) + "x" + std::to_string(s.height) +
                                  ": expected sides 1.." + std::to_string(kMaxBakeSide) +
                                  " and at most " + std::to_string(kMaxBakeTexels) + " texels");
+    const uint64_t budget = s.memoryBudget ? s.memoryBudget : mesh::defaultSubdivisionBudget();
+    const uint64_t bytes = uint64_t(s.width) * uint64_t(s.height) * kBakeBytesPerTexel;
+    if (bytes > budget)
+        throw io::InputError(file, "size",
+                             std::to_string(s.width) + "x" + std::to_string(s.height) + " needs " +
+                                 mesh::formatByteSize(bytes) + " of grids, above the budget of " +
+                                 mesh::formatByteSize(budget));
     if (s.surface == BakeSurface::Limit && cage.options.scheme != mesh::Scheme::Catmark)
         throw io::InputError(file, "scheme",
                              std::string("the bake evaluates Catmull-Clark limit surfaces; the "

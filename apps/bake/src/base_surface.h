@@ -29,8 +29,8 @@
 namespace sg::bake::detail {
 
 struct BaseSample {
-    glm::vec3 pos{0.0f};                      // object space
-    glm::vec3 normal{0.0f, 0.0f, 1.0f};       // unit
+    glm::vec3 pos{0.0f};                       // object space
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};        // unit
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f}; // xyz and sign w (bitangent w cross(N, T))
     // Surface length of one texel here (sqrt of the chart's area ratio
     // over the map's larger side); 0 where the UV chart is degenerate.
@@ -51,8 +51,7 @@ public:
 
 // texelsPerUv: the map's (width, height).
 std::unique_ptr<BaseSurface> limitBase(const mesh::PolygonMesh& cage, int isolation, int uvSet,
-                                       const std::string& file, int threads,
-                                       glm::vec2 texelsPerUv);
+                                       const std::string& file, int threads, glm::vec2 texelsPerUv);
 std::unique_ptr<BaseSurface> triangleBase(const mesh::PolygonMesh& cage, int level, int uvSet,
                                           const std::string& file, int threads,
                                           glm::vec2 texelsPerUv);

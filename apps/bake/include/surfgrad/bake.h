@@ -86,7 +86,15 @@ struct BakeSettings {
     // mix in the empty background. 0..1024.
     int padTexels = 8;
     int threads = 0; // surfgrad/threads.h; a count outside 0..1024 is a contract violation
+    // Bytes the maps and their working grids may take (kBakeBytesPerTexel
+    // per texel); a larger map is refused before anything is allocated.
+    // 0: mesh::defaultSubdivisionBudget() (half the physical memory).
+    uint64_t memoryBudget = 0;
 };
+
+// Peak bytes per texel of bake(): the result's grids (65), the UV cover
+// (32) and the padding's queues (13).
+inline constexpr uint64_t kBakeBytesPerTexel = 110;
 
 // What each texel became.
 enum class TexelState : uint8_t {
@@ -147,7 +155,8 @@ using BakeProgress = std::function<void(const char* stage, double fraction)>;
 // io::InputError naming the file, element and reason for: a cage whose
 // scheme is not Catmull-Clark (file cageFile, element "scheme"), a UV set
 // the cage lacks ("uv set K"), a map size or texel count beyond the limits
-// ("size"), an isolation outside 1..10, padding outside 0..1024, a max
+// or a size whose grids would exceed the memory budget ("size"), an
+// isolation outside 1..10, padding outside 0..1024, a max
 // distance that is negative or not finite, a high mesh without triangles
 // or with a non-finite position or normal (highFile, "vertex N"), no
 // texel centre on the cage's UV layout inside [0, 1]^2 (cageFile,

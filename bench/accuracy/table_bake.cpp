@@ -1,0 +1,240 @@
+// Table 13, baking (docs/accuracy-cost.md): maps baked onto the limit
+// surface against maps baked onto the cage refined to level 1-3 and
+// triangulated (what triangle-mesh bakers measure from), both drawn the way
+// the renderer draws an adaptive mesh: the limit surface displaced along
+// its limit normal by the displacement map and shaded with the normal map
+// in the limit frame (examples/tessellated-asset).
+//
+// Input: a known high-resolution surface. Spot's limit surface at level 6
+// (1.5M triangles) with every vertex moved along its limit normal by
+// 0.012 x examples/data/spot_height.png (the sculpt of the example's
+// bake_maps.sh), vertex normals recomputed from the moved mesh.
+//
+// Error, at 100,000 random points of the limit surface (uniform in each
+// adaptive patch's square, isolation 3 as the example): the ray from the
+// point along +- its limit normal into the high mesh gives the true
+// displacement t and the true normal n; the drawn surface there has
+// displacement h = the map sampled bilinearly at the point's UV (as a
+// texture unit does, texel centres at (i + 0.5) / size), and the shading
+// normal from the normal map (slopes sampled bilinearly, then
+// sgMikktsBasis in the limit frame, sgSurfgradFromTBN, sgResolve: the
+// renderer's path). Columns: |h - t| as a fraction of the sculpt's depth
+// (0.012) and the angle between the shading normal and n, p50 and p99.
+//
+// Cost: bake() on all cores, median of 3 runs, and per million texels on
+// the charts.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <thread>
+
+#include <glm/geometric.hpp>
+
+#include "high_mesh.h"
+#include "limit_patches.h"
+#include "surfgrad/bake.h"
+#include "surfgrad/bump.h"
+#include "surfgrad/mesh_io.h"
+#include "surfgrad/normalmap.h"
+#include "surfgrad/patch_basis.h"
+#include "surfgrad/subdivision.h"
+#include "tables.h"
+
+namespace study {
+
+namespace {
+
+namespace nm = sg::normalmap;
+namespace G = sg::glsl;
+using Clock = std::chrono::steady_clock;
+
+constexpr float kDepth = 0.012f; // the sculpt's displacement scale (object units)
+constexpr int kIsolation = 3;    // as examples/tessellated-asset
+
+float sampleBilinear(const nm::Image& img, glm::vec2 st) {
+    // Row 0 of the image is its bottom row (normalmap::Image).
+    const float x = std::clamp(st.x * float(img.width) - 0.5f, 0.0f, float(img.width - 1));
+    const float y = std::clamp(st.y * float(img.height) - 0.5f, 0.0f, float(img.height - 1));
+    const int x0 = int(x), y0 = int(y);
+    const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
+    const float fx = x - float(x0), fy = y - float(y0);
+    auto at = [&](int i, int j) { return img.at(i, j, 0); };
+    return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) +
+           (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+}
+
+template <class T>
+T gridBilinear(const nm::Grid<T>& g, glm::vec2 st) {
+    const float x = std::clamp(st.x * float(g.width) - 0.5f, 0.0f, float(g.width - 1));
+    const float y = std::clamp(st.y * float(g.height) - 0.5f, 0.0f, float(g.height - 1));
+    const int x0 = int(x), y0 = int(y);
+    const int x1 = std::min(x0 + 1, g.width - 1), y1 = std::min(y0 + 1, g.height - 1);
+    const float fx = x - float(x0), fy = y - float(y0);
+    return (g.at(x0, y0) * (1 - fx) + g.at(x1, y0) * fx) * (1 - fy) +
+           (g.at(x0, y1) * (1 - fx) + g.at(x1, y1) * fx) * fy;
+}
+
+// Spot's limit surface at `level`, each refined vertex moved once along
+// its limit normal by kDepth x the height at its first render vertex's UV.
+sg::mesh::RenderMesh sculpt(const sg::mesh::PolygonMesh& cage, int level) {
+    sg::mesh::SubdivisionSettings s;
+    s.level = level;
+    s.limit = true;
+    s.options = cage.options;
+    sg::mesh::Subdivider sub(cage, s);
+    sg::mesh::RenderMesh m = sub.renderMesh();
+    const std::vector<uint32_t>& toRefined = sub.renderToRefinedVertex();
+    const nm::Image height = nm::readImage(std::filesystem::path(SURFGRAD_EXAMPLE_DATA_DIR) /
+                                           "spot_height.png");
+    std::vector<float> moveOf(sub.refined().vertexCount(), NAN);
+    for (size_t v = 0; v < m.vertexCount(); ++v)
+        if (std::isnan(moveOf[toRefined[v]]))
+            moveOf[toRefined[v]] = kDepth * sampleBilinear(height, m.uvSets[0][v]);
+    for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[v] += moveOf[toRefined[v]] * m.normals[v];
+    m.normals.clear();
+    sg::mesh::computeVertexNormals(m, toRefined);
+    m.uvSets.clear();
+    return m;
+}
+
+struct Sample {
+    glm::vec3 normal;  // unit limit normal
+    glm::vec4 tangent; // limit tangent (sg/patch/limit_tangent.glsl)
+    glm::vec2 st;
+    float trueT;
+    glm::vec3 trueNormal;
+};
+
+// Random points of the limit surface with the high mesh's answer there.
+std::vector<Sample> samples(const sg::bake::detail::LimitPatches& lp,
+                            const sg::bake::detail::HighMesh& high, int count, float tFar) {
+    std::mt19937 rng(20261207u);
+    std::uniform_int_distribution<uint32_t> patch(0, lp.patchCount() - 1);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::vector<Sample> out;
+    out.reserve(size_t(count));
+    while (int(out.size()) < count) {
+        const uint32_t p = patch(rng);
+        const glm::vec2 uv(unit(rng), unit(rng));
+        const sg::bake::detail::SurfaceSample s = lp.sample(p, uv);
+        Sample x;
+        x.normal = G::sgSafeNormalize(glm::cross(s.dPdu, s.dPdv), glm::vec3(0, 0, 1));
+        int resolved = 0;
+        x.tangent = G::sgPatchLimitTangent(s.dPdu, s.dPdv, s.dSTdu, s.dSTdv, x.normal, resolved);
+        x.st = s.st;
+        const auto up = high.cast(s.pos, x.normal, tFar), down = high.cast(s.pos, -x.normal, tFar);
+        if (!up.hit && !down.hit) continue;
+        const bool useDown = down.hit && (!up.hit || down.t < up.t);
+        x.trueT = useDown ? -down.t : up.t;
+        x.trueNormal = useDown ? down.normal : up.normal;
+        out.push_back(x);
+    }
+    return out;
+}
+
+struct Row {
+    std::string method;
+    int size = 0;
+    size_t chartTexels = 0;
+    ErrorStats height, normal;
+    double ms = 0;
+};
+
+Row measure(const std::string& method, const sg::bake::BakeResult& r, const std::vector<Sample>& xs,
+            double ms) {
+    Row row;
+    row.method = method;
+    row.size = r.width;
+    row.chartTexels = r.stats.chartTexels;
+    row.ms = ms;
+    std::vector<double> he, ne;
+    he.reserve(xs.size());
+    ne.reserve(xs.size());
+    for (const Sample& x : xs) {
+        const float h = gridBilinear(r.displacement, x.st);
+        he.push_back(std::abs(double(h) - double(x.trueT)) / kDepth);
+        const glm::vec2 slopes = gridBilinear(r.tangentSlopes, x.st);
+        glm::vec3 tang, bino;
+        G::sgMikktsBasis(x.normal, x.tangent, tang, bino);
+        const G::SgFrame f =
+            G::sgPrologue(x.normal, glm::vec3(0.0f), glm::vec3(0.0f), true, SG_BFACE_NONE);
+        const glm::vec3 n = G::sgResolve(f, G::sgSurfgradFromTBN(slopes, tang, bino));
+        ne.push_back(angleDeg(glm::dvec3(n), glm::dvec3(x.trueNormal)));
+    }
+    row.height = errorStats(he);
+    row.normal = errorStats(ne);
+    return row;
+}
+
+} // namespace
+
+void tableBake(const Options& o) {
+    const sg::mesh::PolygonMesh cage = sg::mesh::loadPolygonMesh(
+        std::filesystem::path(SURFGRAD_DATA_DIR) / "meshes" / "spot" / "spot_control_mesh.obj");
+    const int highLevel = o.quick ? 4 : 6;
+    const sg::mesh::RenderMesh high = sculpt(cage, highLevel);
+    const sg::bake::detail::LimitPatches lp(cage, kIsolation, 0, "spot", 0);
+    const sg::bake::detail::HighMesh highRays(high, "sculpt");
+    const float tFar = 0.1f;
+    const std::vector<Sample> xs = samples(lp, highRays, o.quick ? 5000 : 100000, tFar);
+
+    struct Method {
+        std::string name;
+        sg::bake::BakeSurface surface;
+        int level;
+    };
+    const std::vector<Method> methods = {{"limit surface", sg::bake::BakeSurface::Limit, 0},
+                                         {"refined L1", sg::bake::BakeSurface::Refined, 1},
+                                         {"refined L2", sg::bake::BakeSurface::Refined, 2},
+                                         {"refined L3", sg::bake::BakeSurface::Refined, 3}};
+    const std::vector<int> sizes = o.quick ? std::vector<int>{128} : std::vector<int>{256, 512, 1024};
+    const int runs = o.quick ? 1 : 3;
+    std::vector<Row> rows;
+    for (int size : sizes)
+        for (const Method& m : methods) {
+            sg::bake::BakeSettings s;
+            s.width = s.height = size;
+            s.surface = m.surface;
+            s.refinedLevel = m.level;
+            s.isolation = kIsolation;
+            s.maxDistance = tFar;
+            std::vector<double> ms;
+            sg::bake::BakeResult r;
+            for (int k = 0; k < runs; ++k) {
+                const auto t0 = Clock::now();
+                r = sg::bake::bake(cage, high, s);
+                ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+            }
+            rows.push_back(measure(m.name, r, xs, median(ms)));
+        }
+
+    Table t;
+    t.title = "Table 13: baking onto the limit surface vs onto the refined triangle mesh, Spot "
+              "sculpt, drawn on the limit surface";
+    t.header = {"bake surface", "map",          "chart texels", "height p50 (% depth)",
+                "height p99",   "normal p50 (deg)", "normal p99", "bake ms",
+                "ms / Mtexel"};
+    for (const Row& r : rows) {
+        t.add({r.method, std::to_string(r.size) + "^2", std::to_string(r.chartTexels),
+               fmtErr(100.0 * r.height.p50), fmtErr(100.0 * r.height.p99), fmtErr(r.normal.p50),
+               fmtErr(r.normal.p99), fmt(r.ms, 1), fmt(r.ms / (double(r.chartTexels) * 1e-6), 1)});
+    }
+    t.notes.push_back(
+        "high mesh: Spot's limit surface at level " + std::to_string(highLevel) + " (" +
+        std::to_string(high.triangleCount()) +
+        " triangles) moved along the limit normal by 0.012 x spot_height.png; " +
+        std::to_string(xs.size()) +
+        " random points of the limit surface (adaptive patches, isolation 3); height: |map - "
+        "true displacement| / 0.012; normal: shading normal from the map in the limit frame vs "
+        "the high mesh's normal.");
+    t.notes.push_back("bake ms: surfgrad::bake::bake on all cores (" +
+                      std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
+                      " here), median of " + std::to_string(runs) +
+                      " runs; ms / Mtexel: per million chart texels.");
+    t.plot = {"bake", 7, 6, 0, {1}, true, true, "bake ms", "normal error p99, degrees"};
+    t.print(o);
+}
+
+} // namespace study
