@@ -86,13 +86,14 @@ sg::mesh::RenderMesh sculpt(const sg::mesh::PolygonMesh& cage, int level) {
     sg::mesh::Subdivider sub(cage, s);
     sg::mesh::RenderMesh m = sub.renderMesh();
     const std::vector<uint32_t>& toRefined = sub.renderToRefinedVertex();
-    const nm::Image height = nm::readImage(std::filesystem::path(SURFGRAD_EXAMPLE_DATA_DIR) /
-                                           "spot_height.png");
+    const nm::Image height =
+        nm::readImage(std::filesystem::path(SURFGRAD_EXAMPLE_DATA_DIR) / "spot_height.png");
     std::vector<float> moveOf(sub.refined().vertexCount(), NAN);
     for (size_t v = 0; v < m.vertexCount(); ++v)
         if (std::isnan(moveOf[toRefined[v]]))
             moveOf[toRefined[v]] = kDepth * sampleBilinear(height, m.uvSets[0][v]);
-    for (size_t v = 0; v < m.vertexCount(); ++v) m.positions[v] += moveOf[toRefined[v]] * m.normals[v];
+    for (size_t v = 0; v < m.vertexCount(); ++v)
+        m.positions[v] += moveOf[toRefined[v]] * m.normals[v];
     m.normals.clear();
     sg::mesh::computeVertexNormals(m, toRefined);
     m.uvSets.clear();
@@ -189,7 +190,8 @@ void tableBake(const Options& o) {
                                          {"refined L1", sg::bake::BakeSurface::Refined, 1},
                                          {"refined L2", sg::bake::BakeSurface::Refined, 2},
                                          {"refined L3", sg::bake::BakeSurface::Refined, 3}};
-    const std::vector<int> sizes = o.quick ? std::vector<int>{128} : std::vector<int>{256, 512, 1024};
+    const std::vector<int> sizes =
+        o.quick ? std::vector<int>{128} : std::vector<int>{256, 512, 1024};
     const int runs = o.quick ? 1 : 3;
     std::vector<Row> rows;
     for (int size : sizes)
@@ -213,9 +215,9 @@ void tableBake(const Options& o) {
     Table t;
     t.title = "Table 13: baking onto the limit surface vs onto the refined triangle mesh, Spot "
               "sculpt, drawn on the limit surface";
-    t.header = {"bake surface", "map",          "chart texels", "height p50 (% depth)",
-                "height p99",   "normal p50 (deg)", "normal p99", "bake ms",
-                "ms / Mtexel"};
+    t.header = {"bake surface",         "map",        "chart texels",
+                "height p50 (% depth)", "height p99", "normal p50 (deg)",
+                "normal p99",           "bake ms",    "ms / Mtexel"};
     for (const Row& r : rows) {
         t.add({r.method, std::to_string(r.size) + "^2", std::to_string(r.chartTexels),
                fmtErr(100.0 * r.height.p50), fmtErr(100.0 * r.height.p99), fmtErr(r.normal.p50),
