@@ -171,7 +171,8 @@ set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEVELOPMENT_DESCRIPTION "surface-gradient bump mapping on subdivision meshes (development)
 Headers, static libraries and the CMake package of surfgrad, for
 find_package(surfgrad CONFIG REQUIRED) and the targets surfgrad::bump,
-surfgrad::mesh, surfgrad::features, surfgrad::render and the others; the
+surfgrad::mesh, surfgrad::features, surfgrad::render, surfgrad::bake and the
+others; the
 GLSL library for engines under /usr/share/surfgrad/shaders (sg/*.glsl).
 .
 License: ${SURFGRAD_LICENSE} (/usr/share/doc/surfgrad-dev/copyright).")
@@ -179,8 +180,8 @@ License: ${SURFGRAD_LICENSE} (/usr/share/doc/surfgrad-dev/copyright).")
 # tools it exports as targets (/usr/bin/iconvert, ...) are installed.
 set(_sg_dev_depends
     "surfgrad (= ${PROJECT_VERSION})" cmake pkg-config libglm-dev nlohmann-json3-dev
-    libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libtbb-dev libopenimageio-dev
-    openimageio-tools libepoxy-dev libegl-dev)
+    libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libtbb-dev libembree-dev
+    libopenimageio-dev openimageio-tools libepoxy-dev libegl-dev)
 if(SURFGRAD_BUILD_VIEWER)
     list(APPEND _sg_dev_depends libglfw3-dev libimgui-dev)
 endif()

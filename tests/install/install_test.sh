@@ -50,7 +50,7 @@ config="$(cd "$prefix" && find . -path '*/cmake/surfgrad/surfgradConfig.cmake' |
 [ -n "$config" ] || fail "no <libdir>/cmake/surfgrad/surfgradConfig.cmake in the prefix"
 libdir="$(dirname "$(dirname "$(dirname "${config#./}")")")"
 [ -x "$prefix/bin/surfgrad" ] || fail "bin/surfgrad missing"
-for m in base shaders bump features mesh image gl parity render normalmap; do
+for m in base shaders bump features mesh image gl parity render normalmap bake; do
     [ -f "$prefix/$libdir/libsurfgrad_$m.a" ] || fail "$libdir/libsurfgrad_$m.a missing"
 done
 for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake \
@@ -58,7 +58,7 @@ for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake 
     [ -f "$prefix/$libdir/cmake/surfgrad/$f" ] || fail "$libdir/cmake/surfgrad/$f missing"
 done
 # Headers: exactly the modules' include/ trees (internal headers stay out).
-(cd "$src" && for d in base shaders bump features mesh image apps/gl apps/parity apps/render apps/normalmap; do
+(cd "$src" && for d in base shaders bump features mesh image apps/gl apps/parity apps/render apps/normalmap apps/bake; do
      (cd "$d/include" && find . -name '*.h'); done) | sort >"$work/headers.want"
 (cd "$prefix/include" && find . -type f) | sort >"$work/headers.got"
 diff -u "$work/headers.want" "$work/headers.got" >&2 || fail "installed headers differ from the modules' include/ trees"

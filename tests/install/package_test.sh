@@ -114,7 +114,7 @@ for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake 
          surfgradDependencies.cmake FindOpenSubdiv.cmake; do
     has dev "$cfgdir$f"
 done
-for m in base shaders bump features mesh image gl parity render normalmap; do
+for m in base shaders bump features mesh image gl parity render normalmap bake; do
     has dev "$(dirname "$(dirname "$cfgdir")")/libsurfgrad_$m.a"
 done
 # Data: every file of data/ is in the package.
@@ -185,7 +185,7 @@ zcat "$man" >"$work/surfgrad.1"
 grep -q '^\.TH SURFGRAD 1 ' "$work/surfgrad.1" || fail "surfgrad.1: no .TH SURFGRAD 1"
 # Generated from the help texts: every command the CLI lists has a section
 # holding its own --help (its first line).
-for c in render shader mesh normalmap features eval selftest; do
+for c in render shader mesh normalmap features bake eval selftest; do
     grep -qx ".SS \"surfgrad $c\"" "$work/surfgrad.1" || fail "surfgrad.1: no section for surfgrad $c"
 done
 grep -qx '.SS "surfgrad mesh info"' "$work/surfgrad.1" || fail "surfgrad.1: no section for surfgrad mesh info"
