@@ -36,7 +36,7 @@ set(_may_surfgrad_normalmap surfgrad_bump surfgrad_mesh surfgrad_image surfgrad_
 set(_may_surfgrad_bake surfgrad_normalmap ${_may_surfgrad_normalmap})
 # The Python module binds the libraries users call (not the viewer, not
 # the parity harness).
-set(_may_surfgrad_python surfgrad_render surfgrad_normalmap ${_may_surfgrad_render})
+set(_may_surfgrad_python surfgrad_render surfgrad_normalmap surfgrad_bake ${_may_surfgrad_render})
 # Executables that exercise one module: what they must not reach.
 set(_mesh_only_regex "^(fuzz_mesh_|fuzz_mikktspace|mesh_tests|mesh_tangents_tests|mesh_bench$|tangents_bench$)")
 set(_mesh_only_forbidden surfgrad_features surfgrad_bump surfgrad_gl surfgrad_parity surfgrad_image

@@ -1,6 +1,12 @@
 // Table 11's error measure: adaptive_error.h.
 #include "adaptive_error.h"
 
+#include <chrono>
+#include <cstdio>
+
+#include "render_internal.h"
+#include "surfgrad/patch_basis.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -99,6 +105,75 @@ DirectionDiff compareDirections(const sg::render::Image& a, const sg::render::Im
     }
     std::sort(d.deg.begin(), d.deg.end());
     return d;
+}
+
+// ---- The tessellated-asset view ------------------------------------------
+
+// A scene of one mesh `file` (absolute path or data:) on the tessellated-
+// asset example's camera at `distanceScale`, 960x540, one plain material;
+// `extra`: more fields of the mesh (e.g. its displacement).
+std::string meshScene(const std::string& file, float distanceScale, const std::string& subdivision,
+                      const std::string& extra) {
+    char cam[160];
+    std::snprintf(
+        cam, sizeof cam,
+        R"("camera": {"azimuth_deg": 105, "elevation_deg": 14, "distance_scale": %g, "fov_deg": 32})",
+        double(distanceScale));
+    return R"({"output": {"width": 960, "height": 540}, )" + std::string(cam) +
+           R"(, "materials": [{"name": "m"}], "meshes": [{"file": ")" + file +
+           R"(", "subdivision": )" + subdivision + extra + "}]}";
+}
+
+sg::render::Scene sceneOf(const std::string& json) {
+    return sg::render::parseScene(json, "table_adaptive.json", ".");
+}
+
+std::string adaptiveJson(int isolation, float pixelsPerEdge) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  R"({"mode": "adaptive", "isolation": %d, "pixels_per_edge": %g})", isolation,
+                  double(pixelsPerEdge));
+    return buf;
+}
+
+// The displaced surface as the CPU tessellator makes it for `view`
+// (sg::render::detail::tessellatePatches with the scene's displacement, the evaluation
+// stage's math), with area-weighted vertex normals of its triangles (the
+// displaced surface's, for SurfaceReference's tangent planes).
+sg::mesh::RenderMesh displacedMesh(const sg::render::Scene& s, const sg::render::SceneAssets& a,
+                                   const sg::render::View& view, float pixelsPerEdge,
+                                   double* cpuMs) {
+    const sg::render::MeshInstance& inst = s.meshes[0];
+    sg::render::detail::PatchDisplacement disp;
+    sg::render::detail::PatchDisplacement* dp = nullptr;
+    if (inst.displacement) {
+        disp.map.image = a.textures.at(inst.displacement->map.key()).get();
+        disp.scale = inst.displacement->scale;
+        disp.uvSet = inst.displacement->uvSet;
+        dp = &disp;
+    }
+    const float focalPx = sg::glsl::sgPatchFocalPx(view.proj[1][1], float(view.height));
+    const auto t0 = std::chrono::steady_clock::now();
+    sg::mesh::RenderMesh m =
+        sg::render::detail::tessellatePatches(
+            *a.meshes[0].patches, sg::render::modelToCameraRelative(inst.transform, view.cameraPos),
+            focalPx, pixelsPerEdge, dp)
+            .mesh;
+    if (cpuMs)
+        *cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                     .count();
+    std::vector<glm::dvec3> n(m.positions.size(), glm::dvec3(0.0));
+    for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+        const glm::dvec3 a0(m.positions[m.indices[t]]), a1(m.positions[m.indices[t + 1]]),
+            a2(m.positions[m.indices[t + 2]]);
+        const glm::dvec3 fn = glm::cross(a1 - a0, a2 - a0); // twice the area, along the normal
+        for (int k = 0; k < 3; ++k) n[m.indices[t + size_t(k)]] += fn;
+    }
+    for (size_t v = 0; v < n.size(); ++v) {
+        const double len = glm::length(n[v]);
+        m.normals[v] = len > 0.0 ? glm::vec3(n[v] / len) : m.normals[v];
+    }
+    return m;
 }
 
 } // namespace study

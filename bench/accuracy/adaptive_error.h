@@ -10,6 +10,9 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
+
+#include "surfgrad/render.h"
 #include "surfgrad/render/image.h"
 #include "surfgrad/render/view.h"
 #include "surfgrad/render_mesh.h"
@@ -71,5 +74,27 @@ struct DirectionDiff {
 };
 DirectionDiff compareDirections(const sg::render::Image& a, const sg::render::Image& b,
                                 const sg::render::Image& baseA, const sg::render::Image& baseB);
+
+// ---- The tessellated-asset view (tables 11 and 13) ----------------------
+
+// A scene of one mesh `file` (absolute path or data:) on the tessellated-
+// asset example's camera at `distanceScale`, 960x540, one plain material;
+// `subdivision`: the mesh's subdivision object; `extra`: more fields of
+// the mesh (e.g. its displacement, starting with a comma).
+std::string meshScene(const std::string& file, float distanceScale, const std::string& subdivision,
+                      const std::string& extra = "");
+// The scene parsed from that text (relative paths against ".").
+sg::render::Scene sceneOf(const std::string& json);
+// {"mode": "adaptive", "isolation": I, "pixels_per_edge": P}.
+std::string adaptiveJson(int isolation, float pixelsPerEdge);
+
+// The displaced surface of the scene's first (adaptive) mesh as the CPU
+// tessellator makes it for `view` (detail::tessellatePatches with the
+// scene's displacement, the evaluation stage's math), with area-weighted
+// vertex normals of its triangles (the displaced surface's, for
+// SurfaceReference's tangent planes). cpuMs: the tessellation's time.
+sg::mesh::RenderMesh displacedMesh(const sg::render::Scene& s, const sg::render::SceneAssets& a,
+                                   const sg::render::View& view, float pixelsPerEdge,
+                                   double* cpuMs = nullptr);
 
 } // namespace study

@@ -16,5 +16,6 @@ void bindSubdivision(py::module_& m); // Subdivider, LimitFrame, blendshapes
 void bindRender(py::module_& m);      // render() and eval() of the shared functions
 void bindNormalmap(py::module_& m);   // surfgrad.normalmap
 void bindFeatures(py::module_& m);    // surfgrad.features
+void bindBake(py::module_& m);        // bake(): a high mesh onto a cage's limit surface
 
 } // namespace sg::python

@@ -44,6 +44,7 @@ PYBIND11_MODULE(_surfgrad, m) {
     bindTangents(m);
     bindSubdivision(m);
     bindRender(m);
+    bindBake(m);
     auto normalmap = m.def_submodule(
         "normalmap", "Height-field-correct normal-map operations (Loviscach 2008) on numpy grids.");
     bindNormalmap(normalmap);
