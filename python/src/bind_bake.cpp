@@ -95,9 +95,9 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
     out["displacement"] = gridArray(std::move(r.displacement));
     out["object_normal"] = gridArray(std::move(r.objectNormal));
     out["tangent_slopes"] = gridArray(std::move(r.tangentSlopes));
-    out["position"] = gridArray(std::move(r.limitPosition));
-    out["normal"] = gridArray(std::move(r.limitNormal));
-    out["tangent"] = gridArray(std::move(r.limitTangent));
+    out["position"] = gridArray(std::move(r.basePosition));
+    out["normal"] = gridArray(std::move(r.baseNormal));
+    out["tangent"] = gridArray(std::move(r.baseTangent));
     out["stats"] = statsDict(r.stats);
     return out;
 }
@@ -105,10 +105,10 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
 } // namespace
 
 void bindBake(py::module_& m) {
-    m.def("bake", &bake, py::arg("high"), py::arg("cage"), py::kw_only(),
-          py::arg("size") = 1024, py::arg("uv_set") = 0, py::arg("surface") = "limit",
-          py::arg("level") = 2, py::arg("isolation") = 4, py::arg("max_distance") = 0.0,
-          py::arg("pad") = 8, py::arg("threads") = 0, py::arg("memory_budget") = 0,
+    m.def("bake", &bake, py::arg("high"), py::arg("cage"), py::kw_only(), py::arg("size") = 1024,
+          py::arg("uv_set") = 0, py::arg("surface") = "limit", py::arg("level") = 2,
+          py::arg("isolation") = 4, py::arg("max_distance") = 0.0, py::arg("pad") = 8,
+          py::arg("threads") = 0, py::arg("memory_budget") = 0,
           R"(Bake `high` (RenderMesh) onto the limit surface of `cage` (PolygonMesh,
 Catmull-Clark; surface="refined": the cage refined to `level` and triangulated,
 MikkTSpace frames) in the layout of its UV set `uv_set` (docs/bake.md).

@@ -84,7 +84,7 @@ TEST_P(BakeBoth, PlaneUnderAHeightFieldGivesItsHeightsAndSlopes) {
         for (int i = 0; i < r.width; ++i) {
             ASSERT_TRUE(hit(r, i, j)) << i << "," << j;
             const double x = (i + 0.5) / r.width, y = (j + 0.5) / r.height;
-            const glm::vec3 p = r.limitPosition.at(i, j);
+            const glm::vec3 p = r.basePosition.at(i, j);
             worstPos =
                 std::max({worstPos, std::abs(p.x - x), std::abs(p.y - y), double(std::abs(p.z))});
             worstH = std::max(worstH, std::abs(r.displacement.at(i, j) - planeHeight(x, y)));
@@ -158,7 +158,7 @@ SphereCheck checkSphere(const BakeResult& r, double radius, double sagTol) {
     for (int j = 0; j < r.height; ++j)
         for (int i = 0; i < r.width; ++i) {
             if (!hit(r, i, j)) continue;
-            const glm::dvec3 p(r.limitPosition.at(i, j)), nn(r.limitNormal.at(i, j));
+            const glm::dvec3 p(r.basePosition.at(i, j)), nn(r.baseNormal.at(i, j));
             // |p + t n|^2 = R^2: the root nearest 0.
             const double b = glm::dot(p, nn), cc = glm::dot(p, p) - radius * radius;
             const double disc = std::sqrt(b * b - cc);
@@ -243,11 +243,11 @@ TEST(BakeCube, TexelsOnBothSidesOfASeamMeetOnTheSurface) {
                 if (ni < 0 || nj < 0 || ni >= r.width || nj >= r.height || !hit(r, ni, nj)) {
                     border = true;
                 } else {
-                    texelLen = std::max(texelLen, glm::length(r.limitPosition.at(i, j) -
-                                                              r.limitPosition.at(ni, nj)));
+                    texelLen = std::max(
+                        texelLen, glm::length(r.basePosition.at(i, j) - r.basePosition.at(ni, nj)));
                 }
             }
-            if (border) edge.push_back({r.limitPosition.at(i, j), chart(i, j)});
+            if (border) edge.push_back({r.basePosition.at(i, j), chart(i, j)});
         }
     ASSERT_GT(edge.size(), 100u);
     float worst = 0;

@@ -85,9 +85,9 @@ BakeResult emptyResult(int w, int h) {
     r.state = normalmap::Grid<uint8_t>(w, h, uint8_t(TexelState::Empty));
     r.displacement = normalmap::ScalarField(w, h, 0.0f);
     r.objectNormal = normalmap::NormalField(w, h, glm::vec3(0.0f));
-    r.limitPosition = normalmap::NormalField(w, h, glm::vec3(0.0f));
-    r.limitNormal = normalmap::NormalField(w, h, glm::vec3(0.0f));
-    r.limitTangent = normalmap::Grid<glm::vec4>(w, h, glm::vec4(0.0f));
+    r.basePosition = normalmap::NormalField(w, h, glm::vec3(0.0f));
+    r.baseNormal = normalmap::NormalField(w, h, glm::vec3(0.0f));
+    r.baseTangent = normalmap::Grid<glm::vec4>(w, h, glm::vec4(0.0f));
     return r;
 }
 
@@ -115,9 +115,9 @@ struct TexelBaker {
         if (c.otherPatch != UINT32_MAX)
             o.overlap = glm::length(base.at(c.otherPatch, c.otherUv, target).pos - b.pos) >
                         0.5f * b.texelLength;
-        r.limitPosition.at(i, j) = b.pos;
-        r.limitNormal.at(i, j) = b.normal;
-        r.limitTangent.at(i, j) = b.tangent;
+        r.basePosition.at(i, j) = b.pos;
+        r.baseNormal.at(i, j) = b.normal;
+        r.baseTangent.at(i, j) = b.tangent;
         const detail::RayHit up = high.cast(b.pos, b.normal, tFar);
         const detail::RayHit down = high.cast(b.pos, -b.normal, tFar);
         // The hit nearest the base point; outwards on a tie.
@@ -255,14 +255,14 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
     // The limit frame's grids lend themselves to the conversion (moved,
     // not copied: hundreds of MB at 4096^2) and come back after it.
     normalmap::TexelFrames frames;
-    frames.normal = std::move(r.limitNormal);
-    frames.tangent = std::move(r.limitTangent);
+    frames.normal = std::move(r.baseNormal);
+    frames.tangent = std::move(r.baseTangent);
     frames.covered = normalmap::Grid<uint8_t>(s.width, s.height, 0);
     for (size_t k = 0; k < r.state.v.size(); ++k)
         frames.covered.v[k] = r.state.v[k] == uint8_t(TexelState::Hit) ? 1 : 0;
     r.tangentSlopes = normalmap::tangentFromObject(r.objectNormal, frames);
-    r.limitNormal = std::move(frames.normal);
-    r.limitTangent = std::move(frames.tangent);
+    r.baseNormal = std::move(frames.normal);
+    r.baseTangent = std::move(frames.tangent);
     pad(r, s.padTexels);
     st.secondsPad = secondsSince(t);
     return r;

@@ -138,9 +138,9 @@ struct BakeResult {
     // unit normal and the tangent frame of tangentSlopes (Limit: the limit
     // tangent of sg/patch/limit_tangent.glsl; Refined: the interpolated
     // MikkTSpace tangent, not normalised, sign in w).
-    normalmap::NormalField limitPosition;
-    normalmap::NormalField limitNormal;
-    normalmap::Grid<glm::vec4> limitTangent;
+    normalmap::NormalField basePosition;
+    normalmap::NormalField baseNormal;
+    normalmap::Grid<glm::vec4> baseTangent;
     BakeStats stats;
 };
 
