@@ -128,12 +128,17 @@ struct BakeStats {
 
 struct BakeResult {
     int width = 0, height = 0;
-    normalmap::Grid<uint8_t> state;      // TexelState per texel
-    normalmap::ScalarField displacement; // object units along the limit normal (0 where empty/miss)
-    normalmap::NormalField
-        objectNormal; // the high mesh's unit normal, object space ((0,0,0) empty/miss)
-    normalmap::DerivField
-        tangentSlopes; // the same normal as slopes (dh/ds, dh/dt) in the limit frame
+    normalmap::Grid<uint8_t> state; // TexelState per texel
+    // Object units along the base surface's unit normal, + outwards (0
+    // where empty or missed, before padding).
+    normalmap::ScalarField displacement;
+    // The high mesh's unit normal at the hit, object space ((0,0,0) where
+    // empty or missed, before padding).
+    normalmap::NormalField objectNormal;
+    // The same normal as slopes (dh/ds, dh/dt) in the base frame
+    // (baseTangent, baseNormal): normalmap::normalsFromSlopes gives the
+    // tangent-space map.
+    normalmap::DerivField tangentSlopes;
     // The base surface at each texel (Empty, Padded: zero): the point, its
     // unit normal and the tangent frame of tangentSlopes (Limit: the limit
     // tangent of sg/patch/limit_tangent.glsl; Refined: the interpolated
