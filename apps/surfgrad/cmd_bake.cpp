@@ -1,7 +1,7 @@
 // `surfgrad bake HIGH CAGE [--size N|WxH] [--uv-set K] [--isolation N]
 //  [--surface limit|refined [--level N]] [--distance D] [--pad N] [--threads N] [--displacement
 //  OUT.exr
-//  [--displacement-bits half|float]]
+//  [--displacement-bits half|float|16]]
 //  [--normal OUT.png [--encoding E] [--green gl|dx] [--bits B]]
 //  [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
@@ -9,9 +9,11 @@
 // triangulated, with MikkTSpace frames) in the layout of its UV set K
 // (apps/bake, surfgrad/bake.h). Each
 // output is optional, at least one is required:
-//  - displacement: one float channel, object units along the limit normal
-//    (positive outwards): what the scene's "displacement" reads with
-//    "scale": 1 (.exr or .tif; integer images cannot hold signed heights);
+//  - displacement: one channel, object units along the limit normal
+//    (positive outwards): float in .exr/.tif (the scene's "displacement"
+//    reads it with "scale": 1), or a 16-bit .png of (height - offset) /
+//    scale with the scale and offset printed (and in --json and the file's
+//    metadata), read with "scale" and "offset";
 //  - normal: the tangent-space normal map in the limit frame (the frame of
 //    "tangents": "limit" and of the per-pixel frame on that surface), in
 //    the encodings of `surfgrad normalmap` (default rgb, +green up);
@@ -25,7 +27,9 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -48,7 +52,7 @@ namespace fs = std::filesystem;
 struct BakeArgs {
     std::string high, cage, size = "1024";
     std::string displacement, normal, objectNormal, mask;
-    std::string encoding = "rgb", green = "gl", bits, displacementBits = "float";
+    std::string encoding = "rgb", green = "gl", bits, displacementBits;
     std::string surface = "limit";
     bake::BakeSettings settings;
     bool json = false, progress = false;
@@ -89,15 +93,39 @@ void checkOutputs(const BakeArgs& a) {
             throw CliError("bake: " + o + " is given for two outputs");
         io::checkOutputPath(o, {a.high, a.cage});
     }
-    if (a.displacementBits != "half" && a.displacementBits != "float")
-        throw CliError("bake: --displacement-bits " + a.displacementBits +
-                       ": expected half or float");
     if (!a.displacement.empty()) {
         const std::string ext = lowerExtension(a.displacement);
-        if (ext != ".exr" && ext != ".tif" && ext != ".tiff")
+        const bool png = ext == ".png";
+        if (!png && ext != ".exr" && ext != ".tif" && ext != ".tiff")
             throw CliError("bake: --displacement " + a.displacement +
-                           ": signed heights need a float image (.exr, .tif)");
+                           ": expected .exr or .tif (float heights) or .png (16-bit, with a "
+                           "scale and an offset)");
+        const std::string& b = a.displacementBits;
+        if (png ? !(b.empty() || b == "16") : !(b.empty() || b == "half" || b == "float"))
+            throw CliError("bake: --displacement-bits " + b + ": " + ext +
+                           (png ? " holds 16-bit samples" : " holds half or float samples"));
     }
+}
+
+// A 16-bit PNG holds (h - offset) / scale in [0, 1]: offset the lowest
+// displacement, scale the range (1 where all are equal). A scene reads it
+// back with "scale" and "offset" (docs/scene.md), to within half a step of
+// 1 / 65535 of the range.
+struct UnsignedHeights {
+    float scale = 1.0f, offset = 0.0f;
+};
+UnsignedHeights unsignedHeights(const bake::BakeResult& r) {
+    float lo = INFINITY, hi = -INFINITY;
+    for (size_t k = 0; k < r.state.v.size(); ++k)
+        if (r.state.v[k] != uint8_t(bake::TexelState::Empty)) {
+            lo = std::min(lo, r.displacement.v[k]);
+            hi = std::max(hi, r.displacement.v[k]);
+        }
+    UnsignedHeights u;
+    if (!(lo <= hi)) return u;
+    u.offset = lo;
+    u.scale = hi > lo ? hi - lo : 1.0f;
+    return u;
 }
 
 std::vector<std::pair<std::string, std::string>> attrs(const std::string& what, const BakeArgs& a) {
@@ -108,11 +136,40 @@ std::vector<std::pair<std::string, std::string>> attrs(const std::string& what, 
             {"surfgrad:uvSet", std::to_string(a.settings.uvSet)}};
 }
 
-void writeOutputs(const BakeArgs& a, const bake::BakeResult& r) {
-    if (!a.displacement.empty()) {
+void writeDisplacement(const BakeArgs& a, const bake::BakeResult& r, nlohmann::json& report) {
+    auto at = attrs("displacement", a);
+    if (lowerExtension(a.displacement) != ".png") {
         nm::writeImage(a.displacement, nm::imageFromScalar(r.displacement, 0.0f, 1.0f, true),
-                       nm::parseSampleType(a.displacementBits), attrs("displacement", a));
+                       a.displacementBits == "half" ? nm::SampleType::Half : nm::SampleType::Float,
+                       at);
+        report["displacement_scale"] = 1.0;
+        report["displacement_offset"] = 0.0;
+        return;
     }
+    const UnsignedHeights u = unsignedHeights(r);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.9g", double(u.scale));
+    at.emplace_back("surfgrad:scale", buf);
+    const std::string scale = buf;
+    std::snprintf(buf, sizeof buf, "%.9g", double(u.offset));
+    at.emplace_back("surfgrad:offset", buf);
+    nm::ScalarField unit = r.displacement;
+    for (size_t k = 0; k < unit.v.size(); ++k)
+        unit.v[k] = r.state.v[k] == uint8_t(bake::TexelState::Empty)
+                        ? 0.0f
+                        : std::clamp((unit.v[k] - u.offset) / u.scale, 0.0f, 1.0f);
+    nm::writeImage(a.displacement, nm::imageFromScalar(unit, 0.0f, 1.0f, false),
+                   nm::SampleType::U16, at);
+    report["displacement_scale"] = u.scale;
+    report["displacement_offset"] = u.offset;
+    std::fprintf(stderr,
+                 "surfgrad: note: bake: %s holds (height - offset) / scale: read it with "
+                 "\"displacement\": {\"map\": \"%s\", \"scale\": %s, \"offset\": %s}\n",
+                 a.displacement.c_str(), a.displacement.c_str(), scale.c_str(), buf);
+}
+
+void writeOutputs(const BakeArgs& a, const bake::BakeResult& r, nlohmann::json& report) {
+    if (!a.displacement.empty()) writeDisplacement(a, r, report);
     if (!a.normal.empty()) {
         nm::MapFormat f;
         f.encoding = nm::parseEncoding(a.encoding);
@@ -199,7 +256,8 @@ void runBake(BakeArgs a) {
         std::fprintf(stderr, "bake: %s %3d%%\n", stage, pct);
     };
     const bake::BakeResult r = bake::bake(cage, high, a.settings, a.cage, a.high, progress);
-    writeOutputs(a, r);
+    nlohmann::json report;
+    writeOutputs(a, r, report);
     const bake::BakeStats& s = r.stats;
     if (s.misses > 0)
         std::fprintf(stderr,
@@ -213,6 +271,7 @@ void runBake(BakeArgs a) {
                      s.overlapTexels, a.settings.uvSet);
     if (a.json) {
         nlohmann::json j = statsJson(s);
+        j.update(report);
         j["seconds"]["read"] = readSeconds;
         std::cout << j.dump(2) << "\n";
     } else {
@@ -247,7 +306,8 @@ void addBakeCommand(CLI::App& app, int& status) {
     c->add_option("--displacement", a->displacement,
                   "Displacement map (.exr/.tif, object units along the limit normal)");
     c->add_option("--displacement-bits", a->displacementBits,
-                  "Samples of the displacement map: float (default) or half");
+                  "Samples of the displacement map: float (default) or half for .exr/.tif; "
+                  "16 for .png (written as (height - offset) / scale, both printed)");
     c->add_option("--normal", a->normal, "Tangent-space normal map in the limit frame");
     c->add_option("--encoding", a->encoding, "--normal's encoding: rgb, rg, ag, signed, deriv");
     c->add_option("--green", a->green, "--normal's green: gl (+v up, default) or dx");

@@ -149,6 +149,7 @@ sg::mesh::RenderMesh displacedMesh(const sg::render::Scene& s, const sg::render:
     if (inst.displacement) {
         disp.map.image = a.textures.at(inst.displacement->map.key()).get();
         disp.scale = inst.displacement->scale;
+        disp.offset = inst.displacement->offset;
         disp.uvSet = inst.displacement->uvSet;
         dp = &disp;
     }

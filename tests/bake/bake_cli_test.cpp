@@ -80,10 +80,11 @@ TEST(BakeCli, WrongCommandLinesExitWithStatus2) {
     const Files& f = files();
     const std::string base = "bake " + q(f.high) + " " + q(f.cage);
     for (const std::string& args :
-         {std::string(" --size 64"),                  // nothing to write
-          " --size 0 --mask " + q(f.dir / "m.png"),   // bad size
-          " --size 64x --mask " + q(f.dir / "m.png"), // bad size
-          " --displacement " + q(f.dir / "d.png"),    // integer displacement
+         {std::string(" --size 64"),                                             // nothing to write
+          " --size 0 --mask " + q(f.dir / "m.png"),                              // bad size
+          " --size 64x --mask " + q(f.dir / "m.png"),                            // bad size
+          " --displacement " + q(f.dir / "d.jpg"),                               // no height format
+          " --displacement " + q(f.dir / "d.png") + " --displacement-bits half", // png: 16-bit
           " --mask " + q(f.dir / "m.png") + " --normal " + q(f.dir / "m.png"), // same output twice
           " --mask " + q(f.dir / "m.png") + " --threads 0"}) {
         const CommandResult r = runSurfgrad(base + args);
@@ -118,14 +119,18 @@ TEST(BakeCli, BadInputExitsWithStatus1NamingTheFile) {
 // Bake, then render: the cube cage drawn as adaptive patches displaced by
 // the baked map and shaded by the baked normal map (limit tangents) must
 // look like the sphere it was baked from, drawn directly from its own
-// triangles and normals, seen by the same camera.
-TEST(BakeCli, BakedMapsRenderBackTheHighMesh) {
+// triangles and normals, seen by the same camera. `dispName` picks the
+// displacement's file type: float EXR (scale 1) or a 16-bit PNG (the scale
+// and offset the bake reports).
+void roundTrip(const std::string& dispName) {
     const Files& f = files();
-    const fs::path disp = f.dir / "rt_disp.exr", normal = f.dir / "rt_normal.png";
+    const fs::path disp = f.dir / dispName, normal = f.dir / "rt_normal.png";
     CommandResult r = runSurfgrad("bake " + q(f.high) + " " + q(f.cage) +
                                   " --size 512 --distance 0.5 --displacement " + q(disp) +
-                                  " --normal " + q(normal) + " --bits 16");
+                                  " --normal " + q(normal) + " --bits 16 --json");
     ASSERT_EQ(r.exitCode, 0) << r.output();
+    const nlohmann::json report = nlohmann::json::parse(r.out);
+    const double scale = report["displacement_scale"], offset = report["displacement_offset"];
     const std::string camera =
         R"("output": {"width": 160, "height": 160},
            "camera": {"position": [1.7, 1.3, 2.1], "target": [0, 0, 0], "fov_deg": 36},
@@ -141,7 +146,8 @@ TEST(BakeCli, BakedMapsRenderBackTheHighMesh) {
             << f.cage.string() << R"(",
                       "subdivision": {"mode": "adaptive", "isolation": 4, "pixels_per_edge": 1},
                       "displacement": {"map": ")"
-            << disp.string() << R"(", "scale": 1.0, "uv_set": 0},
+            << disp.string() << R"(", "scale": )" << scale << R"(, "offset": )" << offset
+            << R"(, "uv_set": 0},
                       "tangents": "limit", "material": "m"}]})";
     }
     {
@@ -174,19 +180,27 @@ TEST(BakeCli, BakedMapsRenderBackTheHighMesh) {
     ASSERT_GT(both, 5000u);
     std::sort(angles.begin(), angles.end());
     const double p50 = angles[angles.size() / 2], p99 = angles[angles.size() * 99 / 100];
-    std::printf("round trip: %zu pixels, normal p50 %.3g p99 %.3g deg, %zu pixels covered by one "
-                "only\n",
-                both, p50, p99, onlyOne);
+    std::printf("round trip (%s): %zu pixels, normal p50 %.3g p99 %.3g deg, %zu pixels covered "
+                "by one only\n",
+                dispName.c_str(), both, p50, p99, onlyOne);
     // Measured on llvmpipe: p50 0.005, p99 0.2 degrees, no pixel covered
-    // by one image only. What remains: the tessellated surface's chords at
-    // 1 pixel per edge, bilinear filtering of both maps (the 16-bit normal
-    // map's quantisation is 1e-3 degrees), padding at the charts' seams.
-    // Bounds: 10x the median and 5x the p99 (another GPU's interpolation
-    // and derivatives); the silhouettes (about 380 pixels) may differ by a
+    // by one image only, EXR and PNG alike (the PNG's step is 1/65535 of
+    // the heights' range, 3e-6 object units here). What remains: the tessellated surface's chords
+    // at 1 pixel per edge, bilinear filtering of both maps (the 16-bit normal map's quantisation is
+    // 1e-3 degrees), padding at the charts' seams. Bounds: 10x the median and 5x the p99 (another
+    // GPU's interpolation and derivatives); the silhouettes (about 380 pixels) may differ by a
     // pixel in one place in ten.
     EXPECT_LE(p50, 0.05);
     EXPECT_LE(p99, 1.0);
     EXPECT_LE(onlyOne, 40u);
+}
+
+TEST(BakeCli, BakedMapsRenderBackTheHighMesh) {
+    roundTrip("rt_disp.exr");
+}
+
+TEST(BakeCli, BakedSixteenBitPngRendersBackWithItsScaleAndOffset) {
+    roundTrip("rt_disp.png");
 }
 
 } // namespace

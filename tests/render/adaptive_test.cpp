@@ -783,6 +783,33 @@ TEST(AdaptiveDisplacement, GpuMatchesCpuReference) {
     EXPECT_GT(moved.onlyOne, size_t(50));
 }
 
+// The displacement's "offset" (object units added to scale * height, for
+// unsigned maps such as the bake's 16-bit PNG): the GPU and the CPU move
+// the same points by the same distance (the parity bounds above hold), and
+// the offset moves the silhouette (coverage differs from the same scene
+// without it).
+TEST(AdaptiveDisplacement, OffsetMovesBothRenderersAlike) {
+    const int w = 320, h = 240;
+    Scene s = sceneFromJson(displacedScene(
+        R"({"map": )" + kBumpsHeight + R"(, "scale": 0.03, "offset": -0.02})", "", w, h));
+    SceneAssets a = loadAssets(s);
+    const View v = makeView(s, a, 0, 0, Aov::Normal);
+    Image g;
+    const NormalAgreement r = gpuVsCpuNormals(s, a, v, "displaced with an offset", &g);
+    // The single worst pixel follows where the displaced silhouette and the
+    // map's steepest texels fall (llvmpipe's fixed-point filter weights
+    // against the CPU's): 0.04 degrees on GpuMatchesCpuReference's surface,
+    // 0.115 on this one (its p50 and p99 are the same, 0.000 and 0.020);
+    // bound 0.25.
+    expectParity(r, size_t(w * h / 10), 0.25);
+    Scene z = sceneFromJson(
+        displacedScene(R"({"map": )" + kBumpsHeight + R"(, "scale": 0.03})", "", w, h));
+    SceneAssets az = loadAssets(z);
+    NormalAgreement moved = compareNormals(g, gpu().render(z, az, v));
+    std::printf("offset -0.02 vs none: %zu px differ in coverage\n", moved.onlyOne);
+    EXPECT_GT(moved.onlyOne, size_t(50));
+}
+
 // Pinholes: an uncovered pixel whose four neighbours are covered, inside
 // the cow at 2 pixels per tessellated edge, counted on the displaced
 // surface and on the same draw with scale 0 (same programs, zero offset).

@@ -370,6 +370,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                 SG_ASSERT(it != assets.textures.end(), "displacement maps load with the assets");
                 disp.map.image = it->second.get();
                 disp.scale = inst.displacement->scale;
+                disp.offset = inst.displacement->offset;
                 disp.uvSet = inst.displacement->uvSet;
             }
             detail::TessellatedPatches t = detail::tessellatePatches(

@@ -471,6 +471,7 @@ struct GlRenderer::Impl {
                                   it != assets.textures.end() ? texture(it->second.get()) : 0);
                 glUniform1i(gp.loc("uDispMap"), GLint(unit));
                 glUniform1f(gp.loc("uDispScale"), mi.displacement->scale);
+                glUniform1f(gp.loc("uDispOffset"), mi.displacement->offset);
             }
             glPatchParameteri(GL_PATCH_VERTICES, arr.pointsPerPatch);
             // gl_VertexID counts from `first`: the vertex stage's patch

@@ -315,7 +315,7 @@ glm::vec3 displace(const sg::mesh::AdaptivePatches& ap, const PatchDisplacement&
                                        focalPx, pixelsPerEdge, float(std::max(size.x, size.y)));
     const float height = G::textureLod(d.map, st, lod).x;
     const glm::vec3 n = G::sgSafeNormalize(glm::cross(du, dv), glm::vec3(0.0f, 0.0f, 1.0f));
-    return G::sgDisplacePoint(pos, n, height, d.scale);
+    return G::sgDisplacePoint(pos, n, height, d.scale, d.offset);
 }
 
 // The evaluation stage's "limit" tangents of one point (SG_VTX_TANGENT_k,

@@ -118,7 +118,7 @@ glm::mat3 normalMatrix(const glm::dmat4& model);
 // positions and limit normals per point, counter-clockwise triangles;
 // patchAov per point: the patch AOV of its patch (Aov::Patch).
 // With a displacement (dispMap non-null): mesh.positions are displaced
-// along the limit normal by dispScale * dispMap.r at UV set dispUvSet
+// along the limit normal by dispScale * dispMap.r + offset at UV set dispUvSet
 // (sg/patch/displace.glsl, as the evaluation stage), and framePositions
 // holds the undisplaced ones (the frame's, Mikkelsen 2019 section 2.5).
 // tangentMask bit k: UV set k gets its "limit" tangents (vertexTangents[k],
@@ -133,6 +133,7 @@ struct TessellatedPatches {
 struct PatchDisplacement {
     sg::glsl::sampler2D map;
     float scale = 0.0f;
+    float offset = 0.0f; // object units added to scale * height
     int uvSet = 0;
 };
 TessellatedPatches tessellatePatches(const sg::mesh::AdaptivePatches& patches,

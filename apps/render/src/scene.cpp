@@ -413,12 +413,13 @@ struct Parser : detail::SceneReader {
                 n.failField("displacement", "applies to meshes with \"subdivision\": "
                                             "{\"mode\": \"adaptive\"} only");
             Node d = n.child("displacement");
-            d.allowOnly({"map", "scale", "uv_set"});
+            d.allowOnly({"map", "scale", "offset", "uv_set"});
             if (!d.has("map")) d.fail("missing \"map\" (the height map)");
             Displacement disp;
             disp.fieldPath = d.path();
             disp.map = texture(d.child("map"), Wrap::Repeat);
             disp.scale = float(d.num("scale", 0.01, -kHuge, kHuge));
+            disp.offset = float(d.num("offset", 0.0, -kHuge, kHuge));
             disp.uvSet = d.integer("uv_set", 0, 0, kMaxUvSets - 1);
             m.displacement = disp;
         }

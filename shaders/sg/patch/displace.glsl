@@ -36,11 +36,12 @@ SG_FN float sgDisplaceLod(vec3 dPdu, vec3 dPdv, vec2 dUVdu, vec2 dUVdv, float di
     return min(log2(texels), 32.0f);
 }
 
-// The displaced point: pos moved along the unit normal by scale * height
-// (object units). A non-finite offset (a non-finite height or scale) leaves
-// the point where it is.
-SG_FN vec3 sgDisplacePoint(vec3 pos, vec3 unitNormal, float height, float scale) {
-    float d = scale * height;
+// The displaced point: pos moved along the unit normal by scale * height +
+// offset (object units; offset lets an unsigned image, e.g. a 16-bit PNG,
+// hold signed heights). A non-finite distance (a non-finite height, scale
+// or offset) leaves the point where it is.
+SG_FN vec3 sgDisplacePoint(vec3 pos, vec3 unitNormal, float height, float scale, float offset) {
+    float d = scale * height + offset;
     if (!(abs(d) <= 3.0e38f)) d = 0.0f;
     return pos + d * unitNormal;
 }

@@ -31,7 +31,8 @@
 //                           (binding 2; tests of parity and crack-freedom).
 //   SG_UV_COUNT (0..4)      UV sets written (as surface_vs.glsl).
 //   SG_DISPLACEMENT (0/1)   displace along the limit normal by uDispScale
-//                           times the red channel of uDispMap at UV set
+//                           times the red channel of uDispMap plus
+//                           uDispOffset, the map read at UV set
 //   SG_DISP_UV_SET (0..3)   SG_DISP_UV_SET (sg/patch/displace.glsl): vRelPos
 //                           stays undisplaced (the fragment stage's frame,
 //                           Mikkelsen 2019 section 2.5), vRelPosLit and
@@ -165,6 +166,7 @@ void patchUvDeriv(uint p, uint set, vec2 faceUv, out vec2 st, out vec2 du, out v
 #if SG_DISPLACEMENT
 uniform sampler2D uDispMap;
 uniform float uDispScale;
+uniform float uDispOffset;
 uniform float uFocalPx;
 uniform float uPixelsPerEdge;
 out vec3 vRelPosLit; // displaced, camera-relative (lighting)
@@ -302,7 +304,7 @@ void main() {
                                           uPixelsPerEdge, float(max(dispSize.x, dispSize.y)));
     float height = textureLod(uDispMap, dispSt, dispLod).r;
     precise vec3 dispN = sgSafeNormalize(cross(du, dv), vec3(0.0, 0.0, 1.0));
-    precise vec3 posLit = sgDisplacePoint(pos, dispN, height, uDispScale);
+    precise vec3 posLit = sgDisplacePoint(pos, dispN, height, uDispScale, uDispOffset);
     vRelPosLit = (uModelRel * vec4(posLit, 1.0)).xyz;
     gl_Position = uViewProjRel * vec4(vRelPosLit, 1.0);
 #else

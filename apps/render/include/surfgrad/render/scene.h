@@ -208,6 +208,7 @@ struct DerivedUvSet {
 struct Displacement {
     TextureSource map;
     float scale = 0.0f;
+    float offset = 0.0f; // object units: the distance is scale * map.r + offset
     int uvSet = 0;
     std::string fieldPath; // e.g. "meshes[0].displacement"
 };
