@@ -8,30 +8,13 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "grids.h"
 #include "mesh_objects.h"
 #include "surfgrad/bake.h"
 
 namespace sg::python {
 
 namespace {
-
-namespace nm = sg::normalmap;
-
-template <class T>
-py::array gridArray(nm::Grid<T>&& g) {
-    constexpr py::ssize_t c = sizeof(T) / sizeof(float);
-    std::vector<py::ssize_t> shape{g.height, g.width};
-    if (c > 1) shape.push_back(c);
-    auto* heap = new std::vector<T>(std::move(g.v));
-    py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-    return py::array_t<float>(shape, reinterpret_cast<const float*>(heap->data()), owner);
-}
-
-py::array stateArray(nm::Grid<uint8_t>&& g) {
-    auto* heap = new std::vector<uint8_t>(std::move(g.v));
-    py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<uint8_t>*>(p); });
-    return py::array_t<uint8_t>({py::ssize_t(g.height), py::ssize_t(g.width)}, heap->data(), owner);
-}
 
 py::dict statsDict(const sg::bake::BakeStats& s) {
     py::dict d;
@@ -91,13 +74,13 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
                            high.name.empty() ? "high" : high.name);
     }
     py::dict out;
-    out["state"] = stateArray(std::move(r.state));
-    out["displacement"] = gridArray(std::move(r.displacement));
-    out["object_normal"] = gridArray(std::move(r.objectNormal));
-    out["tangent_slopes"] = gridArray(std::move(r.tangentSlopes));
-    out["position"] = gridArray(std::move(r.basePosition));
-    out["normal"] = gridArray(std::move(r.baseNormal));
-    out["tangent"] = gridArray(std::move(r.baseTangent));
+    out["state"] = gridToArray(std::move(r.state));
+    out["displacement"] = gridToArray(std::move(r.displacement));
+    out["object_normal"] = gridToArray(std::move(r.objectNormal));
+    out["tangent_slopes"] = gridToArray(std::move(r.tangentSlopes));
+    out["position"] = gridToArray(std::move(r.basePosition));
+    out["normal"] = gridToArray(std::move(r.baseNormal));
+    out["tangent"] = gridToArray(std::move(r.baseTangent));
     out["stats"] = statsDict(r.stats);
     return out;
 }

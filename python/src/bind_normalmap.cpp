@@ -22,6 +22,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "grids.h"
 #include "mesh_objects.h"
 #include "surfgrad/normalmap.h"
 #include "surfgrad/render_mesh.h"
@@ -57,20 +58,6 @@ nm::Grid<T> gridArg(py::handle obj, const char* arg) {
     const auto* p = reinterpret_cast<const T*>(a.data());
     g.v.assign(p, p + size_t(g.width) * size_t(g.height));
     return g;
-}
-
-template <class T>
-py::array gridToArray(nm::Grid<T>&& g) {
-    constexpr py::ssize_t c = sizeof(T) / sizeof(float);
-    std::vector<py::ssize_t> shape{g.height, g.width};
-    if (c > 1) shape.push_back(c);
-    if constexpr (std::is_same_v<T, float>) {
-        return moveToArray(std::move(g.v), shape);
-    } else {
-        auto* heap = new std::vector<T>(std::move(g.v));
-        py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<T>*>(p); });
-        return py::array_t<float>(shape, reinterpret_cast<const float*>(heap->data()), owner);
-    }
 }
 
 template <class A, class B>
