@@ -78,9 +78,17 @@ void parseSize(const std::string& text, bake::BakeSettings& s) {
                        ", at most " + std::to_string(bake::kMaxBakeTexels) + " texels");
 }
 
+// How each image output is written: decided and checked against its file
+// type by checkOutputs, before any work.
+struct OutputTypes {
+    nm::MapFormat normalFormat;
+    nm::SampleType normal = nm::SampleType::U8, objectNormal = nm::SampleType::U8,
+                   mask = nm::SampleType::U8;
+};
+
 // The outputs, checked before any work: extensions that can hold the data,
 // distinct paths, writable folders, never an input.
-void checkOutputs(const BakeArgs& a) {
+OutputTypes checkOutputs(const BakeArgs& a) {
     std::vector<std::string> outs;
     for (const std::string* o : {&a.displacement, &a.normal, &a.objectNormal, &a.mask})
         if (!o->empty()) outs.push_back(*o);
@@ -105,6 +113,22 @@ void checkOutputs(const BakeArgs& a) {
             throw CliError("bake: --displacement-bits " + b + ": " + ext +
                            (png ? " holds 16-bit samples" : " holds half or float samples"));
     }
+    OutputTypes t;
+    if (!a.normal.empty()) {
+        t.normalFormat.encoding = nm::parseEncoding(a.encoding);
+        t.normalFormat.green = nm::parseGreen(a.green);
+        t.normal = nm::mapSampleType(a.normal, t.normalFormat, a.bits);
+    }
+    if (!a.objectNormal.empty()) {
+        t.objectNormal = a.bits.empty() ? nm::defaultSampleType(a.objectNormal, false)
+                                        : nm::parseSampleType(a.bits);
+        nm::checkWritable(a.objectNormal, t.objectNormal);
+    }
+    if (!a.mask.empty()) {
+        t.mask = nm::defaultSampleType(a.mask, false);
+        nm::checkWritable(a.mask, t.mask);
+    }
+    return t;
 }
 
 // A 16-bit PNG holds (h - offset) / scale in [0, 1]: offset the lowest
@@ -168,20 +192,17 @@ void writeDisplacement(const BakeArgs& a, const bake::BakeResult& r, nlohmann::j
                  a.displacement.c_str(), a.displacement.c_str(), scale.c_str(), buf);
 }
 
-void writeOutputs(const BakeArgs& a, const bake::BakeResult& r, nlohmann::json& report) {
+void writeOutputs(const BakeArgs& a, const OutputTypes& t, const bake::BakeResult& r,
+                  nlohmann::json& report) {
     if (!a.displacement.empty()) writeDisplacement(a, r, report);
     if (!a.normal.empty()) {
-        nm::MapFormat f;
-        f.encoding = nm::parseEncoding(a.encoding);
-        f.green = nm::parseGreen(a.green);
-        const bool needFloat = f.encoding == nm::Encoding::Signed;
-        const nm::SampleType type = a.bits.empty() ? nm::defaultSampleType(a.normal, needFloat)
-                                                   : nm::parseSampleType(a.bits);
-        const bool isFloat = type == nm::SampleType::Half || type == nm::SampleType::Float;
+        const bool isFloat = t.normal == nm::SampleType::Half || t.normal == nm::SampleType::Float;
         auto at = attrs("normal", a);
-        at.emplace_back("surfgrad:encoding", std::string(nm::encodingName(f.encoding)));
+        at.emplace_back("surfgrad:encoding",
+                        std::string(nm::encodingName(t.normalFormat.encoding)));
         at.emplace_back("surfgrad:green", a.green);
-        nm::writeImage(a.normal, nm::encodeSlopes(r.tangentSlopes, f, isFloat), type, at);
+        nm::writeImage(a.normal, nm::encodeSlopes(r.tangentSlopes, t.normalFormat, isFloat),
+                       t.normal, at);
     }
     if (!a.objectNormal.empty()) {
         nm::Image img{r.width, r.height, 3, false, {}};
@@ -189,17 +210,13 @@ void writeOutputs(const BakeArgs& a, const bake::BakeResult& r, nlohmann::json& 
         for (size_t k = 0; k < r.objectNormal.v.size(); ++k)
             for (int c = 0; c < 3; ++c)
                 img.texels[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
-        nm::writeImage(a.objectNormal, img,
-                       a.bits.empty() ? nm::defaultSampleType(a.objectNormal, false)
-                                      : nm::parseSampleType(a.bits),
-                       attrs("object-normal", a));
+        nm::writeImage(a.objectNormal, img, t.objectNormal, attrs("object-normal", a));
     }
     if (!a.mask.empty()) {
         nm::ScalarField m(r.width, r.height);
         static constexpr float kLevel[4] = {0.0f, 1.0f, 0.5f, 0.25f}; // by TexelState
         for (size_t k = 0; k < m.v.size(); ++k) m.v[k] = kLevel[r.state.v[k] & 3u];
-        nm::writeImage(a.mask, nm::imageFromScalar(m, 0.0f, 1.0f, false),
-                       nm::defaultSampleType(a.mask, false), attrs("mask", a));
+        nm::writeImage(a.mask, nm::imageFromScalar(m, 0.0f, 1.0f, false), t.mask, attrs("mask", a));
     }
 }
 
@@ -229,13 +246,9 @@ void runBake(BakeArgs a) {
         a.settings.surface = bake::BakeSurface::Refined;
     else
         throw CliError("bake: --surface " + a.surface + ": expected limit or refined");
-    // Encodings are parsed before the bake, so a typo costs no time.
-    if (!a.normal.empty()) {
-        nm::parseEncoding(a.encoding);
-        nm::parseGreen(a.green);
-        if (!a.bits.empty()) nm::parseSampleType(a.bits);
-    }
-    checkOutputs(a);
+    // Encodings and sample types are checked before the bake, so a typo
+    // costs no time.
+    const OutputTypes types = checkOutputs(a);
     const auto threadLimit = limitThreads(a.settings.threads);
     const auto t0 = std::chrono::steady_clock::now();
     mesh::PolygonMesh cage = mesh::loadPolygonMesh(a.cage);
@@ -257,7 +270,7 @@ void runBake(BakeArgs a) {
     };
     const bake::BakeResult r = bake::bake(cage, high, a.settings, a.cage, a.high, progress);
     nlohmann::json report;
-    writeOutputs(a, r, report);
+    writeOutputs(a, types, r, report);
     const bake::BakeStats& s = r.stats;
     if (s.misses > 0)
         std::fprintf(stderr,

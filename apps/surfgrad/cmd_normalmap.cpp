@@ -161,16 +161,8 @@ OutFormat outFormat(const Options& o, const nm::MapFormat& in) {
     if (!o.to.empty()) f.format.encoding = nm::parseEncoding(o.to);
     if (!o.toGreen.empty()) f.format.green = nm::parseGreen(o.toGreen);
     f.format.derivRange = o.range;
-    const bool needFloat = f.format.encoding == nm::Encoding::Signed;
-    f.type =
-        o.bits.empty() ? nm::defaultSampleType(o.output, needFloat) : nm::parseSampleType(o.bits);
+    f.type = nm::mapSampleType(o.output, f.format, o.bits);
     const bool isFloat = f.type == nm::SampleType::Half || f.type == nm::SampleType::Float;
-    const std::string ext = lowerExtension(o.output);
-    if (needFloat && (!isFloat || ext == ".png" || ext == ".tga")) {
-        throw io::InputError(
-            o.output, "encoding",
-            "signed normals need a float output (.exr, or .tif with --bits float)");
-    }
     if (f.format.encoding == nm::Encoding::Deriv && !isFloat) {
         // Integer derivative maps hold +-range at full scale.
         if (!(o.range > 0.0f)) throw CliError("normalmap: --range must be positive");

@@ -98,6 +98,15 @@ TEST(BakeCli, BadInputExitsWithStatus1NamingTheFile) {
     // The output over an input.
     CommandResult r = runSurfgrad("bake " + q(f.high) + " " + q(f.cage) + " --mask " + q(f.cage));
     EXPECT_EQ(r.exitCode, 1) << r.output();
+    // Outputs their file type cannot hold, refused before the bake (signed
+    // normals in 8-bit samples once aborted on a contract in the encoder).
+    for (const std::string& out :
+         {" --normal " + q(f.dir / "s.tif") + " --encoding signed --bits 8",
+          " --normal " + q(f.dir / "s.tga") + " --bits 16", " --mask " + q(f.dir / "m.bmp")}) {
+        r = runSurfgrad("bake " + q(f.high) + " " + q(f.cage) + " --size 32" + out);
+        EXPECT_EQ(r.exitCode, 1) << out << ": " << r.output();
+        EXPECT_NE(r.err.find(f.dir.string()), std::string::npos) << out << ": " << r.err;
+    }
     // A cage without UVs.
     const fs::path noUv = f.dir / "nouv.obj";
     mesh::PolygonMesh cage = cubeCage();

@@ -161,8 +161,7 @@ SampleType parseSampleType(std::string_view text) {
     throw io::InputError("--bits", std::string(text), "expected 8, 16, half or float");
 }
 
-void writeImage(const fs::path& path, const Image& image, SampleType type,
-                const std::vector<std::pair<std::string, std::string>>& attributes) {
+void checkWritable(const fs::path& path, SampleType type) {
     const std::string e = lowerExt(path);
     const bool isInt = type == SampleType::U8 || type == SampleType::U16;
     bool ok = false;
@@ -175,6 +174,27 @@ void writeImage(const fs::path& path, const Image& image, SampleType type,
                              std::string("cannot write ") + typeName(type) + " samples as \"" + e +
                                  "\" (png: 8/16-bit, tga: 8-bit, tif: any, exr: half/float)");
     }
+}
+
+SampleType mapSampleType(const fs::path& path, const MapFormat& format, std::string_view bits) {
+    const bool needFloat = format.encoding == Encoding::Signed;
+    const SampleType type =
+        bits.empty() ? defaultSampleType(path, needFloat) : parseSampleType(bits);
+    const bool isFloat = type == SampleType::Half || type == SampleType::Float;
+    const std::string e = lowerExt(path);
+    if (needFloat && (!isFloat || e == ".png" || e == ".tga")) {
+        throw io::InputError(
+            path.string(), "encoding",
+            "signed normals need a float output (.exr, or .tif with --bits float)");
+    }
+    checkWritable(path, type);
+    return type;
+}
+
+void writeImage(const fs::path& path, const Image& image, SampleType type,
+                const std::vector<std::pair<std::string, std::string>>& attributes) {
+    checkWritable(path, type);
+    const std::string e = lowerExt(path);
     const std::vector<float> buf = fileOrder(image, type);
     io::writeAtomically(path, [&](const fs::path& tmp) {
         auto out = OIIO::ImageOutput::create(tmp.string());

@@ -125,6 +125,11 @@ Image readImage(const std::filesystem::path& path, SampleType* sampleType = null
 void writeImage(const std::filesystem::path& path, const Image& image, SampleType type,
                 const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
+// Throws InputError (path, "", reason) when writeImage could not write
+// samples of `type` as path's extension: commands check their outputs
+// with it before long work starts.
+void checkWritable(const std::filesystem::path& path, SampleType type);
+
 // The sample type an output gets by default: U8 for .png/.tga, U16 for
 // .tif/.tiff, Float for .exr; an integer type is replaced by Float when
 // `needFloat` (the data is not in [0, 1], e.g. raw heights or slopes).
@@ -160,6 +165,14 @@ struct MapFormat {
 Encoding parseEncoding(std::string_view text);
 Green parseGreen(std::string_view text);
 std::string_view encodingName(Encoding e);
+
+// The sample type of a map output in `format`: parseSampleType(bits), or
+// defaultSampleType when bits is empty (float for signed normals). Throws
+// InputError naming `path` when signed normals would be written as integer
+// samples or to .png/.tga (element "encoding"; they hold negative values)
+// and when the extension cannot hold the type (checkWritable).
+SampleType mapSampleType(const std::filesystem::path& path, const MapFormat& format,
+                         std::string_view bits);
 
 // The slopes of a tangent-space map: normal encodings through listing 4
 // (sgTspaceNormalToDeriv: from x and y, |d| <= 128 per component), derivative
