@@ -39,8 +39,7 @@ public:
     BaseSample at(uint32_t prim, glm::vec2 estimate, glm::vec2 target) const override {
         BaseSample b;
         float residual = 0.0f;
-        const glm::vec2 uv = patches_.invertUv(prim, target, estimate, residual);
-        const SurfaceSample s = patches_.sample(prim, uv);
+        const SurfaceSample s = patches_.invertUv(prim, target, estimate, residual);
         b.pos = s.pos;
         b.normal = G::sgSafeNormalize(glm::cross(s.dPdu, s.dPdv), glm::vec3(0.0f, 0.0f, 1.0f));
         int resolved = 0;

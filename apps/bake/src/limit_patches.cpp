@@ -62,33 +62,31 @@ SurfaceSample LimitPatches::sample(uint32_t p, glm::vec2 patchUv) const {
     return out;
 }
 
-glm::vec2 LimitPatches::invertUv(uint32_t p, glm::vec2 target, glm::vec2 start,
-                                 float& residual) const {
+SurfaceSample LimitPatches::invertUv(uint32_t p, glm::vec2 target, glm::vec2 start,
+                                     float& residual) const {
     // sgPatchBasis returns the derivatives with respect to the patch's own
     // square times 2^depth (its ptex-face scale): a step solved in those
     // units is 2^depth times longer in the patch's square.
     const float toPatch = float(1 << G::sgPatchDepth(ap_.params[p].y));
     glm::vec2 uv = glm::clamp(start, glm::vec2(0.0f), glm::vec2(1.0f));
-    const SurfaceSample first = sample(p, uv);
-    glm::vec2 err = target - first.st;
+    SurfaceSample s = sample(p, uv);
+    glm::vec2 err = target - s.st;
     // Converged: the UV is within rounding of the chart's own scale.
     const float stScale = std::max({std::abs(target.x), std::abs(target.y), 1.0f});
     const float tol = 1e-7f * stScale;
-    glm::vec2 du = first.dSTdu, dv = first.dSTdv;
     for (int k = 0; k < kNewtonSteps && std::max(std::abs(err.x), std::abs(err.y)) > tol; ++k) {
+        const glm::vec2 du = s.dSTdu, dv = s.dSTdv;
         const float det = du.x * dv.y - dv.x * du.y;
         const float size = std::max(glm::dot(du, du), glm::dot(dv, dv));
         if (!(std::abs(det) > 1e-6f * size)) break; // singular chart: keep the iterate
         const glm::vec2 stepFace((dv.y * err.x - dv.x * err.y) / det,
                                  (du.x * err.y - du.y * err.x) / det);
         uv = glm::clamp(uv + stepFace * toPatch, glm::vec2(0.0f), glm::vec2(1.0f));
-        const SurfaceSample s = sample(p, uv);
+        s = sample(p, uv);
         err = target - s.st;
-        du = s.dSTdu;
-        dv = s.dSTdv;
     }
     residual = glm::length(err);
-    return uv;
+    return s;
 }
 
 } // namespace sg::bake::detail

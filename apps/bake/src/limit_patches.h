@@ -42,12 +42,13 @@ public:
     glm::vec2 st(uint32_t p, glm::vec2 patchUv) const;
     // Position, UV and both sets of derivatives at patchUv of patch p.
     SurfaceSample sample(uint32_t p, glm::vec2 patchUv) const;
-    // The patchUv of patch p whose UV is `target`, by Newton's method from
-    // `start` (at most kNewtonSteps steps, each clamped to the patch's
-    // square; stops when the UV is within 1e-7 of the UV set's scale or the
-    // chart is singular). Returns the last iterate; `residual` receives
+    // The point of patch p whose UV is `target`, by Newton's method on
+    // patchUv from `start` (at most kNewtonSteps steps, each clamped to the
+    // patch's square; stops when the UV is within 1e-7 of the UV set's
+    // scale or the chart is singular). Returns the sample at the last
+    // iterate (no second evaluation); `residual` receives
     // |st(result) - target|.
-    glm::vec2 invertUv(uint32_t p, glm::vec2 target, glm::vec2 start, float& residual) const;
+    SurfaceSample invertUv(uint32_t p, glm::vec2 target, glm::vec2 start, float& residual) const;
     static constexpr int kNewtonSteps = 4;
 
 private:
