@@ -14,8 +14,8 @@
 // adaptive patch's square, isolation 3 as the example): the ray from the
 // point along +- its limit normal into the high mesh gives the true
 // displacement t and the true normal n; the drawn surface there has
-// displacement h = the map sampled bilinearly at the point's UV (as a
-// texture unit does, texel centres at (i + 0.5) / size), and the shading
+// displacement h = the map sampled bilinearly at the point's UV (the
+// renderer's CPU texture sampling, surfgrad/glsl_texture.h), and the shading
 // normal from the normal map (slopes sampled bilinearly, then
 // sgMikktsBasis in the limit frame, sgSurfgradFromTBN, sgResolve: the
 // renderer's path). Columns: |h - t| as a fraction of the sculpt's depth
@@ -38,6 +38,7 @@
 #include "limit_patches.h"
 #include "surfgrad/bake.h"
 #include "surfgrad/bump.h"
+#include "surfgrad/glsl_texture.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/normalmap.h"
 #include "surfgrad/patch_basis.h"
@@ -55,27 +56,21 @@ using Clock = std::chrono::steady_clock;
 constexpr float kDepth = 0.012f; // the sculpt's displacement scale (object units)
 constexpr int kIsolation = 3;    // as examples/tessellated-asset
 
-float sampleBilinear(const nm::Image& img, glm::vec2 st) {
-    // Row 0 of the image is its bottom row (normalmap::Image).
-    const float x = std::clamp(st.x * float(img.width) - 0.5f, 0.0f, float(img.width - 1));
-    const float y = std::clamp(st.y * float(img.height) - 0.5f, 0.0f, float(img.height - 1));
-    const int x0 = int(x), y0 = int(y);
-    const int x1 = std::min(x0 + 1, img.width - 1), y1 = std::min(y0 + 1, img.height - 1);
-    const float fx = x - float(x0), fy = y - float(y0);
-    auto at = [&](int i, int j) { return img.at(i, j, 0); };
-    return (at(x0, y0) * (1 - fx) + at(x1, y0) * fx) * (1 - fy) +
-           (at(x0, y1) * (1 - fx) + at(x1, y1) * fx) * fy;
+// A grid (float or vec2) or one channel of an image as a texture with
+// clamped edges, sampled by the renderer's own GL rules (textureLod at
+// level 0: bilinear, texel centres at (i + 0.5) / size, row 0 at t = 0).
+sg::render::TextureImage texture(const nm::Grid<float>& g) {
+    std::vector<glm::vec4> t(g.v.size());
+    for (size_t k = 0; k < t.size(); ++k) t[k] = glm::vec4(g.v[k], 0.0f, 0.0f, 1.0f);
+    return sg::render::makeTexture(g.width, g.height, std::move(t), sg::render::Wrap::Clamp);
 }
-
-template <class T>
-T gridBilinear(const nm::Grid<T>& g, glm::vec2 st) {
-    const float x = std::clamp(st.x * float(g.width) - 0.5f, 0.0f, float(g.width - 1));
-    const float y = std::clamp(st.y * float(g.height) - 0.5f, 0.0f, float(g.height - 1));
-    const int x0 = int(x), y0 = int(y);
-    const int x1 = std::min(x0 + 1, g.width - 1), y1 = std::min(y0 + 1, g.height - 1);
-    const float fx = x - float(x0), fy = y - float(y0);
-    return (g.at(x0, y0) * (1 - fx) + g.at(x1, y0) * fx) * (1 - fy) +
-           (g.at(x0, y1) * (1 - fx) + g.at(x1, y1) * fx) * fy;
+sg::render::TextureImage texture(const nm::Grid<glm::vec2>& g) {
+    std::vector<glm::vec4> t(g.v.size());
+    for (size_t k = 0; k < t.size(); ++k) t[k] = glm::vec4(g.v[k], 0.0f, 1.0f);
+    return sg::render::makeTexture(g.width, g.height, std::move(t), sg::render::Wrap::Clamp);
+}
+glm::vec4 bilinear(const sg::render::TextureImage& tex, glm::vec2 st) {
+    return G::textureLod(G::sampler2D{&tex}, st, 0.0f);
 }
 
 // Spot's limit surface at `level`, each refined vertex moved once along
@@ -88,12 +83,14 @@ sg::mesh::RenderMesh sculpt(const sg::mesh::PolygonMesh& cage, int level) {
     sg::mesh::Subdivider sub(cage, s);
     sg::mesh::RenderMesh m = sub.renderMesh();
     const std::vector<uint32_t>& toRefined = sub.renderToRefinedVertex();
-    const nm::Image height =
+    const nm::Image image =
         nm::readImage(std::filesystem::path(SURFGRAD_EXAMPLE_DATA_DIR) / "spot_height.png");
+    const sg::render::TextureImage height =
+        texture(nm::scalarFromImage(image, 0, 1.0f, "spot_height.png"));
     std::vector<float> moveOf(sub.refined().vertexCount(), NAN);
     for (size_t v = 0; v < m.vertexCount(); ++v)
         if (std::isnan(moveOf[toRefined[v]]))
-            moveOf[toRefined[v]] = kDepth * sampleBilinear(height, m.uvSets[0][v]);
+            moveOf[toRefined[v]] = kDepth * bilinear(height, m.uvSets[0][v]).x;
     for (size_t v = 0; v < m.vertexCount(); ++v)
         m.positions[v] += moveOf[toRefined[v]] * m.normals[v];
     m.normals.clear();
@@ -147,6 +144,8 @@ struct Row {
 
 Row measure(const std::string& method, const sg::bake::BakeResult& r, const std::vector<Sample>& xs,
             double ms) {
+    const sg::render::TextureImage displacement = texture(r.displacement),
+                                   slopeMap = texture(r.tangentSlopes);
     Row row;
     row.method = method;
     row.size = r.width;
@@ -156,9 +155,10 @@ Row measure(const std::string& method, const sg::bake::BakeResult& r, const std:
     he.reserve(xs.size());
     ne.reserve(xs.size());
     for (const Sample& x : xs) {
-        const float h = gridBilinear(r.displacement, x.st);
+        const float h = bilinear(displacement, x.st).x;
         he.push_back(std::abs(double(h) - double(x.trueT)) / kDepth);
-        const glm::vec2 slopes = gridBilinear(r.tangentSlopes, x.st);
+        const glm::vec4 sl = bilinear(slopeMap, x.st);
+        const glm::vec2 slopes(sl.x, sl.y);
         glm::vec3 tang, bino;
         G::sgMikktsBasis(x.normal, x.tangent, tang, bino);
         const G::SgFrame f =
