@@ -72,10 +72,8 @@ void parseSize(const std::string& text, bake::BakeSettings& s) {
     } catch (const std::exception&) {
         throw CliError("bake: --size " + text + ": expected N or WxH (texels)");
     }
-    if (s.width < 1 || s.height < 1 || s.width > bake::kMaxBakeSide ||
-        s.height > bake::kMaxBakeSide || size_t(s.width) * size_t(s.height) > bake::kMaxBakeTexels)
-        throw CliError("bake: --size " + text + ": sides 1.." + std::to_string(bake::kMaxBakeSide) +
-                       ", at most " + std::to_string(bake::kMaxBakeTexels) + " texels");
+    if (const std::string why = bake::bakeSizeProblem(s.width, s.height); !why.empty())
+        throw CliError("bake: --size " + text + ": " + why);
 }
 
 // How each image output is written: decided and checked against its file

@@ -31,12 +31,8 @@ double secondsSince(Clock::time_point t) {
 }
 
 void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const std::string& file) {
-    if (s.width < 1 || s.height < 1 || s.width > kMaxBakeSide || s.height > kMaxBakeSide ||
-        size_t(s.width) * size_t(s.height) > kMaxBakeTexels)
-        throw io::InputError(file, "size",
-                             std::to_string(s.width) + "x" + std::to_string(s.height) +
-                                 ": expected sides 1.." + std::to_string(kMaxBakeSide) +
-                                 " and at most " + std::to_string(kMaxBakeTexels) + " texels");
+    if (const std::string why = bakeSizeProblem(s.width, s.height); !why.empty())
+        throw io::InputError(file, "size", why);
     const uint64_t budget = s.memoryBudget ? s.memoryBudget : mesh::defaultSubdivisionBudget();
     const uint64_t bytes = uint64_t(s.width) * uint64_t(s.height) * kBakeBytesPerTexel;
     if (bytes > budget)
@@ -269,6 +265,15 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
 }
 
 } // namespace
+
+std::string bakeSizeProblem(int width, int height) {
+    if (width >= 1 && height >= 1 && width <= kMaxBakeSide && height <= kMaxBakeSide &&
+        size_t(width) * size_t(height) <= kMaxBakeTexels)
+        return {};
+    return std::to_string(width) + "x" + std::to_string(height) + ": expected sides 1.." +
+           std::to_string(kMaxBakeSide) + " and at most " + std::to_string(kMaxBakeTexels) +
+           " texels";
+}
 
 BakeResult bake(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
                 const BakeSettings& settings, const std::string& cageFile,

@@ -56,6 +56,11 @@ namespace sg::bake {
 inline constexpr int kMaxBakeSide = 16384;
 inline constexpr size_t kMaxBakeTexels = size_t(1) << 26;
 
+// Empty when a width x height map is within those limits; otherwise a
+// sentence saying why not (bake() refuses such a size, the CLI checks its
+// --size with it first).
+std::string bakeSizeProblem(int width, int height);
+
 // The surface the bake measures from (ray origins and directions, the
 // frame of the tangent-space map).
 enum class BakeSurface {
