@@ -2,8 +2,8 @@
 //  [--surface limit|refined [--level N]] [--distance D] [--pad N] [--threads N] [--displacement
 //  OUT.exr
 //  [--displacement-bits half|float|16]]
-//  [--normal OUT.png [--encoding E] [--green gl|dx] [--bits B]]
-//  [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
+//  [--normal OUT.png] [--residual-normal OUT.png] [--encoding E] [--green gl|dx]
+//  [--bits B] [--object-normal OUT.png] [--mask OUT.png] [--json] [--progress]`:
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
 // of CAGE (or, --surface refined, onto CAGE refined to level N and
 // triangulated, with MikkTSpace frames) in the layout of its UV set K
@@ -17,6 +17,10 @@
 //  - normal: the tangent-space normal map in the limit frame (the frame of
 //    "tangents": "limit" and of the per-pixel frame on that surface), in
 //    the encodings of `surfgrad normalmap` (default rgb, +green up);
+//  - residual-normal: the same frame and encodings, the residual after
+//    displacement (BakeResult::residualSlopes): the map to pair with a
+//    height layer of the displacement map (scale 1) so the two together
+//    give the high mesh's normal;
 //  - object-normal: the high mesh's normal in object space, 0.5 n + 0.5
 //    (what an object_normal layer with "space": "object" reads);
 //  - mask: one channel, 1 baked, 0.5 miss (its ray found no high mesh
@@ -51,7 +55,7 @@ namespace fs = std::filesystem;
 
 struct BakeArgs {
     std::string high, cage, size = "1024";
-    std::string displacement, normal, objectNormal, mask;
+    std::string displacement, normal, residualNormal, objectNormal, mask;
     std::string encoding = "rgb", green = "gl", bits, displacementBits;
     std::string surface = "limit";
     bake::BakeSettings settings;
@@ -80,19 +84,20 @@ void parseSize(const std::string& text, bake::BakeSettings& s) {
 // type by checkOutputs, before any work.
 struct OutputTypes {
     nm::MapFormat normalFormat;
-    nm::SampleType normal = nm::SampleType::U8, objectNormal = nm::SampleType::U8,
-                   mask = nm::SampleType::U8;
+    nm::SampleType normal = nm::SampleType::U8, residualNormal = nm::SampleType::U8,
+                   objectNormal = nm::SampleType::U8, mask = nm::SampleType::U8;
 };
 
 // The outputs, checked before any work: extensions that can hold the data,
 // distinct paths, writable folders, never an input.
 OutputTypes checkOutputs(const BakeArgs& a) {
     std::vector<std::string> outs;
-    for (const std::string* o : {&a.displacement, &a.normal, &a.objectNormal, &a.mask})
+    for (const std::string* o :
+         {&a.displacement, &a.normal, &a.residualNormal, &a.objectNormal, &a.mask})
         if (!o->empty()) outs.push_back(*o);
     if (outs.empty())
-        throw CliError("bake: nothing to write: give --displacement, --normal, --object-normal "
-                       "or --mask");
+        throw CliError("bake: nothing to write: give --displacement, --normal, "
+                       "--residual-normal, --object-normal or --mask");
     std::set<fs::path> seen;
     for (const std::string& o : outs) {
         if (!seen.insert(fs::weakly_canonical(o)).second)
@@ -112,11 +117,11 @@ OutputTypes checkOutputs(const BakeArgs& a) {
                            (png ? " holds 16-bit samples" : " holds half or float samples"));
     }
     OutputTypes t;
-    if (!a.normal.empty()) {
-        t.normalFormat.encoding = nm::parseEncoding(a.encoding);
-        t.normalFormat.green = nm::parseGreen(a.green);
-        t.normal = nm::mapSampleType(a.normal, t.normalFormat, a.bits);
-    }
+    t.normalFormat.encoding = nm::parseEncoding(a.encoding);
+    t.normalFormat.green = nm::parseGreen(a.green);
+    if (!a.normal.empty()) t.normal = nm::mapSampleType(a.normal, t.normalFormat, a.bits);
+    if (!a.residualNormal.empty())
+        t.residualNormal = nm::mapSampleType(a.residualNormal, t.normalFormat, a.bits);
     if (!a.objectNormal.empty()) {
         t.objectNormal = a.bits.empty() ? nm::defaultSampleType(a.objectNormal, false)
                                         : nm::parseSampleType(a.bits);
@@ -193,15 +198,18 @@ void writeDisplacement(const BakeArgs& a, const bake::BakeResult& r, nlohmann::j
 void writeOutputs(const BakeArgs& a, const OutputTypes& t, const bake::BakeResult& r,
                   nlohmann::json& report) {
     if (!a.displacement.empty()) writeDisplacement(a, r, report);
-    if (!a.normal.empty()) {
-        const bool isFloat = t.normal == nm::SampleType::Half || t.normal == nm::SampleType::Float;
-        auto at = attrs("normal", a);
+    const auto writeSlopes = [&](const std::string& path, const char* what,
+                                 const nm::DerivField& slopes, nm::SampleType type) {
+        const bool isFloat = type == nm::SampleType::Half || type == nm::SampleType::Float;
+        auto at = attrs(what, a);
         at.emplace_back("surfgrad:encoding",
                         std::string(nm::encodingName(t.normalFormat.encoding)));
         at.emplace_back("surfgrad:green", a.green);
-        nm::writeImage(a.normal, nm::encodeSlopes(r.tangentSlopes, t.normalFormat, isFloat),
-                       t.normal, at);
-    }
+        nm::writeImage(path, nm::encodeSlopes(slopes, t.normalFormat, isFloat), type, at);
+    };
+    if (!a.normal.empty()) writeSlopes(a.normal, "normal", r.tangentSlopes, t.normal);
+    if (!a.residualNormal.empty())
+        writeSlopes(a.residualNormal, "residual-normal", r.residualSlopes, t.residualNormal);
     if (!a.objectNormal.empty()) {
         nm::Image img{r.width, r.height, 3, false, {}};
         img.texels.resize(size_t(r.width) * size_t(r.height) * 3);
@@ -320,8 +328,13 @@ void addBakeCommand(CLI::App& app, int& status) {
                   "Samples of the displacement map: float (default) or half for .exr/.tif; "
                   "16 for .png (written as (height - offset) / scale, both printed)");
     c->add_option("--normal", a->normal, "Tangent-space normal map in the limit frame");
-    c->add_option("--encoding", a->encoding, "--normal's encoding: rgb, rg, ag, signed, deriv");
-    c->add_option("--green", a->green, "--normal's green: gl (+v up, default) or dx");
+    c->add_option("--residual-normal", a->residualNormal,
+                  "Tangent-space normal map of the residual after displacement (pair it with a "
+                  "height layer of the displacement map, scale 1)");
+    c->add_option("--encoding", a->encoding,
+                  "Encoding of the tangent-space maps: rgb, rg, ag, signed, deriv");
+    c->add_option("--green", a->green,
+                  "Green of the tangent-space maps: gl (+v up, default) or dx");
     c->add_option("--bits", a->bits, "Samples of the normal maps: 8, 16, half, float");
     c->add_option("--object-normal", a->objectNormal, "Object-space normal map (0.5 n + 0.5)");
     c->add_option("--mask", a->mask, "Texel states: 1 baked, 0.5 miss, 0.25 padding, 0 empty");

@@ -34,6 +34,7 @@
 #include <glm/geometric.hpp>
 
 #include "adaptive_error.h"
+#include "blender_anchor.h"
 #include "high_mesh.h"
 #include "limit_patches.h"
 #include "surfgrad/bake.h"
@@ -99,6 +100,38 @@ sg::mesh::RenderMesh sculpt(const sg::mesh::PolygonMesh& cage, int level) {
     return m;
 }
 
+// Table 13's anchor: Blender bakes onto the refined L3 rows' mesh.
+constexpr int kBlenderLevel = 3;
+const std::string kBlenderName = "Blender Cycles, refined L3";
+
+struct BlenderInputs {
+    std::string blender;       // empty: no Blender rows
+    std::filesystem::path dir; // temporary; removed after the table
+    std::filesystem::path low, high;
+};
+
+// The meshes Blender reads, as OBJ: the cage refined to kBlenderLevel and
+// triangulated exactly as the refined bake's base (Subdivider::renderMesh,
+// its normals and UV set 0) and the high mesh.
+BlenderInputs blenderInputs(const Options& o, const sg::mesh::PolygonMesh& cage,
+                            const sg::mesh::RenderMesh& high) {
+    BlenderInputs in;
+    if (o.quick) return in;
+    in.blender = findBlender();
+    if (in.blender.empty()) return in;
+    in.dir = std::filesystem::temp_directory_path() /
+             ("surfgrad_table_bake_blender_" + std::to_string(getpid()));
+    std::filesystem::create_directories(in.dir);
+    sg::mesh::SubdivisionSettings s;
+    s.level = kBlenderLevel;
+    s.options = cage.options;
+    in.low = in.dir / "low.obj";
+    in.high = in.dir / "high.obj";
+    sg::mesh::writeRenderMesh(in.low, sg::mesh::Subdivider(cage, s).renderMesh());
+    sg::mesh::writeRenderMesh(in.high, high);
+    return in;
+}
+
 struct Sample {
     glm::vec3 normal;  // unit limit normal
     glm::vec4 tangent; // limit tangent (sg/patch/limit_tangent.glsl)
@@ -142,14 +175,18 @@ struct Row {
     double ms = 0;
 };
 
-Row measure(const std::string& method, const sg::bake::BakeResult& r, const std::vector<Sample>& xs,
+// A bake's two maps drawn at every sample: `displacementMap` in object
+// units along the limit normal, `slopeMap` tangent-space slopes read in the
+// limit frame.
+Row measure(const std::string& method, const nm::ScalarField& displacementMap,
+            const nm::DerivField& slopeGrid, size_t chartTexels, const std::vector<Sample>& xs,
             double ms) {
-    const sg::render::TextureImage displacement = texture(r.displacement),
-                                   slopeMap = texture(r.tangentSlopes);
+    const sg::render::TextureImage displacement = texture(displacementMap),
+                                   slopeMap = texture(slopeGrid);
     Row row;
     row.method = method;
-    row.size = r.width;
-    row.chartTexels = r.stats.chartTexels;
+    row.size = displacementMap.width;
+    row.chartTexels = chartTexels;
     row.ms = ms;
     std::vector<double> he, ne;
     he.reserve(xs.size());
@@ -176,7 +213,7 @@ Row measure(const std::string& method, const sg::bake::BakeResult& r, const std:
 // the evaluation stage's math), against the high mesh, at several
 // tessellation densities.
 void tessellationTable(const Options& o, const sg::mesh::RenderMesh& high, int highLevel,
-                       const std::vector<std::pair<std::string, sg::bake::BakeResult>>& bakes) {
+                       const std::vector<std::pair<std::string, nm::ScalarField>>& bakes) {
     const SurfaceReference ref(high);
     const std::filesystem::path dir = std::filesystem::temp_directory_path() /
                                       ("surfgrad_table_bake_" + std::to_string(getpid()));
@@ -187,9 +224,9 @@ void tessellationTable(const Options& o, const sg::mesh::RenderMesh& high, int h
     t.title = "Table 13b: the displaced limit surface drawn from each bake's displacement map, "
               "screen-space distance to the high mesh on the tessellated-asset view, 960x540 (px)";
     t.header = {"bake surface", "map", "px/edge", "triangles", "p99 (px)", "max (px)"};
-    for (const auto& [name, r] : bakes) {
+    for (const auto& [name, displacement] : bakes) {
         const std::filesystem::path map = dir / "height.exr";
-        nm::writeImage(map, nm::imageFromScalar(r.displacement, 0.0f, 1.0f, true),
+        nm::writeImage(map, nm::imageFromScalar(displacement, 0.0f, 1.0f, true),
                        nm::SampleType::Float);
         for (float ppe : ppes) {
             const sg::render::Scene scene = sceneOf(meshScene(
@@ -201,7 +238,7 @@ void tessellationTable(const Options& o, const sg::mesh::RenderMesh& high, int h
             const float focalPx = G::sgPatchFocalPx(view.proj[1][1], float(view.height));
             const sg::mesh::RenderMesh m = displacedMesh(scene, assets, view, ppe);
             const ScreenError e = screenError(ref, m, view, focalPx);
-            t.add({name, std::to_string(r.width) + "^2", fmt(double(ppe), 0),
+            t.add({name, std::to_string(displacement.width) + "^2", fmt(double(ppe), 0),
                    std::to_string(m.triangleCount()), fmtErr(e.p99), fmtErr(e.max)});
         }
     }
@@ -240,8 +277,11 @@ void tableBake(const Options& o) {
         o.quick ? std::vector<int>{128} : std::vector<int>{256, 512, 1024};
     const int runs = o.quick ? 1 : 3;
     std::vector<Row> rows;
-    std::vector<std::pair<std::string, sg::bake::BakeResult>> largest; // for 13b
-    for (int size : sizes)
+    std::vector<std::pair<std::string, nm::ScalarField>> largest; // for 13b
+    const BlenderInputs anchor = blenderInputs(o, cage, high);
+    std::string anchorNotes, blenderVersion;
+    for (int size : sizes) {
+        size_t refinedL3Texels = 0; // Blender bakes the same layout
         for (const Method& m : methods) {
             sg::bake::BakeSettings s;
             s.width = s.height = size;
@@ -256,9 +296,32 @@ void tableBake(const Options& o) {
                 r = sg::bake::bake(cage, high, s);
                 ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
             }
-            rows.push_back(measure(m.name, r, xs, median(ms)));
-            if (size == sizes.back() && m.level != 2) largest.emplace_back(m.name, std::move(r));
+            rows.push_back(measure(m.name, r.displacement, r.tangentSlopes, r.stats.chartTexels, xs,
+                                   median(ms)));
+            if (m.level == kBlenderLevel) refinedL3Texels = r.stats.chartTexels;
+            if (size == sizes.back() && m.level != 2)
+                largest.emplace_back(m.name, std::move(r.displacement));
         }
+        if (anchor.blender.empty()) continue;
+        std::vector<BlenderBake> bs;
+        for (int k = 0; k < runs; ++k)
+            bs.push_back(blenderBake(anchor.blender, anchor.low, anchor.high, anchor.dir, size,
+                                     tFar, sg::bake::BakeSettings{}.padTexels));
+        std::vector<double> bakeMs, normalMs, processMs;
+        for (const BlenderBake& b : bs) {
+            bakeMs.push_back(b.bakeMs);
+            normalMs.push_back(b.normalMs);
+            processMs.push_back(b.processMs);
+        }
+        rows.push_back(measure(kBlenderName, bs.back().height, bs.back().slopes, refinedL3Texels,
+                               xs, median(bakeMs)));
+        anchorNotes += (anchorNotes.empty() ? "" : "; ") + std::to_string(size) +
+                       "^2: normal bake alone " + fmt(median(normalMs), 1) +
+                       " ms, whole blender process " + fmt(median(processMs), 1) + " ms";
+        blenderVersion = bs.back().version;
+        if (size == sizes.back()) largest.emplace_back(kBlenderName, std::move(bs.back().height));
+    }
+    if (!anchor.dir.empty()) std::filesystem::remove_all(anchor.dir);
 
     Table t;
     t.title = "Table 13: baking onto the limit surface vs onto the refined triangle mesh, Spot "
@@ -283,6 +346,23 @@ void tableBake(const Options& o) {
                       std::to_string(std::max(1u, std::thread::hardware_concurrency())) +
                       " here), median of " + std::to_string(runs) +
                       " runs; ms / Mtexel: per million chart texels.");
+    if (anchor.blender.empty())
+        t.notes.push_back(o.quick ? "Blender's rows are left out in quick mode."
+                                  : "Blender was not found (set SURFGRAD_BLENDER or put blender "
+                                    "on PATH): its rows are absent.");
+    else
+        t.notes.push_back(
+            kBlenderName + " (Blender " + blenderVersion +
+            ", bench/accuracy/blender_bake.py): Cycles \"Selected to Active\" onto the cage "
+            "refined to level 3 and triangulated (the refined L3 rows' mesh, written as OBJ), "
+            "cage extrusion " +
+            fmt(double(tFar), 2) + ", max ray distance " + fmt(2.0 * double(tFar), 2) +
+            ", 1 sample, margin 8; its normal map is in that mesh's MikkTSpace frames, its "
+            "displacement is dot(P_high - P_low, N_low) from two position bakes (emission) and "
+            "an object-space normal bake, as Cycles has no displacement pass for selected to "
+            "active; bake ms: the four bake calls (BVH build included, start-up and OBJ "
+            "reading excluded), median of " +
+            std::to_string(runs) + " runs; " + anchorNotes + ".");
     t.plot = {"bake", 7, 6, 0, {1}, true, true, "bake ms", "normal error p99, degrees"};
     t.print(o);
     tessellationTable(o, high, highLevel, largest);

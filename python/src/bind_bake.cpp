@@ -78,6 +78,7 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
     out["displacement"] = gridToArray(std::move(r.displacement));
     out["object_normal"] = gridToArray(std::move(r.objectNormal));
     out["tangent_slopes"] = gridToArray(std::move(r.tangentSlopes));
+    out["residual_slopes"] = gridToArray(std::move(r.residualSlopes));
     out["position"] = gridToArray(std::move(r.basePosition));
     out["normal"] = gridToArray(std::move(r.baseNormal));
     out["tangent"] = gridToArray(std::move(r.baseTangent));
@@ -99,7 +100,8 @@ size: N or (width, height). Returns a dict of (H, W[, C]) arrays, row 0 at the
 bottom: state (uint8: 0 empty, 1 hit, 2 miss, 3 padding), displacement (object
 units along the base normal, + outwards), object_normal (3), tangent_slopes (2,
 dh/ds and dh/dt in the base frame: normalmap.normals_from_slopes gives the
-tangent-space map), position, normal (3) and tangent (4: xyz, sign) of the base
+tangent-space map), residual_slopes (2, the residual after displacement in the
+same frame: pair it with a height layer of the displacement), position, normal (3) and tangent (4: xyz, sign) of the base
 surface at each texel; and stats (counts, seconds). Raises InputError for bad
 input (no UV set, a scheme the limit bake cannot take, no ray hitting `high`,
 ...) and ValueError for bad arguments.)");

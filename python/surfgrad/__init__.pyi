@@ -289,7 +289,8 @@ def bake(high: RenderMesh, cage: PolygonMesh, *, size: int | tuple[int, int] = 1
     refined to `level`, MikkTSpace frames) in UV set `uv_set`'s layout.
     Returns (H, W[, C]) arrays, row 0 at the bottom: state (uint8: 0 empty,
     1 hit, 2 miss, 3 padding), displacement, object_normal, tangent_slopes,
-    position, normal, tangent; and stats (dict of counts and seconds)."""
+    residual_slopes, position, normal, tangent; and stats (dict of counts and
+    seconds)."""
 
 # ---------------------------------------------------------------------------
 # Rendering and the shared functions

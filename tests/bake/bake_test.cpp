@@ -99,6 +99,75 @@ TEST_P(BakeBoth, PlaneUnderAHeightFieldGivesItsHeightsAndSlopes) {
     EXPECT_LE(worstSlope, slopeTol);
     std::printf("plane: position %.3g, height %.3g (tol %.3g), slope %.3g (tol %.3g)\n", worstPos,
                 worstH, heightTol, worstSlope, slopeTol);
+
+    // The residual after displacement: the high mesh IS the displaced
+    // plane, so a height layer of the displacement explains all of its
+    // normal and the residual is the error of the texel differences. With
+    // texel size D and each height off by at most heightTol: a central
+    // difference errs by D^2 / 6 max|h_xxx| (<= A (2 pi)^3 along an axis)
+    // + heightTol / D; a one-sided one on the map's border by D / 2
+    // max|h_xx| (<= A (2 pi)^2) + 2 heightTol / D; plus the slopes' own
+    // error.
+    const double texel = 1.0 / r.width;
+    const double residualTol =
+        slopeTol + texel * texel / 6 * kAmp * std::pow(2 * kPi, 3) + heightTol / texel;
+    const double borderTol =
+        slopeTol + texel / 2 * kAmp * std::pow(2 * kPi, 2) + 2 * heightTol / texel;
+    double worstResidual = 0, worstBorder = 0, largestSlope = 0;
+    for (int j = 0; j < r.height; ++j)
+        for (int i = 0; i < r.width; ++i) {
+            const glm::vec2 res = r.residualSlopes.at(i, j);
+            const double e = std::max(std::abs(res.x), std::abs(res.y));
+            const bool border = i == 0 || j == 0 || i == r.width - 1 || j == r.height - 1;
+            double& worst = border ? worstBorder : worstResidual;
+            worst = std::max(worst, e);
+            largestSlope = std::max(largestSlope, double(glm::length(r.tangentSlopes.at(i, j))));
+        }
+    EXPECT_LE(worstResidual, residualTol);
+    EXPECT_LE(worstBorder, borderTol);
+    std::printf("plane residual: interior %.3g (tol %.3g), border %.3g (tol %.3g), full slopes up "
+                "to %.3g\n",
+                worstResidual, residualTol, worstBorder, borderTol, largestSlope);
+}
+
+// The residual keeps what the displacement map cannot hold: a ripple finer
+// than the map's texels (period 1/64 on a 32^2 map) stays whole in the
+// residual, while the smooth field under it goes into the height layer.
+TEST(BakePlane, ResidualKeepsDetailFinerThanTheMap) {
+    constexpr double kRipple = 0.0004, kFreq = 2 * kPi * 64;
+    const auto h = [&](double x, double y) {
+        return planeHeight(x, y) + kRipple * std::sin(kFreq * x);
+    };
+    const auto g = [&](double x, double y) {
+        return planeGrad(x, y) + glm::dvec2(kRipple * kFreq * std::cos(kFreq * x), 0.0);
+    };
+    // The high mesh's vertices fall on every texel centre ((16 i + 8) / 512
+    // with spacing 1/512 from -64/512), so each ray meets a vertex: its
+    // height and normal are the analytic ones there (no interpolation).
+    const int n = 640;
+    const mesh::RenderMesh high = heightFieldMesh(n, -0.125f, 1.125f, h, g);
+    BakeSettings s;
+    s.width = s.height = 32;
+    s.maxDistance = 0.1;
+    const BakeResult r = bake::bake(planeCage(4), high, s, "plane.obj", "ripple.obj");
+    // At x = (i + 0.5) / 32, sin(kFreq x) = 0 and cos(kFreq x) = 1: the
+    // sampled ripple is flat (nothing of it enters the height differences)
+    // and its slope there is kRipple kFreq = 0.16 (the smooth field's slopes
+    // reach 0.25). Expected residual: (0.16, 0) up to the smooth part's
+    // central-difference error, D^2 / 6 max|h_xxx| with D = 1/32, and
+    // binary32 rounding of positions of order 1 divided by D (2e-6; 1e-5
+    // allowed).
+    const double texel = 1.0 / 32;
+    const double tol = texel * texel / 6 * kAmp * std::pow(2 * kPi, 3) + 1e-5;
+    double worst = 0;
+    for (int j = 1; j < 31; ++j)
+        for (int i = 1; i < 31; ++i) {
+            const glm::vec2 res = r.residualSlopes.at(i, j);
+            worst = std::max({worst, std::abs(res.x - kRipple * kFreq), double(std::abs(res.y))});
+        }
+    EXPECT_LE(worst, tol);
+    std::printf("ripple residual: worst %.3g (tol %.3g) of a ripple slope %.3g\n", worst, tol,
+                kRipple * kFreq);
 }
 
 TEST(BakePlane, HighMeshCoveringHalfTheSquareReportsTheOtherHalfAsMisses) {

@@ -58,6 +58,7 @@ def test_plane_gives_the_analytic_heights_row_0_at_the_bottom(plane):
     assert r["displacement"].shape == (48, 64)
     assert r["object_normal"].shape == (48, 64, 3)
     assert r["tangent_slopes"].shape == (48, 64, 2)
+    assert r["residual_slopes"].shape == (48, 64, 2)
     assert r["state"].dtype == np.uint8
     assert (r["state"] == 1).all() and r["stats"]["hits"] == 64 * 48
     j, i = np.mgrid[0:48, 0:64]

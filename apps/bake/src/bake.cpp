@@ -14,6 +14,7 @@
 
 #include "high_mesh.h"
 #include "base_surface.h"
+#include "residual.h"
 #include "surfgrad/contract.h"
 #include "surfgrad/io.h"
 #include "surfgrad/subdivision.h"
@@ -197,6 +198,7 @@ void pad(BakeResult& r, int padTexels) {
         r.displacement.v[t] = r.displacement.v[s];
         r.objectNormal.v[t] = r.objectNormal.v[s];
         r.tangentSlopes.v[t] = r.tangentSlopes.v[s];
+        r.residualSlopes.v[t] = r.residualSlopes.v[s];
     }
 }
 
@@ -257,6 +259,10 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
     for (size_t k = 0; k < r.state.v.size(); ++k)
         frames.covered.v[k] = r.state.v[k] == uint8_t(TexelState::Hit) ? 1 : 0;
     r.tangentSlopes = normalmap::tangentFromObject(r.objectNormal, frames);
+    r.residualSlopes =
+        normalmap::tangentFromObject(detail::residualNormals(r.state, r.basePosition, frames.normal,
+                                                             r.displacement, r.objectNormal),
+                                     frames);
     r.baseNormal = std::move(frames.normal);
     r.baseTangent = std::move(frames.tangent);
     pad(r, s.padTexels);

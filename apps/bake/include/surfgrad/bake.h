@@ -97,9 +97,9 @@ struct BakeSettings {
     uint64_t memoryBudget = 0;
 };
 
-// Peak bytes per texel of bake(): the result's grids (65), the UV cover
-// (32) and the padding's queues (13).
-inline constexpr uint64_t kBakeBytesPerTexel = 110;
+// Peak bytes per texel of bake(): the result's grids (73), the UV cover
+// (32), the residual's object normals (12) and the padding's queues (13).
+inline constexpr uint64_t kBakeBytesPerTexel = 130;
 
 // What each texel became.
 enum class TexelState : uint8_t {
@@ -144,6 +144,16 @@ struct BakeResult {
     // (baseTangent, baseNormal): normalmap::normalsFromSlopes gives the
     // tangent-space map.
     normalmap::DerivField tangentSlopes;
+    // The residual after displacement, slopes in the same frame: what a
+    // normal map must add to a height layer of `displacement` (scale 1,
+    // object units) for the two to resolve to the high mesh's normal
+    // (surface gradients add; Mikkelsen 2019, section 2.5). Per hit: the
+    // high normal's surface gradient minus the displacement's (listing 8
+    // on the texel grid: central differences of the base position and the
+    // displacement over neighbouring hits, one-sided at a chart's edge; a
+    // hit with no hit neighbour along a texel axis keeps the full slopes).
+    // Near zero where the displacement map resolves the high mesh's detail.
+    normalmap::DerivField residualSlopes;
     // The base surface at each texel (Empty, Padded: zero): the point, its
     // unit normal and the tangent frame of tangentSlopes (Limit: the limit
     // tangent of sg/patch/limit_tangent.glsl; Refined: the interpolated
