@@ -694,6 +694,38 @@ struct Subdivider::Impl {
                 nrm[r] = glm::vec3(0.0f, 0.0f, 1.0f);
         });
     }
+    // smoothGroup (after positionRep): per render vertex the first render
+    // vertex of the same (refined vertex, sector of its first corner).
+    // Without sectors that is positionRep. With them, each render vertex
+    // scans its refined vertex's render vertices in increasing order (a
+    // handful) for the first with its sector: the same first-of-key for
+    // every thread count.
+    void smoothGroups(const uint32_t* cornerSector) {
+        if (!cornerSector) {
+            smoothGroup = positionRep;
+            return;
+        }
+        const size_t nR = positionRep.size(), nV = refined.positions.size();
+        std::vector<uint32_t> start(nV + 1, 0), list(nR);
+        for (size_t r = 0; r < nR; ++r) ++start[renderToRefined[r] + 1];
+        for (size_t v = 0; v < nV; ++v) start[v + 1] += start[v];
+        {
+            std::vector<uint32_t> at(start.begin(), start.end() - 1);
+            for (size_t r = 0; r < nR; ++r) list[at[renderToRefined[r]]++] = uint32_t(r);
+        }
+        smoothGroup.resize(nR);
+        const uint32_t* firstCorner = split.renderFirstCorner.data();
+        par.each(nR, [&](size_t r) {
+            const uint32_t v = renderToRefined[r], key = cornerSector[firstCorner[r]];
+            uint32_t g = uint32_t(r);
+            for (uint32_t i = start[v]; i < start[v + 1]; ++i)
+                if (cornerSector[firstCorner[list[i]]] == key) {
+                    g = list[i];
+                    break;
+                }
+            smoothGroup[r] = g;
+        });
+    }
     // polygonNormals' gather lists (after smoothGroup and the split): per
     // smooth group (indexed by its first render vertex) the face of each of
     // its corners, in corner order.
@@ -1421,17 +1453,6 @@ void Subdivider::Impl::buildRender() {
     render.indices = split.indices;
     render.tangents.clear();
     render.tangentUvSet = -1;
-    // Smooth groups: render vertices of one (vertex, sector).
-    smoothGroup.resize(nR);
-    {
-        std::unordered_map<uint64_t, uint32_t> firstOfKey;
-        firstOfKey.reserve(nR);
-        for (uint32_t r = 0; r < nR; ++r) {
-            uint64_t key = (uint64_t(renderToRefined[r]) << 32) |
-                           (needSectors ? sector[split.renderFirstCorner[r]] : 0u);
-            smoothGroup[r] = firstOfKey.emplace(key, r).first->second;
-        }
-    }
     positionRep.resize(nR);
     {
         std::vector<uint32_t> first(refined.positions.size(), UINT32_MAX);
@@ -1441,6 +1462,7 @@ void Subdivider::Impl::buildRender() {
             positionRep[r] = f;
         }
     }
+    smoothGroups(needSectors ? sector.data() : nullptr);
     render.normals.assign(nR, glm::vec3(0.0f));
     normalGroups();
     polygonNormals(render.positions.data(), render.normals.data(), normalScratch);
