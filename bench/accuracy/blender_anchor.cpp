@@ -70,12 +70,11 @@ BlenderBake blenderBake(const std::string& blender, const std::filesystem::path&
                         const std::filesystem::path& high, const std::filesystem::path& dir,
                         int size, float extrusion, int padTexels) {
     const std::filesystem::path prefix = dir / ("blender_" + std::to_string(size));
-    const std::string command =
-        quoted(blender) + " --background --factory-startup --python " +
-        quoted(SURFGRAD_BLENDER_SCRIPT) + " -- " + quoted(low.string()) + " " +
-        quoted(high.string()) + " " + quoted(prefix.string()) + " " + std::to_string(size) +
-        " " + std::to_string(extrusion) + " " + std::to_string(2.0f * extrusion) + " " +
-        std::to_string(padTexels);
+    const std::string command = quoted(blender) + " --background --factory-startup --python " +
+                                quoted(SURFGRAD_BLENDER_SCRIPT) + " -- " + quoted(low.string()) +
+                                " " + quoted(high.string()) + " " + quoted(prefix.string()) + " " +
+                                std::to_string(size) + " " + std::to_string(extrusion) + " " +
+                                std::to_string(2.0f * extrusion) + " " + std::to_string(padTexels);
     const auto t0 = std::chrono::steady_clock::now();
     const auto [out, status] = runCaptured(command);
     BlenderBake b;
@@ -89,9 +88,9 @@ BlenderBake blenderBake(const std::string& blender, const std::filesystem::path&
         nlohmann::json::parse(out.substr(at + 13, out.find('\n', at) - (at + 13)));
     const nlohmann::json& s = j.at("seconds");
     b.normalMs = 1e3 * s.at("normal").get<double>();
-    b.bakeMs = b.normalMs + 1e3 * (s.at("high_position").get<double>() +
-                                   s.at("low_position").get<double>() +
-                                   s.at("low_normal").get<double>());
+    b.bakeMs =
+        b.normalMs + 1e3 * (s.at("high_position").get<double>() +
+                            s.at("low_position").get<double>() + s.at("low_normal").get<double>());
     b.version = j.at("version").get<std::string>();
 
     // The four RGBA passes (blender_bake.py): tangent-space normal, HIGH's

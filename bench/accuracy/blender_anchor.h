@@ -19,12 +19,12 @@ namespace study {
 std::string findBlender();
 
 struct BlenderBake {
-    sg::normalmap::ScalarField height;   // object units along LOW's normal, row 0 at v = 0
-    sg::normalmap::DerivField slopes;    // tangent-space slopes in LOW's MikkTSpace frames
-    double bakeMs = 0;                   // the four bake calls (normal, 2 positions, normal)
-    double normalMs = 0;                 // the tangent-space normal bake alone
-    double processMs = 0;                // the whole blender process, start-up and reading
-    std::string version;                 // Blender's version string
+    sg::normalmap::ScalarField height; // object units along LOW's normal, row 0 at v = 0
+    sg::normalmap::DerivField slopes;  // tangent-space slopes in LOW's MikkTSpace frames
+    double bakeMs = 0;                 // the four bake calls (normal, 2 positions, normal)
+    double normalMs = 0;               // the tangent-space normal bake alone
+    double processMs = 0;              // the whole blender process, start-up and reading
+    std::string version;               // Blender's version string
 };
 
 // Bakes `high` onto `low`'s UV set 0 at size x size texels. Rays start at

@@ -45,24 +45,25 @@ normalmap::NormalField residualNormals(const normalmap::Grid<uint8_t>& state,
                                        const normalmap::ScalarField& displacement,
                                        const normalmap::NormalField& objectNormal) {
     normalmap::NormalField out(state.width, state.height, glm::vec3(0.0f));
-    tbb::parallel_for(tbb::blocked_range<int>(0, state.height), [&](const tbb::blocked_range<int>& rr) {
-        for (int j = rr.begin(); j != rr.end(); ++j)
-            for (int i = 0; i < state.width; ++i) {
-                if (state.at(i, j) != uint8_t(TexelState::Hit)) continue;
-                const glm::vec3 n = baseNormal.at(i, j), high = objectNormal.at(i, j);
-                AxisDiff x, y;
-                if (!axisDiff(state, basePosition, displacement, i, j, 1, 0, x) ||
-                    !axisDiff(state, basePosition, displacement, i, j, 0, 1, y)) {
-                    out.at(i, j) = high;
-                    continue;
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, state.height), [&](const tbb::blocked_range<int>& rr) {
+            for (int j = rr.begin(); j != rr.end(); ++j)
+                for (int i = 0; i < state.width; ++i) {
+                    if (state.at(i, j) != uint8_t(TexelState::Hit)) continue;
+                    const glm::vec3 n = baseNormal.at(i, j), high = objectNormal.at(i, j);
+                    AxisDiff x, y;
+                    if (!axisDiff(state, basePosition, displacement, i, j, 1, 0, x) ||
+                        !axisDiff(state, basePosition, displacement, i, j, 0, 1, y)) {
+                        out.at(i, j) = high;
+                        continue;
+                    }
+                    const G::SgFrame f = G::sgPrologue(n, x.dPos, y.dPos, true, SG_BFACE_NONE);
+                    const glm::vec3 full = G::sgSurfgradFromPerturbedNormal(f, high);
+                    const glm::vec3 bump =
+                        G::sgSurfgradFromScreenDeriv(f, glm::vec2(x.dHeight, y.dHeight));
+                    out.at(i, j) = G::sgResolve(f, full - bump);
                 }
-                const G::SgFrame f = G::sgPrologue(n, x.dPos, y.dPos, true, SG_BFACE_NONE);
-                const glm::vec3 full = G::sgSurfgradFromPerturbedNormal(f, high);
-                const glm::vec3 bump =
-                    G::sgSurfgradFromScreenDeriv(f, glm::vec2(x.dHeight, y.dHeight));
-                out.at(i, j) = G::sgResolve(f, full - bump);
-            }
-    });
+        });
     return out;
 }
 
