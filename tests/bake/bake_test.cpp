@@ -462,6 +462,28 @@ TEST(BakeHardCase, HighMeshMovedByUlpsMovesDisplacementByRounding) {
     hardCasePerturbedAtMost("generated", "bake: sphere high mesh (24k triangles) onto a cube cage",
                             "every high-mesh coordinate moved by -2..2 ulps",
                             "displacement change (object units)", worst, bound);
+
+    // The residual after displacement differentiates the displacement over
+    // the texel grid: a height change of at most `bound` moves a central
+    // difference by bound / L (L the shortest texel length on the surface,
+    // from the base points: the difference spans two texels), and the high
+    // normal's own change (its rounding, ~1e-6) moves the slopes by about
+    // as much; 2x for the two terms' worst alignment.
+    double texelLength = INFINITY, worstResidual = 0;
+    for (int j = 0; j < a.height; ++j)
+        for (int i = 0; i + 1 < a.width; ++i) {
+            if (a.state.at(i, j) != uint8_t(TexelState::Hit)) continue;
+            const glm::vec2 d = a.residualSlopes.at(i, j) - b.residualSlopes.at(i, j);
+            worstResidual = std::max({worstResidual, double(std::abs(d.x)), double(std::abs(d.y))});
+            if (a.state.at(i + 1, j) == uint8_t(TexelState::Hit))
+                texelLength = std::min(
+                    texelLength,
+                    double(glm::length(a.basePosition.at(i + 1, j) - a.basePosition.at(i, j))));
+        }
+    const double residualBound = 2.0 * (bound / texelLength + bound);
+    hardCasePerturbedAtMost("generated", "bake: sphere high mesh onto a cube cage, residual map",
+                            "every high-mesh coordinate moved by -2..2 ulps",
+                            "residual slope change", worstResidual, residualBound);
 }
 
 } // namespace
