@@ -476,9 +476,8 @@ TEST(BakeHardCase, HighMeshMovedByUlpsMovesDisplacementByRounding) {
             const glm::vec2 d = a.residualSlopes.at(i, j) - b.residualSlopes.at(i, j);
             worstResidual = std::max({worstResidual, double(std::abs(d.x)), double(std::abs(d.y))});
             if (a.state.at(i + 1, j) == uint8_t(TexelState::Hit))
-                texelLength = std::min(
-                    texelLength,
-                    double(glm::length(a.basePosition.at(i + 1, j) - a.basePosition.at(i, j))));
+                texelLength = std::min(texelLength, double(glm::length(a.basePosition.at(i + 1, j) -
+                                                                       a.basePosition.at(i, j))));
         }
     const double residualBound = 2.0 * (bound / texelLength + bound);
     hardCasePerturbedAtMost("generated", "bake: sphere high mesh onto a cube cage, residual map",
