@@ -26,11 +26,11 @@
 
 namespace sg::mesh {
 
-using io::InputError;
 using detail::createRefiner;
 using detail::Descriptor;
 using detail::fvarPatchPoints;
 using detail::tFarError;
+using io::InputError;
 namespace Far = OpenSubdiv::Far;
 
 namespace {

@@ -136,8 +136,8 @@ struct FactoredStencils {
     }
     // The same from the specialised refiner (uniform_refiner.h), through
     // its writer protocol.
-    void recordLevel(const UniformRefiner& refiner, int level, uint32_t srcBase,
-                     uint32_t dstBase, int fvarChannel = -1) {
+    void recordLevel(const UniformRefiner& refiner, int level, uint32_t srcBase, uint32_t dstBase,
+                     int fvarChannel = -1) {
         const uint32_t nChild = fvarChannel < 0 ? refiner.level(level).numVerts
                                                 : refiner.numFVarValues(level, fvarChannel);
         record(nChild, srcBase, dstBase, [&](const TokenView& src, RecorderView& dst) {

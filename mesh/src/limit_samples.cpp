@@ -221,7 +221,6 @@ void Subdivider::Impl::evaluatePositions(const PolygonMesh& cage) {
     }
 }
 
-
 // Every UV set's limit value at each render vertex's home corner and its
 // derivatives at the derivative location (same locations as the
 // positions').

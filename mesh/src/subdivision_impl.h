@@ -228,10 +228,11 @@ struct Subdivider::Impl {
     std::vector<glm::vec2> uvPoints;
 
     // Animation / limit.
-    detail::FactoredStencils uniformStencils;      // cage -> every uniform level (positions, morph deltas)
-    detail::FactoredStencils limitStencils;        // limit: cage -> adaptive points + local points
-    detail::SampleTable samples;                   // limit: per render vertex
-    mutable std::vector<glm::vec3> points; // build scratch (all stencil points)
+    detail::FactoredStencils
+        uniformStencils;                    // cage -> every uniform level (positions, morph deltas)
+    detail::FactoredStencils limitStencils; // limit: cage -> adaptive points + local points
+    detail::SampleTable samples;            // limit: per render vertex
+    mutable std::vector<glm::vec3> points;  // build scratch (all stencil points)
     // update() scratch: xyz in 4 floats (4th lane 0), so
     // each weighted add of detail::FactoredStencils::apply is one 4-lane multiply
     // and add whose x, y, z lanes are the scalar operations of the vec3
@@ -259,13 +260,14 @@ struct Subdivider::Impl {
     // The steps of evaluateLimit.
     detail::LimitPatches buildPatches(const PolygonMesh& cage) const;
     void recordLimitStencils(const PolygonMesh& cage, const detail::LimitPatches& lp);
-    void locateHomes(const Far::TopologyRefiner& uniform, const detail::LimitPatches& lp, detail::LimitHomes& homes,
-                     std::vector<uint8_t>& dropFace);
+    void locateHomes(const Far::TopologyRefiner& uniform, const detail::LimitPatches& lp,
+                     detail::LimitHomes& homes, std::vector<uint8_t>& dropFace);
     void buildSamples(const detail::LimitPatches& lp, detail::LimitHomes& homes);
-    void addSample(const detail::LimitPatches& lp, detail::LimitHomes& homes, const std::vector<uint32_t>& faceOf,
-                   size_t r, detail::SampleTable& table);
+    void addSample(const detail::LimitPatches& lp, detail::LimitHomes& homes,
+                   const std::vector<uint32_t>& faceOf, size_t r, detail::SampleTable& table);
     void evaluatePositions(const PolygonMesh& cage);
-    void evaluateUvSets(const PolygonMesh& cage, const detail::LimitPatches& lp, const detail::LimitHomes& homes);
+    void evaluateUvSets(const PolygonMesh& cage, const detail::LimitPatches& lp,
+                        const detail::LimitHomes& homes);
     void copyLimitToRefined(const PolygonMesh& cage);
     void buildRender();
     // render.positions and render.uvSets (sized) from refined().

@@ -2,6 +2,7 @@
 // section 2.5, listings 1, 7 and 8.
 #include "residual.h"
 
+#include <glm/geometric.hpp>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -16,10 +17,15 @@ namespace {
 
 // Central difference of (position, height) along one texel axis over the
 // neighbours that are hits; one-sided when only one is; false when none is.
+// A neighbour on another chart that touches this one in UV but not on the
+// surface is no neighbour: of two neighbours whose steps on the surface
+// differ by more than kChartJump times, the farther is dropped.
 struct AxisDiff {
     glm::vec3 dPos{0.0f};
     float dHeight = 0.0f;
 };
+
+constexpr float kChartJump = 4.0f;
 
 bool axisDiff(const normalmap::Grid<uint8_t>& state, const normalmap::NormalField& pos,
               const normalmap::ScalarField& h, int i, int j, int di, int dj, AxisDiff& out) {
@@ -27,7 +33,13 @@ bool axisDiff(const normalmap::Grid<uint8_t>& state, const normalmap::NormalFiel
         return a >= 0 && b >= 0 && a < state.width && b < state.height &&
                state.at(a, b) == uint8_t(TexelState::Hit);
     };
-    const bool fwd = hit(i + di, j + dj), back = hit(i - di, j - dj);
+    bool fwd = hit(i + di, j + dj), back = hit(i - di, j - dj);
+    if (fwd && back) {
+        const float lf = glm::length(pos.at(i + di, j + dj) - pos.at(i, j));
+        const float lb = glm::length(pos.at(i, j) - pos.at(i - di, j - dj));
+        if (lf > kChartJump * lb) fwd = false;
+        if (lb > kChartJump * lf) back = false;
+    }
     if (!fwd && !back) return false;
     const int fi = fwd ? i + di : i, fj = fwd ? j + dj : j;
     const int bi = back ? i - di : i, bj = back ? j - dj : j;

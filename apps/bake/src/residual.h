@@ -8,7 +8,9 @@
 //            with the texel grid as the "screen": dP/di, dP/dj and dH/di,
 //            dH/dj by central differences of the base position and the
 //            displacement over neighbouring hits, one-sided at a chart's
-//            edge)
+//            edge and where the neighbour on one side lies on another chart
+//            that touches this one in UV: a step on the surface over 4x
+//            the other side's)
 //   n_res  = sgResolve(N, g_full - g_h)                      (listing 1)
 // so that a height layer of the displacement (scale 1) plus a normal map of
 // n_res resolves to n_high up to the difference between the renderer's
