@@ -4,7 +4,6 @@
 #include "blender_anchor.h"
 
 #include <chrono>
-#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -14,29 +13,16 @@
 
 #include <nlohmann/json.hpp>
 
+#include "cli.h" // runCommand, shellQuote (tests/common)
+
 namespace study {
 
 namespace nm = sg::normalmap;
 
 namespace {
 
-std::string quoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-}
-
-// Runs `command` through the shell; returns its combined output and exit
-// status.
-std::pair<std::string, int> runCaptured(const std::string& command) {
-    FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-    if (!pipe) throw std::runtime_error("blender: cannot start: " + command);
-    std::string out;
-    char buf[4096];
-    while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-    const int status = pclose(pipe);
-    return {out, status};
-}
+using sg::test::runCommand;
+using sg::test::shellQuote;
 
 std::vector<float> readFloats(const std::filesystem::path& path, size_t count) {
     std::ifstream in(path, std::ios::binary);
@@ -70,20 +56,25 @@ BlenderBake blenderBake(const std::string& blender, const std::filesystem::path&
                         const std::filesystem::path& high, const std::filesystem::path& dir,
                         int size, float extrusion, int padTexels) {
     const std::filesystem::path prefix = dir / ("blender_" + std::to_string(size));
-    const std::string command = quoted(blender) + " --background --factory-startup --python " +
-                                quoted(SURFGRAD_BLENDER_SCRIPT) + " -- " + quoted(low.string()) +
-                                " " + quoted(high.string()) + " " + quoted(prefix.string()) + " " +
-                                std::to_string(size) + " " + std::to_string(extrusion) + " " +
-                                std::to_string(2.0f * extrusion) + " " + std::to_string(padTexels);
+    const std::string command = shellQuote(blender) + " --background --factory-startup --python " +
+                                shellQuote(std::string(SURFGRAD_BLENDER_SCRIPT)) + " -- " +
+                                shellQuote(low) + " " + shellQuote(high) + " " +
+                                shellQuote(prefix) + " " + std::to_string(size) + " " +
+                                std::to_string(extrusion) + " " + std::to_string(2.0f * extrusion) +
+                                " " + std::to_string(padTexels);
     const auto t0 = std::chrono::steady_clock::now();
-    const auto [out, status] = runCaptured(command);
+    const sg::test::CommandResult run = runCommand(command);
     BlenderBake b;
     b.processMs =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    // Blender exits 0 even when the script fails: the result line decides.
+    const std::string& out = run.out;
     const size_t at = out.rfind("BLENDER_BAKE ");
-    if (status != 0 || at == std::string::npos)
-        throw std::runtime_error("blender: the bake failed (status " + std::to_string(status) +
-                                 "):\n" + out.substr(out.size() > 2000 ? out.size() - 2000 : 0));
+    if (run.exitCode != 0 || at == std::string::npos) {
+        const std::string all = run.output();
+        throw std::runtime_error("blender: the bake failed (exit " + std::to_string(run.exitCode) +
+                                 "):\n" + all.substr(all.size() > 2000 ? all.size() - 2000 : 0));
+    }
     const nlohmann::json j =
         nlohmann::json::parse(out.substr(at + 13, out.find('\n', at) - (at + 13)));
     const nlohmann::json& s = j.at("seconds");
