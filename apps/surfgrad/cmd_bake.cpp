@@ -246,6 +246,7 @@ nlohmann::json statsJson(const bake::BakeStats& s) {
 
 void runBake(BakeArgs a) {
     parseSize(a.size, a.settings);
+    a.settings.residual = !a.residualNormal.empty();
     if (a.surface == "limit")
         a.settings.surface = bake::BakeSurface::Limit;
     else if (a.surface == "refined")
@@ -275,7 +276,7 @@ void runBake(BakeArgs a) {
         std::fprintf(stderr, "bake: %s %3d%%\n", stage, pct);
     };
     const bake::BakeResult r = bake::bake(cage, high, a.settings, a.cage, a.high, progress);
-    nlohmann::json report;
+    nlohmann::json report = nlohmann::json::object(); // what the outputs add to --json
     writeOutputs(a, types, r, report);
     const bake::BakeStats& s = r.stats;
     if (s.misses > 0)

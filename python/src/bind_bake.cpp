@@ -49,7 +49,7 @@ std::pair<int, int> sizeArg(py::handle size) {
 
 py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cage, py::handle size,
               int uvSet, const std::string& surface, int level, int isolation, double maxDistance,
-              int pad, int threads, uint64_t memoryBudget) {
+              int pad, bool residual, int threads, uint64_t memoryBudget) {
     checkRenderMeshArrays(high);
     checkCageArrays(cage);
     sg::bake::BakeSettings s;
@@ -65,6 +65,7 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
     s.isolation = isolation;
     s.maxDistance = maxDistance;
     s.padTexels = pad;
+    s.residual = residual;
     s.threads = requireThreads(threads);
     s.memoryBudget = memoryBudget;
     sg::bake::BakeResult r;
@@ -78,7 +79,7 @@ py::dict bake(const sg::mesh::RenderMesh& high, const sg::mesh::PolygonMesh& cag
     out["displacement"] = gridToArray(std::move(r.displacement));
     out["object_normal"] = gridToArray(std::move(r.objectNormal));
     out["tangent_slopes"] = gridToArray(std::move(r.tangentSlopes));
-    out["residual_slopes"] = gridToArray(std::move(r.residualSlopes));
+    if (residual) out["residual_slopes"] = gridToArray(std::move(r.residualSlopes));
     out["position"] = gridToArray(std::move(r.basePosition));
     out["normal"] = gridToArray(std::move(r.baseNormal));
     out["tangent"] = gridToArray(std::move(r.baseTangent));
@@ -92,7 +93,7 @@ void bindBake(py::module_& m) {
     m.def("bake", &bake, py::arg("high"), py::arg("cage"), py::kw_only(), py::arg("size") = 1024,
           py::arg("uv_set") = 0, py::arg("surface") = "limit", py::arg("level") = 2,
           py::arg("isolation") = 4, py::arg("max_distance") = 0.0, py::arg("pad") = 8,
-          py::arg("threads") = 0, py::arg("memory_budget") = 0,
+          py::arg("residual") = false, py::arg("threads") = 0, py::arg("memory_budget") = 0,
           R"(Bake `high` (RenderMesh) onto the limit surface of `cage` (PolygonMesh,
 Catmull-Clark; surface="refined": the cage refined to `level` and triangulated,
 MikkTSpace frames) in the layout of its UV set `uv_set` (docs/bake.md).
@@ -100,8 +101,8 @@ size: N or (width, height). Returns a dict of (H, W[, C]) arrays, row 0 at the
 bottom: state (uint8: 0 empty, 1 hit, 2 miss, 3 padding), displacement (object
 units along the base normal, + outwards), object_normal (3), tangent_slopes (2,
 dh/ds and dh/dt in the base frame: normalmap.normals_from_slopes gives the
-tangent-space map), residual_slopes (2, the residual after displacement in the
-same frame: pair it with a height layer of the displacement), position, normal (3) and tangent (4: xyz, sign) of the base
+tangent-space map), residual_slopes (with residual=True: 2, the residual after displacement in the
+same frame; pair it with a height layer of the displacement), position, normal (3) and tangent (4: xyz, sign) of the base
 surface at each texel; and stats (counts, seconds). Raises InputError for bad
 input (no UV set, a scheme the limit bake cannot take, no ray hitting `high`,
 ...) and ValueError for bad arguments.)");

@@ -283,14 +283,14 @@ class Morpher:
 
 def bake(high: RenderMesh, cage: PolygonMesh, *, size: int | tuple[int, int] = 1024,
          uv_set: int = 0, surface: str = "limit", level: int = 2, isolation: int = 4,
-         max_distance: float = 0.0, pad: int = 8, threads: int = 0,
-         memory_budget: int = 0) -> dict[str, Any]:
+         max_distance: float = 0.0, pad: int = 8, residual: bool = False,
+         threads: int = 0, memory_budget: int = 0) -> dict[str, Any]:
     """`high` baked onto the limit surface of `cage` (surface="refined": the cage
     refined to `level`, MikkTSpace frames) in UV set `uv_set`'s layout.
     Returns (H, W[, C]) arrays, row 0 at the bottom: state (uint8: 0 empty,
     1 hit, 2 miss, 3 padding), displacement, object_normal, tangent_slopes,
-    residual_slopes, position, normal, tangent; and stats (dict of counts and
-    seconds)."""
+    residual_slopes (with residual=True), position, normal, tangent; and stats
+    (dict of counts and seconds)."""
 
 # ---------------------------------------------------------------------------
 # Rendering and the shared functions

@@ -77,6 +77,20 @@ TEST(BakeCli, WritesEveryMapAndReportsCounts) {
     EXPECT_EQ(normalmap::readImage(object).channels, 3);
 }
 
+// --json reports the counts whichever outputs are asked for (the
+// displacement adds its scale and offset; without it there is nothing to
+// add).
+TEST(BakeCli, JsonReportWithoutADisplacement) {
+    const Files& f = files();
+    const fs::path mask = f.dir / "json_mask.png";
+    const CommandResult r = runSurfgrad("bake " + q(f.high) + " " + q(f.cage) +
+                                        " --size 32 --distance 0.5 --mask " + q(mask) + " --json");
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["hits"].get<size_t>(), 0u);
+    EXPECT_FALSE(j.contains("displacement_scale"));
+}
+
 TEST(BakeCli, WrongCommandLinesExitWithStatus2) {
     const Files& f = files();
     const std::string base = "bake " + q(f.high) + " " + q(f.cage);

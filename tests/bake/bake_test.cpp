@@ -66,6 +66,7 @@ TEST_P(BakeBoth, PlaneUnderAHeightFieldGivesItsHeightsAndSlopes) {
     BakeSettings s = settings();
     s.width = s.height = 128;
     s.maxDistance = 0.1;
+    s.residual = true;
     const BakeResult r = bake::bake(planeCage(4), high, s, "plane.obj", "height.obj");
     // Every texel centre lies on the square.
     EXPECT_EQ(r.stats.chartTexels, size_t(128 * 128));
@@ -149,6 +150,7 @@ TEST(BakePlane, ResidualKeepsDetailFinerThanTheMap) {
     BakeSettings s;
     s.width = s.height = 32;
     s.maxDistance = 0.1;
+    s.residual = true;
     const BakeResult r = bake::bake(planeCage(4), high, s, "plane.obj", "ripple.obj");
     // At x = (i + 0.5) / 32, sin(kFreq x) = 0 and cos(kFreq x) = 1: the
     // sampled ripple is flat (nothing of it enters the height differences)
@@ -346,9 +348,11 @@ TEST(BakeThreads, SameBitsAtEveryThreadCount) {
     s.width = 96;
     s.height = 80;
     s.maxDistance = 0.5;
+    s.residual = true;
     s.threads = 1;
     const mesh::RenderMesh high = sphereMesh(64, 0.7);
     const BakeResult one = bake::bake(cubeCage(), high, s);
+    ASSERT_EQ(one.residualSlopes.v.size(), one.displacement.v.size());
     for (int threads : {2, 3, 7}) {
         s.threads = threads;
         const BakeResult r = bake::bake(cubeCage(), high, s);
@@ -358,6 +362,9 @@ TEST(BakeThreads, SameBitsAtEveryThreadCount) {
             << threads;
         EXPECT_EQ(0, std::memcmp(r.tangentSlopes.v.data(), one.tangentSlopes.v.data(),
                                  one.tangentSlopes.v.size() * sizeof(glm::vec2)))
+            << threads;
+        EXPECT_EQ(0, std::memcmp(r.residualSlopes.v.data(), one.residualSlopes.v.data(),
+                                 one.residualSlopes.v.size() * sizeof(glm::vec2)))
             << threads;
         EXPECT_EQ(0, std::memcmp(r.objectNormal.v.data(), one.objectNormal.v.data(),
                                  one.objectNormal.v.size() * sizeof(glm::vec3)))
@@ -395,6 +402,12 @@ TEST(BakeInput, BadInputIsRefusedNamingFileAndElement) {
     BakeSettings budget = s;
     budget.memoryBudget = 32 * 32 * bake::kBakeBytesPerTexel - 1;
     expectInputError(cubeCage(), high, budget, "cage.obj", "size");
+    // The residual's grids count too: a budget that holds the bake without
+    // them refuses the bake with them.
+    BakeSettings residualBudget = s;
+    residualBudget.residual = true;
+    residualBudget.memoryBudget = 32 * 32 * bake::kBakeBytesPerTexel;
+    expectInputError(cubeCage(), high, residualBudget, "cage.obj", "size");
     BakeSettings iso = s;
     iso.isolation = 11;
     expectInputError(cubeCage(), high, iso, "cage.obj", "isolation");
@@ -448,6 +461,7 @@ TEST(BakeHardCase, HighMeshMovedByUlpsMovesDisplacementByRounding) {
         }
     BakeSettings s;
     s.width = s.height = 128;
+    s.residual = true;
     s.maxDistance = 0.5;
     const BakeResult a = bake::bake(cubeCage(), high, s), b = bake::bake(cubeCage(), moved, s);
     EXPECT_EQ(a.state.v, b.state.v);

@@ -35,7 +35,8 @@ void checkSettings(const mesh::PolygonMesh& cage, const BakeSettings& s, const s
     if (const std::string why = bakeSizeProblem(s.width, s.height); !why.empty())
         throw io::InputError(file, "size", why);
     const uint64_t budget = s.memoryBudget ? s.memoryBudget : mesh::defaultSubdivisionBudget();
-    const uint64_t bytes = uint64_t(s.width) * uint64_t(s.height) * kBakeBytesPerTexel;
+    const uint64_t bytes = uint64_t(s.width) * uint64_t(s.height) *
+                           (kBakeBytesPerTexel + (s.residual ? kBakeResidualBytesPerTexel : 0));
     if (bytes > budget)
         throw io::InputError(file, "size",
                              std::to_string(s.width) + "x" + std::to_string(s.height) + " needs " +
@@ -198,7 +199,7 @@ void pad(BakeResult& r, int padTexels) {
         r.displacement.v[t] = r.displacement.v[s];
         r.objectNormal.v[t] = r.objectNormal.v[s];
         r.tangentSlopes.v[t] = r.tangentSlopes.v[s];
-        r.residualSlopes.v[t] = r.residualSlopes.v[s];
+        if (!r.residualSlopes.v.empty()) r.residualSlopes.v[t] = r.residualSlopes.v[s];
     }
 }
 
@@ -259,10 +260,11 @@ BakeResult bakeImpl(const mesh::PolygonMesh& cage, const mesh::RenderMesh& high,
     for (size_t k = 0; k < r.state.v.size(); ++k)
         frames.covered.v[k] = r.state.v[k] == uint8_t(TexelState::Hit) ? 1 : 0;
     r.tangentSlopes = normalmap::tangentFromObject(r.objectNormal, frames);
-    r.residualSlopes =
-        normalmap::tangentFromObject(detail::residualNormals(r.state, r.basePosition, frames.normal,
-                                                             r.displacement, r.objectNormal),
-                                     frames);
+    if (s.residual)
+        r.residualSlopes = normalmap::tangentFromObject(
+            detail::residualNormals(r.state, r.basePosition, frames.normal, r.displacement,
+                                    r.objectNormal),
+            frames);
     r.baseNormal = std::move(frames.normal);
     r.baseTangent = std::move(frames.tangent);
     pad(r, s.padTexels);

@@ -90,16 +90,23 @@ struct BakeSettings {
     // baked texel, found in rings of one texel), so that MIP levels do not
     // mix in the empty background. 0..1024.
     int padTexels = 8;
+    // Also bake BakeResult::residualSlopes (the residual after
+    // displacement): one more pass over the texels and
+    // kBakeResidualBytesPerTexel more per texel.
+    bool residual = false;
     int threads = 0; // surfgrad/threads.h; a count outside 0..1024 is a contract violation
     // Bytes the maps and their working grids may take (kBakeBytesPerTexel
-    // per texel); a larger map is refused before anything is allocated.
-    // 0: mesh::defaultSubdivisionBudget() (half the physical memory).
+    // per texel, plus kBakeResidualBytesPerTexel with `residual`); a larger map is refused before
+    // anything is allocated. 0: mesh::defaultSubdivisionBudget() (half the physical memory).
     uint64_t memoryBudget = 0;
 };
 
-// Peak bytes per texel of bake(): the result's grids (73), the UV cover
-// (32), the residual's object normals (12) and the padding's queues (13).
-inline constexpr uint64_t kBakeBytesPerTexel = 130;
+// Peak bytes per texel of bake(): the result's grids (65), the UV cover
+// (32) and the padding's queues (13); with BakeSettings::residual also the
+// residual's slopes (8) and its object normals while they are converted
+// (12).
+inline constexpr uint64_t kBakeBytesPerTexel = 110;
+inline constexpr uint64_t kBakeResidualBytesPerTexel = 20;
 
 // What each texel became.
 enum class TexelState : uint8_t {
@@ -153,6 +160,7 @@ struct BakeResult {
     // displacement over neighbouring hits, one-sided at a chart's edge; a
     // hit with no hit neighbour along a texel axis keeps the full slopes).
     // Near zero where the displacement map resolves the high mesh's detail.
+    // Empty (0 x 0) unless BakeSettings::residual.
     normalmap::DerivField residualSlopes;
     // The base surface at each texel (Empty, Padded: zero): the point, its
     // unit normal and the tangent frame of tangentSlopes (Limit: the limit
