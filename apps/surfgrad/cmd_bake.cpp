@@ -7,7 +7,7 @@
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
 // of CAGE (or, --surface refined, onto CAGE refined to level N and
 // triangulated, with MikkTSpace frames) in the layout of its UV set K
-// (apps/bake, surfgrad/bake.h). Each
+// (bake, surfgrad/bake.h). Each
 // output is optional, at least one is required:
 //  - displacement: one channel, object units along the limit normal
 //    (positive outwards): float in .exr/.tif (the scene's "displacement"

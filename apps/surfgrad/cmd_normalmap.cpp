@@ -1,7 +1,7 @@
 // `surfgrad normalmap ...`: the height-field-correct normal-map operations
 // of Loviscach, "Care and Feeding of Normal Vectors" (GDC 2008) on image
 // files, each also runnable --naive (the plain image operation) for
-// comparison. The library is apps/normalmap (surfgrad/normalmap.h); every
+// comparison. The library is normalmap (surfgrad/normalmap.h); every
 // op and option is described in docs/normalmap.md.
 //
 //   normalmap from-height H -o OUT [--scale S] [--channel C]

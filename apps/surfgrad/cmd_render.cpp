@@ -1,5 +1,5 @@
 // `surfgrad render`, `surfgrad shader` and `surfgrad view`: the renderer's
-// subcommands (apps/render, surfgrad/render.h).
+// subcommands (render, surfgrad/render.h).
 //
 //   render [SCENE.json | MODEL] [-o OUT.png|.exr]   MODEL: any mesh format
 //          (sg::mesh::kMeshFormats)

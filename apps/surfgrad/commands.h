@@ -51,12 +51,12 @@ inline std::string lowerExtension(const std::filesystem::path& path) {
 
 void addEvalCommand(CLI::App& app, int& status);
 void addSelftestCommand(CLI::App& app, int& status);
-// `surfgrad render`, `shader`, `view` (cmd_render.cpp, apps/render).
+// `surfgrad render`, `shader`, `view` (cmd_render.cpp, render).
 void addRenderCommands(CLI::App& app, int& status);
 void addFeaturesCommands(CLI::App& app, int& status);
-// `surfgrad normalmap ...` (cmd_normalmap.cpp, apps/normalmap).
+// `surfgrad normalmap ...` (cmd_normalmap.cpp, normalmap).
 void addNormalmapCommands(CLI::App& app, int& status);
-// `surfgrad bake HIGH CAGE ...` (cmd_bake.cpp, apps/bake).
+// `surfgrad bake HIGH CAGE ...` (cmd_bake.cpp, bake).
 void addBakeCommand(CLI::App& app, int& status);
 
 // `surfgrad mesh ...` (cmd_mesh.cpp): adds the `mesh` group with info,

@@ -1,5 +1,5 @@
 // libFuzzer entry for the renderer's scene parser (sg::render::parseScene,
-// apps/render/src/scene.cpp; schema docs/scene.md). Input: the JSON text.
+// render/src/scene.cpp; schema docs/scene.md). Input: the JSON text.
 // Beyond "no crash / no sanitizer report / only sg::io::InputError": every
 // scene the parser accepts satisfies the invariants the renderer relies on
 // (at least one mesh, material indices in range, finite numbers, unit and

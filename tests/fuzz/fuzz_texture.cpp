@@ -1,5 +1,5 @@
 // Fuzz entry point: texture files as a scene reads them
-// (sg::render::decodeTextureImage, apps/render/src/texture_file.cpp, over
+// (sg::render::decodeTextureImage, render/src/texture_file.cpp, over
 // the one image decoder of image/src/image_decode.cpp): the
 // image header scan (surfgrad/image_header.h), the size limit and the
 // texture budget, then OpenImageIO's decoder of the scanned format, band

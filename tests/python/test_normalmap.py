@@ -145,7 +145,7 @@ def test_to_height_reports_progress_and_lets_exceptions_through():
     slopes = normalmap.from_height(f32(sines(32, 32, 2.0)[0]))
     seen = []
     normalmap.to_height(slopes, progress=seen.append)
-    assert seen, "apps/normalmap/src/poisson.cpp reports every stage"
+    assert seen, "normalmap/src/poisson.cpp reports every stage"
     assert all(0.0 <= f <= 1.0 for f in seen)
     assert seen == sorted(seen) and seen[-1] == 1.0
 
@@ -454,7 +454,7 @@ def test_every_level_keeps_the_mean_and_the_file_round_trips(tmp_path):
 
 def test_mip_files_errors(tmp_path):
     levels = normalmap.mips(np.zeros((8, 8, 2), np.float32), "lean")
-    # apps/normalmap/src/image_file.cpp, writeMipChain: OpenEXR only.
+    # normalmap/src/image_file.cpp, writeMipChain: OpenEXR only.
     with pytest.raises(surfgrad.InputError) as e:
         normalmap.write_mips(tmp_path / "lean.png", levels, "lean")
     assert "OpenEXR" in e.value.reason

@@ -4,7 +4,7 @@
 #
 # Known values:
 #  - a unit plane y = 0 (procedural "plane": P = ((u - 0.5) size, 0, (0.5 - v) size), UV = (u, v),
-#    apps/render/src/assets.cpp) seen from straight above: the normal AOV is (0, 1, 0); the uv
+#    render/src/assets.cpp) seen from straight above: the normal AOV is (0, 1, 0); the uv
 #    AOV follows from intersecting each pixel centre's ray with the plane (pinhole camera of
 #    docs/scene.md, vertical fov, row 0 at the bottom);
 #  - tests/render/shading_test.cpp, Layers.UvNormalTiltResolvesToTheMapsNormal: a constant

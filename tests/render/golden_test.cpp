@@ -1,7 +1,7 @@
 // Golden images: every example scene (examples/*/scene.json, frame 0) and
 // every layer kind's registry example (LayerKind::example on a sphere,
 // shaders/sg/render/layer_<kind>.cpp), rendered by the CPU reference
-// renderer (apps/render/src/cpu_renderer.cpp: the C++ build of the shared
+// renderer (render/src/cpu_renderer.cpp: the C++ build of the shared
 // GLSL of Mikkelsen 2019's listings) at a small size, against reviewed
 // images committed in tests/golden (README.md there says how they were
 // reviewed; scripts/update-golden regenerates them).

@@ -1,5 +1,5 @@
 // The C++ packer and the GLSL unpackers of every layer kind agree, slot by
-// slot. Generated from the registry (apps/render/src/layer_kind.h): for
+// slot. Generated from the registry (render/src/layer_kind.h): for
 // every kind and every record layout (one sgUnpack* function each) the
 // records are unpacked through the GLSL function twice, on the GPU (a
 // compute shader built from the layout's field list) and through its C++

@@ -2,7 +2,7 @@
 // UV layer (shaders/sg/render/deriv_mods.glsl; Loviscach 2008, "Feeding"):
 // a tangent-space map with its height in alpha and a mask texture are made
 // from analytic fields; the modifiers run exactly as the assembled program
-// calls them (apps/render/src/plan.cpp, modifierBlock: the warped lookup
+// calls them (render/src/plan.cpp, modifierBlock: the warped lookup
 // when DEFORM comes first, then one call per modifier), and the derivative
 // must equal that of the analytically transformed height:
 //   DEFORM   h(w(s, t)), w = (s, t + A sin(B s))
@@ -96,7 +96,7 @@ double transformed(const std::vector<Kind>& mods, double s, double t) {
     return h;
 }
 
-// The modifier chain as derivModBlock() (shaders/sg/render/deriv_mods.cpp) emits it.
+// The modifier chain as derivModBlock() (render/src/layers/deriv_mods.cpp) emits it.
 glm::vec2 chain(const std::vector<Kind>& mods, G::sampler2D map, G::sampler2D maskSmp,
                 glm::vec2 st0) {
     G::SgUvNormalParams p;

@@ -1,4 +1,4 @@
-// Texture files (apps/render/src/texture_file.cpp, surfgrad/image_header.h):
+// Texture files (render/src/texture_file.cpp, surfgrad/image_header.h):
 // every format a scene accepts decodes to exactly the values OpenImageIO
 // gives as float (colour not premultiplied by alpha), in the file's own
 // precision; the mip chain equals the all-float chain bit for bit; layers

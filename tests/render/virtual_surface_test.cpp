@@ -1,6 +1,6 @@
 // Post-resolve detail on the virtual surface of parallax occlusion mapping
 // (Mikkelsen 2019, section 3 and Fig. 3(d); section 2.6 for the relief;
-// listing 15 for the decal; shaders/sg/render/layer_parallax.cpp's
+// listing 15 for the decal; render/src/layers/layer_parallax.cpp's
 // re-prologue, layer_decal.cpp): a decal in a `post_resolve` group after a
 // `pom` layer projects the virtual surface's position, so its detail lands
 // where the relief is seen, not where the mesh is.

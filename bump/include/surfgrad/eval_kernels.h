@@ -61,7 +61,7 @@ struct Field {
     Generate generate = Generate::Any; // inputs: how parity records fill it
 };
 
-// Error measure of the parity suite per output field (apps/parity,
+// Error measure of the parity suite per output field (parity,
 // surfgrad/parity.h): Mixed = |gpu - cpu|_inf / max(1, |cpu|_inf), Relative
 // = |gpu - cpu|_inf / |cpu|_inf (outputs with no natural unit scale).
 enum class ErrorMeasure { Mixed, Relative };

@@ -119,7 +119,7 @@ struct AdaptivePatches {
     // Stencils: every point past the cage is a fixed linear combination of
     // points before it, applied in passes (what an animated cage needs per
     // frame besides its own positions; the GPU runs the same passes,
-    // apps/render/src/gpu_stencils.h). One row per point past the cage, in
+    // render/src/gpu_stencils.h). One row per point past the cage, in
     // point order: row r computes point i = cagePointCount + r as
     //   points[i] = sum over k in [stencilOffsets[r], stencilOffsets[r + 1])
     //               of stencilWeights[k] * points[stencilIndices[k]],

@@ -27,7 +27,7 @@
 //                  compute program)
 //       summary    what it computes, with the paper's listing
 //       measure    Mixed: |gpu - cpu|_inf / max(1, |cpu|_inf) per output
-//                  field; Relative: / |cpu|_inf (apps/parity, parity.h)
+//                  field; Relative: / |cpu|_inf (parity, parity.h)
 //       tolerance  the largest measure the parity suite accepts on
 //                  well-conditioned records
 //       illShare   the largest share of records it may exclude as

@@ -1,6 +1,6 @@
 // Displacement of the tessellated limit surface along its normal by a
 // height map (shared GLSL/C++ subset: the tessellation evaluation stage and
-// the CPU tessellator, apps/render/src/patch_tessellation.cpp).
+// the CPU tessellator, render/src/patch_tessellation.cpp).
 //
 // Mikkelsen 2019, section 2.5: displacement and a bump map of the same
 // height field go together; the bump layer must take dPdx/dPdy of the

@@ -2,7 +2,7 @@
 // (the "limit" tangents of an adaptive mesh), from the patch derivatives,
 // written once in the shared GLSL/C++ subset: the tessellation evaluation
 // stage (sg/patch/patch_tes.glsl) and the CPU tessellator
-// (apps/render/src/patch_tessellation.cpp) call it with the same inputs.
+// (render/src/patch_tessellation.cpp) call it with the same inputs.
 //
 // Math: the chain rule of a parametric surface P(u,v) carrying UVs
 // (s,t)(u,v), both over the ptex face's (u,v) (sgPatchBasis returns the

@@ -35,7 +35,7 @@
 //   MODULATE (3, mask channel, gain, 0); DEFORM (4, A, B, 0).
 // The assembled program calls one function per modifier, in order, so only
 // the modifier kinds a layer uses are compiled in and no branch depends on
-// a uniform (apps/render/src/plan.cpp).
+// a uniform (render/src/plan.cpp).
 
 // A height and its derivative, the state the modifiers transform.
 struct SgHeightDeriv {

@@ -6,7 +6,7 @@
 // added to the frame's slope covariance with the layer's Jacobian
 // strength * [vT vB] (sg/render/antialias.glsl; Mikkelsen 2019, listing 5).
 //
-// The chain (built when the scene loads, shaders/sg/render/layer_feature.cpp,
+// The chain (built when the scene loads, render/src/layers/layer_feature.cpp,
 // featureChainTexture): level 0 texel (i, j) holds the averages over the
 // texel square [i, i+1] x [j, j+1] (texel space) of the layer's slope d on a
 // flat base (sgFeatAaSlope) and of its second moments:

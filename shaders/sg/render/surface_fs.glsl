@@ -1,5 +1,5 @@
 // Declarations shared by every assembled fragment program of the renderer
-// (GLSL only; apps/render generates main() from the scene's layers and
+// (GLSL only; render generates main() from the scene's layers and
 // includes only the layer files the material uses). Defines as in
 // sg/render/surface_vs.glsl, plus SG_LIGHT_COUNT (>= 1) and
 // SG_LAYER_RECORDS (>= 1, vec4 records of packed layer parameters).

@@ -1,5 +1,5 @@
 // Vertex program of the renderer (GLSL only; assembled by
-// apps/render with these defines):
+// render with these defines):
 //   SG_UV_COUNT            number of texture coordinate sets (0..4);
 //   SG_VTX_TANGENT_k (0/1) whether UV set k has vertex tangents
 //                          (mikktspace or limit frames) as an attribute.

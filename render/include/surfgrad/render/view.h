@@ -42,6 +42,11 @@ View makeView(const Scene& scene, const SceneAssets& assets, int width = 0, int 
 // 0.06 of a binary32 coordinate there.
 glm::mat4 modelToCameraRelative(const glm::dmat4& model, const glm::dvec3& cameraPos);
 
+// World-space bounds of every mesh instance of the scene (the positions of
+// assets.meshes[i] through scene.meshes[i].transform, rounded to binary32).
+// A scene without vertices gives lo = hi = (0, 0, 0).
+void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
+
 // An orbit view around `target` (viewer).
 View makeOrbitView(glm::dvec3 target, float distance, float azimuthDeg, float elevationDeg,
                    float fovDeg, float nearPlane, float farPlane, int width, int height, Aov aov);

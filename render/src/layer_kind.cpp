@@ -244,6 +244,21 @@ const char* layerKindName(const LayerKind* kind) {
     return kind ? kind->name : "?";
 }
 
+std::vector<LayerSlider> layerSliders(Layer& layer) {
+    std::vector<LayerSlider> out;
+    if (!layer.kind) return out;
+    for (const ParamSpec& p : layer.kind->params) {
+        if (!p.slider) continue;
+        out.push_back(
+            {p.json, p.doc, p.floatRef(layer), p.slider->lo, p.slider->hi, p.slider->format});
+    }
+    return out;
+}
+
+bool layerIsGroup(const Layer& layer) {
+    return layer.kind && layer.kind->group;
+}
+
 Layer makeLayer(const LayerKind& kind) {
     Layer L;
     L.kind = &kind;

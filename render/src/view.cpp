@@ -33,11 +33,25 @@ View finishView(glm::dvec3 eye, glm::dvec3 target, glm::dvec3 up, float fovDeg, 
 
 } // namespace
 
+void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi) {
+    lo = glm::vec3(1e30f);
+    hi = glm::vec3(-1e30f);
+    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
+        const glm::dmat4& M = scene.meshes[i].transform;
+        for (const auto& p : assets.meshes[i].mesh.positions) {
+            glm::vec3 w = glm::vec3(M * glm::dvec4(glm::dvec3(p), 1.0));
+            lo = glm::min(lo, w);
+            hi = glm::max(hi, w);
+        }
+    }
+    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
+}
+
 View makeView(const Scene& scene, const SceneAssets& assets, int width, int height, Aov aov) {
     int w = width > 0 ? width : scene.output.width;
     int h = height > 0 ? height : scene.output.height;
     glm::vec3 lo, hi;
-    detail::sceneBounds(scene, assets, lo, hi);
+    sceneBounds(scene, assets, lo, hi);
     const glm::dvec3 center = 0.5 * (glm::dvec3(lo) + glm::dvec3(hi));
     float radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     const Camera& c = scene.camera;

@@ -165,9 +165,6 @@ QuadTessellation tessellateQuadDomain(const std::array<int, 4>& outer, int inner
 // (UINT32_MAX). docs/platform.md.
 uint32_t patchesPerDraw(bool mesaDrawModule);
 
-// World-space bounds of every mesh instance.
-void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi);
-
 // Per-draw values that are uniforms on the GPU (both renderers fill them
 // with drawUniforms()).
 struct DrawUniforms {

@@ -15,7 +15,7 @@
 // an example.
 //
 // Derivative-space modifiers (Loviscach 2008) are units of the same shape,
-// one ModifierKind each (shaders/sg/render/deriv_mods.cpp).
+// one ModifierKind each (render/src/layers/deriv_mods.cpp).
 //
 // Internal to surfgrad_render (the kind files are compiled by it).
 #pragma once
@@ -523,7 +523,7 @@ struct LayerBatch {
 };
 
 // ---------------------------------------------------------------------------
-// 4. Derivative-space modifiers (shaders/sg/render/deriv_mods.cpp).
+// 4. Derivative-space modifiers (render/src/layers/deriv_mods.cpp).
 
 // A kind that takes modifiers samples its map as a height and derivative,
 // lets the modifiers edit them, then turns the derivative into its surface

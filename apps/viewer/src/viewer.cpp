@@ -15,8 +15,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "layer_kind.h"
-#include "render_internal.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/io.h"
@@ -73,7 +71,7 @@ struct Orbit {
 Orbit orbitFromScene(const Scene& scene, const SceneAssets& assets, int w, int h) {
     View v = makeView(scene, assets, w, h);
     glm::vec3 lo, hi;
-    detail::sceneBounds(scene, assets, lo, hi);
+    sceneBounds(scene, assets, lo, hi);
     Orbit o;
     o.radius = std::max(0.5f * glm::length(hi - lo), 1e-3f);
     o.target =
@@ -150,19 +148,18 @@ bool layerControls(std::vector<Layer>& layers, const std::string& idPrefix) {
     for (size_t i = 0; i < layers.size(); ++i) {
         Layer& L = layers[i];
         ImGui::PushID((idPrefix + std::to_string(i)).c_str());
-        toggled |= ImGui::Checkbox(L.kind->name, &L.enabled);
-        if (L.kind->group) {
+        toggled |= ImGui::Checkbox(layerKindName(L.kind), &L.enabled);
+        if (layerIsGroup(L)) {
             ImGui::Indent();
             toggled |= layerControls(L.children, idPrefix + std::to_string(i) + "/");
             ImGui::Unindent();
         }
         bool first = true;
-        for (const ParamSpec& p : L.kind->params) {
-            if (!p.slider) continue;
+        for (const LayerSlider& p : layerSliders(L)) {
             if (first) ImGui::SameLine();
             first = false;
             ImGui::SetNextItemWidth(sliderWidth());
-            ImGui::SliderFloat(p.json, p.floatRef(L), p.slider->lo, p.slider->hi, p.slider->format);
+            ImGui::SliderFloat(p.name, p.value, p.lo, p.hi, p.format);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.doc);
         }
         ImGui::PopID();

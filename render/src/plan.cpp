@@ -90,7 +90,7 @@ std::string uvVar(int set) {
 
 // Includes, uniforms and the kinds' program-level declarations.
 void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
-    o << "// surfgrad assembled fragment program (apps/render/src/plan.cpp).\n"
+    o << "// surfgrad assembled fragment program (render/src/plan.cpp).\n"
       << "// Effect signature: " << plan.signature << "\n"
       << "// Only the layer kinds this material uses are included below.\n"
       << "#include \"sg/render/surface_fs.glsl\"\n";

@@ -34,20 +34,6 @@ namespace fs = std::filesystem;
 
 namespace detail {
 
-void sceneBounds(const Scene& scene, const SceneAssets& assets, glm::vec3& lo, glm::vec3& hi) {
-    lo = glm::vec3(1e30f);
-    hi = glm::vec3(-1e30f);
-    for (size_t i = 0; i < scene.meshes.size() && i < assets.meshes.size(); ++i) {
-        const glm::dmat4& M = scene.meshes[i].transform;
-        for (const auto& p : assets.meshes[i].mesh.positions) {
-            glm::vec3 w = glm::vec3(M * glm::dvec4(glm::dvec3(p), 1.0));
-            lo = glm::min(lo, w);
-            hi = glm::max(hi, w);
-        }
-    }
-    if (!(lo.x <= hi.x)) lo = hi = glm::vec3(0.0f);
-}
-
 io::InputError referencedFileError(const std::string& sceneName, const std::string& field,
                                    const io::InputError& e) {
     const std::string scene = fs::path(sceneName).lexically_normal().string();

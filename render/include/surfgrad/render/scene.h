@@ -41,10 +41,10 @@ enum class TangentSource { Pixel, MikkTSpace, Limit };
 // "off" culls back faces; none/mirror/flip are Mikkelsen 2019 section 2.10.
 enum class DoubleSided { Off, None, Mirror, Flip };
 // A layer kind: one entry of the layer-kind registry (its parameter table,
-// records, GLSL emission and CPU call; apps/render/src/layer_kind.h and
+// records, GLSL emission and CPU call; render/src/layer_kind.h and
 // docs/architecture.md, "Adding a layer kind"). Compared by address.
 struct LayerKind;
-// A derivative-space modifier kind (shaders/sg/render/deriv_mods.cpp).
+// A derivative-space modifier kind (render/src/layers/deriv_mods.cpp).
 struct ModifierKind;
 enum class Space { World, Object };
 // The values are SG_ENC_* of sg/render/common.glsl (a static_assert in
@@ -151,7 +151,7 @@ struct Layer {
     bool is(std::string_view kindName) const; // kind's schema name, e.g. "decal"
 };
 
-// The registry (apps/render/src/layer_registry.cpp): the kind named `name`
+// The registry (render/src/layer_registry.cpp): the kind named `name`
 // (the schema's "type"), or nullptr.
 const LayerKind* findLayerKind(std::string_view name);
 const char* layerKindName(const LayerKind* kind); // "?" for nullptr
@@ -159,6 +159,24 @@ const char* layerKindName(const LayerKind* kind); // "?" for nullptr
 // Contract: findLayerKind(kindName) != nullptr.
 Layer makeLayer(std::string_view kindName);
 const ModifierKind* findModifierKind(std::string_view name);
+
+// One numeric parameter of a layer that an interactive front end (the
+// viewer) offers as a slider: the JSON name and doc line of the kind's
+// parameter-table entry, the float it edits inside the layer, and the
+// slider's range and printf format.
+struct LayerSlider {
+    const char* name = "";
+    const char* doc = "";
+    float* value = nullptr;
+    float lo = 0.0f, hi = 1.0f;
+    const char* format = "%.3f";
+};
+// The sliders of `layer`'s kind, in parameter-table order. The pointers
+// point into `layer` (valid while it lives and is not moved or copied over).
+// A layer without a kind has none.
+std::vector<LayerSlider> layerSliders(Layer& layer);
+// Whether the layer's kind groups child layers (Layer::children).
+bool layerIsGroup(const Layer& layer);
 
 struct Material {
     std::string name;

@@ -3,7 +3,7 @@
 // build tree uses the source tree's data/, an installation its own
 // share/surfgrad/data found relative to the running executable, so that a
 // relocated prefix and the Debian package work without configuration.
-// The compile definitions come from apps/render/CMakeLists.txt.
+// The compile definitions come from render/CMakeLists.txt.
 #include <cstdlib>
 #include <filesystem>
 #include <string>

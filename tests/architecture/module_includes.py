@@ -1,0 +1,152 @@
+#!/usr/bin/env python3
+# The folder-level dependency rule of docs/architecture.md ("Layout and
+# dependency order"), run by the ctest module_includes: a file of a module's
+# folder includes only
+#   - files of its own folder, or
+#   - public files (include/ trees; the GLSL library shaders/sg) of the
+#     modules its target reaches by linking (build/module_links.txt, whose
+#     graph the ctest module_links checks against the rules).
+# So no file of the shader library includes a header of a library above it,
+# and no program includes a library's private header (src/), whatever the
+# include paths of a target happen to allow. Quoted includes of C++ and GLSL
+# (`#include "..."`, also inside GLSL held in C++ strings) are resolved
+# against the including file's folder and every module's folder; an include
+# that resolves to no file of the tree (system headers, generated files) is
+# not a first-party edge.
+#
+# Usage: module_includes.py SOURCE_DIR module_links.txt module_dirs.txt
+# Exit status 1 names every offending include: file, line, header, why.
+import os
+import re
+import sys
+
+INCLUDE_RE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
+SOURCE_EXTS = (".h", ".hpp", ".cpp", ".glsl", ".hlsl", ".in")
+# Targets that are modules: libraries surfgrad_<name> and the CLI.
+MODULE_RE = re.compile(r"^surfgrad(_[a-z]+)?$")
+
+
+def read_table(path):
+    rows = {}
+    with open(path, encoding="utf-8") as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if "|" in line:
+                name, rest = line.split("|", 1)
+                rows[name] = rest
+    return rows
+
+
+def reach(links, start):
+    """Every target `start` reaches through first-party links."""
+    seen, todo = set(), [start]
+    while todo:
+        cur = todo.pop()
+        for dep in links.get(cur, []):
+            if dep in links and dep not in seen:
+                seen.add(dep)
+                todo.append(dep)
+    return seen
+
+
+def public_roots(folder):
+    """Where other modules may include a module's files from."""
+    roots = [os.path.join(folder, "include")]
+    if os.path.basename(folder) == "shaders":
+        roots.append(folder)  # the GLSL library: "sg/..." paths
+    return roots
+
+
+def main():
+    if len(sys.argv) != 4:
+        sys.exit("usage: module_includes.py SOURCE_DIR module_links.txt module_dirs.txt")
+    src = os.path.realpath(sys.argv[1])
+    raw_links = read_table(sys.argv[2])
+    # Generator expressions LINK_LIBRARIES keeps unevaluated: a target
+    # named conditionally counts as linked (as in CheckModuleLinks.cmake).
+    genex = re.compile(r"\$<(?:TARGET_NAME_IF_EXISTS|LINK_ONLY|BUILD_INTERFACE):([^>]*)>")
+    links = {
+        t: [d for d in genex.sub(r"\1", v).split(";") if d]
+        for t, v in raw_links.items()
+        if v != "#not-configured"
+    }
+    dirs = {t: os.path.realpath(d) for t, d in read_table(sys.argv[3]).items()}
+
+    # Folder -> the module targets defined there (a folder may hold a
+    # module and its tools, e.g. shaders/ and surfgrad_flatten).
+    folders = {}
+    for t, d in dirs.items():
+        if MODULE_RE.match(t) and t in links and d != src:
+            folders.setdefault(d, set()).add(t)
+    if not folders:
+        sys.exit("module_includes: no module folders in %s" % sys.argv[3])
+    # Each folder may include its own files and the public files of what
+    # its targets reach.
+    allowed = {}
+    for d, targets in folders.items():
+        ok = set()
+        for t in targets:
+            ok |= reach(links, t)
+        allowed[d] = {dirs[t] for t in ok if t in dirs} - {d}
+
+    def owner(path):
+        best = None
+        for d in folders:
+            if path.startswith(d + os.sep) and (best is None or len(d) > len(best)):
+                best = d
+        return best
+
+    errors, checked = [], 0
+    for d in sorted(folders):
+        for root, subdirs, files in os.walk(d):
+            # A nested module folder (apps/viewer inside apps/) is its own.
+            subdirs[:] = [s for s in subdirs if os.path.join(root, s) not in folders]
+            for name in sorted(files):
+                if not name.endswith(SOURCE_EXTS):
+                    continue
+                path = os.path.join(root, name)
+                checked += 1
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    lines = f.readlines()
+                for lineno, line in enumerate(lines, 1):
+                    m = INCLUDE_RE.match(line)
+                    if not m:
+                        continue
+                    inc = m.group(1)
+                    local = os.path.realpath(os.path.join(root, inc))
+                    if os.path.isfile(local) and owner(local) == d:
+                        continue
+                    err = classify(inc, d, folders, allowed)
+                    if err:
+                        rel = os.path.relpath(path, src)
+                        errors.append('%s:%d: #include "%s": %s' % (rel, lineno, inc, err))
+    if errors:
+        print("module_includes: includes that break the dependency order:", file=sys.stderr)
+        for e in errors:
+            print("  " + e, file=sys.stderr)
+        return 1
+    print("module_includes: %d files of %d module folders include only what their modules link"
+          % (checked, len(folders)))
+    return 0
+
+
+def classify(inc, folder, folders, allowed):
+    """None when `inc` (not found beside the file) is allowed in `folder`."""
+    own = [os.path.join(folder, "src"), os.path.join(folder, "include")] + public_roots(folder)
+    if any(os.path.isfile(os.path.join(r, inc)) for r in own):
+        return None
+    for other in sorted(folders):
+        if other == folder:
+            continue
+        name = "/".join(sorted(folders[other]))
+        if any(os.path.isfile(os.path.join(r, inc)) for r in public_roots(other)):
+            if other in allowed[folder]:
+                return None
+            return "a header of %s, which this folder's module does not link" % name
+        if os.path.isfile(os.path.join(other, "src", inc)):
+            return "a private header of %s (%s/src)" % (name, os.path.basename(other))
+    return None
+
+
+if __name__ == "__main__":
+    sys.exit(main())
