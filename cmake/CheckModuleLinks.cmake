@@ -14,7 +14,7 @@ cmake_minimum_required(VERSION 3.20) # IN_LIST, list(POP_FRONT)
 # Module -> the first-party targets it may reach by linking.
 set(_modules surfgrad_shaders surfgrad_base surfgrad_bump surfgrad_features surfgrad_mesh
              surfgrad_gl surfgrad_parity surfgrad_render surfgrad_viewer surfgrad_normalmap
-             surfgrad_image surfgrad_bake surfgrad_python)
+             surfgrad_image surfgrad_bake surfgrad_translate surfgrad_python)
 set(_may_surfgrad_shaders "")
 set(_may_surfgrad_base "")
 set(_may_surfgrad_bump surfgrad_shaders surfgrad_base)
@@ -35,6 +35,8 @@ set(_may_surfgrad_normalmap surfgrad_bump surfgrad_mesh surfgrad_image surfgrad_
 # The baker: the normal-map grids and frames, the mesh's patch tables, the
 # shared patch bases; no GL, no renderer.
 set(_may_surfgrad_bake surfgrad_normalmap ${_may_surfgrad_normalmap})
+# Shader targets: programs in, programs out; the renderer does not link it.
+set(_may_surfgrad_translate surfgrad_shaders surfgrad_base)
 # The Python module binds the libraries users call (not the viewer, not
 # the parity harness).
 set(_may_surfgrad_python surfgrad_render surfgrad_normalmap surfgrad_bake ${_may_surfgrad_render})

@@ -72,6 +72,11 @@ _surfgrad_fix_openimageio_targets()
 _surfgrad_find_dependency(PkgConfig)
 _surfgrad_pkg_dependency(EPOXY epoxy)
 _surfgrad_pkg_dependency(EGL egl)
+# translate: shader targets (glslang's GLSL/HLSL front ends and SPIR-V
+# generation, the SPIR-V validator, SPIRV-Cross's C API).
+_surfgrad_find_dependency(glslang)
+_surfgrad_find_dependency(SPIRV-Tools)
+_surfgrad_pkg_dependency(SPIRV_CROSS_C spirv-cross-c-shared)
 if(_surfgrad_with_viewer)
     _surfgrad_find_dependency(glfw3)
     _surfgrad_pkg_dependency(IMGUI imgui)

@@ -6,8 +6,10 @@
 //          [--size WxH] [--aov NAME] [--frame F] [--tbn pixel|mikktspace|limit]
 //          [--cpu] [--all-frames]
 //     Without a scene: the built-in default scene to out/default.png.
-//   shader SCENE.json [--mesh I]   prints the assembled GLSL of every
-//                                  distinct program (or of mesh I).
+//   shader SCENE.json [--mesh I] [--target T] [-o DIR]
+//                                  prints (or writes) the assembled program of
+//                                  every distinct material (or of mesh I) for
+//                                  a shader target, validated.
 //   view [SCENE.json | MODEL] [--size WxH] [--frames N] [--screenshot PNG] [--no-ui]
 //                                  the interactive viewer (GLFW + Dear ImGui).
 #include <CLI/CLI.hpp>
@@ -26,6 +28,7 @@
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/render.h"
+#include "surfgrad/shader_target.h"
 #if SURFGRAD_HAVE_VIEWER
 #include "surfgrad/viewer.h"
 #endif
@@ -328,10 +331,89 @@ void addRenderCommand(CLI::App& app, int& status) {
     });
 }
 
+// One program stage carried to the target: printed, or written to
+// DIR/<program>.<target>.<stage><extension> (atomically) when an output
+// folder is given. SPIR-V is printed as its disassembly and written as the
+// module.
+void emitStage(const std::string& glsl450, sg::translate::ShaderStage stage,
+               sg::translate::ShaderTarget target, const std::string& label,
+               const std::string& fileStem, const std::string& outDir) {
+    namespace st = sg::translate;
+    const st::TranslatedShader out = st::translateShader(glsl450, stage, target, label);
+    const st::ShaderTargetInfo& info = st::shaderTargetInfo(target);
+    const std::string validated = out.validatedBy.empty()
+                                      ? std::string(", not validated (no validator here)")
+                                      : ", validated by " + out.validatedBy;
+    const char* stageName = st::shaderStageName(stage);
+    if (outDir.empty()) {
+        std::printf("// ==== %s: %s program, %s%s\n", label.c_str(),
+                    stage == st::ShaderStage::Vertex     ? "vertex"
+                    : stage == st::ShaderStage::Fragment ? "fragment"
+                                                         : stageName,
+                    info.language, validated.c_str());
+        std::fputs(out.text.c_str(), stdout);
+        return;
+    }
+    const fs::path file =
+        fs::path(outDir) / (fileStem + "." + info.name + "." + stageName + info.extension);
+    if (out.spirv.empty()) {
+        sg::io::writeFileAtomically(file, out.text);
+    } else {
+        sg::io::writeFileAtomically(file,
+                                    std::string(reinterpret_cast<const char*>(out.spirv.data()),
+                                                out.spirv.size() * sizeof(uint32_t)));
+    }
+    std::printf("wrote %s (%s%s)\n", file.string().c_str(), info.language, validated.c_str());
+}
+
+// Every stage of one material's program for one target: fragment, vertex
+// (printed with --vertex, always written), and for adaptive patches the
+// evaluation stage and the control stage of each patch size (16 points
+// regular, 20 Gregory), which the program's file names carry (_p16, _p20).
+void emitProgram(const ProgramSource& src, sg::translate::ShaderTarget target,
+                 const std::string& label, const std::string& stem, bool vertex,
+                 const std::string& outDir) {
+    namespace st = sg::translate;
+    emitStage(src.fragment, st::ShaderStage::Fragment, target, label, stem, outDir);
+    if (!vertex && outDir.empty()) return;
+    emitStage(src.vertex, st::ShaderStage::Vertex, target, label, stem, outDir);
+    if (src.tessEval.empty()) return;
+    emitStage(src.tessEval, st::ShaderStage::TessEval, target, label, stem, outDir);
+    for (int points : {16, 20}) {
+        emitStage(assemblePatchControl(points).text, st::ShaderStage::TessControl, target,
+                  label + ", " + std::to_string(points) + "-point patches",
+                  stem + "_p" + std::to_string(points), outDir);
+    }
+}
+
+// "--target": one name, a comma-separated list, or "all".
+std::vector<sg::translate::ShaderTarget> parseTargets(const std::string& list) {
+    namespace st = sg::translate;
+    std::vector<st::ShaderTarget> targets;
+    if (list == "all") {
+        for (const st::ShaderTargetInfo& t : st::shaderTargets()) targets.push_back(t.target);
+        return targets;
+    }
+    size_t at = 0;
+    while (at <= list.size()) {
+        const size_t comma = std::min(list.find(',', at), list.size());
+        const std::string name = list.substr(at, comma - at);
+        const std::optional<st::ShaderTarget> t = st::findShaderTarget(name);
+        if (!t) {
+            throw CliError("--target: '" + name + "' is not a shader target (expected " +
+                           st::shaderTargetNames() + ", a comma-separated list, or all)");
+        }
+        if (std::find(targets.begin(), targets.end(), *t) == targets.end()) targets.push_back(*t);
+        at = comma + 1;
+    }
+    return targets;
+}
+
 void addShaderCommand(CLI::App& app, int& status) {
-    auto* shader = app.add_subcommand("shader", "Print the assembled GLSL programs of a scene");
+    auto* shader = app.add_subcommand(
+        "shader", "Print (or write) the assembled programs of a scene for shader targets");
     struct ShaderOpts {
-        std::string scene, budget;
+        std::string scene, budget, target = "glsl450", outDir;
         int mesh = -1;
         bool vertex = false, body = false;
     };
@@ -342,9 +424,29 @@ void addShaderCommand(CLI::App& app, int& status) {
     shader->add_option("--mesh", so->mesh, "Only the program of mesh I (0-based)")
         ->check(CLI::NonNegativeNumber);
     shader->add_flag("--vertex", so->vertex, "Print the vertex programs too");
-    shader->add_flag("--body", so->body, "Print the generated body before #include expansion");
+    shader->add_flag("--body", so->body,
+                     "Print the generated body before #include expansion (glsl450 only)");
+    shader->add_option("--target", so->target,
+                       "Shader targets: " + sg::translate::shaderTargetNames() +
+                           ", a comma-separated list of them, or all (default glsl450; all "
+                           "skips the targets a program cannot reach: adaptive patches need "
+                           "tessellation stages); every program is validated where a "
+                           "validator exists (all but msl)");
+    shader->add_option("-o,--output-dir", so->outDir,
+                       "Write every program to DIR/program<N>.<target>.<stage><ext> "
+                       "(stage: frag, vert; tese, tesc of adaptive patches) instead of "
+                       "printing it (SPIR-V as the binary module)");
     shader->add_option("--texture-budget", so->budget, kBudgetHelp);
     shader->callback([so, &status] {
+        namespace st = sg::translate;
+        // Options first, before the scene's assets load.
+        const std::vector<st::ShaderTarget> targets = parseTargets(so->target);
+        if (so->body && (targets.size() != 1 || targets[0] != st::ShaderTarget::Glsl450))
+            throw CliError("--body prints the GLSL 4.50 body; it takes no --target " + so->target);
+        if (!so->outDir.empty() && !fs::is_directory(so->outDir))
+            throw CliError("--output-dir " + so->outDir + ": not an existing folder");
+        if (so->outDir.empty() && targets.size() > 1)
+            throw CliError("--target " + so->target + ": several targets need --output-dir");
         Scene scene = sceneFromArg(so->scene);
         if (so->mesh >= 0 && size_t(so->mesh) >= scene.meshes.size()) {
             throw CliError("--mesh " + std::to_string(so->mesh) + ": the scene has " +
@@ -359,14 +461,29 @@ void addShaderCommand(CLI::App& app, int& status) {
             if (so->mesh >= 0 && size_t(so->mesh) != i) continue;
             MaterialPlan plan = planMaterial(scene, assets, int(i), scene.meshes[i].material);
             if (!seen.insert(plan.signature).second) continue;
+            const std::string label = scene.meshes[i].fieldPath + " (material " +
+                                      scene.materials[size_t(plan.materialIndex)].name + ")";
+            if (so->body) {
+                std::printf("// ==== %s: fragment program body\n", label.c_str());
+                std::fputs(fragmentBody(plan).c_str(), stdout);
+                continue;
+            }
             ProgramSource src = assembleProgram(plan);
-            std::printf("// ==== %s (material %s): fragment program\n",
-                        scene.meshes[i].fieldPath.c_str(),
-                        scene.materials[size_t(plan.materialIndex)].name.c_str());
-            std::fputs(so->body ? fragmentBody(plan).c_str() : src.fragment.c_str(), stdout);
-            if (so->vertex) {
-                std::printf("// ==== %s: vertex program\n", scene.meshes[i].fieldPath.c_str());
-                std::fputs(src.vertex.c_str(), stdout);
+            const std::string stem = "program" + std::to_string(seen.size() - 1);
+            for (st::ShaderTarget t : targets) {
+                const st::ShaderTargetInfo& info = st::shaderTargetInfo(t);
+                if (!src.tessEval.empty() && !info.tessellation) {
+                    // Adaptive patches: tessellation stages and std430
+                    // buffers (shader_target.h says which targets lack them).
+                    const std::string why = label +
+                                            ": adaptive patches (tessellation stages) are not "
+                                            "carried to " +
+                                            info.language;
+                    if (so->target != "all") throw CliError("--target " + so->target + ": " + why);
+                    std::printf("skipped %s: %s\n", info.name, why.c_str());
+                    continue;
+                }
+                emitProgram(src, t, label, stem, so->vertex, so->outDir);
             }
         }
         status = 0;

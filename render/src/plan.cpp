@@ -138,8 +138,8 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
     o << "\nvoid main() {\n"
       << "    // Prologue (Mikkelsen 2019, listing 16): derivatives of the camera-relative "
          "position.\n"
-      << "    vec3 dPdx = dFdxFine(vRelPos);\n"
-      << "    vec3 dPdy = dFdyFine(vRelPos);\n"
+      << "    vec3 dPdx = SG_DFDX(vRelPos);\n"
+      << "    vec3 dPdy = SG_DFDY(vRelPos);\n"
       << "    SgFrame frame = sgPrologue(vNormal, dPdx, dPdy, gl_FrontFacing, uBfaceMode);\n"
       << "    vec3 baseNormal = frame.resolveSign * frame.nrmBase; // as displayed (flip: "
          "negated)\n";
@@ -147,8 +147,8 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
     for (int k = 0; k < plan.uvCount; ++k) {
         if (!(uvMask >> k & 1u)) continue;
         std::string v = "vUv" + std::to_string(k);
-        o << "    vec2 dUv" << k << "dx = dFdxFine(" << v << ");\n"
-          << "    vec2 dUv" << k << "dy = dFdyFine(" << v << ");\n";
+        o << "    vec2 dUv" << k << "dx = SG_DFDX(" << v << ");\n"
+          << "    vec2 dUv" << k << "dy = SG_DFDY(" << v << ");\n";
         if (plan.vertexTangentMask >> k & 1u) {
             o << "    SgUvFrame uv" << k << " = sgUvFrameVertex(" << v << ", dUv" << k << "dx, dUv"
               << k << "dy, vNormal, vTangent" << k << ");\n";
@@ -164,8 +164,8 @@ void emitPrologue(const MaterialPlan& plan, std::ostringstream& o) {
              "mat3(1.0));\n";
     }
     if (plan.usesObjectVolume) {
-        o << "    SgVolumeSpace volObject = sgVolumeSpaceDeriv(vObjPos, dFdxFine(vObjPos), "
-             "dFdyFine(vObjPos), uModel3, uModelInv3);\n";
+        o << "    SgVolumeSpace volObject = sgVolumeSpaceDeriv(vObjPos, SG_DFDX(vObjPos), "
+             "SG_DFDY(vObjPos), uModel3, uModelInv3);\n";
     }
     if (!movesSurface(plan)) emitBaseColor(plan, o);
     o << "    vec3 surfGrad = vec3(0.0);\n";
@@ -261,7 +261,7 @@ void emitShading(const MaterialPlan& plan, std::ostringstream& o) {
         o << "    outValue = sgAovValue(uAov, color, nrm, surfGradOut, vec3(0.0), vec3(0.0), "
              "baseNormal, vec2(0.0),\n";
     }
-    o << "                          float(gl_PrimitiveID) + 1.0 + uPrimBase);\n";
+    o << "                          float(SG_PRIMITIVE_ID) + 1.0 + uPrimBase);\n";
     if (plan.adaptive) o << "    if (uAov == SG_AOV_PATCH) outValue = vPatchAov;\n";
     o << "}\n";
 }

@@ -178,7 +178,15 @@ SG_FN vec2 sgUnpackHalf2x16(uint w) {
     return vec2(sgHalfToFloat(w & 0xffffu), sgHalfToFloat(w >> 16u));
 }
 #endif
-#if defined(SG_CPP) || !defined(SG_GLSL_LEGACY)
+// SG_BIT_ARITHMETIC: frexp, ldexp and imulExtended from bit patterns and
+// 16-bit halves, as the legacy dialects need; also defined for GLSL 4.x
+// programs carried to HLSL through SPIR-V (surfgrad/shader_target.h):
+// SPIRV-Cross writes HLSL's frexp with an int exponent, which HLSL's frexp
+// (float exponent) does not take, and no HLSL for OpSMulExtended.
+#if defined(SG_GLSL_LEGACY) && !defined(SG_BIT_ARITHMETIC)
+#define SG_BIT_ARITHMETIC 1
+#endif
+#if defined(SG_CPP) || !defined(SG_BIT_ARITHMETIC)
 SG_FN float sgFrexp(float x, SG_OUT(int) e) { return frexp(x, e); }
 SG_FN float sgLdexp(float m, int e) { return ldexp(m, e); }
 SG_FN void sgIMulExtended(int a, int b, SG_OUT(int) hi, SG_OUT(int) lo) {

@@ -397,6 +397,69 @@ TEST(EngineSnippets, CompileAgainstTheFlatLibrary) {
     }
 }
 
+// The Godot 4 and bgfx snippets (examples/engines/*.gdshader, *.sc): their
+// engines' compilers are not on this machine, so each engine's built-ins are
+// replaced by GLSL stand-ins of the same meaning and the file is compiled
+// against the flat GLSL library (GLSL 4.50) with glslang. This checks the
+// library calls (names, arguments, types), not the engines' acceptance.
+//  - Godot: `shader_type` dropped, the res:// include replaced by the flat
+//    library, `: hint_*` dropped, `void fragment()` made a function of
+//    Godot's built-ins (NORMAL inout, VERTEX, UV, FRONT_FACING), called by a
+//    main() on stage inputs;
+//  - bgfx: `$input` as `in` declarations (types from the varying names:
+//    v_texcoord* vec2, else vec3), bgfx_shader.sh as SAMPLER2D(n, r) ->
+//    `uniform sampler2D n`, texture2D -> texture, gl_FragColor -> an output.
+TEST(EngineSnippets, GodotAndBgfxCallTheLibraryAsGlsl) {
+    const fs::path flat = fs::path(SURFGRAD_BINARY_DIR) / "shaders" / "flat" / "surfgrad.glsl";
+    const fs::path dir = fs::path(SURFGRAD_SOURCE_DIR) / "examples" / "engines";
+    const auto read = [](const fs::path& p) {
+        std::ifstream in(p);
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    const std::string library = read(flat);
+    ASSERT_FALSE(library.empty()) << flat;
+
+    std::string godot = read(dir / "surfgrad_godot.gdshader");
+    ASSERT_NE(godot.find("shader_type spatial;"), std::string::npos);
+    godot = std::regex_replace(godot, std::regex(R"(shader_type \w+;)"), "");
+    const std::string godotInclude = "#include \"res://surfgrad/surfgrad.gdshaderinc\"";
+    ASSERT_NE(godot.find(godotInclude), std::string::npos);
+    godot.replace(godot.find(godotInclude), godotInclude.size(), library);
+    godot = std::regex_replace(godot, std::regex(R"(\s*:\s*hint_\w+)"), "");
+    godot = std::regex_replace(godot, std::regex(R"(void fragment\(\))"),
+                               "void godotFragment(inout vec3 NORMAL, vec3 VERTEX, vec2 UV, "
+                               "bool FRONT_FACING)");
+    godot = "#version 450 core\nin vec3 sgVertex;\nin vec3 sgNormal;\nin vec2 sgUv;\n"
+            "out vec4 sgOut;\n" +
+            godot +
+            "void main() {\n    vec3 n = sgNormal;\n"
+            "    godotFragment(n, sgVertex, sgUv, gl_FrontFacing);\n"
+            "    sgOut = vec4(n, 1.0);\n}\n";
+    const RunResult g = validate(godot, "frag", "godot");
+    EXPECT_EQ(g.exitCode, 0) << "surfgrad_godot.gdshader:\n" << g.output();
+
+    std::string bgfx = read(dir / "surfgrad_bgfx.sc");
+    std::smatch inputs;
+    ASSERT_TRUE(std::regex_search(bgfx, inputs, std::regex(R"(\$input ([^\n]*))")));
+    std::string decls;
+    std::stringstream names(inputs[1].str());
+    for (std::string n; std::getline(names, n, ',');) {
+        n = std::regex_replace(n, std::regex(R"(\s)"), "");
+        decls +=
+            std::string("in ") + (n.rfind("v_texcoord", 0) == 0 ? "vec2 " : "vec3 ") + n + ";\n";
+    }
+    bgfx = std::regex_replace(bgfx, std::regex(R"(\$input [^\n]*)"), decls);
+    bgfx = std::regex_replace(bgfx, std::regex(R"(#include <bgfx_shader.sh>)"),
+                              "#define SAMPLER2D(name, reg) uniform sampler2D name\n"
+                              "#define texture2D texture\n"
+                              "out vec4 sgFragColor;\n#define gl_FragColor sgFragColor");
+    const std::string bgfxInclude = "#include \"surfgrad.glsl\"";
+    ASSERT_NE(bgfx.find(bgfxInclude), std::string::npos);
+    bgfx.replace(bgfx.find(bgfxInclude), bgfxInclude.size(), library);
+    const RunResult b = validate("#version 450 core\n" + bgfx, "frag", "bgfx");
+    EXPECT_EQ(b.exitCode, 0) << "surfgrad_bgfx.sc:\n" << b.output();
+}
+
 // Splat constructors (vec3(x) from one scalar) in a file's code: GLSL and
 // C++ take them, HLSL's float3(x) does not (DXC, FXC), so the shared source
 // writes sgVec3(x) (sg/compat.glsl). Finds the literal and SG_* constant

@@ -6,7 +6,10 @@
 //    checked too);
 //  - every assembled program variant (`surfgrad shader --vertex`: each
 //    distinct fragment and vertex program of the scene) passes the Khronos
-//    reference compiler, glslangValidator, independently of the GL driver;
+//    reference compiler, glslangValidator, independently of the GL driver,
+//    and so does each program carried to every shader target
+//    (`--target all`: GLSL 3.30 and ES 3.00, SPIR-V through spirv-val, HLSL
+//    through glslang's HLSL front end; MSL is only written);
 //  - README.md exists and names the rendered image, which exists under
 //    docs/images/examples/;
 //  - `surfgrad view` opens it under xvfb-run and screenshots the window.
@@ -17,6 +20,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -121,8 +125,8 @@ TEST_P(SceneExample, RendersFiniteImagesFromTheCli) {
     }
 }
 
-// Splits `surfgrad shader --vertex` output ("// ==== NAME: fragment|vertex
-// program" headers) into programs.
+// Splits `surfgrad shader --vertex` output ("// ==== NAME: fragment|vertex|
+// tesc|tese program, ..." headers) into programs.
 struct Program {
     std::string header, stage, source;
 };
@@ -134,7 +138,10 @@ std::vector<Program> splitPrograms(const std::string& text) {
         if (line.rfind("// ==== ", 0) == 0) {
             Program p;
             p.header = line;
-            p.stage = line.find("vertex program") != std::string::npos ? "vert" : "frag";
+            p.stage = line.find(": vertex program") != std::string::npos ? "vert"
+                      : line.find(": tesc program") != std::string::npos ? "tesc"
+                      : line.find(": tese program") != std::string::npos ? "tese"
+                                                                         : "frag";
             out.push_back(p);
         } else if (!out.empty()) {
             out.back().source += line + "\n";
@@ -160,7 +167,83 @@ TEST_P(SceneExample, EveryAssembledShaderPassesGlslang) {
         CommandResult v = runCommand("glslangValidator " + shellQuote(file));
         EXPECT_EQ(v.exitCode, 0) << p.header << "\n" << v.output();
     }
-    EXPECT_EQ(stages.size(), 2u);
+    EXPECT_TRUE(stages.count("vert") && stages.count("frag"));
+}
+
+// Every program of the scene for every shader target
+// (`surfgrad shader --target all -o DIR`), each file checked again by the
+// command-line tools, outside the process that made it: glslangValidator
+// for GLSL 4.50, 3.30 and ES 3.00 (by the file's #version) and for HLSL
+// (its HLSL front end, shader model 5.0 to Vulkan SPIR-V), spirv-val for
+// SPIR-V (Vulkan 1.1). MSL has no validator here: the test checks that
+// SPIRV-Cross wrote a Metal entry point of the right stage.
+TEST_P(SceneExample, EveryShaderTargetIsWrittenAndValidated) {
+    fs::path dir = scratchDir("targets_" + GetParam());
+    CommandResult r = runCommand(shellQuote(kCli) + " shader " + shellQuote(scene()) +
+                                 " --target all -o " + shellQuote(dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output();
+    const std::vector<std::string> targets = {"glsl450", "glsl330", "es300",
+                                              "spirv",   "hlsl",    "msl"};
+    // Targets `all` skipped: programs with adaptive patches reach only the
+    // targets with tessellation stages (GLSL 4.50, SPIR-V).
+    std::set<std::string> skipped;
+    std::istringstream lines(r.output());
+    for (std::string line; std::getline(lines, line);) {
+        if (line.rfind("skipped ", 0) == 0) skipped.insert(line.substr(8, line.find(':') - 8));
+    }
+    std::map<std::string, std::map<std::string, int>> files; // target -> stage -> count
+    for (const auto& e : fs::directory_iterator(dir)) {
+        const std::string name = e.path().filename().string();
+        if (name == "hlsl.spv") continue; // written by the HLSL check below
+        // program<N>[_p<points>].<target>.<stage><ext>
+        std::vector<std::string> parts;
+        std::stringstream ss(name);
+        for (std::string part; std::getline(ss, part, '.');) parts.push_back(part);
+        ASSERT_EQ(parts.size(), 4u) << name;
+        const std::string& target = parts[1];
+        const std::string& stage = parts[2];
+        ASSERT_TRUE(stage == "vert" || stage == "frag" || stage == "tesc" || stage == "tese")
+            << name;
+        ++files[target][stage];
+        const std::string file = shellQuote(e.path());
+        if (target == "spirv") {
+            CommandResult v = runCommand("spirv-val --target-env vulkan1.1 " + file);
+            EXPECT_EQ(v.exitCode, 0) << name << "\n" << v.output();
+        } else if (target == "hlsl") {
+            CommandResult v =
+                runCommand("glslangValidator -D -V --target-env vulkan1.1 -S " + stage +
+                           " -e main " + file + " -o " + shellQuote(dir / "hlsl.spv"));
+            EXPECT_EQ(v.exitCode, 0) << name << "\n" << v.output();
+        } else if (target == "msl") {
+            const std::string text = readText(e.path());
+            EXPECT_NE(text.find("#include <metal_stdlib>"), std::string::npos) << name;
+            EXPECT_NE(text.find(stage == "vert" ? "vertex main0_out main0("
+                                                : "fragment main0_out main0("),
+                      std::string::npos)
+                << name;
+        } else {
+            const std::string text = readText(e.path());
+            const std::string version = target == "glsl450"   ? "#version 450 core\n"
+                                        : target == "glsl330" ? "#version 330 core\n"
+                                                              : "#version 300 es\n";
+            EXPECT_EQ(text.rfind(version, 0), 0u) << name;
+            CommandResult v = runCommand("glslangValidator " + file);
+            EXPECT_EQ(v.exitCode, 0) << name << "\n" << v.output();
+        }
+    }
+    // Every target that was not skipped has the programs GLSL 4.50 has,
+    // stage by stage; a skipped one has none.
+    ASSERT_GE(files["glsl450"]["frag"], 1) << r.output();
+    EXPECT_EQ(files["glsl450"]["vert"], files["glsl450"]["frag"]);
+    EXPECT_FALSE(skipped.count("glsl450") || skipped.count("spirv")) << r.output();
+    for (const std::string& t : targets) {
+        if (skipped.count(t)) {
+            EXPECT_TRUE(files[t].empty()) << t;
+            EXPECT_NE(r.output().find("adaptive patches"), std::string::npos) << r.output();
+        } else {
+            EXPECT_EQ(files[t], files["glsl450"]) << t;
+        }
+    }
 }
 
 TEST_P(SceneExample, HasAReadmeAndARenderedImage) {

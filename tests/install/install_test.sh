@@ -58,7 +58,7 @@ for f in surfgradConfig.cmake surfgradConfigVersion.cmake surfgradTargets.cmake 
     [ -f "$prefix/$libdir/cmake/surfgrad/$f" ] || fail "$libdir/cmake/surfgrad/$f missing"
 done
 # Headers: exactly the modules' include/ trees (internal headers stay out).
-(cd "$src" && for d in base shaders image mesh bump features gl parity render normalmap bake apps/viewer; do
+(cd "$src" && for d in base shaders image mesh bump features gl parity render normalmap bake translate apps/viewer; do
      (cd "$d/include" && find . -name '*.h'); done) | sort >"$work/headers.want"
 (cd "$prefix/include" && find . -type f) | sort >"$work/headers.got"
 diff -u "$work/headers.want" "$work/headers.got" >&2 || fail "installed headers differ from the modules' include/ trees"

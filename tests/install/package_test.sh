@@ -77,7 +77,8 @@ for want in 'libc6 (>= ' 'libopenimageio' 'libosdcpu' 'libtinygltf' 'libepoxy0' 
 done
 # openimageio-tools: OpenImageIO's CMake config fails without its tools.
 for want in "surfgrad (= $version)" libglm-dev libopenmesh-dev libosd-dev libopenimageio-dev \
-            openimageio-tools libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev; do
+            openimageio-tools libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev glslang-dev \
+            spirv-tools libspirv-cross-c-shared-dev; do
     grep -qF "$want" <<<"$dev_deps" || fail "surfgrad-dev Depends lacks $want: $dev_deps"
 done
 # Every package named (alternatives and version constraints stripped) is a

@@ -261,43 +261,58 @@ std::string declarations(const MaterialPlan& plan) {
     return o;
 }
 
-std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLayer*>& layers,
-                      const std::string& indent) {
-    const int first = layers.front()->featureIndex, count = int(layers.size());
-    uint32_t uvMask = 0;
-    for (const PlanLayer* pl : layers) uvMask |= 1u << pl->layer->uvSet;
-    std::string o = indent + "// feature layers " + std::to_string(first) + ".." +
-                    std::to_string(first + count - 1) +
-                    " (one loop: the evaluator is compiled once)\n" + indent +
-                    "for (int fi = " + std::to_string(first) + "; fi < " +
-                    std::to_string(first + count) + "; ++fi) {\n";
-    if (plan.uber) o += indent + "    if (!(uLayerOn[kFeatFlag[fi]] > 0.5)) continue;\n";
-    o += indent + "    int r = kFeatRecord[fi];\n";
+// The statements of one feature layer `fi` (a loop index, or a constant
+// in the unrolled form), at `indent`.
+std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const std::string& in) {
+    std::string o = in + "int r = kFeatRecord[fi];\n";
     bool firstUv = true;
     for (int k = 0; k < plan.uvCount; ++k) {
         if (!(uvMask >> k & 1u)) continue;
         const std::string uv = "uv" + std::to_string(k);
         if (firstUv) {
-            o += indent + "    SgUvFrame fuv = " + uv + ";\n";
+            o += in + "SgUvFrame fuv = " + uv + ";\n";
             firstUv = false;
         } else {
-            o +=
-                indent + "    if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
+            o += in + "if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
         }
     }
     const std::string fn = std::string(plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature") +
                            (plan.featureLean ? "Aa" : "");
-    o += indent + "    surfGrad += " + fn +
+    o += in + "surfGrad += " + fn +
          "(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + "
          "1], uLayerData[r + 2]),\n" +
-         (plan.featureLean ? indent + "        sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") +
-         indent +
-         "        sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
+         (plan.featureLean ? in + "    sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") + in +
+         "    sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
          "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n" +
-         indent + "        uFeatCorners[fi], uFeatEdges[fi], " +
+         in + "    uFeatCorners[fi], uFeatEdges[fi], " +
          (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]" +
-         (plan.featureLean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n" +
-         indent + "}\n";
+         (plan.featureLean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n";
+    return o;
+}
+
+// One loop over the group's feature layers, so the evaluator is compiled
+// once. GLSL 3.30 and ES 3.00 index sampler arrays with constant
+// expressions only: there (SG_GLSL_LEGACY) the layers are unrolled, one
+// block per layer with `fi` a constant.
+std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLayer*>& layers,
+                      const std::string& indent) {
+    const int first = layers.front()->featureIndex, count = int(layers.size());
+    uint32_t uvMask = 0;
+    for (const PlanLayer* pl : layers) uvMask |= 1u << pl->layer->uvSet;
+    // The uber program (bench) switches each layer by a uniform flag.
+    const std::string on = "if (uLayerOn[kFeatFlag[fi]] > 0.5) {\n";
+    const std::string in = indent + (plan.uber ? "        " : "    ");
+    const std::string body = (plan.uber ? indent + "    " + on : "") +
+                             featureLayerBody(plan, uvMask, in) +
+                             (plan.uber ? indent + "    }\n" : "");
+    std::string o = indent + "// feature layers " + std::to_string(first) + ".." +
+                    std::to_string(first + count - 1) +
+                    " (one loop: the evaluator is compiled once)\n#ifdef SG_GLSL_LEGACY\n";
+    for (int fi = first; fi < first + count; ++fi)
+        o += indent + "{\n" + indent + "    const int fi = " + std::to_string(fi) + ";\n" + body +
+             indent + "}\n";
+    o += "#else\n" + indent + "for (int fi = " + std::to_string(first) + "; fi < " +
+         std::to_string(first + count) + "; ++fi) {\n" + body + indent + "}\n#endif\n";
     return o;
 }
 

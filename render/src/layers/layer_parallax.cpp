@@ -102,8 +102,8 @@ std::string glslStatement(const GlslLayerContext& c, bool occlusion) {
          t + ", p.channel);\n";
     if (p.correctNormal) {
         o += in + "frame = sgFrameWithBase(frame, sgParallaxCorrectNormal(frame, -depth * "
-                  "search.scr, sgParallaxUnitNormalDeriv(frame, vNormal, dFdxFine(vNormal)), "
-                  "sgParallaxUnitNormalDeriv(frame, vNormal, dFdyFine(vNormal))));\n";
+                  "search.scr, sgParallaxUnitNormalDeriv(frame, vNormal, SG_DFDX(vNormal)), "
+                  "sgParallaxUnitNormalDeriv(frame, vNormal, SG_DFDY(vNormal))));\n";
     }
     o += in + uv + ".st -= depth * search.st;\n";
     if (p.bump) {

@@ -4,8 +4,9 @@
 // sg/render/surface_vs.glsl, plus SG_LIGHT_COUNT (>= 1) and
 // SG_LAYER_RECORDS (>= 1, vec4 records of packed layer parameters).
 // glslang-validate: SG_LIGHT_COUNT 1, SG_LAYER_RECORDS 1
-// glsl-targets: glsl450 (the renderer's desktop program: dFdxFine,
-// default-block uniforms)
+// glsl-targets: glsl330 es300 (and 4.50; Vulkan GLSL forbids default-block
+// uniforms: `surfgrad shader --target spirv|hlsl|msl` gathers them into one
+// block, surfgrad/shader_target.h)
 #ifndef SG_RENDER_SURFACE_FS_GLSL
 #define SG_RENDER_SURFACE_FS_GLSL
 
@@ -14,6 +15,27 @@
 
 #ifndef SG_UV_COUNT
 #define SG_UV_COUNT 0
+#endif
+
+// Screen derivatives as the generated main() takes them: dFdxFine/dFdyFine
+// (differences inside the pixel's own row and column of its 2x2 quad) where
+// the dialect has them (GLSL 4.00 and later); GLSL 3.30 and ES 3.00 have
+// only dFdx/dFdy, which a driver may evaluate once per quad (coarse), so a
+// pixel's frame may use its neighbour's differences there (docs/engines.md,
+// "Scene programs per target", says what that costs).
+#ifdef SG_GLSL_LEGACY
+#define SG_DFDX(v) dFdx(v)
+#define SG_DFDY(v) dFdy(v)
+#else
+#define SG_DFDX(v) dFdxFine(v)
+#define SG_DFDY(v) dFdyFine(v)
+#endif
+// The primitive index of the primid AOV. GLSL ES 3.00 has no
+// gl_PrimitiveID (ES 3.2 adds it): there every triangle reads 0.
+#ifdef GL_ES
+#define SG_PRIMITIVE_ID 0
+#else
+#define SG_PRIMITIVE_ID gl_PrimitiveID
 #endif
 
 in vec3 vRelPos;

@@ -3,8 +3,9 @@
 //   SG_UV_COUNT            number of texture coordinate sets (0..4);
 //   SG_VTX_TANGENT_k (0/1) whether UV set k has vertex tangents
 //                          (mikktspace or limit frames) as an attribute.
-// glsl-targets: glsl450 (the renderer's desktop program: default-block
-// uniforms)
+// glsl-targets: glsl330 es300 (and 4.50; Vulkan GLSL forbids default-block
+// uniforms: `surfgrad shader --target spirv|hlsl|msl` gathers them into one
+// block, surfgrad/shader_target.h)
 // Positions reach the fragment program relative to the camera (Mikkelsen
 // 2019, listing 16: "NO TRANSLATION" in the derivatives, so dFdx of the
 // position keeps its precision far from the origin). The relative position
