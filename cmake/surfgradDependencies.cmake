@@ -74,6 +74,8 @@ _surfgrad_pkg_dependency(EPOXY epoxy)
 _surfgrad_pkg_dependency(EGL egl)
 # translate: shader targets (glslang's GLSL/HLSL front ends and SPIR-V
 # generation, the SPIR-V validator, SPIRV-Cross's C API).
+# Debian's glslang config names Threads::Threads without finding it.
+_surfgrad_find_dependency(Threads)
 _surfgrad_find_dependency(glslang)
 _surfgrad_find_dependency(SPIRV-Tools)
 _surfgrad_pkg_dependency(SPIRV_CROSS_C spirv-cross-c-shared)
