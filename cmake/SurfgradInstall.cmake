@@ -180,8 +180,8 @@ License: ${SURFGRAD_LICENSE} (/usr/share/doc/surfgrad-dev/copyright).")
 # tools it exports as targets (/usr/bin/iconvert, ...) are installed.
 set(_sg_dev_depends
     "surfgrad (= ${PROJECT_VERSION})" cmake pkg-config libglm-dev nlohmann-json3-dev
-    libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libtbb-dev libembree-dev
-    libopenimageio-dev openimageio-tools libepoxy-dev libegl-dev
+    libopenmesh-dev libosd-dev libtinygltf-dev libfreetype-dev libpugixml-dev libtbb-dev
+    libembree-dev libopenimageio-dev openimageio-tools libepoxy-dev libegl-dev
     glslang-dev spirv-tools libspirv-cross-c-shared-dev)
 if(SURFGRAD_BUILD_VIEWER)
     list(APPEND _sg_dev_depends libglfw3-dev libimgui-dev)

@@ -65,6 +65,7 @@ _surfgrad_find_dependency(OpenMesh)            # mesh: surfgrad/polymesh.h (Open
 _surfgrad_find_dependency(OpenSubdiv)
 _surfgrad_find_dependency(TinyGLTF)
 _surfgrad_find_dependency(Freetype)
+_surfgrad_find_dependency(pugixml 1.11)       # features: the XML of SVG input (pugixml::pugixml)
 _surfgrad_find_dependency(TBB)
 _surfgrad_find_dependency(embree 3)          # bake: ray casting (target embree)
 _surfgrad_find_dependency(OpenImageIO)

@@ -9,7 +9,11 @@
 #include "surfgrad/io.h"
 
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+
+#include <unistd.h>
 
 namespace sg::features::test {
 namespace {
@@ -461,6 +465,128 @@ TEST(InputSvg, HostileXml) {
         d += " L" + std::to_string(i % 50) + " " + std::to_string((i * 7) % 50);
     net = svg(path(d));
     EXPECT_GT(net.segments.size(), 150000u);
+}
+
+// The full message of the error svg(text) throws ("" when none).
+std::string errorOf(const std::string& text) {
+    try {
+        svg(text);
+    } catch (const io::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(InputSvg, DoctypeEntitiesAreNeverExpanded) {
+    // An internal DTD subset declaring an entity: the declaration is skipped
+    // and changes nothing; a reference to the entity is an error naming the
+    // file and its line, and nothing is expanded.
+    const std::string dtd = "<?xml version=\"1.0\"?>\n"
+                            "<!DOCTYPE svg [\n"
+                            "  <!ENTITY a \"M0 0 L10 10\">\n"
+                            "]>\n";
+    auto net = svg(dtd + doc("<path d=\"M0 0 L10 10\"/>"));
+    ASSERT_EQ(net.segments.size(), 1u);
+    EXPECT_EQ(errorOf(dtd + doc("\n<path d=\"&a;\"/>")),
+              "t.svg: line 6: entity &a; is not supported (only &lt; &gt; &amp; &quot; &apos; and "
+              "numeric references; DTD entities are never expanded)");
+    // A billion-laughs chain (10^9 "lol" if expanded) fails at once, at the
+    // reference, in any attribute.
+    std::string laughs = "<!DOCTYPE svg [\n<!ENTITY l0 \"lol\">\n"; // lines 1-2
+    for (int i = 1; i < 10; ++i) {                                  // lines 3-11
+        laughs += "<!ENTITY l" + std::to_string(i) + " \"";
+        for (int k = 0; k < 10; ++k) laughs += "&l" + std::to_string(i - 1) + ";";
+        laughs += "\">\n";
+    }
+    laughs += "]>\n"; // line 12
+    expectError(laughs + doc("<path id=\"&l9;\" d=\"M0 0 L1 1\"/>"), "line 13",
+                "entity &l9; is not supported");
+    // Text is not read (it draws nothing): a reference there changes nothing.
+    net = svg(dtd + doc("<title>&a;</title><path d=\"M0 0 L10 10\"/>"));
+    ASSERT_EQ(net.segments.size(), 1u);
+}
+
+TEST(InputSvg, NestingAndAttributeLimits) {
+    // The root, `groups` nested <g> (one per line) and a <line> inside.
+    auto nested = [](int groups) {
+        std::string s = R"~(<svg viewBox="0 0 100 100">)~";
+        for (int i = 0; i < groups; ++i) s += "\n<g>";
+        s += "<line x2=\"1\"/>";
+        for (int i = 0; i < groups; ++i) s += "</g>";
+        return s + "</svg>";
+    };
+    // 256 levels load; the <line> at level 257 (line 256) is an error,
+    // also in a well-formed document.
+    EXPECT_EQ(svg(nested(254)).segments.size(), 1u);
+    expectError(nested(255), "line 256", "elements nested deeper than 256 levels");
+    // 256 attributes on one element load; the 257th is an error.
+    auto attrs = [](int n) {
+        std::string s = "<line x2=\"1\"";
+        for (int i = 1; i < n; ++i) s += " a" + std::to_string(i) + "=\"\"";
+        return doc("\n" + s + "/>");
+    };
+    EXPECT_EQ(svg(attrs(256)).segments.size(), 1u);
+    expectError(attrs(257), "line 2", "more than 256 attributes on one element");
+}
+
+TEST(InputSvg, SizeLimitIsCheckedBeforeParsing) {
+    // One byte over the limit: rejected before the XML is read (this text
+    // is not XML at all).
+    std::string big(kMaxSvgBytes + 1, 'x');
+    expectError(big, "",
+                "SVG is " + std::to_string(kMaxSvgBytes + 1) + " bytes; limit is " +
+                    std::to_string(kMaxSvgBytes));
+    big = {};
+    // loadSvg: the file's size is checked before it is read (a sparse file).
+    const auto file = std::filesystem::temp_directory_path() /
+                      ("sg_svg_size_" + std::to_string(::getpid()) + ".svg");
+    std::ofstream(file).close();
+    std::filesystem::resize_file(file, kMaxSvgBytes + 1);
+    try {
+        loadSvg(file);
+        ADD_FAILURE() << "accepted a file over the limit";
+    } catch (const io::InputError& e) {
+        EXPECT_EQ(e.file(), file.string());
+        SG_EXPECT_CONTAINS(e.reason(), "limit is " + std::to_string(kMaxSvgBytes));
+    }
+    std::filesystem::remove(file);
+}
+
+TEST(InputSvg, MalformedXmlNamesTheFileAndLine) {
+    const std::string head = "<svg viewBox=\"0 0 100 100\">\n  <g>\n    <path d=\"M0 0 L1 1\"/>\n";
+    // An unclosed tag: the end tag that does not match it, or the end of the
+    // file, with the element left open.
+    EXPECT_EQ(errorOf(head + "</svg>\n"), "t.svg: line 4: end tag </svg> does not match <g>");
+    EXPECT_EQ(errorOf(head), "t.svg: line 2: <g> is not closed before the end of the file");
+    expectError(head + "</g></svg></g>", "line 4", "end tag </g> does not match any open element");
+    // Start tags.
+    expectError(head + "    <path d=\"M0 0 L1 1\"\n</g></svg>", "line 5",
+                "malformed start tag <path>");
+    expectError(head + "    <path d=\"M0 0 L1 1/>\n</g></svg>\n", "line 4",
+                "unterminated value of attribute d");
+    expectError(head + "    <path d=M0/>\n</g></svg>", "line 4",
+                "attribute value of d must be quoted");
+    expectError(head + "    <path d=\"M0 0 L1 1\"id=\"p\"/>\n</g></svg>", "line 4",
+                "expected whitespace before attribute id in <path>");
+    expectError(head + "    <path d\n\"M0 0\"/></g></svg>", "line 5",
+                "expected '=' after attribute d");
+    expectError(head + "    <path d=\"M0 0 L1 1\"/ >\n</g></svg>", "line 4",
+                "expected '/>' in <path>");
+    expectError(head + "    <path d=\"M0 0 L1 1\"", "line 4",
+                "unexpected end of file inside <path>");
+    expectError(head + "    <path\n", "line 4", "unexpected end of file inside <path>");
+    // Constructs left open are named where they start.
+    expectError(head + "  <!-- a\n  b -- >\n</g></svg>", "line 4", "unterminated comment");
+    expectError(head + "  <![CDATA[ a\n</g></svg>", "line 4", "unterminated CDATA section");
+    expectError(head + "  <?pi a\n</g></svg>", "line 4", "unterminated processing instruction");
+    // Declarations other than one DOCTYPE before the root.
+    expectError(head + "  <!ELEMENT g ANY>\n</g></svg>", "line 4", "unknown declaration <!ELEMENT");
+    expectError(head + "  <!DOCTYPE svg>\n</g></svg>", "line 4", "misplaced <!DOCTYPE>");
+    // NUL is not an XML character.
+    expectError(head + std::string(1, '\0') + "</g></svg>", "line 4", "NUL byte");
+    // Lines count '\n' after a byte order mark and with CRLF line ends.
+    expectError("\xEF\xBB\xBF<svg viewBox=\"0 0 100 100\">\r\n<g>\r\n</svg>", "line 3",
+                "end tag </svg> does not match <g>");
 }
 
 struct Icon {

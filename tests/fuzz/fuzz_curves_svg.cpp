@@ -1,5 +1,6 @@
-// Fuzz entry point: SVG drawings (sg::features::parseSvg): the XML
-// tokenizer, path data, shapes, transforms and the cubic/arc approximation.
+// Fuzz entry point: SVG drawings (sg::features::parseSvg): the XML (pugixml
+// and the checks on its tree), path data, shapes, transforms and the
+// cubic/arc approximation.
 // Documented errors (InputError) are expected; accepted networks must
 // satisfy the loader guarantees of surfgrad/curves.h.
 #include "surfgrad/curves.h"

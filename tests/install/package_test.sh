@@ -71,14 +71,14 @@ dev_deps="$(field "$dev" Depends)"
 # the CLI links; libepoxy dlopens GLVND's libEGL/libGL and they load Mesa's
 # drivers, so those are named explicitly (without libegl1 the CLI aborts on
 # a clean Debian 12: scripts/test-package).
-for want in 'libc6 (>= ' 'libopenimageio' 'libosdcpu' 'libtinygltf' 'libepoxy0' \
+for want in 'libc6 (>= ' 'libopenimageio' 'libosdcpu' 'libtinygltf' 'libpugixml1v5' 'libepoxy0' \
             'libegl1,' 'libgl1,' 'libegl-mesa0' 'libgl1-mesa-dri'; do
     grep -qF "$want" <<<"$run_deps" || fail "surfgrad Depends lacks $want: $run_deps"
 done
 # openimageio-tools: OpenImageIO's CMake config fails without its tools.
 for want in "surfgrad (= $version)" libglm-dev libopenmesh-dev libosd-dev libopenimageio-dev \
-            openimageio-tools libtinygltf-dev libtbb-dev libepoxy-dev libegl-dev glslang-dev \
-            spirv-tools libspirv-cross-c-shared-dev; do
+            openimageio-tools libtinygltf-dev libpugixml-dev libtbb-dev libepoxy-dev libegl-dev \
+            glslang-dev spirv-tools libspirv-cross-c-shared-dev; do
     grep -qF "$want" <<<"$dev_deps" || fail "surfgrad-dev Depends lacks $want: $dev_deps"
 done
 # Every package named (alternatives and version constraints stripped) is a
