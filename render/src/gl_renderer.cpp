@@ -21,6 +21,7 @@
 #include "gpu_stencils.h"
 #include "render_internal.h"
 #include "surfgrad/adaptive_patches.h"
+#include "surfgrad/contract.h"
 #include "surfgrad/gl.h"
 #include "surfgrad/patch_basis.h"
 #include "surfgrad/render.h"
@@ -200,6 +201,7 @@ uint64_t uploadAttrib(GLuint vao, GLuint& vbo, GLuint location, const std::vecto
 struct GlRenderer::Impl {
     std::unordered_map<std::string, GpuProgram> programs;
     std::string fragmentDefines; // "#define ...\n" lines (GlRenderer::setFragmentDefines)
+    sg::shaders::Target dialect = sg::shaders::Target::Glsl450; // GlRenderer::setDialect
     uint64_t meshesFor = 0, meshVersion = 0;
     std::vector<GpuMesh> meshes;
     bool meshesDirty = true;
@@ -410,7 +412,7 @@ struct GlRenderer::Impl {
     GpuProgram& program(const MaterialPlan& plan, RenderStats& stats, int patchPoints = 0) {
         const std::string key =
             (plan.adaptive ? plan.signature + "#p" + std::to_string(patchPoints) : plan.signature) +
-            fragmentDefines;
+            fragmentDefines + sg::shaders::targetName(dialect);
         auto it = programs.find(key);
         if (it != programs.end()) return it->second;
         ProgramSource src = assembleProgram(plan);
@@ -418,6 +420,11 @@ struct GlRenderer::Impl {
             const size_t eol = src.fragment.find('\n');
             src.fragment.insert(eol == std::string::npos ? src.fragment.size() : eol + 1,
                                 fragmentDefines);
+        }
+        if (dialect != sg::shaders::Target::Glsl450) {
+            SG_EXPECTS(!plan.adaptive, "GlRenderer::setDialect: adaptive patches need GLSL 4.50");
+            src.vertex = sg::shaders::inDialect(src.vertex, dialect);
+            src.fragment = sg::shaders::inDialect(src.fragment, dialect);
         }
         std::vector<std::pair<sg::gl::Stage, sg::shaders::Assembled>> stages;
         stages.push_back(
@@ -499,6 +506,11 @@ GlRenderer::~GlRenderer() = default;
 void GlRenderer::invalidateMeshes() {
     impl_->meshesDirty = true;
 }
+void GlRenderer::setDialect(sg::shaders::Target dialect) {
+    SG_EXPECTS(dialect != sg::shaders::Target::Hlsl, "GlRenderer::setDialect: a GLSL dialect");
+    impl_->dialect = dialect;
+}
+
 void GlRenderer::setFragmentDefines(const std::vector<std::string>& defines) {
     impl_->fragmentDefines.clear();
     for (const std::string& d : defines) impl_->fragmentDefines += "#define " + d + "\n";

@@ -156,6 +156,16 @@ Assembled assemble(std::string_view body, std::string_view bodyName,
     return a;
 }
 
+std::string inDialect(const std::string& glsl450Program, Target target) {
+    if (target == Target::Hlsl || glsl450Program.rfind("#version 450", 0) != 0)
+        throw ShaderSourceError("inDialect: a GLSL 4.50 program to a GLSL dialect");
+    if (target == Target::Glsl450) return glsl450Program;
+    const size_t eol = glsl450Program.find('\n');
+    const std::string rest =
+        "#line 2 0\n" + (eol == std::string::npos ? std::string() : glsl450Program.substr(eol + 1));
+    return assemble(rest, "program", {}, target).text;
+}
+
 std::string flatten(const std::vector<std::string>& entryPaths, std::string_view banner) {
     Assembled a;
     for (std::string_view rest = banner; !rest.empty();) {

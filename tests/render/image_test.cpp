@@ -224,6 +224,42 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     EXPECT_GT(maxTilt, 2.0) << "the layer did not perturb the normal";
 }
 
+// The same cases drawn by the programs carried to GLSL 3.30 and ES 3.00
+// (GlRenderer::setDialect, sg::shaders::inDialect: what `surfgrad shader
+// --target glsl330|es300` writes), against the CPU reference under the
+// parity options above, with the same bound: the legacy paths of the
+// shared source (frexp/ldexp and imulExtended from bit patterns, the
+// feature layers unrolled, dFdx for dFdxFine, no `precise`) are exact or
+// reorder binary32 operations only, and llvmpipe's dFdx is its dFdxFine
+// (docs/engines.md). ES 3.00 has no gl_PrimitiveID, so the coverage mask is
+// the GLSL 4.50 program's primitive ids.
+TEST_P(LayerImage, LegacyDialectsMatchCpuReference) {
+    Scene s = sceneFromJson(GetParam().json);
+    SceneAssets a = loadAssets(s);
+    CpuOptions parity;
+    parity.derivatives = CpuDerivatives::Quad;
+    parity.textureLod = sg::glsl::LodRule::FastLog2;
+    const View v = makeView(s, a, 0, 0, Aov::Normal);
+    View p = v;
+    p.aov = Aov::PrimId;
+    const Image cpuNormal = renderCpu(s, a, v, parity), cpuPrim = renderCpu(s, a, p, parity);
+    const Image gpuPrim = gpu().render(s, a, p);
+    for (const sg::shaders::Target dialect :
+         {sg::shaders::Target::Glsl330, sg::shaders::Target::Es300}) {
+        gpu().setDialect(dialect);
+        const Image gpuNormal = gpu().render(s, a, v);
+        gpu().setDialect(sg::shaders::Target::Glsl450);
+        const VectorImageDiff d = compareVectorImages(gpuNormal, cpuNormal, gpuPrim, cpuPrim);
+        const char* name = sg::shaders::targetName(dialect);
+        EXPECT_EQ(countNonFinite(gpuNormal), 0u) << name;
+        EXPECT_GT(d.compared, 1000u) << name;
+        EXPECT_LE(double(d.coverageMismatch), 0.01 * double(d.compared)) << name;
+        EXPECT_LE(d.maxDeg, 0.05) << name << ": max at (" << d.maxX << ", " << d.maxY << ")";
+        std::printf("[%s] %s: max %.5f deg over %zu px\n", GetParam().name, name, d.maxDeg,
+                    d.compared);
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Kinds, LayerImage, ::testing::ValuesIn(layerCases()),
                          [](const auto& tpi) { return std::string(tpi.param.name); });
 

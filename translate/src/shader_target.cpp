@@ -15,20 +15,6 @@ namespace {
 
 using detail::FrontEnd;
 
-// A GLSL 4.50 program in a legacy dialect: its first line (`#version 450
-// ...`) replaced by the dialect's header as the shader library writes it
-// (sg::shaders::assemble: ES 3.00's highp defaults, sampler2D included,
-// since ES's default lowp sampler would round texels; GLSL 3.30's joined
-// line continuations).
-std::string inDialect(const std::string& glsl450, sg::shaders::Target dialect,
-                      const std::string& name) {
-    const size_t eol = glsl450.find('\n');
-    // `#line 2 0`: the compilers' line numbers stay those of `glsl450`.
-    const std::string rest =
-        "#line 2 0\n" + (eol == std::string::npos ? std::string() : glsl450.substr(eol + 1));
-    return sg::shaders::assemble(rest, name, {}, dialect).text;
-}
-
 } // namespace
 
 const char* shaderStageName(ShaderStage stage) {
@@ -95,8 +81,8 @@ TranslatedShader translateShader(const std::string& glsl450, ShaderStage stage, 
     case ShaderTarget::Es300:
         out.text = target == ShaderTarget::Glsl450 ? glsl450
                    : target == ShaderTarget::Glsl330
-                       ? inDialect(glsl450, sg::shaders::Target::Glsl330, name)
-                       : inDialect(glsl450, sg::shaders::Target::Es300, name);
+                       ? sg::shaders::inDialect(glsl450, sg::shaders::Target::Glsl330)
+                       : sg::shaders::inDialect(glsl450, sg::shaders::Target::Es300);
         detail::glslang(out.text, stage, FrontEnd::GlslValidate, what);
         return out;
     case ShaderTarget::Spirv:

@@ -73,6 +73,17 @@ struct Assembled {
 Assembled assemble(std::string_view body, std::string_view bodyName,
                    const std::vector<std::string>& defines = {}, Target target = Target::Glsl450);
 
+// A complete GLSL 4.50 program (first line `#version 450 ...`, e.g. what
+// assemble() or the renderer wrote) in another GLSL dialect: its first line
+// replaced by the dialect's header as assemble() writes it (ES 3.00's highp
+// defaults, sampler2D included, since ES's default lowp sampler rounds
+// texels; GLSL 3.30's joined continuation lines), a `#line 2 0` keeping the
+// compilers' line numbers those of the 4.50 text. The program must be
+// valid in the dialect (sg/compat.glsl adapts the library; no stage or
+// buffer the dialect lacks). Throws ShaderSourceError unless target is a
+// GLSL dialect (kTargets) and the text starts with "#version 450".
+std::string inDialect(const std::string& glsl450Program, Target target);
+
 // The library files `entryPaths` (e.g. {"sg/surfgrad.hlsl"}) as ONE file:
 // each with its includes expanded in place, every file once, a
 // `// ---- path` comment where each begins (no #line, no #version),

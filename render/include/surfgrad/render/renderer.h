@@ -19,6 +19,7 @@
 #include "surfgrad/render/assets.h"
 #include "surfgrad/render/image.h"
 #include "surfgrad/render/scene.h"
+#include "surfgrad/shader_files.h"
 #include "surfgrad/render/view.h"
 
 namespace sg::render {
@@ -75,6 +76,13 @@ public:
     // switch on, e.g. SG_AA_COV_UNMAPPED (sg/render/antialias.glsl). The
     // CPU reference renderer has none of them. Empty by default.
     void setFragmentDefines(const std::vector<std::string>& defines);
+    // The GLSL dialect programs compiled from now on are written in
+    // (sg::shaders::inDialect; part of the program cache key): GLSL 4.50 by
+    // default, or GLSL 3.30 / ES 3.00, which an OpenGL 4.5 context compiles
+    // too. Tests render the same scene in each to check the legacy paths of
+    // the shared source (docs/engines.md). Contract: a GLSL dialect; plans
+    // with adaptive patches need 4.50 (tessellation stages).
+    void setDialect(sg::shaders::Target dialect);
     // Meshes are re-uploaded when SceneAssets::uid or meshVersion changes
     // (applyFrame bumps it); this forces it otherwise.
     void invalidateMeshes();
