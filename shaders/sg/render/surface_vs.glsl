@@ -18,6 +18,18 @@
 #ifndef SG_UV_COUNT
 #define SG_UV_COUNT 0
 #endif
+#ifndef SG_VTX_TANGENT_0
+#define SG_VTX_TANGENT_0 0
+#endif
+#ifndef SG_VTX_TANGENT_1
+#define SG_VTX_TANGENT_1 0
+#endif
+#ifndef SG_VTX_TANGENT_2
+#define SG_VTX_TANGENT_2 0
+#endif
+#ifndef SG_VTX_TANGENT_3
+#define SG_VTX_TANGENT_3 0
+#endif
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
