@@ -1,37 +1,13 @@
 // The feature evaluator's decode and partition in binary64 (see
 // shared_double.h): the SAME formulas as shaders/sg/features/evaluate.glsl,
-// compiled from the copy bump/cmake/DoubleSource.cmake generates (float
-// literals made double, includes redirected to sgd/), with GLM's double
-// types standing in for the GLSL float types. This translation unit must
-// not include the binary32 build (the include guards are shared).
+// compiled from the copy surfgrad_double_sources generates through
+// surfgrad/glsl_cpp_double.h (float literals and types made double). This
+// translation unit must not include the binary32 build (the include guards
+// are shared; the header checks it).
 #include "shared_double.h"
 
-#include <glm/glm.hpp>
-
-#define SG_CPP 1
-#define SG_OUT(T) T&
-#define SG_INOUT(T) T&
-#define SG_FN inline
-
-namespace sg::glsl_double {
-using namespace glm;
-using vec2 = glm::dvec2;
-using vec3 = glm::dvec3;
-using vec4 = glm::dvec4;
-using uint = unsigned int;
-// Every `float` of the shared source becomes a double in this translation
-// unit only (clang warns on redefining a keyword; that is the point here).
-#ifdef __clang__
-#pragma clang diagnostic push
-#pragma clang diagnostic ignored "-Wkeyword-macro"
-#endif
-#define float double
-#include "sgd/features/evaluate.glsl"
-#undef float
-#ifdef __clang__
-#pragma clang diagnostic pop
-#endif
-} // namespace sg::glsl_double
+#define SG_GLSL_DOUBLE_SOURCE "sgd/features/evaluate.glsl"
+#include "surfgrad/glsl_cpp_double.h"
 
 namespace sg::features::detail {
 
