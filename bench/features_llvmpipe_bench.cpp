@@ -45,18 +45,11 @@ using glm::dvec2;
 
 namespace {
 
-const char* kVertex = R"(
-out vec2 vUnit;
-void main() {
-    // One triangle covering the viewport; vUnit in [0, 1]^2 over it.
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    vUnit = p;
-    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
-}
-)";
+// One triangle covering the viewport; vScreenUv in [0, 1]^2 over it.
+const char* kVertex = "#include \"sg/render/fullscreen_vs.glsl\"\n";
 
 const char* kFragmentHead = R"(
-in vec2 vUnit;
+in vec2 vScreenUv;
 uniform vec2 uWindowMin;  // texel-space window shown by the viewport
 uniform vec2 uWindowSize;
 uniform float uMapSize;   // N
@@ -71,7 +64,7 @@ const char* kFragmentBaseline = R"(
 #include "sg/surfgrad.glsl"
 uniform sampler2D uNormalMap;
 void main() {
-    vec2 texelPos = uWindowMin + vUnit * uWindowSize;
+    vec2 texelPos = uWindowMin + vScreenUv * uWindowSize;
     vec2 m = texture(uNormalMap, texelPos / uMapSize).xy * 2.0 - 1.0;
     vec2 d = sgTspaceNormalToDeriv(m, false);
     oColor = shade(normalize(vec3(-d, 1.0)));
@@ -84,7 +77,7 @@ const char* kFragmentFetchOnly = R"(
 uniform usampler2D uFeatCorners;
 uniform usampler2D uFeatEdges;
 void main() {
-    vec2 texelPos = uWindowMin + vUnit * uWindowSize;
+    vec2 texelPos = uWindowMin + vScreenUv * uWindowSize;
     vec2 local;
     ivec2 ij = sgFeatTexelOf(textureSize(uFeatEdges, 0), texelPos, local);
     SgFeatTexel tx = sgFeatFetch(uFeatCorners, uFeatEdges, ij);
@@ -100,7 +93,7 @@ uniform usampler2D uFeatEdges;
 uniform float uDepth;
 uniform float uWidth;
 void main() {
-    vec2 texelPos = uWindowMin + vUnit * uWindowSize;
+    vec2 texelPos = uWindowMin + vScreenUv * uWindowSize;
     SgFeatResult r = sgFeatSample(uFeatCorners, uFeatEdges, texelPos);
     SgFeatProfile p;
     p.kind = SG_FEAT_PROFILE_VGROOVE;
@@ -127,7 +120,7 @@ uniform usampler2D uFeatPieces;
 uniform float uDepth;
 uniform float uWidth;
 void main() {
-    vec2 texelPos = uWindowMin + vUnit * uWindowSize;
+    vec2 texelPos = uWindowMin + vScreenUv * uWindowSize;
     SgFeatResult r = sgFeatSampleNear(uFeatCorners, uFeatEdges, uFeatNear, uFeatPieces, texelPos);
     SgFeatProfile p;
     p.kind = SG_FEAT_PROFILE_VGROOVE;

@@ -274,13 +274,7 @@ void GpuMesh::draw() const {
 }
 
 const char* fullscreenVertexShader() {
-    return R"(
-void main() {
-    // One triangle covering the viewport: (-1,-1), (3,-1), (-1,3).
-    vec2 p = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID & 2) * 2 - 1));
-    gl_Position = vec4(p, 0.0, 1.0);
-}
-)";
+    return "#include \"sg/render/fullscreen_vs.glsl\"\n";
 }
 
 FullscreenTriangle::FullscreenTriangle() {

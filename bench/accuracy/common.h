@@ -133,6 +133,9 @@ private:
 // A full-screen triangle (no attributes; the vertex shader uses gl_VertexID).
 // The empty VAO it binds is created once per context: construct one
 // FullscreenTriangle per context (GL object names are per context).
+// fullscreenVertexShader() is the body of its vertex stage for makeProgram:
+// the library's sg/render/fullscreen_vs.glsl (output vScreenUv, [0, 1]^2
+// over the viewport).
 const char* fullscreenVertexShader();
 class FullscreenTriangle {
 public:

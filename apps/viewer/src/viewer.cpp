@@ -27,23 +27,16 @@ namespace {
 
 // Fullscreen display of the renderer's RGBA32F target: colour through the
 // display transform, vectors as 0.5 v + 0.5, uv as fract(uv).
-const char* kDisplayVs = R"(
-out vec2 vUv;
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    vUv = p;
-    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
-}
-)";
+const char* kDisplayVs = "#include \"sg/render/fullscreen_vs.glsl\"\n";
 const char* kDisplayFs = R"(
 #include "sg/render/shading.glsl"
-in vec2 vUv;
+in vec2 vScreenUv;
 uniform sampler2D uImage;
 uniform int uAov;
 uniform float uExposure;
 layout(location = 0) out vec4 outColor;
 void main() {
-    vec4 v = texture(uImage, vUv);
+    vec4 v = texture(uImage, vScreenUv);
     vec3 c;
     if (uAov == SG_AOV_COLOR) c = sgToneMap(v.xyz, uExposure);
     else if (uAov == SG_AOV_UV) c = vec3(fract(v.xy), 0.0);
