@@ -17,39 +17,13 @@
 #include <optional>
 #include <string_view>
 
+#include "oiio_sample_type.h"
 #include "surfgrad/image_decode.h"
 #include "surfgrad/io.h"
 
 namespace sg::image {
 
 namespace fs = std::filesystem;
-
-uint32_t sampleTypeBytes(SampleType type) {
-    switch (type) {
-    case SampleType::Unorm8:
-        return 1;
-    case SampleType::Unorm16:
-    case SampleType::Half:
-        return 2;
-    case SampleType::Float:
-        break;
-    }
-    return 4;
-}
-
-const char* sampleTypeName(SampleType type) {
-    switch (type) {
-    case SampleType::Unorm8:
-        return "8-bit unorm";
-    case SampleType::Unorm16:
-        return "16-bit unorm";
-    case SampleType::Half:
-        return "half";
-    case SampleType::Float:
-        break;
-    }
-    return "float";
-}
 
 uint64_t defaultMemoryBudget() {
     constexpr uint64_t kGiB = uint64_t(1) << 30;
@@ -120,27 +94,6 @@ const char* pluginOf(io::ImageFormat f) {
         return "tga";
     }
     return "";
-}
-
-OIIO::TypeDesc oiioType(SampleType t) {
-    switch (t) {
-    case SampleType::Unorm8:
-        return OIIO::TypeDesc::UINT8;
-    case SampleType::Unorm16:
-        return OIIO::TypeDesc::UINT16;
-    case SampleType::Half:
-        return OIIO::TypeDesc::HALF;
-    case SampleType::Float:
-        break;
-    }
-    return OIIO::TypeDesc::FLOAT;
-}
-
-SampleType fileSampleType(OIIO::TypeDesc t) {
-    if (t == OIIO::TypeDesc::UINT8) return SampleType::Unorm8;
-    if (t == OIIO::TypeDesc::UINT16) return SampleType::Unorm16;
-    if (t == OIIO::TypeDesc::HALF) return SampleType::Half;
-    return SampleType::Float;
 }
 
 // The smallest storage that holds channels [0, k) exactly.

@@ -26,6 +26,7 @@
 #include <utility>
 #include <vector>
 
+#include "surfgrad/image_format.h"
 #include "surfgrad/io.h"
 
 namespace sg::io {
@@ -949,14 +950,6 @@ bool startsWith(const std::string& s, std::string_view prefix) {
     return s.size() >= prefix.size() && std::memcmp(s.data(), prefix.data(), prefix.size()) == 0;
 }
 
-std::string lowerExtension(const std::string& name) {
-    const size_t dot = name.find_last_of('.');
-    if (dot == std::string::npos || name.find_first_of("/\\", dot) != std::string::npos) return {};
-    std::string e = name.substr(dot + 1);
-    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return e;
-}
-
 } // namespace
 
 ImageHeader scanImageHeader(const ByteSource& bytes, const std::string& name) {
@@ -971,8 +964,8 @@ ImageHeader scanImageHeader(const ByteSource& bytes, const std::string& name) {
         startsWith(head, "MM\0+"sv))
         return scanTiff(r);
     if (startsWith(head, "#?"sv)) return scanRadiance(r);
-    const std::string ext = lowerExtension(name);
-    if (ext == "tga" || ext == "tpic") return scanTarga(r);
+    const std::string ext = image::lowerExtension(name);
+    if (ext == ".tga" || ext == ".tpic") return scanTarga(r);
     static const std::pair<std::string_view, const char*> kOthers[] = {
         {"GIF8"sv, "a GIF"},
         {"BM"sv, "a BMP"},

@@ -33,15 +33,13 @@
 #include <string_view>
 #include <vector>
 
+#include "surfgrad/image_format.h"
 #include "surfgrad/image_header.h"
 
 namespace sg::image {
 
-// How decoded samples are stored: the file's own 8/16-bit unorm or half
-// samples, float for everything else.
-enum class SampleType : uint8_t { Unorm8, Unorm16, Half, Float };
-uint32_t sampleTypeBytes(SampleType type);   // 1, 2, 2, 4
-const char* sampleTypeName(SampleType type); // "8-bit unorm", "16-bit unorm", "half", "float"
+// Decoded samples are stored as SampleType (surfgrad/image_format.h): the
+// file's own 8/16-bit unorm or half samples, float for everything else.
 
 // A quarter of physical memory, at most 8 GiB, and at most half of the
 // process's address-space or data-segment limit (setrlimit, `ulimit -v`).
