@@ -42,6 +42,7 @@
 
 #include "commands.h"
 #include "surfgrad/bake.h"
+#include "surfgrad/image_format.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/normalmap.h"
@@ -105,7 +106,7 @@ OutputTypes checkOutputs(const BakeArgs& a) {
         io::checkOutputPath(o, {a.high, a.cage});
     }
     if (!a.displacement.empty()) {
-        const std::string ext = lowerExtension(a.displacement);
+        const std::string ext = image::lowerExtension(a.displacement);
         const bool png = ext == ".png";
         if (!png && ext != ".exr" && ext != ".tif" && ext != ".tiff")
             throw CliError("bake: --displacement " + a.displacement +
@@ -165,7 +166,7 @@ std::vector<std::pair<std::string, std::string>> attrs(const std::string& what, 
 
 void writeDisplacement(const BakeArgs& a, const bake::BakeResult& r, nlohmann::json& report) {
     auto at = attrs("displacement", a);
-    if (lowerExtension(a.displacement) != ".png") {
+    if (image::lowerExtension(a.displacement) != ".png") {
         nm::writeImage(a.displacement, nm::imageFromScalar(r.displacement, 0.0f, 1.0f, true),
                        a.displacementBits == "half" ? nm::SampleType::Half : nm::SampleType::Float,
                        at);

@@ -33,9 +33,9 @@
 //     bilinear, side by side with a plain bilinear normal map of the same
 //     resolution (the profile's normals at the map's samples). In the exact
 //     near field, curves with their own profile or width use them (the
-//     layer's --profile and --width are the default).
+//     layer's --profile and --width are the default). IMG is 8-bit sRGB:
+//     .png (or .tga, .tif); another extension is refused before rendering.
 #include <CLI/CLI.hpp>
-#include <OpenImageIO/imageio.h>
 #include <nlohmann/json.hpp>
 
 #include <charconv>
@@ -51,6 +51,7 @@
 #include "commands.h"
 #include "surfgrad/curves.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
 
 namespace sg::cli {
@@ -111,7 +112,7 @@ NearMode parseNear(const std::string& cmd, const std::string& v) {
 void runBake(const BakeArgs& a) {
     int inputs = int(!a.json.empty()) + int(!a.svg.empty()) + int(!a.font.empty());
     if (inputs != 1) throw CliError("features bake: give exactly one of --curves, --svg, --font");
-    if (fs::path(a.out).extension() != ".exr") {
+    if (image::lowerExtension(a.out) != ".exr") {
         throw CliError("features bake: -o " + a.out +
                        ": feature maps are .exr (OpenEXR keeps their 8 float channels)");
     }
@@ -275,6 +276,11 @@ float toSrgb(float c) {
 }
 
 void runRender(const RenderArgs& a) {
+    try {
+        image::checkWritable(a.out, image::SampleType::Unorm8);
+    } catch (const io::InputError& e) {
+        throw CliError("features render: -o " + a.out + ": " + e.reason());
+    }
     io::checkOutputPath(a.out, {a.maps});
     glsl::SgFeatProfile prof = makeProfile(a.profile, a.depth, a.blend, a.width);
     FeatureMaps maps = load(a.maps);
@@ -380,24 +386,18 @@ void runRender(const RenderArgs& a) {
                     }
                 }
                 c /= float(ss * ss);
-                float* o = &img[(size_t(py) * W + panel * (w + gap) + px) * 3];
+                // Rows bottom first (the image writer's order): py = 0 is the top.
+                float* o = &img[(size_t(h - 1 - py) * W + panel * (w + gap) + px) * 3];
                 o[0] = toSrgb(c.x);
                 o[1] = toSrgb(c.y);
                 o[2] = toSrgb(c.z);
             }
         }
     }
-    io::writeAtomically(a.out, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out)
-            throw io::InputError(a.out, "", "cannot create an image writer: " + OIIO::geterror());
-        OIIO::ImageSpec spec(int(W), int(h), 3, OIIO::TypeDesc::UINT8);
-        spec.attribute("oiio:ColorSpace", "sRGB");
-        if (!out->open(tmp.string(), spec) ||
-            !out->write_image(OIIO::TypeDesc::FLOAT, img.data()) || !out->close()) {
-            throw io::InputError(a.out, "", "write failed: " + out->geterror());
-        }
-    });
+    image::WriteOptions options;
+    options.type = image::SampleType::Unorm8;
+    options.colorSpace = "sRGB";
+    image::writeImageFile(a.out, {img.data(), int(W), int(h), 3}, options);
 }
 
 } // namespace

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "surfgrad/image_format.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/normalmap.h"
@@ -417,7 +418,7 @@ void runMips(const Options& o, Reporter& r) {
     if (int(o.lean) + int(o.toksvig) + int(o.naive) != 1) {
         throw CliError("normalmap mips: give exactly one of --lean, --toksvig, --naive");
     }
-    const std::string ext = lowerExtension(o.output);
+    const std::string ext = image::lowerExtension(o.output);
     if (ext != ".exr") {
         throw CliError("normalmap mips: -o " + o.output +
                        ": a MIP chain is written as OpenEXR (.exr), one part per level");

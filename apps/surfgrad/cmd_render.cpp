@@ -25,6 +25,7 @@
 
 #include "commands.h"
 #include "surfgrad/gl.h"
+#include "surfgrad/image_format.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
 #include "surfgrad/render.h"
@@ -47,7 +48,7 @@ const std::string kSceneOrModel =
 
 Scene sceneFromArg(const std::string& arg) {
     if (arg.empty()) return defaultScene();
-    std::string ext = lowerExtension(arg);
+    std::string ext = image::lowerExtension(arg);
     if (ext == ".json") return loadScene(arg);
     if (sg::mesh::isMeshFormat(arg)) return sceneForModel(arg);
     throw CliError(arg + ": expected " + kSceneOrModel);
@@ -200,7 +201,7 @@ void runRender(const RenderOpts& ro) {
         fs::create_directories("out");
         out = fs::path("out") / (stem + (*aov == Aov::Color ? "" : "_" + ro.aov) + ".png");
     }
-    std::string outExt = lowerExtension(out);
+    std::string outExt = image::lowerExtension(out);
     if (outExt != ".png" && outExt != ".exr") {
         throw CliError(out.string() + ": unsupported image format \"" + outExt +
                        "\" (expected .png or .exr)");

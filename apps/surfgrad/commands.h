@@ -8,7 +8,6 @@
 // kExitFailure).
 #pragma once
 
-#include <cctype>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -40,14 +39,6 @@ inline constexpr const char* kExitStatusHelp =
 struct CliError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
-
-// The extension of `path`, lower-cased (".PNG" -> ".png"; "" when none),
-// for choosing and checking output formats.
-inline std::string lowerExtension(const std::filesystem::path& path) {
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
 
 void addEvalCommand(CLI::App& app, int& status);
 void addSelftestCommand(CLI::App& app, int& status);

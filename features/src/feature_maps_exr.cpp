@@ -17,6 +17,7 @@
 #include "bake_internal.h"
 #include "surfgrad/feature_maps.h"
 #include "surfgrad/image_header.h"
+#include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
 
 namespace sg::features {
@@ -365,73 +366,54 @@ FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
 } // namespace
 
 void save(const FeatureMaps& m, const std::filesystem::path& path) {
-    using io::InputError;
     const int g = m.size + 1;
-    auto names = channelNames();
+    const std::vector<std::string> names = channelNames();
     const size_t nch = names.size();
+    // Corner (i, j) is sample m.index(i, j): row j = 0 (the bottom) first,
+    // the writer's order (the file stores scanline 0 = top, j = N).
     std::vector<float> px(size_t(g) * size_t(g) * nch);
-    for (int row = 0; row < g; ++row) {
-        int j = g - 1 - row;
-        for (int i = 0; i < g; ++i) {
-            size_t k = m.index(i, j);
-            float* p = &px[(size_t(row) * size_t(g) + size_t(i)) * nch];
-            p[0] = m.dist[k];
-            p[1] = m.gradX[k];
-            p[2] = m.gradY[k];
-            p[3] = float(m.left[k]);
-            p[4] = float(m.seg[k]);
-            p[5] = m.hPos[k];
-            p[6] = m.vPos[k];
-            p[7] = m.hAngle[k];
-            p[8] = m.vAngle[k];
-        }
+    for (size_t k = 0; k < size_t(g) * size_t(g); ++k) {
+        float* p = &px[k * nch];
+        p[0] = m.dist[k];
+        p[1] = m.gradX[k];
+        p[2] = m.gradY[k];
+        p[3] = float(m.left[k]);
+        p[4] = float(m.seg[k]);
+        p[5] = m.hPos[k];
+        p[6] = m.vPos[k];
+        p[7] = m.hAngle[k];
+        p[8] = m.vAngle[k];
     }
-    io::writeAtomically(path, [&](const std::filesystem::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out)
-            throw InputError(path.string(), "",
-                             "cannot create an OpenEXR writer: " + OIIO::geterror());
-        OIIO::ImageSpec spec(g, g, int(nch), OIIO::TypeDesc::FLOAT);
-        spec.channelnames = names;
-        spec.alpha_channel = -1;
-        spec.attribute("compression", "zip");
-        spec.attribute("surfgrad:featureMapsVersion", kFeatureMapsVersion);
-        spec.attribute("surfgrad:mode", toString(m.mode));
-        spec.attribute("surfgrad:size", m.size);
-        auto dbl = [&](const char* key, double v) {
-            spec.attribute(key, OIIO::TypeDesc::DOUBLE, &v);
-        };
-        dbl("surfgrad:inputToTexelScaleX", m.inputToTexel.scale.x);
-        dbl("surfgrad:inputToTexelScaleY", m.inputToTexel.scale.y);
-        dbl("surfgrad:inputToTexelOffsetX", m.inputToTexel.offset.x);
-        dbl("surfgrad:inputToTexelOffsetY", m.inputToTexel.offset.y);
-        dbl("surfgrad:bandTexels", m.bandTexels);
-        spec.attribute("surfgrad:smoothIterations", m.smoothIterations);
-        spec.attribute("surfgrad:source", m.source);
-        spec.attribute("surfgrad:layout", kLayout);
+    image::WriteOptions options;
+    options.type = image::SampleType::Float;
+    options.channelNames = names;
+    options.attributes = {{"surfgrad:featureMapsVersion", kFeatureMapsVersion},
+                          {"surfgrad:mode", toString(m.mode)},
+                          {"surfgrad:size", m.size},
+                          {"surfgrad:inputToTexelScaleX", m.inputToTexel.scale.x},
+                          {"surfgrad:inputToTexelScaleY", m.inputToTexel.scale.y},
+                          {"surfgrad:inputToTexelOffsetX", m.inputToTexel.offset.x},
+                          {"surfgrad:inputToTexelOffsetY", m.inputToTexel.offset.y},
+                          {"surfgrad:bandTexels", m.bandTexels},
+                          {"surfgrad:smoothIterations", m.smoothIterations},
+                          {"surfgrad:source", m.source},
+                          {"surfgrad:layout", kLayout}};
+    if (m.hasNearField()) {
+        options.attributes.push_back({"surfgrad:nearBandTexels", m.nearBandTexels});
+        std::string table;
+        for (const std::string& p : m.profiles) table += (table.empty() ? "" : ";") + p;
+        if (!table.empty()) options.attributes.push_back({"surfgrad:nearProfiles", table});
         std::vector<float> pieces;
-        if (m.hasNearField()) {
-            dbl("surfgrad:nearBandTexels", m.nearBandTexels);
-            std::string table;
-            for (const std::string& p : m.profiles) table += (table.empty() ? "" : ";") + p;
-            if (!table.empty()) spec.attribute("surfgrad:nearProfiles", table);
-            pieces.reserve(m.pieces.size() * kPieceFloats);
-            for (const NearPiece& p : m.pieces) {
-                pieces.insert(pieces.end(),
-                              {p.p0.x, p.p0.y, p.p1.x, p.p1.y, p.p2.x, p.p2.y,
-                               p.curved ? 1.0f : 0.0f, float(p.profile), p.width0, p.width1});
-            }
-            spec.attribute("surfgrad:nearPieces",
-                           OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, int(pieces.size())),
-                           pieces.data());
+        pieces.reserve(m.pieces.size() * kPieceFloats);
+        for (const NearPiece& p : m.pieces) {
+            pieces.insert(pieces.end(),
+                          {p.p0.x, p.p0.y, p.p1.x, p.p1.y, p.p2.x, p.p2.y, p.curved ? 1.0f : 0.0f,
+                           float(p.profile), p.width0, p.width1});
         }
-        if (!out->open(tmp.string(), spec))
-            throw InputError(path.string(), "", "cannot open for writing: " + out->geterror());
-        if (!out->write_image(OIIO::TypeDesc::FLOAT, px.data())) {
-            throw InputError(path.string(), "", "write failed: " + out->geterror());
-        }
-        if (!out->close()) throw InputError(path.string(), "", "close failed: " + out->geterror());
-    });
+        // (A near field has a piece per input segment: never empty.)
+        if (!pieces.empty()) options.attributes.push_back({"surfgrad:nearPieces", pieces});
+    }
+    image::writeImageFile(path, {px.data(), g, g, int(nch)}, options);
 }
 
 FeatureMaps load(const std::filesystem::path& path) {

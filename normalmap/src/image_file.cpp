@@ -1,14 +1,13 @@
 // Image files of the normal-map toolkit: raw channel values in through the
-// guarded decoder (surfgrad/image_decode.h), atomic writes out through
-// OpenImageIO, and the MIP-chain files of
+// guarded decoder (surfgrad/image_decode.h), out through the image writer
+// (surfgrad/image_write.h), and the MIP-chain files of
 // surfgrad/normalmap.h ("MIP chains for antialiasing").
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
+#include "surfgrad/contract.h"
 #include "surfgrad/image_decode.h"
+#include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
 #include "surfgrad/normalmap.h"
 
@@ -18,53 +17,36 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string lowerExt(const fs::path& p) {
-    std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return e;
-}
-
-OIIO::TypeDesc oiioType(SampleType t) {
+image::SampleType writtenType(SampleType t) {
     switch (t) {
     case SampleType::U8:
-        return OIIO::TypeDesc::UINT8;
+        return image::SampleType::Unorm8;
     case SampleType::U16:
-        return OIIO::TypeDesc::UINT16;
+        return image::SampleType::Unorm16;
     case SampleType::Half:
-        return OIIO::TypeDesc::HALF;
+        return image::SampleType::Half;
     default:
-        return OIIO::TypeDesc::FLOAT;
+        return image::SampleType::Float;
     }
 }
 
-const char* typeName(SampleType t) {
-    switch (t) {
-    case SampleType::U8:
-        return "8-bit";
-    case SampleType::U16:
-        return "16-bit";
-    case SampleType::Half:
-        return "half";
-    default:
-        return "float";
-    }
+// The writer's view of `img` (rows bottom first, as Image holds them) and
+// the options every file of the toolkit shares: data, not colour (no
+// gamma/colour-space tag beyond "Linear"), non-finite texels as 0, the
+// fourth channel alpha (as stored, never premultiplied).
+image::FloatPixels pixelsOf(const Image& img) {
+    SG_EXPECTS(img.texels.size() == size_t(img.width) * size_t(img.height) * size_t(img.channels),
+               "Image::texels has width * height * channels entries");
+    return {img.texels.data(), img.width, img.height, img.channels};
 }
 
-// The texels of `img` top row first, clamped to [0, 1] for integer types.
-std::vector<float> fileOrder(const Image& img, SampleType type) {
-    const size_t rowFloats = size_t(img.width) * size_t(img.channels);
-    std::vector<float> buf(rowFloats * size_t(img.height));
-    const bool clampUnit = type == SampleType::U8 || type == SampleType::U16;
-    for (int y = 0; y < img.height; ++y) {
-        const float* src = &img.texels[size_t(img.height - 1 - y) * rowFloats];
-        float* dst = &buf[size_t(y) * rowFloats];
-        for (size_t k = 0; k < rowFloats; ++k) {
-            float v = std::isfinite(src[k]) ? src[k] : 0.0f;
-            dst[k] = clampUnit ? std::clamp(v, 0.0f, 1.0f) : v;
-        }
-    }
-    return buf;
+image::WriteOptions writeOptions(const Image& img, SampleType type) {
+    image::WriteOptions o;
+    o.type = writtenType(type);
+    o.alphaChannel = img.channels >= 4 ? 3 : -1;
+    o.colorSpace = "Linear";
+    o.nonFiniteToZero = true;
+    return o;
 }
 
 // The options of every read: at most kMaxImageSide per side and 64
@@ -146,7 +128,7 @@ Image readImage(const fs::path& path, SampleType* sampleType) {
 }
 
 SampleType defaultSampleType(const fs::path& path, bool needFloat) {
-    const std::string e = lowerExt(path);
+    const std::string e = image::lowerExtension(path);
     if (e == ".exr") return SampleType::Float;
     if (needFloat) return SampleType::Float;
     if (e == ".tif" || e == ".tiff") return SampleType::U16;
@@ -162,18 +144,7 @@ SampleType parseSampleType(std::string_view text) {
 }
 
 void checkWritable(const fs::path& path, SampleType type) {
-    const std::string e = lowerExt(path);
-    const bool isInt = type == SampleType::U8 || type == SampleType::U16;
-    bool ok = false;
-    if (e == ".png") ok = isInt;
-    if (e == ".tga") ok = type == SampleType::U8;
-    if (e == ".tif" || e == ".tiff") ok = true;
-    if (e == ".exr") ok = !isInt;
-    if (!ok) {
-        throw io::InputError(path.string(), "",
-                             std::string("cannot write ") + typeName(type) + " samples as \"" + e +
-                                 "\" (png: 8/16-bit, tga: 8-bit, tif: any, exr: half/float)");
-    }
+    image::checkWritable(path, writtenType(type));
 }
 
 SampleType mapSampleType(const fs::path& path, const MapFormat& format, std::string_view bits) {
@@ -181,7 +152,7 @@ SampleType mapSampleType(const fs::path& path, const MapFormat& format, std::str
     const SampleType type =
         bits.empty() ? defaultSampleType(path, needFloat) : parseSampleType(bits);
     const bool isFloat = type == SampleType::Half || type == SampleType::Float;
-    const std::string e = lowerExt(path);
+    const std::string e = image::lowerExtension(path);
     if (needFloat && (!isFloat || e == ".png" || e == ".tga")) {
         throw io::InputError(
             path.string(), "encoding",
@@ -193,70 +164,28 @@ SampleType mapSampleType(const fs::path& path, const MapFormat& format, std::str
 
 void writeImage(const fs::path& path, const Image& image, SampleType type,
                 const std::vector<std::pair<std::string, std::string>>& attributes) {
-    checkWritable(path, type);
-    const std::string e = lowerExt(path);
-    const std::vector<float> buf = fileOrder(image, type);
-    io::writeAtomically(path, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out) {
-            throw io::InputError(path.string(), "",
-                                 "cannot create image writer: " + OIIO::geterror());
-        }
-        OIIO::ImageSpec spec(image.width, image.height, image.channels, oiioType(type));
-        if (image.channels == 4) spec.alpha_channel = 3;
-        if (e == ".exr") spec.attribute("compression", "zip");
-        for (const auto& [k, v] : attributes) spec.attribute(k, v);
-        // Data, not colour: no gamma/colour-space tag beyond "linear".
-        spec.attribute("oiio:ColorSpace", "Linear");
-        spec.attribute("oiio:UnassociatedAlpha", 1);
-        if (!out->open(tmp.string(), spec) ||
-            !out->write_image(OIIO::TypeDesc::FLOAT, buf.data()) || !out->close()) {
-            throw io::InputError(path.string(), "", "cannot write image: " + out->geterror());
-        }
-    });
+    image::WriteOptions options = writeOptions(image, type);
+    for (const auto& [k, v] : attributes) options.attributes.push_back({k, v});
+    image::writeImageFile(path, pixelsOf(image), options);
 }
 
 void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
                    const std::vector<std::string>& channelNames, const std::string& layout,
                    Wrap wrap) {
-    if (lowerExt(path) != ".exr") {
+    if (image::lowerExtension(path) != ".exr") {
         throw io::InputError(path.string(), "", "a MIP chain is written as OpenEXR (.exr)");
     }
     if (levels.empty() || int(channelNames.size()) != levels[0].channels) {
         throw io::InputError(path.string(), "", "empty MIP chain or channel names do not match");
     }
-    io::writeAtomically(path, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out || !out->supports("mipmap")) {
-            throw io::InputError(path.string(), "", "cannot create a MIP-mapped OpenEXR writer");
-        }
-        for (size_t k = 0; k < levels.size(); ++k) {
-            const Image& L = levels[k];
-            OIIO::ImageSpec spec(L.width, L.height, L.channels, OIIO::TypeDesc::FLOAT);
-            spec.tile_width = 64;
-            spec.tile_height = 64;
-            spec.channelnames = channelNames;
-            spec.attribute("compression", "zip");
-            // A MIP-mapped tiled file (OpenEXR MIPMAP_LEVELS, ROUND_DOWN).
-            spec.attribute("textureformat", "Plain Texture");
-            spec.attribute("openexr:levelmode", 1);
-            spec.attribute("openexr:roundingmode", 0);
-            spec.attribute("surfgrad:layout", layout);
-            spec.attribute("surfgrad:wrap", wrap == Wrap::Repeat ? "repeat" : "clamp");
-            spec.attribute("oiio:ColorSpace", "Linear");
-            const auto mode =
-                k == 0 ? OIIO::ImageOutput::Create : OIIO::ImageOutput::AppendMIPLevel;
-            const std::vector<float> buf = fileOrder(L, SampleType::Float);
-            if (!out->open(tmp.string(), spec, mode) ||
-                !out->write_image(OIIO::TypeDesc::FLOAT, buf.data())) {
-                throw io::InputError(path.string(), "level " + std::to_string(k),
-                                     "cannot write: " + out->geterror());
-            }
-        }
-        if (!out->close()) {
-            throw io::InputError(path.string(), "", "cannot write: " + out->geterror());
-        }
-    });
+    image::WriteOptions options = writeOptions(levels[0], SampleType::Float);
+    options.channelNames = channelNames;
+    options.alphaChannel = -1; // named channels, none of them alpha
+    options.attributes = {{"surfgrad:layout", layout},
+                          {"surfgrad:wrap", wrap == Wrap::Repeat ? "repeat" : "clamp"}};
+    std::vector<image::FloatPixels> pixels;
+    for (const Image& level : levels) pixels.push_back(pixelsOf(level));
+    image::writeMipChainFile(path, pixels, options);
 }
 
 std::vector<std::string> mipChannelNames(std::string_view layout) {

@@ -1,11 +1,15 @@
-// Image output through OpenImageIO, written atomically (sg::io), and input
-// for tests and comparisons. Encodings are documented at writeImage().
-#include <OpenImageIO/imageio.h>
-
+// The renderer's image files: an AOV's values to what a PNG or OpenEXR file
+// holds (encodings documented at writeImage()), written by the image
+// module's writer (surfgrad/image_write.h), and read back through its
+// decoder for tests and comparisons.
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/type_ptr.hpp>
+
+#include "surfgrad/contract.h"
 #include "surfgrad/image_decode.h"
+#include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
 #include "surfgrad/render_shaders.h"
@@ -15,13 +19,6 @@ namespace sg::render {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string lowerExt(const fs::path& p) {
-    std::string e = p.extension().string();
-    std::transform(e.begin(), e.end(), e.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
-    return e;
-}
 
 // A colour per positive integer id (0: black).
 glm::vec3 hashColour(float id) {
@@ -59,53 +56,41 @@ glm::vec3 displayValue(const glm::vec4& v, Aov aov, float exposure) {
 } // namespace
 
 void writeDisplayImage(const fs::path& path, const Image& image) {
-    if (lowerExt(path) != ".png") {
+    if (image::lowerExtension(path) != ".png") {
         throw io::InputError(path.string(), "", "expected a .png file name for a display image");
     }
     writeImage(path, image, Aov(-1), 1.0f);
 }
 
 void writeImage(const fs::path& path, const Image& image, Aov aov, float exposure) {
-    const std::string ext = lowerExt(path);
+    const std::string ext = image::lowerExtension(path);
     if (ext != ".png" && ext != ".exr") {
         throw io::InputError(path.string(), "",
                              "unsupported image format \"" + ext + "\" (expected .png or .exr)");
     }
-    const int W = image.width, H = image.height;
-    const bool exr = ext == ".exr";
-    const int nc = exr ? 4 : 3;
-    std::vector<float> buf(size_t(W) * size_t(H) * size_t(nc));
-    for (int y = 0; y < H; ++y) {
-        int row = H - 1 - y; // files store the top row first
-        for (int x = 0; x < W; ++x) {
-            const glm::vec4& v = image.at(x, y);
-            float* o = &buf[(size_t(row) * size_t(W) + size_t(x)) * size_t(nc)];
-            if (exr) {
-                for (int c = 0; c < 4; ++c) o[c] = v[c];
-            } else {
-                glm::vec3 d = displayValue(v, aov, exposure);
-                for (int c = 0; c < 3; ++c)
-                    o[c] = std::isfinite(d[c]) ? std::clamp(d[c], 0.0f, 1.0f) : 0.0f;
-            }
-        }
+    SG_EXPECTS(image.pixels.size() == size_t(image.width) * size_t(image.height),
+               "Image::pixels has width * height entries");
+    image::WriteOptions options;
+    options.attributes = {{"surfgrad:aov", int(aov) < 0 ? "display" : aovName(aov)}};
+    if (ext == ".exr") {
+        // The raw values, RGBA float (Image::pixels: bottom row first).
+        options.type = image::SampleType::Float;
+        options.channelNames = {"R", "G", "B", "A"};
+        options.alphaChannel = 3;
+        static_assert(sizeof(glm::vec4) == 4 * sizeof(float));
+        const float* samples = image.pixels.empty() ? nullptr : glm::value_ptr(image.pixels[0]);
+        const image::FloatPixels pixels{samples, image.width, image.height, 4};
+        image::writeImageFile(path, pixels, options);
+        return;
     }
-    io::writeAtomically(path, [&](const fs::path& tmp) {
-        auto out = OIIO::ImageOutput::create(tmp.string());
-        if (!out)
-            throw io::InputError(path.string(), "",
-                                 "cannot create image writer: " + OIIO::geterror());
-        OIIO::ImageSpec spec(W, H, nc, exr ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-        if (exr) {
-            spec.channelnames = {"R", "G", "B", "A"};
-            spec.alpha_channel = 3;
-            spec.attribute("compression", "zip");
-        }
-        spec.attribute("surfgrad:aov", int(aov) < 0 ? "display" : aovName(aov));
-        if (!out->open(tmp.string(), spec) ||
-            !out->write_image(OIIO::TypeDesc::FLOAT, buf.data()) || !out->close()) {
-            throw io::InputError(path.string(), "", "cannot write image: " + out->geterror());
-        }
-    });
+    // Display values, 8-bit RGB (the writer clamps to [0, 1], NaN to 0).
+    std::vector<float> display(size_t(image.width) * size_t(image.height) * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec3 d = displayValue(image.pixels[i], aov, exposure);
+        for (int c = 0; c < 3; ++c) display[3 * i + size_t(c)] = d[c];
+    }
+    options.type = image::SampleType::Unorm8;
+    image::writeImageFile(path, {display.data(), image.width, image.height, 3}, options);
 }
 
 Image readImage(const fs::path& path) {

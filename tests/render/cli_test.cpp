@@ -279,6 +279,8 @@ TEST(Cli, UsageErrorsExit2InOneFormat) {
         // Options out of range or of the wrong kind: a usage error, not bad input.
         {"features bake --curves c.json --size 0 -o x.exr", "features bake"},
         {"normalmap mips n.png --lean -o x.png", "normalmap mips"},
+        // An output format that cannot hold the image, before any work.
+        {"features render m.exr --profile crease -o x.jpg", "features render"},
     };
     std::ofstream(dir / "n.png") << "not read: the command line is refused first";
     for (const auto& [args, command] : cases) {

@@ -39,7 +39,8 @@
 // the features files (straight segments only: cheaper, same results on such
 // maps). Calling sequence and costs: docs/features.md.
 //
-// FILE LAYOUT (save/load, OpenEXR through OpenImageIO): one image of
+// FILE LAYOUT (save/load, OpenEXR; save writes through the image writer of
+// surfgrad/image_write.h, load reads through OpenImageIO): one image of
 // (N+1) x (N+1) pixels, pixel (i, j) = grid corner (i, j), scanline 0 = the
 // top row (j = N) so viewers show the map upright. FLOAT channels:
 //   d, gx, gy   distance and gradient at the corner

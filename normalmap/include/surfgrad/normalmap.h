@@ -85,7 +85,9 @@ using Progress = std::function<void(double fraction)>;
 // ---------------------------------------------------------------------------
 // Image files: read by the guarded decoder of surfgrad/image_decode.h (PNG,
 // JPEG, OpenEXR, TIFF, Radiance HDR, TGA; headers checked against the file
-// before anything is allocated), written through OpenImageIO
+// before anything is allocated), written by the image writer of
+// surfgrad/image_write.h (atomically; rows flipped to the file's top-first
+// order)
 
 enum class SampleType { U8, U16, Half, Float };
 
@@ -119,9 +121,12 @@ Image readImage(const std::filesystem::path& path, SampleType* sampleType = null
 
 // Writes atomically (sg::io::writeAtomically) with the given sample type:
 // .png (U8, U16), .tga (U8), .tif/.tiff (U8, U16, Half, Float), .exr (Half,
-// Float). Integer types clamp to [0, 1]. Throws InputError for an
-// unsupported extension/type pair or a failed write. `attributes` become
-// string metadata (e.g. "surfgrad:encoding").
+// Float). Non-finite texels are written as 0; integer types clamp to
+// [0, 1]. The fourth channel is marked alpha (unassociated: colour is
+// never divided by it); the colour space is tagged "Linear". Throws
+// InputError for an unsupported extension/type pair (checkWritable) or a
+// failed write. `attributes` become string metadata (e.g.
+// "surfgrad:encoding").
 void writeImage(const std::filesystem::path& path, const Image& image, SampleType type,
                 const std::vector<std::pair<std::string, std::string>>& attributes = {});
 
@@ -394,7 +399,11 @@ std::vector<Image> mipChain(Image level0, const Progress& progress = {});
 // and renormalises naive levels.
 void finishToksvig(std::vector<Image>& levels);
 void finishNaiveMips(std::vector<Image>& levels);
-// Writes a chain in the layout above. Throws InputError on failure.
+// Writes a chain in the layout above: one tiled OpenEXR file with MIP
+// levels (sg::image::writeMipChainFile), float samples, non-finite texels
+// as 0. `levels` is the full chain of mipSizes(level 0) (a caller bug
+// otherwise). Throws InputError for a path not ending in .exr, channel
+// names that do not match, or a failed write.
 void writeMipChain(const std::filesystem::path& path, const std::vector<Image>& levels,
                    const std::vector<std::string>& channelNames, const std::string& layout,
                    Wrap wrap);

@@ -2,10 +2,11 @@
 // bottom row first as OpenGL reads them back), their files, and the
 // comparison of two images of unit vectors.
 //
-// Contract: Image::pixels has width * height entries. Writers flip rows to
-// the usual top-first file order and write atomically
-// (sg::io::writeAtomically); a failed write or an unsupported extension is
-// an sg::io::InputError, and no partial file is left.
+// Contract: Image::pixels has width * height entries. Writers go through
+// the image module's writer (surfgrad/image_write.h): rows flipped to the
+// usual top-first file order, written atomically (sg::io::writeAtomically);
+// a failed write or an unsupported extension is an sg::io::InputError, and
+// no partial file is left.
 #pragma once
 
 #include <cstddef>
@@ -39,8 +40,11 @@ struct Image {
 // Writes an image atomically (sg::io::writeAtomically). ".exr": linear RGBA
 // float (the AOV's raw values). ".png" (8-bit sRGB): colour is tone-mapped
 // (sgToneMap with `exposure`); vector AOVs are mapped v -> 0.5 v + 0.5; uv
-// is written as fract(uv); primid as a hashed colour. Throws InputError for
-// an unsupported extension or a failed write.
+// is written as fract(uv); primid as a hashed colour; display values are
+// clamped to [0, 1], NaN and infinities written as 0 (the EXR keeps them).
+// Both carry the AOV's name as "surfgrad:aov" ("display" for
+// writeDisplayImage). Throws InputError for an unsupported extension or a
+// failed write.
 void writeImage(const std::filesystem::path& path, const Image& image, Aov aov, float exposure);
 Image readImage(const std::filesystem::path& path); // RGBA float, bottom row first
 // Writes display-referred values in [0, 1] as they are (8-bit PNG, RGB), e.g.
