@@ -18,10 +18,10 @@ set(_modules surfgrad_shaders surfgrad_base surfgrad_bump surfgrad_features surf
 set(_may_surfgrad_shaders "")
 set(_may_surfgrad_base "")
 set(_may_surfgrad_bump surfgrad_shaders surfgrad_base)
-# Feature maps read their EXR files through the image module's header scan.
+# Feature maps read and write their EXR files through the image module.
 set(_may_surfgrad_features surfgrad_bump surfgrad_image surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_mesh surfgrad_base)
-# The image decoder: the header scan of base and OpenImageIO, nothing else.
+# The image reader and writer: base and OpenImageIO, nothing else.
 set(_may_surfgrad_image surfgrad_base)
 set(_may_surfgrad_gl surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_parity surfgrad_bump surfgrad_gl surfgrad_shaders surfgrad_base)

@@ -4,18 +4,19 @@
 // right type, every value must be finite and in range, configurations must
 // be consistent with the edge points, and in quadratic mode every curved
 // segment's signature must pass the same validation the bake applies, so
-// the runtime evaluator only ever sees data it was designed for.
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
-
+// the runtime evaluator only ever sees data it was designed for. The file
+// is read by the image module's decoder (surfgrad/image_decode.h) and
+// written by its writer (surfgrad/image_write.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <memory>
+#include <cstring>
 #include <utility>
+#include <variant>
 
 #include "bake_internal.h"
 #include "surfgrad/feature_maps.h"
+#include "surfgrad/image_decode.h"
 #include "surfgrad/image_header.h"
 #include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
@@ -42,25 +43,36 @@ std::string pixelName(int i, int j) {
 // profile (-1 or a table index), width0, width1.
 constexpr int kPieceFloats = 10;
 
+// The metadata value `key` of the file when it has the type T (int,
+// double, std::string, std::vector<float>); nullptr when absent or of
+// another type. `present` tells the two apart.
+template <class T>
+const T* attribute(const image::DecodedImage& file, const std::string& key,
+                   bool* present = nullptr) {
+    const auto it = file.attributes.find(key);
+    if (present) *present = it != file.attributes.end();
+    return it == file.attributes.end() ? nullptr : std::get_if<T>(&it->second);
+}
+
 // The exact near field's metadata, when present (every value checked: the
 // runtime only ever sees pieces the bake could have written).
-void readNearField(const OIIO::ImageSpec& spec, const std::string& name, FeatureMaps& m) {
+void readNearField(const image::DecodedImage& file, const std::string& name, FeatureMaps& m) {
     using io::InputError;
-    const OIIO::ParamValue* band = spec.find_attribute("surfgrad:nearBandTexels");
-    if (!band) return;
-    double b = 0;
-    if (!spec.getattribute("surfgrad:nearBandTexels", OIIO::TypeDesc::DOUBLE, &b) ||
-        !(b > 0.0 && b <= m.bandTexels && b <= kMaxNearBandTexels)) {
+    bool present = false;
+    const double* band = attribute<double>(file, "surfgrad:nearBandTexels", &present);
+    if (!present) return;
+    const double b = band ? *band : 0.0;
+    if (!(b > 0.0 && b <= m.bandTexels && b <= kMaxNearBandTexels)) {
         throw InputError(name, "metadata surfgrad:nearBandTexels",
                          "must be a double in (0, min(bandTexels, " +
                              std::to_string(int(kMaxNearBandTexels)) + ")]");
     }
     m.nearBandTexels = b;
     // The profile table (';'-separated makeProfile names; absent: empty).
-    const OIIO::ParamValue* profiles = spec.find_attribute("surfgrad:nearProfiles");
-    if (profiles && profiles->type() != OIIO::TypeDesc::STRING)
+    const std::string* profiles = attribute<std::string>(file, "surfgrad:nearProfiles", &present);
+    if (present && !profiles)
         throw InputError(name, "metadata surfgrad:nearProfiles", "not a string");
-    const std::string table(profiles ? profiles->get_string().c_str() : "");
+    const std::string table = profiles ? *profiles : "";
     for (size_t at = 0; at < table.size();) {
         size_t end = std::min(table.find(';', at), table.size());
         std::string p = table.substr(at, end - at);
@@ -77,17 +89,16 @@ void readNearField(const OIIO::ImageSpec& spec, const std::string& name, Feature
                              "more than " + std::to_string(SG_FEAT_MAX_PROFILES) + " profiles");
         at = end + 1;
     }
-    const OIIO::ParamValue* pieces = spec.find_attribute("surfgrad:nearPieces");
-    const OIIO::TypeDesc t = pieces ? pieces->type() : OIIO::TypeDesc();
-    if (!pieces || t.basetype != OIIO::TypeDesc::FLOAT || t.aggregate != OIIO::TypeDesc::SCALAR ||
-        pieces->nvalues() != 1 || t.arraylen <= 0 || t.arraylen % kPieceFloats != 0 ||
-        t.arraylen / kPieceFloats > kMaxNearPieces) {
+    const std::vector<float>* pieces = attribute<std::vector<float>>(file, "surfgrad:nearPieces");
+    const size_t floats = pieces ? pieces->size() : 0;
+    if (floats == 0 || floats % kPieceFloats != 0 ||
+        floats / kPieceFloats > size_t(kMaxNearPieces)) {
         throw InputError(name, "metadata surfgrad:nearPieces",
                          "missing, or not a float array of 10 values per piece (at most " +
                              std::to_string(kMaxNearPieces) + " pieces)");
     }
-    const float* v = static_cast<const float*>(pieces->data());
-    const int count = t.arraylen / kPieceFloats;
+    const float* v = pieces->data();
+    const int count = int(floats / kPieceFloats);
     m.pieces.resize(size_t(count));
     for (int k = 0; k < count; ++k) {
         const float* f = v + size_t(k) * kPieceFloats;
@@ -122,32 +133,25 @@ void readNearField(const OIIO::ImageSpec& spec, const std::string& name, Feature
 
 // The metadata: version, mode, size (and the image's), transform, band,
 // smoothing, source.
-FeatureMaps readMetadata(OIIO::ImageInput* in, const std::string& name) {
+FeatureMaps readMetadata(const image::DecodedImage& file, const std::string& name) {
     using io::InputError;
-    if (!in) throw InputError(name, "", "not a readable image: " + OIIO::geterror());
-    if (std::string(in->format_name()) != "openexr") {
-        throw InputError(name, "", std::string("not an OpenEXR file (") + in->format_name() + ")");
-    }
-    const OIIO::ImageSpec& spec = in->spec();
     auto intAttr = [&](const char* key) {
-        int v = 0;
-        if (!spec.getattribute(key, OIIO::TypeDesc::INT, &v)) {
-            throw InputError(name, std::string("metadata ") + key, "missing or not an integer");
-        }
-        return v;
+        const int* v = attribute<int>(file, key);
+        if (!v) throw InputError(name, std::string("metadata ") + key, "missing or not an integer");
+        return *v;
     };
     auto doubleAttr = [&](const char* key) {
-        double v = 0;
-        if (!spec.getattribute(key, OIIO::TypeDesc::DOUBLE, &v) || !std::isfinite(v)) {
+        const double* v = attribute<double>(file, key);
+        if (!v || !std::isfinite(*v)) {
             throw InputError(name, std::string("metadata ") + key,
                              "missing or not a finite double");
         }
-        return v;
+        return *v;
     };
     auto stringAttr = [&](const char* key) {
-        const OIIO::ParamValue* p = spec.find_attribute(key, OIIO::TypeDesc::STRING);
-        if (!p) throw InputError(name, std::string("metadata ") + key, "missing or not a string");
-        return std::string(p->get_string());
+        const std::string* v = attribute<std::string>(file, key);
+        if (!v) throw InputError(name, std::string("metadata ") + key, "missing or not a string");
+        return *v;
     };
     FeatureMaps m;
     int version = intAttr("surfgrad:featureMapsVersion");
@@ -170,7 +174,8 @@ FeatureMaps readMetadata(OIIO::ImageInput* in, const std::string& name) {
                          "must be 1.." + std::to_string(kMaxFeatureMapSize));
     }
     const int g = m.size + 1;
-    if (spec.width != g || spec.height != g || spec.depth != 1 || spec.x != 0 || spec.y != 0) {
+    // (The decoder reads images of depth 1 only.)
+    if (file.width != g || file.height != g || file.originX != 0 || file.originY != 0) {
         throw InputError(name, "image",
                          "must be " + std::to_string(g) + " x " + std::to_string(g) +
                              " pixels (size + 1) at origin 0 with depth 1");
@@ -190,40 +195,33 @@ FeatureMaps readMetadata(OIIO::ImageInput* in, const std::string& name) {
     if (m.smoothIterations < 0 || m.smoothIterations > 1000) {
         throw InputError(name, "metadata surfgrad:smoothIterations", "must be 0..1000");
     }
-    if (const OIIO::ParamValue* p =
-            spec.find_attribute("surfgrad:source", OIIO::TypeDesc::STRING)) {
-        m.source = std::string(p->get_string());
-    }
+    if (const std::string* source = attribute<std::string>(file, "surfgrad:source"))
+        m.source = *source;
     return m;
 }
 
 // The corner channels: every value finite and in range, positions and
 // angles on their 16-bit grids.
-void readCorners(OIIO::ImageInput* in, const std::string& name, FeatureMaps& m) {
+void readCorners(const image::DecodedImage& file, const std::string& name, FeatureMaps& m) {
     using io::InputError;
-    const OIIO::ImageSpec& spec = in->spec();
     const int g = m.size + 1;
     auto names = channelNames();
-    if (spec.nchannels != int(names.size())) {
+    if (file.fileChannels != int(names.size())) {
         throw InputError(name, "channels",
                          "expected " + std::to_string(names.size()) + " channels, found " +
-                             std::to_string(spec.nchannels));
+                             std::to_string(file.fileChannels));
     }
     std::vector<int> slot(names.size(), -1);
     for (size_t c = 0; c < names.size(); ++c) {
-        for (int k = 0; k < spec.nchannels; ++k) {
-            if (spec.channel_name(k) == names[c]) slot[c] = k;
+        for (int k = 0; k < file.fileChannels; ++k) {
+            if (file.channelNames[size_t(k)] == names[c]) slot[c] = k;
         }
         if (slot[c] < 0) throw InputError(name, "channel " + names[c], "missing");
-        if (spec.channelformat(slot[c]) != OIIO::TypeDesc::FLOAT) {
+        if (file.channelFormats[size_t(slot[c])] != "float") {
             throw InputError(name, "channel " + names[c], "must be 32-bit float");
         }
     }
     const size_t nc = size_t(g) * size_t(g);
-    std::vector<float> px(nc * names.size());
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, px.data())) {
-        throw InputError(name, "pixels", "cannot read: " + in->geterror());
-    }
     m.dist.resize(nc);
     m.gradX.resize(nc);
     m.gradY.resize(nc);
@@ -234,12 +232,19 @@ void readCorners(OIIO::ImageInput* in, const std::string& name, FeatureMaps& m) 
     m.hAngle.assign(nc, 0.0f);
     m.vAngle.assign(nc, 0.0f);
     const double margin = double(SG_FEAT_EDGE_MARGIN);
+    // Checked in file order, scanline 0 (the top, j = N) first; the
+    // decoded samples are float, the bottom row first: corner (i, j) is
+    // sample m.index(i, j).
     for (int row = 0; row < g; ++row) {
-        int j = g - 1 - row; // scanline 0 = top
+        int j = g - 1 - row;
         for (int i = 0; i < g; ++i) {
-            const float* p = &px[(size_t(row) * size_t(g) + size_t(i)) * names.size()];
-            auto ch = [&](size_t c) { return p[slot[c]]; };
             size_t k = m.index(i, j);
+            auto ch = [&](size_t c) {
+                float v;
+                std::memcpy(&v, &file.data[(k * names.size() + size_t(slot[c])) * sizeof(float)],
+                            sizeof(float));
+                return v;
+            };
             auto bad = [&](const std::string& channel, const std::string& why) {
                 return InputError(name, pixelName(i, j) + " channel " + channel, why);
             };
@@ -355,12 +360,19 @@ void checkConfigurations(const std::string& name, const FeatureMaps& m) {
     }
 }
 
-FeatureMaps readFrom(OIIO::ImageInput* in, const std::string& name) {
-    FeatureMaps m = readMetadata(in, name);
-    readCorners(in, name, m);
-    checkConfigurations(name, m);
-    readNearField(in->spec(), name, m);
-    return m;
+// The file decoded by the image module (surfgrad/image_decode.h): its
+// channels as float, NaN and infinities kept (readCorners names the corner
+// and channel), at most kMaxFeatureMapSize + 1 pixels per side and the
+// 9 channels of a map (at most 604 MB, as a map of the largest size
+// holds: no budget beyond these limits, as before).
+image::DecodedImage decode(const std::string& bytes, const std::string& name) {
+    image::DecodeOptions opt;
+    opt.maxSide = kMaxFeatureMapSize + 1;
+    opt.maxChannels = int(channelNames().size());
+    opt.toFloat = true;
+    opt.finiteOnly = false;
+    opt.checkMemory = [](const image::DecodePlan&) {};
+    return image::decodeImageBytes(bytes, name, opt);
 }
 
 } // namespace
@@ -432,9 +444,13 @@ FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name) {
     // OpenEXR allocates what its header declares before reading it: the
     // header is checked first (surfgrad/image_header.h).
     io::scanExrHeader(io::MemoryBytes(bytes), name);
-    OIIO::Filesystem::IOMemReader reader(bytes.data(), bytes.size());
-    auto in = OIIO::ImageInput::open("memory.exr", nullptr, &reader);
-    return readFrom(in.get(), name);
+    image::DecodedImage file = decode(bytes, name);
+    FeatureMaps m = readMetadata(file, name);
+    readCorners(file, name, m);
+    std::vector<uint8_t>().swap(file.data); // in m now: free before the configuration checks
+    checkConfigurations(name, m);
+    readNearField(file, name, m);
+    return m;
 }
 
 } // namespace sg::features

@@ -72,6 +72,11 @@ float DecodedImage::sample(int x, int y, int c) const {
     return f;
 }
 
+const std::string* DecodedImage::stringAttribute(const std::string& key) const {
+    const auto it = attributes.find(key);
+    return it == attributes.end() ? nullptr : std::get_if<std::string>(&it->second);
+}
+
 namespace {
 
 using io::formatBytes;
@@ -135,11 +140,12 @@ uint64_t imageBytes(int64_t w, int64_t h, int k, SampleType type) {
     return uint64_t(w) * uint64_t(h) * uint64_t(k) * sampleTypeBytes(type);
 }
 
-// Refuses non-finite (and too large) half/float samples of a band of file
-// rows y0.. .
+// Refuses non-finite (unless !finiteOnly) and too large half/float samples
+// of a band of file rows y0.. .
 void checkBand(const uint8_t* band, int rows, int w, int k, SampleType type, int y0,
                const DecodeOptions& opt, const std::string& name) {
     if (type != SampleType::Half && type != SampleType::Float) return;
+    if (!opt.finiteOnly && type == SampleType::Half) return; // halves: only finiteness is checked
     const size_t n = size_t(rows) * size_t(w) * size_t(k);
     auto bad = [&](size_t i, const std::string& reason) {
         const size_t px = i / size_t(k);
@@ -160,7 +166,10 @@ void checkBand(const uint8_t* band, int rows, int w, int k, SampleType type, int
     for (size_t i = 0; i < n; ++i) {
         float f;
         std::memcpy(&f, band + 4 * i, 4);
-        if (!std::isfinite(f)) bad(i, "non-finite value");
+        if (!std::isfinite(f)) {
+            if (opt.finiteOnly) bad(i, "non-finite value");
+            continue;
+        }
         if (std::fabs(f) > opt.maxMagnitude) {
             char v[96];
             std::snprintf(v, sizeof v, "value %g is out of range (|v| <= %g)", double(f),
@@ -251,6 +260,32 @@ void readRows(OIIO::ImageInput& in, const DecodePlan& plan, int bandRows, const 
     }
 }
 
+// What DecodedImage says about the file besides its samples: channel
+// names and types, the data window's origin, the metadata AttributeValue
+// can hold.
+void describeFile(const OIIO::ImageSpec& spec, DecodedImage& img) {
+    img.originX = spec.x;
+    img.originY = spec.y;
+    img.channelNames = spec.channelnames;
+    for (int c = 0; c < spec.nchannels; ++c)
+        img.channelFormats.push_back(spec.channelformat(c).c_str());
+    for (const OIIO::ParamValue& p : spec.extra_attribs) {
+        const OIIO::TypeDesc t = p.type();
+        const std::string key = p.name().string();
+        if (t == OIIO::TypeDesc::STRING) {
+            img.attributes[key] = std::string(p.get_string());
+        } else if (t == OIIO::TypeDesc::INT) {
+            img.attributes[key] = p.get_int();
+        } else if (t == OIIO::TypeDesc::DOUBLE) {
+            img.attributes[key] = *static_cast<const double*>(p.data());
+        } else if (t.basetype == OIIO::TypeDesc::FLOAT && t.aggregate == OIIO::TypeDesc::SCALAR &&
+                   t.arraylen > 0 && p.nvalues() == 1) {
+            const float* v = static_cast<const float*>(p.data());
+            img.attributes[key] = std::vector<float>(v, v + t.arraylen);
+        }
+    }
+}
+
 // Step 3 and 4 (the header is already checked).
 DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr, const std::string& name,
                           const DecodeOptions& opt) {
@@ -288,10 +323,7 @@ DecodedImage decodeOpened(OIIO::ImageInput& in, const io::ImageHeader& hdr, cons
     img.fileChannels = spec.nchannels;
     img.type = plan.type;
     img.fileType = fileSampleType(spec.format);
-    img.channelNames = spec.channelnames;
-    for (const OIIO::ParamValue& p : spec.extra_attribs)
-        if (p.type() == OIIO::TypeDesc::STRING)
-            img.stringAttributes[p.name().string()] = p.get_string();
+    describeFile(spec, img);
     try {
         readRows(in, plan, bandRows, opt, name, img.data);
     } catch (const std::bad_alloc&) {

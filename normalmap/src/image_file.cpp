@@ -200,8 +200,8 @@ std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* 
     image::DecodedImage info;
     Image first = decodeToFloat(path, 0, &info);
     const std::vector<std::string>& fileNames = info.channelNames;
-    const auto attr = info.stringAttributes.find("surfgrad:layout");
-    const std::string lay = attr == info.stringAttributes.end() ? "" : attr->second;
+    const std::string* attr = info.stringAttribute("surfgrad:layout");
+    const std::string lay = attr ? *attr : "";
     // OpenEXR stores channels sorted by name: put a known layout's back in
     // its documented order.
     std::vector<std::string> names = mipChannelNames(lay);

@@ -199,8 +199,21 @@ TEST(FeatureMapsStorage, RejectsBadFiles) {
                     })
                   .find("band"),
               std::string::npos);
+    // Metadata of the wrong type, a data window off the origin.
+    EXPECT_NE(forge("floatsize", [](auto& s, auto&) { s.attribute("surfgrad:size", 16.0f); })
+                  .find("surfgrad:size: missing or not an integer"),
+              std::string::npos);
+    EXPECT_NE(forge("origin", [](auto& s, auto&) { s.x = 3; }).find("at origin 0"),
+              std::string::npos);
     // Channels.
     EXPECT_NE(forge("chname", [](auto& s, auto&) { s.channelnames[0] = "Z"; }).find("channel d"),
+              std::string::npos);
+    EXPECT_NE(forge("halfch",
+                    [&](auto& s, auto&) {
+                        s.channelformats.assign(size_t(s.nchannels), OIIO::TypeDesc::FLOAT);
+                        s.channelformats[size_t(chan("gx"))] = OIIO::TypeDesc::HALF;
+                    })
+                  .find("channel gx: must be 32-bit float"),
               std::string::npos);
     // Values.
     EXPECT_NE(forge("nan", [&](auto&, auto& p) { p[size_t(chan("gx"))] = std::nanf(""); })

@@ -1,5 +1,6 @@
-// Fuzz entry point: feature-map files (OpenEXR through OpenImageIO, then our
-// validation of channels, values, metadata and signatures;
+// Fuzz entry point: feature-map files (OpenEXR through the image decoder,
+// image/src/image_decode.cpp, then our validation of channels, values,
+// metadata and signatures;
 // sg::features::loadFromMemory). Documented errors (InputError) are
 // expected; maps that load must evaluate to finite values everywhere, which
 // is what the validation promises the shader.

@@ -2,7 +2,7 @@
 // as a scene loads it: the input is written to a file that a fixed scene's
 // feature layer names ("maps"), then parseScene, loadAssets (the render
 // module's feature-map asset: sg::features::load, its EXR header pre-check,
-// OpenImageIO, the validation of every channel and signature, packing for
+// the image decoder, the validation of every channel and signature, packing for
 // the GPU) and a CPU reference render of a plane covered by the map, whose
 // pixels must all be finite (the normal output; the first byte's low bit
 // picks linear or quadratic evaluation by the profile's mode). Documented

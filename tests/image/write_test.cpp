@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cli.h"
@@ -124,7 +125,23 @@ TEST(ImageWrite, FloatExrRowsMetadataAndNonFinite) {
     EXPECT_EQ(back.sample(0, 0, 1), 0.0f);
     EXPECT_EQ(back.sample(1, 0, 0), 0.0f);
     EXPECT_EQ(back.sample(2, 1, 1), 121.0f);
-    EXPECT_EQ(back.stringAttributes.at("t:string"), "text");
+    // The decoder's view of the metadata: each value with its type.
+    ASSERT_TRUE(back.stringAttribute("t:string"));
+    EXPECT_EQ(*back.stringAttribute("t:string"), "text");
+    EXPECT_EQ(std::get<int>(back.attributes.at("t:int")), 7);
+    EXPECT_EQ(std::get<double>(back.attributes.at("t:double")), 0.1);
+    EXPECT_EQ(std::get<std::vector<float>>(back.attributes.at("t:floats")),
+              (std::vector<float>{1.5f, -2.0f, 3.25f, 4.0f, 5.0f}));
+    EXPECT_EQ(back.channelNames, (std::vector<std::string>{"u", "v"}));
+    EXPECT_EQ(back.channelFormats, (std::vector<std::string>{"half", "half"}));
+    EXPECT_EQ(back.originX, 0);
+    // NaN and infinity in a float file: refused by default, kept on request.
+    EXPECT_THROW(decodeImageFile(p), io::InputError);
+    DecodeOptions keep;
+    keep.finiteOnly = false;
+    const DecodedImage raw2 = decodeImageFile(p, keep);
+    EXPECT_TRUE(std::isnan(raw2.sample(0, 0, 1)));
+    EXPECT_EQ(raw2.sample(1, 0, 0), std::numeric_limits<float>::infinity());
 }
 
 // Unorm samples: NaN and infinities become 0, values are clamped to [0, 1]
@@ -249,7 +266,8 @@ TEST(ImageWrite, MipChainRoundTrip) {
                 for (int c = 0; c < 3; ++c)
                     ASSERT_EQ(L.sample(x, y, c), data[k][size_t((y * L.width + x) * 3 + c)])
                         << "level " << k << " (" << x << ", " << y << ")";
-        EXPECT_EQ(L.stringAttributes.at("surfgrad:layout"), "test");
+        ASSERT_TRUE(L.stringAttribute("surfgrad:layout"));
+        EXPECT_EQ(*L.stringAttribute("surfgrad:layout"), "test");
     }
     OIIO::ImageSpec spec;
     readRaw(p, &spec);

@@ -39,8 +39,9 @@
 // the features files (straight segments only: cheaper, same results on such
 // maps). Calling sequence and costs: docs/features.md.
 //
-// FILE LAYOUT (save/load, OpenEXR; save writes through the image writer of
-// surfgrad/image_write.h, load reads through OpenImageIO): one image of
+// FILE LAYOUT (save/load, OpenEXR: written by the image writer of
+// surfgrad/image_write.h, read by the image decoder of
+// surfgrad/image_decode.h after the header scan): one image of
 // (N+1) x (N+1) pixels, pixel (i, j) = grid corner (i, j), scanline 0 = the
 // top row (j = N) so viewers show the map upright. FLOAT channels:
 //   d, gx, gy   distance and gradient at the corner
@@ -57,7 +58,8 @@
 // "quadratic"), surfgrad:size (int N), surfgrad:inputToTexelScaleX/Y and
 // surfgrad:inputToTexelOffsetX/Y (double), surfgrad:bandTexels (double),
 // surfgrad:smoothIterations (int), surfgrad:source (string),
-// surfgrad:layout (a one-line description). Loading checks all of it.
+// surfgrad:layout (a one-line description). Loading checks all of it, each
+// field's type exactly (an int stored as a float or a string is refused).
 #pragma once
 
 #include <cstdint>

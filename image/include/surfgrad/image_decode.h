@@ -1,9 +1,10 @@
 // The one decoder of untrusted image files (the I/O policy of surfgrad/io.h
 // applied to pixels), shared by the renderer's textures
-// (sg::render::loadTexture) and the normal-map toolkit
-// (sg::normalmap::readImage). A file's header decides what a decoder
-// allocates, and some decoders do real work when a file is opened, so a
-// 69-byte PNG may ask for 4 GiB. The checks come in this order:
+// (sg::render::loadTexture), the normal-map toolkit
+// (sg::normalmap::readImage) and the feature maps (sg::features::load).
+// A file's header decides what a decoder allocates, and some decoders do
+// real work when a file is opened, so a 69-byte PNG may ask for 4 GiB. The
+// checks come in this order:
 //  1. the image header scan (surfgrad/image_header.h): a format the reader
 //     knows (PNG, JPEG, OpenEXR, TIFF, Radiance HDR, TGA), header records
 //     inside the file, a file long enough for the pixels it promises;
@@ -15,7 +16,7 @@
 //  4. rows are decoded a band at a time into the result, so a truncated
 //     file fails having touched only the rows it held; channels past
 //     DecodeOptions::maxChannels are not decoded; half and float samples
-//     must be finite.
+//     must be finite (unless DecodeOptions::finiteOnly is off).
 // Values are OpenImageIO's raw channel values (colour channels are never
 // premultiplied by alpha: maps are data); an n-bit unorm sample is stored
 // as is and reads as float(s) * (1 / (2^n - 1)), exactly OpenImageIO's
@@ -65,6 +66,9 @@ struct DecodeOptions {
     // Finite half/float samples larger in magnitude are refused (the
     // renderer's mip filter sums four texels in float).
     float maxMagnitude = std::numeric_limits<float>::max();
+    // NaN and infinite half/float samples are refused (false: kept, for a
+    // caller that names the bad sample in its own terms).
+    bool finiteOnly = true;
     int level = 0; // MIP level of a tiled OpenEXR/TIFF file (0: full size)
     // Called before allocating, from the header and again from the
     // decoder's spec; throws (an InputError naming `name`) to refuse. Empty:
@@ -79,14 +83,23 @@ struct DecodedImage {
     SampleType type = SampleType::Float;     // as stored in `data`
     SampleType fileType = SampleType::Float; // the file's own sample type (the widest channel)
     int levels = 1;                          // MIP levels the file holds
+    int originX = 0, originY = 0;            // the data window's origin (OpenEXR; else 0)
     std::vector<std::string> channelNames;   // of all the file's channels
-    std::map<std::string, std::string> stringAttributes; // the file's string metadata
+    // Of all the file's channels, in OpenImageIO's names: "uint8",
+    // "uint16", "half", "float", "uint" (32-bit), "double", ...
+    std::vector<std::string> channelFormats;
+    // The file's metadata of the types AttributeValue holds (int, double,
+    // string, float arrays; scalar floats, vectors and matrices are left
+    // out), by name.
+    std::map<std::string, AttributeValue> attributes;
     // width * height * channels samples of `type`, row-major, the BOTTOM row
     // first (OpenGL's texel order; files store the top row first).
     std::vector<uint8_t> data;
 
     // Sample (x, y, c) (y from the bottom) as float.
     float sample(int x, int y, int c) const;
+    // The string attribute `key`; nullptr when absent or of another type.
+    const std::string* stringAttribute(const std::string& key) const;
 };
 
 // Decodes the file at `path` (its name in messages). "no such file" when
