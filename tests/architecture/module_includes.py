@@ -114,9 +114,14 @@ def main():
                         continue
                     inc = m.group(1)
                     local = os.path.realpath(os.path.join(root, inc))
-                    if os.path.isfile(local) and owner(local) == d:
-                        continue
-                    err = classify(inc, d, folders, allowed)
+                    if os.path.isfile(local):
+                        # Relative to the file: its own folder's, or (a path
+                        # with ..) a file of another module, judged by where
+                        # it lies.
+                        other = owner(local)
+                        err = None if other == d else placed(local, other, d, folders, allowed)
+                    else:
+                        err = classify(inc, d, folders, allowed)
                     if err:
                         rel = os.path.relpath(path, src)
                         errors.append('%s:%d: #include "%s": %s' % (rel, lineno, inc, err))
@@ -130,6 +135,24 @@ def main():
     return 0
 
 
+def verdict(other, public, folder, folders, allowed):
+    name = "/".join(sorted(folders[other]))
+    if public:
+        if other in allowed[folder]:
+            return None
+        return "a header of %s, which this folder's module does not link" % name
+    return "a private header of %s (%s/src)" % (name, os.path.basename(other))
+
+
+def placed(path, other, folder, folders, allowed):
+    """The verdict on a file found at `path`, in module folder `other` (or
+    outside every module folder: None)."""
+    if other is None:
+        return None
+    public = any(path.startswith(r + os.sep) for r in public_roots(other))
+    return verdict(other, public, folder, folders, allowed)
+
+
 def classify(inc, folder, folders, allowed):
     """None when `inc` (not found beside the file) is allowed in `folder`."""
     own = [os.path.join(folder, "src"), os.path.join(folder, "include")] + public_roots(folder)
@@ -138,13 +161,10 @@ def classify(inc, folder, folders, allowed):
     for other in sorted(folders):
         if other == folder:
             continue
-        name = "/".join(sorted(folders[other]))
         if any(os.path.isfile(os.path.join(r, inc)) for r in public_roots(other)):
-            if other in allowed[folder]:
-                return None
-            return "a header of %s, which this folder's module does not link" % name
+            return verdict(other, True, folder, folders, allowed)
         if os.path.isfile(os.path.join(other, "src", inc)):
-            return "a private header of %s (%s/src)" % (name, os.path.basename(other))
+            return verdict(other, False, folder, folders, allowed)
     return None
 
 

@@ -45,8 +45,10 @@ with tempfile.TemporaryDirectory() as root:
     write(root, "shaders/sg/c.glsl", '#include "surfgrad/low.h"\n')  # a module above
     write(root, "mid/src/bad.cpp", '#include "private.h"\n')  # another's private header
     write(root, "low/src/up.cpp", '#include "surfgrad/mid.h"\n')  # against the links
+    write(root, "shaders/sg/d.glsl", '#include "../../low/src/private.h"\n')  # by a relative path
     bad = run(root)
     want = [
+        'shaders/sg/d.glsl:1: #include "../../low/src/private.h": a private header of surfgrad_low',
         'shaders/sg/c.glsl:1: #include "surfgrad/low.h": a header of surfgrad_low',
         'mid/src/bad.cpp:1: #include "private.h": a private header of surfgrad_low',
         'low/src/up.cpp:1: #include "surfgrad/mid.h": a header of surfgrad_mid',

@@ -252,6 +252,13 @@ TEST(Cli, UsageErrorsExit2InOneFormat) {
         {"render --size 8x8 --frame x", "render"},
         {"shader --mesh -1", "shader"},
         {"shader s.json --mesh 3", "shader"},
+        // Shader targets: an unknown name, several targets without a
+        // folder, a folder that is not there, --body of another target.
+        {"shader s.json --target glsl", "shader"},
+        {"shader s.json --target es300,", "shader"},
+        {"shader s.json --target all", "shader"},
+        {"shader s.json --target spirv -o missing", "shader"},
+        {"shader s.json --body --target es300", "shader"},
         {"view --frames -2", "view"},
         {"mesh", "mesh"},
         {"mesh info", "mesh info"},

@@ -187,9 +187,7 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     Scene s = sceneFromJson(GetParam().json);
     SceneAssets a = loadAssets(s);
 
-    CpuOptions parity;
-    parity.derivatives = CpuDerivatives::Quad;
-    parity.textureLod = sg::glsl::LodRule::FastLog2;
+    const CpuOptions parity = gpuParityOptions();
     NormalRenders p = renderNormalsBoth(s, a, parity);
     size_t covered = countCovered(p.gpuPrim);
     ASSERT_GT(covered, 1000u) << "the view must show the surface";
@@ -236,9 +234,7 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
 TEST_P(LayerImage, LegacyDialectsMatchCpuReference) {
     Scene s = sceneFromJson(GetParam().json);
     SceneAssets a = loadAssets(s);
-    CpuOptions parity;
-    parity.derivatives = CpuDerivatives::Quad;
-    parity.textureLod = sg::glsl::LodRule::FastLog2;
+    const CpuOptions parity = gpuParityOptions();
     const View v = makeView(s, a, 0, 0, Aov::Normal);
     View p = v;
     p.aov = Aov::PrimId;
@@ -278,9 +274,7 @@ TEST(Morph, AnimatedMorphSphereMidAnimation) {
     uint64_t version = a.meshVersion;
     applyFrame(s, a, 0.5f * s.meshes[0].morphKeys.back().time);
     EXPECT_NE(a.meshVersion, version);
-    CpuOptions parity;
-    parity.derivatives = CpuDerivatives::Quad;
-    parity.textureLod = sg::glsl::LodRule::FastLog2;
+    const CpuOptions parity = gpuParityOptions();
     NormalRenders p = renderNormalsBoth(s, a, parity);
     EXPECT_GT(p.diff.compared, 2000u);
     EXPECT_EQ(p.diff.nonFinite, 0u);

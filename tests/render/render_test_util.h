@@ -59,6 +59,16 @@ struct NormalRenders {
     VectorImageDiff diff;
 };
 
+// The CPU reference set up to reproduce the GPU (the parity comparison):
+// derivatives across the pixel's 2x2 quad, as dFdxFine, and llvmpipe's fast
+// log2 in the texture LOD.
+inline CpuOptions gpuParityOptions() {
+    CpuOptions o;
+    o.derivatives = CpuDerivatives::Quad;
+    o.textureLod = sg::glsl::LodRule::FastLog2;
+    return o;
+}
+
 inline NormalRenders renderNormalsBoth(const Scene& scene, const SceneAssets& assets,
                                        const CpuOptions& cpu, Aov aov = Aov::Normal) {
     NormalRenders r;

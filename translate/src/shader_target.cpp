@@ -14,6 +14,14 @@ namespace sg::translate {
 namespace {
 
 using detail::FrontEnd;
+namespace sh = sg::shaders;
+
+// The GLSL rows carry the shader library's name of their dialect
+// (sg::shaders::targetName), so a dialect is named in one place.
+ShaderTargetInfo glslRow(ShaderTarget target, sh::Target dialect, const char* language,
+                         bool tessellation) {
+    return {target, sh::targetName(dialect), language, ".glsl", "glslang", tessellation};
+}
 
 } // namespace
 
@@ -33,11 +41,10 @@ const char* shaderStageName(ShaderStage stage) {
 
 const std::vector<ShaderTargetInfo>& shaderTargets() {
     static const std::vector<ShaderTargetInfo> table = {
-        {ShaderTarget::Glsl450, "glsl450", "GLSL 4.50 core (OpenGL 4.5)", ".glsl", "glslang", true},
-        {ShaderTarget::Glsl330, "glsl330", "GLSL 3.30 core (OpenGL 3.3)", ".glsl", "glslang",
-         false},
-        {ShaderTarget::Es300, "es300", "GLSL ES 3.00 (WebGL2, OpenGL ES 3)", ".glsl", "glslang",
-         false},
+        glslRow(ShaderTarget::Glsl450, sh::Target::Glsl450, "GLSL 4.50 core (OpenGL 4.5)", true),
+        glslRow(ShaderTarget::Glsl330, sh::Target::Glsl330, "GLSL 3.30 core (OpenGL 3.3)", false),
+        glslRow(ShaderTarget::Es300, sh::Target::Es300, "GLSL ES 3.00 (WebGL2, OpenGL ES 3)",
+                false),
         {ShaderTarget::Spirv, "spirv", "SPIR-V 1.3 (Vulkan 1.1)", ".spv",
          "glslang, SPIR-V validator", true},
         {ShaderTarget::Hlsl, "hlsl", "HLSL shader model 5.0 (D3D11, Unity, Unreal)", ".hlsl",
@@ -79,10 +86,9 @@ TranslatedShader translateShader(const std::string& glsl450, ShaderStage stage, 
     case ShaderTarget::Glsl450:
     case ShaderTarget::Glsl330:
     case ShaderTarget::Es300:
-        out.text = target == ShaderTarget::Glsl450 ? glsl450
-                   : target == ShaderTarget::Glsl330
-                       ? sg::shaders::inDialect(glsl450, sg::shaders::Target::Glsl330)
-                       : sg::shaders::inDialect(glsl450, sg::shaders::Target::Es300);
+        out.text = sh::inDialect(glsl450, target == ShaderTarget::Glsl450   ? sh::Target::Glsl450
+                                          : target == ShaderTarget::Glsl330 ? sh::Target::Glsl330
+                                                                            : sh::Target::Es300);
         detail::glslang(out.text, stage, FrontEnd::GlslValidate, what);
         return out;
     case ShaderTarget::Spirv:

@@ -61,26 +61,12 @@
 #ifndef SG_PATCH_CAPTURE
 #define SG_PATCH_CAPTURE 0
 #endif
-#ifndef SG_UV_COUNT
-#define SG_UV_COUNT 0
-#endif
+#include "sg/render/program_options.glsl"
 #ifndef SG_DISPLACEMENT
 #define SG_DISPLACEMENT 0
 #endif
 #if SG_DISPLACEMENT
 #include "sg/patch/displace.glsl"
-#endif
-#ifndef SG_VTX_TANGENT_0
-#define SG_VTX_TANGENT_0 0
-#endif
-#ifndef SG_VTX_TANGENT_1
-#define SG_VTX_TANGENT_1 0
-#endif
-#ifndef SG_VTX_TANGENT_2
-#define SG_VTX_TANGENT_2 0
-#endif
-#ifndef SG_VTX_TANGENT_3
-#define SG_VTX_TANGENT_3 0
 #endif
 #define SG_PATCH_TANGENTS (SG_VTX_TANGENT_0 || SG_VTX_TANGENT_1 || SG_VTX_TANGENT_2 || SG_VTX_TANGENT_3)
 #if SG_PATCH_TANGENTS

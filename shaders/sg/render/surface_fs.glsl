@@ -13,21 +13,7 @@
 #include "sg/render/common.glsl"
 #include "sg/render/shading.glsl"
 
-#ifndef SG_UV_COUNT
-#define SG_UV_COUNT 0
-#endif
-#ifndef SG_VTX_TANGENT_0
-#define SG_VTX_TANGENT_0 0
-#endif
-#ifndef SG_VTX_TANGENT_1
-#define SG_VTX_TANGENT_1 0
-#endif
-#ifndef SG_VTX_TANGENT_2
-#define SG_VTX_TANGENT_2 0
-#endif
-#ifndef SG_VTX_TANGENT_3
-#define SG_VTX_TANGENT_3 0
-#endif
+#include "sg/render/program_options.glsl"
 
 // Screen derivatives as the generated main() takes them: dFdxFine/dFdyFine
 // (differences inside the pixel's own row and column of its 2x2 quad) where

@@ -1,8 +1,5 @@
-// Vertex program of the renderer (GLSL only; assembled by
-// render with these defines):
-//   SG_UV_COUNT            number of texture coordinate sets (0..4);
-//   SG_VTX_TANGENT_k (0/1) whether UV set k has vertex tangents
-//                          (mikktspace or limit frames) as an attribute.
+// Vertex program of the renderer (GLSL only; assembled by render with the
+// options of sg/render/program_options.glsl).
 // glsl-targets: glsl330 es300 (and 4.50; Vulkan GLSL forbids default-block
 // uniforms: `surfgrad shader --target spirv|hlsl|msl` gathers them into one
 // block, surfgrad/shader_target.h)
@@ -15,21 +12,7 @@
 // the absolute world position (rounded at its distance from the origin):
 // world-space volume layers take vRelPos and the camera's part packed per
 // layer in binary64 (SgVolumeSpace, sg/render/common.glsl).
-#ifndef SG_UV_COUNT
-#define SG_UV_COUNT 0
-#endif
-#ifndef SG_VTX_TANGENT_0
-#define SG_VTX_TANGENT_0 0
-#endif
-#ifndef SG_VTX_TANGENT_1
-#define SG_VTX_TANGENT_1 0
-#endif
-#ifndef SG_VTX_TANGENT_2
-#define SG_VTX_TANGENT_2 0
-#endif
-#ifndef SG_VTX_TANGENT_3
-#define SG_VTX_TANGENT_3 0
-#endif
+#include "sg/render/program_options.glsl"
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;
