@@ -1,18 +1,22 @@
 // Layer kinds as units: the interface every bump layer kind implements.
 //
-// A layer kind is two files side by side in shaders/sg/render/ plus one
-// line in the registry (layer_registry.cpp):
-//   layer_<kind>.glsl  the shared GLSL/C++ function (sgLayer<Kind>), its
-//                      parameter struct and its record unpacker sgUnpack<Kind>;
-//   layer_<kind>.cpp   the LayerKind entry below: the parameter table (scene
-//                      fields, validation, viewer sliders, docs), the record
-//                      layout (the packer, slot by slot beside the GLSL
-//                      unpacker it must match), the GLSL statement the
-//                      assembler emits and the CPU call that mirrors it.
+// A layer kind is two files plus one line in the registry
+// (layer_registry.cpp):
+//   shaders/sg/render/layer_<kind>.glsl
+//       the shared GLSL/C++ function (sgLayer<Kind>, with a variant per
+//       mode that brings code the others must not carry, e.g.
+//       sgLayer<Kind>Lean in layer_<kind>_aa.glsl), its parameter struct
+//       and its record unpacker sgUnpack<Kind>;
+//   render/src/layers/layer_<kind>.cpp
+//       the LayerKind entry below: the parameter table (scene fields,
+//       validation, viewer sliders, docs), the record layout (the packer,
+//       slot by slot beside the GLSL unpacker it must match), the one
+//       emitter that binds the function's arguments for both renderers
+//       (layer_emit.h), and the scenes that show it (image parity).
 // Everything else (scene parser, planner, assembler, CPU twin, viewer,
-// asset loader, uber-shader stand-ins, the record round-trip test) iterates
-// the registry. docs/architecture.md, "Adding a layer kind", walks through
-// an example.
+// asset loader, uber-shader stand-ins, the record round-trip test, the
+// image-parity test) iterates the registry. docs/architecture.md, "Adding a
+// layer kind", walks through an example.
 //
 // Derivative-space modifiers (Loviscach 2008) are units of the same shape,
 // one ModifierKind each (render/src/layers/deriv_mods.cpp).
@@ -27,6 +31,7 @@
 #include <optional>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -334,6 +339,9 @@ struct RecordLayout {
     std::vector<RecordField> fields;
     std::function<std::any(const Layer&)> prepare;               // optional: computed once per pack
     std::function<std::any(const glm::vec4* records)> unpackCpu; // the C++ build
+    // The same into a struct of type *unpackType (the emitters' CpuRecord).
+    std::function<void(const glm::vec4* records, void* out)> unpackTo;
+    const std::type_info* unpackType = nullptr;
     std::string glslFile; // file defining the unpacker; empty: the kind's glslFile
 };
 
@@ -353,6 +361,10 @@ public:
         l_.unpackCpu = [fn](const glm::vec4* r) {
             return std::any(call(fn, r, std::make_integer_sequence<int, N>{}));
         };
+        l_.unpackTo = [fn](const glm::vec4* r, void* out) {
+            *static_cast<S*>(out) = call(fn, r, std::make_integer_sequence<int, N>{});
+        };
+        l_.unpackType = &typeid(S);
     }
     // Member `m` of S at `slots`, packed from get(PackInput) (a T).
     template <class T, class G>
@@ -423,7 +435,7 @@ void packField(const RecordField& f, glm::vec3 value, glm::vec4* records);
 void packLayer(const Layer& L, const View& view, const SceneAssets* assets, glm::vec4* records);
 
 // ---------------------------------------------------------------------------
-// 3. Emission: the GLSL statement and the CPU call, side by side.
+// 3. Emission: one emitter, the GLSL statement and the CPU call (layer_emit.h).
 //
 // The assembled main() (plan.cpp, fragmentBody) holds these variables, and the CPU
 // twin the same ones in CpuShadeState: `frame` (SgFrame: the prologue,
@@ -511,6 +523,16 @@ struct CpuLayerContext {
     }
 };
 
+// A kind's statement for both renderers, made by emitter() (layer_emit.h)
+// from one generic lambda: the GLSL statement of the assembled main(), and
+// the CPU call on the twin's state (nrm: the resolved normal, for
+// re-prologues).
+struct LayerEmitter {
+    std::string (*glsl)(const GlslLayerContext&) = nullptr;
+    void (*cpu)(const CpuLayerContext&, CpuShadeState&, glm::vec3 nrm) = nullptr;
+    explicit operator bool() const { return cpu != nullptr; }
+};
+
 // Kinds emitted together per group rather than one statement per layer
 // (feature: one loop, so the large evaluator is compiled once). The CPU
 // twin calls shadeCpu per layer in the loop's order: after the group's
@@ -582,6 +604,11 @@ struct ModifierKind {
 
 const std::vector<const ModifierKind*>& modifierKinds();
 
+// The GLSL name of an antialiasing mode (SG_AA_LEAN, SG_AA_TOKSVIG).
+constexpr const char* aaName(int aa) {
+    return aa == SG_AA_LEAN ? "SG_AA_LEAN" : aa == SG_AA_TOKSVIG ? "SG_AA_TOKSVIG" : "0";
+}
+
 // Texture components as LayerKind::mapChannels bits.
 constexpr uint32_t kChannelR = 1, kChannelG = 2, kChannelB = 4, kChannelA = 8;
 constexpr uint32_t kRgbaChannels = kChannelR | kChannelG | kChannelB | kChannelA;
@@ -597,6 +624,19 @@ constexpr uint32_t channelBit(int channel) {
 
 // ---------------------------------------------------------------------------
 // 5. The kind.
+
+// A scene that shows the kind, drawn by both renderers and compared
+// (tests/render/image_test.cpp, "Kinds/LayerImage": every registered kind
+// has at least one): one material of `layers` (JSON array elements) on
+// `mesh` (JSON; empty: a sphere of radius 1), 200 x 150 pixels. Relative
+// paths are relative to the source folder.
+struct KindImageCase {
+    const char* name = "";        // the test's name (letters, digits, '_')
+    std::string layers;           // the material's layers
+    std::string mesh;             // the mesh ("" : the sphere)
+    std::string sceneExtra;       // more top-level scene members, e.g. `, "camera": {...}`
+    double referenceP99Deg = 4.0; // the exact-derivative comparison's p99 bound
+};
 
 struct LayerKind {
     const char* name = "";    // the scene's "type"
@@ -641,17 +681,16 @@ struct LayerKind {
     const FeatureSource* (*featureSource)(const Layer&) = nullptr;
     std::vector<RecordLayout> records;
 
-    // Emission (section 3).
-    std::string (*glsl)(const GlslLayerContext&) = nullptr;
-    void (*cpu)(const CpuLayerContext&, CpuShadeState&) = nullptr;
+    // Emission (section 3): one emitter for both renderers (layer_emit.h).
+    // A batched kind's GLSL is its batch's; its emitter gives the CPU call.
+    LayerEmitter emit;
     const LayerBatch* batch = nullptr;
     // The statement moves the surface (section 3 above): surfOffset, late
     // base colour, and `reprologue` (optional) for the groups after it; the
-    // CPU twin sets the state's frame and volumes the same way (nrm: the
-    // resolved normal of the group before).
+    // CPU twin sets the state's frame and volumes the same way (the
+    // binder's resolvedNormal(): the resolved normal of the group before).
     bool movesSurface = false;
-    std::string (*reprologue)(const GlslLayerContext&) = nullptr;
-    void (*reprologueCpu)(const CpuLayerContext&, CpuShadeState&, glm::vec3 nrm) = nullptr;
+    LayerEmitter reprologue;
     // Once per program when the plan has layers of this kind: declarations
     // after the texture uniforms, #defines, and a part of the signature.
     std::string (*programDeclarations)(const MaterialPlan&) = nullptr;
@@ -662,6 +701,8 @@ struct LayerKind {
     std::vector<Layer> (*uberStandIns)(const LayerKind& self, int uvCount) = nullptr;
     // After the assets were loaded: checks against them (InputError).
     void (*checkAssets)(const Layer&, const SceneAssets&, const std::string& sceneName) = nullptr;
+    // Scenes that show the kind (both renderers compared; at least one).
+    std::vector<KindImageCase> imageCases;
 
     int recordCount() const;
 };

@@ -195,10 +195,10 @@ void emitGroup(const MaterialPlan& plan, size_t g, std::ostringstream& o) {
             GlslLayerContext c{plan, *rp, indent};
             if (plan.uber) {
                 o << indent << "if (uLayerOn[" << rp->uberIndex << "] > 0.5) ";
-                o << rp->layer->kind->reprologue(c);
+                o << rp->layer->kind->reprologue.glsl(c);
                 o << indent << "else frame = sgReprologue(frame, nrm, frame.dPdx, frame.dPdy);\n";
             } else {
-                o << indent << rp->layer->kind->reprologue(c);
+                o << indent << rp->layer->kind->reprologue.glsl(c);
             }
         } else {
             o << indent << "frame = sgReprologue(frame, nrm, frame.dPdx, frame.dPdy);\n";
@@ -220,7 +220,7 @@ void emitGroup(const MaterialPlan& plan, size_t g, std::ostringstream& o) {
         } else {
             o << indent;
         }
-        o << pl->layer->kind->glsl(GlslLayerContext{plan, *pl, indent});
+        o << pl->layer->kind->emit.glsl(GlslLayerContext{plan, *pl, indent});
     }
     for (const auto& [kind, layers] : order.batches)
         o << kind->batch->groupStatements(plan, layers, indent);
@@ -461,7 +461,9 @@ struct CpuShader {
         return !plan.uber || u.uberFlags[size_t(pl.uberIndex)] > 0.5f;
     }
     void layer(const PlanLayer& pl, CpuShadeState& s) const {
-        if (on(pl)) pl.layer->kind->cpu(CpuLayerContext{plan, pl, u, smp, fsmp, in}, s);
+        if (on(pl))
+            pl.layer->kind->emit.cpu(CpuLayerContext{plan, pl, u, smp, fsmp, in}, s,
+                                     glm::vec3(0.0f));
     }
 
     // emitPrologue()
@@ -501,8 +503,8 @@ struct CpuShader {
         if (g > 0) {
             const PlanLayer* rp = reprologueLayer(plan, g);
             if (rp && on(*rp))
-                rp->layer->kind->reprologueCpu(CpuLayerContext{plan, *rp, u, smp, fsmp, in}, s,
-                                               nrm);
+                rp->layer->kind->reprologue.cpu(CpuLayerContext{plan, *rp, u, smp, fsmp, in}, s,
+                                                nrm);
             else
                 s.frame = G::sgReprologue(s.frame, nrm, s.frame.dPdx, s.frame.dPdy);
             uint32_t m = groupUvMask(plan.groups[g]);

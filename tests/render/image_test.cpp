@@ -16,26 +16,27 @@
 //     levels, which changes the filtered normal where the map has contrast
 //     at the pixel scale. Bounds: median <= 0.3 degrees, 99th percentile <=
 //     4 degrees (measured at most 0.16 and 1.6 on these scenes; POM's
-//     occlusion edges: 10, measured 4.0, see LayerCase::refP99Deg).
+//     occlusion edges: 10, measured 4.0, see KindImageCase::referenceP99Deg).
 // No compared pixel may be NaN/Inf in either image, and coverage may differ
 // on at most 1% of the covered pixels.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "hardcase.h"
 #include "render_test_util.h"
+#include "layer_kind.h"
 #include "surfgrad/mesh_io.h"
 
 namespace sg::render::test {
 namespace {
 
 struct LayerCase {
-    const char* name;
+    std::string name;
     std::string json; // the whole scene
-    // Reference comparison's 99th percentile bound (degrees). POM's
-    // occlusion edges are discontinuities of the normal: where a ray grazes
-    // an edge, the half-pixel difference between exact and quad derivatives
-    // (they set the search vector) moves the hit to the other face, up to
-    // 180 degrees apart, on about 1% of the pixels of a deep relief.
+    // Reference comparison's 99th percentile bound (degrees): 4 unless the
+    // kind's case says otherwise (KindImageCase::referenceP99Deg, e.g.
+    // POM's occlusion edges).
     double refP99Deg = 4.0;
 };
 
@@ -43,83 +44,21 @@ std::ostream& operator<<(std::ostream& o, const LayerCase& c) {
     return o << c.name;
 }
 
-std::string sphereScene(const std::string& layers, const std::string& extra = "") {
-    return oneMaterialScene(layers, kSphere, extra);
-}
-
+// Every registered kind's own scenes (LayerKind::imageCases), in registry
+// order, then scenes of meshes and tangent sources rather than of a kind.
 std::vector<LayerCase> layerCases() {
+    std::vector<LayerCase> cases;
+    for (const LayerKind* k : layerKinds()) {
+        for (const KindImageCase& c : k->imageCases) {
+            cases.push_back({c.name,
+                             oneMaterialScene(c.layers, c.mesh.empty() ? kSphere : c.mesh, "", 200,
+                                              150, c.sceneExtra),
+                             c.referenceP99Deg});
+        }
+    }
     const std::string bricks = R"({"procedural": "bricks", "size": 256})";
     const std::string tiles = R"({"procedural": "tiles", "size": 128})";
-    return {
-        {"uv_normal", sphereScene(R"({"type": "uv_normal", "map": )" + bricks + "}")},
-        {"uv_normal_second_set_dx_green",
-         sphereScene(
-             R"({"type": "uv_normal", "uv_set": 1, "green": "dx", "strength": 0.7, "map": )" +
-             tiles + "}")},
-        {"object_normal",
-         sphereScene(
-             R"({"type": "object_normal", "strength": 0.3, "map": {"procedural": "bumps", "size": 64}})")},
-        {"height",
-         sphereScene(
-             R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 256}})")},
-        {"deriv_map_tbn",
-         sphereScene(
-             R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
-        {"deriv_map_texel",
-         sphereScene(
-             R"({"type": "deriv_map", "space": "texel", "strength": 0.02, "map": {"procedural": "weave", "output": "derivative", "size": 128}})")},
-        {"triplanar_world",
-         sphereScene(R"({"type": "triplanar", "space": "world", "scale": 2, "map": )" + tiles +
-                     "}")},
-        {"triplanar_object_three_maps_left",
-         sphereScene(R"({"type": "triplanar", "space": "object", "handedness": "left", "maps": [)" +
-                     tiles + ", " + bricks + R"(, {"procedural": "weave", "size": 128}]})")},
-        {"decal",
-         sphereScene(
-             R"({"type": "decal", "position": [0, 0, 0.9], "direction": [0, 0, -1], "size": [1.2, 1.2, 1], "strength": 2, "map": )" +
-             bricks + "}")},
-        {"noise_perlin",
-         sphereScene(R"({"type": "noise", "noise": "perlin", "amplitude": 0.05, "frequency": 4})")},
-        {"noise_turbulence_dented",
-         sphereScene(
-             R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "exponent": 3})")},
-        {"noise_fbm_world",
-         sphereScene(
-             R"({"type": "noise", "noise": "fbm", "space": "world", "amplitude": 0.01, "frequency": 5})")},
-        {"modifiers_scale_curve",
-         sphereScene(
-             R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}, "height": {"channel": "a", "scale": 1},
-                    "modifiers": [{"type": "curve", "boost": 4000, "center": 0.02}, {"type": "scale", "alpha": -1.5}]})")},
-        {"modifiers_deform_modulate", sphereScene(R"({"type": "uv_normal", "map": )" + bricks +
-                                                  R"(, "height": {"channel": "a", "scale": 1},
-                    "modifiers": [{"type": "deform", "amplitude": 0.03, "frequency": 25},
-                                  {"type": "modulate", "mask": {"procedural": "tiles", "output": "height", "size": 64}, "gain": 1}]})")},
-        {"deriv_map_modifiers",
-         sphereScene(
-             R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128},
-                    "modifiers": [{"type": "scale", "alpha": 0.5}]})")},
-        {"feature_curves_surfgrad",
-         sphereScene(
-             R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
-             R"(/svg/flame.svg", "size": 128}, "profile": "vgroove", "depth": 1.5, "width": 3})")},
-        {"feature_curves_paper_with_base",
-         sphereScene(
-             R"({"type": "feature", "curves": {"svg": ")" + std::string(SURFGRAD_DATA_DIR) +
-             R"(/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1,
-                        "mode": "paper", "tiling": 2, "base_map": )" +
-             tiles + "}")},
-        // The exact near field with per-curve profiles and widths
-        // (examples/feature-profiles/curves.json: V-grooves, a ridge, a
-        // tapered crease, a table profile) next to a paper-mode layer.
-        {"feature_curves_near_exact_per_curve_profiles",
-         sphereScene(
-             R"({"type": "feature", "near": "exact", "curves": {"json": ")" +
-             std::string(SURFGRAD_SOURCE_DIR) +
-             R"(/examples/feature-profiles/curves.json", "size": 96, "mode": "quadratic", "margin": 6},
-                        "profile": "crease", "depth": 1.5, "width": 3},
-                       {"type": "feature", "curves": {"svg": ")" +
-             std::string(SURFGRAD_DATA_DIR) +
-             R"(/svg/flame.svg", "size": 64}, "profile": "vgroove", "depth": 1, "width": 2, "tiling": 2})")},
+    std::vector<LayerCase> scenes = {
         {"spot_subdivided_mikktspace_tangents",
          oneMaterialScene(
              R"({"type": "uv_normal", "map": )" + bricks + "}",
@@ -140,37 +79,6 @@ std::vector<LayerCase> layerCases() {
              R"({"file": ")" + std::string(SURFGRAD_DATA_DIR) +
                  R"(/meshes/spot/spot_control_mesh.obj", "subdivision": {"level": 2, "limit": true},
                               "uv_sets": [{"from": 0, "scale": [3, 3], "rotate_deg": 30}], "tangents": ["limit", "mikktspace"]})")},
-        {"post_resolve", sphereScene(R"({"type": "uv_normal", "map": )" + bricks + R"(},
-                    {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2},
-                                                       {"type": "triplanar", "strength": 0.5, "map": )" +
-                                     tiles + "}]}")},
-        // Parallax kinds (layer_parallax.glsl): the corrected coordinate
-        // feeds the later layers of its UV set and keeps the uncorrected
-        // derivatives, so the mip level cannot jump at POM's occlusion
-        // edges. This comparison cannot check that: both renderers run the
-        // same layer statement (GLSL and its C++ build), so a mip level
-        // taken from the corrected coordinate would be taken by both and
-        // they would still agree. It shows agreement only; which
-        // coordinate the level comes from is fixed by the statement
-        // (uv.st changes, uv.dSTdx and dSTdy do not) and no test compares
-        // it with an independent expectation. The post-resolve case
-        // re-prologues on the virtual surface with listing 17 and
-        // evaluates its noise there.
-        {"parallax_offset_limited",
-         sphereScene(
-             R"({"type": "parallax", "scale": 0.03, "map": {"procedural": "bricks", "output": "height", "size": 256}},
-                {"type": "uv_normal", "uv_set": 1, "strength": 0.3, "map": )" +
-             tiles + "}")},
-        {"pom_step_edges_plane",
-         oneMaterialScene(
-             R"({"type": "pom", "scale": 0.08, "steps": 24, "map": {"procedural": "bricks", "output": "height", "size": 256}})",
-             R"({"procedural": {"type": "plane", "segments": 4}})", "", 200, 150,
-             R"(, "camera": {"position": [0.3, 0.8, 1.3], "target": [0, 0, 0]})"),
-         10.0},
-        {"pom_then_post_resolve_turbulence",
-         sphereScene(
-             R"({"type": "pom", "scale": 0.04, "steps": 16, "map": {"procedural": "tiles", "output": "height", "size": 128}},
-                {"type": "post_resolve", "layers": [{"type": "noise", "noise": "turbulence", "amplitude": 0.004, "frequency": 12, "exponent": 2}]})")},
         {"everything_double_sided_flip",
          oneMaterialScene(
              R"({"type": "uv_normal", "map": )" + bricks + R"(}, {"type": "noise", "noise": "fbm"},
@@ -179,6 +87,22 @@ std::vector<LayerCase> layerCases() {
              R"({"procedural": {"type": "plane", "segments": 4}})", R"("double_sided": "flip",)",
              200, 150, R"(, "camera": {"position": [0.3, -1.2, 0.8], "target": [0, 0, 0]})")},
     };
+    cases.insert(cases.end(), scenes.begin(), scenes.end());
+    return cases;
+}
+
+// Adding a kind brings its scenes: a kind without one would be unchecked.
+TEST(LayerImageCases, EveryKindHasAScene) {
+    std::set<std::string> names;
+    for (const LayerKind* k : layerKinds()) {
+        EXPECT_FALSE(k->imageCases.empty()) << k->name << " has no image case";
+        for (const KindImageCase& c : k->imageCases) {
+            EXPECT_TRUE(names.insert(c.name).second) << "two cases named " << c.name;
+            EXPECT_NE(c.layers.find(std::string("\"type\": \"") + k->name + "\""),
+                      std::string::npos)
+                << c.name << " does not use its kind " << k->name;
+        }
+    }
 }
 
 class LayerImage : public ::testing::TestWithParam<LayerCase> {};
@@ -205,8 +129,8 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     std::printf(
         "[%s] parity: max %.5f deg | reference: p50 %.4f p90 %.4f p99 %.4f max %.3f deg, %zu px, "
         "%zu coverage mismatches\n",
-        GetParam().name, p.diff.maxDeg, r.diff.p50Deg, r.diff.p90Deg, r.diff.p99Deg, r.diff.maxDeg,
-        r.diff.compared, r.diff.coverageMismatch);
+        GetParam().name.c_str(), p.diff.maxDeg, r.diff.p50Deg, r.diff.p90Deg, r.diff.p99Deg,
+        r.diff.maxDeg, r.diff.compared, r.diff.coverageMismatch);
 
     // The bumps are really there: the perturbed normal differs from the
     // base normal somewhere (a test of a no-op layer would pass the above).
@@ -251,7 +175,7 @@ TEST_P(LayerImage, LegacyDialectsMatchCpuReference) {
         EXPECT_GT(d.compared, 1000u) << name;
         EXPECT_LE(double(d.coverageMismatch), 0.01 * double(d.compared)) << name;
         EXPECT_LE(d.maxDeg, 0.05) << name << ": max at (" << d.maxX << ", " << d.maxY << ")";
-        std::printf("[%s] %s: max %.5f deg over %zu px\n", GetParam().name, name, d.maxDeg,
+        std::printf("[%s] %s: max %.5f deg over %zu px\n", GetParam().name.c_str(), name, d.maxDeg,
                     d.compared);
     }
 }

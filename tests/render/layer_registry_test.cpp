@@ -44,8 +44,8 @@ TEST(LayerRegistry, EveryKindIsComplete) {
         if (k->modifiers) {
             EXPECT_NE(sg::shaders::find(k->modifiers->glslFile), nullptr) << "modifier file";
         }
-        EXPECT_TRUE(k->glsl || k->batch) << "no GLSL statement";
-        EXPECT_NE(k->cpu, nullptr) << "no CPU call";
+        EXPECT_TRUE(k->emit.glsl || k->batch) << "no GLSL statement";
+        EXPECT_NE(k->emit.cpu, nullptr) << "no CPU call";
         EXPECT_NE(k->makeParams, nullptr);
         EXPECT_GT(k->recordCount(), 0);
         // A layer made from the registry has the kind's parameter type.

@@ -2,7 +2,7 @@
 // (layer_decal.glsl: Mikkelsen 2019, section 2.9, listing 15); antialiased
 // with "antialias" (layer_decal_aa.glsl: the map's slope covariance mapped
 // by the projector's Jacobian).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 #include <algorithm>
 #include <cmath>
@@ -87,34 +87,21 @@ int antialiasOf(const Layer& L) {
     return L.params<P>().antialias;
 }
 
-std::string glsl(const GlslLayerContext& c) {
-    // The frame's surface: the virtual one in a post-resolve group after
-    // parallax or POM (section 3, Fig. 3(d)), as the footprint (frame.dPdx).
-    const std::string head =
-        "frame, " + c.relPos() + ", " + c.unpack(c.layer().kind->records[0]) + ", ";
-    const int aa = antialiasOf(c.layer());
-    if (aa == SG_AA_LEAN) {
-        return "surfGrad += sgLayerDecalAa(" + head + "SG_AA_LEAN, " + c.tex(0) + ", " + c.tex(1) +
-               ", slopeCov);\n";
-    }
-    if (aa == SG_AA_TOKSVIG) {
-        return "surfGrad += sgLayerDecalAa(" + head + "SG_AA_TOKSVIG, " + c.tex(0) + ", " +
-               c.tex(0) + ", slopeCov);\n";
-    }
-    return "surfGrad += sgLayerDecal(" + head + c.tex(0) + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    const glm::vec4* r = c.rec();
-    const G::SgDecalParams p = G::sgUnpackDecal(r[0], r[1], r[2], r[3], r[4], r[5]);
-    const int aa = antialiasOf(c.layer());
+// sgLayerDecal(frame, surface position, params, map) at the frame's
+// surface: the virtual one in a post-resolve group after parallax or POM
+// (section 3, Fig. 3(d)), as the footprint (frame.dPdx). Antialiased:
+// sgLayerDecalAa (layer_decal_aa.glsl) with the mode a constant, the moment
+// textures (Toksvig's one twice) and slopeCov.
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    const int aa = antialiasOf(b.layer());
     if (aa == 0) {
-        s.surfGrad += G::sgLayerDecal(s.frame, s.surfPos, p, c.tex(0));
-        return;
+        return b.addSurfgrad(
+            SG_LAYER_CALL(b, sgLayerDecal, b.frame(), b.surfPos(), b.record(), b.tex(0)));
     }
-    const int b = aa == SG_AA_LEAN ? 1 : 0;
-    s.surfGrad += G::sgLayerDecalAa(s.frame, s.surfPos, p, aa, c.tex(0), c.tex(b), s.slopeCov);
-}
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerDecalAa, b.frame(), b.surfPos(), b.record(),
+                                b.constant(aa, aaName(aa)), b.tex(0),
+                                b.tex(aa == SG_AA_LEAN ? 1 : 0), b.slopeCov()));
+});
 
 uint32_t mapChannels(const Layer& L, const char*& why) {
     why = "the normal encoding";
@@ -161,9 +148,13 @@ const LayerKind& decalLayerKind() {
             return aa == SG_AA_LEAN ? "~lean" : aa == SG_AA_TOKSVIG ? "~toksvig" : "";
         },
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns = [](const LayerKind& k, int) { return std::vector<Layer>{uberStandIn(k)}; },
+        .imageCases =
+            {
+                {"decal",
+                 R"({"type": "decal", "position": [0, 0, 0.9], "direction": [0, 0, -1], "size": [1.2, 1.2, 1], "strength": 2, "map": {"procedural": "bricks", "size": 256}})"},
+            },
     };
     return kind;
 }

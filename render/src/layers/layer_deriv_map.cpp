@@ -1,7 +1,7 @@
 // Layer kind `deriv_map`: a derivative map, TBN style (listing 5) or in
 // texel space (listing 8) (layer_deriv_map.glsl: Mikkelsen 2019, section
 // 2.1). Takes derivative-space modifiers (layer_deriv_map_mods.glsl).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -56,19 +56,11 @@ const DerivModTarget kModifiers = {
     },
 };
 
-std::string glsl(const GlslLayerContext& c) {
-    if (c.pl.hasModifiers) return derivModBlock(c, kModifiers);
-    return "surfGrad += sgLayerDerivMap(frame, " + c.uv() + ", " +
-           c.unpack(c.layer().kind->records[0]) + ", " + c.tex(0) + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    if (c.pl.hasModifiers) {
-        s.surfGrad += derivModCpu(c, s, kModifiers);
-        return;
-    }
-    s.surfGrad += G::sgLayerDerivMap(s.frame, c.uv(s), unpack(c), c.tex(0));
-}
+// sgLayerDerivMap(frame, uv, params, map); with modifiers, their chain.
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    if (b.hasModifiers()) return b.addModifiedSurfgrad(kModifiers);
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerDerivMap, b.frame(), b.uv(), b.record(), b.tex(0)));
+});
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int uvCount) {
     if (uvCount == 0) return {};
@@ -117,9 +109,17 @@ const LayerKind& derivMapLayerKind() {
         .glslFile = "sg/render/layer_deriv_map.glsl",
         .modifiers = &kModifiers,
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns = uberStandIns,
+        .imageCases =
+            {
+                {"deriv_map_tbn",
+                 R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128}})"},
+                {"deriv_map_texel",
+                 R"({"type": "deriv_map", "space": "texel", "strength": 0.02, "map": {"procedural": "weave", "output": "derivative", "size": 128}})"},
+                {"deriv_map_modifiers",
+                 R"({"type": "deriv_map", "map": {"procedural": "weave", "output": "derivative", "size": 128}, "modifiers": [{"type": "scale", "alpha": 0.5}]})"},
+            },
     };
     return kind;
 }

@@ -318,7 +318,7 @@ std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLaye
 
 const LayerBatch kBatch{groupLoop};
 
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
+void cpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3) {
     if (c.pl.featureSlot < 0 || !c.featureSamplers[size_t(c.pl.featureSlot)].corners.rgba)
         return; // maps not loaded: nothing to add
     const detail::FeatureSamplers& fs = c.featureSamplers[size_t(c.pl.featureSlot)];
@@ -472,7 +472,7 @@ const LayerKind& featureLayerKind() {
             return s ? &*s : nullptr;
         },
         .records = {layerRecords(), profileRecords(), aaRecords()},
-        .cpu = cpu,
+        .emit = {nullptr, cpu},
         .batch = &kBatch,
         .programDeclarations = declarations,
         .programDefines =
@@ -487,6 +487,18 @@ const LayerKind& featureLayerKind() {
                        (plan.featureLean ? "|featlean" : "");
             },
         .checkAssets = checkAssets,
+        .imageCases =
+            {
+                {"feature_curves_surfgrad",
+                 R"({"type": "feature", "curves": {"svg": "data/svg/flame.svg", "size": 128}, "profile": "vgroove", "depth": 1.5, "width": 3})"},
+                {"feature_curves_paper_with_base",
+                 R"({"type": "feature", "curves": {"svg": "data/svg/waves-horizontal.svg", "size": 128}, "profile": "ridge", "depth": 1, "width": 4, "w0": 1, "mode": "paper", "tiling": 2, "base_map": {"procedural": "tiles", "size": 128}})"},
+                // The exact near field with per-curve profiles and widths
+                // (examples/feature-profiles/curves.json: V-grooves, a ridge, a
+                // tapered crease, a table profile) next to a paper-mode layer.
+                {"feature_curves_near_exact_per_curve_profiles",
+                 R"({"type": "feature", "near": "exact", "curves": {"json": "examples/feature-profiles/curves.json", "size": 96, "mode": "quadratic", "margin": 6}, "profile": "crease", "depth": 1.5, "width": 3}, {"type": "feature", "curves": {"svg": "data/svg/flame.svg", "size": 64}, "profile": "vgroove", "depth": 1, "width": 2, "tiling": 2})"},
+            },
     };
     return kind;
 }

@@ -1,6 +1,6 @@
 // Layer kind `height`: a height map, displacement style (layer_height.glsl:
 // Mikkelsen 2019, section 2.5, listings 8 and 9).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -19,14 +19,10 @@ RecordLayout records() {
         .done();
 }
 
-std::string glsl(const GlslLayerContext& c) {
-    return "surfGrad += sgLayerHeight(frame, " + c.uv() + ", " +
-           c.unpack(c.layer().kind->records[0]) + ", " + c.tex(0) + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    s.surfGrad += G::sgLayerHeight(s.frame, c.uv(s), G::sgUnpackHeight(c.rec()[0]), c.tex(0));
-}
+// sgLayerHeight(frame, uv, params, map).
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerHeight, b.frame(), b.uv(), b.record(), b.tex(0)));
+});
 
 uint32_t mapChannels(const Layer& L, const char*& why) {
     why = "the height channel";
@@ -56,11 +52,15 @@ const LayerKind& heightLayerKind() {
         .mapChannels = mapChannels,
         .glslFile = "sg/render/layer_height.glsl",
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns =
             [](const LayerKind& k, int uvCount) {
                 return uvCount > 0 ? std::vector<Layer>{uberStandIn(k)} : std::vector<Layer>{};
+            },
+        .imageCases =
+            {
+                {"height",
+                 R"({"type": "height", "scale": 0.01, "map": {"procedural": "bumps", "output": "height", "size": 256}})"},
             },
     };
     return kind;

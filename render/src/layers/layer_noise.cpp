@@ -3,7 +3,7 @@
 // 4: turbulence, frequency clamping, Gritz's x^k composite); with
 // "antialias": "lean" the clamped octaves' slope variance widens the lobe
 // (layer_noise_aa.glsl).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 #include <cmath>
 #include <cstdint>
@@ -81,23 +81,16 @@ bool isLean(const Layer& L) {
     return L.params<P>().antialias == NoiseAntialias::Lean;
 }
 
-std::string glsl(const GlslLayerContext& c) {
-    const std::string args = "frame, " + c.vol(c.layer().params<P>().space) + ", " +
-                             c.unpack(c.layer().kind->records[0]);
-    if (isLean(c.layer())) return "surfGrad += sgLayerNoiseLean(" + args + ", slopeCov);\n";
-    return "surfGrad += sgLayerNoise(" + args + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    const glm::vec4* r = c.rec();
-    const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
-    const G::SgNoiseParams p = G::sgUnpackNoise(r[0], r[1], r[2], r[3], r[4]);
-    if (isLean(c.layer())) {
-        s.surfGrad += G::sgLayerNoiseLean(s.frame, vs, p, s.slopeCov);
-        return;
+// sgLayerNoise(frame, volume domain, params); antialiased, its own
+// function (layer_noise_aa.glsl) adding to slopeCov.
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    const Space space = b.layer().template params<P>().space;
+    if (isLean(b.layer())) {
+        return b.addSurfgrad(
+            SG_LAYER_CALL(b, sgLayerNoiseLean, b.frame(), b.vol(space), b.record(), b.slopeCov()));
     }
-    s.surfGrad += G::sgLayerNoise(s.frame, vs, p);
-}
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerNoise, b.frame(), b.vol(space), b.record()));
+});
 
 // "antialias": true / "fade" (the default), false / "none", or "lean".
 void parseAntialias(const detail::SceneNode& n, const char* key, Layer& L,
@@ -186,9 +179,17 @@ const LayerKind& noiseLayerKind() {
         .antialias = isLean,
         .signature = [](const Layer& L) -> std::string { return isLean(L) ? "~lean" : ""; },
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns = uberStandIns,
+        .imageCases =
+            {
+                {"noise_perlin",
+                 R"({"type": "noise", "noise": "perlin", "amplitude": 0.05, "frequency": 4})"},
+                {"noise_turbulence_dented",
+                 R"({"type": "noise", "noise": "turbulence", "amplitude": 0.01, "frequency": 6, "exponent": 3})"},
+                {"noise_fbm_world",
+                 R"({"type": "noise", "noise": "fbm", "space": "world", "amplitude": 0.01, "frequency": 5})"},
+            },
     };
     return kind;
 }

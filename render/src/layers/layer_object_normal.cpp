@@ -1,6 +1,6 @@
 // Layer kind `object_normal`: an object- or world-space normal map
 // (layer_object_normal.glsl: Mikkelsen 2019, section 2.4, listing 7).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -23,15 +23,11 @@ RecordLayout records() {
         .done();
 }
 
-std::string glsl(const GlslLayerContext& c) {
-    return "surfGrad += sgLayerObjectNormal(frame, " + c.uv() + ", " +
-           c.unpack(c.layer().kind->records[0]) + ", uNormalMat, " + c.tex(0) + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    s.surfGrad += G::sgLayerObjectNormal(s.frame, c.uv(s), G::sgUnpackObjectNormal(c.rec()[0]),
-                                         c.u.normalMat, c.tex(0));
-}
+// sgLayerObjectNormal(frame, uv, params, normal matrix, map).
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerObjectNormal, b.frame(), b.uv(), b.record(),
+                                b.normalMat(), b.tex(0)));
+});
 
 uint32_t mapChannels(const Layer&, const char*& why) {
     why = "the normal (r, g, b)";
@@ -62,11 +58,15 @@ const LayerKind& objectNormalLayerKind() {
         .mapChannels = mapChannels,
         .glslFile = "sg/render/layer_object_normal.glsl",
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns =
             [](const LayerKind& k, int uvCount) {
                 return uvCount > 0 ? std::vector<Layer>{uberStandIn(k)} : std::vector<Layer>{};
+            },
+        .imageCases =
+            {
+                {"object_normal",
+                 R"({"type": "object_normal", "strength": 0.3, "map": {"procedural": "bumps", "size": 64}})"},
             },
     };
     return kind;

@@ -42,6 +42,11 @@ const LayerKind& postResolveLayerKind() {
         .params = {param::custom("layers", parseLayers, "the group's layers (no nesting)")},
         .group = true,
         .uberStandIns = uberStandIns,
+        .imageCases =
+            {
+                {"post_resolve",
+                 R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 256}}, {"type": "post_resolve", "layers": [{"type": "noise", "amplitude": 0.004, "frequency": 10, "exponent": 2}, {"type": "triplanar", "strength": 0.5, "map": {"procedural": "tiles", "size": 128}}]})"},
+            },
     };
     return kind;
 }

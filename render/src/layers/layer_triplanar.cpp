@@ -2,7 +2,7 @@
 // bump map (layer_triplanar.glsl: Mikkelsen 2019, section 2.8, listings 12,
 // 13, 14); antialiased with "antialias" (layer_triplanar_aa.glsl: each
 // plane's slope covariance mapped by its Jacobian, weights squared).
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 #include <algorithm>
 
@@ -81,34 +81,21 @@ int aaSlot(int aa, int plane, bool second) {
     return aa == SG_AA_LEAN ? 2 * plane + (second ? 1 : 0) : plane;
 }
 
-std::string glsl(const GlslLayerContext& c) {
-    const std::string head = "frame, " + c.vol(c.layer().params<P>().space) + ", " +
-                             c.unpack(c.layer().kind->records[0]) + ", ";
-    const int aa = antialiasOf(c.layer());
+// sgLayerTriplanar(frame, volume domain, params, three maps); antialiased:
+// sgLayerTriplanarAa (layer_triplanar_aa.glsl) with the mode a constant,
+// each plane's moment textures (aaSlot) and slopeCov.
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    const Space space = b.layer().template params<P>().space;
+    const int aa = antialiasOf(b.layer());
     if (aa == 0) {
-        return "surfGrad += sgLayerTriplanar(" + head + c.tex(0) + ", " + c.tex(1) + ", " +
-               c.tex(2) + ");\n";
+        return b.addSurfgrad(SG_LAYER_CALL(b, sgLayerTriplanar, b.frame(), b.vol(space), b.record(),
+                                           b.tex(0), b.tex(1), b.tex(2)));
     }
-    std::string call = "surfGrad += sgLayerTriplanarAa(" + head +
-                       (aa == SG_AA_LEAN ? "SG_AA_LEAN" : "SG_AA_TOKSVIG");
-    for (int i = 0; i < 3; ++i)
-        call += ", " + c.tex(aaSlot(aa, i, false)) + ", " + c.tex(aaSlot(aa, i, true));
-    return call + ", slopeCov);\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    const glm::vec4* r = c.rec();
-    const G::SgVolumeSpace vs = s.vol(c.layer().params<P>().space);
-    const G::SgTriplanarParams p = G::sgUnpackTriplanar(r[0], r[1], r[2]);
-    const int aa = antialiasOf(c.layer());
-    if (aa == 0) {
-        s.surfGrad += G::sgLayerTriplanar(s.frame, vs, p, c.tex(0), c.tex(1), c.tex(2));
-        return;
-    }
-    auto t = [&](int plane, bool second) { return c.tex(aaSlot(aa, plane, second)); };
-    s.surfGrad += G::sgLayerTriplanarAa(s.frame, vs, p, aa, t(0, false), t(0, true), t(1, false),
-                                        t(1, true), t(2, false), t(2, true), s.slopeCov);
-}
+    auto t = [&b, aa](int plane, bool second) { return b.tex(aaSlot(aa, plane, second)); };
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerTriplanarAa, b.frame(), b.vol(space), b.record(),
+                                b.constant(aa, aaName(aa)), t(0, false), t(0, true), t(1, false),
+                                t(1, true), t(2, false), t(2, true), b.slopeCov()));
+});
 
 std::vector<Layer> uberStandIns(const LayerKind& k, int) {
     std::vector<Layer> v = {uberStandIn(k), uberStandIn(k)};
@@ -165,9 +152,15 @@ const LayerKind& triplanarLayerKind() {
             return aa == SG_AA_LEAN ? "~lean" : aa == SG_AA_TOKSVIG ? "~toksvig" : "";
         },
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns = uberStandIns,
+        .imageCases =
+            {
+                {"triplanar_world",
+                 R"({"type": "triplanar", "space": "world", "scale": 2, "map": {"procedural": "tiles", "size": 128}})"},
+                {"triplanar_object_three_maps_left",
+                 R"({"type": "triplanar", "space": "object", "handedness": "left", "maps": [{"procedural": "tiles", "size": 128}, {"procedural": "bricks", "size": 256}, {"procedural": "weave", "size": 128}]})"},
+            },
     };
     return kind;
 }

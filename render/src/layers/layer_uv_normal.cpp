@@ -4,7 +4,7 @@
 // derivative-space modifiers (layer_uv_normal_mods.glsl).
 #include <cstring>
 
-#include "layer_kind.h"
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -84,39 +84,23 @@ int antialiasOf(const Layer& L) {
     return L.params<P>().antialias;
 }
 
-// Antialiased (layer_uv_normal_aa.glsl): the moment textures in slots 0
-// (and 1 for LEAN), the covariance added to slopeCov.
-std::string glsl(const GlslLayerContext& c) {
-    if (c.pl.hasModifiers) return derivModBlock(c, kModifiers);
-    const std::string p = c.unpack(c.layer().kind->records[0]);
-    const int aa = antialiasOf(c.layer());
+// sgLayerUvNormal(uv, params, map); antialiased (layer_uv_normal_aa.glsl),
+// the mode's own function (a program carries only the one it uses) with
+// the moment textures in slots 0 (and 1 for LEAN) and slopeCov; with
+// modifiers, their chain.
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    if (b.hasModifiers()) return b.addModifiedSurfgrad(kModifiers);
+    const int aa = antialiasOf(b.layer());
     if (aa == SG_AA_LEAN) {
-        return "surfGrad += sgLayerUvNormalLean(" + c.uv() + ", " + p + ", " + c.tex(0) + ", " +
-               c.tex(1) + ", slopeCov);\n";
+        return b.addSurfgrad(SG_LAYER_CALL(b, sgLayerUvNormalLean, b.uv(), b.record(), b.tex(0),
+                                           b.tex(1), b.slopeCov()));
     }
     if (aa == SG_AA_TOKSVIG) {
-        return "surfGrad += sgLayerUvNormalToksvig(" + c.uv() + ", " + p + ", " + c.tex(0) +
-               ", slopeCov);\n";
+        return b.addSurfgrad(
+            SG_LAYER_CALL(b, sgLayerUvNormalToksvig, b.uv(), b.record(), b.tex(0), b.slopeCov()));
     }
-    return "surfGrad += sgLayerUvNormal(" + c.uv() + ", " + p + ", " + c.tex(0) + ");\n";
-}
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s) {
-    if (c.pl.hasModifiers) {
-        s.surfGrad += derivModCpu(c, s, kModifiers);
-        return;
-    }
-    const glm::vec4* r = c.rec();
-    const G::SgUvNormalParams p = G::sgUnpackUvNormal(r[0], r[1]);
-    const int aa = antialiasOf(c.layer());
-    if (aa == SG_AA_LEAN) {
-        s.surfGrad += G::sgLayerUvNormalLean(c.uv(s), p, c.tex(0), c.tex(1), s.slopeCov);
-    } else if (aa == SG_AA_TOKSVIG) {
-        s.surfGrad += G::sgLayerUvNormalToksvig(c.uv(s), p, c.tex(0), s.slopeCov);
-    } else {
-        s.surfGrad += G::sgLayerUvNormal(c.uv(s), p, c.tex(0));
-    }
-}
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerUvNormal, b.uv(), b.record(), b.tex(0)));
+});
 
 // "antialias": reads the choice and puts the map's moment textures in
 // place of the map (read after "map", "encoding" and "modifiers").
@@ -198,9 +182,19 @@ const LayerKind& uvNormalLayerKind() {
         },
         .modifiers = &kModifiers,
         .records = {records()},
-        .glsl = glsl,
-        .cpu = cpu,
+        .emit = kEmit,
         .uberStandIns = uberStandIns,
+        .imageCases =
+            {
+                {"uv_normal",
+                 R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 256}})"},
+                {"uv_normal_second_set_dx_green",
+                 R"({"type": "uv_normal", "uv_set": 1, "green": "dx", "strength": 0.7, "map": {"procedural": "tiles", "size": 128}})"},
+                {"modifiers_scale_curve",
+                 R"({"type": "uv_normal", "map": {"procedural": "bumps", "size": 128}, "height": {"channel": "a", "scale": 1}, "modifiers": [{"type": "curve", "boost": 4000, "center": 0.02}, {"type": "scale", "alpha": -1.5}]})"},
+                {"modifiers_deform_modulate",
+                 R"({"type": "uv_normal", "map": {"procedural": "bricks", "size": 256}, "height": {"channel": "a", "scale": 1}, "modifiers": [{"type": "deform", "amplitude": 0.03, "frequency": 25}, {"type": "modulate", "mask": {"procedural": "tiles", "output": "height", "size": 64}, "gain": 1}]})"},
+            },
     };
     return kind;
 }

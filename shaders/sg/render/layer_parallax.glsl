@@ -229,4 +229,44 @@ SG_FN vec3 sgParallaxUnitNormalDeriv(SgFrame f, vec3 vtxNormal, vec3 dN) {
     return sgBoundedScale3(s * (dN - u * dot(u, dN)), vec4(1.0f / len, 1.0f, 1.0f, 1.0f));
 }
 
+// The layer (kinds parallax and pom), as both renderers call it: the
+// search from the eye direction toEye (camera-relative: -(vRelPos +
+// surfOffset)) and the depth of the hit (offset limiting, or POM when
+// `occlusion`); the virtual surface added to surfOffset; section 2.6's
+// normal correction of the frame's base normal (`correctNormal`, from the
+// vertex normal vtxNormal and its screen derivatives dNdx, dNdy); the
+// corrected coordinate written to uv.st (its derivatives kept); and the
+// relief's own surface gradient there (`bump`: sgLayerHeight with the
+// layer's scale and channel), returned (0 without bump). occlusion,
+// correctNormal and bump are compile-time constants of the call.
+SG_FN vec3 sgLayerParallax(SG_INOUT(SgFrame) frame, SG_INOUT(SgUvFrame) uv,
+                           SG_INOUT(vec3) surfOffset, vec3 toEye, vec3 vtxNormal, vec3 dNdx,
+                           vec3 dNdy, SgParallaxParams p, sampler2D tex, bool occlusion,
+                           bool correctNormal, bool bump) {
+    SgParallaxSearch search = sgParallaxSearch(frame, uv, toEye, p.scale, !occlusion);
+    float depth;
+    if (occlusion) {
+        depth = sgParallaxOcclusionDepth(uv, search.st, tex, p.channel, p.steps);
+    } else {
+        depth = sgParallaxOffsetDepth(uv, tex, p.channel);
+    }
+    surfOffset = surfOffset +
+                 sgParallaxSurfaceOffset(frame, uv, search, depth, p.scale, tex, p.channel);
+    if (correctNormal) {
+        vec3 n = sgParallaxCorrectNormal(frame, -depth * search.scr,
+                                         sgParallaxUnitNormalDeriv(frame, vtxNormal, dNdx),
+                                         sgParallaxUnitNormalDeriv(frame, vtxNormal, dNdy));
+        frame = sgFrameWithBase(frame, n);
+    }
+    uv.st = uv.st - depth * search.st;
+    vec3 surfGrad = sgVec3(0.0f);
+    if (bump) {
+        SgHeightParams h;
+        h.scale = p.scale;
+        h.channel = p.channel;
+        surfGrad = sgLayerHeight(frame, uv, h, tex);
+    }
+    return surfGrad;
+}
+
 #endif
