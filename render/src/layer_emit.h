@@ -37,8 +37,9 @@
 //   call(...) through SG_LAYER_CALL     the shared function, by name and by C++ build
 //   run(...) through SG_LAYER_RUN       the same as a statement (out arguments)
 //   addSurfgrad(g), assign(lhs, rhs)    the statement's effects
-//   hasModifiers(), addModifiedSurfgrad(target)
-//                                       a layer with derivative-space modifiers
+//   local(type, name, init)             an initialised local
+//   hasModifiers(), modifierRecord(i), modifierMask(i), uvSt/Dx/Dy(), identity2()
+//                                       derivative-space modifiers (addDerivModSurfgrad)
 // GlslExpr has +, - and * so arithmetic between bound values reads the same
 // in both (GLSL's and glm's operators).
 //
@@ -102,6 +103,17 @@ public:
     GlslExpr modelInv3() const { return {"uModelInv3"}; }
     GlslExpr resolvedNormal() const { return {"nrm"}; }
     bool hasModifiers() const { return c_.pl.hasModifiers; }
+    GlslExpr uvSt() const { return {c_.uv() + ".st"}; }
+    GlslExpr uvDx() const { return {c_.uv() + ".dSTdx"}; }
+    GlslExpr uvDy() const { return {c_.uv() + ".dSTdy"}; }
+    GlslExpr identity2() const { return {"mat2(1.0f)"}; }
+    GlslExpr modifierRecord(size_t i) const {
+        return {"uLayerData[" + std::to_string(c_.pl.modRecord + int(i)) + "]"};
+    }
+    GlslExpr modifierMask(size_t i) const {
+        const int slot = c_.pl.modTex[i];
+        return {slot >= 0 ? "uTex" + std::to_string(slot) : ""};
+    }
 
     // `type name;` (GLSL locals start undefined: only out arguments fill them).
     template <class T>
@@ -127,14 +139,15 @@ public:
         lines_.push_back(call(name, std::forward<F>(f), args...).text + ";");
     }
 
-    // The layer's derivative-space modifiers (layer_kind.h, section 4):
-    // sample, edit, then the target's surface gradient, added to surfGrad.
-    void addModifiedSurfgrad(const DerivModTarget& t) { block_ = derivModBlock(c_, t); }
+    // `type name = init;`.
+    GlslExpr local(const char* type, const char* name, const GlslExpr& init) {
+        lines_.push_back(std::string(type) + " " + name + " = " + init.text + ";");
+        return {name};
+    }
 
     // One statement (a block when there are several; the assembler may guard
     // it with an `if`), ending in a newline.
     std::string statement() const {
-        if (!block_.empty()) return block_;
         if (lines_.size() == 1) return lines_[0] + "\n";
         std::string o = "{\n";
         for (const std::string& l : lines_) o += c_.indent + "    " + l + "\n";
@@ -145,7 +158,6 @@ private:
     static std::string text(const GlslExpr& e) { return e.text; }
     const GlslLayerContext& c_;
     std::vector<std::string> lines_;
-    std::string block_;
 };
 
 // A record layout's unpacked struct on the CPU: converts to the C++ build's
@@ -196,6 +208,15 @@ public:
     glm::mat3 modelInv3() const { return c_.u.modelInv3; }
     glm::vec3 resolvedNormal() const { return nrm_; }
     bool hasModifiers() const { return c_.pl.hasModifiers; }
+    glm::vec2 uvSt() { return uv().st; }
+    glm::vec2 uvDx() { return uv().dSTdx; }
+    glm::vec2 uvDy() { return uv().dSTdy; }
+    glm::mat2 identity2() const { return glm::mat2(1.0f); }
+    glm::vec4 modifierRecord(size_t i) const { return c_.u.records[size_t(c_.pl.modRecord) + i]; }
+    sg::glsl::sampler2D modifierMask(size_t i) const {
+        const int slot = c_.pl.modTex[i];
+        return slot >= 0 ? c_.samplers[size_t(slot)] : sg::glsl::sampler2D{};
+    }
 
     template <class T>
     T declare(const char*, const char*, const T& init) const {
@@ -206,7 +227,10 @@ public:
         return f(std::forward<A>(args)...);
     }
     void addSurfgrad(glm::vec3 g) { s_.surfGrad += g; }
-    void addModifiedSurfgrad(const DerivModTarget& t) { s_.surfGrad += derivModCpu(c_, s_, t); }
+    template <class T>
+    T local(const char*, const char*, const T& init) const {
+        return init;
+    }
     template <class L, class R>
     void assign(L& lhs, const R& rhs) const {
         lhs = rhs;
@@ -259,6 +283,88 @@ constexpr LayerEmitter emitter(F) {
             F{}(b);
         },
     };
+}
+
+// ---------------------------------------------------------------------------
+// Derivative-space modifiers (Loviscach 2008; layer_kind.h, section 4).
+
+template <>
+struct ModifierArgs<GlslBinder> {
+    GlslExpr op, mask, st, dx, dy, jac;
+};
+template <>
+struct ModifierArgs<CpuBinder> {
+    glm::vec4 op{0.0f};
+    sg::glsl::sampler2D mask{};
+    glm::vec2 st{0.0f}, dx{0.0f}, dy{0.0f};
+    glm::mat2 jac{1.0f};
+};
+
+// A modifier's statement from one generic lambda (b, hd, args).
+template <class F>
+constexpr ModifierEmitter modifierEmitter(F) {
+    static_assert(std::is_empty_v<F>, "an emitter captures nothing");
+    return ModifierEmitter{
+        [](GlslBinder& b, GlslExpr& hd, const ModifierArgs<GlslBinder>& in) { F{}(b, hd, in); },
+        [](CpuBinder& b, sg::glsl::SgHeightDeriv& hd, const ModifierArgs<CpuBinder>& in) {
+            F{}(b, hd, in);
+        },
+    };
+}
+
+// A lookup warp from one generic lambda (b, args).
+template <class F>
+constexpr ModifierWarp modifierWarp(F) {
+    static_assert(std::is_empty_v<F>, "an emitter captures nothing");
+    return ModifierWarp{
+        [](GlslBinder& b, ModifierArgs<GlslBinder>& in) { F{}(b, in); },
+        [](CpuBinder& b, ModifierArgs<CpuBinder>& in) { F{}(b, in); },
+    };
+}
+
+inline void applyModifier(GlslBinder& b, const ModifierKind& k, GlslExpr& hd,
+                          const ModifierArgs<GlslBinder>& in) {
+    k.emit.glsl(b, hd, in);
+}
+inline void applyModifier(CpuBinder& b, const ModifierKind& k, sg::glsl::SgHeightDeriv& hd,
+                          const ModifierArgs<CpuBinder>& in) {
+    k.emit.cpu(b, hd, in);
+}
+inline void applyWarp(GlslBinder& b, const ModifierKind& k, ModifierArgs<GlslBinder>& in) {
+    k.warp.glsl(b, in);
+}
+inline void applyWarp(CpuBinder& b, const ModifierKind& k, ModifierArgs<CpuBinder>& in) {
+    k.warp.cpu(b, in);
+}
+
+// The block of a layer with modifiers: its parameters `p` (type
+// paramsType, record 0), the lookup (the UV frame's, or the first
+// modifier's warp), the sample as height and derivative
+// (sample(b, p, st, dx, dy): an SgHeightDeriv), one statement per modifier
+// in order (only the kinds used are compiled in; nothing branches on a
+// uniform), and surfgrad(b, p, hd) added to surfGrad.
+template <class B, class Sample, class Surfgrad>
+void addDerivModSurfgrad(B& b, const char* paramsType, Sample sample, Surfgrad surfgrad) {
+    const Layer& L = b.layer();
+    auto p = b.local(paramsType, "p", b.record());
+    ModifierArgs<B> in;
+    const ModifierKind& first = *L.modifiers[0].kind;
+    if (first.warpsLookup) {
+        in.op = b.modifierRecord(0);
+        applyWarp(b, first, in);
+    } else {
+        in.st = b.local("vec2", "st", b.uvSt());
+        in.dx = b.local("vec2", "dx", b.uvDx());
+        in.dy = b.local("vec2", "dy", b.uvDy());
+        in.jac = b.identity2();
+    }
+    auto hd = b.local("SgHeightDeriv", "hd", sample(b, p, in.st, in.dx, in.dy));
+    for (size_t i = 0; i < L.modifiers.size(); ++i) {
+        in.op = b.modifierRecord(i);
+        in.mask = b.modifierMask(i);
+        applyModifier(b, *L.modifiers[i].kind, hd, in);
+    }
+    b.addSurfgrad(surfgrad(b, p, hd));
 }
 
 } // namespace sg::render

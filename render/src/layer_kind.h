@@ -549,37 +549,30 @@ struct LayerBatch {
 
 // A kind that takes modifiers samples its map as a height and derivative,
 // lets the modifiers edit them, then turns the derivative into its surface
-// gradient; these are its three steps.
+// gradient: its emitter calls addDerivModSurfgrad (layer_emit.h) with those
+// two steps; the modifiers between them come from their ModifierKind.
 struct DerivModTarget {
-    const char* glslFile; // the kind's file with the HD sampler
-    // GLSL: "SgXParams p = sgUnpackX(...);", the sampler's name, the
-    // surface-gradient expression of `hd` (p, st, dx, dy in scope).
-    std::string (*glslParams)(const GlslLayerContext&);
-    const char* glslSample; // e.g. "sgSampleUvNormalHD" (tex, st, dx, dy, p)
-    std::string (*glslSurfgrad)(const GlslLayerContext&);
-    // CPU: the same three steps.
-    sg::glsl::SgHeightDeriv (*sampleCpu)(const CpuLayerContext&, glm::vec2 st, glm::vec2 dx,
-                                         glm::vec2 dy);
-    glm::vec3 (*surfgradCpu)(const CpuLayerContext&, const CpuShadeState&,
-                             const sg::glsl::SgHeightDeriv&);
+    const char* glslFile; // the kind's file with the HD sampler (included instead)
 };
 
-// The block statement of a layer with modifiers, and its CPU twin.
-std::string derivModBlock(const GlslLayerContext& c, const DerivModTarget& t);
-glm::vec3 derivModCpu(const CpuLayerContext& c, const CpuShadeState& s, const DerivModTarget& t);
-
-// What a modifier's statement reads besides hd and its record: GLSL
-// expressions in the block derivModBlock writes, values on the CPU.
-struct ModifierGlslInputs {
-    std::string op;   // the record, e.g. "uLayerData[7]"
-    std::string mask; // the mask's sampler ("" when the modifier has none)
-    std::string jac;  // the lookup warp's Jacobian: "jac", or "mat2(1.0f)" without a warp
+// A modifier's statement, one generic lambda instantiated for both binders
+// (modifierEmitter, layer_emit.h): edits `hd` (SgHeightDeriv) with the
+// modifier's inputs (ModifierArgs: its record `op`, its mask, the lookup
+// st/dx/dy and the lookup warp's Jacobian `jac`).
+class GlslBinder;
+class CpuBinder;
+struct GlslExpr;
+template <class Binder>
+struct ModifierArgs;
+struct ModifierEmitter {
+    void (*glsl)(GlslBinder&, GlslExpr& hd, const ModifierArgs<GlslBinder>&) = nullptr;
+    void (*cpu)(CpuBinder&, sg::glsl::SgHeightDeriv& hd, const ModifierArgs<CpuBinder>&) = nullptr;
 };
-
-struct ModifierCpuInputs {
-    glm::mat2 jac{1.0f};        // the lookup warp's Jacobian (identity without a warp)
-    sg::glsl::sampler2D mask{}; // the modifier's mask texture
-    glm::vec2 st{0.0f}, dx{0.0f}, dy{0.0f};
+// A lookup warp (ModifierKind::warpsLookup): sets st, dx, dy and jac of the
+// arguments from the layer's UV frame and `op` (modifierWarp, layer_emit.h).
+struct ModifierWarp {
+    void (*glsl)(GlslBinder&, ModifierArgs<GlslBinder>&) = nullptr;
+    void (*cpu)(CpuBinder&, ModifierArgs<CpuBinder>&) = nullptr;
 };
 
 struct ModifierKind {
@@ -592,14 +585,8 @@ struct ModifierKind {
     void (*parse)(const detail::SceneNode& n, Modifier& m,
                   const detail::SceneReader& reader) = nullptr;
     glm::vec4 (*pack)(const Modifier&) = nullptr;
-    // The lookup warp (warpsLookup): GLSL lines defining st, dx, dy (and jac).
-    std::string (*glslWarp)(const std::string& op, const std::string& uv,
-                            const std::string& indent) = nullptr;
-    glm::vec2 (*warpCpu)(const glm::vec4& op, glm::vec2 st, glm::mat2& jac) = nullptr;
-    // "hd = sgModX(hd, op...);" and its CPU twin.
-    std::string (*glsl)(const ModifierGlslInputs& in) = nullptr;
-    sg::glsl::SgHeightDeriv (*cpu)(const sg::glsl::SgHeightDeriv& hd, const glm::vec4& op,
-                                   const ModifierCpuInputs& in) = nullptr;
+    ModifierWarp warp;    // warpsLookup: the warped lookup
+    ModifierEmitter emit; // "hd = sgModX(hd, op...);" and its CPU twin
 };
 
 const std::vector<const ModifierKind*>& modifierKinds();

@@ -57,9 +57,9 @@ TEST(LayerRegistry, EveryKindIsComplete) {
     for (const ModifierKind* m : modifierKinds()) {
         EXPECT_TRUE(mods.insert(m->name).second) << m->name;
         EXPECT_EQ(findModifierKind(m->name), m);
-        EXPECT_TRUE(m->parse && m->pack && m->glsl && m->cpu) << m->name;
+        EXPECT_TRUE(m->parse && m->pack && m->emit.glsl && m->emit.cpu) << m->name;
         if (m->warpsLookup) {
-            EXPECT_TRUE(m->glslWarp && m->warpCpu) << m->name;
+            EXPECT_TRUE(m->warp.glsl && m->warp.cpu) << m->name;
         }
     }
 }

@@ -1,10 +1,10 @@
 // Derivative-space modifiers as units (deriv_mods.glsl: Loviscach 2008 on
 // the height h and derivative d of a layer, before its surface gradient):
-// one ModifierKind per modifier, with its scene fields, its record, the
-// GLSL statement the assembler emits and the CPU call beside it. The layer
-// kinds that take modifiers (uv_normal, deriv_map) call derivModBlock /
-// derivModCpu with their sampling and surface-gradient steps.
-#include "layer_kind.h"
+// one ModifierKind per modifier, with its scene fields, its record and its
+// one emitter (the GLSL statement and the CPU call, layer_emit.h). The layer
+// kinds that take modifiers (uv_normal, deriv_map) call addDerivModSurfgrad
+// with their sampling and surface-gradient steps.
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -31,9 +31,9 @@ const ModifierKind kScale{
     .parse = [](const SceneNode& m, Modifier& mod,
                 const SceneReader&) { mod.a = m.num("alpha", 1.0, -kHuge, kHuge); },
     .pack = packAB,
-    .glsl = [](const ModifierGlslInputs& in) { return "hd = sgModScale(hd, " + in.op + ");"; },
-    .cpu = [](const G::SgHeightDeriv& hd, const glm::vec4& op,
-              const ModifierCpuInputs&) { return G::sgModScale(hd, op); },
+    .emit = modifierEmitter([](auto& b, auto& hd, const auto& in) {
+        b.assign(hd, SG_LAYER_CALL(b, sgModScale, hd, in.op));
+    }),
 };
 
 // CURVE (P, H): f'(h) = 1 / (1 + P (h - H)^2).
@@ -49,9 +49,9 @@ const ModifierKind kCurve{
             mod.b = m.num("center", 0.0, -kHuge, kHuge);
         },
     .pack = packAB,
-    .glsl = [](const ModifierGlslInputs& in) { return "hd = sgModCurve(hd, " + in.op + ");"; },
-    .cpu = [](const G::SgHeightDeriv& hd, const glm::vec4& op,
-              const ModifierCpuInputs&) { return G::sgModCurve(hd, op); },
+    .emit = modifierEmitter([](auto& b, auto& hd, const auto& in) {
+        b.assign(hd, SG_LAYER_CALL(b, sgModCurve, hd, in.op));
+    }),
 };
 
 // MODULATE (mask channel, gain): product rule with the mask's derivative,
@@ -72,15 +72,10 @@ const ModifierKind kModulate{
     .pack = [](const Modifier& m) -> glm::vec4 {
         return {float(m.kind->id), float(m.channel), m.a, 0.0f};
     },
-    .glsl =
-        [](const ModifierGlslInputs& in) {
-            return "hd = sgModModulate(hd, " + in.op + ", " + in.mask + ", st, dx, dy, " + in.jac +
-                   ");";
-        },
-    .cpu =
-        [](const G::SgHeightDeriv& hd, const glm::vec4& op, const ModifierCpuInputs& in) {
-            return G::sgModModulate(hd, op, in.mask, in.st, in.dx, in.dy, in.jac);
-        },
+    .emit = modifierEmitter([](auto& b, auto& hd, const auto& in) {
+        b.assign(hd,
+                 SG_LAYER_CALL(b, sgModModulate, hd, in.op, in.mask, in.st, in.dx, in.dy, in.jac));
+    }),
 };
 
 // DEFORM (A, B): the lookup warps to (s, t + A sin(B s)); d' = J^T d.
@@ -97,17 +92,15 @@ const ModifierKind kDeform{
             mod.b = m.num("frequency", 20.0, -kHuge, kHuge);
         },
     .pack = packAB,
-    .glslWarp =
-        [](const std::string& op, const std::string& uv, const std::string& in) {
-            return in + "mat2 jac;\n" + in + "vec2 st = sgModWarp(" + op + ", " + uv +
-                   ".st, jac);\n" + in + "vec2 dx = jac * " + uv + ".dSTdx;\n" + in +
-                   "vec2 dy = jac * " + uv + ".dSTdy;\n";
-        },
-    .warpCpu = [](const glm::vec4& op, glm::vec2 st,
-                  glm::mat2& jac) { return G::sgModWarp(op, st, jac); },
-    .glsl = [](const ModifierGlslInputs&) { return std::string("hd = sgModDeform(hd, jac);"); },
-    .cpu = [](const G::SgHeightDeriv& hd, const glm::vec4&,
-              const ModifierCpuInputs& in) { return G::sgModDeform(hd, in.jac); },
+    .warp = modifierWarp([](auto& b, auto& in) {
+        in.jac = b.declare("mat2", "jac", glm::mat2(1.0f));
+        in.st = b.local("vec2", "st", SG_LAYER_CALL(b, sgModWarp, in.op, b.uvSt(), in.jac));
+        in.dx = b.local("vec2", "dx", in.jac * b.uvDx());
+        in.dy = b.local("vec2", "dy", in.jac * b.uvDy());
+    }),
+    .emit = modifierEmitter([](auto& b, auto& hd, const auto& in) {
+        b.assign(hd, SG_LAYER_CALL(b, sgModDeform, hd, in.jac));
+    }),
 };
 
 void parseModifiers(const SceneNode& n, const char* key, Layer& L, const SceneReader& reader) {
@@ -140,10 +133,6 @@ void parseModifiers(const SceneNode& n, const char* key, Layer& L, const SceneRe
     }
 }
 
-std::string opRecord(const PlanLayer& pl, size_t i) {
-    return "uLayerData[" + std::to_string(pl.modRecord + int(i)) + "]";
-}
-
 } // namespace
 
 const std::vector<const ModifierKind*>& modifierKinds() {
@@ -154,52 +143,6 @@ const std::vector<const ModifierKind*>& modifierKinds() {
 ParamSpec param::modifiers() {
     return custom("modifiers", parseModifiers,
                   "derivative-space modifiers, at most 4 (scale, curve, modulate, deform)");
-}
-
-// The sample as height and derivative, one call per modifier in order (only
-// the kinds used are compiled in; nothing branches on a uniform), and the
-// surface gradient.
-std::string derivModBlock(const GlslLayerContext& c, const DerivModTarget& t) {
-    const Layer& L = c.layer();
-    const std::string uv = c.uv(), in = c.indent + "    ";
-    std::string o = "{\n" + in + t.glslParams(c) + "\n";
-    const ModifierKind* first = L.modifiers[0].kind;
-    if (first->warpsLookup) {
-        o += first->glslWarp(opRecord(c.pl, 0), uv, in);
-    } else {
-        o += in + "vec2 st = " + uv + ".st;\n" + in + "vec2 dx = " + uv + ".dSTdx;\n" + in +
-             "vec2 dy = " + uv + ".dSTdy;\n";
-    }
-    o += in + "SgHeightDeriv hd = " + t.glslSample + "(" + c.tex(0) + ", st, dx, dy, p);\n";
-    for (size_t i = 0; i < L.modifiers.size(); ++i) {
-        int mask = c.pl.modTex[i];
-        ModifierGlslInputs mi{opRecord(c.pl, i), mask >= 0 ? "uTex" + std::to_string(mask) : "",
-                              first->warpsLookup ? "jac" : "mat2(1.0f)"};
-        o += in + L.modifiers[i].kind->glsl(mi) + "\n";
-    }
-    o += in + "surfGrad += " + t.glslSurfgrad(c) + ";\n";
-    return o + c.indent + "}\n";
-}
-
-glm::vec3 derivModCpu(const CpuLayerContext& c, const CpuShadeState& s, const DerivModTarget& t) {
-    const Layer& L = c.layer();
-    const glm::vec4* op = &c.u.records[size_t(c.pl.modRecord)];
-    const G::SgUvFrame& f = c.uv(s);
-    ModifierCpuInputs in;
-    in.st = f.st;
-    in.dx = f.dSTdx;
-    in.dy = f.dSTdy;
-    if (L.modifiers[0].kind->warpsLookup) {
-        in.st = L.modifiers[0].kind->warpCpu(op[0], f.st, in.jac);
-        in.dx = in.jac * f.dSTdx;
-        in.dy = in.jac * f.dSTdy;
-    }
-    G::SgHeightDeriv hd = t.sampleCpu(c, in.st, in.dx, in.dy);
-    for (size_t i = 0; i < L.modifiers.size(); ++i) {
-        in.mask = c.pl.modTex[i] >= 0 ? c.samplers[size_t(c.pl.modTex[i])] : G::sampler2D{};
-        hd = L.modifiers[i].kind->cpu(hd, op[i], in);
-    }
-    return t.surfgradCpu(c, s, hd);
 }
 
 } // namespace sg::render

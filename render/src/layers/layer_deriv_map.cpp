@@ -31,34 +31,22 @@ RecordLayout records() {
         .done();
 }
 
-G::SgDerivMapParams unpack(const CpuLayerContext& c) {
-    const glm::vec4* r = c.rec();
-    return G::sgUnpackDerivMap(r[0], r[1]);
-}
-
 // With modifiers: sample as height and derivative, edit, then listing 5 or 8.
-const DerivModTarget kModifiers = {
-    "sg/render/layer_deriv_map_mods.glsl",
-    [](const GlslLayerContext& c) {
-        return "SgDerivMapParams p = " + c.unpack(c.layer().kind->records[0]) + ";";
-    },
-    "sgSampleDerivMapHD",
-    [](const GlslLayerContext& c) {
-        return "sgDerivMapSurfgrad(frame, " + c.uv() + ", p, hd.d, vec2(textureSize(" + c.tex(0) +
-               ", 0)))";
-    },
-    [](const CpuLayerContext& c, glm::vec2 st, glm::vec2 dx, glm::vec2 dy) {
-        return G::sgSampleDerivMapHD(c.tex(0), st, dx, dy, unpack(c));
-    },
-    [](const CpuLayerContext& c, const CpuShadeState& s, const G::SgHeightDeriv& hd) {
-        return G::sgDerivMapSurfgrad(s.frame, c.uv(s), unpack(c), hd.d,
-                                     glm::vec2(G::textureSize(c.tex(0), 0)));
-    },
-};
+const DerivModTarget kModifiers = {"sg/render/layer_deriv_map_mods.glsl"};
 
 // sgLayerDerivMap(frame, uv, params, map); with modifiers, their chain.
 constexpr LayerEmitter kEmit = emitter([](auto& b) {
-    if (b.hasModifiers()) return b.addModifiedSurfgrad(kModifiers);
+    if (b.hasModifiers()) {
+        return addDerivModSurfgrad(
+            b, "SgDerivMapParams",
+            [](auto& bb, const auto& p, const auto& st, const auto& dx, const auto& dy) {
+                return SG_LAYER_CALL(bb, sgSampleDerivMapHD, bb.tex(0), st, dx, dy, p);
+            },
+            [](auto& bb, const auto& p, const auto& hd) {
+                return SG_LAYER_CALL(bb, sgDerivMapSurfgradHD, bb.frame(), bb.uv(), p, hd,
+                                     bb.tex(0));
+            });
+    }
     b.addSurfgrad(SG_LAYER_CALL(b, sgLayerDerivMap, b.frame(), b.uv(), b.record(), b.tex(0)));
 });
 

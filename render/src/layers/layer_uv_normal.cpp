@@ -63,22 +63,7 @@ RecordLayout records() {
 }
 
 // With modifiers: sample as height and derivative, edit, then listing 5.
-const DerivModTarget kModifiers = {
-    "sg/render/layer_uv_normal_mods.glsl",
-    [](const GlslLayerContext& c) {
-        return "SgUvNormalParams p = " + c.unpack(c.layer().kind->records[0]) + ";";
-    },
-    "sgSampleUvNormalHD",
-    [](const GlslLayerContext& c) { return "sgUvNormalSurfgrad(" + c.uv() + ", p, hd)"; },
-    [](const CpuLayerContext& c, glm::vec2 st, glm::vec2 dx, glm::vec2 dy) {
-        const glm::vec4* r = c.rec();
-        return G::sgSampleUvNormalHD(c.tex(0), st, dx, dy, G::sgUnpackUvNormal(r[0], r[1]));
-    },
-    [](const CpuLayerContext& c, const CpuShadeState& s, const G::SgHeightDeriv& hd) {
-        const glm::vec4* r = c.rec();
-        return G::sgUvNormalSurfgrad(c.uv(s), G::sgUnpackUvNormal(r[0], r[1]), hd);
-    },
-};
+const DerivModTarget kModifiers = {"sg/render/layer_uv_normal_mods.glsl"};
 
 int antialiasOf(const Layer& L) {
     return L.params<P>().antialias;
@@ -89,7 +74,16 @@ int antialiasOf(const Layer& L) {
 // the moment textures in slots 0 (and 1 for LEAN) and slopeCov; with
 // modifiers, their chain.
 constexpr LayerEmitter kEmit = emitter([](auto& b) {
-    if (b.hasModifiers()) return b.addModifiedSurfgrad(kModifiers);
+    if (b.hasModifiers()) {
+        return addDerivModSurfgrad(
+            b, "SgUvNormalParams",
+            [](auto& bb, const auto& p, const auto& st, const auto& dx, const auto& dy) {
+                return SG_LAYER_CALL(bb, sgSampleUvNormalHD, bb.tex(0), st, dx, dy, p);
+            },
+            [](auto& bb, const auto& p, const auto& hd) {
+                return SG_LAYER_CALL(bb, sgUvNormalSurfgrad, bb.uv(), p, hd);
+            });
+    }
     const int aa = antialiasOf(b.layer());
     if (aa == SG_AA_LEAN) {
         return b.addSurfgrad(SG_LAYER_CALL(b, sgLayerUvNormalLean, b.uv(), b.record(), b.tex(0),
