@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
     volatile float sink = 0.0f;
     auto keep = [&](const auto& grid) { sink = sink + float(grid.v[grid.v.size() / 2][0]); };
     auto keepS = [&](const ScalarField& s) { sink = sink + s.v[s.v.size() / 2]; };
-    auto keepI = [&](const Image& img) { sink = sink + img.texels[img.texels.size() / 2]; };
+    auto keepI = [&](const Image& img) { sink = sink + img.samples[img.samples.size() / 2]; };
 
     const std::vector<Row> rows = {
         {"decode rgb8 to slopes (L4) / to normals",

@@ -21,7 +21,7 @@ set(_may_surfgrad_bump surfgrad_shaders surfgrad_base)
 # Feature maps read and write their EXR files through the image module.
 set(_may_surfgrad_features surfgrad_bump surfgrad_image surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_mesh surfgrad_base)
-# The image reader and writer: base and OpenImageIO, nothing else.
+# The image type, reader and writer: base, glm and OpenImageIO, nothing else.
 set(_may_surfgrad_image surfgrad_base)
 set(_may_surfgrad_gl surfgrad_shaders surfgrad_base)
 set(_may_surfgrad_parity surfgrad_bump surfgrad_gl surfgrad_shaders surfgrad_base)

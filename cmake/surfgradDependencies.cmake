@@ -57,7 +57,7 @@ function(_surfgrad_fix_openimageio_targets)
     endforeach()
 endfunction()
 
-_surfgrad_find_dependency(glm)                 # shaders, bump, mesh, render headers
+_surfgrad_find_dependency(glm)                 # shaders, bump, image, mesh, render headers
 _surfgrad_find_dependency(nlohmann_json)
 _surfgrad_find_dependency(OpenMesh)            # mesh: surfgrad/polymesh.h (OpenMeshCore)
 # Debian's OpenSubdivConfig.cmake is broken: FindOpenSubdiv.cmake (beside

@@ -212,11 +212,10 @@ void writeOutputs(const BakeArgs& a, const OutputTypes& t, const bake::BakeResul
     if (!a.residualNormal.empty())
         writeSlopes(a.residualNormal, "residual-normal", r.residualSlopes, t.residualNormal);
     if (!a.objectNormal.empty()) {
-        nm::Image img{r.width, r.height, 3, false, {}};
-        img.texels.resize(size_t(r.width) * size_t(r.height) * 3);
+        nm::Image img(r.width, r.height, 3);
         for (size_t k = 0; k < r.objectNormal.v.size(); ++k)
             for (int c = 0; c < 3; ++c)
-                img.texels[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
+                img.samples[k * 3 + size_t(c)] = 0.5f * r.objectNormal.v[k][c] + 0.5f;
         nm::writeImage(a.objectNormal, img, t.objectNormal, attrs("object-normal", a));
     }
     if (!a.mask.empty()) {

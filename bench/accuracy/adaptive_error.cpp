@@ -88,9 +88,9 @@ ScreenError screenError(const SurfaceReference& ref, const sg::mesh::RenderMesh&
 DirectionDiff compareDirections(const sg::render::Image& a, const sg::render::Image& b,
                                 const sg::render::Image& baseA, const sg::render::Image& baseB) {
     DirectionDiff d;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::dvec3 x(a.pixels[i]), y(b.pixels[i]);
-        const glm::dvec3 nx(baseA.pixels[i]), ny(baseB.pixels[i]);
+    for (size_t i = 0; i < a.texelCount(); ++i) {
+        const glm::dvec3 x(a.rgba(i)), y(b.rgba(i));
+        const glm::dvec3 nx(baseA.rgba(i)), ny(baseB.rgba(i));
         if (!std::isfinite(x.x + x.y + x.z) || !std::isfinite(y.x + y.y + y.z)) {
             ++d.nonFinite;
             continue;

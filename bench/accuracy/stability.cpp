@@ -31,14 +31,14 @@ AngleStats compare(const Image& a, const Image& b, const Image& primA, const Ima
         return s;
     }
     std::vector<double> angles;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const float pa = primA.pixels[i].x, pb = primB.pixels[i].x;
+    for (size_t i = 0; i < a.texelCount(); ++i) {
+        const float pa = primA.rgba(i).x, pb = primB.rgba(i).x;
         if (pa != pb) {
             ++s.coverageMismatch;
             continue;
         }
         if (pa <= 0.0f) continue;
-        const glm::dvec3 va(a.pixels[i]), vb = double(signB) * glm::dvec3(b.pixels[i]);
+        const glm::dvec3 va(a.rgba(i)), vb = double(signB) * glm::dvec3(b.rgba(i));
         ++s.compared;
         if (!std::isfinite(va.x + va.y + va.z + vb.x + vb.y + vb.z)) {
             ++s.nonFinite;

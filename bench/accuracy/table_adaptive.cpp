@@ -441,9 +441,11 @@ void equalErrorAsset(const char* name, const std::filesystem::path& file, int re
                               View{view.width, view.height, view.cameraPos, view.viewProjRel,
                                    view.view, view.proj, Aov::Normal});
         size_t covered = 0;
-        for (const glm::vec4& q : img.pixels)
-            covered += glm::dot(glm::vec3(q), glm::vec3(q)) > 0.25f;
-        r.covered = double(covered) / double(img.pixels.size());
+        for (size_t i = 0; i < img.texelCount(); ++i) {
+            const glm::vec3 q(img.rgba(i));
+            covered += glm::dot(q, q) > 0.25f;
+        }
+        r.covered = double(covered) / double(img.texelCount());
         ga.renderToTexture(sa, adaptive, view);
         std::vector<double> du, da;
         for (int f = 0; f < frames; ++f) {
@@ -511,7 +513,7 @@ void equalErrorTable(const Options& o) {
 // background 0).
 size_t pinholes(const Image& img) {
     auto covered = [&](int x, int y) {
-        return glm::length(glm::vec3(img.pixels[size_t(y) * size_t(img.width) + size_t(x)])) > 0.5f;
+        return glm::length(glm::vec3(img.rgba(size_t(y) * size_t(img.width) + size_t(x)))) > 0.5f;
     };
     size_t holes = 0;
     for (int y = 1; y + 1 < img.height; ++y)

@@ -83,9 +83,7 @@ const std::vector<SceneSpec>& sceneSpecs() {
 // -dh/dt, 1). `phase` varies the pattern between layers.
 std::string writeSineMap(const std::string& path, int n, double amplitude, double phase) {
     const double tau = 6.283185307179586;
-    Image img;
-    img.width = img.height = n;
-    img.pixels.resize(size_t(n) * size_t(n));
+    Image img(n, n, 4);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             const double s = (i + 0.5) / n, t = (j + 0.5) / n;
@@ -98,7 +96,7 @@ std::string writeSineMap(const std::string& path, int n, double amplitude, doubl
             const double dt = 5 * tau * std::sin(a) * std::cos(b) + 0.5 * 4 * tau * std::cos(c) -
                               0.3 * 11 * tau * std::cos(e);
             const glm::dvec3 m = glm::normalize(glm::dvec3(-amplitude * ds, -amplitude * dt, 1.0));
-            img.pixels[size_t(j) * size_t(n) + size_t(i)] = glm::vec4(glm::vec3(m), 1.0f);
+            img.setRgba(i, j, glm::vec4(glm::vec3(m), 1.0f));
         }
     writeImage(path, img, Aov::Normal, 1.0f);
     return path;
@@ -226,16 +224,14 @@ Image truthImage(VariantScene& t, double m, int w, int super) {
     CpuOptions o;
     o.textureLod = sg::glsl::LodRule::Level0;
     const Image big = renderCpu(t.scene, t.assets, v, o);
-    Image img;
-    img.width = img.height = w;
-    img.pixels.assign(size_t(w) * size_t(w), glm::vec4(0.0f));
+    Image img(w, w, 4);
     for (int y = 0; y < w; ++y)
         for (int x = 0; x < w; ++x) {
             glm::dvec3 sum(0.0);
             for (int j = 0; j < super; ++j)
                 for (int i = 0; i < super; ++i)
-                    sum += glm::dvec3(big.at(x * super + i, y * super + j));
-            img.at(x, y) = glm::vec4(glm::vec3(sum / double(super * super)), 1.0f);
+                    sum += glm::dvec3(big.rgba(x * super + i, y * super + j));
+            img.setRgba(x, y, glm::vec4(glm::vec3(sum / double(super * super)), 1.0f));
         }
     return img;
 }
@@ -264,9 +260,9 @@ Errors compare(const Image& a, const Image& truth, const std::vector<char>& mask
     Errors e;
     double sumA = 0, sumT = 0, sq = 0;
     size_t n = 0;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
+    for (size_t i = 0; i < a.texelCount(); ++i) {
         if (!mask[i]) continue;
-        const double va = a.pixels[i].y, vt = truth.pixels[i].y; // green: all channels equal
+        const double va = a.rgba(i).y, vt = truth.rgba(i).y; // green: all channels equal
         sq += (va - vt) * (va - vt);
         e.max = std::max(e.max, std::abs(va - vt));
         sumA += va;
@@ -281,9 +277,9 @@ Errors compare(const Image& a, const Image& truth, const std::vector<char>& mask
 double maskedMean(const Image& img, const std::vector<char>& mask) {
     double s = 0;
     size_t n = 0;
-    for (size_t i = 0; i < img.pixels.size(); ++i)
+    for (size_t i = 0; i < img.texelCount(); ++i)
         if (mask[i]) {
-            s += img.pixels[i].y;
+            s += img.rgba(i).y;
             ++n;
         }
     return n ? s / double(n) : 0.0;
@@ -377,13 +373,10 @@ void picture(GlRenderer& gl, SceneSet& s, double m, int w, int super, const std:
                              gpuImage(gl, s.v[kComposed], kComposed, m, w),
                              truthImage(s.v[kTruth], m, w, super)};
     const int gap = 4;
-    Image out;
-    out.width = 3 * w + 2 * gap;
-    out.height = w;
-    out.pixels.assign(size_t(out.width) * size_t(out.height), glm::vec4(1.0f));
+    Image out(3 * w + 2 * gap, w, glm::vec4(1.0f));
     for (int k = 0; k < 3; ++k)
         for (int y = 0; y < w; ++y)
-            for (int x = 0; x < w; ++x) out.at(k * (w + gap) + x, y) = panels[k].at(x, y);
+            for (int x = 0; x < w; ++x) out.setRgba(k * (w + gap) + x, y, panels[k].rgba(x, y));
     writeImage(path, out, Aov::Color, 2.0f); // exposure 2: the highlight is dim
 }
 

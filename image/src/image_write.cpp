@@ -174,6 +174,17 @@ void writeImageFile(const fs::path& path, const FloatPixels& pixels, const Write
     });
 }
 
+FloatPixels floatPixels(const Image& image) {
+    SG_EXPECTS(image.samples.size() == image.texelCount() * size_t(std::max(image.channels, 0)),
+               "Image::samples has width * height * channels entries");
+    return {image.samples.empty() ? nullptr : image.samples.data(), image.width, image.height,
+            image.channels};
+}
+
+void writeImageFile(const fs::path& path, const Image& image, const WriteOptions& options) {
+    writeImageFile(path, floatPixels(image), options);
+}
+
 void writeMipChainFile(const fs::path& path, const std::vector<FloatPixels>& levels,
                        const WriteOptions& options) {
     SG_EXPECTS(!levels.empty(), "a MIP chain has a level 0");

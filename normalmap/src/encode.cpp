@@ -109,12 +109,8 @@ void storeNormal(Image& img, Encoding e, int i, int j, glm::vec3 n) {
 
 Image blankImage(int w, int h, Encoding e, bool isFloat) {
     SG_EXPECTS(e != Encoding::Signed || isFloat, "signed normals need a floating-point image");
-    Image img;
-    img.width = w;
-    img.height = h;
-    img.channels = e == Encoding::Ag ? 4 : channelsNeeded(e);
+    Image img(w, h, e == Encoding::Ag ? 4 : channelsNeeded(e));
     img.isFloat = isFloat;
-    img.texels.assign(size_t(w) * size_t(h) * size_t(img.channels), 0.0f);
     return img;
 }
 
@@ -238,23 +234,15 @@ ScalarField scalarFromImage(const Image& img, int channel, float scale, const st
 }
 
 Image imageFromScalar(const ScalarField& s, float offset, float scale, bool isFloat) {
-    Image img;
-    img.width = s.width;
-    img.height = s.height;
-    img.channels = 1;
+    Image img(s.width, s.height, 1);
     img.isFloat = isFloat;
-    img.texels.resize(s.size());
-    for (size_t k = 0; k < s.size(); ++k) img.texels[k] = (s.v[k] - offset) * scale;
+    for (size_t k = 0; k < s.size(); ++k) img.samples[k] = (s.v[k] - offset) * scale;
     return img;
 }
 
 Image shade(const NormalField& n, glm::vec3 lightDir) {
     const glm::vec3 L = g::sgSafeNormalize(lightDir, detail::kFlat);
-    Image img;
-    img.width = n.width;
-    img.height = n.height;
-    img.channels = 3;
-    img.texels.resize(n.size() * 3);
+    Image img(n.width, n.height, 3);
     forRows(n.height, [&](int j) {
         for (int i = 0; i < n.width; ++i) {
             // Grey albedo 0.85 with a little ambient so shadowed slopes keep

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "surfgrad/contract.h"
 #include "surfgrad/image_decode.h"
 #include "surfgrad/image_write.h"
 #include "surfgrad/io.h"
@@ -30,16 +29,9 @@ image::SampleType writtenType(SampleType t) {
     }
 }
 
-// The writer's view of `img` (rows bottom first, as Image holds them) and
-// the options every file of the toolkit shares: data, not colour (no
+// The options every file of the toolkit shares: data, not colour (no
 // gamma/colour-space tag beyond "Linear"), non-finite texels as 0, the
 // fourth channel alpha (as stored, never premultiplied).
-image::FloatPixels pixelsOf(const Image& img) {
-    SG_EXPECTS(img.texels.size() == size_t(img.width) * size_t(img.height) * size_t(img.channels),
-               "Image::texels has width * height * channels entries");
-    return {img.texels.data(), img.width, img.height, img.channels};
-}
-
 image::WriteOptions writeOptions(const Image& img, SampleType type) {
     image::WriteOptions o;
     o.type = writtenType(type);
@@ -86,16 +78,12 @@ Image decodeToFloat(const fs::path& path, int level, image::DecodedImage* info =
             throw;
         throw io::InputError(e.file(), "", "cannot read image: " + e.reason());
     }
-    Image img;
-    img.width = d.width;
-    img.height = d.height;
-    img.channels = d.channels;
+    Image img(d.width, d.height, d.channels);
     img.isFloat = d.fileType == image::SampleType::Half || d.fileType == image::SampleType::Float;
-    img.texels.resize(size_t(d.width) * size_t(d.height) * size_t(d.channels));
     size_t i = 0;
     for (int y = 0; y < d.height; ++y)
         for (int x = 0; x < d.width; ++x)
-            for (int c = 0; c < d.channels; ++c) img.texels[i++] = d.sample(x, y, c);
+            for (int c = 0; c < d.channels; ++c) img.samples[i++] = d.sample(x, y, c);
     if (info) {
         d.data = {};
         *info = std::move(d);
@@ -166,7 +154,7 @@ void writeImage(const fs::path& path, const Image& image, SampleType type,
                 const std::vector<std::pair<std::string, std::string>>& attributes) {
     image::WriteOptions options = writeOptions(image, type);
     for (const auto& [k, v] : attributes) options.attributes.push_back({k, v});
-    image::writeImageFile(path, pixelsOf(image), options);
+    image::writeImageFile(path, image, options);
 }
 
 void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
@@ -184,7 +172,7 @@ void writeMipChain(const fs::path& path, const std::vector<Image>& levels,
     options.attributes = {{"surfgrad:layout", layout},
                           {"surfgrad:wrap", wrap == Wrap::Repeat ? "repeat" : "clamp"}};
     std::vector<image::FloatPixels> pixels;
-    for (const Image& level : levels) pixels.push_back(pixelsOf(level));
+    for (const Image& level : levels) pixels.push_back(image::floatPixels(level));
     image::writeMipChainFile(path, pixels, options);
 }
 
@@ -221,9 +209,8 @@ std::vector<Image> readMipChain(const fs::path& path, std::vector<std::string>* 
     std::vector<Image> levels;
     for (int level = 0; level < info.levels; ++level) {
         const Image raw = level == 0 ? std::move(first) : decodeToFloat(path, level);
-        Image L = raw;
-        L.channels = int(from.size());
-        L.texels.resize(size_t(L.width) * size_t(L.height) * from.size());
+        Image L(raw.width, raw.height, int(from.size()));
+        L.isFloat = raw.isFloat;
         for (int j = 0; j < L.height; ++j)
             for (int i = 0; i < L.width; ++i)
                 for (int c = 0; c < L.channels; ++c) L.at(i, j, c) = raw.at(i, j, from[size_t(c)]);

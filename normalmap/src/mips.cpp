@@ -57,12 +57,8 @@ Image boxReduce(const Image& src, int width, int height) {
                 for (int c = 0; c < nc; ++c) o[c] += wt * src.at(k, j, c);
         }
     });
-    Image dst;
-    dst.width = width;
-    dst.height = height;
-    dst.channels = nc;
+    Image dst(width, height, nc);
     dst.isFloat = true;
-    dst.texels.assign(size_t(width) * size_t(height) * size_t(nc), 0.0f);
     forRows(height, [&](int j) {
         std::vector<double> acc(static_cast<size_t>(nc));
         for (int i = 0; i < width; ++i) {
@@ -78,12 +74,8 @@ Image boxReduce(const Image& src, int width, int height) {
 }
 
 Image leanLevel0(const DerivField& d) {
-    Image img;
-    img.width = d.width;
-    img.height = d.height;
-    img.channels = 5;
+    Image img(d.width, d.height, 5);
     img.isFloat = true;
-    img.texels.resize(d.size() * 5);
     forRows(d.height, [&](int j) {
         for (int i = 0; i < d.width; ++i) {
             const glm::vec2 s = d.at(i, j);
@@ -96,12 +88,8 @@ Image leanLevel0(const DerivField& d) {
 }
 
 Image toksvigLevel0(const NormalField& n) {
-    Image img;
-    img.width = n.width;
-    img.height = n.height;
-    img.channels = 4;
+    Image img(n.width, n.height, 4);
     img.isFloat = true;
-    img.texels.resize(n.size() * 4);
     forRows(n.height, [&](int j) {
         for (int i = 0; i < n.width; ++i) {
             const glm::vec3 v = n.at(i, j);
@@ -115,14 +103,10 @@ Image toksvigLevel0(const NormalField& n) {
 }
 
 Image naiveMipLevel0(const NormalField& n) {
-    Image img;
-    img.width = n.width;
-    img.height = n.height;
-    img.channels = 3;
+    Image img(n.width, n.height, 3);
     img.isFloat = true;
-    img.texels.resize(n.size() * 3);
     for (size_t k = 0; k < n.size(); ++k)
-        for (int c = 0; c < 3; ++c) img.texels[k * 3 + size_t(c)] = n.v[k][c];
+        for (int c = 0; c < 3; ++c) img.samples[k * 3 + size_t(c)] = n.v[k][c];
     return img;
 }
 

@@ -87,12 +87,12 @@ nm::Image imageArg(py::handle obj, const char* arg, bool isFloat) {
                               " channels is outside 1..64");
     }
     img.isFloat = isFloat;
-    img.texels.assign(a.data(), a.data() + a.size());
+    img.samples.assign(a.data(), a.data() + a.size());
     return img;
 }
 
 py::array imageToArray(nm::Image&& img) {
-    return moveToArray(std::move(img.texels), {img.height, img.width, img.channels});
+    return moveToArray(std::move(img.samples), {img.height, img.width, img.channels});
 }
 
 nm::Wrap parseWrap(const std::string& s) {

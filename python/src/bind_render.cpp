@@ -96,8 +96,8 @@ py::array renderScene(py::handle sceneArg, int width, int height, const std::str
         }
     }
     callback.rethrow();
-    std::vector<glm::vec4> pixels = std::move(image.pixels);
-    return moveToArray(std::move(pixels), {image.height, image.width, 4});
+    const int imageHeight = image.height, imageWidth = image.width;
+    return moveToArray(std::move(image.samples), {imageHeight, imageWidth, 4});
 }
 
 // ---- eval ------------------------------------------------------------------

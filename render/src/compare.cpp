@@ -16,16 +16,16 @@ VectorImageDiff compareVectorImages(const Image& a, const Image& b, const Image&
         return d;
     }
     std::vector<double> angles;
-    angles.reserve(a.pixels.size());
+    angles.reserve(a.texelCount());
     for (int y = 0; y < a.height; ++y)
         for (int x = 0; x < a.width; ++x) {
-            float pa = primA.at(x, y).x, pb = primB.at(x, y).x;
+            float pa = primA.rgba(x, y).x, pb = primB.rgba(x, y).x;
             if (pa != pb) {
                 ++d.coverageMismatch;
                 continue;
             }
             if (pa <= 0.0f) continue; // background in both
-            glm::dvec3 va(a.at(x, y)), vb(b.at(x, y));
+            glm::dvec3 va(a.rgba(x, y)), vb(b.rgba(x, y));
             bool finite = true;
             for (int c = 0; c < 3; ++c)
                 finite = finite && std::isfinite(va[c]) && std::isfinite(vb[c]);

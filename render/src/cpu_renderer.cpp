@@ -334,12 +334,9 @@ void reportRow(const CpuOptions& options, std::atomic<int>& rowsDone, std::mutex
 Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
                 const CpuOptions& options) {
     const int W = view.width, H = view.height;
-    Image img;
-    img.width = W;
-    img.height = H;
     glm::vec4 bg =
         view.aov == Aov::Color ? glm::vec4(scene.output.background, 1.0f) : glm::vec4(0.0f);
-    img.pixels.assign(size_t(W) * size_t(H), bg);
+    Image img(W, H, bg);
 
     // Vertex stage and rasterisation, mesh by mesh in draw order.
     // Adaptive meshes: their patches tessellated for this view first, at the
@@ -404,8 +401,8 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             const DrawState& d = draws[size_t(st.mesh)];
             detail::PixelInputs in =
                 pixelInputs(st, md[size_t(st.mesh)], x, y, options.derivatives);
-            img.pixels[pix] =
-                detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.featureSamplers, in);
+            img.setRgba(
+                pix, detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.featureSamplers, in));
         }
         reportRow(options, rowsDone, progressLock, H);
     });

@@ -701,13 +701,10 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
 
 Image GlRenderer::render(const Scene& scene, const SceneAssets& assets, const View& view) {
     renderToTexture(scene, assets, view);
-    Image img;
-    img.width = view.width;
-    img.height = view.height;
-    img.pixels.resize(size_t(view.width) * size_t(view.height));
+    Image img(view.width, view.height, 4);
     glBindFramebuffer(GL_READ_FRAMEBUFFER, impl_->fbo);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, view.width, view.height, GL_RGBA, GL_FLOAT, img.pixels.data());
+    glReadPixels(0, 0, view.width, view.height, GL_RGBA, GL_FLOAT, img.samples.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     sg::gl::checkError("readback");
     return img;

@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "surfgrad/contract.h"
 #include "surfgrad/image_decode.h"
 #include "surfgrad/image_write.h"
@@ -68,25 +66,22 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
         throw io::InputError(path.string(), "",
                              "unsupported image format \"" + ext + "\" (expected .png or .exr)");
     }
-    SG_EXPECTS(image.pixels.size() == size_t(image.width) * size_t(image.height),
-               "Image::pixels has width * height entries");
+    SG_EXPECTS(image.channels == 4 && image.samples.size() == image.texelCount() * 4,
+               "an AOV image has 4 channels, width * height * 4 samples");
     image::WriteOptions options;
     options.attributes = {{"surfgrad:aov", int(aov) < 0 ? "display" : aovName(aov)}};
     if (ext == ".exr") {
-        // The raw values, RGBA float (Image::pixels: bottom row first).
+        // The raw values, RGBA float (bottom row first, as Image holds them).
         options.type = image::SampleType::Float;
         options.channelNames = {"R", "G", "B", "A"};
         options.alphaChannel = 3;
-        static_assert(sizeof(glm::vec4) == 4 * sizeof(float));
-        const float* samples = image.pixels.empty() ? nullptr : glm::value_ptr(image.pixels[0]);
-        const image::FloatPixels pixels{samples, image.width, image.height, 4};
-        image::writeImageFile(path, pixels, options);
+        image::writeImageFile(path, image, options);
         return;
     }
     // Display values, 8-bit RGB (the writer clamps to [0, 1], NaN to 0).
-    std::vector<float> display(size_t(image.width) * size_t(image.height) * 3);
-    for (size_t i = 0; i < image.pixels.size(); ++i) {
-        const glm::vec3 d = displayValue(image.pixels[i], aov, exposure);
+    std::vector<float> display(image.texelCount() * 3);
+    for (size_t i = 0; i < image.texelCount(); ++i) {
+        const glm::vec3 d = displayValue(image.rgba(i), aov, exposure);
         for (int c = 0; c < 3; ++c) display[3 * i + size_t(c)] = d[c];
     }
     options.type = image::SampleType::Unorm8;
@@ -99,16 +94,13 @@ Image readImage(const fs::path& path) {
     image::DecodeOptions options;
     options.maxChannels = 4;
     const image::DecodedImage d = image::decodeImageFile(path, options);
-    Image img;
-    img.width = d.width;
-    img.height = d.height;
-    img.pixels.resize(size_t(img.width) * size_t(img.height));
+    Image img(d.width, d.height, 4);
     for (int y = 0; y < img.height; ++y)
         for (int x = 0; x < img.width; ++x) {
             glm::vec4 v(0, 0, 0, 1);
             for (int c = 0; c < d.channels; ++c) v[c] = d.sample(x, y, c);
             if (d.channels == 1) v = glm::vec4(v.x, v.x, v.x, 1);
-            img.at(x, y) = v;
+            img.setRgba(x, y, v);
         }
     return img;
 }

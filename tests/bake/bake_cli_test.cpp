@@ -66,12 +66,12 @@ TEST(BakeCli, WritesEveryMapAndReportsCounts) {
     // The cube's limit surface lies outside the sphere of radius 0.7
     // almost everywhere: displacements are inwards, within the distance.
     float lo = 0;
-    for (float v : d.texels) lo = std::min(lo, v);
+    for (float v : d.samples) lo = std::min(lo, v);
     EXPECT_LT(lo, -0.05f);
     EXPECT_GT(lo, -0.5f);
     const normalmap::Image m = normalmap::readImage(mask);
     size_t baked = 0;
-    for (float v : m.texels) baked += v == 1.0f ? 1 : 0;
+    for (float v : m.samples) baked += v == 1.0f ? 1 : 0;
     EXPECT_EQ(baked, j["hits"].get<size_t>());
     EXPECT_EQ(normalmap::readImage(normal).channels, 3);
     EXPECT_EQ(normalmap::readImage(object).channels, 3);

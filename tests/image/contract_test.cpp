@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contract_death.h"
+#include "surfgrad/image.h"
 #include "surfgrad/image_write.h"
 
 namespace {
@@ -40,6 +41,14 @@ TEST_F(ContractDeath, MipChainIsTheWholeRoundDownChain) {
                              "the chain ends with a 1x1 level");
     SG_EXPECT_CONTRACT_DEATH(writeMipChainFile("x.exr", {l0, twoChannels, l2}, {}),
                              "every level has level 0's channels");
+}
+
+TEST_F(ContractDeath, ImageSizesAndSampleCount) {
+    SG_EXPECT_CONTRACT_DEATH(Image(-1, 2, 1), "an image's size and channels are >= 0");
+    SG_EXPECT_CONTRACT_DEATH(Image(2, 2, -4), "an image's size and channels are >= 0");
+    Image truncated(2, 2, 3);
+    truncated.samples.pop_back();
+    SG_EXPECT_CONTRACT_DEATH(floatPixels(truncated), "Image::samples has width");
 }
 
 } // namespace

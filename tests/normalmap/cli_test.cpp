@@ -131,8 +131,8 @@ TEST(NormalmapCli, RoundTripsThroughFiles) {
     ASSERT_EQ(run("to-height p.exr --encoding deriv -o h2.exr --wrap", dir).status, 0);
     const Image h1 = readImage(dir / "h.exr"), h2 = readImage(dir / "h2.exr");
     double maxDiff = 0;
-    for (size_t k = 0; k < h1.texels.size(); ++k)
-        maxDiff = std::max(maxDiff, double(std::abs(h1.texels[k] - h2.texels[k])));
+    for (size_t k = 0; k < h1.samples.size(); ++k)
+        maxDiff = std::max(maxDiff, double(std::abs(h1.samples[k] - h2.samples[k])));
     // Heights of a few texels stored in binary32: 1e-4 texels.
     EXPECT_LT(maxDiff, 1e-4);
 }

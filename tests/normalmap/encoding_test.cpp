@@ -20,7 +20,7 @@ using namespace sg::normalmap::test;
 // What writing with `bits` integer samples and reading back does.
 Image quantise(Image img, int bits) {
     const float q = float((1 << bits) - 1);
-    for (float& v : img.texels) v = std::round(std::clamp(v, 0.0f, 1.0f) * q) / q;
+    for (float& v : img.samples) v = std::round(std::clamp(v, 0.0f, 1.0f) * q) / q;
     return img;
 }
 

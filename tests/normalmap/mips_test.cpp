@@ -129,8 +129,8 @@ TEST(Mips, EveryLevelKeepsTheMeanAndTheFileRoundTrips) {
         // 32-bit float channels: bit exact. The channel order of the file
         // is the layout's (OpenEXR sorts names; OpenImageIO restores the
         // order written).
-        for (size_t k = 0; k < levels[lv].texels.size(); ++k) {
-            ASSERT_EQ(back[lv].texels[k], levels[lv].texels[k]) << "level " << lv;
+        for (size_t k = 0; k < levels[lv].samples.size(); ++k) {
+            ASSERT_EQ(back[lv].samples[k], levels[lv].samples[k]) << "level " << lv;
         }
     }
     EXPECT_EQ(names, (std::vector<std::string>{"dx", "dy", "dxx", "dyy", "dxy"}));

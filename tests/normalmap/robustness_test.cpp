@@ -45,7 +45,7 @@ Image hardMap(int W, int H) {
     img.width = W;
     img.height = H;
     img.channels = 3;
-    img.texels.resize(size_t(W) * size_t(H) * 3);
+    img.samples.resize(size_t(W) * size_t(H) * 3);
     for (int j = 0; j < H; ++j)
         for (int i = 0; i < W; ++i) {
             const auto& c = cases[size_t(i + 3 * j) % 8];
@@ -108,14 +108,14 @@ TEST(Robustness, HardTexelsThroughEveryOpStayFinite) {
         }
         // Every result encodes without NaN.
         const Image out = encodeSlopes(scale(d, 2.0f), MapFormat{}, false);
-        for (float v : out.texels) ASSERT_TRUE(std::isfinite(v));
+        for (float v : out.samples) ASSERT_TRUE(std::isfinite(v));
         auto lean = mipChain(leanLevel0(d));
         auto toks = mipChain(toksvigLevel0(n));
         finishToksvig(toks);
         for (const auto& L : lean)
-            for (float v : L.texels) ASSERT_TRUE(std::isfinite(v));
+            for (float v : L.samples) ASSERT_TRUE(std::isfinite(v));
         for (const auto& L : toks)
-            for (float v : L.texels) ASSERT_TRUE(std::isfinite(v) && v >= -1.0f);
+            for (float v : L.samples) ASSERT_TRUE(std::isfinite(v) && v >= -1.0f);
     }
     const std::string c = "flat, horizon, beyond-the-rim, inward and zero texels, every op";
     sg::test::reportHardCase({"normal-map-images", c, "largest |slope| of the correct ops",
@@ -188,7 +188,7 @@ TEST(Robustness, BadFilesAreInputErrors) {
         Image gray;
         gray.width = gray.height = 4;
         gray.channels = 1;
-        gray.texels.assign(16, 0.5f);
+        gray.samples.assign(16, 0.5f);
         try {
             (void)decodeSlopes(gray, MapFormat{}, "gray.png");
             FAIL();

@@ -52,8 +52,8 @@ struct Angles {
 
 Angles compareDirections(const Image& a, const Image& b) {
     Angles r;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 x(a.pixels[i]), y(b.pixels[i]);
+    for (size_t i = 0; i < a.texelCount(); ++i) {
+        const glm::vec3 x(a.rgba(i)), y(b.rgba(i));
         if (!std::isfinite(x.x + x.y + x.z) || !std::isfinite(y.x + y.y + y.z)) {
             ++r.nonFinite;
             continue;

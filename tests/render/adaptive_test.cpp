@@ -245,8 +245,8 @@ struct NormalAgreement {
 NormalAgreement compareNormals(const Image& a, const Image& b) {
     NormalAgreement r;
     std::vector<double> deg;
-    for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 na(a.pixels[i]), nb(b.pixels[i]);
+    for (size_t i = 0; i < a.texelCount(); ++i) {
+        const glm::vec3 na(a.rgba(i)), nb(b.rgba(i));
         for (int c = 0; c < 3; ++c) r.nonFinite += !std::isfinite(na[c]) || !std::isfinite(nb[c]);
         const bool ca = glm::length(na) > 0.5f, cb = glm::length(nb) > 0.5f;
         if (ca != cb) ++r.onlyOne;
@@ -451,8 +451,8 @@ TEST(AdaptiveDraw, PatchAovLevelsMatchTheCpu) {
     const float patches = float(a.meshes[0].patches->patchCount());
     size_t both = 0, samePatch = 0, sameLevel = 0, bad = 0;
     float maxLevel = 0.0f;
-    for (size_t i = 0; i < g.pixels.size(); ++i) {
-        const glm::vec4 pg = g.pixels[i], pc = c.pixels[i];
+    for (size_t i = 0; i < g.texelCount(); ++i) {
+        const glm::vec4 pg = g.rgba(i), pc = c.rgba(i);
         if (pg.x <= 0.0f || pc.x <= 0.0f) continue;
         ++both;
         for (const glm::vec4& p : {pg, pc}) {
@@ -612,13 +612,12 @@ TEST(AdaptiveUv, UvAovMatchesTheUniformLimitUvs) {
     Image nu = gpu().render(su, au, vp), na = gpu().render(sa, aa, vp);
     std::vector<double> d;
     size_t both = 0, cut = 0, nonFinite = 0;
-    for (size_t i = 0; i < iu.pixels.size(); ++i) {
-        nonFinite += !std::isfinite(ia.pixels[i].x) || !std::isfinite(ia.pixels[i].y);
-        if (glm::length(glm::vec3(nu.pixels[i])) < 0.5f ||
-            glm::length(glm::vec3(na.pixels[i])) < 0.5f)
+    for (size_t i = 0; i < iu.texelCount(); ++i) {
+        nonFinite += !std::isfinite(ia.rgba(i).x) || !std::isfinite(ia.rgba(i).y);
+        if (glm::length(glm::vec3(nu.rgba(i))) < 0.5f || glm::length(glm::vec3(na.rgba(i))) < 0.5f)
             continue;
         ++both;
-        const double e = glm::length(glm::vec2(ia.pixels[i]) - glm::vec2(iu.pixels[i]));
+        const double e = glm::length(glm::vec2(ia.rgba(i)) - glm::vec2(iu.rgba(i)));
         if (e > 0.02) {
             ++cut;
             continue;
@@ -836,7 +835,7 @@ TEST(AdaptiveDisplacement, DisplacedSurfacePinholes) {
         for (int pass = 0; pass < 2; ++pass) {
             Image img = pass == 0 ? gpu().render(s, a, v) : renderCpu(s, a, v);
             auto covered = [&](int x, int y) {
-                return glm::length(glm::vec3(img.pixels[size_t(y) * size_t(w) + size_t(x)])) > 0.5f;
+                return glm::length(glm::vec3(img.rgba(size_t(y) * size_t(w) + size_t(x)))) > 0.5f;
             };
             size_t holes = 0, inside = 0;
             for (int y = 1; y + 1 < h; ++y)
@@ -895,7 +894,7 @@ TEST(RenderHardCases, AdaptiveDisplacementBehindTheEyeIsBounded) {
                 SceneAssets a0 = loadAssets(s0);
                 const View v0 = makeView(s0, a0, 0, 0, aov);
                 const Image g0 = gpu().render(s0, a0, v0), c0 = renderCpu(s0, a0, v0);
-                for (size_t i = 0; i < g.pixels.size(); ++i) {
+                for (size_t i = 0; i < g.texelCount(); ++i) {
                     // A pixel changes when its normal turns by more than 1
                     // degree or its coverage changes.
                     auto differs = [](glm::vec4 p, glm::vec4 q) {
@@ -905,8 +904,8 @@ TEST(RenderHardCases, AdaptiveDisplacementBehindTheEyeIsBounded) {
                         return la > 0.5f &&
                                glm::dot(np, nq) < std::cos(glm::radians(1.0f)) * la * lb;
                     };
-                    changed[0] += differs(g.pixels[i], g0.pixels[i]);
-                    changed[1] += differs(c.pixels[i], c0.pixels[i]);
+                    changed[0] += differs(g.rgba(i), g0.rgba(i));
+                    changed[1] += differs(c.rgba(i), c0.rgba(i));
                 }
             }
             detail::PatchDisplacement d;

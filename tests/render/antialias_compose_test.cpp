@@ -512,10 +512,9 @@ TEST(AntialiasCompose, GpuMatchesCpuOnTriplanarAndDecals) {
         EXPECT_EQ(countNonFinite(c), 0u);
         double maxRel = 0.0;
         size_t compared = 0;
-        for (size_t i = 0; i < g.pixels.size(); ++i) {
-            if (r.gpuPrim.pixels[i].x <= 0.0f || r.gpuPrim.pixels[i].x != r.cpuPrim.pixels[i].x)
-                continue;
-            glm::vec3 x(g.pixels[i]), y(c.pixels[i]);
+        for (size_t i = 0; i < g.texelCount(); ++i) {
+            if (r.gpuPrim.rgba(i).x <= 0.0f || r.gpuPrim.rgba(i).x != r.cpuPrim.rgba(i).x) continue;
+            glm::vec3 x(g.rgba(i)), y(c.rgba(i));
             const double scale = std::max(double(glm::length(y)), 0.05);
             maxRel = std::max(maxRel, double(glm::length(x - y)) / scale);
             ++compared;
@@ -560,8 +559,8 @@ TEST(AntialiasCompose, NoneCompilesAsBeforeAndAaWidensTheLobe) {
     Image on = gpu().render(sOn, aOn, makeView(sOn, aOn, 0, 0, Aov::Color));
     Image off = gpu().render(sOff, aOff, makeView(sOff, aOff, 0, 0, Aov::Color));
     double maxDiff = 0.0;
-    for (size_t i = 0; i < on.pixels.size(); ++i)
-        maxDiff = std::max(maxDiff, double(glm::length(glm::vec3(on.pixels[i] - off.pixels[i]))));
+    for (size_t i = 0; i < on.texelCount(); ++i)
+        maxDiff = std::max(maxDiff, double(glm::length(glm::vec3(on.rgba(i) - off.rgba(i)))));
     EXPECT_GT(maxDiff, 1e-3);
     EXPECT_EQ(countNonFinite(on), 0u);
 }
@@ -593,8 +592,8 @@ TEST(AntialiasCompose, UnmappedStudyVariantDropsOnlyTheJacobian) {
     };
     auto maxDiff = [](const Image& x, const Image& y) {
         double d = 0.0;
-        for (size_t i = 0; i < x.pixels.size(); ++i)
-            d = std::max(d, double(glm::length(glm::vec3(x.pixels[i] - y.pixels[i]))));
+        for (size_t i = 0; i < x.texelCount(); ++i)
+            d = std::max(d, double(glm::length(glm::vec3(x.rgba(i) - y.rgba(i)))));
         return d;
     };
     const size_t programsBefore = gl.cachedPrograms();
@@ -661,10 +660,9 @@ TEST(AntialiasCompose, NoiseAntialiasValuesAndCompilation) {
     Image g = gpu().render(s, a, v), c = renderCpu(s, a, v, parity);
     EXPECT_EQ(countNonFinite(g), 0u);
     double maxRel = 0.0;
-    for (size_t i = 0; i < g.pixels.size(); ++i) {
-        if (r.gpuPrim.pixels[i].x <= 0.0f || r.gpuPrim.pixels[i].x != r.cpuPrim.pixels[i].x)
-            continue;
-        glm::vec3 x(g.pixels[i]), y(c.pixels[i]);
+    for (size_t i = 0; i < g.texelCount(); ++i) {
+        if (r.gpuPrim.rgba(i).x <= 0.0f || r.gpuPrim.rgba(i).x != r.cpuPrim.rgba(i).x) continue;
+        glm::vec3 x(g.rgba(i)), y(c.rgba(i));
         maxRel =
             std::max(maxRel, double(glm::length(x - y)) / std::max(double(glm::length(y)), 0.05));
     }

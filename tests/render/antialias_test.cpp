@@ -249,10 +249,9 @@ TEST(Antialias, GpuMatchesCpuOnTheAntialiasedPath) {
         EXPECT_EQ(countNonFinite(c), 0u);
         double maxRel = 0.0;
         size_t compared = 0;
-        for (size_t i = 0; i < g.pixels.size(); ++i) {
-            if (p.gpuPrim.pixels[i].x <= 0.0f || p.gpuPrim.pixels[i].x != p.cpuPrim.pixels[i].x)
-                continue;
-            glm::vec3 x(g.pixels[i]), y(c.pixels[i]);
+        for (size_t i = 0; i < g.texelCount(); ++i) {
+            if (p.gpuPrim.rgba(i).x <= 0.0f || p.gpuPrim.rgba(i).x != p.cpuPrim.rgba(i).x) continue;
+            glm::vec3 x(g.rgba(i)), y(c.rgba(i));
             const double scale = std::max(double(glm::length(y)), 0.05);
             maxRel = std::max(maxRel, double(glm::length(x - y)) / scale);
             ++compared;
@@ -276,8 +275,8 @@ TEST(Antialias, WidensTheHighlightOnlyWhereTheFootprintHidesBumps) {
     Image on = gpu().render(sOn, aOn, makeView(sOn, aOn, 0, 0, Aov::Color));
     Image off = gpu().render(sOff, aOff, makeView(sOff, aOff, 0, 0, Aov::Color));
     double maxDiff = 0.0;
-    for (size_t i = 0; i < on.pixels.size(); ++i)
-        maxDiff = std::max(maxDiff, double(glm::length(glm::vec3(on.pixels[i] - off.pixels[i]))));
+    for (size_t i = 0; i < on.texelCount(); ++i)
+        maxDiff = std::max(maxDiff, double(glm::length(glm::vec3(on.rgba(i) - off.rgba(i)))));
     EXPECT_GT(maxDiff, 1e-3);
     EXPECT_EQ(countNonFinite(on), 0u);
 }
@@ -342,15 +341,15 @@ TEST(Antialias, LeavesPixelsWithoutSlopeVarianceUnchanged) {
             double f = 0.0; // texels per pixel, the largest neighbour difference
             for (int j = -1; j <= 1; ++j)
                 for (int i = -1; i <= 1; ++i) {
-                    covered = covered && prim.at(x + i, y + j).x > 0.0f;
-                    const glm::dvec2 d = glm::dvec2(glm::vec2(uv.at(x + i, y + j))) -
-                                         glm::dvec2(glm::vec2(uv.at(x, y)));
+                    covered = covered && prim.rgba(x + i, y + j).x > 0.0f;
+                    const glm::dvec2 d = glm::dvec2(glm::vec2(uv.rgba(x + i, y + j))) -
+                                         glm::dvec2(glm::vec2(uv.rgba(x, y)));
                     f = std::max(f, glm::length(d) * n);
                 }
             if (!covered) continue;
-            const glm::vec3 a(on.at(x, y)), b(off.at(x, y));
+            const glm::vec3 a(on.rgba(x, y)), b(off.rgba(x, y));
             const double rel = double(glm::length(a - b)) / std::max(double(glm::length(b)), 1e-6);
-            const double s = double(uv.at(x, y).x);
+            const double s = double(uv.rgba(x, y).x);
             const double reach = (2.0 * std::max(f, 1.0) + 1.0) / n;
             if (s - reach > 0.56 && s + reach < 0.84) {
                 ++flat;

@@ -131,7 +131,7 @@ Rendered renderCase(const Scene& scene, int w, int h) {
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
             for (int c = 0; c < 3; ++c) {
-                const float v = std::clamp(0.5f * n.at(x, h - 1 - y)[c] + 0.5f, 0.0f, 1.0f);
+                const float v = std::clamp(0.5f * n.rgba(x, h - 1 - y)[c] + 0.5f, 0.0f, 1.0f);
                 r.normal[(size_t(y) * size_t(w) + size_t(x)) * 3 + size_t(c)] =
                     uint16_t(std::lround(v * 65535.0f));
             }

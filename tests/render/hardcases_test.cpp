@@ -227,11 +227,11 @@ Scene farScene(float c) {
 // Largest angle (degrees) between the normal AOVs of two renders over the
 // pixels both cover; coverage must match.
 double maxNormalAngleDeg(const Image& a, const Image& b) {
-    EXPECT_EQ(a.pixels.size(), b.pixels.size());
+    EXPECT_EQ(a.texelCount(), b.texelCount());
     double worst = 0.0;
     size_t covered = 0;
-    for (size_t i = 0; i < a.pixels.size() && i < b.pixels.size(); ++i) {
-        const glm::dvec3 u(a.pixels[i]), v(b.pixels[i]);
+    for (size_t i = 0; i < a.texelCount() && i < b.texelCount(); ++i) {
+        const glm::dvec3 u(a.rgba(i)), v(b.rgba(i));
         const bool ca = glm::length(u) > 0.5, cb = glm::length(v) > 0.5;
         EXPECT_EQ(ca, cb) << "pixel " << i;
         if (!ca || !cb) continue;

@@ -137,9 +137,9 @@ TEST_P(LayerImage, GpuMatchesCpuReference) {
     View v = makeView(s, a, 0, 0, Aov::BaseNormal);
     Image base = gpu().render(s, a, v);
     double maxTilt = 0.0;
-    for (size_t i = 0; i < base.pixels.size(); ++i) {
-        if (p.gpuPrim.pixels[i].x <= 0.0f) continue;
-        glm::vec3 n(p.gpuNormal.pixels[i]), b(base.pixels[i]);
+    for (size_t i = 0; i < base.texelCount(); ++i) {
+        if (p.gpuPrim.rgba(i).x <= 0.0f) continue;
+        glm::vec3 n(p.gpuNormal.rgba(i)), b(base.rgba(i));
         maxTilt = std::max(
             maxTilt, double(glm::degrees(std::acos(std::clamp(glm::dot(n, b), -1.0f, 1.0f)))));
     }
@@ -205,9 +205,9 @@ TEST(Morph, AnimatedMorphSphereMidAnimation) {
     EXPECT_LE(p.diff.maxDeg, 0.05);
     // The shape moved: normals differ from frame 0 somewhere.
     double maxChange = 0.0;
-    for (size_t i = 0; i < at0.pixels.size(); ++i) {
-        if (p.gpuPrim.pixels[i].x <= 0.0f || glm::length(glm::vec3(at0.pixels[i])) < 0.5f) continue;
-        float c = glm::dot(glm::vec3(at0.pixels[i]), glm::vec3(p.gpuNormal.pixels[i]));
+    for (size_t i = 0; i < at0.texelCount(); ++i) {
+        if (p.gpuPrim.rgba(i).x <= 0.0f || glm::length(glm::vec3(at0.rgba(i))) < 0.5f) continue;
+        float c = glm::dot(glm::vec3(at0.rgba(i)), glm::vec3(p.gpuNormal.rgba(i)));
         maxChange =
             std::max(maxChange, double(glm::degrees(std::acos(std::clamp(c, -1.0f, 1.0f)))));
     }
@@ -234,11 +234,11 @@ TEST(DoubleSided, BackFaceModesFollowSection210) {
     auto none = render("none"), mirror = render("mirror"), flip = render("flip");
     size_t n = 0;
     sg::test::Worst mirrorErr, flipErr, cpuAngle;
-    for (size_t i = 0; i < none.first.pixels.size(); ++i) {
-        glm::vec3 a(none.first.pixels[i]);
+    for (size_t i = 0; i < none.first.texelCount(); ++i) {
+        glm::vec3 a(none.first.rgba(i));
         if (glm::length(a) < 0.5f) continue; // background
         ++n;
-        glm::vec3 m(mirror.first.pixels[i]), f(flip.first.pixels[i]);
+        glm::vec3 m(mirror.first.rgba(i)), f(flip.first.rgba(i));
         // Same rasterisation and the same arithmetic up to sign flips:
         // float-rounding-level agreement (1e-5 on unit vectors).
         EXPECT_NEAR(m.x, a.x, 1e-5f);
@@ -251,7 +251,7 @@ TEST(DoubleSided, BackFaceModesFollowSection210) {
         // still does (the paper's "perturbed normal remains the same").
         EXPECT_GT(a.y, 0.0f);
         // CPU reference agrees on the mode logic (its own bound: see above).
-        glm::vec3 c(flip.second.pixels[i]);
+        glm::vec3 c(flip.second.rgba(i));
         if (glm::length(c) > 0.5f) {
             EXPECT_GT(glm::dot(c, f), std::cos(glm::radians(10.0f)));
             cpuAngle.add(glm::degrees(std::acos(std::clamp(double(glm::dot(c, f)), -1.0, 1.0))));
@@ -372,10 +372,10 @@ void compareTangentFrames(const char* model) {
     EXPECT_LE(d.maxDeg, 2.0);
     // Where: the share of pixels by angle band, and the worst pixel.
     size_t over1 = 0, over5 = 0;
-    for (size_t i = 0; i < np.pixels.size(); ++i) {
-        if (pp.pixels[i].x <= 0 || pp.pixels[i].x != pm.pixels[i].x) continue;
+    for (size_t i = 0; i < np.texelCount(); ++i) {
+        if (pp.rgba(i).x <= 0 || pp.rgba(i).x != pm.rgba(i).x) continue;
         float ang = glm::degrees(std::acos(
-            std::clamp(glm::dot(glm::vec3(np.pixels[i]), glm::vec3(nm.pixels[i])), -1.0f, 1.0f)));
+            std::clamp(glm::dot(glm::vec3(np.rgba(i)), glm::vec3(nm.rgba(i))), -1.0f, 1.0f)));
         over1 += ang > 1.0f;
         over5 += ang > 5.0f;
     }
@@ -442,12 +442,12 @@ TEST(DefaultScene, RendersWithoutNaNAndMatchesTheCpuReference) {
     // The normals differ as bounded above; the display values by less than
     // 1% on average (measured 0.2%).
     double sum = 0;
-    for (size_t i = 0; i < g.pixels.size(); ++i) {
-        glm::vec3 dg = sg::glsl::sgToneMap(glm::vec3(g.pixels[i]), 1.0f),
-                  dc = sg::glsl::sgToneMap(glm::vec3(c.pixels[i]), 1.0f);
+    for (size_t i = 0; i < g.texelCount(); ++i) {
+        glm::vec3 dg = sg::glsl::sgToneMap(glm::vec3(g.rgba(i)), 1.0f),
+                  dc = sg::glsl::sgToneMap(glm::vec3(c.rgba(i)), 1.0f);
         sum += double(std::abs(dg.x - dc.x) + std::abs(dg.y - dc.y) + std::abs(dg.z - dc.z)) / 3.0;
     }
-    EXPECT_LT(sum / double(g.pixels.size()), 0.01);
+    EXPECT_LT(sum / double(g.texelCount()), 0.01);
 }
 
 } // namespace

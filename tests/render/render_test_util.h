@@ -85,14 +85,13 @@ inline NormalRenders renderNormalsBoth(const Scene& scene, const SceneAssets& as
 
 inline size_t countNonFinite(const Image& img) {
     size_t n = 0;
-    for (const auto& p : img.pixels)
-        for (int c = 0; c < 4; ++c) n += !std::isfinite(p[c]);
+    for (float v : img.samples) n += !std::isfinite(v);
     return n;
 }
 
 inline size_t countCovered(const Image& prim) {
     size_t n = 0;
-    for (const auto& p : prim.pixels) n += p.x > 0.0f;
+    for (size_t i = 0; i < prim.texelCount(); ++i) n += prim.rgba(i).x > 0.0f;
     return n;
 }
 

@@ -218,7 +218,7 @@ TEST(VirtualSurface, DecalAfterPomLandsOnTheRayTracedRelief) {
             // lateral test at the mesh point).
             const bool atMesh = insideBox(t.mesh);
             for (int k = 0; k < 2; ++k) {
-                const glm::vec4 n = (k ? gpuImg : cpu).at(x, y);
+                const glm::vec4 n = (k ? gpuImg : cpu).rgba(x, y);
                 Count& c = k ? gpuC : cpuC;
                 // The decal tilts the normal by 26.6 degrees (its map), the
                 // floor and the top are flat (+y): on = more than 5 degrees.
@@ -280,7 +280,7 @@ TEST(VirtualSurface, PointLightsLightTheRelief) {
                 if (stepEdgeDistance(t.hit.x) < stepMargin ||
                     stepEdgeDistance(t.mesh.x) < stepMargin)
                     continue;
-                const bool lit = glm::length(glm::vec3(img.at(x, y))) > 0.0f;
+                const bool lit = glm::length(glm::vec3(img.rgba(x, y))) > 0.0f;
                 if (t.hit.y < -0.999 * kScale) {
                     (lit ? floorLit : floorDark)++;
                 } else if (t.hit.y > -1e-9) {
@@ -360,7 +360,7 @@ TEST(VirtualSurface, PomNormalCorrectionFollowsTheCurvedRelief) {
             if (glm::dot(nOut, -d) < 0.5) continue;
             const glm::dvec3 expected = glm::normalize(eye + tIn * d);
             for (int k = 0; k < 4; ++k) {
-                const glm::dvec3 got(glm::vec3(images[k].at(x, y)));
+                const glm::dvec3 got(glm::vec3(images[k].rgba(x, y)));
                 if (glm::length(got) < 0.5) continue;
                 err[k].push_back(glm::degrees(
                     std::acos(std::clamp(glm::dot(glm::normalize(got), expected), -1.0, 1.0))));

@@ -108,10 +108,8 @@ TEST(StudyAdaptiveError, MediumViewNeedsUniformLevel3) {
 // are counted, a NaN vector is counted as non-finite.
 TEST(StudyAdaptiveError, FrameErrorComparesOnlyTheSameSheet) {
     auto img = [](std::vector<glm::vec4> px) {
-        Image i;
-        i.width = int(px.size());
-        i.height = 1;
-        i.pixels = std::move(px);
+        Image i(int(px.size()), 1, 4);
+        for (size_t k = 0; k < px.size(); ++k) i.setRgba(k, px[k]);
         return i;
     };
     auto dir = [](double deg) {

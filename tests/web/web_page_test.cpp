@@ -145,7 +145,7 @@ TEST(WebPage, NormalViewAgreesWithTheRenderer) {
                               &page.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4]),
                           3);
             for (int x = 0; x < w; ++x) {
-                const glm::vec4 o = ours.at(x, h - 1 - y);
+                const glm::vec4 o = ours.rgba(x, h - 1 - y);
                 for (int k = 0; k < 3; ++k)
                     ppm.put(
                         char(std::clamp(int(std::lround((0.5f * o[k] + 0.5f) * 255.0f)), 0, 255)));

@@ -345,13 +345,10 @@ bool panel(Scene& scene, SceneAssets& assets, const GlRenderer& renderer, Viewer
 // --screenshot with --frames: the whole window as shown (render, display
 // pass and, unless --no-ui, the panel), read from the back buffer.
 void windowScreenshot(const std::filesystem::path& file, int fbw, int fbh) {
-    Image img;
-    img.width = fbw;
-    img.height = fbh;
-    img.pixels.resize(size_t(fbw) * size_t(fbh));
+    Image img(fbw, fbh, 4);
     glReadBuffer(GL_BACK);
     glPixelStorei(GL_PACK_ALIGNMENT, 4);
-    glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_FLOAT, img.pixels.data());
+    glReadPixels(0, 0, fbw, fbh, GL_RGBA, GL_FLOAT, img.samples.data());
     writeDisplayImage(file, img);
 }
 

@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "surfgrad/image.h"
 #include "surfgrad/image_format.h"
 
 namespace sg::image {
@@ -53,6 +54,10 @@ struct FloatPixels {
     int channels = 0;
 };
 
+// The writer's view of `image` (surfgrad/image.h), which outlives the
+// write. Expects image.samples to hold width * height * channels floats.
+FloatPixels floatPixels(const Image& image);
+
 // What the file holds besides the samples.
 struct WriteOptions {
     SampleType type = SampleType::Float; // the file's samples (checkWritable)
@@ -68,6 +73,9 @@ struct WriteOptions {
 // Writes `pixels` to `path` atomically in the format of its extension
 // (checkWritable(path, options.type) first).
 void writeImageFile(const std::filesystem::path& path, const FloatPixels& pixels,
+                    const WriteOptions& options);
+// The same for an Image: writeImageFile(path, floatPixels(image), options).
+void writeImageFile(const std::filesystem::path& path, const Image& image,
                     const WriteOptions& options);
 
 // Writes a MIP chain as one tiled OpenEXR file (64x64 tiles, OpenEXR

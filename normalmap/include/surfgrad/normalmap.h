@@ -51,6 +51,8 @@
 
 #include <glm/glm.hpp>
 
+#include "surfgrad/image.h"
+
 namespace sg::mesh {
 struct RenderMesh;
 }
@@ -91,19 +93,11 @@ using Progress = std::function<void(double fraction)>;
 
 enum class SampleType { U8, U16, Half, Float };
 
-// Raw channel values, no colour conversion (normal maps are data): integer
-// samples become [0, 1], float samples are kept. Row 0 is the bottom row.
-struct Image {
-    int width = 0, height = 0, channels = 0;
-    bool isFloat = false;      // samples were (or are to be written as) floating point
-    std::vector<float> texels; // width * height * channels
-    float& at(int i, int j, int c) {
-        return texels[(size_t(j) * size_t(width) + size_t(i)) * size_t(channels) + size_t(c)];
-    }
-    float at(int i, int j, int c) const {
-        return texels[(size_t(j) * size_t(width) + size_t(i)) * size_t(channels) + size_t(c)];
-    }
-};
+// The toolkit's images are the image module's (surfgrad/image.h): raw
+// channel values, no colour conversion (normal maps are data); integer
+// samples become [0, 1], float samples are kept (Image::isFloat says
+// which). Row 0 is the bottom row; at(i, j, c) is texel (i, j)'s channel c.
+using Image = sg::image::Image;
 
 // Largest side and texel count readImage accepts (larger files are refused
 // before decoding).

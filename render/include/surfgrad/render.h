@@ -17,8 +17,8 @@
 //  - shading happens in world space RELATIVE TO THE CAMERA (listing 16);
 //  - texture coordinates have (0,0) at the lower-left image corner, t up;
 //    images are flipped on load so texel row 0 is the bottom row;
-//  - images (Image) are stored bottom row first, as OpenGL reads them back;
-//    writers flip them to the usual top-first order.
+//  - images (Image = sg::image::Image, RGBA) are stored bottom row first, as
+//    OpenGL reads them back; writers flip them to the usual top-first order.
 // Errors: invalid scenes and assets throw sg::io::InputError naming the file,
 // the field path (e.g. "materials[0].layers[2].strength") and the reason; GL
 // failures throw sg::gl::GlError.

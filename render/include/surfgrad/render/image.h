@@ -2,11 +2,12 @@
 // bottom row first as OpenGL reads them back), their files, and the
 // comparison of two images of unit vectors.
 //
-// Contract: Image::pixels has width * height entries. Writers go through
-// the image module's writer (surfgrad/image_write.h): rows flipped to the
-// usual top-first file order, written atomically (sg::io::writeAtomically);
-// a failed write or an unsupported extension is an sg::io::InputError, and
-// no partial file is left.
+// Contract: an AOV image is an sg::image::Image (surfgrad/image.h) with 4
+// channels, width * height * 4 samples. Writers go through the image
+// module's writer (surfgrad/image_write.h): rows flipped to the usual
+// top-first file order, written atomically (sg::io::writeAtomically); a
+// failed write or an unsupported extension is an sg::io::InputError, and no
+// partial file is left.
 #pragma once
 
 #include <cstddef>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "surfgrad/image.h"
 
 namespace sg::render {
 
@@ -28,14 +31,9 @@ const char* aovName(Aov a);
 // "basenormal", "uv", "primid", "patch"); nullopt for anything else.
 std::optional<Aov> parseAov(const std::string& name);
 
-struct Image {
-    int width = 0, height = 0;
-    std::vector<glm::vec4> pixels; // bottom row first
-    glm::vec4& at(int x, int y) { return pixels[size_t(y) * size_t(width) + size_t(x)]; }
-    const glm::vec4& at(int x, int y) const {
-        return pixels[size_t(y) * size_t(width) + size_t(x)];
-    }
-};
+// The renderers' images are the image module's (surfgrad/image.h): 4
+// channels (RGBA float, rgba()/setRgba() per texel), bottom row first.
+using Image = sg::image::Image;
 
 // Writes an image atomically (sg::io::writeAtomically). ".exr": linear RGBA
 // float (the AOV's raw values). ".png" (8-bit sRGB): colour is tone-mapped
@@ -46,7 +44,7 @@ struct Image {
 // writeDisplayImage). Throws InputError for an unsupported extension or a
 // failed write.
 void writeImage(const std::filesystem::path& path, const Image& image, Aov aov, float exposure);
-Image readImage(const std::filesystem::path& path); // RGBA float, bottom row first
+Image readImage(const std::filesystem::path& path); // 4 channels (RGBA), bottom row first
 // Writes display-referred values in [0, 1] as they are (8-bit PNG, RGB), e.g.
 // a window capture.
 void writeDisplayImage(const std::filesystem::path& path, const Image& image);
