@@ -118,7 +118,7 @@ TEST(WebPage, NormalViewAgreesWithTheRenderer) {
     for (int y = 0; y < h; ++y) {
         for (int x = 0; x < w; ++x) {
             const uint8_t* p = &page.rgba[(size_t(y) * size_t(w) + size_t(x)) * 4];
-            const glm::vec4 o = ours.at(x, h - 1 - y); // ours: bottom row first
+            const glm::vec4 o = ours.rgba(x, h - 1 - y); // ours: bottom row first
             const bool inPage = p[3] == 255;
             const bool inOurs = glm::length(glm::vec3(o)) > 0.5f;
             if (inPage != inOurs) {
