@@ -23,6 +23,7 @@
 #include <cmath>
 #include <string>
 
+#include "layers/feature_assets.h"
 #include "render_internal.h"
 #include "surfgrad/curves.h"
 #include "surfgrad/feature_maps.h"

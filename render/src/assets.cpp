@@ -1,6 +1,8 @@
 // Scene assets: meshes (procedural ones from procedural_mesh.cpp, files
 // through the mesh module), textures (files through texture_file.cpp, or
-// procedural), and per-frame morphing. (The scene made for a bare model:
+// procedural, or made by a layer kind's producer), the layer kinds' own
+// assets through their registry hooks (LayerKindAssets::load), and
+// per-frame morphing. (The scene made for a bare model:
 // model_scene.cpp; the camera views: view.cpp.) Effects on demand: only textures of
 // enabled layers are loaded, each once (by TextureSource::key()), and only
 // the channels those layers read; all of them within the scene's texture
@@ -17,7 +19,6 @@
 #include "layer_kind.h"
 #include "render_internal.h"
 #include "surfgrad/contract.h"
-#include "surfgrad/feature_maps.h"
 #include "surfgrad/image_header.h"
 #include "surfgrad/io.h"
 #include "surfgrad/mesh_io.h"
@@ -47,52 +48,11 @@ io::InputError referencedFileError(const std::string& sceneName, const std::stri
 
 namespace {
 
-// Enabled layers whose kind reads feature maps.
-void collectFeatures(const Layer& L, std::vector<const Layer*>& out) {
+// Enabled layers (children included) of `kind` that read its own assets.
+void collectKindLayers(const Layer& L, const LayerKind& kind, std::vector<const Layer*>& out) {
     if (!L.enabled) return;
-    if (L.kind->featureSource && L.kind->featureSource(L)) out.push_back(&L);
-    for (const auto& c : L.children) collectFeatures(c, out);
-}
-
-// Loads or bakes a feature layer's maps (features are not baked unless an
-// enabled layer uses them).
-std::shared_ptr<const FeatureMapsAsset> loadFeatureMaps(const FeatureSource& f,
-                                                        const std::string& sceneName) {
-    namespace sf = sg::features;
-    static std::atomic<uint64_t> nextUid{1};
-    sf::FeatureMaps maps;
-    if (!f.mapsFile.empty()) {
-        maps = detail::fromReferencedFile(sceneName, f.fieldPath, [&] {
-            std::error_code ec;
-            if (!fs::is_regular_file(f.mapsFile, ec)) {
-                throw io::InputError(f.mapsFile.string(), "",
-                                     fs::exists(f.mapsFile, ec) ? "not a regular file"
-                                                                : "does not exist");
-            }
-            return sf::load(f.mapsFile);
-        });
-    } else {
-        sf::CurveNetwork net =
-            detail::fromReferencedFile(sceneName, f.fieldPath + "." + f.curvesKind, [&] {
-                return f.curvesKind == "svg"    ? sf::loadSvg(f.curvesFile)
-                       : f.curvesKind == "json" ? sf::loadCurvesJson(f.curvesFile)
-                                                : sf::loadFont(f.curvesFile, f.text);
-            });
-        sf::BakeOptions opt;
-        opt.size = f.size;
-        opt.mode = f.quadratic ? sf::BakeMode::Quadratic : sf::BakeMode::Linear;
-        opt.marginTexels = f.marginTexels;
-        opt.nearField = f.nearField;
-        opt.nearWidthTexels = f.nearWidthTexels;
-        maps = sf::bake(net, opt);
-    }
-    auto a = std::make_shared<FeatureMapsAsset>();
-    a->gpu = maps.packGpu();
-    a->bandTexels = maps.bandTexels;
-    a->quadratic = maps.mode == sf::BakeMode::Quadratic;
-    a->nearBandTexels = maps.nearBandTexels;
-    a->uid = nextUid++;
-    return a;
+    if (L.kind == &kind && kind.assets->reads(L)) out.push_back(&L);
+    for (const auto& c : L.children) collectKindLayers(c, kind, out);
 }
 
 // A texture a layer reads and the RGBA components it reads from it
@@ -119,32 +79,6 @@ std::string componentList(uint32_t mask) {
     for (int c = 0; c < 4; ++c)
         if (mask >> c & 1u) s += std::string(s.empty() ? "" : ", ") + "rgba"[c];
     return s;
-}
-
-// A feature layer's chain (both of its textures, built in one pass from
-// the loaded maps; the part not asked for is stored under its own key)
-// within the texture budget `opt`.
-std::shared_ptr<const TextureImage> loadFeatureChain(const Scene& scene, SceneAssets& assets,
-                                                     const TextureSource& src,
-                                                     const TextureLoadOptions& opt) {
-    const FeatureChainSource& c = *src.featureChain;
-    auto fm = assets.featureMaps.find(c.mapsKey);
-    SG_ASSERT(fm != assets.featureMaps.end(), "feature maps load before their chains");
-    const int n = fm->second->gpu.size;
-    try {
-        detail::checkTextureBudget("prefiltered chain of feature maps " + c.mapsKey, opt,
-                                   std::to_string(n) + "x" + std::to_string(n) +
-                                       " texels, 2 x 4 channels as float",
-                                   2 * textureBytes(n, n, 4, TexelType::Float), 0);
-    } catch (const io::InputError& e) {
-        throw io::InputError(scene.sourceName, src.fieldPath, e.what());
-    }
-    detail::FeatureChainTextures chain = detail::featureChainTextures(*fm->second, c);
-    TextureSource other = src;
-    other.featureChain->part = 1 - c.part;
-    assets.textures[other.key()] =
-        std::make_shared<const TextureImage>(std::move(chain.part[1 - c.part]));
-    return std::make_shared<const TextureImage>(std::move(chain.part[c.part]));
 }
 
 // Loads every texture of `uses` the assets lack, or lack components of
@@ -174,8 +108,8 @@ void loadTextures(const Scene& scene, SceneAssets& assets, const std::vector<Tex
             ++opt.otherTextures;
         }
         std::shared_ptr<const TextureImage> tex;
-        if (u.src->featureChain) {
-            tex = loadFeatureChain(scene, assets, *u.src, opt);
+        if (u.src->producer) { // made by a layer kind from its own assets
+            tex = u.src->producer->make(scene, assets, *u.src, opt);
         } else {
             tex = loadTexture(*u.src, scene.sourceName, opt);
         }
@@ -528,18 +462,15 @@ void loadMissingAssets(const Scene& scene, SceneAssets& assets) {
     for (const auto& mi : scene.meshes)
         if (mi.displacement && mi.subdivAdaptive)
             textureUses.push_back({&mi.displacement->map, 1u, "the displacement"});
-    std::vector<const Layer*> features;
-    for (int mIdx : usedMaterials)
-        for (const Layer& L : scene.materials[size_t(mIdx)].layers) collectFeatures(L, features);
-    for (const Layer* L : features) {
-        const FeatureSource& src = *L->kind->featureSource(*L);
-        std::string key = src.key();
-        if (!assets.featureMaps.count(key)) {
-            assets.featureMaps[key] = loadFeatureMaps(src, scene.sourceName);
-            assets.log.push_back("feature maps " + key + ": " +
-                                 std::to_string(assets.featureMaps[key]->gpu.size) + "^2 texels");
-        }
-        if (L->kind->checkAssets) L->kind->checkAssets(*L, assets, scene.sourceName);
+    // The layer kinds' own assets (LayerKindAssets::load), before the
+    // textures, some of which kinds make from them (TextureSource::producer).
+    for (const LayerKind* kind : layerKinds()) {
+        if (!kind->assets || !kind->assets->load) continue;
+        std::vector<const Layer*> layers;
+        for (int mIdx : usedMaterials)
+            for (const Layer& L : scene.materials[size_t(mIdx)].layers)
+                collectKindLayers(L, *kind, layers);
+        kind->assets->load(scene, layers, assets);
     }
     // Meshes whose enabled layers now read the basis of a UV set they ask
     // vertex tangents for, but do not have them: rebuilt (MikkTSpace may

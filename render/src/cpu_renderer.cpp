@@ -299,7 +299,7 @@ struct DrawState {
     MaterialPlan plan;
     detail::DrawUniforms uniforms;
     std::vector<sg::glsl::sampler2D> samplers;
-    std::vector<detail::FeatureSamplers> featureSamplers;
+    std::vector<std::any> kindData; // the kinds' own (planKindCpuData)
 };
 
 std::vector<DrawState> drawStates(const Scene& scene, const SceneAssets& assets, const View& view,
@@ -310,7 +310,7 @@ std::vector<DrawState> drawStates(const Scene& scene, const SceneAssets& assets,
         DrawState d;
         d.plan = planMaterial(scene, assets, int(mi), scene.meshes[mi].material);
         d.uniforms = detail::drawUniforms(scene, assets, d.plan, view, int(mi), primBase);
-        d.featureSamplers = detail::planFeatureSamplers(d.plan, assets);
+        d.kindData = detail::planKindCpuData(d.plan, assets);
         d.samplers = detail::planSamplers(d.plan, assets, options.textureLod);
         draws.push_back(std::move(d));
         primBase += float(assets.meshes[mi].mesh.triangleCount());
@@ -401,8 +401,7 @@ Image renderCpu(const Scene& scene, const SceneAssets& assets, const View& view,
             const DrawState& d = draws[size_t(st.mesh)];
             detail::PixelInputs in =
                 pixelInputs(st, md[size_t(st.mesh)], x, y, options.derivatives);
-            img.setRgba(
-                pix, detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.featureSamplers, in));
+            img.setRgba(pix, detail::shadePixelCpu(d.plan, d.uniforms, d.samplers, d.kindData, in));
         }
         reportRow(options, rowsDone, progressLock, H);
     });

@@ -15,10 +15,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <functional>
+#include <memory>
 #include <string>
 #include <unordered_map>
 
 #include "gpu_stencils.h"
+#include "layer_kind.h"
 #include "render_internal.h"
 #include "surfgrad/adaptive_patches.h"
 #include "surfgrad/contract.h"
@@ -245,9 +248,7 @@ struct GlRenderer::Impl {
     ~Impl() {
         for (auto& m : meshes) deleteMesh(m);
         for (auto& [img, t] : textures) glDeleteTextures(1, &t);
-        for (auto& [uid, t] : featureTex)
-            for (GLuint x : t)
-                if (x) glDeleteTextures(1, &x);
+        kindGpu.clear(); // the kinds' GL objects, while the context is current
         if (fbo) glDeleteFramebuffers(1, &fbo);
         if (colorTex) glDeleteTextures(1, &colorTex);
         if (depthRb) glDeleteRenderbuffers(1, &depthRb);
@@ -378,33 +379,28 @@ struct GlRenderer::Impl {
         return t;
     }
 
-    // Feature maps' textures by FeatureMapsAsset::uid: corner pairs, edges
-    // and, for maps with an exact near field, its lists and pieces (else 0).
-    std::unordered_map<uint64_t, std::array<GLuint, 4>> featureTex;
+    // The layer kinds' own GL objects (LayerKindAssets::bindGpu's cache).
+    std::unordered_map<const LayerKind*, std::shared_ptr<void>> kindGpu;
 
-    const std::array<GLuint, 4>& featureTextures(const FeatureMapsAsset& fm) {
-        auto it = featureTex.find(fm.uid);
-        if (it == featureTex.end()) {
-            const auto& g = fm.gpu;
-            std::array<GLuint, 4> t{0, 0, 0, 0};
-            auto upload = [](GLuint& x, int w, int h, const std::vector<uint32_t>& data) {
-                glCreateTextures(GL_TEXTURE_2D, 1, &x);
-                glTextureStorage2D(x, 1, GL_RGBA32UI, w, h);
-                glTextureSubImage2D(x, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                                    data.data());
-                glTextureParameteri(x, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-                glTextureParameteri(x, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-            };
-            upload(t[0], g.cornerPairsWidth(), g.cornerPairsHeight(), g.cornerPairs);
-            upload(t[1], g.size, g.size, g.edges);
-            if (g.hasNearField()) {
-                upload(t[2], g.size, g.nearHeight, g.nearLists);
-                upload(t[3], SG_FEAT_PIECES_WIDTH, g.piecesHeight, g.pieces);
-            }
-            it = featureTex.emplace(fm.uid, t).first;
-            sg::gl::checkError("feature map upload");
+    // Uploads (uniform empty) or binds (uniform set) the kinds' own assets of
+    // `plan` on the units after its regular textures, kind after kind.
+    void bindKindAssets(const MaterialPlan& plan, const SceneAssets& assets,
+                        const std::function<int(const char*)>& uniform) {
+        int unit = int(plan.textureKeys.size());
+        for (const KindPlan& kp : plan.kindPlans) {
+            const LayerKindAssets& ka = *kp.kind->assets;
+            if (ka.bindGpu)
+                ka.bindGpu(KindGpuContext{plan, kp, assets, kindGpu[kp.kind], unit, uniform});
+            if (ka.gpuUnits) unit += ka.gpuUnits(kp);
         }
-        return it->second;
+    }
+    // The first texture unit after the plan's regular textures and the units
+    // of its kinds' own assets.
+    static GLuint unitAfterKindAssets(const MaterialPlan& plan) {
+        GLuint unit = GLuint(plan.textureKeys.size());
+        for (const KindPlan& kp : plan.kindPlans)
+            if (kp.kind->assets->gpuUnits) unit += GLuint(kp.kind->assets->gpuUnits(kp));
+        return unit;
     }
 
     // The plan's program; adaptive plans: the one for patches of
@@ -470,9 +466,8 @@ struct GlRenderer::Impl {
             glUniform1f(gp.loc("uMaxTessLevel"), SG_TESS_MAX_LEVEL);
             if (plan.displacementUvSet >= 0 && mi.displacement) {
                 // The height map on the unit after the fragment stage's
-                // textures and feature maps.
-                const GLuint unit = GLuint(plan.textureKeys.size() +
-                                           (plan.featureNear ? 4u : 2u) * plan.featureKeys.size());
+                // textures and kinds' own assets.
+                const GLuint unit = unitAfterKindAssets(plan);
                 auto it = assets.textures.find(mi.displacement->map.key());
                 glBindTextureUnit(unit,
                                   it != assets.textures.end() ? texture(it->second.get()) : 0);
@@ -521,8 +516,8 @@ size_t GlRenderer::cachedPrograms() const {
 }
 
 // One draw's state: the program, its uniforms (transforms, material,
-// lights, layer records), the regular textures and the feature maps on the
-// units after them.
+// lights, layer records), the regular textures and the layer kinds' own
+// assets on the units after them.
 void GlRenderer::Impl::bindDraw(GpuProgram& gp, const MaterialPlan& plan,
                                 const detail::DrawUniforms& u, const View& view,
                                 const SceneAssets& assets) {
@@ -553,40 +548,8 @@ void GlRenderer::Impl::bindDraw(GpuProgram& gp, const MaterialPlan& plan,
         std::string name = "uTex" + std::to_string(s);
         glUniform1i(gp.loc(name.c_str()), GLint(s));
     }
-    // Feature maps: corner pairs and edges (and, when the plan uses the
-    // exact near field, its lists and pieces; all RGBA32UI), read with
-    // texelFetch only, on the units after the regular textures; the
-    // per-layer sampler arrays point at them (and at the base maps).
-    const int unitsPerMap = plan.featureNear ? 4 : 2;
-    for (size_t f = 0; f < plan.featureKeys.size(); ++f) {
-        GLuint unit = GLuint(plan.textureKeys.size() + size_t(unitsPerMap) * f);
-        auto it = assets.featureMaps.find(plan.featureKeys[f]);
-        std::array<GLuint, 4> t{0, 0, 0, 0};
-        if (it != assets.featureMaps.end()) t = I.featureTextures(*it->second);
-        // Maps without a near field: their corner texture stands in for the
-        // near textures, which such layers never read (an integer sampler
-        // needs an integer texture bound).
-        if (!t[2]) t[2] = t[3] = t[0];
-        for (int k = 0; k < unitsPerMap; ++k) glBindTextureUnit(unit + GLuint(k), t[size_t(k)]);
-    }
-    for (const auto& g : plan.groups)
-        for (const auto& pl : g) {
-            if (pl.featureIndex < 0) continue;
-            std::string idx = "[" + std::to_string(pl.featureIndex) + "]";
-            GLint unit = GLint(plan.textureKeys.size()) + unitsPerMap * pl.featureSlot;
-            glUniform1i(gp.loc(("uFeatCorners" + idx).c_str()), unit);
-            glUniform1i(gp.loc(("uFeatEdges" + idx).c_str()), unit + 1);
-            if (plan.featureNear) {
-                glUniform1i(gp.loc(("uFeatNear" + idx).c_str()), unit + 2);
-                glUniform1i(gp.loc(("uFeatPieces" + idx).c_str()), unit + 3);
-            }
-            glUniform1i(gp.loc(("uFeatBase" + idx).c_str()), GLint(pl.tex[0]));
-            if (plan.featureLean) { // layers without the chain never read it
-                glUniform1i(gp.loc(("uFeatChainA" + idx).c_str()), GLint(pl.tex[0]));
-                glUniform1i(gp.loc(("uFeatChainB" + idx).c_str()),
-                            GLint(pl.tex[1] >= 0 ? pl.tex[1] : pl.tex[0]));
-            }
-        }
+    // The layer kinds' own assets on the units after them.
+    I.bindKindAssets(plan, assets, [&gp](const char* name) { return int(gp.loc(name)); });
 }
 
 unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& assets,
@@ -626,10 +589,7 @@ unsigned GlRenderer::renderToTexture(const Scene& scene, const SceneAssets& asse
             auto it = assets.textures.find(key);
             if (it != assets.textures.end()) I.texture(it->second.get());
         }
-        for (const auto& key : plans.back().featureKeys) {
-            auto it = assets.featureMaps.find(key);
-            if (it != assets.featureMaps.end()) I.featureTextures(*it->second);
-        }
+        I.bindKindAssets(plans.back(), assets, nullptr); // upload only
     }
     if (!I.query) glCreateQueries(GL_TIME_ELAPSED, 1, &I.query);
     glFinish(); // uploads done: the wall time starts with an idle GPU

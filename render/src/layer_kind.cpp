@@ -293,4 +293,10 @@ bool Modifier::is(std::string_view kindName) const {
     return kind && kindName == kind->name;
 }
 
+const KindPlan* findKindPlan(const MaterialPlan& plan, const LayerKind& kind) {
+    for (const KindPlan& kp : plan.kindPlans)
+        if (kp.kind == &kind) return &kp;
+    return nullptr;
+}
+
 } // namespace sg::render

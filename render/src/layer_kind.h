@@ -13,6 +13,9 @@
 //       slot by slot beside the GLSL unpacker it must match), the one
 //       emitter that binds the function's arguments for both renderers
 //       (layer_emit.h), and the scenes that show it (image parity).
+// A kind whose layers read data of their own besides textures (feature:
+// feature maps) adds the hooks of section 5, usually in a third file
+// layers/<kind>_assets.{h,cpp}: loading, plan slots, GL binding, CPU data.
 // Everything else (scene parser, planner, assembler, CPU twin, viewer,
 // asset loader, uber-shader stand-ins, the record round-trip test, the
 // image-parity test) iterates the registry. docs/architecture.md, "Adding a
@@ -28,6 +31,7 @@
 #include <array>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -509,7 +513,8 @@ struct CpuLayerContext {
     const PlanLayer& pl;
     const detail::DrawUniforms& u;
     const std::vector<sg::glsl::sampler2D>& samplers;
-    const std::vector<detail::FeatureSamplers>& featureSamplers;
+    // The kind's per-plan CPU data (LayerKindAssets::cpuData; nullptr: none).
+    const std::any* kindData;
     const detail::PixelInputs& in;
 
     const Layer& layer() const { return *pl.layer; }
@@ -610,7 +615,63 @@ constexpr uint32_t channelBit(int channel) {
 }
 
 // ---------------------------------------------------------------------------
-// 5. The kind.
+// 5. A kind's own assets (optional): data its layers read besides the
+// textures of Layer::maps (feature: the feature maps, layers/feature_assets.h),
+// owned by the kind's files from loading to binding. The generic code only
+// iterates the registry and calls these hooks: the asset loader (load; a
+// texture a kind makes from them is a TextureSource with a producer), the
+// planner (plan: slots in the plan's KindPlan of the kind), the GL renderer
+// (gpuUnits, bindGpu: texture units after the plan's regular textures, in
+// the order of plan.kindPlans) and the CPU twin (cpuData, read by the
+// kind's cpu() through CpuLayerContext::kindData). A kind's assets are
+// read clamped at their border: the UV set of a layer reading them is not
+// re-centred as a repeating one (uv_sets.cpp).
+
+// The GL renderer's binding of one kind's assets for one draw.
+struct KindGpuContext {
+    const MaterialPlan& plan;
+    const KindPlan& kindPlan; // the kind's entry of plan.kindPlans
+    const SceneAssets& assets;
+    // The kind's GL objects in this renderer: made by the hook on first use,
+    // kept across frames, destroyed with the renderer (its context current).
+    std::shared_ptr<void>& cache;
+    int firstUnit = 0; // the kind's texture units: firstUnit .. + gpuUnits - 1
+    // Location of a uniform of the program in use (-1: not in it); empty:
+    // upload only (before the timed draws), bind nothing.
+    std::function<int(const char*)> uniform;
+};
+
+struct LayerKindAssets {
+    // The layer reads assets of its kind (an enabled layer that does is
+    // loaded and planned with the hooks below).
+    bool (*reads)(const Layer&) = nullptr;
+    // Loads what `layers` (the enabled layers of the kind that read assets,
+    // of the materials some mesh uses, in order, children included) need and
+    // `assets` lacks into assets.kindAssets[kind name] (appending to
+    // assets.log), then checks each layer against them. Errors:
+    // InputError naming scene.sourceName and the field.
+    void (*load)(const Scene& scene, const std::vector<const Layer*>& layers,
+                 SceneAssets& assets) = nullptr;
+    // Plans layer `L` (reads(L)) into the kind's KindPlan `kp` (made empty
+    // for the kind's first layer in the plan): its slot among kp.keys
+    // (pl.kindSlot), its index kp.layerCount++ (pl.kindIndex) and kp.data.
+    void (*plan)(const Layer& L, const SceneAssets& assets, KindPlan& kp, PlanLayer& pl) = nullptr;
+    char slotCode = '?'; // effect signature: a layer's slot as <slotCode><kindSlot>
+    // GL: the texture units the kind's share of a plan takes, and the
+    // upload (once per renderer, into the context's cache) and binding of
+    // its assets with the uniforms of the plan's layers of the kind.
+    int (*gpuUnits)(const KindPlan& kp) = nullptr;
+    void (*bindGpu)(const KindGpuContext& c) = nullptr;
+    // CPU: what the kind's cpu() reads (CpuLayerContext::kindData), made
+    // once per plan from the loaded assets.
+    std::any (*cpuData)(const KindPlan& kp, const SceneAssets& assets) = nullptr;
+};
+
+// The kind's KindPlan in `plan` (nullptr: no layer of it reads assets).
+const KindPlan* findKindPlan(const MaterialPlan& plan, const LayerKind& kind);
+
+// ---------------------------------------------------------------------------
+// 6. The kind.
 
 // A scene that shows the kind, drawn by both renderers and compared
 // (tests/render/image_test.cpp, "Kinds/LayerImage": every registered kind
@@ -664,8 +725,8 @@ struct LayerKind {
     // so programs that differ are cached apart (optional).
     std::string (*signature)(const Layer&) = nullptr;
     const DerivModTarget* modifiers = nullptr; // takes derivative-space modifiers
-    // Feature maps the layer reads (assets load them; the plan gives them slots).
-    const FeatureSource* (*featureSource)(const Layer&) = nullptr;
+    // The kind's own assets (section 5; optional).
+    const LayerKindAssets* assets = nullptr;
     std::vector<RecordLayout> records;
 
     // Emission (section 3): one emitter for both renderers (layer_emit.h).
@@ -686,8 +747,6 @@ struct LayerKind {
 
     // The uber-shader baseline's stand-ins (disabled layers of this kind).
     std::vector<Layer> (*uberStandIns)(const LayerKind& self, int uvCount) = nullptr;
-    // After the assets were loaded: checks against them (InputError).
-    void (*checkAssets)(const Layer&, const SceneAssets&, const std::string& sceneName) = nullptr;
     // Scenes that show the kind (both renderers compared; at least one).
     std::vector<KindImageCase> imageCases;
 

@@ -1,9 +1,9 @@
 // Material plans (effects on demand): which layers, UV sets, volume
-// domains, textures, feature maps and vertex tangents one material on one
-// mesh uses, its effect signature (the program cache key), and the uniform
-// records its layers read. Everything a layer kind contributes comes from
-// its registry entry (layer_kind.h); the GLSL program and its CPU twin are
-// assembled from the plan in plan.cpp.
+// domains, textures, kinds' own assets (feature maps) and vertex tangents
+// one material on one mesh uses, its effect signature (the program cache
+// key), and the uniform records its layers read. Everything a layer kind
+// contributes comes from its registry entry (layer_kind.h); the GLSL
+// program and its CPU twin are assembled from the plan in plan.cpp.
 #include <algorithm>
 #include <map>
 #include <sstream>
@@ -19,7 +19,7 @@ namespace sg::render {
 namespace {
 
 // Short code of a layer in the effect signature: the kind, its UV set and
-// frame source, volume domain, modifiers and texture / feature-map slots.
+// frame source, volume domain, modifiers and texture / kind-asset slots.
 std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     const Layer& L = *pl.layer;
     std::string s = L.kind->sigCode;
@@ -41,7 +41,7 @@ std::string sigCode(const PlanLayer& pl, const MaterialPlan& plan) {
     for (int t : pl.tex)
         if (t >= 0) slots += (slots.empty() ? "" : ",") + std::to_string(t);
     if (!slots.empty()) s += ":t" + slots;
-    if (pl.featureSlot >= 0) s += "f" + std::to_string(pl.featureSlot);
+    if (pl.kindSlot >= 0) s += L.kind->assets->slotCode + std::to_string(pl.kindSlot);
     return s;
 }
 
@@ -91,23 +91,18 @@ struct Planner {
         plan.uvUsedMask |= 1u << L.uvSet;
     }
 
-    void featureMaps(const Layer& L, PlanLayer& pl) {
-        const FeatureSource* src = L.kind->featureSource ? L.kind->featureSource(L) : nullptr;
-        if (!src) return;
-        std::string key = src->key();
-        auto it = std::find(plan.featureKeys.begin(), plan.featureKeys.end(), key);
-        pl.featureSlot = int(it - plan.featureKeys.begin());
-        if (it == plan.featureKeys.end()) plan.featureKeys.push_back(key);
-        pl.featureIndex = plan.featureLayerCount++;
-        // Effects on demand inside the evaluator: the curved-segment code
-        // (TOG 2008) only when some map was baked with curves.
-        auto fm = assets.featureMaps.find(key);
-        if (fm != assets.featureMaps.end() && fm->second->quadratic) plan.featureCurved = true;
-        // ... and the exact near field only when a layer uses one.
-        if (fm != assets.featureMaps.end() && src->nearField && fm->second->nearBandTexels > 0.0)
-            plan.featureNear = true;
-        // ... and the prefiltered chain only when a layer antialiases.
-        if (L.kind->antialias && L.kind->antialias(L)) plan.featureLean = true;
+    // The layer's share of its kind's own assets (LayerKindAssets::plan).
+    void kindAssets(const Layer& L, PlanLayer& pl) {
+        const LayerKindAssets* ka = L.kind->assets;
+        if (!ka || !ka->plan || !ka->reads(L)) return;
+        auto it = std::find_if(plan.kindPlans.begin(), plan.kindPlans.end(),
+                               [&](const KindPlan& kp) { return kp.kind == L.kind; });
+        if (it == plan.kindPlans.end()) {
+            plan.kindPlans.push_back(KindPlan{});
+            plan.kindPlans.back().kind = L.kind;
+            it = plan.kindPlans.end() - 1;
+        }
+        ka->plan(L, assets, *it, pl);
     }
 
     PlanLayer add(const Layer& L, bool uber) {
@@ -122,7 +117,7 @@ struct Planner {
             (*L.kind->volume(L) == Space::World ? plan.usesWorldVolume : plan.usesObjectVolume) =
                 true;
         }
-        featureMaps(L, pl);
+        kindAssets(L, pl);
         if (L.kind->antialias && L.kind->antialias(L)) plan.antialias = true;
         const int slots = L.kind->textureSlotsOf ? L.kind->textureSlotsOf(L) : L.kind->textureSlots;
         SG_ASSERT(slots <= 6, "PlanLayer::tex holds 6 slots");
@@ -387,20 +382,13 @@ DrawUniforms drawUniforms(const Scene& scene, const SceneAssets& assets, const M
     return u;
 }
 
-std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
-                                                 const SceneAssets& assets) {
-    std::vector<FeatureSamplers> s(plan.featureKeys.size());
-    for (size_t i = 0; i < s.size(); ++i) {
-        auto it = assets.featureMaps.find(plan.featureKeys[i]);
-        if (it == assets.featureMaps.end()) continue;
-        s[i].corners = it->second->gpu.cornerSampler();
-        s[i].edges = it->second->gpu.edgeSampler();
-        if (it->second->gpu.hasNearField()) {
-            s[i].nearLists = it->second->gpu.nearSampler();
-            s[i].pieces = it->second->gpu.pieceSampler();
-        }
+std::vector<std::any> planKindCpuData(const MaterialPlan& plan, const SceneAssets& assets) {
+    std::vector<std::any> data(plan.kindPlans.size());
+    for (size_t i = 0; i < data.size(); ++i) {
+        const LayerKindAssets* ka = plan.kindPlans[i].kind->assets;
+        if (ka->cpuData) data[i] = ka->cpuData(plan.kindPlans[i], assets);
     }
-    return s;
+    return data;
 }
 
 std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,

@@ -454,15 +454,21 @@ struct CpuShader {
     const MaterialPlan& plan;
     const DrawUniforms& u;
     const std::vector<G::sampler2D>& smp;
-    const std::vector<FeatureSamplers>& fsmp;
+    const std::vector<std::any>& kindData; // planKindCpuData
     const PixelInputs& in;
 
     bool on(const PlanLayer& pl) const {
         return !plan.uber || u.uberFlags[size_t(pl.uberIndex)] > 0.5f;
     }
+    // The layer's kind's entry of kindData (nullptr: none).
+    const std::any* dataOf(const PlanLayer& pl) const {
+        for (size_t i = 0; i < plan.kindPlans.size(); ++i)
+            if (plan.kindPlans[i].kind == pl.layer->kind) return &kindData[i];
+        return nullptr;
+    }
     void layer(const PlanLayer& pl, CpuShadeState& s) const {
         if (on(pl))
-            pl.layer->kind->emit.cpu(CpuLayerContext{plan, pl, u, smp, fsmp, in}, s,
+            pl.layer->kind->emit.cpu(CpuLayerContext{plan, pl, u, smp, dataOf(pl), in}, s,
                                      glm::vec3(0.0f));
     }
 
@@ -503,8 +509,8 @@ struct CpuShader {
         if (g > 0) {
             const PlanLayer* rp = reprologueLayer(plan, g);
             if (rp && on(*rp))
-                rp->layer->kind->reprologue.cpu(CpuLayerContext{plan, *rp, u, smp, fsmp, in}, s,
-                                                nrm);
+                rp->layer->kind->reprologue.cpu(CpuLayerContext{plan, *rp, u, smp, dataOf(*rp), in},
+                                                s, nrm);
             else
                 s.frame = G::sgReprologue(s.frame, nrm, s.frame.dPdx, s.frame.dPdy);
             uint32_t m = groupUvMask(plan.groups[g]);
@@ -533,9 +539,9 @@ struct CpuShader {
 } // namespace
 
 glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
-                        const std::vector<G::sampler2D>& smp,
-                        const std::vector<FeatureSamplers>& fsmp, const PixelInputs& in) {
-    const CpuShader sh{plan, u, smp, fsmp, in};
+                        const std::vector<G::sampler2D>& smp, const std::vector<std::any>& kindData,
+                        const PixelInputs& in) {
+    const CpuShader sh{plan, u, smp, kindData, in};
     CpuShadeState s = sh.prologue();
     const glm::vec3 baseNormal = s.frame.resolveSign * s.frame.nrmBase;
     const bool lateBaseColor = movesSurface(plan);

@@ -2,25 +2,14 @@
 // (not installed; the public API is surfgrad/render.h).
 #pragma once
 
+#include <any>
 #include <array>
 #include <string>
 #include <vector>
 
-#include "surfgrad/feature_maps.h"
 #include "surfgrad/glsl_texture.h"
 #include "surfgrad/io.h"
 #include "surfgrad/render.h"
-
-namespace sg::render {
-// Baked feature maps as both renderers read them.
-struct FeatureMapsAsset {
-    sg::features::GpuFeatureMaps gpu;
-    double bandTexels = 16.0;
-    bool quadratic = false;      // baked in quadratic mode (curved segments)
-    double nearBandTexels = 0.0; // exact near field's band (0: the maps have none)
-    uint64_t uid = 0;            // unique per load (GPU caches key on it)
-};
-} // namespace sg::render
 
 namespace sg::render::detail {
 
@@ -33,7 +22,8 @@ sg::mesh::RenderMesh makeProceduralMesh(const Procedural& p);
 // maps of UV-reading layers of its material (post_resolve groups and
 // disabled layers included: the viewer may enable them), its base colour
 // map and its displacement map, each on its set. A set read by a clamped
-// map or by feature maps (clamped at their border) is not one.
+// map or by its kind's own assets (LayerKindAssets: clamped at their
+// border) is not one.
 uint32_t repeatOnlyUvSets(const Scene& scene, const MeshInstance& mi);
 // Appends the derived UV sets of `mi` (DerivedUvSet: st' = R S st + o,
 // computed in binary64 from the source set as loaded) to the built mesh,
@@ -65,35 +55,6 @@ TextureImage makeProceduralTexture(const TextureSource& src);
 // Same size and wrap as `map`; float RGBA.
 TextureImage normalMomentTexture(const TextureImage& map, TexMoments moments,
                                  NormalEncoding encoding);
-
-// The prefiltered slope chain of a feature layer with "antialias": "lean"
-// (layer_feature.cpp; layer_feature_aa.glsl describes the texels), both of
-// its textures in one pass: level 0 texel (i, j) of an N x N map is the
-// average of sgFeatAaMomentTexel of the layer's flat-base slope
-// (sgFeatAaSlope of the evaluator's result, the profile and mode of `src`;
-// src.part is not read) over samplesPerAxis^2 midpoints of the texel square
-// (a texel farther than the profile's reach from every curve holds zeros);
-// smaller levels are box averages (makeTexture). Clamp wrap, float RGBA:
-// part 0 texA, part 1 texB. The midpoint rule's error on a texel a crease
-// crosses is at most the area of the samples' cells the crease cuts, about
-// 1/samplesPerAxis of the slope jump (tests/render).
-// threads (surfgrad/threads.h): 0 = all cores, 1..kMaxThreads (else a
-// contract violation); rows of texels run in parallel, each texel's sum in
-// its own sample order, so level 0 is the same bits for every count. Maps
-// of fewer than kFeatureChainSerialBelowSize texels per side run on the
-// calling thread. The cut-over is an estimate, not a benchmark: a texel in
-// reach of a curve costs 64 evaluator samples (tens of microseconds), so a
-// 32^2 map is milliseconds of compute-bound work against an arena's start
-// of tens of microseconds.
-inline constexpr int kFeatureChainSamples = 8;
-inline constexpr int kFeatureChainSerialBelowSize = 32;
-struct FeatureChainTextures {
-    TextureImage part[2];
-};
-FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
-                                          const FeatureChainSource& src,
-                                          int samplesPerAxis = kFeatureChainSamples,
-                                          int threads = 0);
 
 // Refuses (InputError naming `name`) a texture of `residentBytes` (and
 // `transientBytes` more while it is built) that does not fit the budget of
@@ -202,28 +163,25 @@ struct PixelInputs {
     glm::vec4 patchAov{0.0f}; // adaptive meshes: vPatchAov (Aov::Patch)
 };
 
-// Feature-map samplers of a plan's feature slots (CPU).
-struct FeatureSamplers {
-    sg::glsl::SgFeatCornerSampler corners;
-    sg::glsl::SgFeatEdgeSampler edges;
-    sg::glsl::SgFeatNearSampler nearLists; // exact near field (rgba null: none)
-    sg::glsl::SgFeatPieceSampler pieces;
-};
-std::vector<FeatureSamplers> planFeatureSamplers(const MaterialPlan& plan,
-                                                 const SceneAssets& assets);
+// The per-plan CPU data of the layer kinds with their own assets
+// (LayerKindAssets::cpuData, e.g. the feature maps' samplers), aligned
+// with plan.kindPlans; empty std::any for a kind without the hook.
+std::vector<std::any> planKindCpuData(const MaterialPlan& plan, const SceneAssets& assets);
 
 // Runs the plan's shading on the CPU with the same shared functions, in the
 // same order, as the GLSL main() that fragmentBody(plan) generates.
+// kindData: planKindCpuData(plan, assets).
 glm::vec4 shadePixelCpu(const MaterialPlan& plan, const DrawUniforms& u,
                         const std::vector<sg::glsl::sampler2D>& samplers,
-                        const std::vector<FeatureSamplers>& featureSamplers, const PixelInputs& in);
+                        const std::vector<std::any>& kindData, const PixelInputs& in);
 
 // Samplers of a plan's texture slots.
 std::vector<sg::glsl::sampler2D> planSamplers(const MaterialPlan& plan, const SceneAssets& assets,
                                               sg::glsl::LodRule lodRule = sg::glsl::LodRule::Exact);
 
 // Errors from a file the scene references keep the scene's context, one
-// rule for meshes, textures, curve files and feature maps:
+// rule for meshes, textures and the files of layer kinds' own assets
+// (curve files, feature maps):
 //   "<scene>: <field>: <file>: [<element>: ]<reason>"
 // with both paths lexically normal (`field` is the JSON path of the field
 // naming the file). An error about the scene file itself (a model loaded as

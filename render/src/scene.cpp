@@ -55,22 +55,8 @@ std::optional<Aov> parseAov(const std::string& name) {
     return std::nullopt;
 }
 
-std::string FeatureSource::key() const {
-    if (!mapsFile.empty()) return "maps:" + mapsFile.lexically_normal().string();
-    return "bake:" + curvesKind + ":" + curvesFile.lexically_normal().string() + ":" + text + ":" +
-           std::to_string(size) + (quadratic ? ":quadratic:" : ":linear:") +
-           std::to_string(marginTexels) +
-           (nearField ? ":near:" + std::to_string(nearWidthTexels) : std::string());
-}
-
 std::string TextureSource::key() const {
-    if (featureChain) {
-        const FeatureChainSource& c = *featureChain;
-        return "featchain:" + c.mapsKey + ":" + c.profile + ":" + std::to_string(c.depth) + ":" +
-               std::to_string(c.w0) + ":" + std::to_string(c.width) +
-               (c.paperMode ? ":paper" : ":surfgrad") + (c.nearExact ? ":exact" : ":interp") +
-               ":part" + std::to_string(c.part);
-    }
+    if (producer) return producer->key();
     if (moments != TexMoments::None) {
         TextureSource base = *this;
         base.moments = TexMoments::None;

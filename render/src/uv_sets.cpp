@@ -35,7 +35,7 @@ namespace {
 void markLayer(const Layer& L, uint32_t& repeatOnly) {
     for (const Layer& c : L.children) markLayer(c, repeatOnly);
     if (!L.kind || !L.kind->readsUv || L.uvSet < 0 || L.uvSet >= kMaxUvSets) return;
-    bool repeats = !(L.kind->featureSource && L.kind->featureSource(L));
+    bool repeats = !(L.kind->assets && L.kind->assets->reads(L)); // clamped (LayerKindAssets)
     for (const TextureSource& m : L.maps) repeats = repeats && m.wrap == Wrap::Repeat;
     for (const Modifier& md : L.modifiers)
         if (md.mask) repeats = repeats && md.mask->wrap == Wrap::Repeat;

@@ -11,6 +11,7 @@
 #include <cstdio>
 
 #include "hardcase.h"
+#include "layers/feature_assets.h"
 #include "render_internal.h"
 #include "render_test_util.h"
 #include "surfgrad/feature_maps.h"

@@ -3,76 +3,13 @@
 // Parilov, Zorin TOG 2008) as a TBN-style layer (layer_feature.glsl).
 // Batched: the feature layers of a group run in one loop, so the large
 // evaluator (shaders/sg/features/) is compiled once however many there are.
-#include "layer_kind.h"
-
+// The kind's own assets (the feature maps, their GL textures and CPU
+// samplers, the prefiltered chain): feature_assets.{h,cpp}.
 #include <algorithm>
 
-#include <tbb/parallel_for.h>
-
-#include "surfgrad/threads.h"
+#include "feature_assets.h"
 
 namespace sg::render {
-
-namespace detail {
-
-FeatureChainTextures featureChainTextures(const FeatureMapsAsset& maps,
-                                          const FeatureChainSource& src, int samplesPerAxis,
-                                          int threads) {
-    SG_EXPECTS(samplesPerAxis >= 1 && maps.gpu.size >= 1, "a chain of loaded maps");
-    SG_EXPECTS(threads >= 0 && threads <= sg::kMaxThreads,
-               "threads is 0 (all cores) .. kMaxThreads");
-    namespace G = sg::glsl;
-    const sg::features::GpuFeatureMaps& gpu = maps.gpu;
-    const int n = gpu.size;
-    const bool near = src.nearExact && gpu.hasNearField();
-    const G::SgFeatProfile layerProfile =
-        sg::features::makeProfile(src.profile, src.depth, src.w0, src.width);
-    // Where every profile has ended (d >= w gives the flat base's slope 0):
-    // texels whose centre is farther than that plus half a diagonal and a
-    // margin for the interpolated distance hold zero moments.
-    const float reach =
-        (near ? std::max(float(maps.nearBandTexels), layerProfile.w) : layerProfile.w) + 1.5f;
-    const auto nm = near ? sg::features::NearMode::Exact : sg::features::NearMode::Paper;
-    auto slopeAt = [&](glm::vec2 pos) {
-        G::SgFeatResult r = sg::features::sample(gpu, pos, nm);
-        G::SgFeatProfile pr =
-            near ? G::sgFeatCurveProfile(gpu.pieceSampler(), layerProfile, r) : layerProfile;
-        return G::sgFeatAaSlope(r, pr, src.paperMode);
-    };
-    std::vector<glm::vec4> texelsA(size_t(n) * size_t(n), glm::vec4(0.0f));
-    std::vector<glm::vec4> texelsB(size_t(n) * size_t(n), glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
-    const double inv = 1.0 / double(samplesPerAxis);
-    const double norm = 1.0 / (double(samplesPerAxis) * double(samplesPerAxis));
-    auto row = [&](int j) {
-        for (int i = 0; i < n; ++i) {
-            const size_t at = size_t(j) * size_t(n) + size_t(i);
-            if (sg::features::sample(gpu, glm::vec2(i + 0.5f, j + 0.5f), nm).dist > reach)
-                continue; // zero moments (texB's w is 1 everywhere)
-            // Midpoint rule over the texel square, summed in double.
-            glm::dvec4 sumA(0.0), sumB(0.0);
-            for (int b = 0; b < samplesPerAxis; ++b)
-                for (int a = 0; a < samplesPerAxis; ++a) {
-                    glm::vec2 pos(float(i + (a + 0.5) * inv), float(j + (b + 0.5) * inv));
-                    glm::vec4 ta, tb;
-                    G::sgFeatAaMomentTexel(slopeAt(pos), ta, tb);
-                    sumA += glm::dvec4(ta);
-                    sumB += glm::dvec4(tb);
-                }
-            texelsA[at] = glm::vec4(sumA * norm);
-            texelsB[at] = glm::vec4(sumB * norm);
-        }
-    };
-    // Rows write disjoint texels: any schedule gives the same bits.
-    if (threads == 1 || n < kFeatureChainSerialBelowSize) {
-        for (int j = 0; j < n; ++j) row(j);
-    } else {
-        sg::runWithThreads(threads, [&] { tbb::parallel_for(0, n, row); });
-    }
-    return {makeTexture(n, n, std::move(texelsA), Wrap::Clamp),
-            makeTexture(n, n, std::move(texelsB), Wrap::Clamp)};
-}
-
-} // namespace detail
 
 namespace {
 
@@ -164,8 +101,8 @@ RecordLayout layerRecords() {
                [](const PackInput& in) {
                    const auto& src = in.params<P>().source;
                    if (!in.assets || !src) return 0.0f;
-                   auto it = in.assets->featureMaps.find(src->key());
-                   return it != in.assets->featureMaps.end() ? float(it->second->gpu.size) : 0.0f;
+                   const FeatureMapsAsset* fm = findFeatureMaps(*in.assets, src->key());
+                   return fm ? float(fm->gpu.size) : 0.0f;
                })
         .field("tiling", &S::tiling, "r0.w",
                [](const PackInput& in) { return in.params<P>().tiling; })
@@ -229,13 +166,14 @@ RecordLayout profileRecords() {
 // size (two inlined copies of the evaluator took 40x the time of one).
 
 std::string declarations(const MaterialPlan& plan) {
-    std::vector<int> rec(size_t(plan.featureLayerCount)), uvs(rec.size()), flags(rec.size());
+    const FeaturePlan fp = featurePlan(plan);
+    std::vector<int> rec(size_t(fp.layerCount)), uvs(rec.size()), flags(rec.size());
     for (const auto& g : plan.groups)
         for (const auto& pl : g) {
-            if (pl.featureIndex < 0) continue;
-            rec[size_t(pl.featureIndex)] = pl.record;
-            uvs[size_t(pl.featureIndex)] = pl.layer->uvSet;
-            flags[size_t(pl.featureIndex)] = pl.uberIndex;
+            if (pl.kindIndex < 0 || !pl.layer->is("feature")) continue;
+            rec[size_t(pl.kindIndex)] = pl.record;
+            uvs[size_t(pl.kindIndex)] = pl.layer->uvSet;
+            flags[size_t(pl.kindIndex)] = pl.uberIndex;
         }
     std::string o;
     auto arr = [&](const char* name, const std::vector<int>& v) {
@@ -244,14 +182,14 @@ std::string declarations(const MaterialPlan& plan) {
         for (size_t i = 0; i < v.size(); ++i) o += (i ? ", " : "") + std::to_string(v[i]);
         o += ");\n";
     };
-    const std::string n = std::to_string(plan.featureLayerCount);
+    const std::string n = std::to_string(fp.layerCount);
     o += "uniform usampler2D uFeatCorners[" + n + "];\n" + "uniform usampler2D uFeatEdges[" + n +
          "];\n" + "uniform sampler2D uFeatBase[" + n + "];\n";
-    if (plan.featureLean) {
+    if (fp.lean) {
         o += "uniform sampler2D uFeatChainA[" + n + "]; // prefiltered chain: E[d], E[d^2]\n" +
              "uniform sampler2D uFeatChainB[" + n + "]; // prefiltered chain: E[d.x d.y]\n";
     }
-    if (plan.featureNear) {
+    if (fp.near) {
         o += "uniform usampler2D uFeatNear[" + n + "];   // exact near field: lists\n" +
              "uniform usampler2D uFeatPieces[" + n + "]; // exact near field: pieces\n";
     }
@@ -264,6 +202,7 @@ std::string declarations(const MaterialPlan& plan) {
 // The statements of one feature layer `fi` (a loop index, or a constant
 // in the unrolled form), at `indent`.
 std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const std::string& in) {
+    const FeaturePlan fp = featurePlan(plan);
     std::string o = in + "int r = kFeatRecord[fi];\n";
     bool firstUv = true;
     for (int k = 0; k < plan.uvCount; ++k) {
@@ -276,17 +215,17 @@ std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const st
             o += in + "if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
         }
     }
-    const std::string fn = std::string(plan.featureNear ? "sgLayerFeatureNear" : "sgLayerFeature") +
-                           (plan.featureLean ? "Aa" : "");
+    const std::string fn =
+        std::string(fp.near ? "sgLayerFeatureNear" : "sgLayerFeature") + (fp.lean ? "Aa" : "");
     o += in + "surfGrad += " + fn +
          "(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + "
          "1], uLayerData[r + 2]),\n" +
-         (plan.featureLean ? in + "    sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") + in +
+         (fp.lean ? in + "    sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") + in +
          "    sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
          "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n" +
          in + "    uFeatCorners[fi], uFeatEdges[fi], " +
-         (plan.featureNear ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]" +
-         (plan.featureLean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n";
+         (fp.near ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]" +
+         (fp.lean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n";
     return o;
 }
 
@@ -296,7 +235,7 @@ std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const st
 // block per layer with `fi` a constant.
 std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLayer*>& layers,
                       const std::string& indent) {
-    const int first = layers.front()->featureIndex, count = int(layers.size());
+    const int first = layers.front()->kindIndex, count = int(layers.size());
     uint32_t uvMask = 0;
     for (const PlanLayer* pl : layers) uvMask |= 1u << pl->layer->uvSet;
     // The uber program (bench) switches each layer by a uniform flag.
@@ -319,9 +258,10 @@ std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLaye
 const LayerBatch kBatch{groupLoop};
 
 void cpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3) {
-    if (c.pl.featureSlot < 0 || !c.featureSamplers[size_t(c.pl.featureSlot)].corners.rgba)
+    const auto* slots = std::any_cast<std::vector<detail::FeatureSamplers>>(c.kindData);
+    if (c.pl.kindSlot < 0 || !slots || !(*slots)[size_t(c.pl.kindSlot)].corners.rgba)
         return; // maps not loaded: nothing to add
-    const detail::FeatureSamplers& fs = c.featureSamplers[size_t(c.pl.featureSlot)];
+    const detail::FeatureSamplers& fs = (*slots)[size_t(c.pl.kindSlot)];
     const glm::vec4* r = c.rec();
     if (c.layer().params<P>().lean) {
         // Slots 0 and 1: the chain (no base map with "lean").
@@ -350,33 +290,6 @@ void cpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3) {
                                     fs.corners, fs.edges, c.tex(0));
 }
 
-// ---------------------------------------------------------------------------
-// Assets: the profile must fit the band where the maps' distances are exact,
-// and, with "near": "exact", the maps' near field must cover it.
-
-void checkAssets(const Layer& L, const SceneAssets& assets, const std::string& sceneName) {
-    const P& p = L.params<P>();
-    double band = assets.featureMaps.at(p.source->key())->bandTexels;
-    if (double(p.width) > band - 1.5) {
-        throw io::InputError(sceneName, L.fieldPath + ".width",
-                             "the profile width must be at most " + std::to_string(band - 1.5) +
-                                 " texels (the maps hold exact distances up to " +
-                                 std::to_string(band) + ")");
-    }
-    const double nearBand = assets.featureMaps.at(p.source->key())->nearBandTexels;
-    if (p.nearExact && nearBand <= 0.0) {
-        throw io::InputError(sceneName, L.fieldPath + ".near",
-                             "\"exact\" needs maps baked with the near field (surfgrad "
-                             "features bake --near exact)");
-    }
-    if (p.nearExact && double(p.width) > nearBand) {
-        throw io::InputError(sceneName, L.fieldPath + ".width",
-                             "the profile width must be at most the near field's band " +
-                                 std::to_string(nearBand) +
-                                 " texels (bake with a larger --near-width)");
-    }
-}
-
 // "antialias": "none" (default) or "lean": the layer's maps become the two
 // textures of its prefiltered chain (read last: after the source, the
 // profile fields, "mode" and "near").
@@ -402,7 +315,7 @@ void parseAntialias(const SceneNode& n, const char* key, Layer& L, const SceneRe
     c.nearExact = p.nearExact;
     for (int part = 0; part < 2; ++part) {
         c.part = part;
-        chain.featureChain = c;
+        chain.producer = featureChainProducer(c);
         L.maps.push_back(chain);
     }
 }
@@ -467,26 +380,23 @@ const LayerKind& featureLayerKind() {
         .signature = [](const Layer& L) -> std::string {
             return L.params<P>().lean ? "~lean" : "";
         },
-        .featureSource = [](const Layer& L) -> const FeatureSource* {
-            const auto& s = L.params<P>().source;
-            return s ? &*s : nullptr;
-        },
+        .assets = &featureKindAssets(),
         .records = {layerRecords(), profileRecords(), aaRecords()},
         .emit = {nullptr, cpu},
         .batch = &kBatch,
         .programDeclarations = declarations,
         .programDefines =
             [](const MaterialPlan& plan, std::vector<std::string>& defs) {
-                defs.push_back(std::string("SG_FEAT_CURVED ") + (plan.featureCurved ? "1" : "0"));
-                if (plan.featureNear) defs.push_back("SG_FEAT_NEAR 1"); // effects on demand
+                const FeaturePlan fp = featurePlan(plan);
+                defs.push_back(std::string("SG_FEAT_CURVED ") + (fp.curved ? "1" : "0"));
+                if (fp.near) defs.push_back("SG_FEAT_NEAR 1"); // effects on demand
             },
         .programSignature =
             [](const MaterialPlan& plan) {
-                return std::string(plan.featureCurved ? "|featcurved" : "|featstraight") +
-                       (plan.featureNear ? "|featnear" : "") +
-                       (plan.featureLean ? "|featlean" : "");
+                const FeaturePlan fp = featurePlan(plan);
+                return std::string(fp.curved ? "|featcurved" : "|featstraight") +
+                       (fp.near ? "|featnear" : "") + (fp.lean ? "|featlean" : "");
             },
-        .checkAssets = checkAssets,
         .imageCases =
             {
                 {"feature_curves_surfgrad",

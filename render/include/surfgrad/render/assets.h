@@ -1,6 +1,7 @@
 // Scene assets: what a scene needs, loaded once (meshes refined only as far
 // as asked, vertex tangents only for the UV sets enabled layers read,
-// textures and feature maps only of enabled layers: effects on demand).
+// textures and the layer kinds' own assets only of enabled layers: effects
+// on demand).
 //
 // Contract: `scene` is a validated Scene (surfgrad/render/scene.h); the
 // files it names are untrusted: a missing or malformed mesh, texture or
@@ -33,7 +34,13 @@ struct PolygonMesh;
 
 namespace sg::render {
 
-struct FeatureMapsAsset;
+// A layer kind's own assets (data its layers read besides the textures of
+// Layer::maps, e.g. the feature kind's feature maps): a type of the kind's
+// files, loaded by its registry entry (render/src/layer_kind.h,
+// LayerKindAssets) and stored in SceneAssets::kindAssets.
+struct KindAsset {
+    virtual ~KindAsset() = default;
+};
 
 struct MeshAsset {
     sg::mesh::RenderMesh mesh; // object space; morph targets kept
@@ -89,8 +96,9 @@ struct SceneAssets {
     uint64_t meshVersion = 0;        // bumped by applyFrame() when vertex data changed
     std::vector<MeshAsset> meshes;   // one per Scene::meshes entry
     std::map<std::string, std::shared_ptr<const TextureImage>> textures; // by TextureSource::key()
-    // Feature maps in their GPU layout, by FeatureSource::key().
-    std::map<std::string, std::shared_ptr<const FeatureMapsAsset>> featureMaps;
+    // Layer kinds' own assets by the kind's name (LayerKind::name), e.g.
+    // "feature": its feature maps. Replaced, not changed, when more load.
+    std::map<std::string, std::shared_ptr<const KindAsset>> kindAssets;
     std::vector<std::string> log; // what was loaded/generated (for -v output and tests)
 };
 
@@ -107,7 +115,7 @@ struct AssetOptions {
 uint64_t defaultTextureBudget();
 
 SceneAssets loadAssets(const Scene& scene, const AssetOptions& options = {});
-// Loads the textures and feature maps of layers that are enabled now but
+// Loads the textures and kinds' own assets of layers that are enabled now but
 // were not when the assets were loaded (the viewer's layer toggles), and
 // rebuilds a mesh whose newly enabled layers read a UV set it asks vertex
 // tangents for but does not have yet (its morph weights are kept). The

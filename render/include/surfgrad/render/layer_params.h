@@ -13,6 +13,7 @@
 // st with t up.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -104,6 +105,26 @@ struct NoiseParams {
     NoiseAntialias antialias = NoiseAntialias::Fade;
 };
 
+// Where a feature-curve layer's maps come from: a file written by
+// `surfgrad features bake`, or curves baked when the scene loads (only if
+// the layer is enabled: effects on demand). Loaded by the kind
+// (render/src/layers/feature_assets.cpp, which defines key()).
+struct FeatureSource {
+    std::filesystem::path mapsFile; // .exr feature maps, or empty
+    std::string curvesKind;         // "svg", "json" or "font" (bake at load)
+    std::filesystem::path curvesFile;
+    std::string text;       // font: the characters
+    int size = 256;         // bake: texels per side
+    bool quadratic = false; // bake: quadratic (TOG 2008) or linear (TR2005)
+    double marginTexels = 8.0;
+    // bake: keep the exact near field (the layer's "near": "exact"), its
+    // band covering the layer's profile width.
+    bool nearField = false;
+    double nearWidthTexels = 3.0;
+    std::string fieldPath;
+    std::string key() const;
+};
+
 // feature: feature-curve maps (Parilov-Zorin 2008) as a TBN-style layer.
 // Layer::maps holds the optional base map.
 struct FeatureParams {
@@ -114,7 +135,7 @@ struct FeatureParams {
     bool nearExact = false; // "near": "exact": the maps' exact near field, per-curve profiles
     // "antialias": "lean": exact below a texel, the prefiltered chain above
     // (layer_feature_aa.glsl); Layer::maps then holds the chain's two
-    // textures (TextureSource::featureChain) and no base map.
+    // textures (TextureSource::producer) and no base map.
     bool lean = false;
     float tiling = 1.0f;
     glm::vec2 offset{0.0f};

@@ -10,6 +10,7 @@
 // points into the Scene, which must outlive it.
 #pragma once
 
+#include <any>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -34,12 +35,25 @@ struct PlanLayer {
     int record = 0; // first vec4 record in the material's uLayerData
     int recordCount = 0;
     int tex[6] = {-1, -1, -1, -1, -1, -1}; // texture slots (6: LEAN triplanar)
-    int featureSlot = -1;  // layers reading feature maps: index into MaterialPlan::featureKeys
-    int featureIndex = -1; // layers reading feature maps: index among them in the plan
+    // Layers reading their kind's own assets (KindPlan): the slot of theirs
+    // (index into KindPlan::keys) and the layer's index among the plan's
+    // layers of the kind that read them (all groups).
+    int kindSlot = -1;
+    int kindIndex = -1;
     int modTex[kMaxModifiers] = {-1, -1, -1, -1}; // modulate mask slot per modifier
     bool hasModifiers = false;
     int modRecord = -1; // first modifier record (one per modifier)
     int uberIndex = -1; // uber-shader enable flag
+};
+
+// A layer kind's own share of a plan: the kind's assets its layers read
+// (e.g. the feature kind's feature maps; render/src/layer_kind.h,
+// LayerKindAssets), planned by the kind's hook.
+struct KindPlan {
+    const LayerKind* kind = nullptr;
+    std::vector<std::string> keys; // slot (PlanLayer::kindSlot) -> the asset's key
+    int layerCount = 0;            // layers reading them (PlanLayer::kindIndex), all groups
+    std::any data;                 // the kind's own (what its program depends on)
 };
 
 struct MaterialPlan {
@@ -67,11 +81,7 @@ struct MaterialPlan {
     std::vector<int> groupUberIndex;       // uber plans: flag of each group (-1 for 0)
     std::vector<std::string> textureKeys;  // slot -> TextureSource::key()
     std::vector<const TextureSource*> textureSources; // slot -> source
-    std::vector<std::string> featureKeys;             // feature slot -> FeatureSource::key()
-    int featureLayerCount = 0;                        // layers reading feature maps (all groups)
-    bool featureCurved = false; // some feature map has curved segments (SG_FEAT_CURVED)
-    bool featureNear = false;   // some feature layer uses an exact near field (SG_FEAT_NEAR)
-    bool featureLean = false;   // some feature layer antialiases (layer_feature_aa.glsl)
+    std::vector<KindPlan> kindPlans;                  // kinds whose layers read their own assets
     int recordCount = 0;
     int uberFlagCount = 0;
     uint32_t uvUsedMask = 0; // UV sets read by some layer (or the base colour map)

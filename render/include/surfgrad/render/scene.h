@@ -18,6 +18,7 @@
 #include <any>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -53,21 +54,34 @@ enum class NormalEncoding { Rgb = 0, Rg = 1, Ag = 2, Float = 3 };
 // Moment textures of a normal map (layer_uv_normal_aa.glsl): LEAN's
 // (E[d], E[d.x^2], E[d.y^2]) and (E[d.x d.y]), Toksvig's E[n].
 enum class TexMoments { None = 0, LeanA = 1, LeanB = 2, Toksvig = 3 };
-// The prefiltered slope chain of a feature layer with "antialias": "lean"
-// (shaders/sg/render/layer_feature_aa.glsl): built when the scene loads from
-// the layer's feature maps and its profile (the slopes depend on both).
-struct FeatureChainSource {
-    std::string mapsKey; // FeatureSource::key() of the maps
-    std::string profile; // sg::features::makeProfile name
-    float depth = 1.0f, w0 = 0.0f, width = 3.0f;
-    bool paperMode = false;
-    bool nearExact = false;
-    int part = 0; // 0: texA (E[d], E[d.x^2], E[d.y^2]); 1: texB (E[d.x d.y])
-};
 enum class NoiseType { Perlin = 0, Turbulence = 1, Fbm = 2 }; // SG_NOISE_*
 
+struct Scene;
+struct SceneAssets;
+struct TextureLoadOptions;
+struct TextureSource;
+
+// Texels a layer kind makes from its own assets instead of a file (the
+// feature kind's prefiltered slope chain, render/src/layers/feature_assets.h):
+// TextureSource::producer. Made by the kind's parser; the asset loader calls
+// it after the kinds' own assets are loaded (LayerKindAssets::load).
+struct TextureProducer {
+    virtual ~TextureProducer() = default;
+    // The texture's identity: TextureSource::key() of a source with this
+    // producer (equal keys share one texture).
+    virtual std::string key() const = 0;
+    // Makes the texture of `src` (whose producer this is) from `assets`
+    // within the texture budget of `opt` (else sg::io::InputError naming
+    // scene.sourceName and src.fieldPath); it may store textures it makes
+    // in the same pass in assets.textures under their own keys.
+    virtual std::shared_ptr<const TextureImage> make(const Scene& scene, SceneAssets& assets,
+                                                     const TextureSource& src,
+                                                     const TextureLoadOptions& opt) const = 0;
+};
+
 // Where a texture's texels come from: a file (PNG, EXR, ... through
-// OpenImageIO) or a built-in procedural pattern (tileable over [0,1]^2).
+// OpenImageIO), a built-in procedural pattern (tileable over [0,1]^2) or a
+// layer kind's producer.
 struct TextureSource {
     std::filesystem::path file;    // resolved path; empty for procedural
     std::string procedural;        // "bricks", "tiles", "bumps", "weave", "scratches"
@@ -82,29 +96,10 @@ struct TextureSource {
     // (shaders/sg/render/layer_uv_normal_aa.glsl, sgUvNormalMomentTexel).
     TexMoments moments = TexMoments::None;
     NormalEncoding momentsEncoding = NormalEncoding::Rgb;
-    // Not a file: a feature layer's prefiltered chain (the maps must be
-    // loaded first; SceneAssets::featureMaps).
-    std::optional<FeatureChainSource> featureChain;
+    // Not a file: texels a layer kind makes from its own assets (e.g. a
+    // feature layer's prefiltered chain); null for files and procedurals.
+    std::shared_ptr<const TextureProducer> producer;
     std::string key() const; // identity: equal keys share one texture
-};
-
-// Where a feature-curve layer's maps come from: a file written by
-// `surfgrad features bake`, or curves baked when the scene loads (only if
-// the layer is enabled: effects on demand).
-struct FeatureSource {
-    std::filesystem::path mapsFile; // .exr feature maps, or empty
-    std::string curvesKind;         // "svg", "json" or "font" (bake at load)
-    std::filesystem::path curvesFile;
-    std::string text;       // font: the characters
-    int size = 256;         // bake: texels per side
-    bool quadratic = false; // bake: quadratic (TOG 2008) or linear (TR2005)
-    double marginTexels = 8.0;
-    // bake: keep the exact near field (the layer's "near": "exact"), its
-    // band covering the layer's profile width.
-    bool nearField = false;
-    double nearWidthTexels = 3.0;
-    std::string fieldPath;
-    std::string key() const;
 };
 
 struct Modifier {
