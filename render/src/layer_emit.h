@@ -30,7 +30,8 @@
 //                                       writes `name`, e.g. "SG_AA_LEAN", when given)
 //   vertexNormal(), vertexNormalDx/Dy() the interpolated normal and its screen derivatives
 //   fragCoordX/Y(), relPos(), objPos()  gl_FragCoord.x, .y, vRelPos, vObjPos
-//   identity3()                         mat3(1.0)
+//   identity3()                         mat3(1.0) (main()'s GLSL only: a splat
+//                                       constructor, not part of the shared subset)
 //   normalMat(), model3(), modelInv3()  the draw's uniforms
 //   resolvedNormal()                    `nrm` (re-prologues)
 //   declare(type, name, init)           a local (GLSL declaration; the CPU's value)
@@ -56,6 +57,10 @@
 namespace sg::render {
 
 // A GLSL expression, as text (parenthesised where an operator made it).
+// The operators have GLSL's meaning (a matrix times a vector is a matrix
+// product): a layer statement that engines may paste into HLSL through
+// sg/compat.hlsl calls a shared function instead (e.g. sgModWarpDeriv);
+// only main()'s own GLSL (the parallax re-prologue) multiplies matrices.
 struct GlslExpr {
     std::string text;
 };
@@ -106,7 +111,9 @@ public:
     GlslExpr uvSt() const { return {c_.uv() + ".st"}; }
     GlslExpr uvDx() const { return {c_.uv() + ".dSTdx"}; }
     GlslExpr uvDy() const { return {c_.uv() + ".dSTdy"}; }
-    GlslExpr identity2() const { return {"mat2(1.0f)"}; }
+    // The identity Jacobian of an unwarped lookup (sgModNoWarp: GLSL's
+    // mat2(1.0f) would read as a matrix of ones through sg/compat.hlsl).
+    GlslExpr identity2() const { return {"sgModNoWarp()"}; }
     GlslExpr modifierRecord(size_t i) const {
         return {"uLayerData[" + std::to_string(c_.pl.modRecord + int(i)) + "]"};
     }
@@ -211,7 +218,7 @@ public:
     glm::vec2 uvSt() { return uv().st; }
     glm::vec2 uvDx() { return uv().dSTdx; }
     glm::vec2 uvDy() { return uv().dSTdy; }
-    glm::mat2 identity2() const { return glm::mat2(1.0f); }
+    glm::mat2 identity2() const { return sg::glsl::sgModNoWarp(); }
     glm::vec4 modifierRecord(size_t i) const { return c_.u.records[size_t(c_.pl.modRecord) + i]; }
     sg::glsl::sampler2D modifierMask(size_t i) const {
         const int slot = c_.pl.modTex[i];

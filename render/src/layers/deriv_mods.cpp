@@ -95,8 +95,8 @@ const ModifierKind kDeform{
     .warp = modifierWarp([](auto& b, auto& in) {
         in.jac = b.declare("mat2", "jac", glm::mat2(1.0f));
         in.st = b.local("vec2", "st", SG_LAYER_CALL(b, sgModWarp, in.op, b.uvSt(), in.jac));
-        in.dx = b.local("vec2", "dx", in.jac * b.uvDx());
-        in.dy = b.local("vec2", "dy", in.jac * b.uvDy());
+        in.dx = b.local("vec2", "dx", SG_LAYER_CALL(b, sgModWarpDeriv, in.jac, b.uvDx()));
+        in.dy = b.local("vec2", "dy", SG_LAYER_CALL(b, sgModWarpDeriv, in.jac, b.uvDy()));
     }),
     .emit = modifierEmitter([](auto& b, auto& hd, const auto& in) {
         b.assign(hd, SG_LAYER_CALL(b, sgModDeform, hd, in.jac));

@@ -50,6 +50,20 @@ SG_FN vec2 sgModWarp(vec4 op, vec2 st, SG_OUT(mat2) jac) {
     return vec2(st.x, st.y + op.y * sin(op.z * st.x));
 }
 
+// DEFORM: a screen derivative of st carried to the warped lookup, J v
+// (GLSL's `jac * v`, written by columns: the subset never multiplies a
+// matrix by a vector, since HLSL holds the transpose, sg/compat.hlsl). The
+// assembled modifier block calls it for dx and dy (render/src/layers/deriv_mods.cpp).
+SG_FN vec2 sgModWarpDeriv(mat2 jac, vec2 v) {
+    return jac[0] * v.x + jac[1] * v.y;
+}
+
+// The lookup's Jacobian without DEFORM: the identity (GLSL's mat2(1.0f);
+// HLSL's float2x2(1.0f) is a matrix of ones, not the identity).
+SG_FN mat2 sgModNoWarp() {
+    return mat2(vec2(1.0f, 0.0f), vec2(0.0f, 1.0f));
+}
+
 // DEFORM, part 2: the derivative of h(warp(s, t)) is J^T times the
 // derivative sampled at the warped point (the height is unchanged).
 SG_FN SgHeightDeriv sgModDeform(SgHeightDeriv s, mat2 jac) {
