@@ -23,7 +23,13 @@ namespace sg::test {
 // The GLSL 4.50 translation of HLSL compute program `hlsl` (entry `main`);
 // throws naming the tool and its output when a step fails. `name` names the
 // scratch files and the program in messages (letters, digits, '-', '_').
-inline std::string translateHlslCompute(const shaders::Assembled& hlsl, const std::string& name) {
+// Textures: SPIRV-Cross joins each Texture2D and the SamplerState it is
+// sampled with into one `uniform sampler2D SPIRV_Cross_Combined<tex><state>`;
+// with `samplersInheritBindings` that sampler2D takes the texture's binding
+// ([[vk::binding(n)]]: texture unit n), so a harness binds its textures by
+// unit without knowing the generated names.
+inline std::string translateHlslCompute(const shaders::Assembled& hlsl, const std::string& name,
+                                        bool samplersInheritBindings = false) {
     namespace fs = std::filesystem;
     const fs::path dir = processScratchDir("surfgrad_hlsl");
     const fs::path src = dir / (name + ".hlsl"), spv = dir / (name + ".spv"),
@@ -33,7 +39,9 @@ inline std::string translateHlslCompute(const shaders::Assembled& hlsl, const st
         "glslangValidator -D -V --target-env vulkan1.1 -S comp -e main -o " + shellQuote(spv) +
             " " + shellQuote(src),
         "spirv-val --target-env vulkan1.1 " + shellQuote(spv),
-        "spirv-cross --version 450 --no-es " + shellQuote(spv) + " --output " + shellQuote(glsl),
+        "spirv-cross --version 450 --no-es " +
+            std::string(samplersInheritBindings ? "--combined-samplers-inherit-bindings " : "") +
+            shellQuote(spv) + " --output " + shellQuote(glsl),
     };
     for (const std::string& step : steps) {
         const CommandResult r = runCommand(step);
@@ -48,9 +56,10 @@ inline std::string translateHlslCompute(const shaders::Assembled& hlsl, const st
 }
 
 // The translation as a compute program on the current (4.5) context.
-inline gl::Program hlslComputeProgram(const shaders::Assembled& hlsl, const std::string& name) {
+inline gl::Program hlslComputeProgram(const shaders::Assembled& hlsl, const std::string& name,
+                                      bool samplersInheritBindings = false) {
     shaders::Assembled glsl;
-    glsl.text = translateHlslCompute(hlsl, name);
+    glsl.text = translateHlslCompute(hlsl, name, samplersInheritBindings);
     glsl.files = {name + " (SPIRV-Cross GLSL of the HLSL)"};
     return gl::Program({{gl::Stage::Compute, glsl}});
 }

@@ -118,8 +118,8 @@ std::vector<HarnessCase> harnessCases() {
         if (k->batch) continue;
         for (const KindImageCase& c : k->imageCases) {
             const std::string mesh = c.mesh.empty() ? kSphere : c.mesh;
-            cases.push_back({c.name, oneMaterialScene(c.layers, mesh, "", 200, 150, c.sceneExtra),
-                             k});
+            cases.push_back(
+                {c.name, oneMaterialScene(c.layers, mesh, "", 200, 150, c.sceneExtra), k});
             // The antialiased variants (the *_aa.glsl functions, slopeCov):
             // the same scene with the material's "antialias", kept when a
             // layer then antialiases with options no kept case has (layers
@@ -130,8 +130,8 @@ std::vector<HarnessCase> harnessCases() {
             for (const char* aa : {"lean", "toksvig"}) {
                 HarnessCase v{std::string(c.name) + "_" + aa,
                               oneMaterialScene(c.layers, mesh,
-                                               std::string(R"("antialias": ")") + aa + R"(",)",
-                                               200, 150, c.sceneExtra),
+                                               std::string(R"("antialias": ")") + aa + R"(",)", 200,
+                                               150, c.sceneExtra),
                               k};
                 bool antialias = false;
                 std::string options = layerOptions(v.json, antialias);
@@ -280,7 +280,7 @@ std::string glslHarness(const MaterialPlan& plan, int bfaceMode,
 std::string hlslHarness(const MaterialPlan& plan, int bfaceMode,
                         const std::vector<std::string>& statements) {
     std::string o = "// Layer statements harness, HLSL (tests/render/layer_hlsl_test.cpp).\n"
-                     "#include \"sg/compat.hlsl\"\n";
+                    "#include \"sg/compat.hlsl\"\n";
     for (const std::string& f : planFiles(plan)) o += "#include \"" + f + "\"\n";
     o += "[[vk::binding(0)]] StructuredBuffer<float> inData : register(t0);\n"
          "[[vk::binding(1)]] RWStructuredBuffer<float> outData : register(u1);\n"
@@ -304,8 +304,8 @@ std::string hlslHarness(const MaterialPlan& plan, int bfaceMode,
          std::to_string(kOutStride) + "u) return;\n";
     for (size_t k = 0; k < n; ++k) {
         const std::string s = std::to_string(k);
-        o += "    SgSampler2D uTex" + s + ";\n    uTex" + s + ".tex = gTex" + s + ";\n    uTex" + s +
-             ".state = gSmp" + s + ";\n";
+        o += "    SgSampler2D uTex" + s + ";\n    uTex" + s + ".tex = gTex" + s + ";\n    uTex" +
+             s + ".state = gSmp" + s + ";\n";
     }
     return o + harnessBody(plan, bfaceMode, statements);
 }
@@ -517,10 +517,10 @@ bool allFinite(const std::vector<float>& v) {
 }
 
 struct Errors {
-    double maxDeg = 0.0;      // resolved normal, GPU against CPU
-    double stPixels = 0.0;    // |uv.st difference| / the pixel's st footprint
+    double maxDeg = 0.0;       // resolved normal, GPU against CPU
+    double stPixels = 0.0;     // |uv.st difference| / the pixel's st footprint
     double offsetPixels = 0.0; // |surfOffset difference| / the pixel's size
-    double slopeCovRel = 0.0; // |slopeCov difference| / the case's largest |slopeCov|
+    double slopeCovRel = 0.0;  // |slopeCov difference| / the case's largest |slopeCov|
 };
 
 Errors compare(const MaterialPlan& plan, const Inputs& in, const std::vector<float>& gpu,
@@ -544,14 +544,14 @@ Errors compare(const MaterialPlan& plan, const Inputs& in, const std::vector<flo
             e.stPixels = std::max(e.stPixels, double(glm::length(d)) / foot);
         }
         const double pixel = double(glm::length(px.dPdx) + glm::length(px.dPdy));
-        e.offsetPixels = std::max(
-            e.offsetPixels,
-            double(glm::length(v3(g + kOutSurfOffset) - v3(c + kOutSurfOffset))) / pixel);
+        e.offsetPixels =
+            std::max(e.offsetPixels,
+                     double(glm::length(v3(g + kOutSurfOffset) - v3(c + kOutSurfOffset))) / pixel);
         if (covScale > 0.0) {
             for (int k = 0; k < 9; ++k)
                 e.slopeCovRel = std::max(
-                    e.slopeCovRel, std::abs(double(g[kOutSlopeCov + k] - c[kOutSlopeCov + k])) /
-                                       covScale);
+                    e.slopeCovRel,
+                    std::abs(double(g[kOutSlopeCov + k] - c[kOutSlopeCov + k])) / covScale);
         }
     }
     return e;
@@ -596,8 +596,9 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
 
     const std::vector<std::string> statements = groupStatements(plan);
     const std::string glsl = glslHarness(plan, u.bfaceMode, statements);
-    const shaders::Assembled hlsl = shaders::assemble(
-        hlslHarness(plan, u.bfaceMode, statements), "layer-hlsl-" + hc.name, {}, shaders::Target::Hlsl);
+    const shaders::Assembled hlsl =
+        shaders::assemble(hlslHarness(plan, u.bfaceMode, statements), "layer-hlsl-" + hc.name, {},
+                          shaders::Target::Hlsl);
     // Not vacuous: every statement is in the HLSL and calls its kind's
     // shared function (sgLayer<Kind>, or the sampler of a modifier block).
     for (size_t j = 0; j < statements.size(); ++j) {
@@ -664,9 +665,9 @@ TEST(LayerHlslCoverage, EveryUnbatchedKindHasACase) {
     const std::vector<HarnessCase> cases = harnessCases();
     for (const LayerKind* k : layerKinds()) {
         if (k->batch) continue;
-        EXPECT_TRUE(std::any_of(cases.begin(), cases.end(),
-                                [&](const HarnessCase& c) { return c.kind == k; }))
-            << k->name;
+        EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [&](const HarnessCase& c) {
+            return c.kind == k;
+        })) << k->name;
     }
 }
 
