@@ -72,8 +72,8 @@ inline void renderAndCheck(const sg::render::Scene& s, sg::render::Aov aov, int 
     applyFrame(s, assets, 0.37f);
     const View v = makeView(s, assets, w, h, aov);
     const Image img = renderCpu(s, assets, v);
-    for (float v : img.samples) {
-        if (!std::isfinite(v)) {
+    for (float sample : img.samples) {
+        if (!std::isfinite(sample)) {
             std::fprintf(stderr, "fuzz: non-finite pixel in an accepted scene\n");
             std::abort();
         }
