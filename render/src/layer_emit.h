@@ -21,6 +21,8 @@
 //
 // What a binder offers (both return the same thing in their terms):
 //   layer(), plan()                     the layer and its plan (modes are read here)
+//   context()                           the binder's context (a kind's own data:
+//                                       LayerKindAssets, e.g. the feature maps)
 //   frame(), uv(), vol(space), surfPos(), surfOffset(), slopeCov()
 //                                       the main()'s variables (layer_kind.h, section 3);
 //                                       references on the CPU, so calls may write them
@@ -83,6 +85,7 @@ public:
 
     const Layer& layer() const { return c_.layer(); }
     const MaterialPlan& plan() const { return c_.plan; }
+    const GlslLayerContext& context() const { return c_; }
 
     GlslExpr frame() const { return {"frame"}; }
     GlslExpr uv() const { return {c_.uv()}; }
@@ -188,6 +191,7 @@ public:
 
     const Layer& layer() const { return c_.layer(); }
     const MaterialPlan& plan() const { return c_.plan; }
+    const CpuLayerContext& context() const { return c_; }
 
     sg::glsl::SgFrame& frame() { return s_.frame; }
     sg::glsl::SgUvFrame& uv() { return s_.uv[size_t(layer().uvSet)]; }

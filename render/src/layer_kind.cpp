@@ -201,6 +201,7 @@ int LayerKind::recordCount() const {
 // Emission
 
 std::string GlslLayerContext::rec(int i) const {
+    if (loop) return i == 0 ? "uLayerData[r]" : "uLayerData[r + " + std::to_string(i) + "]";
     return "uLayerData[" + std::to_string(pl.record + i) + "]";
 }
 
@@ -215,6 +216,7 @@ std::string GlslLayerContext::tex(int i) const {
 }
 
 std::string GlslLayerContext::uv() const {
+    if (loop) return "fuv";
     return "uv" + std::to_string(pl.layer->uvSet);
 }
 

@@ -476,6 +476,11 @@ struct GlslLayerContext {
     const MaterialPlan& plan;
     const PlanLayer& pl;
     std::string indent; // of the statement; lines inside a block add 4 spaces
+    // The statement is the body of a batch's loop over its layers (LayerBatch):
+    // records are read from `r` (the loop's record index of layer fi) and the
+    // UV frame is `fuv`; pl stands for every layer of the batch, so the
+    // emitter reads only plan-level modes then.
+    bool loop = false;
 
     const Layer& layer() const { return *pl.layer; }
     std::string rec(int i) const;                    // "uLayerData[n]", i relative to the layer

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "feature_assets.h"
+#include "layer_emit.h"
 
 namespace sg::render {
 
@@ -199,10 +200,81 @@ std::string declarations(const MaterialPlan& plan) {
     return o;
 }
 
+// The maps a feature layer reads, as the binder's values: in the GLSL
+// loop the per-layer sampler arrays indexed by `fi`; on the CPU the
+// layer's slot of the plan's feature samplers (LayerKindAssets::cpuData)
+// and its textures. Without maps (not loaded) the CPU adds nothing.
+struct FeatureMapsGlsl {
+    bool loaded = true;
+    GlslExpr corners{"uFeatCorners[fi]"}, edges{"uFeatEdges[fi]"}, nearLists{"uFeatNear[fi]"},
+        pieces{"uFeatPieces[fi]"}, base{"uFeatBase[fi]"}, chainA{"uFeatChainA[fi]"},
+        chainB{"uFeatChainB[fi]"};
+};
+FeatureMapsGlsl featureMaps(const GlslBinder&) {
+    return {};
+}
+
+struct FeatureMapsCpu {
+    bool loaded = false;
+    G::SgFeatCornerSampler corners{};
+    G::SgFeatEdgeSampler edges{};
+    G::SgFeatNearSampler nearLists{};
+    G::SgFeatPieceSampler pieces{};
+    G::sampler2D base{}, chainA{}, chainB{};
+};
+FeatureMapsCpu featureMaps(const CpuBinder& b) {
+    const CpuLayerContext& c = b.context();
+    const auto* slots = std::any_cast<std::vector<detail::FeatureSamplers>>(c.kindData);
+    FeatureMapsCpu m;
+    if (c.pl.kindSlot < 0 || !slots || !(*slots)[size_t(c.pl.kindSlot)].corners.rgba) return m;
+    const detail::FeatureSamplers& fs = (*slots)[size_t(c.pl.kindSlot)];
+    m.loaded = true;
+    m.corners = fs.corners;
+    m.edges = fs.edges;
+    m.nearLists = fs.nearLists;
+    m.pieces = fs.pieces;
+    // As the GL binding (feature_assets.cpp): base and chain A are slot 0,
+    // chain B slot 1 when the layer has the chain; layers without the near
+    // field or the chain never read those.
+    m.base = m.chainA = c.tex(0);
+    m.chainB = c.pl.tex[1] >= 0 ? c.tex(1) : c.tex(0);
+    return m;
+}
+
+// sgLayerFeature(uv, layer params, profile, corners, edges, base map); the
+// exact near field (sgLayerFeatureNear: its lists and pieces) and the
+// antialiased chain (sgLayerFeatureAa, layer_feature_aa.glsl: its params,
+// chain textures and slopeCov) are variants of their own, chosen per plan
+// (FeaturePlan: the loop runs one call for all the group's feature layers;
+// a layer without the near field or the chain reads neither, by its
+// record's flags).
+constexpr LayerEmitter kEmit = emitter([](auto& b) {
+    const FeaturePlan fp = featurePlan(b.plan());
+    const auto m = featureMaps(b);
+    if (!m.loaded) return;
+    if (fp.lean && fp.near) {
+        return b.addSurfgrad(SG_LAYER_CALL(
+            b, sgLayerFeatureNearAa, b.uv(), b.record(0), b.record(2), b.record(1), m.corners,
+            m.edges, m.nearLists, m.pieces, m.base, m.chainA, m.chainB, b.slopeCov()));
+    }
+    if (fp.lean) {
+        return b.addSurfgrad(SG_LAYER_CALL(b, sgLayerFeatureAa, b.uv(), b.record(0), b.record(2),
+                                           b.record(1), m.corners, m.edges, m.base, m.chainA,
+                                           m.chainB, b.slopeCov()));
+    }
+    if (fp.near) {
+        return b.addSurfgrad(SG_LAYER_CALL(b, sgLayerFeatureNear, b.uv(), b.record(0), b.record(1),
+                                           m.corners, m.edges, m.nearLists, m.pieces, m.base));
+    }
+    b.addSurfgrad(SG_LAYER_CALL(b, sgLayerFeature, b.uv(), b.record(0), b.record(1), m.corners,
+                                m.edges, m.base));
+});
+
 // The statements of one feature layer `fi` (a loop index, or a constant
-// in the unrolled form), at `indent`.
-std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const std::string& in) {
-    const FeaturePlan fp = featurePlan(plan);
+// in the unrolled form), at `indent`: its UV frame `fuv`, its first record
+// `r`, and the emitter's statement over them.
+std::string featureLayerBody(const MaterialPlan& plan, const PlanLayer& any, uint32_t uvMask,
+                             const std::string& in) {
     std::string o = in + "int r = kFeatRecord[fi];\n";
     bool firstUv = true;
     for (int k = 0; k < plan.uvCount; ++k) {
@@ -215,18 +287,7 @@ std::string featureLayerBody(const MaterialPlan& plan, uint32_t uvMask, const st
             o += in + "if (kFeatUvSet[fi] == " + std::to_string(k) + ") fuv = " + uv + ";\n";
         }
     }
-    const std::string fn =
-        std::string(fp.near ? "sgLayerFeatureNear" : "sgLayerFeature") + (fp.lean ? "Aa" : "");
-    o += in + "surfGrad += " + fn +
-         "(fuv, sgUnpackFeatureLayer(uLayerData[r], uLayerData[r + "
-         "1], uLayerData[r + 2]),\n" +
-         (fp.lean ? in + "    sgUnpackFeatureAa(uLayerData[r + 2]),\n" : "") + in +
-         "    sgUnpackFeatProfile(uLayerData[r + 3], uLayerData[r + 4], uLayerData[r + 5], "
-         "uLayerData[r + 6], uLayerData[r + 7], uLayerData[r + 8]),\n" +
-         in + "    uFeatCorners[fi], uFeatEdges[fi], " +
-         (fp.near ? "uFeatNear[fi], uFeatPieces[fi], " : "") + "uFeatBase[fi]" +
-         (fp.lean ? ", uFeatChainA[fi], uFeatChainB[fi], slopeCov" : "") + ");\n";
-    return o;
+    return o + in + kEmit.glsl(GlslLayerContext{plan, any, in, true});
 }
 
 // One loop over the group's feature layers, so the evaluator is compiled
@@ -242,7 +303,7 @@ std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLaye
     const std::string on = "if (uLayerOn[kFeatFlag[fi]] > 0.5) {\n";
     const std::string in = indent + (plan.uber ? "        " : "    ");
     const std::string body = (plan.uber ? indent + "    " + on : "") +
-                             featureLayerBody(plan, uvMask, in) +
+                             featureLayerBody(plan, *layers.front(), uvMask, in) +
                              (plan.uber ? indent + "    }\n" : "");
     std::string o = indent + "// feature layers " + std::to_string(first) + ".." +
                     std::to_string(first + count - 1) +
@@ -256,39 +317,6 @@ std::string groupLoop(const MaterialPlan& plan, const std::vector<const PlanLaye
 }
 
 const LayerBatch kBatch{groupLoop};
-
-void cpu(const CpuLayerContext& c, CpuShadeState& s, glm::vec3) {
-    const auto* slots = std::any_cast<std::vector<detail::FeatureSamplers>>(c.kindData);
-    if (c.pl.kindSlot < 0 || !slots || !(*slots)[size_t(c.pl.kindSlot)].corners.rgba)
-        return; // maps not loaded: nothing to add
-    const detail::FeatureSamplers& fs = (*slots)[size_t(c.pl.kindSlot)];
-    const glm::vec4* r = c.rec();
-    if (c.layer().params<P>().lean) {
-        // Slots 0 and 1: the chain (no base map with "lean").
-        const G::SgFeatureLayerParams p = G::sgUnpackFeatureLayer(r[0], r[1], r[2]);
-        const G::SgFeatureAaParams aa = G::sgUnpackFeatureAa(r[2]);
-        const G::SgFeatProfile pr = G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]);
-        if (fs.nearLists.rgba) {
-            s.surfGrad +=
-                G::sgLayerFeatureNearAa(c.uv(s), p, aa, pr, fs.corners, fs.edges, fs.nearLists,
-                                        fs.pieces, c.tex(0), c.tex(0), c.tex(1), s.slopeCov);
-        } else {
-            s.surfGrad += G::sgLayerFeatureAa(c.uv(s), p, aa, pr, fs.corners, fs.edges, c.tex(0),
-                                              c.tex(0), c.tex(1), s.slopeCov);
-        }
-        return;
-    }
-    if (fs.nearLists.rgba) {
-        s.surfGrad +=
-            G::sgLayerFeatureNear(c.uv(s), G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
-                                  G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
-                                  fs.corners, fs.edges, fs.nearLists, fs.pieces, c.tex(0));
-        return;
-    }
-    s.surfGrad += G::sgLayerFeature(c.uv(s), G::sgUnpackFeatureLayer(r[0], r[1], r[2]),
-                                    G::sgUnpackFeatProfile(r[3], r[4], r[5], r[6], r[7], r[8]),
-                                    fs.corners, fs.edges, c.tex(0));
-}
 
 // "antialias": "none" (default) or "lean": the layer's maps become the two
 // textures of its prefiltered chain (read last: after the source, the
@@ -382,7 +410,7 @@ const LayerKind& featureLayerKind() {
         },
         .assets = &featureKindAssets(),
         .records = {layerRecords(), profileRecords(), aaRecords()},
-        .emit = {nullptr, cpu},
+        .emit = kEmit,
         .batch = &kBatch,
         .programDeclarations = declarations,
         .programDefines =
