@@ -494,6 +494,11 @@ struct GlslLayerContext {
     std::string relPos() const;
 };
 
+// The shader files a plan's layers include, in first-use order: each
+// layer's kind file (its options' variant, or its modifier file), then
+// sg/render/antialias.glsl when the plan antialiases (plan.cpp).
+std::vector<std::string> layerGlslFiles(const MaterialPlan& plan);
+
 // A layer of the plan moves the surface (LayerKind::movesSurface).
 bool planMovesSurface(const MaterialPlan& plan);
 

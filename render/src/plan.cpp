@@ -88,12 +88,9 @@ std::string uvVar(int set) {
     return "uv" + std::to_string(set);
 }
 
-// Includes, uniforms and the kinds' program-level declarations.
-void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
-    o << "// surfgrad assembled fragment program (render/src/plan.cpp).\n"
-      << "// Effect signature: " << plan.signature << "\n"
-      << "// Only the layer kinds this material uses are included below.\n"
-      << "#include \"sg/render/surface_fs.glsl\"\n";
+} // namespace
+
+std::vector<std::string> layerGlslFiles(const MaterialPlan& plan) {
     std::vector<std::string> files;
     for (const auto& g : plan.groups)
         for (const auto& pl : g) {
@@ -104,7 +101,18 @@ void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
             if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
         }
     if (plan.antialias) files.push_back("sg/render/antialias.glsl");
-    for (const auto& f : files) o << "#include \"" << f << "\"\n";
+    return files;
+}
+
+namespace {
+
+// Includes, uniforms and the kinds' program-level declarations.
+void emitDeclarations(const MaterialPlan& plan, std::ostringstream& o) {
+    o << "// surfgrad assembled fragment program (render/src/plan.cpp).\n"
+      << "// Effect signature: " << plan.signature << "\n"
+      << "// Only the layer kinds this material uses are included below.\n"
+      << "#include \"sg/render/surface_fs.glsl\"\n";
+    for (const auto& f : layerGlslFiles(plan)) o << "#include \"" << f << "\"\n";
     for (size_t i = 0; i < plan.textureKeys.size(); ++i) {
         o << "uniform sampler2D uTex" << i << "; // "
           << (plan.textureKeys[i].empty() ? "(none)" : plan.textureKeys[i]) << "\n";
