@@ -1,5 +1,5 @@
 // bench_bump: CPU cost of every shared bump function (shaders/sg/*.glsl
-// compiled as C++ through GLM, surfgrad/bump.h), in ns per call.
+// compiled as C++ through GLM, surfgrad/bump/core.h), in ns per call.
 // Each benchmark cycles through 1024 precomputed random inputs (so nothing
 // is constant-folded) and keeps every result alive with DoNotOptimize.
 // The baseline row "baseline/load3" reads the same inputs and returns one
@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace {
 

@@ -28,8 +28,8 @@
 #include <ctime>
 #include <vector>
 
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace {
 

@@ -33,9 +33,9 @@
 #include <vector>
 
 #include "bake_internal.h"
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/threads.h"
 
 using namespace sg::features;
 using glm::dvec2;

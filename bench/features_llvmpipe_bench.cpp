@@ -35,10 +35,10 @@
 
 #include <time.h>
 
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 using namespace sg::features;
 using glm::dvec2;

@@ -49,8 +49,8 @@
 
 #include <ctime>
 
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
 
 using namespace sg::features;
 using glm::dvec2;

@@ -28,7 +28,7 @@
 #include <vector>
 
 #include "bake_internal.h"
-#include "surfgrad/curves.h"
+#include "surfgrad/features/curves.h"
 
 using namespace sg::features;
 using namespace sg::features::detail;

@@ -61,10 +61,10 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/osd_primvar.h"
-#include "surfgrad/polymesh.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/osd_primvar.h"
+#include "surfgrad/mesh/polymesh.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

@@ -4,7 +4,7 @@
 // subdivided to >= 100k vertices. Per animation frame, two ways to draw it
 // normal-mapped on llvmpipe (512x512, glFinish per frame):
 //   vertex tangents: morph (positions + recomputed normals), MikkTSpace
-//                    tangents for the morphed mesh (surfgrad/tangents.h;
+//                    tangents for the morphed mesh (surfgrad/mesh/tangents.h;
 //                    it splits vertices, so every attribute is re-uploaded),
 //                    draw with the mikktspace basis (sgMikktsBasis);
 //   per pixel:       morph (positions + normals), upload those two, draw with
@@ -27,12 +27,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "surfgrad/gl.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/morph.h"
-#include "surfgrad/shader_files.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/morph.h"
+#include "surfgrad/shaders/shader_files.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

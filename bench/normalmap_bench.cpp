@@ -1,4 +1,4 @@
-// Benchmark: every `surfgrad normalmap` operation (surfgrad/normalmap.h) on a
+// Benchmark: every `surfgrad normalmap` operation (surfgrad/normalmap/operations.h) on a
 // 4096 x 4096 map, height-field-correct vs naive, on 1 thread and on all
 // threads, in the same run. Input: an analytic tileable map (sums of sines
 // plus a Gaussian bump, slopes up to ~1) built in memory, so no file I/O is
@@ -25,7 +25,7 @@
 #include <tuple>
 #include <vector>
 
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace {
 

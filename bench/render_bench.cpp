@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 #include "surfgrad/render.h"
 
 using namespace sg::render;

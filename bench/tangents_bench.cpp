@@ -1,4 +1,4 @@
-// Benchmark: MikkTSpace-compatible vertex tangents (surfgrad/tangents.h) on
+// Benchmark: MikkTSpace-compatible vertex tangents (surfgrad/mesh/tangents.h) on
 // a >= 1M-triangle mesh, one core. Input: blub (Keenan Crane,
 // data/meshes/blub) with area-weighted vertex normals, split
 // 1-to-4 at edge midpoints (positions, normals and UVs interpolated, normals
@@ -51,9 +51,9 @@
 
 #include <tbb/info.h>
 
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/mikktspace_reference.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 # Binary64 copies of the shared shader source (shaders/sg/**.glsl) for the
 # reference evaluations compiled in double precision through
-# shaders/include/surfgrad/glsl_cpp_double.h (bump/src/eval_double.cpp,
+# shaders/include/surfgrad/shaders/glsl_cpp_double.h (bump/src/eval_double.cpp,
 # features/src/shared_double.cpp). A copy is the SAME formulas with the
 # float-literal suffixes removed (1.0f -> 1.0) and `#include "sg/...`
 # redirected to `sgd/...`; the including C++ file maps the GLSL float types

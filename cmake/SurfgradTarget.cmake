@@ -1,7 +1,7 @@
 # surfgrad_defaults(target): warnings, sanitizers, contract checks and the
 # C++ standard for every first-party target. SURFGRAD_WERROR turns warnings
 # into errors (CI); SURFGRAD_CONTRACTS turns the contract checks of
-# surfgrad/contract.h on (the same on every target, so inline functions
+# surfgrad/base/contract.h on (the same on every target, so inline functions
 # agree across translation units).
 function(surfgrad_defaults tgt)
     target_compile_features(${tgt} PUBLIC cxx_std_20)
@@ -40,7 +40,7 @@ endfunction()
 #    installation, where SurfgradInstall.cmake copies its files;
 #  - in a build with SURFGRAD_CONTRACTS on, the installed target passes
 #    SURFGRAD_CONTRACTS=1 on to consumers, so inline functions of the
-#    headers check the same contracts as the library (surfgrad/contract.h).
+#    headers check the same contracts as the library (surfgrad/base/contract.h).
 function(surfgrad_export tgt)
     cmake_parse_arguments(E "" "NAME;HEADERS" "" ${ARGN})
     add_library(surfgrad::${E_NAME} ALIAS ${tgt})

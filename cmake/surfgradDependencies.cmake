@@ -59,7 +59,7 @@ endfunction()
 
 _surfgrad_find_dependency(glm)                 # shaders, bump, image, mesh, render headers
 _surfgrad_find_dependency(nlohmann_json)
-_surfgrad_find_dependency(OpenMesh)            # mesh: surfgrad/polymesh.h (OpenMeshCore)
+_surfgrad_find_dependency(OpenMesh)            # mesh: surfgrad/mesh/polymesh.h (OpenMeshCore)
 # Debian's OpenSubdivConfig.cmake is broken: FindOpenSubdiv.cmake (beside
 # this file, on CMAKE_MODULE_PATH) makes OpenSubdiv::osdCPU.
 _surfgrad_find_dependency(OpenSubdiv)

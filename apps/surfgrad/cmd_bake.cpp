@@ -7,7 +7,7 @@
 // bakes the high-resolution mesh HIGH onto the Catmull-Clark limit surface
 // of CAGE (or, --surface refined, onto CAGE refined to level N and
 // triangulated, with MikkTSpace frames) in the layout of its UV set K
-// (bake, surfgrad/bake.h). Each
+// (bake, surfgrad/bake/baker.h). Each
 // output is optional, at least one is required:
 //  - displacement: one channel, object units along the limit normal
 //    (positive outwards): float in .exr/.tif (the scene's "displacement"
@@ -41,11 +41,11 @@
 #include <string>
 
 #include "commands.h"
-#include "surfgrad/bake.h"
-#include "surfgrad/image_format.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/bake/baker.h"
+#include "surfgrad/image/image_format.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::cli {
 

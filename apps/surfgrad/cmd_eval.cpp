@@ -2,7 +2,7 @@
 // JSON records read from stdin, one object per line, and writes one JSON
 // object per line to stdout. A line that cannot be evaluated (bad JSON,
 // unknown or missing key, wrong type or length, a number outside the input
-// domain |x| <= 1e18; surfgrad/eval_line.h) gets {"error": "line N: ..."}
+// domain |x| <= 1e18; surfgrad/bump/eval_line.h) gets {"error": "line N: ..."}
 // in its place; the exit status is then 1.
 // `surfgrad eval --list` prints the entries and their keys.
 #include <CLI/CLI.hpp>
@@ -12,10 +12,10 @@
 #include <optional>
 
 #include "commands.h"
-#include "surfgrad/parity.h"
-#include "surfgrad/eval_kernels.h"
-#include "surfgrad/eval_line.h"
-#include "surfgrad/gl.h"
+#include "surfgrad/parity/check.h"
+#include "surfgrad/bump/eval_kernels.h"
+#include "surfgrad/bump/eval_line.h"
+#include "surfgrad/gl/context.h"
 
 namespace sg::cli {
 

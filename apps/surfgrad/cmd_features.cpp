@@ -1,5 +1,5 @@
 // `surfgrad features ...`: feature-curve maps (Parilov, Rosenberg, Zorin 2005;
-// Parilov, Zorin 2008), surfgrad/feature_maps.h.
+// Parilov, Zorin 2008), surfgrad/features/feature_maps.h.
 //
 //   features bake (--curves F | --svg F | --font F --text STR [--face I])
 //                 --size N [--mode linear|quadratic] [--margin T] [--band T]
@@ -49,10 +49,10 @@
 #include <iostream>
 
 #include "commands.h"
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::cli {
 

@@ -1,5 +1,5 @@
 // `surfgrad mesh ...`: the mesh pipeline's subcommands (mesh/,
-// surfgrad/mesh_io.h, surfgrad/subdivision.h, surfgrad/morph.h).
+// surfgrad/mesh/mesh_io.h, surfgrad/mesh/subdivision.h, surfgrad/mesh/morph.h).
 //
 //   mesh info FILE [--json] [--repair]
 //       counts, bounding box (object units; glTF: world space, the nodes'
@@ -41,10 +41,10 @@
 #include <sstream>
 
 #include "commands.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/morph.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/morph.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::cli {
 

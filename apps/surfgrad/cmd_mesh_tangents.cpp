@@ -3,7 +3,7 @@
 //  -o OUT.gltf|.glb [--json]`:
 // writes a glTF whose TANGENT (xyz + handedness w) belongs to UV set K
 // (TEXCOORD_K), computed by one of the tangent-frame methods of
-// surfgrad/tangents.h:
+// surfgrad/mesh/tangents.h:
 //  - mikktspace: MikkTSpace-compatible vertex tangents of the file's
 //    triangle mesh (or of its level-N uniform refinement with --level);
 //    vertices whose corners get different tangents are split;
@@ -30,10 +30,10 @@
 #include <string>
 
 #include "commands.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::cli {
 

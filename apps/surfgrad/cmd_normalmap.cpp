@@ -1,7 +1,7 @@
 // `surfgrad normalmap ...`: the height-field-correct normal-map operations
 // of Loviscach, "Care and Feeding of Normal Vectors" (GDC 2008) on image
 // files, each also runnable --naive (the plain image operation) for
-// comparison. The library is normalmap (surfgrad/normalmap.h); every
+// comparison. The library is normalmap (surfgrad/normalmap/operations.h); every
 // op and option is described in docs/normalmap.md.
 //
 //   normalmap from-height H -o OUT [--scale S] [--channel C]
@@ -39,11 +39,11 @@
 #include <vector>
 
 #include "commands.h"
-#include "surfgrad/image_format.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/normalmap.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/image/image_format.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/normalmap/operations.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::cli {
 

@@ -24,12 +24,12 @@
 #include <set>
 
 #include "commands.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/image_format.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/image/image_format.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 #include "surfgrad/render.h"
-#include "surfgrad/shader_target.h"
+#include "surfgrad/translate/shader_target.h"
 #if SURFGRAD_HAVE_VIEWER
 #include "surfgrad/viewer.h"
 #endif

@@ -14,7 +14,7 @@
 #include <cstdio>
 
 #include "commands.h"
-#include "surfgrad/parity.h"
+#include "surfgrad/parity/check.h"
 
 namespace sg::cli {
 

@@ -18,7 +18,7 @@
 
 #include <tbb/global_control.h>
 
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace CLI {
 class App;
@@ -65,7 +65,7 @@ inline constexpr const char* kMaxMemoryHint = "--max-memory SIZE";
 void addMaxMemoryOption(CLI::App* cmd, uint64_t& bytes);
 // `--threads N` (1..1024; default: all cores) into `threads` (0 when not
 // given), for every command whose work runs on several cores
-// (surfgrad/threads.h).
+// (surfgrad/base/threads.h).
 void addThreadsOption(CLI::App* cmd, int& threads);
 // Caps every TBB loop of the command at `threads` for as long as the
 // returned object lives; 0: no cap (a null pointer).

@@ -15,9 +15,9 @@
 #include <string>
 
 #include "commands.h"
-#include "surfgrad/bump.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 #ifndef SURFGRAD_VERSION
 #define SURFGRAD_VERSION "0.0.0"

@@ -1,9 +1,9 @@
 // --threads: one option for every command whose work runs on several cores
-// (the convention of surfgrad/threads.h; contracts in commands.h).
+// (the convention of surfgrad/base/threads.h; contracts in commands.h).
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::cli {
 

@@ -1,8 +1,8 @@
 // bake(): texel centres -> limit-surface points (uv_cover, limit_patches),
 // rays along +- the limit normal into the high mesh (high_mesh), the hit's
 // displacement and normal in the limit frame, padding around the charts.
-// See surfgrad/bake.h for the contract and the papers.
-#include "surfgrad/bake.h"
+// See surfgrad/bake/baker.h for the contract and the papers.
+#include "surfgrad/bake/baker.h"
 
 #include <algorithm>
 #include <chrono>
@@ -15,10 +15,10 @@
 #include "high_mesh.h"
 #include "base_surface.h"
 #include "residual.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/base/threads.h"
 #include "uv_cover.h"
 
 namespace sg::bake {

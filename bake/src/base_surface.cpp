@@ -9,10 +9,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfgrad/io.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::bake::detail {
 

@@ -6,7 +6,7 @@
 //    (sg/patch/limit_tangent.glsl): what the renderer draws for adaptive
 //    meshes and for "limit": true;
 //  - TriangleBase: the cage refined uniformly to a level and triangulated
-//    (surfgrad/subdivision.h, no limit evaluation), positions, vertex
+//    (surfgrad/mesh/subdivision.h, no limit evaluation), positions, vertex
 //    normals and MikkTSpace tangents interpolated linearly over each
 //    triangle: what triangle-mesh bakers (Blender, xNormal, Substance)
 //    measure from, and what a renderer drawing that refined mesh with
@@ -22,8 +22,8 @@
 #include <glm/vec4.hpp>
 
 #include "limit_patches.h"
-#include "surfgrad/polygon_mesh.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 #include "uv_cover.h"
 
 namespace sg::bake::detail {

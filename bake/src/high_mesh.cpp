@@ -10,8 +10,8 @@
 #include <embree3/rtcore.h>
 #include <glm/geometric.hpp>
 
-#include "surfgrad/io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::bake::detail {
 

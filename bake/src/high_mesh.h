@@ -10,7 +10,7 @@
 
 #include <glm/vec3.hpp>
 
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 struct RTCDeviceTy;
 struct RTCSceneTy;

@@ -10,7 +10,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/bump/patch_basis.h"
 
 namespace sg::bake::detail {
 

@@ -1,5 +1,5 @@
 // The limit surface of a Catmull-Clark cage as the bake reads it: the
-// feature-adaptive patch table (surfgrad/adaptive_patches.h, OpenSubdiv's
+// feature-adaptive patch table (surfgrad/mesh/adaptive_patches.h, OpenSubdiv's
 // Far::PatchTable with Gregory-basis end caps) evaluated with the shared
 // patch bases (shaders/sg/patch/basis.glsl, the tessellation evaluation
 // stage's code), one UV set's face-varying patches beside it, and the
@@ -18,8 +18,8 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/mesh/polygon_mesh.h"
 
 namespace sg::bake::detail {
 

@@ -6,8 +6,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "surfgrad/bake.h"
-#include "surfgrad/bump.h"
+#include "surfgrad/bake/baker.h"
+#include "surfgrad/bump/core.h"
 
 namespace sg::bake::detail {
 

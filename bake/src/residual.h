@@ -20,7 +20,7 @@
 
 #include <cstdint>
 
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::bake::detail {
 

@@ -21,7 +21,7 @@
 #include <glm/vec2.hpp>
 
 #include "limit_patches.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace sg::bake::detail {
 

@@ -1,5 +1,5 @@
-// The failure path of the contract checks (see surfgrad/contract.h).
-#include "surfgrad/contract.h"
+// The failure path of the contract checks (see surfgrad/base/contract.h).
+#include "surfgrad/base/contract.h"
 
 #include <cstdio>
 #include <cstdlib>

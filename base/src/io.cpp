@@ -1,5 +1,5 @@
-// Input/output policy helpers (see surfgrad/io.h).
-#include "surfgrad/io.h"
+// Input/output policy helpers (see surfgrad/base/io.h).
+#include "surfgrad/base/io.h"
 
 #include <algorithm>
 #include <atomic>

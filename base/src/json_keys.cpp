@@ -1,4 +1,4 @@
-// Duplicate keys in JSON objects (surfgrad/io.h: checkJsonKeysUnique).
+// Duplicate keys in JSON objects (surfgrad/base/io.h: checkJsonKeysUnique).
 // RFC 8259 sec. 4 leaves repeated names to the implementation, and
 // nlohmann_json (like most parsers) keeps one silently: a scene that sets
 // "level" twice would render with whichever value the parser kept. One SAX
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::io {
 

@@ -1,6 +1,6 @@
 // Scratch buffers (scratch_buffer.h): large blocks mapped from the
 // operating system, 2 MiB-aligned, with transparent huge pages requested.
-#include "surfgrad/scratch_buffer.h"
+#include "surfgrad/base/scratch_buffer.h"
 
 #include <cstdint>
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "render_internal.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/bump/patch_basis.h"
 
 #include <algorithm>
 #include <cmath>

@@ -15,7 +15,7 @@
 #include "surfgrad/render.h"
 #include "surfgrad/render/image.h"
 #include "surfgrad/render/view.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace study {
 

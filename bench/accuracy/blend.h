@@ -1,9 +1,9 @@
 // The normal-map blends of sg/normal_blends.glsl compiled as C++
 // (sg::glsl::sgNormalBlend*), next to the shared bump math
-// (surfgrad/bump.h).
+// (surfgrad/bump/core.h).
 #pragma once
 
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace sg::glsl {
 #include "sg/normal_blends.glsl"

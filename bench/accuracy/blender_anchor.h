@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace study {
 

@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <stdexcept>
 
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace study {
 

@@ -18,8 +18,8 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/gl.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace study {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <thread>
 
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 #include "tables.h"
 
 namespace {

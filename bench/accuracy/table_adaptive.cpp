@@ -55,12 +55,12 @@
 #include <vector>
 
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/bump/patch_basis.h"
 #include "surfgrad/render.h"
 #include "adaptive_error.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/subdivision.h"
 #include "tables.h"
 
 namespace study {

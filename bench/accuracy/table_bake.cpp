@@ -15,7 +15,7 @@
 // point along +- its limit normal into the high mesh gives the true
 // displacement t and the true normal n; the drawn surface there has
 // displacement h = the map sampled bilinearly at the point's UV (the
-// renderer's CPU texture sampling, surfgrad/glsl_texture.h), and the shading
+// renderer's CPU texture sampling, surfgrad/render/glsl_texture.h), and the shading
 // normal from the normal map (slopes sampled bilinearly, then
 // sgMikktsBasis in the limit frame, sgSurfgradFromTBN, sgResolve: the
 // renderer's path). Columns: |h - t| as a fraction of the sculpt's depth
@@ -37,13 +37,13 @@
 #include "blender_anchor.h"
 #include "high_mesh.h"
 #include "limit_patches.h"
-#include "surfgrad/bake.h"
-#include "surfgrad/bump.h"
-#include "surfgrad/glsl_texture.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/normalmap.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/bake/baker.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/render/glsl_texture.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/normalmap/operations.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/mesh/subdivision.h"
 #include "tables.h"
 
 namespace study {

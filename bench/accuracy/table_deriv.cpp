@@ -41,7 +41,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 #include "tables.h"
 #include "torus.h"
 

@@ -25,10 +25,10 @@
 
 #include "layers/feature_assets.h"
 #include "render_internal.h"
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 #include "tables.h"
 
 namespace study {

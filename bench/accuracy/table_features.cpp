@@ -41,7 +41,7 @@
 #include <cmath>
 #include <string>
 
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/feature_maps.h"
 #include "tables.h"
 
 namespace study {
@@ -378,7 +378,7 @@ void tableFeatures(const Options& o) {
     GLuint texCorners[3], texEdges[3], texNormal, texNear[2];
     const sg::features::GpuFeatureMaps* gm[3] = {&lin, &quad, &nearMaps};
     for (int k = 0; k < 3; ++k) {
-        // Layout of surfgrad/feature_maps.h: corner pairs N x (N+1) and edge
+        // Layout of surfgrad/features/feature_maps.h: corner pairs N x (N+1) and edge
         // words N x N, both RGBA32UI.
         glCreateTextures(GL_TEXTURE_2D, 1, &texCorners[k]);
         glTextureStorage2D(texCorners[k], 1, GL_RGBA32UI, gm[k]->cornerPairsWidth(),

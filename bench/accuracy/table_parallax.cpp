@@ -27,7 +27,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 #include "tables.h"
 
 namespace study {

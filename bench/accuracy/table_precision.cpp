@@ -32,7 +32,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "precision_path.h"
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 #include "surfgrad/render/view.h"
 #include "tables.h"
 #include "torus_bump.h"

@@ -32,8 +32,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 #include "tables.h"
 #include "torus.h"
 

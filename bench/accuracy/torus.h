@@ -20,7 +20,7 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
 
 namespace study {
 

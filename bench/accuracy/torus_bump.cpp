@@ -6,9 +6,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace study {
 

@@ -16,7 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "common.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 #include "torus.h"
 
 namespace study {

@@ -1,8 +1,8 @@
 // The triplanar methods of triplanar.glsl compiled as C++
-// (sg::glsl::studyTriplanar*), next to the shared bump math (surfgrad/bump.h).
+// (sg::glsl::studyTriplanar*), next to the shared bump math (surfgrad/bump/core.h).
 #pragma once
 
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace sg::glsl {
 #include "triplanar.glsl"

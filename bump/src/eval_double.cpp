@@ -1,16 +1,16 @@
 // Double-precision evaluation of the SAME shared shader formulas
 // (shaders/sg/*.glsl, copied with float literals made double by
-// surfgrad_double_sources, compiled through surfgrad/glsl_cpp_double.h). It
+// surfgrad_double_sources, compiled through surfgrad/shaders/glsl_cpp_double.h). It
 // is not an independent oracle: the parity suite uses it to measure how
 // well-conditioned each input record is (how much the exact result moves
 // when the inputs move by a few ulps) and how far the binary32 CPU and GPU
 // builds are from the exact value of their own formula. Independent known
 // answers live in tests/bump.
-#include "surfgrad/eval_kernels.h"
+#include "surfgrad/bump/eval_kernels.h"
 
 // The shared source in binary64: sg::glsl_double::sgEvalKernel and the rest.
 #define SG_GLSL_DOUBLE_SOURCE "sgd/eval/kernels.glsl"
-#include "surfgrad/glsl_cpp_double.h"
+#include "surfgrad/shaders/glsl_cpp_double.h"
 
 namespace sg::eval {
 

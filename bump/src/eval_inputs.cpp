@@ -1,4 +1,4 @@
-// Input records of the parity suite (surfgrad/eval_kernels.h,
+// Input records of the parity suite (surfgrad/bump/eval_kernels.h,
 // generateInputs): the generators named by the kernel list of
 // shaders/sg/eval/kernels.glsl.
 #include "eval_inputs.h"

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <random>
 
-#include "surfgrad/eval_kernels.h"
+#include "surfgrad/bump/eval_kernels.h"
 
 namespace sg::eval {
 

@@ -1,12 +1,12 @@
-// `surfgrad eval` line format (see surfgrad/eval_line.h).
-#include "surfgrad/eval_line.h"
+// `surfgrad eval` line format (see surfgrad/bump/eval_line.h).
+#include "surfgrad/bump/eval_line.h"
 
 #include <nlohmann/json.hpp>
 
 #include <charconv>
 #include <cmath>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::eval {
 

@@ -3,15 +3,15 @@
 // names, kernel ids, record layouts (keys, widths, slots in declaration
 // order, docs, JSON defaults and ranges, how parity records fill them),
 // tolerances with their reasons and input generators.
-#include "surfgrad/eval_kernels.h"
+#include "surfgrad/bump/eval_kernels.h"
 
 #include <type_traits>
 
 #include "eval_inputs.h"
-#include "surfgrad/bump.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/record.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/bump/record.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::glsl {
 #include "sg/eval/kernels.glsl"

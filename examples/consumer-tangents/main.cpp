@@ -24,9 +24,9 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/bump.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/tangents.h"
 
 int main(int argc, char** argv) {
     if (argc != 2 && !(argc == 4 && std::string(argv[2]) == "--uv-set")) {

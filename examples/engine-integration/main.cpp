@@ -37,7 +37,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "example_setup.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 #ifndef EXAMPLE_SHADER_DIR
 #define EXAMPLE_SHADER_DIR "."

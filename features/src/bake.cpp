@@ -41,11 +41,11 @@
 
 #include <time.h>
 
-#include "surfgrad/scratch_buffer.h"
+#include "surfgrad/base/scratch_buffer.h"
 #include "bake_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/io.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::features {
 

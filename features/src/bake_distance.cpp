@@ -22,7 +22,7 @@
 #include <bit>
 #include <chrono>
 
-#include "surfgrad/scratch_buffer.h"
+#include "surfgrad/base/scratch_buffer.h"
 #include "bake_internal.h"
 
 namespace sg::features::detail {

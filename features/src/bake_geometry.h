@@ -1,6 +1,6 @@
 // Double-precision quadratic Bezier geometry for the feature-map bake
 // (internal to features/src): evaluation, roots, exact point-curve
-// distance. Texel-space positions (surfgrad/feature_maps.h).
+// distance. Texel-space positions (surfgrad/features/feature_maps.h).
 #pragma once
 
 #include <algorithm>

@@ -9,7 +9,7 @@
 
 #include "bake_geometry.h"
 #include "bake_parallel.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace sg::features::detail {
 

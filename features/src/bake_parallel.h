@@ -1,6 +1,6 @@
 // Parallel loops of the feature-map bake and packing (features/src): fixed
 // blocks of a loop's range run on the threads of the caller's TBB arena
-// (surfgrad/threads.h), or in order on the calling thread when the job is
+// (surfgrad/base/threads.h), or in order on the calling thread when the job is
 // below its serial cut-over or given one thread. Bodies write disjoint
 // outputs; per-block results (counters) are combined in block order, so
 // every output is the same for every thread count and every scheduling.

@@ -1,5 +1,5 @@
 // Quadratic approximation of cubic Beziers and elliptical arcs with a proven
-// Hausdorff bound (see surfgrad/curves.h for the contracts).
+// Hausdorff bound (see surfgrad/features/curves.h for the contracts).
 //
 // Parilov and Zorin (2008) build feature maps from quadratic Bezier curves
 // only (seed 004, section 3), so every cubic (SVG C/S, CFF glyphs) and arc
@@ -40,8 +40,8 @@
 // (cos h + 1/cos h)/2 - 1 = 2 sin^4(h/2) / cos h (the second form avoids
 // cancellation for small h). An affine map with linear part M scales
 // distances by at most ||M||_2.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,12 +1,12 @@
 // Structural checks of curve networks and exact junction detection (see
-// surfgrad/curves.h). The feature-map preprocessing of Parilov and Zorin
+// surfgrad/features/curves.h). The feature-map preprocessing of Parilov and Zorin
 // (2008, section 4) must know where curves end and meet: a texel holding a
 // junction gets a different configuration than one crossed by a smooth
 // curve. Loaders make shared endpoints bit-identical, so junctions are found
 // by exact comparison, without a distance threshold that would merge nearby
 // but distinct curve ends.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
-// CurveNetwork helpers (see surfgrad/curves.h).
-#include "surfgrad/curves.h"
+// CurveNetwork helpers (see surfgrad/features/curves.h).
+#include "surfgrad/features/curves.h"
 
 #include <glm/common.hpp>
 

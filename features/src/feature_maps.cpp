@@ -1,14 +1,14 @@
 // Feature maps: packing for the GPU, the C++ sampling entry point and the
-// named profiles (see surfgrad/feature_maps.h).
+// named profiles (see surfgrad/features/feature_maps.h).
 #include <charconv>
 #include <cmath>
 
-#include "surfgrad/scratch_buffer.h"
+#include "surfgrad/base/scratch_buffer.h"
 #include "bake_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::features {
 

@@ -1,12 +1,12 @@
-// OpenEXR storage of baked feature maps (layout: surfgrad/feature_maps.h).
+// OpenEXR storage of baked feature maps (layout: surfgrad/features/feature_maps.h).
 // Loading treats the file as untrusted: sizes are checked before anything
 // is allocated, every channel and metadata field must be present with the
 // right type, every value must be finite and in range, configurations must
 // be consistent with the edge points, and in quadratic mode every curved
 // segment's signature must pass the same validation the bake applies, so
 // the runtime evaluator only ever sees data it was designed for. The file
-// is read by the image module's decoder (surfgrad/image_decode.h) and
-// written by its writer (surfgrad/image_write.h).
+// is read by the image module's decoder (surfgrad/image/image_decode.h) and
+// written by its writer (surfgrad/image/image_write.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -15,11 +15,11 @@
 #include <variant>
 
 #include "bake_internal.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/image_decode.h"
-#include "surfgrad/image_header.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/image/image_header.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::features {
 
@@ -29,7 +29,7 @@ const char* kLayout =
     "surfgrad feature maps: (N+1)^2 grid corners, scanline 0 = top (j = N); d,gx,gy,left per "
     "corner; "
     "seg = configuration bits 0-11 of texel (i,j); hT,hA / vT,vA = point on edge (i,j)-(i+1,j) / "
-    "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/feature_maps.h";
+    "(i,j)-(i,j+1), T = -1 without a point; see surfgrad/features/feature_maps.h";
 
 std::vector<std::string> channelNames() {
     return {"d", "gx", "gy", "left", "seg", "hT", "vT", "hA", "vA"};
@@ -360,7 +360,7 @@ void checkConfigurations(const std::string& name, const FeatureMaps& m) {
     }
 }
 
-// The file decoded by the image module (surfgrad/image_decode.h): its
+// The file decoded by the image module (surfgrad/image/image_decode.h): its
 // channels as float, NaN and infinities kept (readCorners names the corner
 // and channel), at most kMaxFeatureMapSize + 1 pixels per side and the
 // 9 channels of a map (at most 604 MB, as a map of the largest size
@@ -442,7 +442,7 @@ FeatureMaps load(const std::filesystem::path& path) {
 
 FeatureMaps loadFromMemory(const std::string& bytes, const std::string& name) {
     // OpenEXR allocates what its header declares before reading it: the
-    // header is checked first (surfgrad/image_header.h).
+    // header is checked first (surfgrad/image/image_header.h).
     io::scanExrHeader(io::MemoryBytes(bytes), name);
     image::DecodedImage file = decode(bytes, name);
     FeatureMaps m = readMetadata(file, name);

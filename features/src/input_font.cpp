@@ -1,5 +1,5 @@
 // Glyph outlines of a text through FreeType as feature-curve networks
-// (contract in surfgrad/curves.h, coverage in docs/features-input.md).
+// (contract in surfgrad/features/curves.h, coverage in docs/features-input.md).
 //
 // Outlines are loaded with FT_LOAD_NO_SCALE, so coordinates are font units
 // (integers for TrueType), y up, the first glyph's origin at (0, 0) on the
@@ -11,8 +11,8 @@
 // curve G1 there. Conic segments are quadratic Beziers already (Parilov and
 // Zorin 2008 work on quadratic curves directly); CFF cubics go through the
 // same approximation as SVG cubics.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include "path_builder.h"
 

@@ -1,5 +1,5 @@
 // JSON curve networks (schema in docs/features-input.md; contract in
-// surfgrad/curves.h): polylines and explicit line / quadratic Bezier
+// surfgrad/features/curves.h): polylines and explicit line / quadratic Bezier
 // segments, the input form of the feature curves of Parilov and Zorin (2008,
 // section 3: "a set of quadratic Bezier curves").
 //
@@ -8,8 +8,8 @@
 // curves.h before anything proportional to them is allocated, unknown keys
 // are errors (typos such as "widht" must not be silently ignored), and
 // nesting depth is checked before the DOM parser sees the text.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <cmath>
 #include <sstream>

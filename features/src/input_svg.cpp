@@ -1,4 +1,4 @@
-// SVG drawings as feature-curve networks (contract in surfgrad/curves.h,
+// SVG drawings as feature-curve networks (contract in surfgrad/features/curves.h,
 // coverage in docs/features-input.md): the document structure. The root
 // <svg>'s user space flipped to y up is the output space; <svg>, <g>, <a>
 // and <switch> nest coordinate systems (transform attribute, nested
@@ -13,8 +13,8 @@
 // svg_xml.cpp (no DTD processing or entity expansion, nesting depth,
 // attributes per element), and the file size is checked before anything
 // else.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include "svg_internal.h"
 

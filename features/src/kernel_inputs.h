@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace sg::features::detail {
 

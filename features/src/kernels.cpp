@@ -5,8 +5,8 @@
 #include <cstring>
 
 #include "kernel_inputs.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace sg::features {
 

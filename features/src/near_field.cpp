@@ -22,9 +22,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "surfgrad/scratch_buffer.h"
+#include "surfgrad/base/scratch_buffer.h"
 #include "bake_internal.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::features {
 

@@ -1,7 +1,7 @@
 // Outline primitives -> CurveNetwork (see path_builder.h).
 #include "path_builder.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <algorithm>
 #include <cmath>

@@ -2,11 +2,11 @@
 // drawing (SVG shapes, glyph contours) in output coordinates, then turns
 // them into a CurveNetwork once the drawing size, and so the approximation
 // tolerance, is known. Shared by the SVG and font loaders so both give the
-// same guarantees (surfgrad/curves.h): exact shared endpoints, no
+// same guarantees (surfgrad/features/curves.h): exact shared endpoints, no
 // zero-length segments, closed == loop.
 #pragma once
 
-#include "surfgrad/curves.h"
+#include "surfgrad/features/curves.h"
 
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-// Point files of `surfgrad features sample` (surfgrad/feature_maps.h): one
+// Point files of `surfgrad features sample` (surfgrad/features/feature_maps.h): one
 // "x y" pair in texel space per line. Untrusted text: every line is checked
 // and a bad one is named (sg::io::InputError).
 #include <charconv>
@@ -7,8 +7,8 @@
 #include <string_view>
 #include <vector>
 
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::features {
 

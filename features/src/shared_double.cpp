@@ -1,13 +1,13 @@
 // The feature evaluator's decode and partition in binary64 (see
 // shared_double.h): the SAME formulas as shaders/sg/features/evaluate.glsl,
 // compiled from the copy surfgrad_double_sources generates through
-// surfgrad/glsl_cpp_double.h (float literals and types made double). This
+// surfgrad/shaders/glsl_cpp_double.h (float literals and types made double). This
 // translation unit must not include the binary32 build (the include guards
 // are shared; the header checks it).
 #include "shared_double.h"
 
 #define SG_GLSL_DOUBLE_SOURCE "sgd/features/evaluate.glsl"
-#include "surfgrad/glsl_cpp_double.h"
+#include "surfgrad/shaders/glsl_cpp_double.h"
 
 namespace sg::features::detail {
 

@@ -18,7 +18,7 @@
 #include "path_builder.h"
 #include "svg_xml.h"
 
-#include "surfgrad/curves.h"
+#include "surfgrad/features/curves.h"
 
 #include <cmath>
 #include <cstddef>

@@ -4,7 +4,7 @@
 // 7.10, at 96 dpi), and number lists. Every number is range-checked.
 #include "svg_internal.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <charconv>
 

@@ -27,7 +27,7 @@
 #include "svg_xml.h"
 
 #include "path_builder.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <pugixml.hpp>
 

@@ -1,6 +1,6 @@
 // Headless EGL context, program compilation and the compute harness.
 // EGL surfaceless on Mesa: see docs/platform.md ("Headless OpenGL").
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

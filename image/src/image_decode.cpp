@@ -1,4 +1,4 @@
-// The guarded image decoder (surfgrad/image_decode.h): header scan, limits
+// The guarded image decoder (surfgrad/image/image_decode.h): header scan, limits
 // and memory check before the decoder allocates, band-by-band decoding into
 // the smallest sample type the caller accepts. OpenImageIO 2.4.7 quirks it
 // works around are in docs/platform.md ("OpenImageIO").
@@ -18,8 +18,8 @@
 #include <string_view>
 
 #include "oiio_sample_type.h"
-#include "surfgrad/image_decode.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::image {
 

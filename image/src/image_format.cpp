@@ -1,8 +1,8 @@
 // Sample types and the lower-cased file extension
-// (surfgrad/image_format.h), shared by the image decoder and writer.
+// (surfgrad/image/image_format.h), shared by the image decoder and writer.
 #include <cctype>
 
-#include "surfgrad/image_format.h"
+#include "surfgrad/image/image_format.h"
 
 namespace sg::image {
 

@@ -1,4 +1,4 @@
-// Image header scan before decoding (surfgrad/image_header.h). Each format
+// Image header scan before decoding (surfgrad/image/image_header.h). Each format
 // is read from its own specification:
 //  - PNG: ISO/IEC 15948 (PNG 2nd ed.) sec. 5 (chunks), 11.2.2 (IHDR);
 //    zlib/deflate RFC 1950/1951: a 258-byte match costs at least two bits,
@@ -15,7 +15,7 @@
 // The bounds refuse files that cannot hold what they declare; they are
 // deliberately loose for compressed data (the largest expansion a codec
 // allows), so no valid file is refused.
-#include "surfgrad/image_header.h"
+#include "surfgrad/image/image_header.h"
 
 #include <algorithm>
 #include <cctype>
@@ -26,8 +26,8 @@
 #include <utility>
 #include <vector>
 
-#include "surfgrad/image_format.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image_format.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::io {
 

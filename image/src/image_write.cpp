@@ -1,4 +1,4 @@
-// The image writer (surfgrad/image_write.h): the format and sample-type
+// The image writer (surfgrad/image/image_write.h): the format and sample-type
 // check by extension, OpenImageIO's spec from WriteOptions, and the samples
 // converted a band of rows at a time (flipped to the file's top-first
 // order, cleaned for the file's sample type) inside sg::io::writeAtomically,
@@ -12,9 +12,9 @@
 #include <type_traits>
 
 #include "oiio_sample_type.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::image {
 

@@ -1,10 +1,10 @@
-// SampleType (surfgrad/image_format.h) to and from OpenImageIO's TypeDesc,
+// SampleType (surfgrad/image/image_format.h) to and from OpenImageIO's TypeDesc,
 // for the decoder and the writer of this module (private).
 #pragma once
 
 #include <OpenImageIO/typedesc.h>
 
-#include "surfgrad/image_format.h"
+#include "surfgrad/image/image_format.h"
 
 namespace sg::image {
 

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "mikktspace_common.h"
-#include "surfgrad/mikktspace_reference.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
 
 namespace sg::mesh {
 

@@ -1,9 +1,9 @@
-// Adaptive patches for the tessellation stages (surfgrad/adaptive_patches.h):
+// Adaptive patches for the tessellation stages (surfgrad/mesh/adaptive_patches.h):
 // OpenSubdiv's feature-adaptive PatchTable (Nießner, Loop, Meyer & DeRose
 // 2012; Gregory-basis end caps) with face-varying UV patches, the stencils
 // from the cage to every patch point, and each patch's corner vertices in
 // the uniformly refined hierarchy.
-#include "surfgrad/adaptive_patches.h"
+#include "surfgrad/mesh/adaptive_patches.h"
 
 #include <opensubdiv/far/patchMap.h>
 #include <opensubdiv/far/patchTable.h>
@@ -19,9 +19,9 @@
 #include <glm/common.hpp>
 
 #include "osd_plumbing.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/io.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/base/threads.h"
 #include "subdivision_parallel.h"
 
 namespace sg::mesh {

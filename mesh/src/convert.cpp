@@ -1,7 +1,7 @@
 // Conversions between the polygon cage (PolygonMesh, face-varying UVs) and
 // the split-vertex triangle mesh the renderer takes (RenderMesh), and
-// area-weighted vertex normals (surfgrad/mesh_io.h: toRenderMesh,
-// toPolygonMesh; surfgrad/subdivision.h: computeVertexNormals).
+// area-weighted vertex normals (surfgrad/mesh/mesh_io.h: toRenderMesh,
+// toPolygonMesh; surfgrad/mesh/subdivision.h: computeVertexNormals).
 //
 // A render vertex is one distinct tuple (vertex, UV index of every set,
 // normal index, smooth sector) over the face corners; render vertices are
@@ -10,11 +10,11 @@
 #include <cstring>
 
 #include "mesh_internal.h"
-#include "surfgrad/scratch_buffer.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/scratch_buffer.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/base/threads.h"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -192,7 +192,7 @@ VertexArrays vertexArraysOf(RenderMesh& mesh) {
 
 size_t weldVerticesByValue(RenderMesh& mesh, int threads) {
     SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     const size_t n = mesh.positions.size();
     if (n < 2) return 0;
     const VertexArrays va = vertexArraysOf(mesh);

@@ -1,4 +1,4 @@
-// glTF 2.0 input (.gltf/.glb) through tinygltf (surfgrad/mesh_io.h:
+// glTF 2.0 input (.gltf/.glb) through tinygltf (surfgrad/mesh/mesh_io.h:
 // parseGltf, loadScene). tinygltf parses the JSON and loads the buffers;
 // everything it hands over is then checked here before use, because
 // tinygltf 2.7 does not bound-check accessors against their buffers:
@@ -26,7 +26,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "mesh_internal.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::mesh {
 

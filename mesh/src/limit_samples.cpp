@@ -1,5 +1,5 @@
 // Limit evaluation of a uniform subdivision (docs/mesh.md, "Limit
-// evaluation"; surfgrad/subdivision.h, SubdivisionSettings::limit): an
+// evaluation"; surfgrad/mesh/subdivision.h, SubdivisionSettings::limit): an
 // adaptively refined copy of the cage and its PatchTable with face-varying
 // patches (Gregory-basis end caps), the stencils from the cage to the patch
 // points, every render vertex's home location (ptex face, u, v), one sample

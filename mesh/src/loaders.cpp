@@ -1,4 +1,4 @@
-// File-level loaders (surfgrad/mesh_io.h): dispatch on the extension,
+// File-level loaders (surfgrad/mesh/mesh_io.h): dispatch on the extension,
 // read with the size limit, parse, validate; merging of glTF scenes into
 // one world-space mesh; morph-weight animation sampling (glTF 2.0 sec. 3.11
 // and Appendix C, cubic Hermite splines).
@@ -19,11 +19,11 @@
 #include <tbb/partitioner.h>
 
 #include "mesh_internal.h"
-#include "surfgrad/scratch_buffer.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/scratch_buffer.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::mesh {
 
@@ -281,7 +281,7 @@ sg::detail::ScratchVector<char> readText(const std::filesystem::path& path, size
 PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions& options,
                             LoadReport* report) {
     SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     const std::string file = path.string();
     const std::string ext = meshFormat(path);
     PolygonMesh mesh;
@@ -309,7 +309,7 @@ PolygonMesh loadPolygonMesh(const std::filesystem::path& path, const LoadOptions
 RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& options,
                           LoadReport* report) {
     SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         RenderMesh mesh = mergeScene(readGltf(path, options, report), report);
@@ -324,7 +324,7 @@ RenderMesh loadRenderMesh(const std::filesystem::path& path, const LoadOptions& 
 
 Scene loadScene(const std::filesystem::path& path, const LoadOptions& options, LoadReport* report) {
     SG_EXPECTS(options.threads >= 0 && options.threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     const std::string ext = meshFormat(path);
     if (isGltf(ext)) {
         Scene scene = readGltf(path, options, report);

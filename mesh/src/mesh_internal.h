@@ -17,10 +17,10 @@
 #include <filesystem>
 #include <string_view>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/polygon_mesh.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/polygon_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace sg::mesh::detail {
 
@@ -131,7 +131,7 @@ std::vector<uint32_t> coincidentVertexGroups(const RenderMesh& mesh);
 void splitRenderVertices(const PolygonMesh& mesh, const std::vector<uint32_t>& offsets,
                          const uint32_t* cornerSector, RenderSplit& out);
 
-// `threads`: parseObj's (surfgrad/mesh_io.h).
+// `threads`: parseObj's (surfgrad/mesh/mesh_io.h).
 PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
                          LoadReport* report, std::vector<uint32_t>* faceLines, int threads);
 // faceLines (OBJ files: the line of each face) also switches messages to

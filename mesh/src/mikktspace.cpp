@@ -52,8 +52,8 @@
 #endif
 
 #include "mikktspace_common.h"
-#include "surfgrad/scratch_buffer.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/scratch_buffer.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::mesh {
 
@@ -114,7 +114,7 @@ size_t triangleCount(const MikkTSpaceInput& in) {
 
 size_t validateInput(const MikkTSpaceInput& in) {
     SG_EXPECTS(mikktspaceInputProblem(in).empty(),
-               "MikkTSpaceInput preconditions (surfgrad/tangents.h); untrusted meshes are "
+               "MikkTSpaceInput preconditions (surfgrad/mesh/tangents.h); untrusted meshes are "
                "checked with mikktspaceInputProblem() first");
     return triangleCount(in);
 }
@@ -2027,7 +2027,7 @@ void MikkTSpaceGenerator::setWideSimd(bool enabled) {
 }
 void MikkTSpaceGenerator::setThreads(int threads) {
     SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     threads_ = threads;
 }
 void MikkTSpaceGenerator::setParallelCutover(size_t triangles) {

@@ -18,8 +18,8 @@
 #include <cstring>
 #include <string>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::mesh::mikk {
 

@@ -1,13 +1,13 @@
-// Blendshapes (surfgrad/morph.h): glTF 2.0 sec. 3.7.2.2, P = P0 + sum w_i dP_i,
+// Blendshapes (surfgrad/mesh/morph.h): glTF 2.0 sec. 3.7.2.2, P = P0 + sum w_i dP_i,
 // applied to a cage or to a refined/limit mesh; normals recomputed (from
 // the geometry or from the blended limit derivatives) or blended.
-#include "surfgrad/morph.h"
+#include "surfgrad/mesh/morph.h"
 
 #include <cmath>
 
 #include "mesh_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::mesh {
 

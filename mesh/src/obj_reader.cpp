@@ -1,5 +1,5 @@
 // Wavefront OBJ tokenizer with OpenSubdiv's "t" tag lines
-// (surfgrad/mesh_io.h: parseObj). Own code because OpenMesh's OBJ reader
+// (surfgrad/mesh/mesh_io.h: parseObj). Own code because OpenMesh's OBJ reader
 // ignores tags and drops faces at non-manifold edges without a word; this
 // one keeps every face as written so validation can name what is wrong.
 //
@@ -29,10 +29,10 @@
 #include <tbb/task_arena.h>
 
 #include "mesh_internal.h"
-#include "surfgrad/scratch_buffer.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/scratch_buffer.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::mesh {
 
@@ -724,7 +724,7 @@ namespace detail {
 PolygonMesh parseObjImpl(std::string_view text, const std::string& file, const InputLimits& limits,
                          LoadReport* report, std::vector<uint32_t>* faceLines, int threads) {
     SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     if (threads == 1 || text.size() < kObjParallelMinBytes)
         return parseSerial(text, file, limits, report, faceLines);
     return runWithThreads(threads, [&] {
@@ -743,7 +743,7 @@ PolygonMesh parseObjInBlocks(std::string_view text, const std::string& file,
                              const InputLimits& limits, LoadReport* report, int threads,
                              size_t blockBytes, std::vector<uint32_t>* faceLines) {
     SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     if (blockBytes == 0) return parseSerial(text, file, limits, report, faceLines);
     return runWithThreads(
         threads, [&] { return parseBlocks(text, file, limits, report, faceLines, blockBytes); });

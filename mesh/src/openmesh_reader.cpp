@@ -1,4 +1,4 @@
-// OFF, PLY and STL input through OpenMesh's readers (surfgrad/mesh_io.h).
+// OFF, PLY and STL input through OpenMesh's readers (surfgrad/mesh/mesh_io.h).
 //
 // OpenMesh's readers talk to a BaseImporter. Its usual importer builds a
 // PolyMesh and, when a face would make an edge or vertex non-manifold,
@@ -25,7 +25,7 @@
 #include <sstream>
 
 #include "mesh_internal.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::mesh {
 

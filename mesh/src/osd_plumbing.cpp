@@ -9,8 +9,8 @@
 #include <mutex>
 
 #include "factored_stencils.h"
-#include "surfgrad/io.h"
-#include "surfgrad/osd_primvar.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/osd_primvar.h"
 
 namespace sg::mesh::detail {
 

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/polygon_mesh.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/polygon_mesh.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::mesh::detail {
 

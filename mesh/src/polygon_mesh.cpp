@@ -1,7 +1,7 @@
-// Trivial helpers of PolygonMesh (surfgrad/polygon_mesh.h): face offsets and
+// Trivial helpers of PolygonMesh (surfgrad/mesh/polygon_mesh.h): face offsets and
 // the names of the subdivision options (as the CLI and the OBJ tags spell
 // them).
-#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
 
 #include <array>
 #include <cstring>

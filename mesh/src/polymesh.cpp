@@ -1,8 +1,8 @@
 // PolygonMesh <-> OpenMesh::PolyMesh with custom properties
-// (surfgrad/polymesh.h). OpenMesh's add_face returns an invalid handle for a
+// (surfgrad/mesh/polymesh.h). OpenMesh's add_face returns an invalid handle for a
 // face it cannot insert (complex edge or vertex); that becomes an
 // InputError here instead of a silently missing face.
-#include "surfgrad/polymesh.h"
+#include "surfgrad/mesh/polymesh.h"
 
 #include <map>
 

@@ -1,4 +1,4 @@
-// Subdivision with OpenSubdiv 3.5 (surfgrad/subdivision.h).
+// Subdivision with OpenSubdiv 3.5 (surfgrad/mesh/subdivision.h).
 //
 // build():
 //  1. PolygonMesh -> Far::TopologyDescriptor (arrays are used in place;
@@ -35,7 +35,7 @@
 // factored_stencils.h the stencils; osd_plumbing.{h,cpp} Far's callbacks,
 // options, descriptor and face-varying interpolation; subdivision_impl.h
 // the job's state; adaptive_patches.cpp the GPU patch tables
-// (surfgrad/adaptive_patches.h).
+// (surfgrad/mesh/adaptive_patches.h).
 #include "subdivision_impl.h"
 
 #include <opensubdiv/far/error.h>

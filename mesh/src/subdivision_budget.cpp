@@ -1,5 +1,5 @@
 // What a Subdivider::build will cost before it allocates anything
-// (surfgrad/subdivision.h: estimateSubdivisionCost, defaultSubdivisionBudget).
+// (surfgrad/mesh/subdivision.h: estimateSubdivisionCost, defaultSubdivisionBudget).
 //
 // Counts: every scheme's refinement grows each level by fixed rules
 // (Catmull & Clark 1978; Loop 1987; OpenSubdiv's Vtr refines faces, edges
@@ -31,7 +31,7 @@
 #include <cstdio>
 
 #include "mesh_internal.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::mesh {
 

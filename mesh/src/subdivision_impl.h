@@ -4,7 +4,7 @@
 // table and the patch bookkeeping those steps share.
 #pragma once
 
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/subdivision.h"
 
 #include <opensubdiv/far/error.h>
 #include <opensubdiv/far/patchMap.h>
@@ -27,10 +27,10 @@
 #include "mesh_internal.h"
 #include "factored_stencils.h"
 #include "osd_plumbing.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/osd_primvar.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/osd_primvar.h"
+#include "surfgrad/base/threads.h"
 #include "subdivision_parallel.h"
 #include "uniform_refiner.h"
 

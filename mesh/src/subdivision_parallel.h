@@ -1,5 +1,5 @@
 // Loops of one subdivision job (refinement, stencil application, limit
-// evaluation) on TBB, internal to mesh/ (surfgrad/subdivision.h's
+// evaluation) on TBB, internal to mesh/ (surfgrad/mesh/subdivision.h's
 // SubdivisionSettings::threads says what callers see).
 //
 // Every loop run through Parallel writes disjoint outputs: element i's
@@ -12,7 +12,7 @@
 // independent of the thread count, concatenated in block order.
 //
 // The caller sets `on` (false: every loop runs inline, no TBB at all) and
-// runs the job inside sg::runWithThreads (surfgrad/threads.h), whose arena
+// runs the job inside sg::runWithThreads (surfgrad/base/threads.h), whose arena
 // bounds how many threads the loops use.
 #pragma once
 

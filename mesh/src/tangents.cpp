@@ -1,9 +1,9 @@
 // Tangent frames on RenderMesh: method names, MikkTSpace applied to a
 // RenderMesh (vertex splitting where corners disagree), and the exact
 // tangent frame of a parametric (limit) surface carrying UVs, by the chain
-// rule through the UV Jacobian (see surfgrad/tangents.h for the contracts;
+// rule through the UV Jacobian (see surfgrad/mesh/tangents.h for the contracts;
 // docs/tangents.md for the derivation).
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/tangents.h"
 
 #include <algorithm>
 #include <cmath>
@@ -13,8 +13,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::mesh {
 
@@ -357,7 +357,7 @@ size_t generateLimitTangents(RenderMesh& mesh, const LimitFrame& frame, int uvSe
 size_t generateTangents(RenderMesh& mesh, TangentMethod method, int uvSet, const LimitFrame* frame,
                         int threads) {
     SG_EXPECTS(threads >= 0 && threads <= kMaxThreads,
-               "0 (all cores) or 1..1024 threads (surfgrad/threads.h)");
+               "0 (all cores) or 1..1024 threads (surfgrad/base/threads.h)");
     switch (method) {
     case TangentMethod::MikkTSpace: {
         const size_t before = mesh.vertexCount();

@@ -9,7 +9,7 @@
 // documented in OpenSubdiv's "Face-Varying Interpolation" options.
 #include "uniform_refiner.h"
 
-#include "surfgrad/contract.h"
+#include "surfgrad/base/contract.h"
 
 #include <opensubdiv/far/topologyLevel.h>
 

@@ -1,5 +1,5 @@
 // Uniform Catmull-Clark refinement specialised for manifold cages (internal
-// to mesh/; used by surfgrad/subdivision.h's Subdivider).
+// to mesh/; used by surfgrad/mesh/subdivision.h's Subdivider).
 //
 // It computes exactly what OpenSubdiv 3.5 computes for
 //   Far::TopologyRefiner::RefineUniform(level N) (vertices ordered from
@@ -56,7 +56,7 @@
 #include <vector>
 
 #include "subdivision_parallel.h"
-#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
 
 namespace sg::mesh::detail {
 

@@ -1,5 +1,5 @@
 // Validation, repair and topology description of PolygonMesh
-// (surfgrad/mesh_io.h: validate, describe). Validation runs before anything
+// (surfgrad/mesh/mesh_io.h: validate, describe). Validation runs before anything
 // else touches a loaded mesh; every failure is an InputError naming the
 // file, the element (face, vertex, edge, tag) and the reason.
 //
@@ -12,7 +12,7 @@
 #include <unordered_map>
 
 #include "mesh_internal.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::mesh {
 

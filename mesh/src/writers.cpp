@@ -1,4 +1,4 @@
-// Mesh writers (surfgrad/mesh_io.h): glTF 2.0 (.gltf with the buffer
+// Mesh writers (surfgrad/mesh/mesh_io.h): glTF 2.0 (.gltf with the buffer
 // embedded as a base64 data URI, .glb), OBJ with OpenSubdiv tags, binary
 // PLY. Each file is built in memory and written atomically
 // (sg::io::writeFileAtomically); an output naming an input is refused.
@@ -13,8 +13,8 @@
 #include <cstring>
 
 #include "mesh_internal.h"
-#include "surfgrad/scratch_buffer.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/base/scratch_buffer.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::mesh {
 

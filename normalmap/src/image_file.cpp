@@ -1,14 +1,14 @@
 // Image files of the normal-map toolkit: raw channel values in through the
-// guarded decoder (surfgrad/image_decode.h), out through the image writer
-// (surfgrad/image_write.h), and the MIP-chain files of
-// surfgrad/normalmap.h ("MIP chains for antialiasing").
+// guarded decoder (surfgrad/image/image_decode.h), out through the image writer
+// (surfgrad/image/image_write.h), and the MIP-chain files of
+// surfgrad/normalmap/operations.h ("MIP chains for antialiasing").
 #include <algorithm>
 #include <cmath>
 
-#include "surfgrad/image_decode.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::normalmap {
 

@@ -2,7 +2,7 @@
 // Antialiasing (1)-(2)"): LEAN moments (Olano and Baker 2010) and Toksvig's
 // averaged normals (Toksvig 2005) filtered level by level; the per-texel
 // math is shaders/sg/lean.glsl. The file layout is documented in
-// surfgrad/normalmap.h ("MIP chains for antialiasing").
+// surfgrad/normalmap/operations.h ("MIP chains for antialiasing").
 #include <algorithm>
 #include <cmath>
 

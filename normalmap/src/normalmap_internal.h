@@ -1,5 +1,5 @@
 // Helpers shared by the normal-map toolkit's sources: row-parallel loops,
-// border handling and bilinear sampling on the grids of surfgrad/normalmap.h.
+// border handling and bilinear sampling on the grids of surfgrad/normalmap/operations.h.
 #pragma once
 
 #include <tbb/blocked_range.h>
@@ -8,10 +8,10 @@
 #include <cmath>
 #include <string>
 
-#include "surfgrad/bump.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/io.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::normalmap::detail {
 

@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "normalmap_internal.h"
-#include "surfgrad/render_mesh.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/render_mesh.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::normalmap {
 

@@ -1,5 +1,5 @@
 // CPU/GPU parity harness (see parity.h).
-#include "surfgrad/parity.h"
+#include "surfgrad/parity/check.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <sstream>
 #include <utility>
 
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::parity {
 

@@ -5,7 +5,7 @@
 #include <functional>
 #include <sstream>
 
-#include "surfgrad/threads.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::python {
 

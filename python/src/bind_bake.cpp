@@ -1,4 +1,4 @@
-// Python binding of the limit-surface baker (surfgrad/bake.h, docs/bake.md):
+// Python binding of the limit-surface baker (surfgrad/bake/baker.h, docs/bake.md):
 // surfgrad.bake(high, cage, ...) -> dict of numpy grids and counts. Grids
 // are (H, W[, C]) with row 0 the bottom row, like every grid of the module.
 #include <string>
@@ -10,7 +10,7 @@
 #include "bindings.h"
 #include "grids.h"
 #include "mesh_objects.h"
-#include "surfgrad/bake.h"
+#include "surfgrad/bake/baker.h"
 
 namespace sg::python {
 

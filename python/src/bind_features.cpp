@@ -1,5 +1,5 @@
-// Python bindings of feature-curve maps (surfgrad/curves.h,
-// surfgrad/feature_maps.h): curves from SVG, fonts and JSON networks baked
+// Python bindings of feature-curve maps (surfgrad/features/curves.h,
+// surfgrad/features/feature_maps.h): curves from SVG, fonts and JSON networks baked
 // into maps that reconstruct the distance to the curves exactly at any
 // magnification (Parilov, Rosenberg & Zorin 2005; Parilov & Zorin 2008,
 // sec. 4-5 for the quadratic mode and its signature optimisation), and
@@ -19,9 +19,9 @@
 
 #include "arrays.h"
 #include "bindings.h"
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::python {
 

@@ -1,4 +1,4 @@
-// Python bindings of mesh/ (surfgrad/render_mesh.h, polygon_mesh.h,
+// Python bindings of mesh/ (surfgrad/mesh/render_mesh.h, polygon_mesh.h,
 // mesh_io.h): the two mesh types with numpy views of their arrays, loading
 // every format the CLI reads, writing, validation and conversions.
 //
@@ -20,7 +20,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "mesh_objects.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::python {
 

@@ -1,4 +1,4 @@
-// Python bindings of the normal-map toolkit (surfgrad/normalmap.h):
+// Python bindings of the normal-map toolkit (surfgrad/normalmap/operations.h):
 // Loviscach, "Care and Feeding of Normal Vectors" (GDC 2008) on numpy
 // grids: encodings, height <-> slopes (Poisson), the "Feeding" operations
 // (scale, add, blend, modulate, curves, deform), LEAN/Toksvig MIP chains
@@ -24,9 +24,9 @@
 #include "bindings.h"
 #include "grids.h"
 #include "mesh_objects.h"
-#include "surfgrad/normalmap.h"
-#include "surfgrad/render_mesh.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/normalmap/operations.h"
+#include "surfgrad/mesh/render_mesh.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::python {
 

@@ -1,5 +1,5 @@
 // Python bindings of the renderers (surfgrad/render.h) and of the shared
-// shader functions' evaluation table (surfgrad/eval_kernels.h): a scene to
+// shader functions' evaluation table (surfgrad/bump/eval_kernels.h): a scene to
 // a numpy image, and any function of shaders/sg/eval/kernels.glsl over
 // arrays (the C++ build of the same source the GPU runs; Mikkelsen 2019's
 // listings and Loviscach 2008's operations).
@@ -16,10 +16,10 @@
 
 #include "arrays.h"
 #include "bindings.h"
-#include "surfgrad/eval_kernels.h"
-#include "surfgrad/eval_line.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/bump/eval_kernels.h"
+#include "surfgrad/bump/eval_line.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/mesh/mesh_io.h"
 #include "surfgrad/render.h"
 
 namespace sg::python {

@@ -1,5 +1,5 @@
-// Python bindings of subdivision and blendshapes (surfgrad/subdivision.h,
-// surfgrad/morph.h): OpenSubdiv uniform refinement, the limit surface with
+// Python bindings of subdivision and blendshapes (surfgrad/mesh/subdivision.h,
+// surfgrad/mesh/morph.h): OpenSubdiv uniform refinement, the limit surface with
 // its derivatives (LimitFrame), stencil updates of animated cages, and
 // glTF morph targets (sec. 3.7.2.2: P = P0 + sum_i w_i dP_i).
 // Math: Catmull-Clark 1978, Loop 1987, DeRose-Kass-Truong 1998 (creases),
@@ -14,8 +14,8 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "mesh_objects.h"
-#include "surfgrad/morph.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/morph.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace sg::python {
 

@@ -1,4 +1,4 @@
-// Python bindings of the tangent generators (surfgrad/tangents.h):
+// Python bindings of the tangent generators (surfgrad/mesh/tangents.h):
 // MikkTSpace-exact tangents on plain arrays (read in place) and on meshes,
 // the limit-surface tangent frame, and the reusable generator.
 // Math: Mikkelsen 2008 (MikkTSpace) and 2019 (surface gradients, sec. 2.3
@@ -15,7 +15,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "mesh_objects.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::python {
 

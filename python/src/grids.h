@@ -1,4 +1,4 @@
-// Normal-map grids (surfgrad/normalmap.h) out to numpy: the one place a
+// Normal-map grids (surfgrad/normalmap/operations.h) out to numpy: the one place a
 // Grid becomes an (H, W[, C]) array, row 0 the bottom row as in C++. The
 // grid's storage moves into a capsule the array owns (no copy). Float
 // grids (float, vec2, vec3, vec4) give float32 arrays, uint8 grids uint8.
@@ -10,7 +10,7 @@
 
 #include <pybind11/numpy.h>
 
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::python {
 

@@ -2,8 +2,8 @@
 // (bind_mesh.cpp defines them).
 #pragma once
 
-#include "surfgrad/polygon_mesh.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace sg::python {
 

@@ -6,7 +6,7 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::python {
 

@@ -2,7 +2,7 @@
 # curves (SVG, fonts, JSON networks) baked into feature maps that give the
 # exact distance to the curves at any magnification (Parilov-Rosenberg-Zorin
 # 2005, Parilov-Zorin 2008), and sampling them as the shader does
-# (features/include/surfgrad/feature_maps.h has the contracts).
+# (features/include/surfgrad/features/feature_maps.h has the contracts).
 # Points are in texel space: (0, 0) the lower-left corner of the map,
 # texel (i, j) covers [i, i + 1] x [j, j + 1], y up.
 from os import PathLike

@@ -1,6 +1,6 @@
 # Type stubs of surfgrad.normalmap (python/src/bind_normalmap.cpp): the
 # height-field-correct normal-map operations of Loviscach 2008 on numpy
-# grids (normalmap/include/surfgrad/normalmap.h has the contracts).
+# grids (normalmap/include/surfgrad/normalmap/operations.h has the contracts).
 #
 # Grids are (H, W[, C]) float32, C-contiguous, row 0 the BOTTOM row; texel
 # (i, j) sits at (u, v) = (i + 0.5, j + 0.5) texels. Slopes (H, W, 2) are

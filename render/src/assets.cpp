@@ -18,16 +18,16 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/image_header.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/morph.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/image/image_header.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/morph.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render {
 

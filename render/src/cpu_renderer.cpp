@@ -25,9 +25,9 @@
 #include <limits>
 
 #include "render_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/bump/patch_basis.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {

@@ -23,10 +23,10 @@
 #include "gpu_stencils.h"
 #include "layer_kind.h"
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/bump/patch_basis.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {

@@ -11,9 +11,9 @@
 #include <algorithm>
 #include <utility>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::render::detail {
 

@@ -20,8 +20,8 @@
 
 #include <glm/vec3.hpp>
 
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/gl.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/gl/context.h"
 
 namespace sg::render::detail {
 

@@ -1,16 +1,16 @@
 // The renderer's image files: an AOV's values to what a PNG or OpenEXR file
 // holds (encodings documented at writeImage()), written by the image
-// module's writer (surfgrad/image_write.h), and read back through its
+// module's writer (surfgrad/image/image_write.h), and read back through its
 // decoder for tests and comparisons.
 #include <algorithm>
 #include <cmath>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/image_decode.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render {
 
@@ -89,7 +89,7 @@ void writeImage(const fs::path& path, const Image& image, Aov aov, float exposur
 }
 
 Image readImage(const fs::path& path) {
-    // The guarded decoder (surfgrad/image_decode.h): header checked against
+    // The guarded decoder (surfgrad/image/image_decode.h): header checked against
     // the file, memory checked, before anything is allocated.
     image::DecodeOptions options;
     options.maxChannels = 4;

@@ -41,9 +41,9 @@
 
 #include "render_internal.h"
 #include "scene_node.h"
-#include "surfgrad/contract.h"
+#include "surfgrad/base/contract.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render {
 

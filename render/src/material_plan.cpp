@@ -10,9 +10,9 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/io.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render {
 

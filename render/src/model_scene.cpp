@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "render_internal.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {

@@ -70,9 +70,9 @@
 #include <cmath>
 
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/bump/patch_basis.h"
 
 namespace sg::render::detail {
 

@@ -20,8 +20,8 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::render {
 

@@ -7,7 +7,7 @@
 
 #include "render_internal.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h" // the terrain's fBm (sg/render/noise.glsl)
+#include "surfgrad/render/render_shaders.h" // the terrain's fBm (sg/render/noise.glsl)
 
 namespace sg::render::detail {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/glsl_texture.h"
-#include "surfgrad/io.h"
+#include "surfgrad/render/glsl_texture.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
 
 namespace sg::render::detail {

@@ -15,8 +15,8 @@
 #include "layer_kind.h"
 #include "render_internal.h"
 #include "scene_node.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {

@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render/scene.h"
 
 namespace sg::render::detail {

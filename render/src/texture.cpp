@@ -1,4 +1,4 @@
-// CPU emulation of GLSL texture sampling (see surfgrad/glsl_texture.h):
+// CPU emulation of GLSL texture sampling (see surfgrad/render/glsl_texture.h):
 // OpenGL 4.5 core section 8.14 (level of detail, eq. 8.7-8.9), 8.14.2
 // (GL_LINEAR_MIPMAP_LINEAR) and 8.14.1 (bilinear filtering, wrap modes).
 #include <algorithm>
@@ -8,8 +8,8 @@
 
 #include <glm/gtc/packing.hpp>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/glsl_texture.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/render/glsl_texture.h"
 
 namespace sg::render {
 

@@ -1,5 +1,5 @@
 // Texture files (loadTexture, decodeTextureImage): untrusted images decoded
-// by the guarded decoder of surfgrad/image_decode.h (header scan, limits,
+// by the guarded decoder of surfgrad/image/image_decode.h (header scan, limits,
 // band-by-band decoding into the file's own precision) under the scene's
 // texture budget, which counts the mip chain in its stored format plus the
 // decoder's own buffers. Channels past the highest one the layers read are
@@ -11,8 +11,8 @@
 #include <new>
 
 #include "render_internal.h"
-#include "surfgrad/image_decode.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
 
 namespace sg::render {

@@ -21,8 +21,8 @@
 
 #include "layer_kind.h"
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/io.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render::detail {
 

@@ -2,7 +2,7 @@
 //
 // Every file under shaders/sg/ is compiled from this one source: by the GL
 // driver as GLSL, by the C++ compiler through GLM (the C++ side of these
-// macros is shaders/include/surfgrad/glsl_cpp.h, which defines SG_CPP), and
+// macros is shaders/include/surfgrad/shaders/glsl_cpp.h, which defines SG_CPP), and
 // as HLSL (the HLSL side is sg/compat.hlsl, which defines SG_HLSL and which
 // sg/surfgrad.hlsl includes first).
 // The GLSL side compiles as GLSL 4.50, GLSL 3.30 core and GLSL ES 3.00
@@ -180,7 +180,7 @@ SG_FN vec2 sgUnpackHalf2x16(uint w) {
 #endif
 // SG_BIT_ARITHMETIC: frexp, ldexp and imulExtended from bit patterns and
 // 16-bit halves, as the legacy dialects need; also defined for GLSL 4.x
-// programs carried to HLSL through SPIR-V (surfgrad/shader_target.h):
+// programs carried to HLSL through SPIR-V (surfgrad/translate/shader_target.h):
 // SPIRV-Cross writes HLSL's frexp with an int exponent, which HLSL's frexp
 // (float exponent) does not take, and no HLSL for OpSMulExtended.
 #if defined(SG_GLSL_LEGACY) && !defined(SG_BIT_ARITHMETIC)

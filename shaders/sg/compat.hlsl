@@ -2,7 +2,7 @@
 // and glslang's or DXC's HLSL front ends to SPIR-V).
 //
 // The third language of the one shared source (the GLSL side is
-// sg/compat.glsl, the C++ side surfgrad/glsl_cpp.h). An HLSL file includes
+// sg/compat.glsl, the C++ side surfgrad/shaders/glsl_cpp.h). An HLSL file includes
 // sg/surfgrad.hlsl, which includes this file (defining SG_HLSL) and then the
 // GLSL sources; sg/compat.glsl then leaves the spelling to the macros here. This is the arrangement of
 // OpenSubdiv's osd/patchBasisCommon.h (OSD_PATCH_BASIS_HLSL): the GLSL names

@@ -15,7 +15,7 @@
 // w.r.t. +s and +t, the same at every MIP level (a level averages the
 // slopes of level 0; it does not rescale them). The file layout the
 // `surfgrad normalmap mips` command writes is described in
-// normalmap/include/surfgrad/normalmap.h and docs/normalmap.md.
+// normalmap/include/surfgrad/normalmap/operations.h and docs/normalmap.md.
 #ifndef SG_LEAN_GLSL
 #define SG_LEAN_GLSL
 

@@ -10,7 +10,7 @@
 //
 // From a field list, this file generates the GLSL (and C++) code that reads
 // the fields into locals and writes them back (SG_REC_READ, SG_REC_RETURN);
-// surfgrad/record.h generates the C++ table of names, widths, slots and
+// surfgrad/bump/record.h generates the C++ table of names, widths, slots and
 // docs (SG_REC_FIELDS). A module's kernel LIST is a second macro, one entry
 // per kernel, X(name, id, function, IN, OUT, ...) (see
 // shaders/sg/eval/kernels.glsl), from which the GLSL dispatch, the C++
@@ -31,7 +31,7 @@
 // balanced inside the string). Mesa's preprocessor also mis-splits strings
 // holding < > or #, so docs avoid those and quote characters. After the
 // string, inside the same parentheses, a module's C++ table may read
-// options of its own (bump's: surfgrad/eval_kernels.h); GLSL ignores them.
+// options of its own (bump's: surfgrad/bump/eval_kernels.h); GLSL ignores them.
 #ifndef SG_RECORD_GLSL
 #define SG_RECORD_GLSL
 

@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Embedded GLSL lookup and #include expansion (see shader_files.h).
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 #include <algorithm>
 #include <regex>

@@ -16,8 +16,8 @@
 
 #include "bake_meshes.h"
 #include "cli.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::test {
 namespace {

@@ -10,8 +10,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfgrad/polygon_mesh.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace sg::test {
 

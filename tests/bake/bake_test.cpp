@@ -13,8 +13,8 @@
 
 #include "bake_meshes.h"
 #include "hardcase.h"
-#include "surfgrad/bake.h"
-#include "surfgrad/io.h"
+#include "surfgrad/bake/baker.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::test {
 namespace {

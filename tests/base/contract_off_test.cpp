@@ -2,7 +2,7 @@
 // condition is not evaluated and a violated contract does not abort. This
 // file turns the checks off for itself, so it runs in every build.
 #undef SURFGRAD_CONTRACTS
-#include "surfgrad/contract.h"
+#include "surfgrad/base/contract.h"
 
 #include <gtest/gtest.h>
 

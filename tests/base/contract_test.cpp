@@ -1,8 +1,8 @@
-// The contract macros (surfgrad/contract.h) in a checked build: a failed
+// The contract macros (surfgrad/base/contract.h) in a checked build: a failed
 // check prints "<file>:<line>: contract violated: <cond> (<msg>)" and
 // aborts; a passing one evaluates its condition once and does nothing else.
 #include "contract_death.h"
-#include "surfgrad/contract.h"
+#include "surfgrad/base/contract.h"
 
 namespace {
 

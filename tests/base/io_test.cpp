@@ -1,4 +1,4 @@
-// The base I/O helpers every reader and writer uses (surfgrad/io.h):
+// The base I/O helpers every reader and writer uses (surfgrad/base/io.h):
 // printable() for quoting input in messages, the duplicate-key check of
 // JSON input, and error messages of atomic writes that name the
 // destination, never the temporary file.
@@ -10,7 +10,7 @@
 #include <cstring>
 #include <unistd.h>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // (SURFGRAD_BINARY_DIR/bin/surfgrad) with JSON lines on stdin, checks the
 // answers, the error lines and exit status for bad lines, and that --gpu
 // (GLSL build on llvmpipe) agrees with the CPU build. Also the line parser
-// (surfgrad/eval_line.h) directly.
+// (surfgrad/bump/eval_line.h) directly.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -11,7 +11,7 @@
 #include <sstream>
 
 #include "cli.h"
-#include "surfgrad/eval_line.h"
+#include "surfgrad/bump/eval_line.h"
 
 namespace {
 

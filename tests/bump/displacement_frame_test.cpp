@@ -21,7 +21,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <set>
 
-#include "surfgrad/eval_kernels.h"
+#include "surfgrad/bump/eval_kernels.h"
 
 namespace {
 

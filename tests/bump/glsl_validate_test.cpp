@@ -24,7 +24,7 @@
 #include <sstream>
 
 #include "cli.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace {
 

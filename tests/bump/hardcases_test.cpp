@@ -1,5 +1,5 @@
 // Hard cases of the shared bump math (shaders/sg/*.glsl as C++ through
-// surfgrad/bump.h), each reported as rows of docs/hard-cases.md
+// surfgrad/bump/core.h), each reported as rows of docs/hard-cases.md
 // (tests/common/hardcase.h):
 //  - normals at and below the horizon: Mikkelsen 2019 listing 7 (perturbed
 //    normal to surface gradient), listing 4 (normal-map texels on the rim),
@@ -27,7 +27,7 @@
 #include <random>
 
 #include "hardcase.h"
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace {
 

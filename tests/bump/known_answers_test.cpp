@@ -1,5 +1,5 @@
 // Known answers for the shared bump math (shaders/sg/*.glsl as C++ through
-// surfgrad/bump.h), each computed INDEPENDENTLY in double inside this file:
+// surfgrad/bump/core.h), each computed INDEPENDENTLY in double inside this file:
 //  - Blinn 1978: the perturbed normal of a height h(u, v) on an analytic
 //    surface is normalize(cross(P_u + h_u n, P_v + h_v n)); the framework
 //    (Mikkelsen 2019 eq. 1 with listing 8's surface gradient) must match it
@@ -30,7 +30,7 @@
 #include <random>
 
 #include "hardcase.h"
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace {
 

@@ -2,7 +2,7 @@
 // C++ (GLM) build against the GLSL build on llvmpipe, >= 100,000 random and
 // adversarial records per function, with the per-function tolerances each
 // entry declares (shaders/sg/eval/kernels.glsl, each with its reason) and
-// the conditioning classification of surfgrad/parity.h. Also the hard-case
+// the conditioning classification of surfgrad/parity/check.h. Also the hard-case
 // contract (finite outputs, resolve unit length, ...) on CPU and GPU.
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 
 #include "hardcase.h"
 #include "hlsl_round_trip.h"
-#include "surfgrad/parity.h"
+#include "surfgrad/parity/check.h"
 
 namespace {
 

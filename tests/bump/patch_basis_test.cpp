@@ -26,11 +26,11 @@
 
 #include "hardcase.h"
 #include "patch_eval_util.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

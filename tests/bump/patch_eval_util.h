@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/bump/patch_basis.h"
 
 namespace sg::test {
 

@@ -13,10 +13,10 @@
 #include <vector>
 
 #include "patch_eval_util.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // Property tests (rapidcheck) of the shared bump math through its C++ build
-// (shaders/sg/*.glsl via surfgrad/bump.h and the evaluation table of
+// (shaders/sg/*.glsl via surfgrad/bump/core.h and the evaluation table of
 // shaders/sg/eval/kernels.glsl):
 //  - finite outputs: every entry of the evaluation table on any record of
 //    its documented domain (components 0 or 1e-45 to 1e18 in magnitude);
@@ -35,8 +35,8 @@
 #include <cstdlib>
 #include <vector>
 
-#include "surfgrad/bump.h"
-#include "surfgrad/eval_kernels.h"
+#include "surfgrad/bump/core.h"
+#include "surfgrad/bump/eval_kernels.h"
 
 namespace {
 

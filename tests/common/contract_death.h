@@ -1,4 +1,4 @@
-// Death tests of contract checks (surfgrad/contract.h). Registered only when
+// Death tests of contract checks (surfgrad/base/contract.h). Registered only when
 // the build checks contracts (SURFGRAD_CONTRACTS=ON: Debug, sanitizer and
 // scripts/test builds); in Release the checks compile to nothing and these
 // calls would be undefined behaviour.

@@ -1,6 +1,6 @@
 // Image files whose headers declare gigabytes (issue 16), kept in the
 // texture fuzz corpus (tests/fuzz/corpus/texture), with the reason the
-// guarded decoder (image/, surfgrad/image_decode.h) gives when its header
+// guarded decoder (image/, surfgrad/image/image_decode.h) gives when its header
 // scan refuses each one. Every program that reads images through that
 // decoder (`render` textures, `normalmap` inputs) is tested against the
 // whole list under a memory limit (cli.h: runSurfgradMemoryLimited).

@@ -15,8 +15,8 @@
 #include <string>
 
 #include "cli.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::test {
 

@@ -23,7 +23,7 @@
 #include <glm/glm.hpp>
 
 #include "example_test_util.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

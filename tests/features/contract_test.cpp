@@ -1,13 +1,13 @@
 // The documented preconditions of features/ (contract checks,
-// surfgrad/contract.h): texel coordinates inside the maps, for the C++
+// surfgrad/base/contract.h): texel coordinates inside the maps, for the C++
 // emulation of the evaluator's texelFetch and for the packing helpers; a
 // thread count within 0..kMaxThreads for the bake and the packing.
 #include <array>
 #include <vector>
 
 #include "contract_death.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/threads.h"
 
 namespace {
 

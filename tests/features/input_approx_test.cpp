@@ -4,7 +4,7 @@
 // junction detection (curve_check.cpp).
 #include "input_test_util.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <cstdio>
 #include <numbers>

@@ -5,7 +5,7 @@
 // collection, a CFF .otf), and the error messages.
 #include "input_test_util.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::features::test {
 namespace {

@@ -2,7 +2,7 @@
 // bad field with the element and message checked, 100k segments.
 #include "input_test_util.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <sstream>
 

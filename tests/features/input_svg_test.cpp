@@ -6,7 +6,7 @@
 // All drawings use viewBox "0 0 100 100", so the y flip is y' = 100 - y.
 #include "input_test_util.h"
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 #include <cstdio>
 #include <filesystem>

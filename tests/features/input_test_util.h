@@ -3,7 +3,7 @@
 // segments that approximate it.
 #pragma once
 
-#include "surfgrad/curves.h"
+#include "surfgrad/features/curves.h"
 
 #include <algorithm>
 #include <cmath>

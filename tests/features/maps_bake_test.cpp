@@ -6,7 +6,7 @@
 
 #include "../../features/src/bake_internal.h" // white-box: the transformation table, the optimiser
 #include "maps_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 using namespace sg::features;
 using namespace sgtest;

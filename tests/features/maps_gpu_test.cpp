@@ -9,8 +9,8 @@
 
 #include "hlsl_round_trip.h"
 #include "maps_test_util.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 using namespace sg::features;
 using namespace sgtest;

@@ -9,7 +9,7 @@
 
 #include "hardcase.h"
 #include "maps_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 using namespace sg::features;
 using namespace sgtest;

@@ -3,7 +3,7 @@
 // outside [w0, w], the paper's Eq. 1 and the surfgrad composition agree
 // wherever the blend is 0 or 1 and differ (by a measured amount) between.
 #include "maps_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 using namespace sg::features;
 using namespace sg::glsl;

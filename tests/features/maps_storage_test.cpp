@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "maps_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 using namespace sg::features;
 using namespace sgtest;

@@ -11,7 +11,7 @@
 #include <functional>
 #include <vector>
 
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace sgtest {
 

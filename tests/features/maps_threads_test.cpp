@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "input_test_util.h"
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "hardcase.h"
 #include "maps_test_util.h"
 #include "near_measure.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 using namespace sg::features;
 using namespace sgtest;

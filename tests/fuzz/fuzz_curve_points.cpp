@@ -1,6 +1,6 @@
 // libFuzzer entry for the text parsers of `surfgrad normalmap`: curve
 // points (curves --points / --points-file, parseCurvePoints) and warps
-// (deform --warp, parseWarp), surfgrad/normalmap.h. Input: the first byte
+// (deform --warp, parseWarp), surfgrad/normalmap/operations.h. Input: the first byte
 // selects the parser (even: curve, odd: warp), the rest is the text.
 // Properties beyond "no crash / no sanitizer report / only InputError":
 // an accepted curve has 2 to 64 points with x strictly increasing in
@@ -12,8 +12,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "surfgrad/io.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace {
 

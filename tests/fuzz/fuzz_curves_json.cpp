@@ -1,9 +1,9 @@
 // Fuzz entry point: JSON curve networks (sg::features::parseCurvesJson).
 // Documented errors (InputError) are expected; anything else (a crash, a
 // sanitizer report, another exception) is a bug. Accepted networks must
-// satisfy the loader guarantees of surfgrad/curves.h.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+// satisfy the loader guarantees of surfgrad/features/curves.h.
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -2,9 +2,9 @@
 // and the checks on its tree), path data, shapes, transforms and the
 // cubic/arc approximation.
 // Documented errors (InputError) are expected; accepted networks must
-// satisfy the loader guarantees of surfgrad/curves.h.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+// satisfy the loader guarantees of surfgrad/features/curves.h.
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <cstdint>
 #include <cstdlib>

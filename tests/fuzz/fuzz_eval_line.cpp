@@ -1,4 +1,4 @@
-// libFuzzer entry for the `surfgrad eval` line parser (surfgrad/eval_line.h).
+// libFuzzer entry for the `surfgrad eval` line parser (surfgrad/bump/eval_line.h).
 // Input: first byte selects the entry (modulo the table size), the rest is
 // the JSON line. Property checked beyond "no crash / no sanitizer report /
 // only LineError": every line the parser accepts is inside the documented
@@ -14,8 +14,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "surfgrad/eval_kernels.h"
-#include "surfgrad/eval_line.h"
+#include "surfgrad/bump/eval_kernels.h"
+#include "surfgrad/bump/eval_line.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size == 0) return 0;

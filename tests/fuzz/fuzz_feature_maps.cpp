@@ -4,8 +4,8 @@
 // sg::features::loadFromMemory). Documented errors (InputError) are
 // expected; maps that load must evaluate to finite values everywhere, which
 // is what the validation promises the shader.
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 
 #include <cmath>
 #include <cstdint>

@@ -2,9 +2,9 @@
 // (sg::features::parseFont). The first input byte selects the text (Latin,
 // CJK, mixed with a newline) and the face index; the rest is the font file.
 // Documented errors (InputError) are expected; accepted networks must
-// satisfy the loader guarantees of surfgrad/curves.h.
-#include "surfgrad/curves.h"
-#include "surfgrad/io.h"
+// satisfy the loader guarantees of surfgrad/features/curves.h.
+#include "surfgrad/features/curves.h"
+#include "surfgrad/base/io.h"
 
 #include <cstdint>
 #include <cstdlib>

@@ -7,8 +7,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     using namespace sg::mesh;

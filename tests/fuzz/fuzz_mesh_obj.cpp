@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

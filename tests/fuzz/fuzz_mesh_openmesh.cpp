@@ -22,8 +22,8 @@
 #include <string>
 #include <string_view>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

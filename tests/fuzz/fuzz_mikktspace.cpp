@@ -1,4 +1,4 @@
-// libFuzzer entry for MikkTSpace (surfgrad/tangents.h): the bytes describe a
+// libFuzzer entry for MikkTSpace (surfgrad/mesh/tangents.h): the bytes describe a
 // small polygon soup on a coarse value grid (so exact ties, welds,
 // degenerate and zero-area triangles, opposite frames and non-manifold
 // edges are common); the fast generator (wide and narrow SIMD, with and
@@ -16,8 +16,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfgrad/mikktspace_reference.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
+#include "surfgrad/mesh/tangents.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;

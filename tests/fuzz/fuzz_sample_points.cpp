@@ -13,9 +13,9 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "surfgrad/curves.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/curves.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
 
 namespace {

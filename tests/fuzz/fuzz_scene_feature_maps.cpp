@@ -13,7 +13,7 @@
 #include <string>
 
 #include "scene_fuzz_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::filesystem::path dir = sgfuzz::scratchDir("scene_feature_maps");

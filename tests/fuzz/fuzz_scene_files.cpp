@@ -25,7 +25,7 @@
 #include <string_view>
 
 #include "scene_fuzz_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace {
 

@@ -1,7 +1,7 @@
 // Fuzz entry point: texture files as a scene reads them
 // (sg::render::decodeTextureImage, render/src/texture_file.cpp, over
 // the one image decoder of image/src/image_decode.cpp): the
-// image header scan (surfgrad/image_header.h), the size limit and the
+// image header scan (surfgrad/image/image_header.h), the size limit and the
 // texture budget, then OpenImageIO's decoder of the scanned format, band
 // by band, and the mip chain. Every format a scene accepts is reached:
 // PNG, JPEG, OpenEXR, TIFF and Radiance HDR by their signatures, anything
@@ -26,7 +26,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 #include "surfgrad/render.h"
 
 namespace {

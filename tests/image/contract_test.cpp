@@ -1,12 +1,12 @@
 // The documented preconditions of the image writer (contract checks,
-// surfgrad/contract.h): each violation aborts with "contract violated" in a
+// surfgrad/base/contract.h): each violation aborts with "contract violated" in a
 // checked build. Callers build these from their own images; untrusted
 // input never reaches them.
 #include <vector>
 
 #include "contract_death.h"
-#include "surfgrad/image.h"
-#include "surfgrad/image_write.h"
+#include "surfgrad/image/image.h"
+#include "surfgrad/image/image_write.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// The in-memory image (surfgrad/image.h): sample layout (channels
+// The in-memory image (surfgrad/image/image.h): sample layout (channels
 // interleaved, bottom row first), the RGBA accessors, degenerate sizes, and
 // an Image handed to the writer lands in the file top row first.
 #include <gtest/gtest.h>
@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "cli.h"
-#include "surfgrad/image.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::image {
 namespace {

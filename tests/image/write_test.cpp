@@ -1,4 +1,4 @@
-// The image writer (image/src/image_write.cpp, surfgrad/image_write.h):
+// The image writer (image/src/image_write.cpp, surfgrad/image/image_write.h):
 // rows bottom first in memory and top first in the file, each format's
 // sample types and metadata, what happens to NaN and out-of-range values,
 // MIP chains, the refusals (format by extension, empty images) and atomic
@@ -16,9 +16,9 @@
 #include <vector>
 
 #include "cli.h"
-#include "surfgrad/image_decode.h"
-#include "surfgrad/image_write.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image_decode.h"
+#include "surfgrad/image/image_write.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::image {
 namespace {

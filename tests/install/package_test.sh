@@ -102,8 +102,8 @@ has run /usr/share/surfgrad/examples/terrain/scene.json
 has run /usr/share/surfgrad/examples/data/rock_normal.png
 has run /usr/share/surfgrad/examples/engine-integration/CMakeLists.txt
 has run /usr/share/surfgrad/examples/consumer-tangents/main.cpp
-has dev /usr/include/surfgrad/bump.h
-has dev /usr/include/surfgrad/tangents.h
+has dev /usr/include/surfgrad/bump/core.h
+has dev /usr/include/surfgrad/mesh/tangents.h
 has dev /usr/include/surfgrad/render/scene.h
 has dev /usr/share/surfgrad/shaders/sg/surfgrad.glsl
 has dev /usr/share/surfgrad/shaders/sg/compat.glsl

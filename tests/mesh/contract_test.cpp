@@ -1,4 +1,4 @@
-// The documented preconditions of mesh/ (contract checks, surfgrad/contract.h):
+// The documented preconditions of mesh/ (contract checks, surfgrad/base/contract.h):
 // each violation aborts with "contract violated" in a checked build.
 // Untrusted meshes never reach these: loaders and the callers of the tangent
 // generators reject them with sg::io::InputError first (tests of
@@ -9,11 +9,11 @@
 
 #include "contract_death.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/morph.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/mikktspace_reference.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/morph.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

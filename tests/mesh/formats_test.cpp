@@ -10,9 +10,9 @@
 
 #include "hardcase.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/polymesh.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/polymesh.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

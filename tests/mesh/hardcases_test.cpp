@@ -16,8 +16,8 @@
 
 #include "hardcase.h"
 #include "mesh_test_util.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

@@ -15,7 +15,7 @@
 
 #include "cli.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

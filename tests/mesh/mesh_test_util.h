@@ -7,8 +7,8 @@
 #include <filesystem>
 #include <string>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::test {
 

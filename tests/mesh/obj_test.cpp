@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // The OBJ reader on several threads (parseObj's block reader,
-// surfgrad/mesh_io.h): at 1, 2, 3 and 7 threads and with blocks of a few
+// surfgrad/mesh/mesh_io.h): at 1, 2, 3 and 7 threads and with blocks of a few
 // bytes (so block boundaries fall on every kind of line), the mesh, the
 // face lines, the report's notes and, for malformed text, the error message
 // are the serial reader's exactly (memcmp of every array; string equality
@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/io.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

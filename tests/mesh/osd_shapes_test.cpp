@@ -10,8 +10,8 @@
 
 #include "hardcase.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

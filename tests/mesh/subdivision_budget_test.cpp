@@ -1,4 +1,4 @@
-// estimateSubdivisionCost (surfgrad/subdivision.h) against what a
+// estimateSubdivisionCost (surfgrad/mesh/subdivision.h) against what a
 // Subdivider::build really makes and allocates: the counts of level N
 // exactly, the bytes against the peak of live heap bytes measured by the
 // counting allocator below (this executable replaces the global operator
@@ -14,8 +14,8 @@
 #include <string>
 
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Subdivider (surfgrad/subdivision.h): refinement counts, limit evaluation
+// Subdivider (surfgrad/mesh/subdivision.h): refinement counts, limit evaluation
 // against OpenSubdiv's own limit masks (PrimvarRefiner::Limit /
 // LimitFaceVarying), a creased cube whose crease must follow the cubic
 // B-spline of its crease polygon, derivatives against finite differences,
@@ -17,9 +17,9 @@
 
 #include "hardcase.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/osd_primvar.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/osd_primvar.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

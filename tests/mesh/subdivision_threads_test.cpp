@@ -27,9 +27,9 @@
 
 #include "cli.h"
 #include "mesh_test_util.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

@@ -17,7 +17,7 @@
 #include <glm/geometric.hpp>
 
 #include "cli.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 #include "tangents_test_util.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Limit-surface tangent frames (surfgrad/tangents.h: limitTangent,
+// Limit-surface tangent frames (surfgrad/mesh/tangents.h: limitTangent,
 // generateLimitTangents) on sg::mesh::Subdivider's limit evaluation:
 //  - the chain rule on analytic derivatives (known answers, mirrored and
 //    degenerate Jacobians);
@@ -17,9 +17,9 @@
 #include <glm/geometric.hpp>
 
 #include "hardcase.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

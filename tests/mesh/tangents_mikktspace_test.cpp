@@ -1,4 +1,4 @@
-// MikkTSpace tangents (mesh/src/mikktspace*.cpp, surfgrad/tangents.h):
+// MikkTSpace tangents (mesh/src/mikktspace*.cpp, surfgrad/mesh/tangents.h):
 //  - agreement with tangents MikkTSpace wrote into a glTF sample
 //    (NormalTangentMirrorTest, Blender exporter) and invariants on
 //    NormalTangentTest (which ships none);
@@ -17,8 +17,8 @@
 #include <glm/geometric.hpp>
 
 #include "hardcase.h"
-#include "surfgrad/mikktspace_reference.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
+#include "surfgrad/mesh/tangents.h"
 #include "tangents_test_util.h"
 
 namespace {

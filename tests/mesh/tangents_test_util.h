@@ -18,7 +18,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::test {
 

@@ -13,8 +13,8 @@
 
 #include <glm/geometric.hpp>
 
-#include "surfgrad/mikktspace_reference.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mikktspace_reference.h"
+#include "surfgrad/mesh/tangents.h"
 #include "tangents_test_util.h"
 
 namespace {

@@ -7,7 +7,7 @@
 
 #include "hardcase.h"
 #include "mesh_test_util.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace {
 

@@ -1,6 +1,6 @@
 // Analytic height fields for the normal-map toolkit's tests and benchmark:
 // heights and exact slopes at texel centres, in texel units (the
-// conventions of surfgrad/normalmap.h), evaluated in double.
+// conventions of surfgrad/normalmap/operations.h), evaluated in double.
 #pragma once
 
 #include <algorithm>
@@ -8,7 +8,7 @@
 #include <functional>
 #include <vector>
 
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace sg::normalmap::test {
 

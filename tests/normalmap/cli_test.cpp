@@ -18,7 +18,7 @@
 
 #include "cli.h"
 #include "giga_images.h"
-#include "surfgrad/normalmap.h"
+#include "surfgrad/normalmap/operations.h"
 
 namespace {
 

@@ -1,11 +1,11 @@
 // The documented preconditions of the normal-map toolkit (contract checks,
-// surfgrad/contract.h): each violation aborts with "contract violated" in a
+// surfgrad/base/contract.h): each violation aborts with "contract violated" in a
 // checked build. Untrusted files never reach these: the CLI checks sizes,
 // channels, UV sets and the mesh's tangent input first and reports
 // sg::io::InputError (cli_test.cpp).
 #include "contract_death.h"
-#include "surfgrad/normalmap.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/normalmap/operations.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace {
 

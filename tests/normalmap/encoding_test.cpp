@@ -8,9 +8,9 @@
 #include <cstdio>
 
 #include "analytic_fields.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/render_mesh.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/render_mesh.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace {
 

@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "analytic_fields.h"
-#include "surfgrad/bump.h"
+#include "surfgrad/bump/core.h"
 
 namespace {
 

@@ -14,7 +14,7 @@
 
 #include "analytic_fields.h"
 #include "hardcase.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #    tests/features/maps_accuracy_test.cpp, FeatureMapsAccuracy.LinearPolylines bounds the
 #    reconstructed distance near straight segments (|d - exact| < 0.01 at offsets up to 0.5
 #    texel, < 1e-4 on the curve) and the gradient's angle; the corner distances are the exact
-#    distances clamped to the band (features/include/surfgrad/feature_maps.h, BakeOptions);
+#    distances clamped to the band (features/include/surfgrad/features/feature_maps.h, BakeOptions);
 #  - tests/features/maps_storage_test.cpp: save/load is exact; bad files are InputErrors;
 #  - docs/features-input.md: the JSON errors and their elements.
 import numpy as np
@@ -62,7 +62,7 @@ def test_sample_near_a_straight_segment(line_maps):
     assert r["dist"].shape == (41,) and r["grad"].shape == (41, 2)
     assert r["side"].shape == (41,) and r["profile"].dtype == np.int32 and r["width"].shape == (41,)
     # On the curve: the GPU layout rounds corner distances and gradients to half floats
-    # (features/include/surfgrad/feature_maps.h: 5e-4 texels at d < 1), and both enter the
+    # (features/include/surfgrad/features/feature_maps.h: 5e-4 texels at d < 1), and both enter the
     # reconstruction: 2e-3. Measured 8e-4 here, the same as `surfgrad features sample` gives.
     assert r["dist"].max() < 2e-3
     for offset, max_deg in ((0.01, 2.0), (0.05, 8.0), (0.2, 25.0), (0.5, 25.0)):

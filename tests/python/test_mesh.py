@@ -629,7 +629,7 @@ def test_to_render_mesh_and_back(tmp_path):
     assert polygons.face_count == 12
     np.testing.assert_array_equal(polygons.face_sizes, np.full(12, 3, np.uint32))
     # Render vertices with bitwise-equal positions become one cage vertex
-    # (mesh/include/surfgrad/mesh_io.h, toPolygonMesh): the cube's 8 corners.
+    # (mesh/include/surfgrad/mesh/mesh_io.h, toPolygonMesh): the cube's 8 corners.
     assert polygons.vertex_count == 8
     assert surfgrad.describe(polygons)["euler_characteristic"] == 2
 

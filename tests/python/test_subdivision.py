@@ -11,7 +11,7 @@
 #    (n^2 P + 4 sum e_j + sum f_j) / (n (n + 5)) of Halstead, Kass and DeRose 1993: corners
 #    (1/2)(1, 1, 1), face centres (68/81) along their axis, edge midpoints (395/648)(0, 1, 1);
 #  - linearity and affine invariance of subdivision (weights summing to 1), which
-#    tests/mesh/subdivision_test.cpp StencilUpdateMatchesRebuild and mesh/include/surfgrad/morph.h
+#    tests/mesh/subdivision_test.cpp StencilUpdateMatchesRebuild and mesh/include/surfgrad/mesh/morph.h
 #    rely on: a moved cage refines to the moved surface (a doubled cage exactly, bit for bit);
 #    morphing the cage or the refined mesh gives the same positions;
 #  - glTF 2.0 sec. 3.7.2.2 blendshapes P0 + sum w_i dP_i and normalize(N0 + sum w_i dN_i),
@@ -274,7 +274,7 @@ def test_a_level_over_the_memory_budget_is_refused_before_it_starts(cube):
 
 
 def test_morph_cage_positions_is_the_weighted_sum(data_dir):
-    # glTF 2.0 sec. 3.7.2.2, mesh/include/surfgrad/morph.h: P = P0 + sum w_i dP_i.
+    # glTF 2.0 sec. 3.7.2.2, mesh/include/surfgrad/mesh/morph.h: P = P0 + sum w_i dP_i.
     cage = surfgrad.load_cage(data_dir / "gltf/AnimatedMorphSphere/glTF/AnimatedMorphSphere.gltf")
     targets = cage.morph_targets
     assert len(targets) == 2
@@ -302,7 +302,7 @@ def test_morpher_takes_every_loaded_mesh(data_dir):
     mesh = surfgrad.load_mesh(data_dir / SPHERE)
     morpher = surfgrad.Morpher(mesh)
     out = morpher.apply(np.array([0.6, 0.25], np.float32), normals="recompute")
-    # Recompute clears the tangents: they belong to the rest shape (surfgrad/morph.h).
+    # Recompute clears the tangents: they belong to the rest shape (surfgrad/mesh/morph.h).
     assert out.tangents.shape == (0, 4)
     blended = morpher.apply(np.array([0.6, 0.25], np.float32), normals="blend")
     assert blended.tangents.shape == mesh.tangents.shape  # blended, w kept (morph.h)
@@ -315,7 +315,7 @@ BLOB = REPO_DIR / "examples/data/morph_blob.gltf"
 
 
 def test_morpher_blends_positions_and_normals():
-    # glTF 2.0 sec. 3.7.2.2 (mesh/include/surfgrad/morph.h): P = P0 + sum w_i dP_i, and with
+    # glTF 2.0 sec. 3.7.2.2 (mesh/include/surfgrad/mesh/morph.h): P = P0 + sum w_i dP_i, and with
     # "blend" N = normalize(N0 + sum w_i dN_i), here in double.
     mesh = surfgrad.load_mesh(BLOB)
     assert len(mesh.morph_targets) == 2
@@ -362,7 +362,7 @@ def test_morpher_keeps_its_mesh_alive():
 
 
 def test_morphing_the_cage_or_the_refined_mesh_gives_the_same_positions(data_dir):
-    # mesh/include/surfgrad/morph.h: subdivision and limit evaluation are linear in the control
+    # mesh/include/surfgrad/mesh/morph.h: subdivision and limit evaluation are linear in the control
     # points, so the cage morphed then refined through the stencils equals the refined mesh
     # morphed with its refined deltas. Float rounding of one linear map in two orders, relative
     # to the model's size (~100 units): the stencil bound 1e-5 of StencilUpdateMatchesRebuild.

@@ -140,7 +140,7 @@ def test_zero_area_uv_triangle_takes_its_neighbours_frame():
     np.testing.assert_array_equal(t[8], DEFAULT_FRAME)  # z meets no good triangle
     np.testing.assert_array_equal(t[9:], np.tile(DEFAULT_FRAME, (3, 1)))
     # Both triangles have exactly zero UV area: counted as within rounding
-    # (mesh/include/surfgrad/tangents.h, uvAreaWithinRounding counts zero areas).
+    # (mesh/include/surfgrad/mesh/tangents.h, uvAreaWithinRounding counts zero areas).
     positions, normals, uvs, corners = s.arrays()
     mesh = surfgrad.RenderMesh(positions, corners.reshape(-1, 3), normals=normals, uv_sets=[uvs])
     assert surfgrad.uv_area_within_rounding(mesh) == 2
@@ -201,7 +201,7 @@ def test_quads_split_along_the_shorter_uv_diagonal():
 
 
 def test_polygons_other_than_triangles_and_quads_are_ignored():
-    # docs/tangents.md, step 1, and MikkTSpaceInput::faceSizes in surfgrad/tangents.h: as by the
+    # docs/tangents.md, step 1, and MikkTSpaceInput::faceSizes in surfgrad/mesh/tangents.h: as by the
     # reference, their corners get vec4(0); the other faces are unaffected.
     positions, normals, uvs, corners = two_quad_strip([(2, 0), (2, 1)]).arrays()
     pentagon = np.array([0, 1, 4, 5, 3], np.uint32)  # (0,0) (1,0) (2,0) (2,1) (0,1)

@@ -20,9 +20,9 @@
 #include "render_internal.h"
 #include "render_test_util.h"
 #include "cli.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::render::test {
 namespace {

@@ -17,7 +17,7 @@
 #include "render_internal.h"
 #include "antialias_test_util.h"
 #include "render_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render::test {
 namespace {

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "render_internal.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 #include "antialias_test_util.h"
 #include "render_test_util.h"
 

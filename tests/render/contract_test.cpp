@@ -1,5 +1,5 @@
 // The documented preconditions of the renderer (contract checks,
-// surfgrad/contract.h): textures have width * height >= 1 texels, and plans
+// surfgrad/base/contract.h): textures have width * height >= 1 texels, and plans
 // are made for meshes and materials of the scene whose assets they get.
 #include <vector>
 

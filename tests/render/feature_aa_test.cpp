@@ -14,8 +14,8 @@
 #include "layers/feature_assets.h"
 #include "render_internal.h"
 #include "render_test_util.h"
-#include "surfgrad/feature_maps.h"
-#include "surfgrad/io.h"
+#include "surfgrad/features/feature_maps.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render::test {
 namespace {

@@ -1,6 +1,6 @@
 // Hard cases of the renderer's layer functions (shaders/sg/render/*.glsl,
 // the same source the GPU compiles, on the CPU through
-// surfgrad/render_shaders.h), reported as rows of docs/hard-cases.md
+// surfgrad/render/render_shaders.h), reported as rows of docs/hard-cases.md
 // (tests/common/hardcase.h):
 //  - a decal projector (Mikkelsen 2019, section 2.9, listing 15) whose
 //    plane is parallel to the surface, and one turned until its projection
@@ -19,7 +19,7 @@
 
 #include "hardcase.h"
 #include "render_test_util.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render::test {
 namespace {

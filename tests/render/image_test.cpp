@@ -26,7 +26,7 @@
 #include "hardcase.h"
 #include "render_test_util.h"
 #include "layer_kind.h"
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 
 namespace sg::render::test {
 namespace {

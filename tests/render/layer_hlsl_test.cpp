@@ -56,8 +56,8 @@
 #include "layer_kind.h"
 #include "render_internal.h"
 #include "render_test_util.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::render::test {
 namespace {
@@ -606,8 +606,7 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
         const PlanLayer& pl = plan.groups[0][j];
         // A modifier block samples through sgSample<Kind>HD.
         const std::string fn = pl.hasModifiers ? "sgSample" : "sgLayer";
-        EXPECT_NE(statements[j].find(fn), std::string::npos)
-            << hc.name << ": " << statements[j];
+        EXPECT_NE(statements[j].find(fn), std::string::npos) << hc.name << ": " << statements[j];
         EXPECT_NE(hlsl.text.find(statements[j]), std::string::npos) << hc.name;
     }
 

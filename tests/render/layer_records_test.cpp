@@ -24,8 +24,8 @@
 
 #include "layer_kind.h"
 #include "render_test_util.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::render::test {
 namespace {

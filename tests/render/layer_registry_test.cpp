@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "layer_kind.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::render::test {
 namespace {

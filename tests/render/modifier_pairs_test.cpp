@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace {
 

@@ -25,7 +25,7 @@
 #include <random>
 #include <vector>
 
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render::test {
 namespace {

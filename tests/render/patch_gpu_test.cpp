@@ -33,11 +33,11 @@
 #include <vector>
 
 #include "render_internal.h"
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/patch_basis.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/bump/patch_basis.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

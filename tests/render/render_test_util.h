@@ -9,9 +9,9 @@
 #include <memory>
 #include <string>
 
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 #include "surfgrad/render.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render::test {
 

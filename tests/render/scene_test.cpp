@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "render_test_util.h"
-#include "surfgrad/io.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render::test {
 namespace {

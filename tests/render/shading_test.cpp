@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render::test {
 namespace {

@@ -20,9 +20,9 @@
 
 #include "cli.h"
 #include "render_test_util.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/subdivision.h"
-#include "surfgrad/tangents.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/mesh/subdivision.h"
+#include "surfgrad/mesh/tangents.h"
 
 namespace sg::render::test {
 namespace {

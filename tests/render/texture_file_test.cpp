@@ -1,4 +1,4 @@
-// Texture files (render/src/texture_file.cpp, surfgrad/image_header.h):
+// Texture files (render/src/texture_file.cpp, surfgrad/image/image_header.h):
 // every format a scene accepts decodes to exactly the values OpenImageIO
 // gives as float (colour not premultiplied by alpha), in the file's own
 // precision; the mip chain equals the all-float chain bit for bit; layers
@@ -23,8 +23,8 @@
 #include <string>
 
 #include "render_test_util.h"
-#include "surfgrad/image_header.h"
-#include "surfgrad/io.h"
+#include "surfgrad/image/image_header.h"
+#include "surfgrad/base/io.h"
 
 namespace sg::render::test {
 namespace {
@@ -446,7 +446,7 @@ TEST(TextureFiles, DefaultBudgetFollowsTheMachine) {
                 static_cast<unsigned long long>(std::min(procMemTotal() / 4, limit / 2)));
 }
 
-// The header scan (surfgrad/image_header.h) agrees with OpenImageIO on every
+// The header scan (surfgrad/image/image_header.h) agrees with OpenImageIO on every
 // valid file, from a file and from memory.
 TEST(ImageHeader, AgreesWithTheDecoderOnValidFiles) {
     for (const char* file : kValidFiles) {

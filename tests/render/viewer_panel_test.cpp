@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "surfgrad/mesh_io.h"
+#include "surfgrad/mesh/mesh_io.h"
 #include "surfgrad/viewer.h"
 
 namespace sg::render::test {

@@ -26,7 +26,7 @@
 #include "hardcase.h"
 #include "layer_kind.h"
 #include "render_test_util.h"
-#include "surfgrad/render_shaders.h"
+#include "surfgrad/render/render_shaders.h"
 
 namespace sg::render::test {
 namespace {

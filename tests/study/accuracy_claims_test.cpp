@@ -26,7 +26,7 @@
 #include "blend.h"
 #include "common.h"
 #include "precision_path.h"
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 #include "torus.h"
 #include "torus_bump.h"
 #include "triplanar.h"

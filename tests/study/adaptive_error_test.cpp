@@ -12,10 +12,10 @@
 #include <vector>
 
 #include "adaptive_error.h"
-#include "surfgrad/mesh_io.h"
-#include "surfgrad/patch_basis.h"
+#include "surfgrad/mesh/mesh_io.h"
+#include "surfgrad/bump/patch_basis.h"
 #include "surfgrad/render.h"
-#include "surfgrad/subdivision.h"
+#include "surfgrad/mesh/subdivision.h"
 
 namespace {
 

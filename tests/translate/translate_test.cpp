@@ -1,4 +1,4 @@
-// Shader targets (surfgrad/shader_target.h): the table, each chain on a
+// Shader targets (surfgrad/translate/shader_target.h): the table, each chain on a
 // program of the shared library, and the errors of a rejected program.
 // What the chains make is checked by other means than the code under test:
 // the SPIR-V module's header words against the SPIR-V specification (magic
@@ -10,8 +10,8 @@
 
 #include <set>
 
-#include "surfgrad/shader_files.h"
-#include "surfgrad/shader_target.h"
+#include "surfgrad/shaders/shader_files.h"
+#include "surfgrad/translate/shader_target.h"
 
 namespace {
 

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "cli.h"
-#include "surfgrad/gl.h"
+#include "surfgrad/gl/context.h"
 #include "surfgrad/render/assets.h"
 #include "surfgrad/render/renderer.h"
 #include "surfgrad/render/scene.h"

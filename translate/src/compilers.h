@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/shader_target.h"
+#include "surfgrad/translate/shader_target.h"
 
 namespace sg::translate::detail {
 

@@ -1,13 +1,13 @@
-// The shader targets' table and their chains (surfgrad/shader_target.h):
+// The shader targets' table and their chains (surfgrad/translate/shader_target.h):
 // GLSL 4.50 as written; GLSL 3.30 and ES 3.00 by the dialect's header (the
 // shared source adapts through sg/compat.glsl); SPIR-V by glslang; HLSL
 // and MSL from that SPIR-V by SPIRV-Cross. Adding a target is one row here
 // and its case in translateShader().
-#include "surfgrad/shader_target.h"
+#include "surfgrad/translate/shader_target.h"
 
 #include "compilers.h"
-#include "surfgrad/contract.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/shaders/shader_files.h"
 
 namespace sg::translate {
 

@@ -15,10 +15,10 @@
 #include <cmath>
 #include <cstdio>
 
-#include "surfgrad/adaptive_patches.h"
-#include "surfgrad/gl.h"
-#include "surfgrad/io.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/mesh/adaptive_patches.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/base/io.h"
+#include "surfgrad/shaders/shader_files.h"
 #include "surfgrad/viewer.h"
 
 namespace sg::render {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
-#include "surfgrad/polygon_mesh.h"
+#include "surfgrad/mesh/polygon_mesh.h"
 #include "surfgrad/viewer.h"
 
 namespace sg::render {

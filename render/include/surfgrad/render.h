@@ -3,7 +3,7 @@
 // output. The bump math is the surface-gradient framework of Mikkelsen,
 // "Surface Gradient Based Bump Mapping Framework" (2019); every layer is a
 // function of shaders/sg/render/*.glsl that both renderers run (the GPU as
-// GLSL, the CPU through surfgrad/render_shaders.h).
+// GLSL, the CPU through surfgrad/render/render_shaders.h).
 //
 // Pipeline:
 //   Scene scene = loadScene("scene.json");       // or defaultScene()

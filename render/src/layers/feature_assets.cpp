@@ -10,8 +10,8 @@
 #include <epoxy/gl.h>
 #include <tbb/parallel_for.h>
 
-#include "surfgrad/gl.h"
-#include "surfgrad/threads.h"
+#include "surfgrad/gl/context.h"
+#include "surfgrad/base/threads.h"
 
 namespace sg::render {
 

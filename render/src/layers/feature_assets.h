@@ -12,7 +12,7 @@
 #include <string>
 
 #include "layer_kind.h"
-#include "surfgrad/feature_maps.h"
+#include "surfgrad/features/feature_maps.h"
 
 namespace sg::render {
 
@@ -91,7 +91,7 @@ struct FeatureSamplers {
 // part 0 texA, part 1 texB. The midpoint rule's error on a texel a crease
 // crosses is at most the area of the samples' cells the crease cuts, about
 // 1/samplesPerAxis of the slope jump (tests/render).
-// threads (surfgrad/threads.h): 0 = all cores, 1..kMaxThreads (else a
+// threads (surfgrad/base/threads.h): 0 = all cores, 1..kMaxThreads (else a
 // contract violation); rows of texels run in parallel, each texel's sum in
 // its own sample order, so level 0 is the same bits for every count. Maps
 // of fewer than kFeatureChainSerialBelowSize texels per side run on the

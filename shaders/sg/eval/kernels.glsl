@@ -1,6 +1,6 @@
 // Evaluation kernels: one entry point per shared function, reading its
 // arguments from a flat float record and writing its results to another.
-// The SAME kernels run on the CPU (bump/include/surfgrad/eval_kernels.h)
+// The SAME kernels run on the CPU (bump/include/surfgrad/bump/eval_kernels.h)
 // and in a compute shader (eval.comp.glsl through gl/'s compute harness),
 // which is what the CPU/GPU parity suite, `surfgrad selftest` and
 // `surfgrad eval [--gpu]` compare.
@@ -11,7 +11,7 @@
 //
 //   SG_EVAL_<NAME>_IN(F), SG_EVAL_<NAME>_OUT(F)   its record layouts, as field
 //       lists F(type, json_key, (doc, options)); the options are read by the
-//       C++ table only (surfgrad/eval_kernels.h): sgDefault(v) (the key may
+//       C++ table only (surfgrad/bump/eval_kernels.h): sgDefault(v) (the key may
 //       be omitted), sgRange(lo, hi) (the values an int takes), and how the
 //       parity records fill the field, sgGen* (default: a random vector of
 //       random magnitude; eval_inputs.cpp);

@@ -1,6 +1,6 @@
 // Fetching one texel of the feature maps and sampling the reconstruction at
 // a texel-space position: the entry points a renderer calls (with the
-// profile functions of profile.glsl). Layout: surfgrad/feature_maps.h and
+// profile functions of profile.glsl). Layout: surfgrad/features/feature_maps.h and
 // docs/features.md.
 //
 // Textures (both RGBA32UI, read with texelFetch only, level 0; no
@@ -17,7 +17,7 @@
 // points up as in texel space. A texel costs three fetches: its corner pair
 // row j, the pair row j+1 and its edges. 32 bytes per texel.
 //
-// The same source compiles as C++: surfgrad/feature_maps.h defines the
+// The same source compiles as C++: surfgrad/features/feature_maps.h defines the
 // sampler types SgFeatCornerSampler / SgFeatEdgeSampler over CPU arrays and
 // the texelFetch/textureSize overloads used here.
 #ifndef SG_FEATURES_FETCH_GLSL

@@ -1,7 +1,7 @@
 // Evaluation kernels of the feature-curve functions: one entry point per
 // shared function, reading its arguments from a flat float record and
 // writing its results to another. The SAME kernels run on the CPU
-// (sg::features::evalKernelCpu, surfgrad/feature_maps.h) and in a compute
+// (sg::features::evalKernelCpu, surfgrad/features/feature_maps.h) and in a compute
 // shader (kernels.comp.glsl via sg::gl::runCompute), which the CPU/GPU
 // parity test (tests/features/maps_gpu_test.cpp) compares, kernel by kernel.
 //

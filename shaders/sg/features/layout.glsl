@@ -1,5 +1,5 @@
 // Feature maps: the texel layout shared by the bake (features/src/, through
-// surfgrad/feature_maps.h) and the runtime evaluator (evaluate.glsl).
+// surfgrad/features/feature_maps.h) and the runtime evaluator (evaluate.glsl).
 // Parilov, Zorin, "Real-Time Rendering of Textures with Feature Curves"
 // (TOG 2008), section 4 (configurations C and signatures S per texel) and
 // section 6 ("Memory consumption"); Parilov, Rosenberg, Zorin (TR2005-872)
@@ -125,7 +125,7 @@ SG_FN vec2 sgFeatEdgeTangent(uint w) {
 // ---------------------------------------------------------------------------
 // Everything the evaluator needs about one texel: the samples at its four
 // corners and its configuration and signature. Filled from the textures by
-// sgFeatFetch (fetch.glsl) or from C++ arrays (surfgrad/feature_maps.h).
+// sgFeatFetch (fetch.glsl) or from C++ arrays (surfgrad/features/feature_maps.h).
 struct SgFeatTexel {
     vec4 dist;   // distance at corners SW, SE, NE, NW (texels, >= 0)
     vec2 grad0;  // distance gradient samples at SW, SE, NE, NW (smoothed;

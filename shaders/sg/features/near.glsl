@@ -23,7 +23,7 @@
 // bisection step whenever Newton leaves it): no missed root and no division
 // by a vanishing derivative, for any piece and point.
 //
-// GPU layout (surfgrad/feature_maps.h, both RGBA32UI, texelFetch only):
+// GPU layout (surfgrad/features/feature_maps.h, both RGBA32UI, texelFetch only):
 //   near    N x (N + overflow rows): texel (i, j) lists the pieces of texel
 //           (i, j): eight 16-bit slots (piece index + 1, 0 = empty), or, when
 //           bit 31 of w is set, x = count and y = the first overflow texel
@@ -171,7 +171,7 @@ SG_FN SgFeatResult sgFeatNearResult(SgFeatNearHit h, SgFeatPiece c) {
 
 // ---------------------------------------------------------------------------
 // Fetching. The C++ build reads CPU arrays through the sampler types of
-// surfgrad/feature_maps.h.
+// surfgrad/features/feature_maps.h.
 #ifdef SG_CPP
 #define SG_FEAT_NEAR_SAMPLER const SgFeatNearSampler&
 #define SG_FEAT_PIECE_SAMPLER const SgFeatPieceSampler&

@@ -13,7 +13,7 @@
 //   => dP/ds = (dt/dv dP/du - dt/du dP/dv) / det J
 // (Mikkelsen 2019, section 2.3 takes the same Jacobian from screen-space
 // derivatives; here it is exact). The convention is the uniform path's
-// TangentMethod::Limit (sg::mesh::limitTangent, surfgrad/tangents.h):
+// TangentMethod::Limit (sg::mesh::limitTangent, surfgrad/mesh/tangents.h):
 // vec4(T, w), T the unit vector along dP/ds in the tangent plane, w the
 // sign of det J, bitangent = w * cross(N, T) (MikkTSpace's).
 #ifndef SG_PATCH_LIMIT_TANGENT_GLSL

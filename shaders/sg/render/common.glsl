@@ -10,7 +10,7 @@
 // Written in the shared GLSL/C++ subset (sg/compat.glsl). Textures are read
 // only with textureGrad / textureLod / texelFetch / textureSize and explicit
 // screen derivatives, which the C++ build emulates
-// (render/include/surfgrad/glsl_texture.h), so the CPU reference
+// (render/include/surfgrad/render/glsl_texture.h), so the CPU reference
 // renderer samples exactly like the GPU does, up to filtering precision.
 //
 // Texture convention (all layers): texture coordinate (0,0) is the LOWER-left

@@ -6,7 +6,7 @@
 // glslang-validate: SG_LIGHT_COUNT 1, SG_LAYER_RECORDS 1
 // glsl-targets: glsl330 es300 (and 4.50; Vulkan GLSL forbids default-block
 // uniforms: `surfgrad shader --target spirv|hlsl|msl` gathers them into one
-// block, surfgrad/shader_target.h)
+// block, surfgrad/translate/shader_target.h)
 #ifndef SG_RENDER_SURFACE_FS_GLSL
 #define SG_RENDER_SURFACE_FS_GLSL
 

@@ -2,7 +2,7 @@
 // options of sg/render/program_options.glsl).
 // glsl-targets: glsl330 es300 (and 4.50; Vulkan GLSL forbids default-block
 // uniforms: `surfgrad shader --target spirv|hlsl|msl` gathers them into one
-// block, surfgrad/shader_target.h)
+// block, surfgrad/translate/shader_target.h)
 // Positions reach the fragment program relative to the camera (Mikkelsen
 // 2019, listing 16: "NO TRANSLATION" in the derivatives, so dFdx of the
 // position keeps its precision far from the origin). The relative position

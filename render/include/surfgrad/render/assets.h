@@ -8,7 +8,7 @@
 // curve file, or a mesh that cannot give what the scene asks of it (a UV
 // set it lacks, tangents its values do not allow), throws
 // sg::io::InputError naming the scene file and field. Image files go
-// through the guarded decoder (surfgrad/image_decode.h: header scan, size
+// through the guarded decoder (surfgrad/image/image_decode.h: header scan, size
 // limit) and the texture budget before anything is allocated (docs/scene.md,
 // "Texture files").
 // SceneAssets::meshes is aligned with Scene::meshes.
@@ -23,9 +23,9 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/glsl_texture.h"
+#include "surfgrad/render/glsl_texture.h"
 #include "surfgrad/render/scene.h"
-#include "surfgrad/render_mesh.h"
+#include "surfgrad/mesh/render_mesh.h"
 
 namespace sg::mesh {
 struct AdaptivePatches;
@@ -55,7 +55,7 @@ struct MeshAsset {
     std::vector<float> appliedWeights;                 // morph weights in the arrays now
     uint64_t layoutId = 0; // unique per built vertex/index layout (GPU caches key on it)
     // "subdivision": {"mode": "adaptive"}: the cage's feature-adaptive
-    // patches (surfgrad/adaptive_patches.h), drawn by the tessellation
+    // patches (surfgrad/mesh/adaptive_patches.h), drawn by the tessellation
     // stages; null for every other mesh. Then `mesh` holds the patches'
     // control points as positions (bounds: the limit surface lies in their
     // convex hull) and no triangles, no UV sets and no morph targets.
@@ -156,7 +156,7 @@ struct TextureLoadOptions {
 };
 
 // Loads or generates one texture. A file goes through the guarded decoder
-// (surfgrad/image_decode.h), the size limit (kMaxTextureSize) and the
+// (surfgrad/image/image_decode.h), the size limit (kMaxTextureSize) and the
 // budget before it is decoded, scanline band by band, into level 0 in the
 // file's own precision (TexelType): 8/16-bit unorm, half, or float. Errors
 // name the scene file and the field: InputError(sceneName, src.fieldPath,

@@ -2,9 +2,9 @@
 // bottom row first as OpenGL reads them back), their files, and the
 // comparison of two images of unit vectors.
 //
-// Contract: an AOV image is an sg::image::Image (surfgrad/image.h) with 4
+// Contract: an AOV image is an sg::image::Image (surfgrad/image/image.h) with 4
 // channels, width * height * 4 samples. Writers go through the image
-// module's writer (surfgrad/image_write.h): rows flipped to the usual
+// module's writer (surfgrad/image/image_write.h): rows flipped to the usual
 // top-first file order, written atomically (sg::io::writeAtomically); a
 // failed write or an unsupported extension is an sg::io::InputError, and no
 // partial file is left.
@@ -18,7 +18,7 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/image.h"
+#include "surfgrad/image/image.h"
 
 namespace sg::render {
 
@@ -31,7 +31,7 @@ const char* aovName(Aov a);
 // "basenormal", "uv", "primid", "patch"); nullopt for anything else.
 std::optional<Aov> parseAov(const std::string& name);
 
-// The renderers' images are the image module's (surfgrad/image.h): 4
+// The renderers' images are the image module's (surfgrad/image/image.h): 4
 // channels (RGBA float, rgba()/setRgba() per texel), bottom row first.
 using Image = sg::image::Image;
 

@@ -19,7 +19,7 @@
 #include <glm/glm.hpp>
 
 #include "surfgrad/render/assets.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 #include "surfgrad/render/scene.h"
 #include "surfgrad/render/view.h"
 

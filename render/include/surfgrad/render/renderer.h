@@ -1,6 +1,6 @@
 // The two renderers: the OpenGL 4.5 renderer and the CPU reference
 // renderer, which run the same shared layer functions
-// (shaders/sg/render/*.glsl; the CPU through surfgrad/render_shaders.h) in
+// (shaders/sg/render/*.glsl; the CPU through surfgrad/render/render_shaders.h) in
 // the same order.
 //
 // Contract: a validated Scene, its SceneAssets and a View of at least 1x1
@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "surfgrad/glsl_texture.h"
+#include "surfgrad/render/glsl_texture.h"
 #include "surfgrad/render/assets.h"
 #include "surfgrad/render/image.h"
 #include "surfgrad/render/scene.h"
-#include "surfgrad/shader_files.h"
+#include "surfgrad/shaders/shader_files.h"
 #include "surfgrad/render/view.h"
 
 namespace sg::render {

@@ -26,8 +26,8 @@
 
 #include <glm/glm.hpp>
 
-#include "surfgrad/contract.h"
-#include "surfgrad/glsl_texture.h"
+#include "surfgrad/base/contract.h"
+#include "surfgrad/render/glsl_texture.h"
 
 namespace sg::render {
 
