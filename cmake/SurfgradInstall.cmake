@@ -10,7 +10,8 @@
 #   share/doc/surfgrad-dev/copyright      the same, for surfgrad-dev [development]
 #   share/surfgrad/data/                  data/ ("data:" in scenes)  [runtime]
 #   share/surfgrad/examples/              examples/                  [runtime]
-#   include/surfgrad/**.h                 public headers of each module   [development]
+#   include/surfgrad/<module>/*.h         public headers of each module   [development]
+#   include/surfgrad/<module>.h           its umbrella header             [development]
 #   lib/libsurfgrad_*.a                   the libraries, static          [development]
 #   lib/cmake/surfgrad/                   surfgradConfig.cmake, version, targets,
 #                                         surfgradDependencies.cmake,

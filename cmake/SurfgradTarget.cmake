@@ -35,7 +35,7 @@ endfunction()
 #  - the alias surfgrad::<name>, the name consumers use after
 #    find_package(surfgrad) and first-party code may use in the build tree;
 #  - export name <name> (the installed target is surfgrad::<name> too);
-#  - HEADERS: the module's public include directory (its surfgrad/*.h),
+#  - HEADERS: the module's public include directory (its surfgrad/<module>/*.h and umbrella surfgrad/<module>.h),
 #    used from the source tree in a build and from <prefix>/include in an
 #    installation, where SurfgradInstall.cmake copies its files;
 #  - in a build with SURFGRAD_CONTRACTS on, the installed target passes

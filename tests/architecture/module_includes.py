@@ -14,6 +14,12 @@
 # that resolves to no file of the tree (system headers, generated files) is
 # not a first-party edge.
 #
+# It also checks the layout of the public headers (docs/architecture.md,
+# "Public headers"): a module folder M/'s include trees hold only
+# surfgrad/M/<name>.h and the module's umbrella header surfgrad/M.h, and the
+# umbrella names every header of surfgrad/M/ (includes it, or says in a
+# comment why not).
+#
 # Usage: module_includes.py SOURCE_DIR module_links.txt module_dirs.txt
 # Exit status 1 names every offending include: file, line, header, why.
 import os
@@ -98,6 +104,7 @@ def main():
 
     errors, checked = [], 0
     for d in sorted(folders):
+        errors += header_layout(d, folders, src)
         for root, subdirs, files in os.walk(d):
             # A nested module folder (apps/viewer inside apps/) is its own.
             subdirs[:] = [s for s in subdirs if os.path.join(root, s) not in folders]
@@ -126,13 +133,57 @@ def main():
                         rel = os.path.relpath(path, src)
                         errors.append('%s:%d: #include "%s": %s' % (rel, lineno, inc, err))
     if errors:
-        print("module_includes: includes that break the dependency order:", file=sys.stderr)
+        print("module_includes: includes that break the dependency order, or misplaced "
+              "public headers:", file=sys.stderr)
         for e in errors:
             print("  " + e, file=sys.stderr)
         return 1
     print("module_includes: %d files of %d module folders include only what their modules link"
           % (checked, len(folders)))
     return 0
+
+
+def include_roots(folder, folders):
+    """The public include trees of a module folder: its include/ and those
+    of the folders inside it (mesh/oracle/include), not of nested modules."""
+    roots = []
+    for root, subdirs, _ in os.walk(folder):
+        if os.path.basename(root) == "include":
+            roots.append(root)
+            subdirs[:] = []
+        subdirs[:] = [s for s in subdirs
+                      if s not in ("src", "sg") and os.path.join(root, s) not in folders]
+    return sorted(roots)
+
+
+def header_layout(folder, folders, src):
+    """Errors of the public header layout of one module folder."""
+    mod = os.path.basename(folder)
+    umbrella = os.path.join(folder, "include", "surfgrad", mod + ".h")
+    errors, headers = [], []
+    for root in include_roots(folder, folders):
+        for cur, _, files in os.walk(root):
+            for name in sorted(files):
+                path = os.path.join(cur, name)
+                rel = os.path.relpath(path, root).replace(os.sep, "/")
+                if rel.startswith("surfgrad/%s/" % mod):
+                    headers.append(rel)
+                elif not (rel == "surfgrad/%s.h" % mod and path == umbrella):
+                    errors.append("%s: a public header outside surfgrad/%s/ (its place: "
+                                  "surfgrad/%s/%s)" % (os.path.relpath(path, src), mod, mod,
+                                                       os.path.basename(rel)))
+    if headers:
+        if not os.path.isfile(umbrella):
+            errors.append("%s: missing: the umbrella header of %s/ (names every header of "
+                          "surfgrad/%s/)" % (os.path.relpath(umbrella, src), mod, mod))
+        else:
+            with open(umbrella, encoding="utf-8", errors="replace") as f:
+                text = f.read()
+            for rel in sorted(set(headers)):
+                if not re.search(re.escape(rel) + r"(?![\w/])", text):
+                    errors.append("%s: the umbrella header does not name %s"
+                                  % (os.path.relpath(umbrella, src), rel))
+    return errors
 
 
 def verdict(other, public, folder, folders, allowed):

@@ -62,6 +62,10 @@ done
      (cd "$d/include" && find . -name '*.h'); done) | sort >"$work/headers.want"
 (cd "$prefix/include" && find . -type f) | sort >"$work/headers.got"
 diff -u "$work/headers.want" "$work/headers.got" >&2 || fail "installed headers differ from the modules' include/ trees"
+# Every module's umbrella header (docs/architecture.md, "Public headers").
+for m in base shaders image mesh bump features gl parity render normalmap bake translate viewer; do
+    [ -f "$prefix/include/surfgrad/$m.h" ] || fail "include/surfgrad/$m.h (the umbrella of $m) missing"
+done
 # GLSL library and data: the same files as the source tree.
 diff <(cd "$src/shaders/sg" && find . -name '*.glsl' -o -name '*.hlsl' | sort) \
      <(cd "$prefix/share/surfgrad/shaders/sg" && find . -type f | sort) >&2 ||

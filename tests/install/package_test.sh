@@ -105,6 +105,9 @@ has run /usr/share/surfgrad/examples/consumer-tangents/main.cpp
 has dev /usr/include/surfgrad/bump/core.h
 has dev /usr/include/surfgrad/mesh/tangents.h
 has dev /usr/include/surfgrad/render/scene.h
+has dev /usr/include/surfgrad/bump.h
+has dev /usr/include/surfgrad/mesh.h
+has dev /usr/include/surfgrad/render.h
 has dev /usr/share/surfgrad/shaders/sg/surfgrad.glsl
 has dev /usr/share/surfgrad/shaders/sg/compat.glsl
 has dev /usr/share/surfgrad/shaders/sg/surfgrad.hlsl

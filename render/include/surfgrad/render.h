@@ -1,4 +1,5 @@
-// surfgrad renderer: scenes (JSON, validated), shader assembly with effects
+// Umbrella header of the render module (surfgrad_render, render/).
+// The surfgrad renderer: scenes (JSON, validated), shader assembly with effects
 // on demand, the OpenGL 4.5 renderer, the CPU reference renderer and image
 // output. The bump math is the surface-gradient framework of Mikkelsen,
 // "Surface Gradient Based Bump Mapping Framework" (2019); every layer is a
@@ -23,17 +24,23 @@
 // the field path (e.g. "materials[0].layers[2].strength") and the reason; GL
 // failures throw sg::gl::GlError.
 //
-// The API is split by stage; this header includes them all:
-//   surfgrad/render/scene.h     schema types, parseScene, loadScene, defaultScene
-//   surfgrad/render/layer_params.h  parameters of the built-in layer kinds
-//   surfgrad/render/assets.h    SceneAssets, loadAssets, applyFrame, loadTexture
-//   surfgrad/render/view.h      View, makeView, makeOrbitView
-//   surfgrad/render/plan.h      MaterialPlan, planMaterial, assembleProgram
-//   surfgrad/render/image.h     Image, Aov, writeImage, readImage, compareVectorImages
-//   surfgrad/render/renderer.h  GlRenderer, renderCpu, CpuOptions
+// The API is split by stage; this header includes every public header of
+// the module but one:
+//   surfgrad/render/scene.h           schema types, parseScene, loadScene, defaultScene
+//   surfgrad/render/layer_params.h    parameters of the built-in layer kinds
+//   surfgrad/render/assets.h          SceneAssets, loadAssets, applyFrame, loadTexture
+//   surfgrad/render/view.h            View, makeView, makeOrbitView
+//   surfgrad/render/plan.h            MaterialPlan, planMaterial, assembleProgram
+//   surfgrad/render/image.h           Image, Aov, writeImage, readImage, compareVectorImages
+//   surfgrad/render/renderer.h        GlRenderer, renderCpu, CpuOptions
+//   surfgrad/render/glsl_texture.h    GLSL samplers emulated in C++ (textureGrad, ...)
+//   surfgrad/render/render_shaders.h  the layer library compiled for the CPU; NOT included
+//                                     here: the whole shader library as C++ (sg::glsl),
+//                                     for the CPU reference renderer and the tests only
 #pragma once
 
 #include "surfgrad/render/assets.h"
+#include "surfgrad/render/glsl_texture.h"
 #include "surfgrad/render/image.h"
 #include "surfgrad/render/layer_params.h"
 #include "surfgrad/render/plan.h"

@@ -46,8 +46,7 @@ using uint = unsigned int;
 #endif // SG_GLSL_CPP_DOUBLE_H
 
 #ifndef SG_GLSL_DOUBLE_SOURCE
-#error                                                                                             \
-    "define SG_GLSL_DOUBLE_SOURCE (\"sgd/<path>\") before including surfgrad/shaders/glsl_cpp_double.h"
+#error "define SG_GLSL_DOUBLE_SOURCE (\"sgd/<path>\") before including this header"
 #endif
 #ifdef SG_COMPAT_GLSL
 #ifndef SG_GLSL_DOUBLE_COMPAT
