@@ -30,22 +30,41 @@
 //
 // Cases: every image case, its antialiased variants (the material's
 // "antialias": "lean" and "toksvig", where a layer then antialiases with
-// options of its own: the *_aa.glsl functions and slopeCov), and MODULATE
-// without DEFORM (its identity Jacobian; no image case has it).
+// options of its own: the *_aa.glsl functions and slopeCov; for the
+// feature kind, which antialiases per layer, "antialias": "lean" on the
+// first feature layer where it has no base map), and MODULATE without
+// DEFORM (its identity Jacobian; no image case has it).
 //
-// Skipped: the feature kind (LayerKind::batch: its layers are emitted as
-// one loop per group, LayerBatch::groupStatements, not as one statement per
-// layer; its evaluator's HLSL numbers are checked by
-// FeatureKernelDialects.KernelParityThroughHlsl) and, of post_resolve
-// scenes, the groups after the first (their re-prologue reads
-// gl_FragCoord and the resolved normal of the group before: group 0 is
-// checked, the later groups' layers are kinds checked on their own
-// scenes). Textures: RGBA32F with the exact mip chain, trilinear, the wrap
-// of the image (gl_renderer.cpp's upload).
+// The feature kind (LayerKind::batch) emits its layers as one loop per
+// group (layer_feature.cpp's groupLoop); its body is the kind's emitter
+// with GlslLayerContext::loop, which the harness instantiates once per
+// feature layer as the loop's unrolled form does: a block
+// `{ const int fi = <kindIndex>; int r = <record>; SgUvFrame fuv = uv<set>;
+// <statement> }`. The statement calls sgLayerFeature, sgLayerFeatureNear,
+// sgLayerFeatureAa or sgLayerFeatureNearAa (per plan) with the per-layer
+// sampler arrays indexed by fi: uFeatCorners, uFeatEdges (and uFeatNear,
+// uFeatPieces with the exact near field) are the layer's feature maps
+// uploaded as feature_assets.cpp does (RGBA32UI, one level, nearest;
+// read with texelFetch), uFeatBase, uFeatChainA, uFeatChainB its texture
+// slots (bindGpu's choice of stand-ins); in GLSL `uniform usampler2D
+// uFeatCorners[n]` etc. with a binding per array, in HLSL one global per
+// layer (Texture2D<uint4>, or Texture2D<float4> with a SamplerState)
+// gathered into local arrays of main() (Texture2D<uint4>, SgSampler2D)
+// that the constant fi indexes (glslang's legalization resolves them).
+// The CPU twin gets the kind's data as the CPU renderer builds it
+// (planKindCpuData); the programs the kinds' defines (SG_FEAT_CURVED,
+// SG_FEAT_NEAR).
+//
+// Skipped: of post_resolve scenes, the groups after the first (their
+// re-prologue reads gl_FragCoord and the resolved normal of the group
+// before: group 0 is checked, the later groups' layers are kinds checked
+// on their own scenes). Textures: RGBA32F with the exact mip chain,
+// trilinear, the wrap of the image (gl_renderer.cpp's upload).
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -54,6 +73,7 @@
 
 #include "hlsl_round_trip.h"
 #include "layer_kind.h"
+#include "layers/feature_assets.h"
 #include "render_internal.h"
 #include "render_test_util.h"
 #include "surfgrad/gl/context.h"
@@ -114,12 +134,31 @@ std::string layerOptions(const std::string& json, bool& antialias) {
 std::vector<HarnessCase> harnessCases() {
     std::vector<HarnessCase> cases;
     for (const LayerKind* k : layerKinds()) {
-        // feature: batched (one loop per group), not one statement per layer.
-        if (k->batch) continue;
         for (const KindImageCase& c : k->imageCases) {
             const std::string mesh = c.mesh.empty() ? kSphere : c.mesh;
             cases.push_back(
                 {c.name, oneMaterialScene(c.layers, mesh, "", 200, 150, c.sceneExtra), k});
+            // The feature kind antialiases per layer ("antialias": "lean" on
+            // the layer, not the material's): the first feature layer made
+            // LEAN where it has no base map (the chain replaces it), so the
+            // plan calls sgLayerFeatureAa / sgLayerFeatureNearAa.
+            if (k->batch) {
+                const std::string head = R"({"type": "feature", )";
+                const std::string layers = c.layers;
+                const size_t at = layers.find(head);
+                if (at == std::string::npos) continue;
+                size_t end = at; // the end of the layer's object
+                for (int depth = 0; end < layers.size(); ++end) {
+                    depth += layers[end] == '{' ? 1 : layers[end] == '}' ? -1 : 0;
+                    if (depth == 0) break;
+                }
+                if (layers.substr(at, end - at).find("base_map") != std::string::npos) continue;
+                std::string lean = layers;
+                lean.insert(at + head.size(), R"("antialias": "lean", )");
+                cases.push_back({std::string(c.name) + "_lean",
+                                 oneMaterialScene(lean, mesh, "", 200, 150, c.sceneExtra), k});
+                continue;
+            }
             // The antialiased variants (the *_aa.glsl functions, slopeCov):
             // the same scene with the material's "antialias", kept when a
             // layer then antialiases with options no kept case has (layers
@@ -173,12 +212,67 @@ std::vector<std::string> planFiles(const MaterialPlan& plan) {
     return files;
 }
 
-// The statements of group 0, in plan order.
+// The statements of group 0, in plan order. A batched (feature) layer's
+// is the body of its kind's loop (GlslLayerContext::loop: records from
+// `r`, the UV frame `fuv`, its maps at `fi`) in a block of its own that
+// sets them for that layer, as the loop's unrolled form does (fi its
+// PlanLayer::kindIndex, a constant).
 std::vector<std::string> groupStatements(const MaterialPlan& plan) {
     std::vector<std::string> s;
-    for (const PlanLayer& pl : plan.groups[0])
-        s.push_back(pl.layer->kind->emit.glsl(GlslLayerContext{plan, pl, "    "}));
+    for (const PlanLayer& pl : plan.groups[0]) {
+        if (!pl.layer->kind->batch) {
+            s.push_back(pl.layer->kind->emit.glsl(GlslLayerContext{plan, pl, "    "}));
+            continue;
+        }
+        const std::string in = "        ";
+        s.push_back("{\n" + in + "const int fi = " + std::to_string(pl.kindIndex) + ";\n" + in +
+                    "int r = " + std::to_string(pl.record) + ";\n" + in + "SgUvFrame fuv = uv" +
+                    std::to_string(pl.layer->uvSet) + ";\n" + in +
+                    pl.layer->kind->emit.glsl(GlslLayerContext{plan, pl, in, /*loop*/ true}) +
+                    "    }\n");
+    }
     return s;
+}
+
+// The program defines of the plan's kinds (the feature kind's
+// SG_FEAT_CURVED, SG_FEAT_NEAR: plan.cpp's assembleProgram).
+std::vector<std::string> planDefines(const MaterialPlan& plan) {
+    std::vector<std::string> defs;
+    for (const LayerKind* k : plan.kinds)
+        if (k->programDefines) k->programDefines(plan, defs);
+    return defs;
+}
+
+// The feature layers' maps (feature_assets.cpp's bindGpu), per layer fi
+// (PlanLayer::kindIndex, all groups) on units after the plan's textures
+// and their SamplerStates: the arrays uFeatCorners, uFeatEdges, uFeatNear,
+// uFeatPieces (RGBA32UI), uFeatBase, uFeatChainA, uFeatChainB (the
+// layer's texture slots), each a run of featureLayers units.
+enum FeatArray {
+    kFeatCorners,
+    kFeatEdges,
+    kFeatNear,
+    kFeatPieces,
+    kFeatBase,
+    kFeatChainA,
+    kFeatChainB,
+    kFeatArrays
+};
+const char* const kFeatArrayNames[kFeatArrays] = {"uFeatCorners", "uFeatEdges", "uFeatNear",
+                                                  "uFeatPieces",  "uFeatBase",  "uFeatChainA",
+                                                  "uFeatChainB"};
+int featUnit(const MaterialPlan& plan, FeatArray a, int fi) {
+    const int n = int(plan.textureKeys.size()), layers = featurePlan(plan).layerCount;
+    return kTexBase + 2 * n + layers * int(a) + fi;
+}
+// The arrays the plan's program declares (layer_feature.cpp's declarations).
+bool featArrayUsed(const FeaturePlan& fp, FeatArray a) {
+    if (a == kFeatNear || a == kFeatPieces) return fp.near;
+    if (a == kFeatChainA || a == kFeatChainB) return fp.lean;
+    return true;
+}
+bool featArrayUnsigned(FeatArray a) {
+    return a <= kFeatPieces;
 }
 
 // main()'s body after the target's opening (which defines `i`, the
@@ -270,6 +364,14 @@ std::string glslHarness(const MaterialPlan& plan, int bfaceMode,
         o += "layout(binding = " + std::to_string(kTexBase + int(k)) + ") uniform sampler2D uTex" +
              std::to_string(k) + ";\n";
     }
+    const FeaturePlan fp = featurePlan(plan);
+    for (int a = 0; a < kFeatArrays && fp.layerCount > 0; ++a) {
+        const FeatArray fa = FeatArray(a);
+        if (!featArrayUsed(fp, fa)) continue;
+        o += "layout(binding = " + std::to_string(featUnit(plan, fa, 0)) + ") uniform " +
+             (featArrayUnsigned(fa) ? "usampler2D " : "sampler2D ") + kFeatArrayNames[a] + "[" +
+             std::to_string(fp.layerCount) + "];\n";
+    }
     o += kHelpers;
     o += "void main() {\n"
          "    uint i = gl_GlobalInvocationID.x;\n"
@@ -293,6 +395,26 @@ std::string hlslHarness(const MaterialPlan& plan, int bfaceMode,
         o += "[[vk::binding(" + std::to_string(kTexBase + int(n + k)) + ")]] SamplerState gSmp" +
              s + " : register(s" + s + ");\n";
     }
+    // The feature arrays: a global per layer (binding its unit), gathered
+    // into local arrays in main() (constant indices; glslang's legalization
+    // resolves them).
+    const FeaturePlan fp = featurePlan(plan);
+    for (int a = 0; a < kFeatArrays; ++a) {
+        const FeatArray fa = FeatArray(a);
+        if (!featArrayUsed(fp, fa)) continue;
+        for (int fi = 0; fi < fp.layerCount; ++fi) {
+            const std::string t = std::to_string(featUnit(plan, fa, fi));
+            o += "[[vk::binding(" + t + ")]] Texture2D<" +
+                 (featArrayUnsigned(fa) ? "uint4" : "float4") + "> g" +
+                 std::string(kFeatArrayNames[a] + 1) + std::to_string(fi) + " : register(t" + t +
+                 ");\n";
+        }
+    }
+    if (fp.layerCount > 0) {
+        const std::string b = std::to_string(featUnit(plan, kFeatArrays, 0));
+        o += "[[vk::binding(" + b + ")]] SamplerState gFeatSmp : register(s" + std::to_string(n) +
+             ");\n";
+    }
     o += kHelpers;
     o += "[numthreads(" + std::to_string(sg::gl::kComputeGroupSize) +
          ", 1, 1)] void main(uint3 threadId : SV_DispatchThreadID) {\n"
@@ -306,6 +428,22 @@ std::string hlslHarness(const MaterialPlan& plan, int bfaceMode,
         const std::string s = std::to_string(k);
         o += "    SgSampler2D uTex" + s + ";\n    uTex" + s + ".tex = gTex" + s + ";\n    uTex" +
              s + ".state = gSmp" + s + ";\n";
+    }
+    for (int a = 0; a < kFeatArrays && fp.layerCount > 0; ++a) {
+        const FeatArray fa = FeatArray(a);
+        if (!featArrayUsed(fp, fa)) continue;
+        const std::string name = kFeatArrayNames[a], global = "g" + name.substr(1);
+        o += std::string("    ") + (featArrayUnsigned(fa) ? "Texture2D<uint4> " : "SgSampler2D ") +
+             name + "[" + std::to_string(fp.layerCount) + "];\n";
+        for (int fi = 0; fi < fp.layerCount; ++fi) {
+            const std::string at = name + "[" + std::to_string(fi) + "]",
+                              g = global + std::to_string(fi);
+            if (featArrayUnsigned(fa)) {
+                o += "    " + at + " = " + g + ";\n";
+            } else {
+                o += "    " + at + ".tex = " + g + ";\n    " + at + ".state = gFeatSmp;\n";
+            }
+        }
     }
     return o + harnessBody(plan, bfaceMode, statements);
 }
@@ -397,9 +535,14 @@ Inputs randomInputs(const View& view, const detail::DrawUniforms& u) {
 // The CPU twin: the same prologue (plan.cpp, CpuShader::prologue, every
 // volume built), group 0's layers, the resolve; the same output record.
 std::vector<float> runCpu(const MaterialPlan& plan, const detail::DrawUniforms& u,
-                          const std::vector<G::sampler2D>& smp, const Inputs& inputs) {
-    // No kind data: the batched (feature) kind is not run here.
-    const std::any* noKindData = nullptr;
+                          const std::vector<G::sampler2D>& smp,
+                          const std::vector<std::any>& kindData, const Inputs& inputs) {
+    // The layer's kind's entry of kindData (plan.cpp's CpuShader).
+    auto kindDataOf = [&](const PlanLayer& pl) -> const std::any* {
+        for (size_t k = 0; k < plan.kindPlans.size(); ++k)
+            if (plan.kindPlans[k].kind == pl.layer->kind) return &kindData[k];
+        return nullptr;
+    };
     std::vector<float> out(kSamples * size_t(kOutStride), 0.0f);
     for (size_t i = 0; i < kSamples; ++i) {
         const detail::PixelInputs& in = inputs.px[i];
@@ -416,7 +559,7 @@ std::vector<float> runCpu(const MaterialPlan& plan, const detail::DrawUniforms& 
         s.volWorld = G::sgVolumeSpace(s.frame, in.relPos, glm::mat3(1.0f), glm::mat3(1.0f));
         s.volObject = G::sgVolumeSpaceDeriv(in.objPos, in.dObjdx, in.dObjdy, u.model3, u.modelInv3);
         for (const PlanLayer& pl : plan.groups[0])
-            pl.layer->kind->emit.cpu(CpuLayerContext{plan, pl, u, smp, noKindData, in}, s,
+            pl.layer->kind->emit.cpu(CpuLayerContext{plan, pl, u, smp, kindDataOf(pl), in}, s,
                                      glm::vec3(0.0f));
         const glm::vec3 nrm = G::sgResolve(s.frame, s.surfGrad);
         float* o = &out[i * size_t(kOutStride)];
@@ -455,6 +598,7 @@ public:
         for (GLuint t : ids_)
             if (t) glDeleteTextures(1, &t);
     }
+    GLuint id(int slot) const { return slot >= 0 ? ids_[size_t(slot)] : 0; }
     PlanTextures(const PlanTextures&) = delete;
     PlanTextures& operator=(const PlanTextures&) = delete;
 
@@ -477,6 +621,75 @@ private:
         glTextureParameteri(t, GL_TEXTURE_WRAP_T, wrap);
         glTextureParameteri(t, GL_TEXTURE_MAX_LEVEL, GLint(img.levels.size()) - 1);
         return t;
+    }
+    std::vector<GLuint> ids_;
+};
+
+// The feature layers' maps as feature_assets.cpp uploads them (RGBA32UI,
+// one level, nearest; read with texelFetch), on the units of featUnit:
+// maps without a near field have their corner texture stand in for the
+// near textures (never read; an integer sampler needs an integer texture),
+// the base and chain arrays the layer's texture slots (bindGpu: base and
+// chain A slot 0, chain B slot 1 or 0); deleted with the object.
+class FeatureTextures {
+public:
+    FeatureTextures(const MaterialPlan& plan, const SceneAssets& assets,
+                    const PlanTextures& planTextures) {
+        const KindPlan* kp = nullptr;
+        for (const KindPlan& k : plan.kindPlans)
+            if (k.kind->batch) kp = &k;
+        if (!kp) return;
+        std::vector<std::array<GLuint, 4>> slots;
+        for (const std::string& key : kp->keys) {
+            std::array<GLuint, 4> t{0, 0, 0, 0};
+            if (const FeatureMapsAsset* fm = findFeatureMaps(assets, key)) {
+                const auto& g = fm->gpu;
+                t[0] = upload(g.cornerPairsWidth(), g.cornerPairsHeight(), g.cornerPairs);
+                t[1] = upload(g.size, g.size, g.edges);
+                if (g.hasNearField()) {
+                    t[2] = upload(g.size, g.nearHeight, g.nearLists);
+                    t[3] = upload(SG_FEAT_PIECES_WIDTH, g.piecesHeight, g.pieces);
+                }
+            }
+            for (GLuint x : t)
+                if (x) ids_.push_back(x);
+            if (!t[2]) t[2] = t[3] = t[0];
+            slots.push_back(t);
+        }
+        const FeaturePlan fp = featurePlan(plan);
+        for (const auto& g : plan.groups)
+            for (const PlanLayer& pl : g) {
+                if (pl.kindIndex < 0 || !pl.layer->kind->batch) continue;
+                const auto& t = slots[size_t(pl.kindSlot)];
+                auto bind = [&](FeatArray a, GLuint tex) {
+                    if (featArrayUsed(fp, a))
+                        glBindTextureUnit(GLuint(featUnit(plan, a, pl.kindIndex)), tex);
+                };
+                bind(kFeatCorners, t[0]);
+                bind(kFeatEdges, t[1]);
+                bind(kFeatNear, t[2]);
+                bind(kFeatPieces, t[3]);
+                bind(kFeatBase, planTextures.id(pl.tex[0]));
+                bind(kFeatChainA, planTextures.id(pl.tex[0]));
+                bind(kFeatChainB, planTextures.id(pl.tex[1] >= 0 ? pl.tex[1] : pl.tex[0]));
+            }
+        sg::gl::checkError("harness feature maps");
+    }
+    ~FeatureTextures() {
+        for (GLuint t : ids_) glDeleteTextures(1, &t);
+    }
+    FeatureTextures(const FeatureTextures&) = delete;
+    FeatureTextures& operator=(const FeatureTextures&) = delete;
+
+private:
+    static GLuint upload(int w, int h, const std::vector<uint32_t>& data) {
+        GLuint x = 0;
+        glCreateTextures(GL_TEXTURE_2D, 1, &x);
+        glTextureStorage2D(x, 1, GL_RGBA32UI, w, h);
+        glTextureSubImage2D(x, 0, 0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, data.data());
+        glTextureParameteri(x, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTextureParameteri(x, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        return x;
     }
     std::vector<GLuint> ids_;
 };
@@ -586,9 +799,6 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
     const std::vector<G::sampler2D> smp =
         detail::planSamplers(plan, assets, gpuParityOptions().textureLod);
     ASSERT_FALSE(plan.groups.empty());
-    for (const PlanLayer& pl : plan.groups[0])
-        ASSERT_EQ(pl.layer->kind->batch, nullptr)
-            << hc.name << ": a batched kind in group 0 (this harness runs single statements)";
     if (!hc.kind->group) {
         EXPECT_TRUE(std::any_of(plan.groups[0].begin(), plan.groups[0].end(),
                                 [&](const PlanLayer& pl) { return pl.layer->kind == hc.kind; }))
@@ -596,10 +806,11 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
     }
 
     const std::vector<std::string> statements = groupStatements(plan);
+    const std::vector<std::string> defines = planDefines(plan);
     const std::string glsl = glslHarness(plan, u.bfaceMode, statements);
     const shaders::Assembled hlsl =
-        shaders::assemble(hlslHarness(plan, u.bfaceMode, statements), "layer-hlsl-" + hc.name, {},
-                          shaders::Target::Hlsl);
+        shaders::assemble(hlslHarness(plan, u.bfaceMode, statements), "layer-hlsl-" + hc.name,
+                          defines, shaders::Target::Hlsl);
     // Not vacuous: every statement is in the HLSL and calls its kind's
     // shared function (sgLayer<Kind>, or the sampler of a modifier block).
     for (size_t j = 0; j < statements.size(); ++j) {
@@ -608,16 +819,25 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
         const std::string fn = pl.hasModifiers ? "sgSample" : "sgLayer";
         EXPECT_NE(statements[j].find(fn), std::string::npos) << hc.name << ": " << statements[j];
         EXPECT_NE(hlsl.text.find(statements[j]), std::string::npos) << hc.name;
+        if (pl.layer->kind->batch) { // the plan's variant of the feature function
+            const FeaturePlan fp = featurePlan(plan);
+            const std::string want = std::string("sgLayerFeature") + (fp.near ? "Near" : "") +
+                                     (fp.lean ? "Aa" : "") + "(";
+            EXPECT_NE(statements[j].find(want), std::string::npos)
+                << hc.name << ": " << statements[j];
+        }
     }
 
     const Inputs inputs = randomInputs(view, u);
-    const std::vector<float> cpu = runCpu(plan, u, smp, inputs);
+    const std::vector<float> cpu =
+        runCpu(plan, u, smp, detail::planKindCpuData(plan, assets), inputs);
     ASSERT_TRUE(allFinite(cpu)) << hc.name << ": the CPU twin";
 
     PlanTextures textures(plan, assets);
+    FeatureTextures featureTextures(plan, assets, textures);
     DrawBuffers buffers(u);
     sg::gl::Program glslProg(
-        {{sg::gl::Stage::Compute, shaders::assemble(glsl, "layer-glsl-" + hc.name)}});
+        {{sg::gl::Stage::Compute, shaders::assemble(glsl, "layer-glsl-" + hc.name, defines)}});
     const std::vector<float> gpuGlsl =
         sg::gl::runCompute(glslProg, inputs.data, kInStride, kOutStride, kSamples);
     std::vector<float> gpuHlsl;
@@ -659,11 +879,11 @@ TEST_P(LayerHlsl, GroupZeroStatementsMatchCpuInGlslAndThroughHlsl) {
 INSTANTIATE_TEST_SUITE_P(Kinds, LayerHlsl, ::testing::ValuesIn(harnessCases()),
                          [](const auto& tpi) { return tpi.param.name; });
 
-// Every registered kind is either run by the harness or batched.
-TEST(LayerHlslCoverage, EveryUnbatchedKindHasACase) {
+// Every registered kind, the batched (feature) kind included, is run by
+// the harness.
+TEST(LayerHlslCoverage, EveryKindHasACase) {
     const std::vector<HarnessCase> cases = harnessCases();
     for (const LayerKind* k : layerKinds()) {
-        if (k->batch) continue;
         EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [&](const HarnessCase& c) {
             return c.kind == k;
         })) << k->name;
