@@ -198,17 +198,11 @@ std::vector<HarnessCase> harnessCases() {
     *os << c.name;
 }
 
-// The files a plan's layers include (plan.cpp, emitDeclarations).
+// The files the harness includes: the common header, then the layers' files
+// as the assembler includes them (layerGlslFiles, every group's).
 std::vector<std::string> planFiles(const MaterialPlan& plan) {
     std::vector<std::string> files = {"sg/render/common.glsl"};
-    for (const PlanLayer& pl : plan.groups[0]) {
-        const LayerKind& k = *pl.layer->kind;
-        std::string f = pl.hasModifiers ? k.modifiers->glslFile
-                        : k.glslFileOf  ? k.glslFileOf(*pl.layer)
-                                        : k.glslFile;
-        if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
-    }
-    if (plan.antialias) files.push_back("sg/render/antialias.glsl");
+    for (const std::string& f : layerGlslFiles(plan)) files.push_back(f);
     return files;
 }
 
