@@ -257,29 +257,22 @@ private:
     glm::vec3 nrm_;
 };
 
+// The C++ build of shared function `fn` as a callable (the CPU binder's).
+#define SG_LAYER_FN(fn)                                                                            \
+    [](auto&&... sgArgs) -> decltype(auto) {                                                       \
+        return ::sg::glsl::fn(std::forward<decltype(sgArgs)>(sgArgs)...);                          \
+    }
+
 // The shared function `fn` called through binder `b`: GLSL writes its name,
 // the CPU calls sg::glsl::fn (the C++ build of the same source).
-#define SG_LAYER_CALL(b, fn, ...)                                                                  \
-    (b).call(                                                                                      \
-        #fn,                                                                                       \
-        [](auto&&... sgArgs) -> decltype(auto) {                                                   \
-            return ::sg::glsl::fn(std::forward<decltype(sgArgs)>(sgArgs)...);                      \
-        },                                                                                         \
-        __VA_ARGS__)
+#define SG_LAYER_CALL(b, fn, ...) (b).call(#fn, SG_LAYER_FN(fn), __VA_ARGS__)
 
 // The same call as a statement of its own (a function writing out arguments).
-#define SG_LAYER_RUN(b, fn, ...)                                                                   \
-    (b).run(                                                                                       \
-        #fn,                                                                                       \
-        [](auto&&... sgArgs) -> decltype(auto) {                                                   \
-            return ::sg::glsl::fn(std::forward<decltype(sgArgs)>(sgArgs)...);                      \
-        },                                                                                         \
-        __VA_ARGS__)
+#define SG_LAYER_RUN(b, fn, ...) (b).run(#fn, SG_LAYER_FN(fn), __VA_ARGS__)
 
 // The kind's emitter from one generic lambda over a binder (no captures):
-// its GLSL statement and its CPU call.
-// constexpr, so a kind's `constexpr LayerEmitter kEmit = emitter(...)` is
-// initialised before any registry lookup.
+// its GLSL statement and its CPU call. constexpr, so a kind's `constexpr LayerEmitter kEmit =
+// emitter(...)` is initialised before any registry lookup.
 template <class F>
 constexpr LayerEmitter emitter(F) {
     static_assert(std::is_empty_v<F>, "an emitter captures nothing");
